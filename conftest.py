@@ -1,0 +1,15 @@
+import numpy as np
+import pytest
+from hypothesis import settings
+
+# Deterministic property tests: a CI failure reproduces on any machine.
+settings.register_profile("ci", derandomize=True, deadline=None, max_examples=60,
+                          print_blob=True)
+settings.load_profile("ci")
+
+
+@pytest.fixture(autouse=True)
+def _doctest_namespace(doctest_namespace):
+    import kinelab as kl
+    doctest_namespace["np"] = np
+    doctest_namespace["kl"] = kl

@@ -1,0 +1,1 @@
+"""Dynamics by Gibbs-Appell / Kane: inverse and forward dynamics."""

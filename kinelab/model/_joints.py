@@ -1,0 +1,58 @@
+"""The kinematic pairs kinelab knows, with the freedoms each allows.
+
+A pair that allows ``j`` relative freedoms is of class ``P{j}`` in the notes (seed 003
+§1): the revolute pair is P1, the cylindrical pair P2, the spherical pair P3.  In the
+plane (lambda = 3) a pair removes ``3 - j`` freedoms; in space (lambda = 6) ``6 - j``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["JointType", "JOINT_TYPES"]
+
+
+@dataclass(frozen=True)
+class JointType:
+    """One kind of kinematic pair.
+
+    Attributes
+    ----------
+    symbol : str
+        The name used in models and files (``"R"``, ``"P"``, ``"cam"`` ...).
+    freedoms : int
+        Relative freedoms the pair allows (its class ``P_j``), counted in the space the
+        pair is meant for: in the plane for the planar higher pairs, in space otherwise.
+    planar : bool
+        Whether the pair can join two links of a planar mechanism.
+    higher : bool
+        A higher pair (point or line contact) rather than a lower pair (surface contact).
+    needs_point : bool
+        Whether the joint must name the point where it acts.
+    needs_axis : bool
+        Whether the joint must give an axis (slide direction, rotation axis).
+    description : str
+        A short description for people.
+    """
+
+    symbol: str
+    freedoms: int
+    planar: bool
+    higher: bool
+    needs_point: bool
+    needs_axis: bool
+    description: str
+
+
+JOINT_TYPES: dict[str, JointType] = {t.symbol: t for t in (
+    JointType("R", 1, True, False, True, False, "revolute (pin, hinge)"),
+    JointType("P", 1, True, False, True, True, "prismatic (slider)"),
+    JointType("H", 1, False, False, True, True, "helical (screw)"),
+    JointType("C", 2, False, False, True, True, "cylindrical"),
+    JointType("U", 2, False, False, True, True, "universal (Hooke, Cardan)"),
+    JointType("S", 3, False, False, True, False, "spherical (ball)"),
+    JointType("E", 3, False, False, False, True, "planar pair (flat contact)"),
+    JointType("cam", 2, True, True, False, False, "cam and follower (rolling and sliding contact)"),
+    JointType("gear", 2, True, True, False, False, "gear mesh"),
+    JointType("rolling", 1, True, True, False, False, "rolling contact without slip"),
+    JointType("pin_in_slot", 2, True, True, True, True, "pin in slot"),
+)}

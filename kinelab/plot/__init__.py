@@ -1,0 +1,1 @@
+"""Figures and animations of results (matplotlib, imported lazily)."""

@@ -1,0 +1,1 @@
+"""Structure: mobility, connectivity, number and type synthesis (topology only)."""

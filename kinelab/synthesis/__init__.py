@@ -1,0 +1,1 @@
+"""Dimensional synthesis of linkages (poles, Burmester, Suh-Radcliffe, function and path generation)."""
