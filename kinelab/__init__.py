@@ -1,5 +1,14 @@
-"""kinelab: analysis and synthesis of mechanisms."""
-from kinelab import errors, model
+"""kinelab: analysis and synthesis of mechanisms.
+
+>>> import kinelab as kl
+>>> fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
+>>> sol = kl.analyze(fb, q=np.radians(np.arange(0, 360, 0.5)), qd=10.0)
+>>> sol.angle("coupler").shape, sol.position("B").shape
+((720,), (720, 2))
+"""
+from kinelab import errors, kinematics, mechanisms, model
+from kinelab.kinematics import KinematicSolution, analyze
 from kinelab.model import Mechanism
 
-__all__ = ["errors", "model", "Mechanism"]
+__all__ = ["errors", "model", "mechanisms", "kinematics", "analyze", "Mechanism",
+           "KinematicSolution"]

@@ -1,0 +1,40 @@
+"""Writing files safely: to a temporary file beside the target, then renamed into place,
+so that a failure never leaves a half-written output behind."""
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import Callable
+from pathlib import Path
+from typing import IO
+
+
+def atomic_write(path: str | os.PathLike, write: Callable[[IO], None], *, binary: bool = False) -> Path:
+    """Call ``write(file)`` on a temporary file and rename it to ``path`` when it succeeds."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb" if binary else "w", **({} if binary else {"newline": ""})) as f:
+            write(f)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
+
+
+def write_csv(columns: dict, path: str | os.PathLike) -> Path:
+    """Write named (N,) columns as CSV with a header row, atomically."""
+    import csv
+
+    import numpy as np
+
+    names = list(columns)
+    data = np.column_stack([np.asarray(columns[n], dtype=float) for n in names]) if names else np.zeros((0, 0))
+
+    def write(f):
+        w = csv.writer(f)
+        w.writerow(names)
+        w.writerows(data.tolist())
+    return atomic_write(path, write)

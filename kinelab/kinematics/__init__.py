@@ -1,0 +1,12 @@
+"""Position, velocity and acceleration analysis of any planar mechanism.
+
+The notes' method (seed 000; seed 003 §4.4-4.8): position equations Phi(q, S) = 0, Jacobian
+J = dPhi/dS and Q = dPhi/dq, velocity coefficients K = -J^-1 Q and acceleration
+coefficients L = dK/dq, singular configurations where det J = 0.
+"""
+from kinelab.kinematics._analyze import SINGULAR_TOL, analyze, plan, reachable_ranges
+from kinelab.kinematics._plan import Plan, Step
+from kinelab.kinematics._solution import AccelerationComponents, KinematicSolution
+
+__all__ = ["analyze", "plan", "reachable_ranges", "KinematicSolution", "AccelerationComponents",
+           "Plan", "Step", "SINGULAR_TOL"]

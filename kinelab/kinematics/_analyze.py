@@ -1,0 +1,309 @@
+"""Position, velocity and acceleration analysis of any planar mechanism."""
+from __future__ import annotations
+
+import math
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from kinelab.errors import AssemblyError, ModelError, SingularityError
+from kinelab.kinematics import _kernel as k
+from kinelab.kinematics._plan import Plan, build_plan
+from kinelab.kinematics._solution import KinematicSolution
+from kinelab.model import Mechanism
+
+__all__ = ["analyze", "plan", "reachable_ranges"]
+
+SINGULAR_TOL = 1e-7   # singularity measure (a sine) below which det J is zero to rounding
+_CONTINUATION_STEP = 0.05  # largest continuation step of a Newton group, rad (or m / scale)
+
+
+def plan(mechanism: Mechanism, *, method: Literal["auto", "newton"] = "auto") -> Plan:
+    """The solution plan of a mechanism: how its position problem is decomposed.
+
+    ``plan(m).steps`` lists the groups (driven links, dyads RRR/RRP/RPR/PRP, Newton
+    groups) in the order they are solved.  Plans are cached on the mechanism.
+    """
+    if not isinstance(mechanism, Mechanism):
+        raise ModelError(f"mechanism: expected a kinelab Mechanism, got {type(mechanism).__name__}; "
+                         "build one with kinelab.mechanisms or kinelab.load")
+    cache = mechanism.__dict__.setdefault("_plans", {})
+    if method not in cache:
+        cache[method] = build_plan(mechanism, method=method)
+    return cache[method]
+
+
+def _as_inputs(name: str, value: ArrayLike, M: int, shape: tuple[int, ...] | None):
+    try:
+        a = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ModelError(f"{name}: expected numbers, got {value!r}") from None
+    if not np.all(np.isfinite(a)):
+        bad = np.argwhere(~np.isfinite(a))[0].tolist()
+        raise ModelError(f"{name}: expected finite numbers, got {a[tuple(bad)]} at index {bad}")
+    if shape is not None:
+        if M == 1:
+            target = shape[:1] if len(shape) else ()
+        else:
+            target = shape
+        try:
+            a = np.broadcast_to(a, target if M == 1 else shape)
+        except ValueError:
+            raise ModelError(f"{name}: shape {a.shape} does not match q's shape {shape}") from None
+    return a
+
+
+def _normalise_q(q, qd, qdd, M):
+    qa = _as_inputs("q", q, M, None)
+    if M == 1:
+        if qa.ndim > 1:
+            raise ModelError(f"q: expected shape () or (N,) for a mechanism with one input, got {qa.shape}")
+        single = qa.ndim == 0
+    else:
+        if qa.ndim not in (1, 2) or qa.shape[-1] != M:
+            raise ModelError(f"q: expected shape ({M},) or (N, {M}) for a mechanism with {M} "
+                             f"inputs, got {qa.shape}")
+        single = qa.ndim == 1
+    shape = qa.shape
+    qd_a = _as_inputs("qd", qd, M, shape)
+    qdd_a = _as_inputs("qdd", qdd, M, shape)
+
+    def to2(a):
+        return np.ascontiguousarray(np.reshape(a, (-1, M)), dtype=float)
+    return to2(qa), to2(qd_a), to2(qdd_a), single
+
+
+def _run(p: Plan, q, qd, qdd):
+    N, M = q.shape
+    out = dict(jets=np.empty((N, p.n_out, 1 + M + M * M)), rates=np.empty((N, p.n_out, 2)),
+               diag=np.empty((N, 3)), status=np.empty(N, np.int8), failed=np.empty(N, np.int32))
+    tail = (out["jets"], out["rates"], out["diag"], out["status"], out["failed"])
+    if p.groups is None:
+        k.run_closed_form(q, qd, qdd, p.ops_i, p.ops_f, p.const_items, p.const_values,
+                          p.n_items, p.n_angles, p.n_out, *tail)
+    else:
+        # continuation steps of at most 0.05 rad (or 0.05 sizes of the mechanism for slides)
+        max_step = _CONTINUATION_STEP * (1.0 if all(kd == "angle" for kd in p.input_kinds)
+                                         else min(1.0, p.scale))
+        k.run_continuation(q, qd, qdd, p.q_sketch, max_step, p.ops_i, p.ops_f, p.const_items,
+                           p.const_values, p.n_items, p.n_angles, p.n_out, *p.groups, p.scale, *tail)
+    return out
+
+
+def _describe_failure(p: Plan, out, q, bad: np.ndarray) -> str:
+    i = int(bad[0])
+    op = int(out["failed"][i])
+    step = p.step_of_op(op)
+    where = step.label if step is not None else f"operation {op}"
+    qtxt = _format_q(p, q[i])
+    if out["status"][i] == k.ST_NO_ASSEMBLY:
+        return f"{where} cannot close at q = {qtxt}: it misses by {out['diag'][i, 2]:.6g} m"
+    return (f"{where} cannot follow the motion to q = {qtxt}: the continuation stopped at a limit "
+            "position or a singular configuration")
+
+
+def _format_q(p: Plan, qrow) -> str:
+    parts = [f"{v:.6g} {'rad' if kind == 'angle' else 'm'}" for v, kind in zip(qrow, p.input_kinds)]
+    return parts[0] if len(parts) == 1 else "(" + ", ".join(parts) + ")"
+
+
+def reachable_ranges(mechanism: Mechanism, *, samples: int = 1441,
+                     method: Literal["auto", "newton"] = "auto") -> list[tuple[float, float]]:
+    """Input intervals where a one-input mechanism assembles on its sketch's branch.
+
+    Angle inputs are searched over one turn centred on the sketch, slides over +-10 sizes
+    of the mechanism; each bound is refined by bisection to 1e-12.  A full turn is
+    reported as ``[(q0 - pi, q0 + pi)]``.
+
+    Examples
+    --------
+    >>> fb = kl.mechanisms.fourbar(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)  # non-Grashof
+    >>> [tuple(round(v, 5) for v in r) for r in kl.kinematics.reachable_ranges(fb)]  # cos q >= -0.3125
+    [(-1.88862, 1.88862)]
+    """
+    p = plan(mechanism, method=method)
+    if len(p.input_kinds) != 1:
+        raise ModelError("reachable_ranges: the mechanism has "
+                         f"{len(p.input_kinds)} inputs; it is defined for one")
+    q0 = float(p.q_sketch[0])
+    half = math.pi if p.input_kinds[0] == "angle" else 10.0 * p.scale
+    grid = np.linspace(q0 - half, q0 + half, samples)
+    ok = _assembles(p, grid)
+    if ok.all():
+        return [(q0 - half, q0 + half)]
+    edges = np.flatnonzero(np.diff(ok.astype(np.int8)))
+    lo_ok, hi_ok = grid[edges], grid[edges + 1]
+    inside = ok[edges]          # True: the bound is between an assembled sample and a failing one
+    a = np.where(inside, lo_ok, hi_ok)   # assembled side
+    b = np.where(inside, hi_ok, lo_ok)   # failing side
+    for _ in range(60):
+        mid = 0.5 * (a + b)
+        good = _assembles(p, mid)
+        a = np.where(good, mid, a)
+        b = np.where(good, b, mid)
+        if np.all(np.abs(b - a) < 1e-13 * max(1.0, half)):
+            break
+    bounds = list(zip(edges.tolist(), a.tolist()))
+    ranges = []
+    start = q0 - half if ok[0] else None
+    for e, v in bounds:
+        if ok[e] and not ok[e + 1]:
+            ranges.append((start, v))
+            start = None
+        else:
+            start = v
+    if start is not None:
+        ranges.append((start, q0 + half))
+    return [(float(lo), float(hi)) for lo, hi in ranges]
+
+
+def _assembles(p: Plan, qs: np.ndarray) -> np.ndarray:
+    """Whether each input value assembles (on its own: no continuation between them)."""
+    if p.groups is None:
+        q = np.ascontiguousarray(qs.reshape(-1, 1))
+        out = _run(p, q, np.zeros_like(q), np.zeros_like(q))
+        return out["status"] == k.ST_OK
+    # Newton groups: continuation from the sketch to each value separately
+    res = np.empty(qs.shape, bool)
+    for i, v in enumerate(qs):
+        q = np.array([[v]])
+        out = _run(p, q, np.zeros_like(q), np.zeros_like(q))
+        res[i] = out["status"][0] == k.ST_OK
+    return res
+
+
+def _check_redundant(p: Plan, jets, ok):
+    """Joints the plan did not need must stay closed on their own (parallelogram links)."""
+    m = p.mechanism
+    tol = 1e-9 * p.scale
+    xy = {pt.name: np.array([pt.x, pt.y]) for pt in m.points}
+
+    def position(point):
+        i = p.point_item[point]
+        return jets[:, i:i + 2, 0]
+
+    def angle(link):
+        return jets[:, p.link_index[link], 0] - p.sketch_angles[p.link_index[link]]
+
+    def seen_from(link, point):
+        ref = next((n for n in m.link(link).points if n != point), None)
+        if ref is None:
+            return position(point)
+        rel = xy[point] - xy[ref]
+        c, s = np.cos(angle(link)), np.sin(angle(link))
+        return position(ref) + np.stack([c * rel[0] - s * rel[1], s * rel[0] + c * rel[1]], -1)
+
+    for name in p.redundant:
+        j = m.joint(name)
+        if j.type == "R":
+            err = np.linalg.norm(seen_from(j.links[0], j.point) - seen_from(j.links[1], j.point), axis=-1)
+        else:
+            g, s_ = j.links
+            dang = np.abs(np.angle(np.exp(1j * (angle(s_) - angle(g))))) * p.scale
+            th = angle(g) + math.atan2(j.axis[1], j.axis[0])
+            d = seen_from(s_, j.point) - seen_from(g, j.point)
+            err = np.maximum(dang, np.abs(-np.sin(th) * d[:, 0] + np.cos(th) * d[:, 1]))
+        bad = np.flatnonzero(ok & (err > tol))
+        if bad.size:
+            i = int(bad[0])
+            raise AssemblyError(
+                f"joint '{name}' is redundant (not needed to place any link) and does not stay "
+                f"closed: it opens by {err[i]:.3g} m at sample {i}; the geometry is not the "
+                "special one (e.g. a parallelogram) that keeps it closed; fix the sketch or remove "
+                "the joint", loop=name, gap=float(err[i]))
+
+
+def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayLike = 0.0, *,
+            unreachable: Literal["raise", "mask"] = "raise",
+            at_singular: Literal["auto", "raise", "flag"] = "auto",
+            method: Literal["auto", "newton"] = "auto") -> KinematicSolution:
+    """Position, velocity and acceleration of every link, point and slide.
+
+    The position equations Phi(q, S) = 0 are solved group by group (see
+    :func:`kinelab.kinematics.plan`); the velocity coefficients ``K = dS/dq = -J^-1 Q``
+    and acceleration coefficients ``L = dK/dq`` come from the same Jacobians, exactly.
+    Then ``S' = K q'`` and ``S'' = K q'' + q'^T L q'``.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    q : float or array_like, shape () or (N,); (M,) or (N, M) when M > 1
+        Input coordinates, rad (angle inputs) or m (slides).
+    qd, qdd : float or array_like, broadcast to the shape of q
+        Input velocities (rad/s or m/s) and accelerations.
+    unreachable : {"raise", "mask"}
+        Where the loops cannot close: raise :class:`~kinelab.errors.AssemblyError` (naming
+        the group, the gap and, for one input, the reachable range) or mark the sample in
+        ``sol.assembled`` and fill it with NaN.
+    at_singular : {"auto", "raise", "flag"}
+        At a singular configuration (det J = 0) velocities are undefined: "flag" marks the
+        sample in ``sol.singular`` (its K, L, velocities and accelerations are NaN),
+        "raise" raises :class:`~kinelab.errors.SingularityError`; "auto" raises for a single
+        configuration and flags within a sweep.
+    method : {"auto", "newton"}
+        "auto" solves dyads in closed form and the rest by Newton-Raphson; "newton" uses the
+        general Newton engine for every group (to cross-check).
+
+    Returns
+    -------
+    KinematicSolution
+
+    Examples
+    --------
+    >>> sc = kl.mechanisms.slider_crank(crank=1.0, rod=3.0)
+    >>> kl.analyze(sc, q=0.0).position("B")          # dead centre: crank + rod
+    array([4., 0.])
+    >>> kl.analyze(sc, q=np.linspace(0.1, np.pi - 0.1, 5)).position("B").shape
+    (5, 2)
+    >>> sol = kl.analyze(sc, q=np.pi / 2, qd=10.0)
+    >>> float(sol.K("slide")), float(sol.slide_velocity("slide"))     # dx/dq = -R at 90 deg
+    (-1.0, -10.0)
+    """
+    p = plan(mechanism, method=method)
+    M = len(mechanism.inputs)
+    if unreachable not in ("raise", "mask"):
+        raise ModelError(f"unreachable: expected one of 'raise', 'mask', got '{unreachable}'")
+    if at_singular not in ("auto", "raise", "flag"):
+        raise ModelError(f"at_singular: expected one of 'auto', 'raise', 'flag', got '{at_singular}'")
+    q2, qd2, qdd2, single = _normalise_q(q, qd, qdd, M)
+    out = _run(p, q2, qd2, qdd2)
+    jets, rates, diag = out["jets"], out["rates"], out["diag"]
+    ok = out["status"] == k.ST_OK
+    if not ok.all():
+        bad = np.flatnonzero(~ok)
+        if unreachable == "raise":
+            msg = _describe_failure(p, out, q2, bad)
+            reach = None
+            if M == 1:
+                reach = reachable_ranges(mechanism, method=method)
+                unit = "rad" if p.input_kinds[0] == "angle" else "m"
+                spans = ", ".join(f"[{lo:.6g}, {hi:.6g}]" for lo, hi in reach)
+                msg += (f"; reachable q is {spans} {unit}" if reach else
+                        "; it assembles nowhere near the sketch")
+                msg += "; narrow the input range (or pass unreachable='mask')"
+            step = p.step_of_op(int(out["failed"][bad[0]]))
+            raise AssemblyError(msg, loop=step.label if step else "", gap=float(diag[bad[0], 2]),
+                                reachable=reach)
+        jets[bad] = np.nan
+        rates[bad] = np.nan
+        diag[bad, :2] = np.nan
+    singular = ok & (diag[:, 1] < SINGULAR_TOL)
+    if singular.any():
+        policy = at_singular if at_singular != "auto" else ("raise" if single else "flag")
+        if policy == "raise":
+            i = int(np.flatnonzero(singular)[0])
+            raise SingularityError(
+                f"q = {_format_q(p, q2[i])} is a singular configuration (det J = "
+                f"{diag[i, 0]:.3g}): positions exist but velocities and accelerations are not "
+                "defined there; move the input off it, or pass at_singular='flag' to get the "
+                "positions with the sample flagged")
+        jets[singular, :, 1:] = np.nan
+        rates[singular] = np.nan
+    if p.redundant:
+        _check_redundant(p, jets, ok)
+    return KinematicSolution(
+        mechanism=mechanism, q=q2, qd=qd2, qdd=qdd2, jets=jets, rates=rates,
+        det_J=diag[:, 0], singularity=diag[:, 1], singular=singular, assembled=ok,
+        link_item=dict(p.link_index), point_item=dict(p.point_item),
+        slide_item=dict(p.slide_item), single=single)

@@ -1,0 +1,965 @@
+"""The compiled interpreter that evaluates a solution plan, one sample at a time.
+
+A *plan* (built by ``_plan.py``) is a short list of operations that, applied in order,
+turn the input values q into every link angle and point position of a mechanism, together
+with their first and second derivatives with respect to q: the velocity coefficients
+K = dS/dq and the acceleration coefficients L = d2S/dq2 of the course notes.  Each
+operation solves one small group of unknowns in closed form (a driven link, a dyad of
+class II: RRR, RRP, RPR, two lines) or, for larger Assur groups, by Newton-Raphson with
+continuation from the previous sample.
+
+Every scalar coordinate (a link angle, a point's x or y, a slide) is an *item* with a
+*jet*: one row ``[value, K_0 .. K_{M-1}, L_00, L_01, .. L_{M-1,M-1}]`` of the array
+``jet``.  A point is two consecutive items (x, then y).  Keeping the whole state of a
+sample in one small array keeps it in cache and makes every call cheap.
+
+Derivatives are exact: every closed form is differentiated by hand; K and L of a dyad come
+from the same 2x2 matrix as its position (Cramer's rule), the notes' J.  For M > 1 inputs
+the second derivatives are bilinear: ``L[m, n] = d2 S / dq_m dq_n``.  Samples run in
+parallel when the plan has no Newton group; continuation is sequential.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+
+def _jit(**options):
+    # error_model="numpy": a division by zero at an exact singularity gives inf/nan (then
+    # flagged), not a Python exception from inside the kernel
+    return njit(cache=True, error_model="numpy", **options)
+
+
+# operation codes: rows of ops_i / ops_f.  Points are given by the item of their x.
+OP_DRIVE_ANGLE = 1   # i: b, a (-1: ground frame), m           f: sign
+OP_LOCK_ANGLE = 2    # i: b, a                                 f: offset
+OP_RIGID_POINT = 3   # i: p, link, anchor                      f: rx, ry (link frame)
+OP_SLIDE_POINT = 4   # i: out, base, dirlink, m                f: beta, s0, sign
+OP_LINES = 5         # i: out, o1, l1, o2, l2                  f: beta1, beta2
+OP_RRR = 6           # i: b, c, X, Y, Z                         f: lb, lc, sigma, offb, offc
+OP_RRP = 7           # i: b, X, Y, o, g                         f: lb, beta, sigma, offb
+OP_RPR = 8           # i: G, X, Z                               f: rho_x, rho_y, u_x, u_y, sigma
+OP_NEWTON = 9        # i: group
+OP_SLIDE_OUT = 10    # i: slide, p, o, g                        f: beta, s0
+
+# Newton-group constraint kinds (rows of con_i / con_f); a side is either a link of the
+# group (g >= 0, with a point given in the link's frame) or known (g = -1, a point item).
+C_REVOLUTE = 0     # i: kind, gi, pi, li, gj, pj, lj             f: rix, riy, rjx, rjy
+C_PRISMATIC = 1    # i: kind, gg, po, lg, gs, pp, ls             f: rox, roy, rpx, rpy, beta, offset
+C_DRIVE_ANGLE = 2  # i: kind, ga, -, la, gb, -, lb, m            f: sign
+C_DRIVE_SLIDE = 3  # i: kind, gg, po, lg, gs, pp, ls, m          f: rox, roy, rpx, rpy, beta, s0
+
+# status codes written per sample
+ST_OK = 0
+ST_NO_ASSEMBLY = 1     # a closed-form group cannot close (gap > 0)
+ST_NO_CONVERGENCE = 2  # a Newton group failed even with the smallest continuation step
+
+_DISC_TOL = 1e-12  # relative: a discriminant this far below zero is rounding at a limit position
+
+
+# --------------------------------------------------------------------------------------
+# closed-form groups
+# --------------------------------------------------------------------------------------
+@_jit()
+def _rigid_point(jet, p, link, a, rx, ry, M):
+    """p = a + R(theta_link) r."""
+    c = math.cos(jet[link, 0])
+    s = math.sin(jet[link, 0])
+    vx = c * rx - s * ry
+    vy = s * rx + c * ry
+    jet[p, 0] = jet[a, 0] + vx
+    jet[p + 1, 0] = jet[a + 1, 0] + vy
+    for m in range(M):
+        km = jet[link, 1 + m]
+        jet[p, 1 + m] = jet[a, 1 + m] - km * vy
+        jet[p + 1, 1 + m] = jet[a + 1, 1 + m] + km * vx
+        for n in range(M):
+            c2 = 1 + M + m * M + n
+            kk = km * jet[link, 1 + n]
+            lmn = jet[link, c2]
+            jet[p, c2] = jet[a, c2] - lmn * vy - kk * vx
+            jet[p + 1, c2] = jet[a + 1, c2] + lmn * vx - kk * vy
+
+
+@_jit()
+def _line_point(jet, out, base, dirlink, beta, t, Kt, Lt, M):
+    """out = base + t u, u at angle theta_dirlink + beta; t with its K (M,) and L (M, M)."""
+    phi = jet[dirlink, 0] + beta
+    ux = math.cos(phi)
+    uy = math.sin(phi)
+    jet[out, 0] = jet[base, 0] + t * ux
+    jet[out + 1, 0] = jet[base + 1, 0] + t * uy
+    for m in range(M):
+        wm = jet[dirlink, 1 + m]
+        jet[out, 1 + m] = jet[base, 1 + m] + Kt[m] * ux - t * wm * uy
+        jet[out + 1, 1 + m] = jet[base + 1, 1 + m] + Kt[m] * uy + t * wm * ux
+        for n in range(M):
+            c2 = 1 + M + m * M + n
+            wn = jet[dirlink, 1 + n]
+            nn = Kt[m] * wn + Kt[n] * wm + t * jet[dirlink, c2]   # along n = k x u
+            uu = Lt[m, n] - t * wm * wn                            # along u
+            jet[out, c2] = jet[base, c2] + uu * ux - nn * uy
+            jet[out + 1, c2] = jet[base + 1, c2] + uu * uy + nn * ux
+
+
+@_jit()
+def _relative_slide(jet, p, o, g, beta, M, Ks, Ls):
+    """s = u . (p - o) with u at angle theta_g + beta; returns s, fills Ks (M,), Ls (M, M)."""
+    phi = jet[g, 0] + beta
+    ux = math.cos(phi)
+    uy = math.sin(phi)
+    nx = -uy
+    ny = ux
+    dx = jet[p, 0] - jet[o, 0]
+    dy = jet[p + 1, 0] - jet[o + 1, 0]
+    ud = ux * dx + uy * dy
+    nd = nx * dx + ny * dy
+    for m in range(M):
+        dmx = jet[p, 1 + m] - jet[o, 1 + m]
+        dmy = jet[p + 1, 1 + m] - jet[o + 1, 1 + m]
+        wm = jet[g, 1 + m]
+        Ks[m] = wm * nd + ux * dmx + uy * dmy
+        for n in range(M):
+            c2 = 1 + M + m * M + n
+            dnx = jet[p, 1 + n] - jet[o, 1 + n]
+            dny = jet[p + 1, 1 + n] - jet[o + 1, 1 + n]
+            wn = jet[g, 1 + n]
+            ldx = jet[p, c2] - jet[o, c2]
+            ldy = jet[p + 1, c2] - jet[o + 1, c2]
+            Ls[m, n] = (jet[g, c2] * nd - wm * wn * ud
+                        + wm * (nx * dnx + ny * dny) + wn * (nx * dmx + ny * dmy)
+                        + ux * ldx + uy * ldy)
+    return ud
+
+
+@_jit()
+def _rrr(jet, b, c, X, Y, Z, lb, lc, sigma, offb, offc, M):
+    """Circle-circle dyad; returns (det, measure, gap).  gap > 0: cannot close by gap (m)."""
+    dx = jet[Z, 0] - jet[X, 0]
+    dy = jet[Z + 1, 0] - jet[X + 1, 0]
+    D2 = dx * dx + dy * dy
+    D = math.sqrt(D2)
+    if D == 0.0:
+        return 0.0, 0.0, abs(lb - lc)
+    a = (lb * lb - lc * lc + D2) / (2.0 * D)
+    h2 = lb * lb - a * a
+    if h2 < 0.0:
+        if h2 < -_DISC_TOL * lb * lb:
+            return 0.0, 0.0, max(D - (lb + lc), abs(lb - lc) - D)
+        h2 = 0.0
+    h = math.sqrt(h2)
+    ex = dx / D
+    ey = dy / D
+    rbx = a * ex - sigma * h * ey          # r_b = Y - X
+    rby = a * ey + sigma * h * ex
+    jet[Y, 0] = jet[X, 0] + rbx
+    jet[Y + 1, 0] = jet[X + 1, 0] + rby
+    rcx = rbx - dx                          # r_c = Y - Z
+    rcy = rby - dy
+    cr = rbx * rcy - rby * rcx              # cross(r_b, r_c)
+    jet[b, 0] = math.atan2(rby, rbx) + offb
+    jet[c, 0] = math.atan2(rcy, rcx) + offc
+    # velocity: wb k x rb - wc k x rc = vZ - vX  (dot with rc and with rb)
+    for m in range(M):
+        wx = jet[Z, 1 + m] - jet[X, 1 + m]
+        wy = jet[Z + 1, 1 + m] - jet[X + 1, 1 + m]
+        kb = (wx * rcx + wy * rcy) / cr
+        jet[b, 1 + m] = kb
+        jet[c, 1 + m] = (wx * rbx + wy * rby) / cr
+        jet[Y, 1 + m] = jet[X, 1 + m] - kb * rby
+        jet[Y + 1, 1 + m] = jet[X + 1, 1 + m] + kb * rbx
+    # acceleration: same matrix, right side with the centripetal terms
+    for m in range(M):
+        for n in range(M):
+            c2 = 1 + M + m * M + n
+            kb = jet[b, 1 + m] * jet[b, 1 + n]
+            kc = jet[c, 1 + m] * jet[c, 1 + n]
+            wx = jet[Z, c2] - jet[X, c2] + kb * rbx - kc * rcx
+            wy = jet[Z + 1, c2] - jet[X + 1, c2] + kb * rby - kc * rcy
+            lb_ = (wx * rcx + wy * rcy) / cr
+            jet[b, c2] = lb_
+            jet[c, c2] = (wx * rbx + wy * rby) / cr
+            jet[Y, c2] = jet[X, c2] - lb_ * rby - kb * rbx
+            jet[Y + 1, c2] = jet[X + 1, c2] + lb_ * rbx - kb * rby
+    return -cr, abs(cr) / (lb * lc), 0.0
+
+
+@_jit()
+def _rrp(jet, b, X, Y, o, g, lb, beta, sigma, offb, M, Ks):
+    """Circle-line dyad: Y on the line o + s u (u fixed in link g), |Y - X| = lb."""
+    phi = jet[g, 0] + beta
+    ux = math.cos(phi)
+    uy = math.sin(phi)
+    nx = -uy
+    ny = ux
+    w0x = jet[o, 0] - jet[X, 0]
+    w0y = jet[o + 1, 0] - jet[X + 1, 0]
+    uw = ux * w0x + uy * w0y
+    hh = nx * w0x + ny * w0y            # signed distance of X from the line
+    t2 = lb * lb - hh * hh
+    if t2 < 0.0:
+        if t2 < -_DISC_TOL * lb * lb:
+            return 0.0, 0.0, abs(hh) - lb
+        t2 = 0.0
+    t = sigma * math.sqrt(t2)
+    s = t - uw                          # slide along the line from o
+    rx = hh * nx + t * ux               # r = Y - X
+    ry = hh * ny + t * uy
+    jet[Y, 0] = jet[X, 0] + rx
+    jet[Y + 1, 0] = jet[X + 1, 0] + ry
+    jet[b, 0] = math.atan2(ry, rx) + offb
+    ru = t                              # r . u
+    kru = -ry * ux + rx * uy            # (k x r) . u
+    for m in range(M):
+        wg = jet[g, 1 + m]
+        w1x = jet[o, 1 + m] + s * wg * nx - jet[X, 1 + m]
+        w1y = jet[o + 1, 1 + m] + s * wg * ny - jet[X + 1, 1 + m]
+        wb = (w1x * nx + w1y * ny) / ru
+        jet[b, 1 + m] = wb
+        Ks[m] = wb * kru - (w1x * ux + w1y * uy)
+        jet[Y, 1 + m] = jet[X, 1 + m] - wb * ry
+        jet[Y + 1, 1 + m] = jet[X + 1, 1 + m] + wb * rx
+    for m in range(M):
+        for n in range(M):
+            c2 = 1 + M + m * M + n
+            kb = jet[b, 1 + m] * jet[b, 1 + n]
+            kg = jet[g, 1 + m] * jet[g, 1 + n]
+            cor = Ks[m] * jet[g, 1 + n] + Ks[n] * jet[g, 1 + m]
+            lg = jet[g, c2]
+            w2x = jet[o, c2] + cor * nx + s * (lg * nx - kg * ux) - jet[X, c2] + kb * rx
+            w2y = jet[o + 1, c2] + cor * ny + s * (lg * ny - kg * uy) - jet[X + 1, c2] + kb * ry
+            lb_ = (w2x * nx + w2y * ny) / ru
+            jet[b, c2] = lb_
+            jet[Y, c2] = jet[X, c2] - lb_ * ry - kb * rx
+            jet[Y + 1, c2] = jet[X + 1, c2] + lb_ * rx - kb * ry
+    return ru, abs(ru) / lb, 0.0
+
+
+@_jit()
+def _rpr(jet, G, X, Z, rho_x, rho_y, u_x, u_y, sigma, M, Ks):
+    """Turning-line dyad: X - Z = R(theta_G) (rho + s u), rho and u in G's frame."""
+    wx = jet[X, 0] - jet[Z, 0]
+    wy = jet[X + 1, 0] - jet[Z + 1, 0]
+    D2 = wx * wx + wy * wy
+    h = u_x * rho_y - u_y * rho_x           # distance of Z from the line, in G's frame
+    t2 = D2 - h * h
+    if t2 < 0.0:
+        if t2 < -_DISC_TOL * max(D2, h * h):
+            return 0.0, 0.0, abs(h) - math.sqrt(D2)
+        t2 = 0.0
+    t = sigma * math.sqrt(t2)
+    # in G's frame w' = rho + s u = h n' + t u'  with n' = k x u'
+    lx = -h * u_y + t * u_x
+    ly = h * u_x + t * u_y
+    th = math.atan2(wy, wx) - math.atan2(ly, lx)
+    jet[G, 0] = th
+    c = math.cos(th)
+    sn = math.sin(th)
+    ux = c * u_x - sn * u_y
+    uy = sn * u_x + c * u_y
+    nx = -uy
+    ny = ux
+    wu = t                                  # w . u
+    kwu = wx * uy - wy * ux                 # (k x w) . u
+    for m in range(M):
+        dx = jet[X, 1 + m] - jet[Z, 1 + m]
+        dy = jet[X + 1, 1 + m] - jet[Z + 1, 1 + m]
+        om = (dx * nx + dy * ny) / wu
+        jet[G, 1 + m] = om
+        Ks[m] = dx * ux + dy * uy - om * kwu
+    for m in range(M):
+        for n in range(M):
+            c2 = 1 + M + m * M + n
+            kk = jet[G, 1 + m] * jet[G, 1 + n]
+            cor = Ks[m] * jet[G, 1 + n] + Ks[n] * jet[G, 1 + m]
+            r2x = jet[X, c2] - jet[Z, c2] + kk * wx - cor * nx
+            r2y = jet[X + 1, c2] - jet[Z + 1, c2] + kk * wy - cor * ny
+            jet[G, c2] = (r2x * nx + r2y * ny) / wu
+    D = math.sqrt(D2)
+    return -wu, abs(wu) / D if D > 0.0 else 0.0, 0.0
+
+
+@_jit()
+def _lines(jet, out, o1, l1, o2, l2, beta1, beta2, M, K1, K2, L1):
+    """Intersection of two lines o_i + t_i u_i, u_i at angle theta_{l_i} + beta_i."""
+    p1 = jet[l1, 0] + beta1
+    p2 = jet[l2, 0] + beta2
+    u1x = math.cos(p1)
+    u1y = math.sin(p1)
+    u2x = math.cos(p2)
+    u2y = math.sin(p2)
+    cr = u1x * u2y - u1y * u2x
+    if cr == 0.0:
+        return 0.0, 0.0, 0.0
+    wx = jet[o2, 0] - jet[o1, 0]
+    wy = jet[o2 + 1, 0] - jet[o1 + 1, 0]
+    t1 = (wx * u2y - wy * u2x) / cr
+    t2 = (wx * u1y - wy * u1x) / cr
+    for m in range(M):
+        a1 = jet[l1, 1 + m]
+        a2 = jet[l2, 1 + m]
+        vx = jet[o2, 1 + m] - t2 * a2 * u2y - jet[o1, 1 + m] + t1 * a1 * u1y
+        vy = jet[o2 + 1, 1 + m] + t2 * a2 * u2x - jet[o1 + 1, 1 + m] - t1 * a1 * u1x
+        K1[m] = (vx * u2y - vy * u2x) / cr
+        K2[m] = (vx * u1y - vy * u1x) / cr
+    for m in range(M):
+        for n in range(M):
+            c2 = 1 + M + m * M + n
+            a1m = jet[l1, 1 + m]
+            a1n = jet[l1, 1 + n]
+            a2m = jet[l2, 1 + m]
+            a2n = jet[l2, 1 + n]
+            c1 = K1[m] * a1n + K1[n] * a1m + t1 * jet[l1, c2]   # normal part, line 1
+            cc2 = K2[m] * a2n + K2[n] * a2m + t2 * jet[l2, c2]
+            q1 = t1 * a1m * a1n                                # centripetal part
+            q2 = t2 * a2m * a2n
+            ax = (jet[o2, c2] - cc2 * u2y - q2 * u2x) - (jet[o1, c2] - c1 * u1y - q1 * u1x)
+            ay = (jet[o2 + 1, c2] + cc2 * u2x - q2 * u2y) - (jet[o1 + 1, c2] + c1 * u1x - q1 * u1y)
+            L1[m, n] = (ax * u2y - ay * u2x) / cr
+    _line_point(jet, out, o1, l1, beta1, t1, K1, L1, M)
+    return -cr, abs(cr), 0.0
+
+
+# --------------------------------------------------------------------------------------
+# Newton groups: links whose poses (anchor x, y and angle) are solved together
+# --------------------------------------------------------------------------------------
+@_jit()
+def _lu_factor(A, piv, n):
+    """In-place LU with partial pivoting of A[:n, :n]; returns the determinant."""
+    det = 1.0
+    for k in range(n):
+        p = k
+        big = abs(A[k, k])
+        for i in range(k + 1, n):
+            if abs(A[i, k]) > big:
+                big = abs(A[i, k])
+                p = i
+        piv[k] = p
+        if p != k:
+            det = -det
+            for j in range(n):
+                tmp = A[k, j]
+                A[k, j] = A[p, j]
+                A[p, j] = tmp
+        d = A[k, k]
+        det *= d
+        if d == 0.0:
+            continue
+        for i in range(k + 1, n):
+            f = A[i, k] / d
+            A[i, k] = f
+            for j in range(k + 1, n):
+                A[i, j] -= f * A[k, j]
+    return det
+
+
+@_jit()
+def _lu_solve(A, piv, b, n):
+    for k in range(n):
+        p = piv[k]
+        if p != k:
+            tmp = b[k]
+            b[k] = b[p]
+            b[p] = tmp
+    for i in range(n):
+        s = b[i]
+        for j in range(i):
+            s -= A[i, j] * b[j]
+        b[i] = s
+    for i in range(n - 1, -1, -1):
+        s = b[i]
+        for j in range(i + 1, n):
+            s -= A[i, j] * b[j]
+        b[i] = s / A[i, i]
+
+
+# The group's unknowns x = (x_anchor, y_anchor, theta) per link live in gx; their K and L
+# (the columns of the group's own jet) in gK (n, M) and gL (n, M, M).  A "side" helper
+# returns a quantity of one end of a constraint, from the group or from the known jet.
+
+@_jit()
+def _side_pos(gi, p, rx, ry, x, jet):
+    if gi >= 0:
+        th = x[3 * gi + 2]
+        c = math.cos(th)
+        s = math.sin(th)
+        return x[3 * gi] + c * rx - s * ry, x[3 * gi + 1] + s * rx + c * ry
+    return jet[p, 0], jet[p + 1, 0]
+
+
+@_jit()
+def _side_vel(gi, p, rx, ry, x, gK, jet, m, known_only):
+    if gi >= 0:
+        if known_only:
+            return 0.0, 0.0
+        th = x[3 * gi + 2]
+        c = math.cos(th)
+        s = math.sin(th)
+        vx = c * rx - s * ry
+        vy = s * rx + c * ry
+        w = gK[3 * gi + 2, m]
+        return gK[3 * gi, m] - w * vy, gK[3 * gi + 1, m] + w * vx
+    return jet[p, 1 + m], jet[p + 1, 1 + m]
+
+
+@_jit()
+def _side_acc(gi, p, rx, ry, x, gK, jet, m, n, M):
+    """Second derivative without the group's own second derivatives (those are J L)."""
+    if gi >= 0:
+        th = x[3 * gi + 2]
+        c = math.cos(th)
+        s = math.sin(th)
+        kk = gK[3 * gi + 2, m] * gK[3 * gi + 2, n]
+        return -kk * (c * rx - s * ry), -kk * (s * rx + c * ry)
+    c2 = 1 + M + m * M + n
+    return jet[p, c2], jet[p + 1, c2]
+
+
+@_jit()
+def _side_angle(gi, link, x, jet):
+    if gi >= 0:
+        return x[3 * gi + 2]
+    return jet[link, 0] if link >= 0 else 0.0
+
+
+@_jit()
+def _side_rate(gi, link, gK, jet, m, known_only):
+    if gi >= 0:
+        return 0.0 if known_only else gK[3 * gi + 2, m]
+    return jet[link, 1 + m] if link >= 0 else 0.0
+
+
+@_jit()
+def _side_second(gi, link, jet, m, n, M):
+    if gi >= 0 or link < 0:
+        return 0.0
+    return jet[link, 1 + M + m * M + n]
+
+
+@_jit()
+def _jac_point(A, row, gi, rx, ry, x, cx, cy):
+    """Add d(c . p)/d(unknowns) for a point p of group link gi (nothing if p is known)."""
+    if gi < 0:
+        return
+    th = x[3 * gi + 2]
+    c = math.cos(th)
+    s = math.sin(th)
+    vx = c * rx - s * ry
+    vy = s * rx + c * ry
+    A[row, 3 * gi] += cx
+    A[row, 3 * gi + 1] += cy
+    A[row, 3 * gi + 2] += -cx * vy + cy * vx
+
+
+@_jit()
+def _group_residual(c0, c1, con_i, con_f, x, q, jet, A, phi, with_jac):
+    """Residuals phi and (optionally) Jacobian A of one group's constraints."""
+    row = 0
+    for k in range(c0, c1):
+        kind = con_i[k, 0]
+        if kind == C_REVOLUTE:
+            gi, pi_, gj, pj = con_i[k, 1], con_i[k, 2], con_i[k, 4], con_i[k, 5]
+            xi, yi = _side_pos(gi, pi_, con_f[k, 0], con_f[k, 1], x, jet)
+            xj, yj = _side_pos(gj, pj, con_f[k, 2], con_f[k, 3], x, jet)
+            phi[row] = xi - xj
+            phi[row + 1] = yi - yj
+            if with_jac:
+                _jac_point(A, row, gi, con_f[k, 0], con_f[k, 1], x, 1.0, 0.0)
+                _jac_point(A, row, gj, con_f[k, 2], con_f[k, 3], x, -1.0, 0.0)
+                _jac_point(A, row + 1, gi, con_f[k, 0], con_f[k, 1], x, 0.0, 1.0)
+                _jac_point(A, row + 1, gj, con_f[k, 2], con_f[k, 3], x, 0.0, -1.0)
+            row += 2
+        elif kind == C_DRIVE_ANGLE:
+            ga, la, gb, lb, m = con_i[k, 1], con_i[k, 3], con_i[k, 4], con_i[k, 6], con_i[k, 7]
+            phi[row] = (_side_angle(gb, lb, x, jet) - _side_angle(ga, la, x, jet)
+                        - con_f[k, 0] * q[m])
+            if with_jac:
+                if gb >= 0:
+                    A[row, 3 * gb + 2] += 1.0
+                if ga >= 0:
+                    A[row, 3 * ga + 2] -= 1.0
+            row += 1
+        else:  # prismatic constraint or driven slide
+            gg, po, lg, gs, pp, ls = (con_i[k, 1], con_i[k, 2], con_i[k, 3], con_i[k, 4],
+                                      con_i[k, 5], con_i[k, 6])
+            rox, roy, rpx, rpy, beta = con_f[k, 0], con_f[k, 1], con_f[k, 2], con_f[k, 3], con_f[k, 4]
+            tg = _side_angle(gg, lg, x, jet)
+            ux = math.cos(tg + beta)
+            uy = math.sin(tg + beta)
+            nx = -uy
+            ny = ux
+            ox, oy = _side_pos(gg, po, rox, roy, x, jet)
+            px, py = _side_pos(gs, pp, rpx, rpy, x, jet)
+            dx = px - ox
+            dy = py - oy
+            if kind == C_PRISMATIC:
+                phi[row] = _side_angle(gs, ls, x, jet) - tg - con_f[k, 5]
+                phi[row + 1] = nx * dx + ny * dy
+                if with_jac:
+                    if gs >= 0:
+                        A[row, 3 * gs + 2] += 1.0
+                    if gg >= 0:
+                        A[row, 3 * gg + 2] -= 1.0
+                        A[row + 1, 3 * gg + 2] -= ux * dx + uy * dy
+                    _jac_point(A, row + 1, gs, rpx, rpy, x, nx, ny)
+                    _jac_point(A, row + 1, gg, rox, roy, x, -nx, -ny)
+                row += 2
+            else:
+                m = con_i[k, 7]
+                phi[row] = ux * dx + uy * dy - (q[m] - con_f[k, 5])
+                if with_jac:
+                    if gg >= 0:
+                        A[row, 3 * gg + 2] += nx * dx + ny * dy
+                    _jac_point(A, row, gs, rpx, rpy, x, ux, uy)
+                    _jac_point(A, row, gg, rox, roy, x, -ux, -uy)
+                row += 1
+
+
+@_jit()
+def _group_rhs(c0, c1, con_i, con_f, x, gK, jet, m, n, second, M, rhs):
+    """Right-hand sides of J K[:, m] = rhs (second=False) and J L[:, m, n] = rhs (second=True)."""
+    row = 0
+    for k in range(c0, c1):
+        kind = con_i[k, 0]
+        if kind == C_REVOLUTE:
+            gi, pi_, gj, pj = con_i[k, 1], con_i[k, 2], con_i[k, 4], con_i[k, 5]
+            if second:
+                aix, aiy = _side_acc(gi, pi_, con_f[k, 0], con_f[k, 1], x, gK, jet, m, n, M)
+                ajx, ajy = _side_acc(gj, pj, con_f[k, 2], con_f[k, 3], x, gK, jet, m, n, M)
+            else:
+                aix, aiy = _side_vel(gi, pi_, con_f[k, 0], con_f[k, 1], x, gK, jet, m, True)
+                ajx, ajy = _side_vel(gj, pj, con_f[k, 2], con_f[k, 3], x, gK, jet, m, True)
+            rhs[row] = -(aix - ajx)
+            rhs[row + 1] = -(aiy - ajy)
+            row += 2
+        elif kind == C_DRIVE_ANGLE:
+            ga, la, gb, lb, mi = con_i[k, 1], con_i[k, 3], con_i[k, 4], con_i[k, 6], con_i[k, 7]
+            if second:
+                rhs[row] = -(_side_second(gb, lb, jet, m, n, M) - _side_second(ga, la, jet, m, n, M))
+            else:
+                v = _side_rate(gb, lb, gK, jet, m, True) - _side_rate(ga, la, gK, jet, m, True)
+                if mi == m:
+                    v -= con_f[k, 0]
+                rhs[row] = -v
+            row += 1
+        else:
+            gg, po, lg, gs, pp, ls = (con_i[k, 1], con_i[k, 2], con_i[k, 3], con_i[k, 4],
+                                      con_i[k, 5], con_i[k, 6])
+            rox, roy, rpx, rpy, beta = con_f[k, 0], con_f[k, 1], con_f[k, 2], con_f[k, 3], con_f[k, 4]
+            tg = _side_angle(gg, lg, x, jet)
+            ux = math.cos(tg + beta)
+            uy = math.sin(tg + beta)
+            nx = -uy
+            ny = ux
+            ox, oy = _side_pos(gg, po, rox, roy, x, jet)
+            px, py = _side_pos(gs, pp, rpx, rpy, x, jet)
+            dx = px - ox
+            dy = py - oy
+            ud = ux * dx + uy * dy
+            nd = nx * dx + ny * dy
+            if not second:
+                wg = _side_rate(gg, lg, gK, jet, m, True)
+                vpx, vpy = _side_vel(gs, pp, rpx, rpy, x, gK, jet, m, True)
+                vox, voy = _side_vel(gg, po, rox, roy, x, gK, jet, m, True)
+                ddx = vpx - vox
+                ddy = vpy - voy
+                if kind == C_PRISMATIC:
+                    rhs[row] = -(_side_rate(gs, ls, gK, jet, m, True) - wg)
+                    rhs[row + 1] = -(-wg * ud + nx * ddx + ny * ddy)
+                else:
+                    v = wg * nd + ux * ddx + uy * ddy
+                    if con_i[k, 7] == m:
+                        v -= 1.0
+                    rhs[row] = -v
+            else:
+                wm = _side_rate(gg, lg, gK, jet, m, False)
+                wn = _side_rate(gg, lg, gK, jet, n, False)
+                ag = _side_second(gg, lg, jet, m, n, M)
+                vpx, vpy = _side_vel(gs, pp, rpx, rpy, x, gK, jet, m, False)
+                vox, voy = _side_vel(gg, po, rox, roy, x, gK, jet, m, False)
+                dmx = vpx - vox
+                dmy = vpy - voy
+                vpx, vpy = _side_vel(gs, pp, rpx, rpy, x, gK, jet, n, False)
+                vox, voy = _side_vel(gg, po, rox, roy, x, gK, jet, n, False)
+                dnx = vpx - vox
+                dny = vpy - voy
+                apx, apy = _side_acc(gs, pp, rpx, rpy, x, gK, jet, m, n, M)
+                aox, aoy = _side_acc(gg, po, rox, roy, x, gK, jet, m, n, M)
+                adx = apx - aox
+                ady = apy - aoy
+                if kind == C_PRISMATIC:
+                    rhs[row] = -(_side_second(gs, ls, jet, m, n, M) - ag)
+                    rhs[row + 1] = -(-ag * ud - wm * wn * nd
+                                     - wm * (ux * dnx + uy * dny) - wn * (ux * dmx + uy * dmy)
+                                     + nx * adx + ny * ady)
+                else:
+                    rhs[row] = -(ag * nd - wm * wn * ud
+                                 + wm * (nx * dnx + ny * dny) + wn * (nx * dmx + ny * dmy)
+                                 + ux * adx + uy * ady)
+            row += 2 if kind == C_PRISMATIC else 1
+
+
+_NEWTON_MAX_ITER = 12
+_NEWTON_TOL = 1e-13     # step, relative to the mechanism's size, at which Newton has converged
+_JUMP_RATIO = 0.2       # a correction this large against the predicted step means a jump
+
+
+@_jit()
+def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet, M, work, piv):
+    """Solve group g at input q by continuation from its stored state; write the result.
+
+    ``groups_i`` rows: (first unknown, number of links, first constraint, end constraint,
+    then for each link its angle item and anchor item are in ``groups_i[g, 4:]`` order:
+    link items start at column 4, anchors follow).  Returns (status, det, measure).  The
+    stored state (gx, gK, gL, gq, gdet) changes only on success.
+    """
+    o = groups_i[g, 0]
+    nlk = groups_i[g, 1]
+    c0 = groups_i[g, 2]
+    c1 = groups_i[g, 3]
+    n = 3 * nlk
+    A = work[:n * n].reshape((n, n))
+    phi = work[n * n:n * n + n]
+    x = work[n * n + n:n * n + 2 * n]
+    xp = work[n * n + 2 * n:n * n + 3 * n]
+    Kw = work[n * n + 3 * n:n * n + 3 * n + n * M].reshape((n, M))
+    Lw = work[n * n + 3 * n + n * M:n * n + 3 * n + n * M + n * M * M].reshape((n, M, M))
+    # second-order predictor S + K dq + 1/2 dq L dq
+    step = 0.0
+    for i in range(n):
+        v = gx[o + i]
+        for m in range(M):
+            dm = q[m] - gq[g, m]
+            v += gK[o + i, m] * dm
+            for k in range(M):
+                v += 0.5 * gL[o + i, m, k] * dm * (q[k] - gq[g, k])
+        xp[i] = v
+        x[i] = v
+        step += (v - gx[o + i]) ** 2
+    step = math.sqrt(step)
+    converged = False
+    for it in range(_NEWTON_MAX_ITER):
+        A[:, :] = 0.0
+        _group_residual(c0, c1, con_i, con_f, x, q, jet, A, phi, True)
+        _lu_factor(A, piv, n)
+        for i in range(n):
+            phi[i] = -phi[i]
+        _lu_solve(A, piv, phi, n)
+        dn = 0.0
+        for i in range(n):
+            x[i] += phi[i]
+            dn += phi[i] * phi[i]
+        if not math.isfinite(dn):
+            break
+        if math.sqrt(dn) <= _NEWTON_TOL * scale:
+            converged = True
+            break
+    if not converged:
+        return ST_NO_CONVERGENCE, 0.0, 0.0
+    corr = 0.0
+    for i in range(n):
+        corr += (x[i] - xp[i]) ** 2
+    if math.sqrt(corr) > _JUMP_RATIO * step + 1e-9 * scale:
+        return ST_NO_CONVERGENCE, 0.0, 0.0
+    # K and L with the Jacobian at the solution, factorised once
+    A[:, :] = 0.0
+    _group_residual(c0, c1, con_i, con_f, x, q, jet, A, phi, True)
+    hada = 1.0
+    for i in range(n):
+        rn = 0.0
+        for j in range(n):
+            rn += A[i, j] * A[i, j]
+        hada *= math.sqrt(rn)
+    det = _lu_factor(A, piv, n)
+    if det == 0.0:
+        return ST_NO_CONVERGENCE, 0.0, 0.0
+    if gdet[g] != 0.0 and det * gdet[g] < 0.0 and step > 0.0:
+        # the determinant changed sign: the step crossed a singular configuration
+        return ST_NO_CONVERGENCE, 0.0, 0.0
+    for m in range(M):
+        _group_rhs(c0, c1, con_i, con_f, x, Kw, jet, m, m, False, M, phi)
+        _lu_solve(A, piv, phi, n)
+        for i in range(n):
+            Kw[i, m] = phi[i]
+    for m in range(M):
+        for k in range(m, M):
+            _group_rhs(c0, c1, con_i, con_f, x, Kw, jet, m, k, True, M, phi)
+            _lu_solve(A, piv, phi, n)
+            for i in range(n):
+                Lw[i, m, k] = phi[i]
+                Lw[i, k, m] = phi[i]
+    # accept: store the state and write the links' angles and anchor points
+    for i in range(n):
+        gx[o + i] = x[i]
+        for m in range(M):
+            gK[o + i, m] = Kw[i, m]
+            for k in range(M):
+                gL[o + i, m, k] = Lw[i, m, k]
+    for m in range(M):
+        gq[g, m] = q[m]
+    gdet[g] = det
+    for j in range(nlk):
+        link = groups_i[g, 4 + j]
+        a = groups_i[g, 4 + nlk + j]
+        jet[a, 0] = x[3 * j]
+        jet[a + 1, 0] = x[3 * j + 1]
+        jet[link, 0] = x[3 * j + 2]
+        for m in range(M):
+            jet[a, 1 + m] = Kw[3 * j, m]
+            jet[a + 1, 1 + m] = Kw[3 * j + 1, m]
+            jet[link, 1 + m] = Kw[3 * j + 2, m]
+            for k in range(M):
+                c2 = 1 + M + m * M + k
+                jet[a, c2] = Lw[3 * j, m, k]
+                jet[a + 1, c2] = Lw[3 * j + 1, m, k]
+                jet[link, c2] = Lw[3 * j + 2, m, k]
+    return ST_OK, det, abs(det) / hada if hada > 0.0 else 0.0
+
+
+# --------------------------------------------------------------------------------------
+# One sample: run every operation of the plan
+# --------------------------------------------------------------------------------------
+@_jit(inline="always")
+def _evaluate(qs, qi, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i, con_i, con_f, scale,
+              gx, gK, gL, gq, gdet, work, piv, res):
+    """Run the plan at input q = qs[qi].  res <- (det, measure, gap, failed op); returns the
+    status.  Kt, Kt2 (M,) and Lt (M, M) are scratch for the groups' own slides.
+    """
+    q = qs[qi]
+    det = 1.0
+    meas = 1.0
+    for k in range(ops_i.shape[0]):
+        op = ops_i[k, 0]
+        d = 1.0
+        ms = 1.0
+        gap = 0.0
+        if op == OP_RIGID_POINT:
+            _rigid_point(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], ops_f[k, 1], M)
+        elif op == OP_DRIVE_ANGLE:
+            b, a, mi = ops_i[k, 1], ops_i[k, 2], ops_i[k, 3]
+            sgn = ops_f[k, 0]
+            jet[b, 0] = (jet[a, 0] if a >= 0 else 0.0) + sgn * q[mi]
+            for c in range(1, 1 + M + M * M):
+                jet[b, c] = jet[a, c] if a >= 0 else 0.0
+            jet[b, 1 + mi] += sgn
+        elif op == OP_LOCK_ANGLE:
+            b, a = ops_i[k, 1], ops_i[k, 2]
+            jet[b, 0] = jet[a, 0] + ops_f[k, 0]
+            for c in range(1, 1 + M + M * M):
+                jet[b, c] = jet[a, c]
+        elif op == OP_SLIDE_POINT:
+            mi = ops_i[k, 4]
+            sgn = ops_f[k, 2]
+            for m in range(M):
+                Kt[m] = sgn if m == mi else 0.0
+                for n in range(M):
+                    Lt[m, n] = 0.0
+            _line_point(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0],
+                        sgn * (q[mi] - ops_f[k, 1]), Kt, Lt, M)
+        elif op == OP_RRR:
+            d, ms, gap = _rrr(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4], ops_i[k, 5],
+                              ops_f[k, 0], ops_f[k, 1], ops_f[k, 2], ops_f[k, 3], ops_f[k, 4], M)
+        elif op == OP_RRP:
+            d, ms, gap = _rrp(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4], ops_i[k, 5],
+                              ops_f[k, 0], ops_f[k, 1], ops_f[k, 2], ops_f[k, 3], M, Kt)
+        elif op == OP_RPR:
+            d, ms, gap = _rpr(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], ops_f[k, 1],
+                              ops_f[k, 2], ops_f[k, 3], ops_f[k, 4], M, Kt)
+        elif op == OP_LINES:
+            d, ms, gap = _lines(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4], ops_i[k, 5],
+                                ops_f[k, 0], ops_f[k, 1], M, Kt, Kt2, Lt)
+        elif op == OP_NEWTON:
+            st, d, ms = _newton_group(ops_i[k, 1], groups_i, con_i, con_f, scale, q, jet,
+                                      gx, gK, gL, gq, gdet, M, work, piv)
+            if st != ST_OK:
+                res[2] = 0.0
+                res[3] = k
+                return st
+        elif op == OP_SLIDE_OUT:
+            s = ops_i[k, 1]
+            v = _relative_slide(jet, ops_i[k, 2], ops_i[k, 3], ops_i[k, 4], ops_f[k, 0], M, Kt, Lt)
+            jet[s, 0] = ops_f[k, 1] + v
+            for m in range(M):
+                jet[s, 1 + m] = Kt[m]
+                for n in range(M):
+                    jet[s, 1 + M + m * M + n] = Lt[m, n]
+        if gap > 0.0:
+            res[2] = gap
+            res[3] = k
+            return ST_NO_ASSEMBLY
+        det *= d
+        meas = min(meas, ms)
+    res[0] = det
+    res[1] = meas
+    res[2] = 0.0
+    res[3] = -1
+    return ST_OK
+
+
+@_jit()
+def _write_sample(i, qd, qdd, M, n_angles, n_out, jet, o_jet, o_rate):
+    """Copy the named items' jets out; rates: S' = K q', S'' = K q'' + q'^T L q'."""
+    if M == 1:
+        w = qd[i, 0]
+        wd = qdd[i, 0]
+        for it in range(n_out):
+            k1 = jet[it, 1]
+            l1 = jet[it, 2]
+            o_jet[i, it, 0] = jet[it, 0]
+            o_jet[i, it, 1] = k1
+            o_jet[i, it, 2] = l1
+            o_rate[i, it, 0] = k1 * w
+            o_rate[i, it, 1] = k1 * wd + l1 * w * w
+    else:
+        for it in range(n_out):
+            for c in range(1 + M + M * M):
+                o_jet[i, it, c] = jet[it, c]
+            v = 0.0
+            a = 0.0
+            for m in range(M):
+                km = jet[it, 1 + m]
+                v += km * qd[i, m]
+                a += km * qdd[i, m]
+                for n in range(M):
+                    a += jet[it, 1 + M + m * M + n] * qd[i, m] * qd[i, n]
+            o_rate[i, it, 0] = v
+            o_rate[i, it, 1] = a
+    for it in range(n_angles):
+        t = jet[it, 0]
+        o_jet[i, it, 0] = t - 2.0 * math.pi * math.floor((t + math.pi) / (2.0 * math.pi))
+
+
+@_jit()
+def _new_jet(n_items, M, const_items, const_values):
+    jet = np.zeros((n_items, 1 + M + M * M))
+    for j in range(const_items.shape[0]):
+        jet[const_items[j], 0] = const_values[j]
+    return jet
+
+
+@_jit(parallel=True)
+def run_closed_form(q, qd, qdd, ops_i, ops_f, const_items, const_values, n_items, n_angles,
+                    n_out, o_jet, o_rate, o_diag, o_status, o_failed):
+    """Evaluate a plan without Newton groups: samples are independent and run in parallel.
+
+    o_jet (N, n_out, 1 + M + M*M), o_rate (N, n_out, 2), o_diag (N, 3): det, measure, gap.
+    """
+    N, M = q.shape
+    nchunks = min(N, 64)
+    for c in prange(nchunks):
+        lo = c * N // nchunks
+        hi = (c + 1) * N // nchunks
+        jet = _new_jet(n_items, M, const_items, const_values)
+        Kt = np.zeros(M)
+        Kt2 = np.zeros(M)
+        Lt = np.zeros((M, M))
+        res = np.zeros(4)
+        gi = np.zeros((1, 8), np.int64)
+        gf = np.zeros((1, 8))
+        g1 = np.zeros(1)
+        g2 = np.zeros((1, M))
+        g3 = np.zeros((1, M, M))
+        piv = np.zeros(1, np.int64)
+        for i in range(lo, hi):
+            st = _evaluate(q, i, ops_i, ops_f, jet, M, Kt, Kt2, Lt, gi, gi, gf, 1.0, g1, g2, g3,
+                           g2, g1, g1, piv, res)
+            o_status[i] = st
+            o_diag[i, 0] = res[0]
+            o_diag[i, 1] = res[1]
+            o_diag[i, 2] = res[2]
+            o_failed[i] = int(res[3])
+            if st == ST_OK:
+                _write_sample(i, qd, qdd, M, n_angles, n_out, jet, o_jet, o_rate)
+
+
+@_jit()
+def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
+                     n_items, n_angles, n_out, groups_i, con_i, con_f, grp_x0, scale,
+                     o_jet, o_rate, o_diag, o_status, o_failed):
+    """Evaluate a plan with Newton groups, following the samples in order from the sketch.
+
+    Each step from the previous input to the next is split so that no step exceeds
+    ``max_step`` (Euclidean, in input units), and halved again while a Newton group fails
+    to converge or jumps (its correction is large against the predicted step).
+    """
+    N, M = q.shape
+    ng = groups_i.shape[0]
+    nx = grp_x0.shape[0]
+    nmax = 1
+    for g in range(ng):
+        nmax = max(nmax, 3 * groups_i[g, 1])
+    jet = _new_jet(n_items, M, const_items, const_values)
+    Kt = np.zeros(M)
+    Kt2 = np.zeros(M)
+    Lt = np.zeros((M, M))
+    res = np.zeros(4)
+    gx = grp_x0.copy()
+    gK = np.zeros((nx, M))
+    gL = np.zeros((nx, M, M))
+    gq = np.zeros((ng, M))
+    gdet = np.zeros(ng)
+    bx = gx.copy()
+    bK = gK.copy()
+    bL = gL.copy()
+    bq = gq.copy()
+    bdet = gdet.copy()
+    work = np.zeros(nmax * nmax + 3 * nmax + nmax * M + nmax * M * M)
+    piv = np.zeros(nmax, np.int64)
+    for g in range(ng):
+        for m in range(M):
+            gq[g, m] = q_start[m]
+    qt = q_start.copy().reshape((1, M))
+    qprev = q_start.copy()
+    # the sketch itself: the groups converge at once and get their K and L
+    st0 = _evaluate(qt, 0, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i, con_i, con_f, scale,
+                    gx, gK, gL, gq, gdet, work, piv, res)
+    if st0 != ST_OK:
+        for i in range(N):
+            o_status[i] = st0
+            o_failed[i] = int(res[3])
+        return
+    for i in range(N):
+        dist = 0.0
+        for m in range(M):
+            dist += (q[i, m] - qprev[m]) ** 2
+        dist = math.sqrt(dist)
+        h = 1.0
+        if dist > max_step:
+            h = max_step / dist
+        t = 0.0
+        st = ST_OK
+        while t < 1.0:
+            tt = min(1.0, t + h)
+            for m in range(M):
+                qt[0, m] = qprev[m] + tt * (q[i, m] - qprev[m])
+            bx[:] = gx
+            bK[:] = gK
+            bL[:] = gL
+            bq[:] = gq
+            bdet[:] = gdet
+            st = _evaluate(qt, 0, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i, con_i, con_f, scale,
+                           gx, gK, gL, gq, gdet, work, piv, res)
+            if st == ST_OK:
+                t = tt
+                h = min(2.0 * h, max_step / dist) if dist > 0.0 else 1.0
+            else:
+                gx[:] = bx
+                gK[:] = bK
+                gL[:] = bL
+                gq[:] = bq
+                gdet[:] = bdet
+                if st == ST_NO_ASSEMBLY or h < 1e-9:
+                    break
+                h *= 0.5
+        o_status[i] = st
+        o_diag[i, 0] = res[0]
+        o_diag[i, 1] = res[1]
+        o_diag[i, 2] = res[2]
+        o_failed[i] = int(res[3])
+        if st == ST_OK:
+            _write_sample(i, qd, qdd, M, n_angles, n_out, jet, o_jet, o_rate)
+        # the next sample starts where the mechanism last assembled
+        for m in range(M):
+            qprev[m] = qprev[m] + t * (q[i, m] - qprev[m])

@@ -1,0 +1,321 @@
+"""The result of a kinematic analysis: named arrays, with accessors by name."""
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass
+
+import numpy as np
+
+from kinelab.errors import ModelError
+from kinelab.model import Mechanism
+from kinelab.kinematics._geometry import sketch_angle
+
+
+@dataclass(frozen=True)
+class AccelerationComponents:
+    """The acceleration of a point that slides along a turning link, split into its parts.
+
+    With r = p - o (o the slide's origin point on the guide), u the slide direction, s the
+    slide and omega, alpha the guide's angular velocity and acceleration::
+
+        a_p = a_o  +  alpha k x r  -  omega^2 r  +  2 omega k x (s' u)  +  s'' u
+              origin   tangential     normal        Coriolis              sliding
+
+    Each field has the shape of a point acceleration, (2,) or (N, 2), in m/s^2.
+    """
+
+    origin: np.ndarray
+    tangential: np.ndarray
+    normal: np.ndarray
+    coriolis: np.ndarray
+    sliding: np.ndarray
+
+    @property
+    def total(self) -> np.ndarray:
+        return self.origin + self.tangential + self.normal + self.coriolis + self.sliding
+
+
+@dataclass(frozen=True, eq=False)
+class KinematicSolution:
+    """Positions, velocities, accelerations, K and L of every link, point and slide.
+
+    Use the accessors, which take names and follow the shape rule of the input: a single
+    configuration (``q`` of shape ``()`` for one input, ``(M,)`` for M inputs) gives
+    values without the sample axis; with one input the input axes of K and L are dropped.
+
+    Attributes
+    ----------
+    mechanism : Mechanism
+    q, qd, qdd : ndarray, shape (N, M)
+        Inputs (rad or m), their rates and accelerations.
+    jets : ndarray, shape (N, n, 1 + M + M*M)
+        For each coordinate (link angles, then x and y of each point, then slides):
+        value, K, and L flattened.  Prefer the accessors.
+    rates : ndarray, shape (N, n, 2)
+        First and second time derivatives of each coordinate.
+    det_J : ndarray, shape (N,)
+        Determinant of the Jacobian J = dPhi/dS of the position equations, written group
+        by group as in the notes (for a four-bar ``L3 L4 sin(theta3 - theta4)``; for the
+        slotted link ``-B``).  Newton groups contribute the determinant of their own
+        system in absolute coordinates.
+    singularity : ndarray, shape (N,)
+        A scale-free distance from singularity in [0, 1]: for each group |det| divided by
+        the product of its columns' norms (the sine of the transmission-type angle of a
+        dyad), the smallest over the groups.
+    singular : ndarray of bool, shape (N,)
+        ``singularity`` is zero to rounding: det J = 0, velocities undefined.  At those
+        samples K, L, velocities and accelerations are NaN; positions are valid.
+    assembled : ndarray of bool, shape (N,)
+        False where the loops cannot close (only with ``unreachable="mask"``; every value
+        of such a sample is NaN).
+    """
+
+    mechanism: Mechanism
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+    jets: np.ndarray
+    rates: np.ndarray
+    det_J: np.ndarray
+    singularity: np.ndarray
+    singular: np.ndarray
+    assembled: np.ndarray
+    link_item: dict[str, int]
+    point_item: dict[str, int]
+    slide_item: dict[str, int]
+    single: bool = False
+
+    # -- shape rule ---------------------------------------------------------------------
+    @property
+    def M(self) -> int:
+        return self.q.shape[1]
+
+    @property
+    def N(self) -> int:
+        return self.q.shape[0]
+
+    @property
+    def input_names(self) -> tuple[str, ...]:
+        return self.mechanism.input_names
+
+    @property
+    def link_names(self) -> tuple[str, ...]:
+        return tuple(self.link_item)
+
+    @property
+    def point_names(self) -> tuple[str, ...]:
+        return tuple(self.point_item)
+
+    @property
+    def slide_names(self) -> tuple[str, ...]:
+        return tuple(self.slide_item)
+
+    def _out(self, a: np.ndarray) -> np.ndarray:
+        return a[0] if self.single else a
+
+    def _find(self, name: str, kinds: str) -> tuple[int, int]:
+        """(first item, number of items) of a link ("l"), point ("p") or slide ("s")."""
+        tables = {"l": (self.link_item, 1, "link"), "p": (self.point_item, 2, "point"),
+                  "s": (self.slide_item, 1, "prismatic joint")}
+        for kind in kinds:
+            items, width, _ = tables[kind]
+            if name in items:
+                return items[name], width
+        names = [n for kind in kinds for n in tables[kind][0]]
+        label = " or ".join(tables[kind][2] for kind in kinds)
+        from difflib import get_close_matches
+        close = get_close_matches(str(name), names, n=1)
+        hint = f" (did you mean '{close[0]}'?)" if close else ""
+        raise ModelError(f"{label}: expected one of {', '.join(repr(n) for n in names)}, "
+                         f"got '{name}'{hint}")
+
+    def _value(self, name: str, kinds: str, column: int, source: str = "jets") -> np.ndarray:
+        i, w = self._find(name, kinds)
+        a = getattr(self, source)[:, i:i + w, column]
+        return self._out(a if w > 1 else a[:, 0])
+
+    # -- links --------------------------------------------------------------------------
+    def angle(self, link: str) -> np.ndarray:
+        """Angle of a link, rad, CCW from +x, in (-pi, pi]; shape () or (N,)."""
+        return self._value(link, "l", 0)
+
+    def omega(self, link: str) -> np.ndarray:
+        """Angular velocity, rad/s; shape () or (N,)."""
+        return self._value(link, "l", 0, "rates")
+
+    def alpha(self, link: str) -> np.ndarray:
+        """Angular acceleration, rad/s^2; shape () or (N,)."""
+        return self._value(link, "l", 1, "rates")
+
+    # -- points -------------------------------------------------------------------------
+    def position(self, point: str) -> np.ndarray:
+        """Position of a point, m; shape (2,) or (N, 2)."""
+        return self._value(point, "p", 0)
+
+    def velocity(self, point: str) -> np.ndarray:
+        """Velocity of a point, m/s; shape (2,) or (N, 2)."""
+        return self._value(point, "p", 0, "rates")
+
+    def acceleration(self, point: str) -> np.ndarray:
+        """Acceleration of a point, m/s^2; shape (2,) or (N, 2)."""
+        return self._value(point, "p", 1, "rates")
+
+    # -- slides -------------------------------------------------------------------------
+    def slide(self, joint: str) -> np.ndarray:
+        """Slide of a prismatic joint, m: ``axis . (point - origin)``; shape () or (N,)."""
+        return self._value(joint, "s", 0)
+
+    def slide_velocity(self, joint: str) -> np.ndarray:
+        """Rate of the slide, m/s; shape () or (N,)."""
+        return self._value(joint, "s", 0, "rates")
+
+    def slide_acceleration(self, joint: str) -> np.ndarray:
+        """Second derivative of the slide, m/s^2; shape () or (N,)."""
+        return self._value(joint, "s", 1, "rates")
+
+    # -- coefficients -------------------------------------------------------------------
+    def K(self, name: str) -> np.ndarray:
+        """Velocity coefficients dS/dq of a link angle, a slide or a point.
+
+        Shape: () or (N,) for an angle or slide with one input, (M,) or (N, M) with M
+        inputs; a point adds an axis of 2 before the input axis: (2,), (N, 2), (N, 2, M).
+        Units: rad/rad, rad/m, m/rad or m/m.
+        """
+        i, w = self._find(name, "lsp")
+        M = self.M
+        a = self.jets[:, i:i + w, 1:1 + M]
+        a = a if w > 1 else a[:, 0]
+        return self._out(a[..., 0] if M == 1 else a)
+
+    def L(self, name: str) -> np.ndarray:
+        """Acceleration coefficients d2S/dq2 = dK/dq, shaped like :meth:`K` with one more
+        input axis when M > 1; then ``S'' = K q'' + q'^T L q'``."""
+        i, w = self._find(name, "lsp")
+        M = self.M
+        a = self.jets[:, i:i + w, 1 + M:].reshape(self.N, w, M, M)
+        a = a if w > 1 else a[:, 0]
+        return self._out(a[..., 0, 0] if M == 1 else a)
+
+    def acceleration_components(self, point: str, joint: str | None = None) -> AccelerationComponents:
+        """Normal, tangential, Coriolis and sliding parts of the acceleration of a point that
+        slides along a turning link (seed 001).
+
+        Parameters
+        ----------
+        point : str
+            The point of a prismatic joint (carried by the slider).
+        joint : str, optional
+            The prismatic joint, when the point belongs to more than one.
+        """
+        m = self.mechanism
+        joints = [j for j in m.joints if j.type == "P" and j.point == point
+                  and (joint is None or j.name == joint)]
+        if not joints:
+            names = ", ".join(repr(j.name) for j in m.joints if j.type == "P") or "none"
+            raise ModelError(f"point '{point}': expected the point of a prismatic joint"
+                             + (f" '{joint}'" if joint else "") + f"; prismatic joints are {names}")
+        if len(joints) > 1:
+            raise ModelError(f"point '{point}' slides in {len(joints)} joints; name one with joint=")
+        j = joints[0]
+        guide = j.links[0]
+        origin = j.origin or m.link(guide).points[0]
+        gi = self.link_item[guide]
+        oi, pi = self.point_item[origin], self.point_item[point]
+        si = self.slide_item[j.name]
+        r = self.jets[:, pi:pi + 2, 0] - self.jets[:, oi:oi + 2, 0]
+        w = self.rates[:, gi, 0][:, None]
+        a = self.rates[:, gi, 1][:, None]
+        theta_axis = self.jets[:, gi, 0] + (math.atan2(j.axis[1], j.axis[0]) - sketch_angle(m, guide))
+        u = np.stack([np.cos(theta_axis), np.sin(theta_axis)], axis=-1)
+
+        def k_cross(v):
+            return np.stack([-v[:, 1], v[:, 0]], axis=-1)
+        sd = self.rates[:, si, 0][:, None]
+        sdd = self.rates[:, si, 1][:, None]
+        parts = dict(origin=self.rates[:, oi:oi + 2, 1], tangential=a * k_cross(r),
+                     normal=-(w ** 2) * r, coriolis=2.0 * w * k_cross(sd * u), sliding=sdd * u)
+        return AccelerationComponents(**{k: self._out(v) for k, v in parts.items()})
+
+    # -- export -------------------------------------------------------------------------
+    def columns(self, degrees: bool = False) -> dict[str, np.ndarray]:
+        """Every result as a named (N,) column, with its unit in the name.
+
+        Inputs ``<input>.q``, ``.qd``, ``.qdd``; links ``<link>.angle``, ``.omega``,
+        ``.alpha``, ``.K``, ``.L``; slides ``<joint>.slide`` and rates; points ``<P>.x``,
+        ``.y``, ``.vx``, ``.vy``, ``.ax``, ``.ay`` and K, L of x and y; then ``det_J``,
+        ``singularity``, ``singular``.  ``degrees=True`` converts every angle (and rad in
+        a unit) to degrees.
+        """
+        kinds = _input_kinds(self.mechanism)
+        deg = 180.0 / math.pi
+        M = self.M
+        in_unit = [("deg" if degrees else "rad") if k == "angle" else "m" for k in kinds]
+        in_angle = [k == "angle" for k in kinds]
+        cols: dict[str, np.ndarray] = {}
+        for mi, name in enumerate(self.input_names):
+            f = deg if (degrees and in_angle[mi]) else 1.0
+            u = in_unit[mi]
+            cols[f"{name}.q [{u}]"] = self.q[:, mi] * f
+            cols[f"{name}.qd [{u}/s]"] = self.qd[:, mi] * f
+            cols[f"{name}.qdd [{u}/s^2]"] = self.qdd[:, mi] * f
+
+        def coefficient_columns(label, item, unit, is_angle):
+            for mi, a in enumerate(self.input_names):
+                power = int(is_angle) - int(in_angle[mi])
+                tag = f"[{a}]" if M > 1 else ""
+                cols[f"{label}.K{tag} [{unit}/{in_unit[mi]}]"] = (
+                    self.jets[:, item, 1 + mi] * (deg ** power if degrees else 1.0))
+                for ni, b in enumerate(self.input_names):
+                    power2 = power - int(in_angle[ni])
+                    tag2 = f"[{a},{b}]" if M > 1 else ""
+                    cols[f"{label}.L{tag2} [{unit}/({in_unit[mi]}*{in_unit[ni]})]"] = (
+                        self.jets[:, item, 1 + M + mi * M + ni] * (deg ** power2 if degrees else 1.0))
+
+        au = "deg" if degrees else "rad"
+        fa = deg if degrees else 1.0
+        for link, i in self.link_item.items():
+            cols[f"{link}.angle [{au}]"] = self.jets[:, i, 0] * fa
+            cols[f"{link}.omega [{au}/s]"] = self.rates[:, i, 0] * fa
+            cols[f"{link}.alpha [{au}/s^2]"] = self.rates[:, i, 1] * fa
+            coefficient_columns(link, i, au, True)
+        for joint, i in self.slide_item.items():
+            cols[f"{joint}.slide [m]"] = self.jets[:, i, 0]
+            cols[f"{joint}.slide_velocity [m/s]"] = self.rates[:, i, 0]
+            cols[f"{joint}.slide_acceleration [m/s^2]"] = self.rates[:, i, 1]
+            coefficient_columns(joint, i, "m", False)
+        for point, i in self.point_item.items():
+            for d, ax in enumerate("xy"):
+                cols[f"{point}.{ax} [m]"] = self.jets[:, i + d, 0]
+            for d, ax in enumerate("xy"):
+                cols[f"{point}.v{ax} [m/s]"] = self.rates[:, i + d, 0]
+            for d, ax in enumerate("xy"):
+                cols[f"{point}.a{ax} [m/s^2]"] = self.rates[:, i + d, 1]
+            for d, ax in enumerate("xy"):
+                coefficient_columns(f"{point}.{ax}", i + d, "m", False)
+        cols["det_J"] = self.det_J
+        cols["singularity"] = self.singularity
+        cols["singular"] = self.singular
+        if not self.assembled.all():
+            cols["assembled"] = self.assembled
+        return cols
+
+    def to_dataframe(self, degrees: bool = False):
+        """A pandas DataFrame with one row per sample and the columns of :meth:`columns`."""
+        import pandas as pd
+        return pd.DataFrame(self.columns(degrees=degrees))
+
+    def to_csv(self, path: str | os.PathLike, degrees: bool = False) -> None:
+        """Write :meth:`to_dataframe` as CSV (written to a temporary file, then renamed)."""
+        from kinelab._files import write_csv
+        write_csv(self.columns(degrees=degrees), path)
+
+    def __repr__(self) -> str:
+        sing = int(self.singular.sum())
+        return (f"KinematicSolution('{self.mechanism.name}', N={self.N}, inputs="
+                f"{list(self.input_names)}, singular samples={sing})")
+
+
+def _input_kinds(m: Mechanism) -> tuple[str, ...]:
+    return tuple("slide" if (i.joint is not None and m.joint(i.joint).type == "P") else "angle"
+                 for i in m.inputs)

@@ -1,0 +1,487 @@
+"""Constructors for the standard mechanisms of the course notes.
+
+Each returns a :class:`~kinelab.model.Mechanism` whose sketch (point positions) is one
+assembled configuration on the requested branch.  Names follow the notes: link 1 is the
+ground, 2 the input crank, 3 the coupler or connecting rod, 4 the output; joints are
+named ``j`` + the point they act at (``jO2``, ``jA`` ...), prismatic joints by their role.
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from typing import Literal
+
+import numpy as np
+
+from kinelab.errors import ModelError
+from kinelab.model import Input, Joint, Link, Mechanism, Point
+
+__all__ = ["fourbar", "slider_crank", "inverted_slider_crank", "slotted_link", "whitworth",
+           "fivebar", "watt6", "stephenson6", "triad6"]
+
+
+def _positive(**lengths: float) -> None:
+    problems = [f"{name}: expected a positive length (m), got {value!r}"
+                for name, value in lengths.items()
+                if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0)]
+    if problems:
+        raise ModelError(problems)
+
+
+def _finite(**values: float) -> None:
+    problems = [f"{name}: expected a finite number, got {value!r}"
+                for name, value in values.items()
+                if not (isinstance(value, (int, float)) and math.isfinite(value))]
+    if problems:
+        raise ModelError(problems)
+
+
+def _choice(name: str, value: str, choices: tuple[str, ...]) -> None:
+    if value not in choices:
+        raise ModelError(f"{name}: expected one of {', '.join(repr(c) for c in choices)}, got {value!r}")
+
+
+def _best_angle(quality: Callable[[np.ndarray], np.ndarray], what: str) -> float:
+    """The input angle, on a 1-degree grid, where a closure quality (> 0: assembles) is best."""
+    q = np.radians(np.arange(0.0, 360.0, 1.0)) + 1e-3   # off the axes: no accidental symmetry
+    v = quality(q)
+    if not np.any(v > 0):
+        raise ModelError(f"{what}: these lengths cannot be assembled at any input angle; check them")
+    return float(q[np.argmax(v)])
+
+
+def _circle_intersection(X, Z, lb, lc, sigma):
+    d = np.subtract(Z, X)
+    D = math.hypot(*d)
+    a = (lb * lb - lc * lc + D * D) / (2 * D)
+    h = math.sqrt(max(lb * lb - a * a, 0.0))
+    e = d / D
+    return (X[0] + a * e[0] - sigma * h * e[1], X[1] + a * e[1] + sigma * h * e[0])
+
+
+def _pins(*names: tuple[str, str, str]) -> tuple[Joint, ...]:
+    return tuple(Joint(f"j{p}", "R", (a, b), point=p) for p, a, b in names)
+
+
+# --------------------------------------------------------------------------------------
+def fourbar(ground: float, crank: float, coupler: float, rocker: float,
+            coupler_point: tuple[float, float] | None = None,
+            branch: Literal["open", "crossed"] = "open") -> Mechanism:
+    """Four-bar linkage (RRRR) driven by the crank angle.
+
+    Links ``ground, crank, coupler, rocker`` (1, 2, 3, 4); points ``O2`` (crank pivot, at
+    the origin), ``A`` (crank pin), ``B`` (coupler-rocker pin), ``O4`` (rocker pivot, at
+    ``(ground, 0)``) and the coupler point ``P`` when given; joints ``jO2, jA, jB, jO4``;
+    the input is ``jO2``, q = theta2.
+
+    Parameters
+    ----------
+    ground, crank, coupler, rocker : float
+        Link lengths O2O4, O2A, AB, O4B, m.
+    coupler_point : (float, float), optional
+        P as (distance along AB, distance perpendicular to AB, CCW) from A, m.
+    branch : {"open", "crossed"}
+        Assembly mode: "open" puts B to the left of the line from A to O4 (the convex
+        quadrilateral when the crank points up), "crossed" to the right.
+
+    Examples
+    --------
+    >>> fb = kl.mechanisms.fourbar(ground=2.0, crank=1.0, coupler=1.0, rocker=1.0)
+    >>> sol = kl.analyze(fb, q=0.0)                          # notes 003, Ex. 4.2
+    >>> np.degrees([sol.angle("coupler"), sol.angle("rocker")]).round(9)
+    array([ 60., 120.])
+    """
+    _positive(ground=ground, crank=crank, coupler=coupler, rocker=rocker)
+    _choice("branch", branch, ("open", "crossed"))
+    sigma = 1.0 if branch == "open" else -1.0
+
+    def quality(q):
+        ax, ay = crank * np.cos(q), crank * np.sin(q)
+        D = np.hypot(ground - ax, -ay)
+        cos_mu = (coupler ** 2 + rocker ** 2 - D ** 2) / (2 * coupler * rocker)
+        return 1.0 - np.abs(cos_mu)     # > 0 where it closes; best at mu = 90 deg
+    q0 = _best_angle(quality, "fourbar")
+    A = (crank * math.cos(q0), crank * math.sin(q0))
+    O4 = (float(ground), 0.0)
+    B = _circle_intersection(A, O4, coupler, rocker, sigma)
+    points = [Point("O2", 0.0, 0.0), Point("A", *A), Point("B", *B), Point("O4", *O4)]
+    coupler_pts = ("A", "B")
+    if coupler_point is not None:
+        if len(coupler_point) != 2:
+            raise ModelError(f"coupler_point: expected (along, perpendicular), got {coupler_point!r}")
+        _finite(coupler_point_along=coupler_point[0], coupler_point_perpendicular=coupler_point[1])
+        e = np.subtract(B, A) / coupler
+        n = np.array([-e[1], e[0]])
+        P = np.add(A, coupler_point[0] * e + coupler_point[1] * n)
+        points.append(Point("P", float(P[0]), float(P[1])))
+        coupler_pts = ("A", "B", "P")
+    return Mechanism(
+        name="fourbar",
+        points=tuple(points),
+        links=(Link("ground", ("O2", "O4"), ground=True), Link("crank", ("O2", "A")),
+               Link("coupler", coupler_pts), Link("rocker", ("O4", "B"))),
+        joints=_pins(("O2", "ground", "crank"), ("A", "crank", "coupler"),
+                     ("B", "coupler", "rocker"), ("O4", "ground", "rocker")),
+        inputs=(Input(joint="jO2"),),
+        parameters=dict(kind="fourbar", ground=ground, crank=crank, coupler=coupler,
+                        rocker=rocker, coupler_point=coupler_point, branch=branch),
+    )
+
+
+def slider_crank(crank: float, rod: float, offset: float = 0.0,
+                 branch: Literal["right", "left"] = "right") -> Mechanism:
+    """Slider-crank (RRRP), offset or in line, driven by the crank angle.
+
+    Links ``ground, crank, rod, slider``; points ``O2`` (crank pivot, origin), ``A``
+    (crank pin), ``B`` (wrist pin, on the slider); joints ``jO2, jA, jB`` and the prismatic
+    joint ``slide`` along +x at y = offset, whose slide is the x of B.  Input ``jO2``.
+
+    Parameters
+    ----------
+    crank, rod : float
+        O2A and AB, m.
+    offset : float
+        Height of the slide line above O2, m.
+    branch : {"right", "left"}
+        "right" puts B on the +x side of A.
+
+    Examples
+    --------
+    >>> sc = kl.mechanisms.slider_crank(crank=1.0, rod=3.0)
+    >>> float(kl.analyze(sc, q=np.pi).slide("slide"))         # inner dead centre
+    2.0
+    """
+    _positive(crank=crank, rod=rod)
+    _finite(offset=offset)
+    _choice("branch", branch, ("right", "left"))
+    if abs(offset) >= crank + rod:
+        raise ModelError(f"offset: |{offset}| m is beyond crank + rod = {crank + rod} m; "
+                         "the rod cannot reach the slide line")
+    sigma = 1.0 if branch == "right" else -1.0
+
+    def quality(q):
+        h = offset - crank * np.sin(q)
+        return 1.0 - np.abs(h) / rod
+    q0 = _best_angle(quality, "slider_crank")
+    A = (crank * math.cos(q0), crank * math.sin(q0))
+    dx = sigma * math.sqrt(rod ** 2 - (offset - A[1]) ** 2)
+    B = (A[0] + dx, float(offset))
+    return Mechanism(
+        name="slider_crank",
+        points=(Point("O2", 0.0, 0.0), Point("A", *A), Point("B", *B)),
+        links=(Link("ground", ("O2",), ground=True), Link("crank", ("O2", "A")),
+               Link("rod", ("A", "B")), Link("slider", ("B",))),
+        joints=_pins(("O2", "ground", "crank"), ("A", "crank", "rod"), ("B", "rod", "slider"))
+        + (Joint("slide", "P", ("ground", "slider"), point="B", axis=(1.0, 0.0), origin="O2"),),
+        inputs=(Input(joint="jO2"),),
+        parameters=dict(kind="slider_crank", crank=crank, rod=rod, offset=offset, branch=branch),
+    )
+
+
+def _slotted(name: str, ground_xy: tuple[float, float], crank: float, offset: float,
+             arm: float, branch: str, lever_name: str = "lever", slot: str = "slot",
+             params=None) -> Mechanism:
+    """Crank O2A whose pin A slides in a slot of a lever turning about O4 = origin.
+
+    The slot is parallel to the lever (O4 -> C) at a perpendicular distance ``offset``.
+    """
+    sigma = 1.0 if branch in ("positive", "open") else -1.0
+    O2 = np.array(ground_xy, float)
+
+    def quality(q):
+        A = O2[:, None] + crank * np.array([np.cos(q), np.sin(q)])
+        D = np.hypot(*A)
+        return 1.0 - np.abs(offset) / np.maximum(D, 1e-300)
+    q0 = _best_angle(quality, name)
+    A = O2 + crank * np.array([math.cos(q0), math.sin(q0)])
+    D = math.hypot(*A)
+    t = sigma * math.sqrt(D * D - offset * offset)    # slide of A along the slot, from O4's foot
+    # lever direction u with A = t u + offset n (n = k x u):  rotate A back by atan2(offset, t)
+    phi = math.atan2(A[1], A[0]) - math.atan2(offset, t)
+    u = np.array([math.cos(phi), math.sin(phi)])
+    C = arm * u
+    return Mechanism(
+        name=name,
+        points=(Point("O4", 0.0, 0.0), Point("O2", *O2), Point("A", *A), Point("C", *C)),
+        links=(Link("ground", ("O4", "O2"), ground=True), Link("crank", ("O2", "A")),
+               Link("block", ("A",)), Link(lever_name, ("O4", "C"))),
+        joints=_pins(("O2", "ground", "crank"), ("A", "crank", "block"), ("O4", "ground", lever_name))
+        + (Joint(slot, "P", (lever_name, "block"), point="A", axis=(float(u[0]), float(u[1])),
+                 origin="O4"),),
+        inputs=(Input(joint="jO2"),),
+        parameters=params or {},
+    )
+
+
+def slotted_link(crank: float, distance: float,
+                 branch: Literal["positive", "negative"] = "positive") -> Mechanism:
+    """Slotted-link (crank and slotted lever, quick-return) mechanism of seed 000.
+
+    The position equations of the notes are ``B cos A - R cos q - C = 0`` and
+    ``B sin A - R sin q = 0`` with R = crank and C = distance: the lever pivot ``O4`` is at
+    the origin, the crank pivot ``O2`` at ``(C, 0)``, the crank pin ``A`` slides in the
+    lever's slot.  The seed's A is ``sol.angle("lever")``, its B is ``sol.slide("slot")``
+    (the distance O4A).  Links ``ground, crank, block, lever``; points ``O4, O2, A`` and
+    ``C`` (the lever's end, at distance crank + distance from O4); joints ``jO2, jA, jO4``
+    and the prismatic ``slot`` (guide lever, slider block).  Input ``jO2``.
+
+    Parameters
+    ----------
+    crank, distance : float
+        R and C of the notes, m.
+    branch : {"positive", "negative"}
+        The sign of B: "positive" has the lever pointing at the crank pin.
+
+    Examples
+    --------
+    >>> sl = kl.mechanisms.slotted_link(crank=1.0, distance=2.0)
+    >>> sol = kl.analyze(sl, q=np.pi / 2)
+    >>> round(float(sol.slide("slot")), 12), round(float(np.degrees(sol.angle("lever"))), 9)
+    (2.236067977, 26.565051177)
+    """
+    _positive(crank=crank, distance=distance)
+    _choice("branch", branch, ("positive", "negative"))
+    return _slotted("slotted_link", (distance, 0.0), crank, 0.0, crank + distance, branch,
+                    params=dict(kind="slotted_link", crank=crank, distance=distance, branch=branch))
+
+
+def inverted_slider_crank(ground: float, crank: float, offset: float = 0.0, rocker: float | None = None,
+                          branch: Literal["positive", "negative"] = "positive") -> Mechanism:
+    """Inverted slider-crank (seed 001; seed 002 §4.7.4): the block on the crank pin slides
+    along the rocker.
+
+    Links ``ground, crank, block, rocker``; points ``O2`` (origin), ``A`` (crank pin, on
+    the block), ``O4`` at ``(ground, 0)`` and ``C`` (the rocker's end, which sets its
+    direction); joints ``jO2, jA, jO4`` and the prismatic ``slide`` (guide rocker, slider
+    block), parallel to O4C at perpendicular distance ``offset`` (CCW side); its slide is
+    measured from the foot of O4 along O4C.  Input ``jO2``.
+
+    Parameters
+    ----------
+    ground, crank : float
+        O2O4 and O2A, m.
+    offset : float
+        Distance of the slide line from O4, m.
+    rocker : float, optional
+        Length O4C, m (default ground + crank).
+    branch : {"positive", "negative"}
+        "positive": the slide of A along O4C is positive.
+
+    Examples
+    --------
+    >>> isc = kl.mechanisms.inverted_slider_crank(ground=2.0, crank=1.0)
+    >>> sol = kl.analyze(isc, q=np.pi / 2)
+    >>> round(float(sol.slide("slide")), 12)          # |O4A| = sqrt(1 + 4)
+    2.236067977
+    """
+    _positive(ground=ground, crank=crank)
+    _finite(offset=offset)
+    _choice("branch", branch, ("positive", "negative"))
+    rocker = ground + crank if rocker is None else rocker
+    _positive(rocker=rocker)
+    m = _slotted("inverted_slider_crank", (-ground, 0.0), crank, offset, rocker, branch,
+                 lever_name="rocker", slot="slide")
+    # shift so that O2 is at the origin and O4 at (ground, 0), as in the notes
+    pts = tuple(Point(p.name, p.x + ground, p.y) for p in m.points)
+    return Mechanism(name=m.name, points=pts, links=m.links, joints=m.joints, inputs=m.inputs,
+                     parameters=dict(kind="inverted_slider_crank", ground=ground, crank=crank,
+                                     offset=offset, rocker=rocker, branch=branch))
+
+
+def whitworth(crank: float, distance: float, lever: float, rod: float,
+              ram_height: float = 0.0) -> Mechanism:
+    """Whitworth quick-return mechanism: a slotted lever turning full circle drives a ram.
+
+    The crank O2A (O2 at ``(0, distance)`` above the lever pivot O4 at the origin, with
+    distance < crank so that the lever turns fully) carries the block A that slides in the
+    lever's slot; the lever end ``C`` (radius ``lever``) drives the ram ``D`` through the
+    rod CD; the ram slides along +x at y = ram_height.
+
+    Links ``ground, crank, block, lever, rod, ram``; points ``O4, O2, A, C, D``; joints
+    ``jO2, jA, jO4, jC, jD``, the prismatic ``slot`` (lever/block) and ``ram_slide``
+    (ground/ram; its slide is the x of D).  Input ``jO2``.
+
+    The ram's dead centres come when C crosses the x axis, i.e. when A does:
+    ``sin q = -distance / crank``, so the crank turns ``pi + 2 asin(distance/crank)`` for one
+    stroke and ``pi - 2 asin(distance/crank)`` for the other; the time ratio is their
+    quotient (:func:`kinelab.kinematics.time_ratio`).
+
+    Examples
+    --------
+    >>> w = kl.mechanisms.whitworth(crank=1.0, distance=0.5, lever=1.0, rod=2.0)
+    >>> sol = kl.analyze(w, q=np.radians(-30.0))      # A on the x axis: a dead centre
+    >>> round(float(sol.slide("ram_slide")), 12)      # C = (1, 0), D = (3, 0)
+    3.0
+    """
+    _positive(crank=crank, distance=distance, lever=lever, rod=rod)
+    _finite(ram_height=ram_height)
+    if distance >= crank:
+        raise ModelError(f"distance: expected less than the crank ({crank} m) so that the lever "
+                         f"turns full circle, got {distance} m; use slotted_link for a rocking lever")
+    if abs(ram_height) >= lever + rod:
+        raise ModelError("ram_height: the rod cannot reach the ram line; lower it")
+    base = _slotted("whitworth", (0.0, distance), crank, 0.0, lever, "positive")
+    C = base.point("C")
+    dx = math.sqrt(max(rod ** 2 - (ram_height - C.y) ** 2, 0.0))
+    if dx == 0.0:
+        raise ModelError("rod: too short to reach the ram line in the sketch; lengthen it")
+    D = (C.x + dx, float(ram_height))
+    return Mechanism(
+        name="whitworth",
+        points=base.points + (Point("D", *D),),
+        links=base.links + (Link("rod", ("C", "D")), Link("ram", ("D",))),
+        joints=base.joints + _pins(("C", "lever", "rod"), ("D", "rod", "ram"))
+        + (Joint("ram_slide", "P", ("ground", "ram"), point="D", axis=(1.0, 0.0), origin="O4"),),
+        inputs=base.inputs,
+        parameters=dict(kind="whitworth", crank=crank, distance=distance, lever=lever, rod=rod,
+                        ram_height=ram_height),
+    )
+
+
+def fivebar(ground: float, crank1: float, coupler1: float, coupler2: float, crank2: float,
+            branch: Literal["up", "down"] = "up",
+            q0: tuple[float, float] | None = None) -> Mechanism:
+    """Five-bar linkage (RRRRR) with two inputs, the two crank angles.
+
+    Links ``ground, crank1, coupler1, coupler2, crank2``; points ``O2`` (origin), ``A``,
+    ``P`` (the joint of the two couplers, the usual output), ``B``, ``O4`` at
+    ``(ground, 0)``; joints ``jO2, jA, jP, jB, jO4``; inputs ``jO2`` (theta of crank1) and
+    ``jO4`` (theta of crank2), so q has shape (N, 2).
+
+    Parameters
+    ----------
+    ground, crank1, coupler1, coupler2, crank2 : float
+        O2O4, O2A, AP, BP, O4B, m.
+    branch : {"up", "down"}
+        "up" puts P to the left of the line from A to B.
+    q0 : (float, float), optional
+        Crank angles of the sketch, rad (default: chosen where the couplers meet best).
+
+    Examples
+    --------
+    >>> fb5 = kl.mechanisms.fivebar(ground=1.0, crank1=1.0, coupler1=1.5, coupler2=1.5, crank2=1.0)
+    >>> kl.analyze(fb5, q=[np.pi / 2, np.pi / 2]).position("P").round(12)
+    array([0.5      , 2.4142136])
+    """
+    _positive(ground=ground, crank1=crank1, coupler1=coupler1, coupler2=coupler2, crank2=crank2)
+    _choice("branch", branch, ("up", "down"))
+    sigma = 1.0 if branch == "up" else -1.0
+    if q0 is None:
+        g = np.radians(np.arange(0.0, 360.0, 5.0)) + 1e-3
+        t1, t2 = np.meshgrid(g, g, indexing="ij")
+        D = np.hypot(ground + crank2 * np.cos(t2) - crank1 * np.cos(t1),
+                     crank2 * np.sin(t2) - crank1 * np.sin(t1))
+        cos_mu = (coupler1 ** 2 + coupler2 ** 2 - D ** 2) / (2 * coupler1 * coupler2)
+        quality = 1.0 - np.abs(cos_mu)
+        if not np.any(quality > 0):
+            raise ModelError("fivebar: these lengths cannot be assembled at any crank angles")
+        i, j = np.unravel_index(np.argmax(quality), quality.shape)
+        q0 = (float(t1[i, j]), float(t2[i, j]))
+    A = (crank1 * math.cos(q0[0]), crank1 * math.sin(q0[0]))
+    B = (ground + crank2 * math.cos(q0[1]), crank2 * math.sin(q0[1]))
+    if not abs(coupler1 - coupler2) < math.dist(A, B) < coupler1 + coupler2:
+        raise ModelError(f"q0: the couplers cannot meet at crank angles {q0}; choose others")
+    P = _circle_intersection(A, B, coupler1, coupler2, sigma)
+    return Mechanism(
+        name="fivebar",
+        points=(Point("O2", 0.0, 0.0), Point("A", *A), Point("P", *P), Point("B", *B),
+                Point("O4", float(ground), 0.0)),
+        links=(Link("ground", ("O2", "O4"), ground=True), Link("crank1", ("O2", "A")),
+               Link("coupler1", ("A", "P")), Link("coupler2", ("B", "P")), Link("crank2", ("O4", "B"))),
+        joints=_pins(("O2", "ground", "crank1"), ("A", "crank1", "coupler1"),
+                     ("P", "coupler1", "coupler2"), ("B", "crank2", "coupler2"), ("O4", "ground", "crank2")),
+        inputs=(Input(joint="jO2"), Input(joint="jO4")),
+        parameters=dict(kind="fivebar", ground=ground, crank1=crank1, coupler1=coupler1,
+                        coupler2=coupler2, crank2=crank2, branch=branch),
+    )
+
+
+def _from_points(name: str, defaults: Mapping[str, tuple[float, float]],
+                 points: Mapping[str, tuple[float, float]] | None, links, input_joint: str,
+                 kind: str) -> Mechanism:
+    pts = dict(defaults)
+    for key, xy in (points or {}).items():
+        if key not in pts:
+            raise ModelError(f"points: expected some of {', '.join(repr(k) for k in pts)}, got '{key}'")
+        if len(xy) != 2:
+            raise ModelError(f"points['{key}']: expected (x, y), got {xy!r}")
+        _finite(**{f"points['{key}'].x": xy[0], f"points['{key}'].y": xy[1]})
+        pts[key] = (float(xy[0]), float(xy[1]))
+    joints = []
+    for p in pts:
+        carriers = [ln for ln, lp in links if p in lp]
+        for other in carriers[1:]:
+            joints.append(Joint(f"j{p}" if len(carriers) == 2 else f"j{p}_{other}", "R",
+                                (carriers[0], other), point=p))
+    return Mechanism(
+        name=name,
+        points=tuple(Point(n, *xy) for n, xy in pts.items()),
+        links=tuple(Link(ln, lp, ground=(ln == "ground")) for ln, lp in links),
+        joints=tuple(joints), inputs=(Input(joint=input_joint),),
+        parameters=dict(kind=kind, points=pts))
+
+
+def watt6(points: Mapping[str, tuple[float, float]] | None = None) -> Mechanism:
+    """Watt six-bar (Watt II): a crank-rocker four-bar whose ternary rocker drives a second
+    four-bar.  The two ternary links, ground and rocker, are joined directly at O4.
+
+    Links ``ground (O2, O4, O6), crank (O2, A), coupler (A, B), rocker (O4, B, C),
+    link5 (C, D), output (O6, D)``; joints ``jO2, jA, jB, jO4, jC, jD, jO6``; input ``jO2``.
+    Every link length and the assembly mode come from the sketch ``points`` (m): pass any
+    of them to change the default geometry.
+
+    Examples
+    --------
+    >>> w6 = kl.mechanisms.watt6()
+    >>> [s.kind for s in kl.kinematics.plan(w6).steps if s.kind in ("RRR", "newton")]
+    ['RRR', 'RRR']
+    """
+    defaults = {"O2": (0.0, 0.0), "A": (0.5, 0.866), "B": (3.52, 3.1), "O4": (5.63, -0.76),
+                "C": (4.51, 1.21), "O6": (7.07, 0.04), "D": (6.32, 2.53)}
+    links = (("ground", ("O2", "O4", "O6")), ("crank", ("O2", "A")), ("coupler", ("A", "B")),
+             ("rocker", ("O4", "B", "C")), ("link5", ("C", "D")), ("output", ("O6", "D")))
+    return _from_points("watt6", defaults, points, links, "jO2", "watt6")
+
+
+def stephenson6(points: Mapping[str, tuple[float, float]] | None = None) -> Mechanism:
+    """Stephenson six-bar (Stephenson III): a four-bar whose ternary coupler drives a dyad
+    to a third ground pivot.  The ternary links, ground and coupler, are not adjacent.
+
+    Links ``ground (O2, O4, O6), crank (O2, A), coupler (A, B, C), rocker (O4, B),
+    link5 (C, D), output (O6, D)``; joints ``jO2, jA, jB, jO4, jC, jD, jO6``; input ``jO2``.
+    Geometry and assembly mode come from the sketch ``points`` (m).
+
+    Examples
+    --------
+    >>> s6 = kl.mechanisms.stephenson6()
+    >>> sol = kl.analyze(s6, q=np.radians(np.arange(0, 360, 10)))
+    >>> sol.position("D").shape
+    (36, 2)
+    """
+    defaults = {"O2": (0.0, 0.0), "A": (0.0, 1.0), "B": (3.68, 2.75), "O4": (5.69, -1.03),
+                "C": (2.18, 3.47), "O6": (5.92, 2.14), "D": (4.34, 5.26)}
+    links = (("ground", ("O2", "O4", "O6")), ("crank", ("O2", "A")), ("coupler", ("A", "B", "C")),
+             ("rocker", ("O4", "B")), ("link5", ("C", "D")), ("output", ("O6", "D")))
+    return _from_points("stephenson6", defaults, points, links, "jO2", "stephenson6")
+
+
+def triad6(points: Mapping[str, tuple[float, float]] | None = None) -> Mechanism:
+    """A six-bar whose links beyond the crank form a triad (a class-III Assur group), which
+    no sequence of dyads solves: kinelab places it by Newton-Raphson with continuation.
+
+    A ternary link ``triad (C, D, E)`` is held by three binary links: ``link3 (A, C)`` from
+    the crank pin, ``link4 (D, O4)`` and ``link5 (E, O6)`` from the ground.  Links
+    ``ground (O2, O4, O6), crank (O2, A), link3, triad, link4, link5``; joints ``jO2, jA,
+    jC, jD, jE, jO4, jO6``; input ``jO2``.
+
+    Examples
+    --------
+    >>> t6 = kl.mechanisms.triad6()
+    >>> [s.kind for s in kl.kinematics.plan(t6).steps if s.kind == "newton"]
+    ['newton']
+    """
+    defaults = {"O2": (0.0, 0.0), "A": (0.0, 0.5), "C": (2.79, 0.25), "D": (2.66, 0.61),
+                "E": (2.81, 2.76), "O4": (2.65, -1.65), "O6": (5.58, 2.74)}
+    links = (("ground", ("O2", "O4", "O6")), ("crank", ("O2", "A")), ("link3", ("A", "C")),
+             ("triad", ("C", "D", "E")), ("link4", ("D", "O4")), ("link5", ("E", "O6")))
+    return _from_points("triad6", defaults, points, links, "jO2", "triad6")
