@@ -43,6 +43,7 @@ OP_RRP = 7           # i: b, X, Y, o, g                         f: lb, beta, sig
 OP_RPR = 8           # i: G, X, Z                               f: rho_x, rho_y, u_x, u_y, sigma
 OP_NEWTON = 9        # i: group
 OP_SLIDE_OUT = 10    # i: slide, p, o, g                        f: beta, s0
+OP_TWO_POINTS = 11   # i: b, p1, p2                             f: offset
 
 # Newton-group constraint kinds (rows of con_i / con_f); a side is either a link of the
 # group (g >= 0, with a point given in the link's frame) or known (g = -1, a point item).
@@ -320,6 +321,30 @@ def _lines(jet, out, o1, l1, o2, l2, beta1, beta2, M, K1, K2, L1):
             L1[m, n] = (ax * u2y - ay * u2x) / cr
     _line_point(jet, out, o1, l1, beta1, t1, K1, L1, M)
     return -cr, abs(cr), 0.0
+
+
+@_jit()
+def _two_points(jet, b, p1, p2, offset, M):
+    """Angle of a link through two placed points: theta = atan2(p2 - p1) + offset."""
+    dx = jet[p2, 0] - jet[p1, 0]
+    dy = jet[p2 + 1, 0] - jet[p1 + 1, 0]
+    d2 = dx * dx + dy * dy
+    jet[b, 0] = math.atan2(dy, dx) + offset
+    for m in range(M):
+        kx = jet[p2, 1 + m] - jet[p1, 1 + m]
+        ky = jet[p2 + 1, 1 + m] - jet[p1 + 1, 1 + m]
+        jet[b, 1 + m] = (dx * ky - dy * kx) / d2
+    for m in range(M):
+        kmx = jet[p2, 1 + m] - jet[p1, 1 + m]
+        kmy = jet[p2 + 1, 1 + m] - jet[p1 + 1, 1 + m]
+        for n in range(M):
+            c2 = 1 + M + m * M + n
+            knx = jet[p2, 1 + n] - jet[p1, 1 + n]
+            kny = jet[p2 + 1, 1 + n] - jet[p1 + 1, 1 + n]
+            lx = jet[p2, c2] - jet[p1, c2]
+            ly = jet[p2 + 1, c2] - jet[p1 + 1, c2]
+            jet[b, c2] = ((knx * kmy - kny * kmx + dx * ly - dy * lx) / d2
+                          - 2.0 * (dx * kmy - dy * kmx) * (dx * knx + dy * kny) / (d2 * d2))
 
 
 # --------------------------------------------------------------------------------------
@@ -744,6 +769,8 @@ def _evaluate(qs, qi, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i, con_i, con_f,
             for c in range(1, 1 + M + M * M):
                 jet[b, c] = jet[a, c] if a >= 0 else 0.0
             jet[b, 1 + mi] += sgn
+        elif op == OP_TWO_POINTS:
+            _two_points(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], M)
         elif op == OP_LOCK_ANGLE:
             b, a = ops_i[k, 1], ops_i[k, 2]
             jet[b, 0] = jet[a, 0] + ops_f[k, 0]

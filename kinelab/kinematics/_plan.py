@@ -92,7 +92,7 @@ class Plan:
 # fields of each operation that hold point indices (converted to items at the end)
 _POINT_FIELDS = {k.OP_RIGID_POINT: (1, 3), k.OP_SLIDE_POINT: (1, 2), k.OP_LINES: (1, 2, 4),
                  k.OP_RRR: (3, 4, 5), k.OP_RRP: (2, 3, 4), k.OP_RPR: (2, 3),
-                 k.OP_SLIDE_OUT: (2, 3)}
+                 k.OP_SLIDE_OUT: (2, 3), k.OP_TWO_POINTS: (2, 3)}
 
 
 def _angle(v) -> float:
@@ -236,6 +236,7 @@ class _Builder:
     # -- the decomposition -----------------------------------------------------------------
     def build(self) -> Plan:
         m = self.m
+        self.check_mobility()
         while len(self.pos_known) < len(m.links):
             if self._propagate_angles() or self._place_single() or self._dyad():
                 continue
@@ -325,6 +326,31 @@ class _Builder:
         return o, self.L[guide], self._axis_angle(j) - self.theta_s[guide]
 
     def _place_single(self) -> bool:
+        return self._place_by_two_hinges() or self._place_known_angle()
+
+    def _place_by_two_hinges(self) -> bool:
+        """A link hinged on two placed links (a binary link across a parallelogram): its angle
+        follows the two hinge points; the second hinge is then a redundant constraint."""
+        for link in self.m.link_names:
+            if link in self.angle_known:
+                continue
+            hinges = [j for j in self._free_joints(link)
+                      if j.type == "R" and self._partner(j, link) in self.pos_known]
+            hinges = [j for j in hinges if self.P[j.point] in self.computed]
+            if len(hinges) < 2 or hinges[0].point == hinges[1].point:
+                continue
+            j1, j2 = hinges[:2]
+            p1, p2 = self.xy[j1.point], self.xy[j2.point]
+            self._emit([k.OP_TWO_POINTS, self.L[link], self.P[j1.point], self.P[j2.point]],
+                       [self.theta_s[link] - _angle(p2 - p1)])
+            self.used.add(j1.name)       # j2 stays unused: it is checked as redundant
+            self.place(link, self.P[j1.point])
+            self.steps.append(Step("placed", (link,), (j1.name, j2.name),
+                                   f"'{link}' through '{j1.point}' and '{j2.point}'"))
+            return True
+        return False
+
+    def _place_known_angle(self) -> bool:
         for link in self.m.link_names:
             if link in self.pos_known or link not in self.angle_known:
                 continue
@@ -600,8 +626,9 @@ class _Builder:
         x0 = np.concatenate([[*self.xy[self.m.link(n).points[0]], self.theta_s[n]] for n in links])
         return anchors, np.array(rows_i, np.int64), np.array(rows_f, float), x0
 
-    def _full_rank(self, links, cons) -> bool:
-        n = 3 * len(links)
+    def _sketch_jacobian(self, links, cons) -> np.ndarray:
+        """Jacobian of the constraints `cons` with respect to the poses of `links`, at the
+        sketch (rows: equations, columns: x, y, theta of each link)."""
         saved = (len(self.ops_i), dict(self.virtual), self.n_all, list(self.const_points),
                  [c.copy() for c in self.const_xy], set(self.computed), dict(self.anchor))
         try:
@@ -623,11 +650,32 @@ class _Builder:
             for gcol, pcol in ((1, 2), (4, 5)):
                 if row[gcol] < 0 and row[pcol] >= 0:
                     row[pcol] = nl + 2 * row[pcol]
-        A = np.zeros((n, n))
-        phi = np.zeros(n)
+        rows = sum(2 if r[0] in (k.C_REVOLUTE, k.C_PRISMATIC) else 1 for r in ci)
+        A = np.zeros((rows, 3 * len(links)))
+        phi = np.zeros(rows)
         k._group_residual(0, len(ci), ci, cf, x0, self.q_sketch, jet, A, phi, True)
-        s = np.linalg.svd(A, compute_uv=False)
+        return A
+
+    def _full_rank(self, links, cons) -> bool:
+        s = np.linalg.svd(self._sketch_jacobian(links, cons), compute_uv=False)
         return bool(s[-1] > 1e-9 * s[0])
+
+    def check_mobility(self) -> None:
+        """The inputs must match the degrees of freedom of the linkage at the sketch: the
+        number of link coordinates minus the rank of the joints' constraint Jacobian."""
+        moving = [n for n in self.m.link_names if n != self.ground]
+        cons = [("joint", j, None) for j in self.m.joints]
+        A = self._sketch_jacobian(moving, cons)
+        s = np.linalg.svd(A, compute_uv=False)
+        rank = int(np.sum(s > 1e-9 * s[0])) if s.size else 0
+        dof = 3 * len(moving) - rank
+        n_in = len(self.m.inputs)
+        if dof != n_in:
+            more = "more" if dof > n_in else "fewer"
+            raise ModelError(
+                f"inputs: the linkage has {dof} degree(s) of freedom at the sketch (3 x "
+                f"{len(moving)} link coordinates minus {rank} independent joint constraints) "
+                f"but {n_in} input(s); give it {dof} input(s), or {more} joints")
 
     def _emit_group(self, links, cons) -> None:
         anchors, ci, cf, x0 = self._group_tables(links, cons)

@@ -1,0 +1,148 @@
+"""Bad input gets a kinelab error that says what to do; never NaN or a deep traceback."""
+import numpy as np
+import pytest
+
+import kinelab as kl
+from kinelab.errors import AssemblyError, ModelError, SingularityError
+from kinelab.model import Input, Joint, Link, Mechanism, Point
+from tests.kinematics.checks import closure_residual
+
+NON_GRASHOF = dict(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)   # |A O4| <= 2.5: cos q >= -5/16
+
+
+def test_unreachable_input_names_group_gap_and_range():
+    fb = kl.mechanisms.fourbar(**NON_GRASHOF)
+    with pytest.raises(AssemblyError, match=r"dyad 'coupler'-'rocker' \(RRR A-B-O4\) cannot close "
+                       r"at q = 2 rad: it misses by 0\.0815\d* m; reachable q is \[-1\.88862, 1\.88862\] rad; "
+                       r"narrow the input range") as info:
+        kl.analyze(fb, q=np.linspace(0.0, 3.0, 7))
+    lo, hi = info.value.reachable[0]
+    assert hi == pytest.approx(np.arccos(-5 / 16), abs=1e-10) and lo == pytest.approx(-hi, abs=1e-10)
+    # the first sample out of reach is q = 2; its gap is |A O4| - (coupler + rocker)
+    gap = np.hypot(2 * np.cos(2.0) - 1.0, 2 * np.sin(2.0)) - 2.5
+    assert info.value.gap == pytest.approx(gap, abs=1e-12)
+
+
+def test_unreachable_mask_marks_samples():
+    fb = kl.mechanisms.fourbar(**NON_GRASHOF)
+    q = np.linspace(0.0, 3.0, 7)
+    sol = kl.analyze(fb, q=q, unreachable="mask")
+    expected = np.cos(q) >= -5 / 16
+    np.testing.assert_array_equal(sol.assembled, expected)
+    assert np.isnan(sol.angle("rocker")[~expected]).all()
+    assert np.isfinite(sol.angle("rocker")[expected]).all()
+
+
+def test_single_singular_configuration_raises():
+    sc = kl.mechanisms.slider_crank(crank=1.0, rod=1.0)    # at 90°, the rod stands upright
+    with pytest.raises(SingularityError, match=r"q = 1\.5708 rad is a singular configuration"):
+        kl.analyze(sc, q=np.pi / 2, qd=1.0)
+
+
+def test_singular_samples_are_flagged_in_a_sweep():
+    fb = kl.mechanisms.fourbar(**NON_GRASHOF)
+    lo, hi = kl.kinematics.reachable_ranges(fb)[0]
+    sol = kl.analyze(fb, q=[0.0, hi], qd=1.0)
+    np.testing.assert_array_equal(sol.singular, [False, True])
+    assert np.isnan(sol.omega("rocker")[1]) and np.isfinite(sol.angle("rocker")[1])
+    assert np.isfinite(sol.omega("rocker")[0])
+
+
+@pytest.mark.parametrize("q, message", [
+    (np.zeros((3, 2)), r"q: expected shape \(\) or \(N,\)"),
+    ([0.0, np.nan], r"q: expected finite numbers, got nan at index \[1\]"),
+    ("abc", r"q: expected numbers"),
+])
+def test_bad_inputs(q, message):
+    with pytest.raises(ModelError, match=message):
+        kl.analyze(kl.mechanisms.slider_crank(1.0, 3.0), q=q)
+
+
+def test_bad_option_and_names():
+    sc = kl.mechanisms.slider_crank(1.0, 3.0)
+    with pytest.raises(ModelError, match="unreachable: expected one of 'raise', 'mask', got 'skip'"):
+        kl.analyze(sc, q=0.1, unreachable="skip")
+    sol = kl.analyze(sc, q=0.1)
+    with pytest.raises(ModelError, match=r"got 'rdo' \(did you mean 'rod'\?\)"):
+        sol.angle("rdo")
+    with pytest.raises(ModelError, match="expected the point of a prismatic joint"):
+        sol.acceleration_components("A")
+    with pytest.raises(TypeError):
+        kl.analyze(sc, q=0.1, speed=3)
+
+
+def test_branch_and_length_errors():
+    with pytest.raises(ModelError, match=r"branch: expected one of 'open', 'crossed', got 'cross'"):
+        kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, branch="cross")
+    with pytest.raises(ModelError, match=r"crank: expected a positive length \(m\), got -1"):
+        kl.mechanisms.fourbar(3.0, -1, 3.0, 2.5)
+    with pytest.raises(ModelError, match="cannot be assembled at any input angle"):
+        kl.mechanisms.fourbar(10.0, 1.0, 1.0, 1.0)
+
+
+def _fourbar_parts(extra_inputs=()):
+    points = (Point("O2", 0, 0), Point("A", 0, 1), Point("B", 3, 2), Point("O4", 3, 0))
+    links = (Link("ground", ("O2", "O4"), ground=True), Link("crank", ("O2", "A")),
+             Link("coupler", ("A", "B")), Link("rocker", ("O4", "B")))
+    joints = (Joint("jO2", "R", ("ground", "crank"), point="O2"),
+              Joint("jA", "R", ("crank", "coupler"), point="A"),
+              Joint("jB", "R", ("coupler", "rocker"), point="B"),
+              Joint("jO4", "R", ("ground", "rocker"), point="O4"))
+    return points, links, joints
+
+
+def test_missing_input_and_too_many_inputs():
+    p, l_, j = _fourbar_parts()
+    with pytest.raises(ModelError, match="the mechanism has no input"):
+        kl.analyze(Mechanism("fb", p, l_, j), q=0.0)
+    two = Mechanism("fb", p, l_, j, (Input(joint="jO2"), Input(joint="jO4")))
+    with pytest.raises(ModelError, match=r"inputs: the linkage has 1 degree\(s\) of freedom at the "
+                                         r"sketch \(3 x 3 link coordinates minus 8 independent joint "
+                                         r"constraints\) but 2 input\(s\)"):
+        kl.analyze(two, q=[0.0, 0.0])
+
+
+def test_too_few_inputs():
+    p, l_, j = _fourbar_parts()
+    p = p + (Point("C", 5, 1),)
+    l_ = l_ + (Link("arm", ("B", "C")),)
+    j = j + (Joint("jB2", "R", ("rocker", "arm"), point="B"),)
+    m = Mechanism("fb", p, l_, j, (Input(joint="jO2"),))
+    with pytest.raises(ModelError, match=r"the linkage has 2 degree\(s\) of freedom .* but 1 input"):
+        kl.analyze(m, q=0.0)
+
+
+def test_planar_engine_rejects_spatial_pairs():
+    p, l_, j = _fourbar_parts()
+    j = j + (Joint("contact", "cam", ("rocker", "crank")),)
+    with pytest.raises(ModelError, match="handles R and P joints, got 'cam'"):
+        kl.analyze(Mechanism("fb", p, l_, j, (Input(joint="jO2"),)), q=0.0)
+
+
+def _parallelogram(dx_extra=0.0):
+    """Parallelogram O2 A B O4 with an extra link E F parallel to the cranks (redundant)."""
+    pts = (Point("O2", 0, 0), Point("A", 0, 1), Point("B", 2, 1), Point("O4", 2, 0),
+           Point("E", 1, 1), Point("F", 1 + dx_extra, 0))
+    links = (Link("ground", ("O2", "O4", "F"), ground=True), Link("crank", ("O2", "A")),
+             Link("coupler", ("A", "B", "E")), Link("rocker", ("O4", "B")), Link("extra", ("F", "E")))
+    joints = (Joint("jO2", "R", ("ground", "crank"), point="O2"),
+              Joint("jA", "R", ("crank", "coupler"), point="A"),
+              Joint("jB", "R", ("coupler", "rocker"), point="B"),
+              Joint("jO4", "R", ("ground", "rocker"), point="O4"),
+              Joint("jE", "R", ("coupler", "extra"), point="E"),
+              Joint("jF", "R", ("ground", "extra"), point="F"))
+    return Mechanism("parallelogram", pts, links, joints, (Input(joint="jO2"),))
+
+
+def test_redundant_link_of_a_parallelogram_is_checked_not_needed():
+    m = _parallelogram()
+    assert kl.kinematics.plan(m).redundant
+    sol = kl.analyze(m, q=np.linspace(0.5, 2.5, 9))
+    assert closure_residual(sol) < 1e-10
+    np.testing.assert_allclose(sol.angle("extra"), sol.angle("crank"), atol=1e-12)
+
+
+def test_extra_link_off_the_parallelogram_locks_the_linkage():
+    with pytest.raises(ModelError, match=r"the linkage has 0 degree\(s\) of freedom .* minus 12 "
+                                         r"independent joint constraints\) but 1 input"):
+        kl.analyze(_parallelogram(dx_extra=0.3), q=np.linspace(0.5, 2.5, 9))
