@@ -1,1 +1,32 @@
-"""Dimensional synthesis of linkages (poles, Burmester, Suh-Radcliffe, function and path generation)."""
+"""Dimensional synthesis of four-bars (seed 003, §3.2 and §6).
+
+Motion generation (the coupler passes through prescribed positions), function generation
+(the rocker angle is a prescribed function of the crank angle) and path generation (a
+coupler point passes through prescribed points).  Every synthesized linkage comes back as
+a kinelab model, sketched in its first position, with the checks made by moving it with
+the planar kinematics engine:
+
+- **branch defect**: some prescribed position lies on the other assembly branch of
+  position 1, or the crank cannot turn from position 1 to it (either way round)
+  without passing a limit (toggle) or dead-centre configuration;
+- **order defect**: turning the crank one way does not pass the positions in the order
+  1, 2, ..., n;
+- the Grashof class and the smallest transmission angle on the way.
+
+All lengths in metres and angles in radians (``degrees=True`` where people type angles).
+The notes' examples in centimetres are reproduced in metres: the synthesis is
+scale-free, so every length simply scales by 0.01.
+"""
+from kinelab.synthesis._burmester import (BurmesterCurves, burmester_curves, centre_point_cubic,
+                                          centre_points, four_positions)
+from kinelab.synthesis._linkage import fourbar_model, transmission_angle
+from kinelab.synthesis._motion import (MotionSolution, TwoPositions, three_positions,
+                                       two_positions)
+from kinelab.synthesis._pivots import fixed_pivot, moving_pivot
+from kinelab.synthesis._positions import Poles, Positions, pole, poles
+from kinelab.synthesis._results import SolutionList
+
+__all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
+           "two_positions", "TwoPositions", "three_positions", "MotionSolution",
+           "four_positions", "centre_points", "centre_point_cubic", "burmester_curves",
+           "BurmesterCurves", "SolutionList", "fourbar_model", "transmission_angle"]

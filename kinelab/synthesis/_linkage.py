@@ -1,0 +1,209 @@
+"""A synthesized four-bar as a kinelab model, and the checks every solution carries.
+
+The model is built straight from its four pivots in position 1 (not from lengths), so its
+sketch *is* position 1 and the engine follows position 1's assembly branch.  The checks
+then move it with the planar kinematics engine (:func:`kinelab.analyze`):
+
+- every prescribed pose must be reached on that branch at the crank angle where the
+  crank pin is in its prescribed place;
+- **branch defect**: a prescribed pose lies on the other branch, or the crank cannot
+  turn from position 1 to it (either way round) without passing a limit or singular
+  (dead-centre) configuration;
+- **order defect**: the crank cannot pass the positions in the order 1, 2, ..., n while
+  turning one way;
+- the Grashof class and the smallest transmission angle met on the way.
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from kinelab.errors import ModelError
+from kinelab.kinematics import KinematicSolution, analyze
+from kinelab.mechanisms import Grashof, grashof
+from kinelab.model import Input, Joint, Link, Mechanism, Point
+from kinelab.synthesis._positions import as_xy, cross, fmt
+
+__all__ = ["fourbar_model", "transmission_angle", "Travel", "travel"]
+
+_SWEEP_STEP = math.radians(0.5)   # crank step of the sweeps that look for limit positions
+_DEGENERATE = 1e-12               # relative length below which a link has no length
+
+
+def fourbar_model(A0: ArrayLike, B0: ArrayLike, A1: ArrayLike, B1: ArrayLike,
+                  P: ArrayLike | None = None, *, name: str = "fourbar") -> Mechanism:
+    """A four-bar model built from its pivots (and coupler point) in one configuration.
+
+    The catalogue's names: links ``ground`` (``O2 = A0``, ``O4 = B0``), ``crank``
+    (``O2, A``), ``coupler`` (``A, B`` and ``P``), ``rocker`` (``O4, B``); joints ``jO2,
+    jA, jB, jO4``; the input is ``jO2`` (q = the crank's angle from +x).  The given
+    configuration is the model's sketch, so it fixes the assembly branch.
+
+    Parameters
+    ----------
+    A0, B0 : array_like, shape (2,)
+        Fixed pivots of the crank and of the rocker, m.
+    A1, B1 : array_like, shape (2,)
+        Moving pivots (crank pin and rocker pin), m.
+    P : array_like, shape (2,), optional
+        A coupler point, m.
+
+    Returns
+    -------
+    Mechanism
+        ``parameters`` holds ``kind = "fourbar"``, the four lengths, the coupler point as
+        (along AB, perpendicular to AB) from A, and the branch ("open" when B is to the
+        left of the line from A to O4, as in :func:`kinelab.mechanisms.fourbar`).
+
+    Raises
+    ------
+    ModelError
+        A link of zero length (two pivots in the same place).
+
+    Examples
+    --------
+    >>> m = kl.synthesis.fourbar_model(A0=(0, 0), B0=(2, 0), A1=(1, 0), B1=(1.5, 0.8660254037844386))
+    >>> sol = kl.analyze(m, q=0.0)                       # notes 003, Ex. 4.2 (open branch)
+    >>> np.degrees(sol.angle("rocker")).round(9), m.parameters["branch"]
+    (np.float64(120.0), 'open')
+    """
+    A0, B0, A1, B1 = (as_xy(n, v) for n, v in (("A0", A0), ("B0", B0), ("A1", A1), ("B1", B1)))
+    pts = [A0, B0, A1, B1] + ([as_xy("P", P)] if P is not None else [])
+    size = max(float(np.ptp(np.array(pts), axis=0).max()), 1e-300)
+    lengths = {"ground": (B0, A0, "the fixed pivots A0 and B0"),
+               "crank": (A1, A0, "the crank's pivots A0 and A1"),
+               "coupler": (B1, A1, "the moving pivots A1 and B1"),
+               "rocker": (B1, B0, "the rocker's pivots B0 and B1")}
+    value = {}
+    problems = []
+    for link, (a, b, what) in lengths.items():
+        value[link] = float(np.linalg.norm(a - b))
+        if value[link] <= _DEGENERATE * size:
+            problems.append(f"{link}: {what} coincide at {fmt(a)}, so the "
+                            f"{link} has no length; choose another pivot")
+    if problems:
+        raise ModelError(problems)
+    e = (B1 - A1) / value["coupler"]
+    side = float(cross(B0 - A1, B1 - A1))
+    points = [Point("O2", *map(float, A0)), Point("A", *map(float, A1)),
+              Point("B", *map(float, B1)), Point("O4", *map(float, B0))]
+    coupler_points: tuple[str, ...] = ("A", "B")
+    coupler_point = None
+    if P is not None:
+        Pv = as_xy("P", P)
+        points.append(Point("P", *map(float, Pv)))
+        coupler_points = ("A", "B", "P")
+        r = Pv - A1
+        coupler_point = (float(r @ e), float(cross(e, r)))
+    return Mechanism(
+        name=name, points=tuple(points),
+        links=(Link("ground", ("O2", "O4"), ground=True), Link("crank", ("O2", "A")),
+               Link("coupler", coupler_points), Link("rocker", ("O4", "B"))),
+        joints=tuple(Joint(f"j{p}", "R", (a, b), point=p) for p, a, b in (
+            ("O2", "ground", "crank"), ("A", "crank", "coupler"), ("B", "coupler", "rocker"),
+            ("O4", "ground", "rocker"))),
+        inputs=(Input(joint="jO2"),),
+        parameters=dict(kind="fourbar", **value, coupler_point=coupler_point,
+                        branch="open" if side > 0 else "crossed"),
+    )
+
+
+def model_grashof(model: Mechanism) -> Grashof:
+    """Grashof class of a four-bar model from :func:`fourbar_model`."""
+    p = model.parameters
+    return grashof(p["ground"], p["crank"], p["coupler"], p["rocker"])
+
+
+def transmission_angle(sol: KinematicSolution) -> np.ndarray:
+    """Transmission angle of a four-bar at each sample, folded to [0, pi/2], rad.
+
+    The angle mu at B between the coupler (B -> A) and the rocker (B -> O4); a linkage
+    transmits force worst where mu is near 0 or pi, so ``min(mu, pi - mu)`` is returned.
+    """
+    A, B, O4 = sol.position("A"), sol.position("B"), sol.position("O4")
+    u, v = A - B, O4 - B
+    mu = np.arctan2(np.abs(cross(u, v)), np.sum(u * v, axis=-1))
+    return np.minimum(mu, np.pi - mu)
+
+
+@dataclass(frozen=True, eq=False)
+class Travel:
+    """How the crank carries a four-bar through prescribed configurations (internal)."""
+
+    direction: int                 # +1 CCW, -1 CW, 0: no single sense works
+    branch_defect: bool
+    order_defect: bool
+    min_transmission_angle: float  # rad, over the travel from the first to the last
+    defects: tuple[str, ...]
+
+
+def travel(model: Mechanism, q: np.ndarray,
+           reached: Callable[[KinematicSolution, np.ndarray], np.ndarray]) -> Travel:
+    """Sweep the crank of ``model`` from q[0] both ways and classify the motion.
+
+    Parameters
+    ----------
+    model : Mechanism
+        Sketched in configuration 1 (so its branch is configuration 1's).
+    q : ndarray, shape (n,)
+        Crank angle of each prescribed configuration, rad.
+    reached : callable
+        ``reached(sol, idx)`` -> (n,) bool: whether the engine's configuration at samples
+        ``idx`` of ``sol`` is the prescribed one.
+    """
+    n = q.size
+    reach = {}
+    deltas = {}
+    mu_min = {}
+    for d in (1, -1):
+        delta = np.mod(d * (q - q[0]), 2 * np.pi)
+        delta[0] = 0.0
+        grid = np.unique(np.concatenate([
+            np.linspace(0.0, delta.max(), max(2, math.ceil(delta.max() / _SWEEP_STEP) + 1)), delta]))
+        sol = analyze(model, q[0] + d * grid, unreachable="mask", at_singular="flag")
+        sign0 = np.sign(sol.det_J[0])
+        good = sol.assembled & ~sol.singular & (np.sign(sol.det_J) == sign0)
+        clear = np.logical_and.accumulate(good)
+        idx = np.searchsorted(grid, delta)
+        reach[d] = clear[idx] & reached(sol, idx)
+        deltas[d] = delta
+        mu = transmission_angle(sol)
+        upto = np.arange(grid.size) <= idx.max()
+        ok = clear & upto
+        mu_min[d] = float(np.min(mu[ok])) if ok.any() else float("nan")
+    defects = []
+    reachable = reach[1] | reach[-1]
+    # the order is judged on the positions that can be reached at all (a branch defect is
+    # reported once, as such)
+    works = [d for d in (1, -1)
+             if np.all(np.diff(deltas[d][reachable]) > 0) and reach[d][reachable].all()]
+    branch_defect = not reachable.all()
+    if branch_defect:
+        lost = ", ".join(str(j + 1) for j in np.flatnonzero(~reachable))
+        defects.append(f"branch defect: position(s) {lost} cannot be reached from position 1 "
+                       "on its assembly branch without passing a limit or dead-centre position")
+    order_defect = not works
+    if order_defect:
+        defects.append("order defect: turning the crank one way does not pass the positions "
+                       f"in the order 1..{n}")
+        direction = 0
+        both = [mu_min[d] for d in (1, -1) if not math.isnan(mu_min[d])]
+        mu = min(both) if both else float("nan")
+    else:
+        direction = min(works, key=lambda d: deltas[d][reachable].max())
+        mu = mu_min[direction]
+    return Travel(direction, branch_defect, order_defect, mu, tuple(defects))
+
+
+def at_inputs(model: Mechanism, q: np.ndarray) -> KinematicSolution:
+    """The engine's configurations at q on the sketch's branch (masked where it cannot close)."""
+    return analyze(model, q, unreachable="mask", at_singular="flag")
+
+
+def finite_or_inf(a: np.ndarray) -> np.ndarray:
+    """Errors with the samples the engine could not assemble set to +inf (never NaN)."""
+    return np.where(np.isfinite(a), a, np.inf)

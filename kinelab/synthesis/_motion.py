@@ -1,0 +1,314 @@
+"""Motion generation with a four-bar: two and three prescribed positions (seed 003, §6.1-6.5).
+
+Every synthesized linkage comes back as a :class:`MotionSolution`: its pivots, a kinelab
+model sketched in position 1, and the checks made with the kinematics engine.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from kinelab.errors import ModelError
+from kinelab.mechanisms import Grashof
+from kinelab.model import Mechanism
+from kinelab.synthesis._linkage import (at_inputs, finite_or_inf, fourbar_model, model_grashof,
+                                        travel)
+from kinelab.synthesis._pivots import fixed_pivot, moving_pivot
+from kinelab.synthesis._positions import Positions, as_positions, as_xy, poles, wrap
+
+__all__ = ["MotionSolution", "TwoPositions", "two_positions", "three_positions", "motion_solution"]
+
+_REACHED = 1e-8   # relative pose error under which the engine reaches a prescribed pose
+
+
+@dataclass(frozen=True, eq=False)
+class MotionSolution:
+    """A four-bar that guides its coupler through prescribed positions, with its checks.
+
+    Attributes
+    ----------
+    A0, B0 : ndarray, shape (2,)
+        Fixed pivots of the crank (the input) and of the rocker, m.
+    A1, B1 : ndarray, shape (2,)
+        Moving pivots in position 1, m.
+    points : ndarray, shape (n, 2)
+        The prescribed positions of the coupler point P, m.
+    alpha : ndarray, shape (n,)
+        The prescribed rotations of the coupler from position 1, rad.
+    model : Mechanism
+        The four-bar (names as :func:`kinelab.mechanisms.fourbar`: links ``ground, crank,
+        coupler, rocker``, points ``O2 = A0, A, B, O4 = B0, P``), sketched in position 1.
+    q : ndarray, shape (n,)
+        The crank angle (the model's input) in each position, rad.
+    grashof : Grashof
+        Grashof class of the linkage.
+    min_transmission_angle : float
+        Smallest transmission angle (folded to [0, pi/2]) met while the crank carries the
+        coupler from position 1 to position n, rad.
+    branch_defect, order_defect : bool
+        See :mod:`kinelab.synthesis` (a branch defect: some position lies on the other
+        assembly branch or beyond a limit position; an order defect: turning the crank one
+        way does not pass the positions in order).
+    direction : int
+        +1 if the crank turns counter-clockwise from position 1 to n, -1 clockwise, 0 if
+        no single sense passes the positions in order.
+    position_errors : ndarray, shape (n,)
+        Distance between the engine's coupler point at ``q[j]`` and the prescribed one, m
+        (+inf where the linkage cannot close there on position 1's branch).
+    angle_errors : ndarray, shape (n,)
+        Error of the engine's coupler rotation at ``q[j]``, rad (+inf likewise).
+    defects : tuple of str
+        A sentence for each defect found; empty for a usable linkage.
+    """
+
+    A0: np.ndarray
+    B0: np.ndarray
+    A1: np.ndarray
+    B1: np.ndarray
+    points: np.ndarray
+    alpha: np.ndarray
+    model: Mechanism
+    q: np.ndarray
+    grashof: Grashof
+    min_transmission_angle: float
+    branch_defect: bool
+    order_defect: bool
+    direction: int
+    position_errors: np.ndarray
+    angle_errors: np.ndarray
+    defects: tuple[str, ...]
+
+    @property
+    def valid(self) -> bool:
+        """No defect, and the engine reaches every prescribed pose."""
+        return not self.defects
+
+    @property
+    def lengths(self) -> dict[str, float]:
+        """The link lengths ``ground, crank, coupler, rocker``, m."""
+        return {k: self.model.parameters[k] for k in ("ground", "crank", "coupler", "rocker")}
+
+    def __repr__(self) -> str:
+        f = np.array2string
+        state = "valid" if self.valid else "; ".join(d.split(":")[0] for d in self.defects)
+        return (f"MotionSolution(A0={f(self.A0, precision=6)}, B0={f(self.B0, precision=6)}, "
+                f"A1={f(self.A1, precision=6)}, B1={f(self.B1, precision=6)}, "
+                f"{self.grashof.kind}, {state})")
+
+
+def motion_solution(pos: Positions, A0, B0, A1, B1) -> MotionSolution:
+    """Build the model of a synthesized four-bar and check it with the engine."""
+    A0, B0, A1, B1 = (np.asarray(v, float) for v in (A0, B0, A1, B1))
+    model = fourbar_model(A0, B0, A1, B1, P=pos.points[0], name="synthesized fourbar")
+    Aj = pos.carry(A1)
+    q = np.arctan2(Aj[:, 1] - A0[1], Aj[:, 0] - A0[0])
+    scale = max(pos.size, max(model.parameters[k] for k in ("ground", "crank", "coupler", "rocker")))
+
+    def pose_errors(sol, idx):
+        P = sol.position("P")[idx]
+        th = sol.angle("coupler")
+        dpos = np.linalg.norm(P - pos.points, axis=-1)
+        dang = np.abs(wrap(th[idx] - th[0] - pos.alpha))
+        return finite_or_inf(dpos), finite_or_inf(dang)
+
+    def reached(sol, idx):
+        dpos, dang = pose_errors(sol, idx)
+        return (dpos <= _REACHED * scale) & (dang <= _REACHED)
+
+    t = travel(model, q, reached)
+    dpos, dang = pose_errors(at_inputs(model, q), np.arange(pos.n))
+    for a in (A0, B0, A1, B1, q, dpos, dang):
+        a.setflags(write=False)
+    return MotionSolution(A0=A0, B0=B0, A1=A1, B1=B1, points=pos.points, alpha=pos.alpha,
+                          model=model, q=q, grashof=model_grashof(model),
+                          min_transmission_angle=t.min_transmission_angle,
+                          branch_defect=t.branch_defect, order_defect=t.order_defect,
+                          direction=t.direction, position_errors=dpos, angle_errors=dang,
+                          defects=t.defects)
+
+
+# -- two positions ----------------------------------------------------------------------
+@dataclass(frozen=True, eq=False)
+class TwoPositions:
+    """Two positions with the moving pivots chosen: the fixed pivots form a family.
+
+    A fixed pivot A0 keeps |A1 - A0| = |A2 - A0|, so it can be any point of the
+    perpendicular bisector of A1A2 (seed 003, §6.1, fig. 52); likewise B0.  Both
+    bisectors pass through the pole P12.
+
+    Attributes
+    ----------
+    positions : Positions
+    A1, B1, A2, B2 : ndarray, shape (2,)
+        The moving pivots in positions 1 and 2, m.
+    A0_origin, A0_direction : ndarray, shape (2,)
+        The bisector of A1A2: its midpoint and unit direction; A0 = origin + s direction.
+    B0_origin, B0_direction : ndarray, shape (2,)
+        The same for B.
+    pole : ndarray, shape (2,), or None
+        P12, m; None when the plane only translates (alpha_12 = 0: the pole is at
+        infinity and the two bisectors are parallel).
+    alpha : float
+        alpha_12, rad.
+    """
+
+    positions: Positions
+    A1: np.ndarray
+    B1: np.ndarray
+    A2: np.ndarray
+    B2: np.ndarray
+    A0_origin: np.ndarray
+    A0_direction: np.ndarray
+    B0_origin: np.ndarray
+    B0_direction: np.ndarray
+    pole: np.ndarray | None
+    alpha: float
+
+    def A0(self, s: ArrayLike) -> np.ndarray:
+        """Fixed pivots A0 = A0_origin + s A0_direction, shape s.shape + (2,)."""
+        return self.A0_origin + np.multiply.outer(np.asarray(s, float), self.A0_direction)
+
+    def B0(self, t: ArrayLike) -> np.ndarray:
+        """Fixed pivots B0 = B0_origin + t B0_direction, shape t.shape + (2,)."""
+        return self.B0_origin + np.multiply.outer(np.asarray(t, float), self.B0_direction)
+
+    def solution(self, s: float, t: float) -> MotionSolution:
+        """The four-bar with fixed pivots ``A0(s)`` and ``B0(t)``, checked."""
+        return motion_solution(self.positions, self.A0(s), self.B0(t), self.A1, self.B1)
+
+
+def _bisector(X1, X2, name, size):
+    d = X2 - X1
+    L = np.linalg.norm(d)
+    if L <= 1e-12 * size:
+        raise ModelError(f"{name}1: it is the pole P12, the one point of the moving plane that is "
+                         "in the same place in both positions, so any fixed pivot would do and "
+                         "none is singled out; choose another moving pivot")
+    return 0.5 * (X1 + X2), np.array([-d[1], d[0]]) / L
+
+
+def two_positions(points, angles=None, A1: ArrayLike = None, B1: ArrayLike = None, *,
+                  degrees: bool = False) -> TwoPositions:
+    """Two positions, moving pivots chosen: the bisector families of fixed pivots.
+
+    Parameters
+    ----------
+    points, angles : see :class:`Positions`
+        Two positions of the moving plane.
+    A1, B1 : array_like, shape (2,)
+        The moving pivots in position 1, m.
+    degrees : bool
+        Angles in degrees.
+
+    Returns
+    -------
+    TwoPositions
+        The families; ``.solution(s, t)`` picks one linkage.
+
+    Raises
+    ------
+    ModelError
+        Not two positions, or a moving pivot at the pole (it does not move, so no fixed
+        pivot is singled out).
+
+    Examples
+    --------
+    >>> fam = kl.synthesis.two_positions([(0, 0), (1, 1)], [0, 90], A1=(0, -1), B1=(1, -1),
+    ...                                  degrees=True)
+    >>> fam.pole.round(12) + 0.0                      # the bisectors meet at P12
+    array([1., 0.])
+    >>> sol = fam.solution(s=1.0, t=2.0)
+    >>> bool(np.allclose(np.linalg.norm(sol.A0 - fam.A1), np.linalg.norm(sol.A0 - fam.A2)))
+    True
+    """
+    pos = as_positions(points, angles, degrees)
+    if pos.n != 2:
+        raise ModelError(f"points: expected two positions, got {pos.n}; use three_positions or "
+                         "four_positions for more")
+    A1, B1 = as_xy("A1", A1), as_xy("B1", B1)
+    p = poles(pos)
+    (A1_, A2), (B1_, B2) = pos.carry(A1), pos.carry(B1)
+    size = max(pos.size, float(np.ptp(np.vstack([A1, B1, pos.points]), axis=0).max()))
+    oa, da = _bisector(A1_, A2, "A", size)
+    ob, db = _bisector(B1_, B2, "B", size)
+    out = dict(A1=A1, B1=B1, A2=A2, B2=B2, A0_origin=oa, A0_direction=da, B0_origin=ob,
+               B0_direction=db)
+    for a in out.values():
+        a.setflags(write=False)
+    return TwoPositions(positions=pos, alpha=float(p.alpha[0]),
+                        pole=p.P[0] if p.finite[0] else None, **out)
+
+
+# -- three positions ----------------------------------------------------------------------
+def three_positions(points, angles=None, A0: ArrayLike | None = None, B0: ArrayLike | None = None,
+                    *, A1: ArrayLike | None = None, B1: ArrayLike | None = None,
+                    method: str = "suh-radcliffe", degrees: bool = False) -> MotionSolution:
+    """Three positions: the four-bar through them, from two chosen pivots.
+
+    For each dyad give either its fixed pivot (``A0``, ``B0``: the moving pivot follows
+    from the Suh-Radcliffe linear system, seed 003 eq. 67-68, or from Burmester's pole
+    construction, §6.2) or its moving pivot in position 1 (``A1``, ``B1``: the fixed
+    pivot is the centre of the circle through its three positions).
+
+    Parameters
+    ----------
+    points : array_like, shape (3, 2), or Positions
+        The coupler point P in positions 1, 2, 3, m.
+    angles : array_like, shape (3,) or (2,)
+        Orientations of the coupler, or rotations alpha_2, alpha_3 from position 1, rad.
+    A0, B0 : array_like, shape (2,), optional
+        Fixed pivots of the crank and of the rocker, m.
+    A1, B1 : array_like, shape (2,), optional, keyword-only
+        Moving pivots in position 1, m (instead of A0, B0).
+    method : {"suh-radcliffe", "poles"}
+        How a moving pivot is found from a fixed one (see :func:`moving_pivot`).
+    degrees : bool
+        Angles in degrees.
+
+    Returns
+    -------
+    MotionSolution
+        With ``A0, B0, A1, B1`` and the ``model`` in position 1, checked by the engine.
+
+    Raises
+    ------
+    ModelError
+        Not three positions, a dyad given by both or neither of its pivots, a pivot at
+        infinity, or coincident pivots.
+
+    Examples
+    --------
+    Seed 003 §6.5: A0 = (5, 0), B0 = (0, 0) m, P = (1, 1), (2, 0.5), (3, 1.5) m,
+    alpha_2 = 0, alpha_3 = 45 deg -> Table 4:
+
+    >>> sol = kl.synthesis.three_positions([(1, 1), (2, 0.5), (3, 1.5)], [0, 45], (5, 0), (0, 0),
+    ...                                    degrees=True)
+    >>> sol.A1.round(3), sol.B1.round(3)
+    (array([ 3.548, -1.655]), array([0.994, 3.238]))
+    >>> sol.model.parameters["kind"], bool(sol.position_errors.max() < 1e-9)
+    ('fourbar', True)
+    """
+    pos = as_positions(points, angles, degrees)
+    if pos.n != 3:
+        raise ModelError(f"points: expected three positions, got {pos.n}"
+                         + ("; use four_positions" if pos.n == 4 else ""))
+    pivots = {}
+    problems = []
+    for side, fixed, moving in (("A", A0, A1), ("B", B0, B1)):
+        if (fixed is None) == (moving is None):
+            problems.append(f"{side}0, {side}1: give exactly one of the fixed pivot {side}0 and "
+                            f"the moving pivot {side}1, got "
+                            + ("both" if fixed is not None else "neither"))
+            continue
+        if fixed is not None:
+            f = as_xy(f"{side}0", fixed)
+            pivots[side] = (f, moving_pivot(pos, fixed=f, method=method))
+        else:
+            m = as_xy(f"{side}1", moving)
+            pivots[side] = (fixed_pivot(pos, moving=m), m)
+    if problems:
+        raise ModelError(problems)
+    (A0v, A1v), (B0v, B1v) = pivots["A"], pivots["B"]
+    return motion_solution(pos, A0v, B0v, A1v, B1v)
