@@ -19,6 +19,8 @@ scale-free, so every length simply scales by 0.01.
 """
 from kinelab.synthesis._burmester import (BurmesterCurves, burmester_curves, centre_point_cubic,
                                           centre_points, four_positions)
+from kinelab.synthesis._function import (FunctionSolution, chebyshev_points, freudenstein,
+                                         function_generation)
 from kinelab.synthesis._linkage import fourbar_model, transmission_angle
 from kinelab.synthesis._motion import (MotionSolution, TwoPositions, three_positions,
                                        two_positions)
@@ -29,4 +31,5 @@ from kinelab.synthesis._results import SolutionList
 __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "two_positions", "TwoPositions", "three_positions", "MotionSolution",
            "four_positions", "centre_points", "centre_point_cubic", "burmester_curves",
-           "BurmesterCurves", "SolutionList", "fourbar_model", "transmission_angle"]
+           "BurmesterCurves", "SolutionList", "function_generation", "FunctionSolution",
+           "chebyshev_points", "freudenstein", "fourbar_model", "transmission_angle"]

@@ -1,0 +1,296 @@
+"""Function generation with a four-bar: Freudenstein's equation (seed 003, §3.2, fig. 25).
+
+The rocker angle theta4 is to follow a prescribed function of the crank angle theta2:
+x in [x0, xf] is mapped linearly to the crank's travel and y = f(x) to the rocker's.  With
+the ground O2O4 along +x (length d), crank a, coupler b and rocker c, the closure
+|B - A| = b reads (Freudenstein, 1955)
+
+    K1 cos theta4 - K2 cos theta2 + K3 = cos(theta2 - theta4),
+    K1 = d / a,   K2 = d / c,   K3 = (a^2 - b^2 + c^2 + d^2) / (2 a c),
+
+which is linear in K: three precision points fix the linkage; more are met in the least
+squares sense.  Between the precision points the linkage misses f: the structural error,
+smallest for a given number of points when they are spaced as Chebyshev's nodes.
+"""
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from kinelab.errors import ModelError
+from kinelab.kinematics import analyze
+from kinelab.mechanisms import Grashof
+from kinelab.model import Mechanism
+from kinelab.synthesis._linkage import fourbar_model, model_grashof, transmission_angle
+from kinelab.synthesis._positions import wrap
+
+__all__ = ["chebyshev_points", "freudenstein", "FunctionSolution", "function_generation"]
+
+_REACHED = 1e-9   # rad: the engine's rocker angle at a precision point must match to this
+
+
+def chebyshev_points(x_range: tuple[float, float], n: int) -> np.ndarray:
+    """Chebyshev spacing of n precision points on [x0, xf].
+
+    ``x_j = (x0 + xf)/2 - (xf - x0)/2 cos((2j - 1) pi / (2n))``, j = 1..n: the nodes that
+    make the polynomial part of the structural error as small and even as it can be.
+
+    Examples
+    --------
+    >>> kl.synthesis.chebyshev_points((0.0, 1.0), 3).round(6)      # 0.5 -+ 0.5 cos 30 deg
+    array([0.066987, 0.5     , 0.933013])
+    """
+    x0, xf = _range("x_range", x_range)
+    if not (isinstance(n, (int, np.integer)) and n >= 1):
+        raise ModelError(f"n: expected a positive integer, got {n!r}")
+    j = np.arange(1, n + 1)
+    return 0.5 * (x0 + xf) - 0.5 * (xf - x0) * np.cos((2 * j - 1) * np.pi / (2 * n))
+
+
+def freudenstein(theta2: ArrayLike, theta4: ArrayLike) -> np.ndarray:
+    """Freudenstein's constants (K1, K2, K3) from corresponding crank and rocker angles.
+
+    Parameters
+    ----------
+    theta2, theta4 : array_like, shape (n,), n >= 3
+        Crank and rocker angles from the ground line O2 -> O4, rad.
+
+    Returns
+    -------
+    ndarray, shape (3,)
+        Exact for n = 3, least squares for n > 3.
+
+    Raises
+    ------
+    ModelError
+        Fewer than three pairs, or pairs that do not fix the constants (repeated angles).
+
+    Examples
+    --------
+    The notes' Ex. 4.2 four-bar (d = 2, a = b = c = 1: K1 = 2, K2 = 2, K3 = 2.5):
+
+    >>> fb = kl.mechanisms.fourbar(ground=2.0, crank=1.0, coupler=1.0, rocker=1.0)
+    >>> q = np.array([-0.5, 0.0, 0.5])
+    >>> kl.synthesis.freudenstein(q, kl.analyze(fb, q=q).angle("rocker")).round(12) + 0.0
+    array([2. , 2. , 2.5])
+    """
+    t2, t4 = np.asarray(theta2, float), np.asarray(theta4, float)
+    if t2.shape != t4.shape or t2.ndim != 1 or t2.size < 3:
+        raise ModelError(f"theta2, theta4: expected two arrays of the same shape (n,), n >= 3, "
+                         f"got {t2.shape} and {t4.shape}")
+    M = np.column_stack([np.cos(t4), -np.cos(t2), np.ones_like(t2)])
+    s = np.linalg.svd(M, compute_uv=False)
+    if s[-1] <= 1e-10 * s[0]:
+        raise ModelError("theta2, theta4: these angle pairs do not fix Freudenstein's constants "
+                         "(a repeated or symmetric pair); spread the precision points")
+    K, *_ = np.linalg.lstsq(M, np.cos(t2 - t4), rcond=None)
+    return K
+
+
+@dataclass(frozen=True, eq=False)
+class FunctionSolution:
+    """A four-bar function generator and its structural error.
+
+    Attributes
+    ----------
+    model : Mechanism
+        The four-bar (catalogue names; ``O2`` at the origin, ``O4`` at (ground, 0)),
+        sketched at the first precision point.
+    K : ndarray, shape (3,)
+        Freudenstein's constants.
+    x : ndarray, shape (n,)
+        The precision points.
+    q : ndarray, shape (n,)
+        The model's crank angle at each precision point, rad.
+    input_range, output_range : (float, float)
+        The model's crank angle at x0 and xf and rocker angle at f(x0) and f(xf), rad.
+        They are the requested ranges, turned by pi where Freudenstein's solution gives
+        a negative crank (or rocker) length: that link then points the other way.
+    x_samples : ndarray, shape (m,)
+        Where the structural error is sampled (m points over [x0, xf]).
+    structural_error : ndarray, shape (m,)
+        The generated output minus f(x), in the units of y (from the engine's rocker
+        angle; +inf where the linkage cannot close there).
+    grashof : Grashof
+    min_transmission_angle : float
+        Over the whole input range, rad.
+    branch_defect : bool
+        The linkage cannot move over the range on one branch without a limit or
+        dead-centre position, or meets a precision point on the other branch.  (No order
+        defect is possible: the crank angle is a monotonic function of x.)
+    defects : tuple of str
+    """
+
+    model: Mechanism
+    K: np.ndarray
+    x: np.ndarray
+    q: np.ndarray
+    input_range: tuple[float, float]
+    output_range: tuple[float, float]
+    x_samples: np.ndarray
+    structural_error: np.ndarray
+    grashof: Grashof
+    min_transmission_angle: float
+    branch_defect: bool
+    defects: tuple[str, ...]
+
+    @property
+    def max_structural_error(self) -> float:
+        """Largest |structural error| over [x0, xf], units of y."""
+        return float(np.max(np.abs(self.structural_error)))
+
+    @property
+    def valid(self) -> bool:
+        return not self.defects
+
+    @property
+    def lengths(self) -> dict[str, float]:
+        """``ground, crank, coupler, rocker``, m."""
+        return {k: self.model.parameters[k] for k in ("ground", "crank", "coupler", "rocker")}
+
+    def __repr__(self) -> str:
+        L = ", ".join(f"{k}={v:.6g}" for k, v in self.lengths.items())
+        state = "valid" if self.valid else "branch defect"
+        return (f"FunctionSolution({L}, max structural error={self.max_structural_error:.3g}, "
+                f"{state})")
+
+
+def _range(name, r) -> tuple[float, float]:
+    try:
+        a, b = (float(v) for v in r)
+    except (TypeError, ValueError):
+        raise ModelError(f"{name}: expected (start, end), got {r!r}") from None
+    if not (np.isfinite(a) and np.isfinite(b)) or a == b:
+        raise ModelError(f"{name}: expected two different finite numbers, got {r!r}")
+    return a, b
+
+
+def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[float, float],
+                        input_range: tuple[float, float], output_range: tuple[float, float], *,
+                        points: int | ArrayLike = 3, ground: float = 1.0, samples: int = 201,
+                        degrees: bool = False) -> FunctionSolution:
+    """A four-bar whose rocker angle generates y = f(x) from the crank angle.
+
+    Parameters
+    ----------
+    f : callable
+        The function, vectorised: ``f(x)`` for an array x.
+    x_range : (float, float)
+        [x0, xf], the range of x.
+    input_range : (float, float)
+        Crank angle at x0 and at xf, measured from the ground line O2 -> O4 (rad, or
+        degrees with ``degrees=True``); |difference| < 2 pi.
+    output_range : (float, float)
+        Rocker angle at f(x0) and at f(xf), same units.
+    points : int or array_like
+        The number of precision points, spaced as Chebyshev's nodes (3 = exact), or the
+        precision points themselves (x values; more than 3 = least squares).
+    ground : float
+        O2O4, m (the linkage is scale-free; this sets its size).
+    samples : int
+        Points of the structural-error curve.
+    degrees : bool
+        Angles in degrees.
+
+    Returns
+    -------
+    FunctionSolution
+
+    Raises
+    ------
+    ModelError
+        Bad ranges, f(x0) = f(xf), or no four-bar (an infinite link, or a coupler whose
+        squared length comes out negative).
+
+    Examples
+    --------
+    y = log10(x) on [1, 2], crank 90 -> 150 deg, rocker 0 -> 90 deg:
+
+    >>> sol = kl.synthesis.function_generation(np.log10, (1, 2), (90, 150), (0, 90),
+    ...                                        degrees=True)
+    >>> sol.x.round(4)                                     # Chebyshev spacing
+    array([1.067, 1.5  , 1.933])
+    >>> round(sol.max_structural_error, 5), sol.valid    # y spans 0.301
+    (0.00042, True)
+    """
+    if not callable(f):
+        raise ModelError(f"f: expected a function of x, got {f!r}")
+    x0, xf = _range("x_range", x_range)
+    t2s, t2e = _range("input_range", input_range)
+    t4s, t4e = _range("output_range", output_range)
+    if degrees:
+        t2s, t2e, t4s, t4e = np.radians([t2s, t2e, t4s, t4e])
+    if abs(t2e - t2s) >= 2 * np.pi:
+        raise ModelError("input_range: the crank would turn a full circle or more, so an input "
+                         "angle would stand for two values of x; use less than one turn")
+    if not (isinstance(ground, (int, float)) and np.isfinite(ground) and ground > 0):
+        raise ModelError(f"ground: expected a positive length (m), got {ground!r}")
+    if not (isinstance(samples, (int, np.integer)) and samples >= 2):
+        raise ModelError(f"samples: expected an integer >= 2, got {samples!r}")
+    y0, yf = (float(v) for v in np.asarray(f(np.array([x0, xf])), float))
+    if not (np.isfinite(y0) and np.isfinite(yf)) or y0 == yf:
+        raise ModelError(f"f: f(x0) = {y0:.6g} and f(xf) = {yf:.6g} must be different finite "
+                         "numbers to scale the output; choose another x_range")
+    if np.ndim(points) == 0:
+        x = chebyshev_points((x0, xf), int(points))
+    else:
+        x = np.sort(np.asarray(points, float))
+        if x.ndim != 1 or np.any((x < min(x0, xf)) | (x > max(x0, xf))):
+            raise ModelError("points: expected precision points (x values) inside x_range")
+    if x.size < 3:
+        raise ModelError(f"points: expected at least 3 precision points, got {x.size}")
+
+    def theta2(xv):
+        return t2s + (xv - x0) / (xf - x0) * (t2e - t2s)
+
+    def theta4(xv):
+        return t4s + (np.asarray(f(xv), float) - y0) / (yf - y0) * (t4e - t4s)
+
+    K = freudenstein(theta2(x), theta4(x))
+    if np.any(np.abs(K[:2]) <= 1e-12):
+        raise ModelError("points: Freudenstein's solution has K1 or K2 = 0, an infinitely long "
+                         "crank or rocker; change the angle ranges")
+    d = float(ground)
+    a, c = d / K[0], d / K[1]                 # signed: negative means the link points back
+    b2 = a * a + c * c + d * d - 2 * a * c * K[2]
+    if b2 <= (1e-12 * d) ** 2:
+        raise ModelError(f"points: no four-bar generates these precision points (the coupler's "
+                         f"squared length comes out {b2:.3g} m^2); change the angle ranges or "
+                         "the number of points")
+    A = a * np.array([np.cos(theta2(x[0])), np.sin(theta2(x[0]))])
+    B = np.array([d, 0.0]) + c * np.array([np.cos(theta4(x[0])), np.sin(theta4(x[0]))])
+    model = fourbar_model((0.0, 0.0), (d, 0.0), A, B, name="function generator")
+    q_off = np.pi if a < 0 else 0.0
+    out_off = np.pi if c < 0 else 0.0
+
+    xs = np.linspace(x0, xf, samples)
+    grid = np.concatenate([xs, x])
+    sol = analyze(model, theta2(grid) + q_off, unreachable="mask", at_singular="flag")
+    miss = wrap(sol.angle("rocker") - out_off - theta4(grid))
+    error = np.where(sol.assembled, miss * (yf - y0) / (t4e - t4s), np.inf)
+    order = np.argsort(grid, kind="stable")
+    sign0 = np.sign(sol.det_J[np.argmin(np.abs(grid - x[0]))])
+    good = (sol.assembled & ~sol.singular & (np.sign(sol.det_J) == sign0))[order]
+    defects = []
+    # three points are met exactly, so a miss there means the other branch; with more (least
+    # squares) the sweep alone decides
+    exact = x.size == 3
+    if not good.all() or (exact and np.any(np.abs(miss[samples:]) > _REACHED)):
+        defects.append("branch defect: the linkage cannot move over the whole input range on the "
+                       "branch of the first precision point (a limit or dead-centre position, "
+                       "or a precision point on the other branch)")
+    mu = transmission_angle(sol)[sol.assembled]
+    q = theta2(x) + q_off
+    for arr in (K, x, q, xs):
+        arr.setflags(write=False)
+    err = error[:samples]
+    err.setflags(write=False)
+    return FunctionSolution(
+        model=model, K=K, x=x, q=q, input_range=(t2s + q_off, t2e + q_off),
+        output_range=(t4s + out_off, t4e + out_off), x_samples=xs, structural_error=err,
+        grashof=model_grashof(model),
+        min_transmission_angle=float(mu.min()) if mu.size else float("nan"),
+        branch_defect=bool(defects), defects=tuple(defects))

@@ -1,0 +1,93 @@
+"""Function generation: Freudenstein's equation, Chebyshev spacing, the structural error."""
+import numpy as np
+import pytest
+
+import kinelab as kl
+from kinelab.errors import ModelError
+from kinelab.synthesis import chebyshev_points, freudenstein, function_generation
+
+LOG = dict(f=np.log10, x_range=(1.0, 2.0), input_range=(90.0, 150.0), output_range=(0.0, 90.0),
+           degrees=True)
+
+
+@pytest.mark.parametrize("d, a, b, c", [(3.0, 1.0, 3.0, 2.5), (2.0, 1.0, 1.0, 1.0),
+                                        (1.0, 2.0, 1.0, 1.5), (4.0, 1.5, 2.0, 3.0)])
+def test_freudenstein_recovers_the_lengths_of_a_catalogue_linkage(d, a, b, c):
+    fb = kl.mechanisms.fourbar(ground=d, crank=a, coupler=b, rocker=c)
+    lo, hi = kl.kinematics.reachable_ranges(fb)[0]
+    q = np.linspace(lo, hi, 7)[2:5]
+    K = freudenstein(q, kl.analyze(fb, q=q).angle("rocker"))
+    # exact algebra on three points: K1 = d/a, K2 = d/c, K3 = (a^2 - b^2 + c^2 + d^2)/(2ac)
+    np.testing.assert_allclose(K, [d / a, d / c, (a * a - b * b + c * c + d * d) / (2 * a * c)],
+                               rtol=1e-10)
+
+
+def test_chebyshev_points_by_hand():
+    # n = 3 on [1, 2]: 1.5 -+ 0.5 cos 30 deg, and 1.5
+    np.testing.assert_allclose(chebyshev_points((1.0, 2.0), 3),
+                               [1.5 - 0.25 * np.sqrt(3), 1.5, 1.5 + 0.25 * np.sqrt(3)], rtol=1e-15)
+
+
+def test_structural_error_vanishes_at_the_precision_points():
+    sol = function_generation(**LOG, samples=2001)
+    assert sol.valid
+    # the engine's rocker angle at the precision points (independent of sol.structural_error)
+    s = kl.analyze(sol.model, q=sol.q)
+    y_gen = (np.log10(1.0) + (s.angle("rocker") - sol.output_range[0])
+             / (sol.output_range[1] - sol.output_range[0]) * np.log10(2.0))
+    np.testing.assert_allclose(y_gen, np.log10(sol.x), atol=1e-12)
+    # the sampled curve changes sign at each precision point (samples 0.0005 apart); it may
+    # cross zero elsewhere too: Freudenstein's error is not a polynomial
+    e = sol.structural_error
+    crossings = sol.x_samples[np.flatnonzero(np.diff(np.sign(e)) != 0)]
+    h = sol.x_samples[1] - sol.x_samples[0]
+    assert all(np.abs(crossings - x).min() <= h for x in sol.x)
+
+
+def test_structural_error_against_freudenstein_closed_form():
+    """Solve Freudenstein's equation for theta4 with the half-angle formula on the model's
+    branch and compare with the engine-based structural error."""
+    sol = function_generation(**LOG, samples=101)
+    K1, K2, K3 = sol.K
+    t2 = np.radians(90 + 60 * (sol.x_samples - 1.0))
+    # K1 cos t4 - K2 cos t2 + K3 = cos t2 cos t4 + sin t2 sin t4 -> E cos t4 + F sin t4 + G = 0
+    E, F, G = K1 - np.cos(t2), -np.sin(t2), K3 - K2 * np.cos(t2)
+    r = np.sqrt(E * E + F * F - G * G)
+    roots = [2 * np.arctan2(-F + sg * r, G - E) for sg in (1, -1)]
+    target = np.radians(90 * np.log10(sol.x_samples) / np.log10(2.0))
+    mapped = [np.log10(2.0) * (np.angle(np.exp(1j * (t - target)))) / (np.pi / 2) for t in roots]
+    # the engine's branch is one of the two closed-form roots, the same all along
+    best = min(mapped, key=lambda m: np.abs(m - sol.structural_error).max())
+    np.testing.assert_allclose(sol.structural_error, best, atol=1e-12)
+
+
+def test_chebyshev_spacing_beats_even_spacing():
+    cheb = function_generation(**LOG)
+    even = function_generation(**LOG, points=[1.0, 1.5, 2.0])
+    assert cheb.max_structural_error < even.max_structural_error
+
+
+def test_more_points_by_least_squares():
+    sol = function_generation(**LOG, points=5)
+    assert sol.x.size == 5 and sol.valid
+    assert sol.max_structural_error < 2 * function_generation(**LOG).max_structural_error
+
+
+def test_branch_defect_flagged():
+    # y = log10 x on [1, 10], crank 45 -> 105 deg, rocker 135 -> 225 deg: Freudenstein's
+    # linkage has a negative rocker and cannot move over the range on one branch
+    sol = function_generation(np.log10, (1, 10), (45, 105), (135, 225), degrees=True)
+    assert sol.branch_defect and not sol.valid
+    assert not np.isfinite(sol.max_structural_error)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(f=np.cos, x_range=(-1.0, 1.0)), r"f: f\(x0\) = 0.540302 and f\(xf\) = 0.540302 must be different"),
+    (dict(input_range=(0.0, 400.0)), r"input_range: the crank would turn a full circle or more"),
+    (dict(points=2), r"points: expected at least 3 precision points, got 2"),
+    (dict(x_range=(1.0, 1.0)), r"x_range: expected two different finite numbers"),
+    (dict(ground=-1.0), r"ground: expected a positive length \(m\), got -1.0"),
+])
+def test_bad_function_tasks(kwargs, message):
+    with pytest.raises(ModelError, match=message):
+        function_generation(**(LOG | kwargs))
