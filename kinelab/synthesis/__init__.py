@@ -24,6 +24,7 @@ from kinelab.synthesis._function import (FunctionSolution, chebyshev_points, fre
 from kinelab.synthesis._linkage import fourbar_model, transmission_angle
 from kinelab.synthesis._motion import (MotionSolution, TwoPositions, three_positions,
                                        two_positions)
+from kinelab.synthesis._path import PathSolution, coupler_curves, path_generation
 from kinelab.synthesis._pivots import fixed_pivot, moving_pivot
 from kinelab.synthesis._positions import Poles, Positions, pole, poles
 from kinelab.synthesis._results import SolutionList
@@ -32,4 +33,5 @@ __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "two_positions", "TwoPositions", "three_positions", "MotionSolution",
            "four_positions", "centre_points", "centre_point_cubic", "burmester_curves",
            "BurmesterCurves", "SolutionList", "function_generation", "FunctionSolution",
-           "chebyshev_points", "freudenstein", "fourbar_model", "transmission_angle"]
+           "chebyshev_points", "freudenstein", "path_generation", "PathSolution",
+           "coupler_curves", "fourbar_model", "transmission_angle"]

@@ -1,0 +1,81 @@
+"""Path generation: the closed-form coupler curves against the engine, and the search."""
+import numpy as np
+import pytest
+
+import kinelab as kl
+from kinelab.errors import ModelError
+from kinelab.synthesis import coupler_curves, fourbar_model, path_generation
+from kinelab.synthesis._path import _Objective
+
+CATALOGUE = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5,
+                                  coupler_point=(1.5, 1.0))
+EXACT_TASK = kl.analyze(CATALOGUE, q=np.radians([0, 40, 80, 120, 160, 200])).position("P")
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_coupler_curves_against_the_engine(seed):
+    rng = np.random.default_rng(seed)
+    design = np.r_[rng.uniform(-1, 1, 4), rng.uniform(0.3, 2.5, 3), rng.uniform(-1, 1, 2),
+                   rng.choice([-1.0, 1.0])]
+    q = np.linspace(0, 2 * np.pi, 721)
+    P, A, B, ok = coupler_curves(design[None, :], q)
+    if not ok.any():
+        pytest.skip("this random linkage does not close anywhere")
+    i = int(np.flatnonzero(ok[0])[len(np.flatnonzero(ok[0])) // 2])
+    model = fourbar_model(design[0:2], design[2:4], A[0, i], B[0, i], P[0, i])
+    sol = kl.analyze(model, q=q, unreachable="mask", at_singular="flag")
+    # the closed form's branch is the engine's (both read it off the sketch at sample i)
+    both = ok[0] & sol.assembled
+    assert both.sum() >= 0.9 * ok[0].sum()            # they differ only at the limit samples
+    for name, X in (("P", P), ("A", A), ("B", B)):
+        np.testing.assert_allclose(sol.position(name)[both], X[0][both], atol=1e-10)
+    assert model.parameters["coupler_point"] == pytest.approx(tuple(design[7:9]), abs=1e-12)
+
+
+def test_objective_is_zero_on_an_exact_design_and_penalises_the_wrong_order():
+    centre, scale = EXACT_TASK.mean(0), 1.0
+    obj = _Objective((EXACT_TASK - centre) / scale, 360, 0.0)
+    design = np.array([0 - centre[0], 0 - centre[1], 3 - centre[0], 0 - centre[1],
+                       1.0, 3.0, 2.5, 1.5, 1.0, 1.0])
+    assert obj(design[:, None])[0] < 1e-5        # second-order sampling error, 1 deg steps
+    shuffled = _Objective(obj.T[[0, 2, 1, 3, 4, 5]], 360, 0.0)
+    assert shuffled(design[:, None])[0] >= 1.0   # out of order: infeasible
+
+
+def test_path_generation_finds_an_exact_linkage():
+    sols = path_generation(EXACT_TASK, runs=1, maxiter=60, seed=0)
+    assert len(sols) == 1 and sols.reason == ""
+    best = sols[0]
+    assert best.valid and not best.branch_defect and not best.order_defect
+    assert best.max_error < 1e-6
+    # the engine, moved to the reported crank angles, puts P on the targets
+    P = kl.analyze(best.model, q=best.q).position("P")
+    np.testing.assert_allclose(np.linalg.norm(P - EXACT_TASK, axis=1), best.errors, atol=1e-12)
+
+
+def test_path_generation_is_reproducible():
+    a = path_generation(EXACT_TASK[:5], runs=1, maxiter=15, seed=3, refine=False)
+    b = path_generation(EXACT_TASK[:5], runs=1, maxiter=15, seed=3, refine=False)
+    assert len(a) == len(b)
+    for s, t in zip(a, b):
+        np.testing.assert_array_equal(np.r_[s.A0, s.B0, s.A1, s.B1], np.r_[t.A0, t.B0, t.A1, t.B1])
+
+
+def test_transmission_angle_bound_is_kept():
+    line = np.column_stack([np.linspace(0.0, 1.0, 6), np.zeros(6)])
+    sols = path_generation(line, runs=1, maxiter=40, seed=0, min_transmission_angle=np.radians(30))
+    for s in sols:
+        assert s.valid
+        # the refined design keeps 30 deg exactly over the travel; the sweep samples every 0.5 deg
+        assert s.min_transmission_angle >= np.radians(30) - 1e-6
+
+
+@pytest.mark.parametrize("points, kwargs, message", [
+    ([(0, 0), (1, 1)], {}, r"points: expected at least three finite points"),
+    ([(0, 0), (1, 1), (0, 0)], {}, r"points: points 1 and 3 coincide"),
+    ([(0, 0), (1, 1), (2, 0)], dict(runs=0), r"runs: expected an integer >= 1, got 0"),
+    ([(0, 0), (1, 1), (2, 0)], dict(popsize=2), r"popsize: expected an integer >= 5, got 2"),
+])
+def test_bad_path_tasks(points, kwargs, message):
+    with pytest.raises(ModelError, match=message):
+        path_generation(points, **kwargs)
