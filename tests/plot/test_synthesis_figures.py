@@ -1,0 +1,71 @@
+"""Synthesis figures: drawn off screen (Agg) and written to files."""
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+import kinelab as kl  # noqa: E402
+from kinelab import plot  # noqa: E402
+
+P7 = np.array([(0, 0), (5, 8), (10, 15), (18, 20)]) * 0.01
+POS7 = kl.synthesis.Positions(P7, [10, 20, 30], degrees=True)
+
+
+@pytest.fixture(autouse=True)
+def _close():
+    yield
+    plt.close("all")
+
+
+def _written(ax, path):
+    ax.figure.savefig(path)
+    assert path.stat().st_size > 5000          # a real picture, not an empty canvas
+    return path
+
+
+def test_positions_and_poles(tmp_path):
+    ax = plot.prescribed_positions(POS7)
+    # one marker per position and one per pole (six of them, all finite here)
+    markers = [line for line in ax.lines if line.get_marker() in ("o", "x")]
+    assert len(markers) == 4 + 6
+    _written(ax, tmp_path / "positions.png")
+
+
+def test_solution_in_each_position(tmp_path):
+    sols = kl.synthesis.four_positions(POS7, None, -0.20195, -0.29167)
+    ax = plot.motion_solution(next(s for s in sols if s.valid))
+    _written(ax, tmp_path / "solution.png")
+    # a defective solution is drawn too (positions where the engine cannot close are left out)
+    ax = plot.motion_solution(next(s for s in sols if not s.valid))
+    _written(ax, tmp_path / "defective.png")
+
+
+def test_burmester_curves(tmp_path):
+    cur = kl.synthesis.burmester_curves(POS7, samples=721)
+    sols = kl.synthesis.four_positions(POS7, None, -0.20195, -0.29167)
+    ax = plot.burmester_curves(cur, positions=POS7, solutions=sols)
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert labels[:2] == ["centre points (A0)", "circle points (A1)"]
+    _written(ax, tmp_path / "curves.png")
+
+
+def test_structural_error_and_path(tmp_path):
+    f = kl.synthesis.function_generation(np.log10, (1, 2), (90, 150), (0, 90), degrees=True)
+    _written(plot.structural_error(f), tmp_path / "error.png")
+    fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5,
+                               coupler_point=(1.5, 1.0))
+    pts = kl.analyze(fb, q=np.radians([0, 60, 120, 180, 240])).position("P")
+    sols = kl.synthesis.path_generation(pts, runs=1, maxiter=20, seed=0)
+    _written(plot.path_solution(sols[0]), tmp_path / "path.png")
+
+
+def test_import_kinelab_does_not_need_matplotlib():
+    import subprocess
+    import sys
+    code = ("import sys; import kinelab, kinelab.synthesis; "
+            "print('matplotlib' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
