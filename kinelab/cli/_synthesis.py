@@ -1,0 +1,379 @@
+"""``kinelab synth TASK``: dimensional synthesis from a task file.
+
+A click command for the main ``kinelab`` group to register (``cli.add_command(synth)``).
+It reads a TOML task file (the format is in ``docs/synthesis.md``), converts its units to SI
+once, calls :mod:`kinelab.synthesis`, prints a table of the linkages found and writes each
+as a model file (JSON, SI units) with a figure.  Everything is computed before anything is
+written, and every file is written to a temporary name first, so a failure never leaves a
+half-written output behind.
+"""
+from __future__ import annotations
+
+import io
+import json
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import click
+import numpy as np
+
+from kinelab import synthesis
+from kinelab.errors import KinelabError, ModelError
+
+__all__ = ["synth", "load_task", "Task"]
+
+LENGTH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254, "ft": 0.3048}
+ANGLE_UNITS = {"rad": 1.0, "deg": math.pi / 180.0}
+KINDS = ("motion", "function", "path")
+_SECTIONS = {"task", "name", "units", "positions", "pivots", "function", "search", "output"}
+
+
+@dataclass
+class Task:
+    """A synthesis task read from a file, in SI units."""
+
+    kind: str
+    name: str
+    length_unit: str
+    angle_unit: str
+    positions: synthesis.Positions | None = None
+    pivots: dict[str, Any] = field(default_factory=dict)
+    targets: np.ndarray | None = None
+    function: dict[str, Any] = field(default_factory=dict)
+    search: dict[str, Any] = field(default_factory=dict)
+
+
+def _quoted(names) -> str:
+    return ", ".join(f"'{n}'" for n in names)
+
+
+class _Reader:
+    """Collects every problem of a task file, each naming its field."""
+
+    def __init__(self, data: dict):
+        self.data = data
+        self.problems: list[str] = []
+
+    def get(self, section: str, key: str, default=None):
+        sec = self.data.get(section, {})
+        return sec.get(key, default) if isinstance(sec, dict) else default
+
+    def array(self, where: str, value, shape: tuple, scale: float = 1.0):
+        try:
+            a = np.asarray(value, dtype=float)
+        except (TypeError, ValueError):
+            self.problems.append(f"{where}: expected numbers, got {value!r}")
+            return None
+        ok = a.ndim == len(shape) and all(s is None or s == n for s, n in zip(shape, a.shape))
+        if not ok or not np.all(np.isfinite(a)):
+            want = "(" + ", ".join("n" if s is None else str(s) for s in shape) + ")"
+            self.problems.append(f"{where}: expected finite numbers of shape {want}, got {value!r}")
+            return None
+        return a * scale
+
+    def number(self, where: str, value, scale: float = 1.0, positive: bool = False):
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
+                or (positive and value <= 0):
+            kind = "a positive number" if positive else "a finite number"
+            self.problems.append(f"{where}: expected {kind}, got {value!r}")
+            return None
+        return float(value) * scale
+
+    def unknown(self, section: str, allowed: set[str]):
+        sec = self.data.get(section, {})
+        if not isinstance(sec, dict):
+            self.problems.append(f"[{section}]: expected a table")
+            return
+        for key in sec:
+            if key not in allowed:
+                self.problems.append(f"{section}.{key}: unknown key; expected one of "
+                                     f"{_quoted(sorted(allowed))}")
+
+
+def load_task(path: str | Path) -> Task:
+    """Read a task file (TOML) and convert it to SI units.
+
+    Raises
+    ------
+    ModelError
+        Every problem of the file at once, each naming its field.
+    """
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise ModelError(f"not valid TOML: {exc}", source=str(path)) from None
+    r = _Reader(data)
+    for key in data:
+        if key not in _SECTIONS:
+            r.problems.append(f"{key}: unknown key; expected one of {_quoted(sorted(_SECTIONS))}")
+    kind = data.get("task")
+    if kind not in KINDS:
+        r.problems.append(f"task: expected one of {_quoted(KINDS)}, got {kind!r}")
+    units = data.get("units", {})
+    lu = units.get("length", "m") if isinstance(units, dict) else "m"
+    au = units.get("angle", "rad") if isinstance(units, dict) else "rad"
+    if lu not in LENGTH_UNITS:
+        r.problems.append(f"units.length: expected one of {_quoted(LENGTH_UNITS)}, got {lu!r}")
+    if au not in ANGLE_UNITS:
+        r.problems.append(f"units.angle: expected one of {_quoted(ANGLE_UNITS)}, got {au!r}")
+    r.unknown("units", {"length", "angle"})
+    L, A = LENGTH_UNITS.get(lu, 1.0), ANGLE_UNITS.get(au, 1.0)
+    task = Task(kind=str(kind), name=str(data.get("name", path.stem)), length_unit=lu,
+                angle_unit=au)
+    if kind == "motion":
+        _motion_task(r, task, L, A)
+    elif kind == "function":
+        _function_task(r, task, A)
+    elif kind == "path":
+        _path_task(r, task, L, A)
+    if r.problems:
+        raise ModelError(r.problems, source=str(path))
+    return task
+
+
+def _motion_task(r: _Reader, task: Task, L: float, A: float) -> None:
+    r.unknown("positions", {"points", "angles", "second_points"})
+    r.unknown("pivots", {"A0", "B0", "A1", "B1", "a0x", "b0x", "s", "t"})
+    pts = r.array("positions.points", r.get("positions", "points"), (None, 2), L)
+    angles, second = r.get("positions", "angles"), r.get("positions", "second_points")
+    if (angles is None) == (second is None):
+        r.problems.append("positions: give either angles (orientations, or rotations from "
+                          "position 1) or second_points (a second point of the coupler in "
+                          "each position)")
+        return
+    if pts is None:
+        return
+    try:
+        if angles is not None:
+            ang = r.array("positions.angles", angles, (None,), A)
+            if ang is None:
+                return
+            task.positions = synthesis.Positions(pts, ang)
+        else:
+            sec = r.array("positions.second_points", second, (None, 2), L)
+            if sec is None:
+                return
+            task.positions = synthesis.Positions.from_two_points(pts, sec)
+    except ModelError as exc:
+        r.problems.extend(f"positions.{p}" for p in exc.problems)
+        return
+    n = task.positions.n
+    piv = {k: r.get("pivots", k) for k in ("A0", "B0", "A1", "B1", "a0x", "b0x", "s", "t")}
+    given = {k for k, v in piv.items() if v is not None}
+    allowed = {2: {"A1", "B1", "s", "t"}, 3: {"A0", "B0", "A1", "B1"}, 4: {"a0x", "b0x"}}
+    if n not in allowed:
+        r.problems.append(f"positions.points: motion generation takes 2, 3 or 4 positions, got {n}")
+        return
+    for k in sorted(given - allowed[n]):
+        r.problems.append(f"pivots.{k}: not used with {n} positions; with {n} give "
+                          f"{_quoted(sorted(allowed[n]))}")
+    for k in given & allowed[n]:
+        if k in ("A0", "B0", "A1", "B1"):
+            task.pivots[k] = r.array(f"pivots.{k}", piv[k], (2,), L)
+        else:
+            task.pivots[k] = r.number(f"pivots.{k}", piv[k], L)
+    need = {2: ("A1", "B1"), 4: ("a0x", "b0x")}.get(n, ())
+    for k in need:
+        if k not in given:
+            r.problems.append(f"pivots.{k}: missing; {n} positions need "
+                              f"{_quoted(need)}")
+    if n == 3:
+        for side in "AB":
+            if (f"{side}0" in given) == (f"{side}1" in given):
+                r.problems.append(f"pivots: give exactly one of {side}0 (fixed pivot) and "
+                                  f"{side}1 (moving pivot in position 1)")
+
+
+def _function_task(r: _Reader, task: Task, A: float) -> None:
+    keys = {"expression", "x_range", "input_range", "output_range", "points", "ground",
+            "samples"}
+    r.unknown("function", keys)
+    f = dict(r.data.get("function", {})) if isinstance(r.data.get("function"), dict) else {}
+    expr = f.get("expression")
+    if not isinstance(expr, str):
+        r.problems.append(f"function.expression: expected a formula in x such as 'log10(x)', "
+                          f"got {expr!r}")
+    else:
+        try:
+            task.function["f"] = _formula(expr)
+        except ModelError as exc:
+            r.problems.extend(exc.problems)
+    task.function["x_range"] = r.array("function.x_range", f.get("x_range"), (2,))
+    task.function["input_range"] = r.array("function.input_range", f.get("input_range"), (2,), A)
+    task.function["output_range"] = r.array("function.output_range", f.get("output_range"), (2,), A)
+    if "points" in f:
+        p = f["points"]
+        task.function["points"] = p if isinstance(p, int) else r.array("function.points", p, (None,))
+    if "ground" in f:
+        # the ground length is in the file's length unit
+        task.function["ground"] = r.number("function.ground", f["ground"],
+                                           LENGTH_UNITS.get(task.length_unit, 1.0), positive=True)
+    if "samples" in f:
+        task.function["samples"] = f["samples"]
+
+
+def _formula(expr: str):
+    """A vectorised function of x from a formula (parsed by sympy: trusted files only)."""
+    import sympy as sp
+    x = sp.Symbol("x")
+    try:
+        e = sp.sympify(expr, locals={"x": x, "log10": lambda a: sp.log(a, 10)})
+    except (sp.SympifyError, SyntaxError, TypeError):
+        raise ModelError(f"function.expression: cannot read {expr!r} as a formula in x; write "
+                         "it as in Python, e.g. 'log10(x)', 'x**2', 'sin(x)'") from None
+    extra = e.free_symbols - {x}
+    if extra:
+        raise ModelError(f"function.expression: the only variable allowed is x, got "
+                         f"{_quoted(sorted(map(str, extra)))}")
+    fx = sp.lambdify(x, e, "numpy")
+    return lambda xv: np.broadcast_to(np.asarray(fx(xv), float), np.shape(xv))
+
+
+def _path_task(r: _Reader, task: Task, L: float, A: float) -> None:
+    r.unknown("positions", {"points"})
+    r.unknown("search", {"runs", "maxiter", "popsize", "samples", "seed",
+                         "min_transmission_angle", "refine"})
+    task.targets = r.array("positions.points", r.get("positions", "points"), (None, 2), L)
+    s = dict(r.data.get("search", {})) if isinstance(r.data.get("search"), dict) else {}
+    if "min_transmission_angle" in s:
+        s["min_transmission_angle"] = r.number("search.min_transmission_angle",
+                                               s["min_transmission_angle"], A)
+    task.search = s
+
+
+def solve(task: Task) -> tuple[list, dict[str, Any]]:
+    """Run a task: its solutions, and the extra results worth drawing."""
+    if task.kind == "function":
+        return [synthesis.function_generation(**task.function)], {}
+    if task.kind == "path":
+        sols = synthesis.path_generation(task.targets, **task.search)
+        return list(sols), {"reason": sols.reason}
+    pos, piv = task.positions, task.pivots
+    if pos.n == 2:
+        fam = synthesis.two_positions(pos, A1=piv["A1"], B1=piv["B1"])
+        return [fam.solution(piv.get("s", 0.0), piv.get("t", 0.0))], {}
+    if pos.n == 3:
+        return [synthesis.three_positions(pos, A0=piv.get("A0"), B0=piv.get("B0"),
+                                          A1=piv.get("A1"), B1=piv.get("B1"))], {}
+    sols = synthesis.four_positions(pos, a0x=piv["a0x"], b0x=piv["b0x"])
+    curves = synthesis.burmester_curves(pos)
+    return list(sols), {"curves": curves, "reason": sols.reason}
+
+
+def _summary(task: Task, sols: list) -> list[dict[str, Any]]:
+    L = LENGTH_UNITS[task.length_unit]
+    rows = []
+    for i, s in enumerate(sols, 1):
+        row: dict[str, Any] = {"solution": i, "valid": s.valid, "defects": list(s.defects),
+                               "grashof": s.grashof.kind,
+                               "lengths": {k: v / L for k, v in s.lengths.items()}}
+        if hasattr(s, "A0"):
+            row.update({k: (getattr(s, k) / L).tolist() for k in ("A0", "B0", "A1", "B1")})
+        if not math.isnan(s.min_transmission_angle):
+            row["min_transmission_angle"] = s.min_transmission_angle / ANGLE_UNITS[task.angle_unit]
+        if hasattr(s, "rms_error"):
+            row["rms_error"] = s.rms_error / L
+        if hasattr(s, "max_structural_error"):
+            row["max_structural_error"] = s.max_structural_error
+        rows.append(row)
+    return rows
+
+
+def _figures(task: Task, sols: list, extra: dict) -> dict[str, bytes]:
+    import matplotlib
+    matplotlib.use("Agg")       # files only: no window
+    import matplotlib.pyplot as plt
+
+    from kinelab import plot
+
+    out: dict[str, bytes] = {}
+
+    def grab(name, ax):
+        buf = io.BytesIO()
+        ax.figure.savefig(buf, format="png", dpi=120)
+        plt.close(ax.figure)
+        out[name] = buf.getvalue()
+
+    if task.positions is not None:
+        grab("positions.png", plot.prescribed_positions(task.positions))
+    if "curves" in extra:
+        grab("curves.png", plot.burmester_curves(extra["curves"], positions=task.positions,
+                                                 solutions=sols))
+    for i, s in enumerate(sols, 1):
+        if task.kind == "function":
+            grab(f"solution_{i}.png", plot.structural_error(s))
+        elif task.kind == "path":
+            grab(f"solution_{i}.png", plot.path_solution(s))
+        else:
+            grab(f"solution_{i}.png", plot.motion_solution(s))
+    return out
+
+
+def _fmt_xy(v, L):
+    return "(" + ", ".join(f"{c / L:.4f}" for c in v) + ")"
+
+
+@click.command("synth")
+@click.argument("task_file", metavar="TASK", type=click.Path(exists=True, dir_okay=False))
+@click.option("--out", "out_dir", type=click.Path(file_okay=False), default=None,
+              help="Directory for the model files and figures [default: TASK's name + "
+                   "'_solutions', beside it].")
+@click.option("--figures/--no-figures", default=True, show_default=True,
+              help="Write a figure of each solution (and of the positions and curves).")
+@click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
+def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool) -> None:
+    """Dimensional synthesis of a four-bar from the TOML task file TASK.
+
+    Writes each linkage found as a model file solution_<i>.json (SI units) and, unless
+    --no-figures, a figure solution_<i>.png, with summary.json.
+    """
+    from kinelab._files import atomic_write
+
+    try:
+        task = load_task(task_file)
+        sols, extra = solve(task)
+    except KinelabError as exc:
+        raise click.ClickException(str(exc)) from None
+    rows = _summary(task, sols)
+    files: dict[str, bytes | str] = {}
+    for i, s in enumerate(sols, 1):
+        model = s.model.to_dict() | {"units": {"length": "m", "angle": "rad"}}
+        files[f"solution_{i}.json"] = json.dumps(model, indent=2)
+    summary = {"task": task.kind, "name": task.name,
+               "units": {"length": task.length_unit, "angle": task.angle_unit},
+               "reason": extra.get("reason", ""), "solutions": rows}
+    files["summary.json"] = json.dumps(summary, indent=2)
+    if figures and sols:
+        files.update(_figures(task, sols, extra))
+    out = Path(out_dir) if out_dir else Path(task_file).with_name(Path(task_file).stem + "_solutions")
+    for name, content in files.items():
+        binary = isinstance(content, bytes)
+        atomic_write(out / name, lambda f, c=content: f.write(c), binary=binary)
+    if as_json:
+        click.echo(json.dumps(summary, indent=2))
+        return
+    L = LENGTH_UNITS[task.length_unit]
+    click.echo(f"{task.name}: {task.kind} generation, {len(sols)} linkage(s)"
+               + (f" ({summary['reason']})" if summary["reason"] else ""))
+    for s, row in zip(sols, rows):
+        head = f"  {row['solution']}: "
+        if hasattr(s, "A0"):
+            head += (f"A0 {_fmt_xy(s.A0, L)} B0 {_fmt_xy(s.B0, L)} A1 {_fmt_xy(s.A1, L)} "
+                     f"B1 {_fmt_xy(s.B1, L)} {task.length_unit}, ")
+        else:
+            head += ", ".join(f"{k} {v:.4f}" for k, v in row["lengths"].items()) + \
+                f" {task.length_unit}, "
+        if "min_transmission_angle" in row:
+            head += f"min transmission {row['min_transmission_angle']:.3g} {task.angle_unit}, "
+        if "rms_error" in row:
+            head += f"rms error {row['rms_error']:.3g} {task.length_unit}, "
+        if "max_structural_error" in row:
+            head += f"max structural error {row['max_structural_error']:.3g}, "
+        head += s.grashof.kind + (", valid" if s.valid else ", " + "; ".join(
+            d.split(":")[0] for d in s.defects))
+        click.echo(head)
+    click.echo(f"wrote {len(files)} file(s) to {out}")

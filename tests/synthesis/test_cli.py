@@ -1,0 +1,146 @@
+"""`kinelab synth TASK` (a click command the main `kinelab` group registers)."""
+import json
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+import kinelab as kl
+from kinelab.cli._synthesis import synth
+from kinelab.model import Mechanism
+
+NOTES_6_7 = """
+task = "motion"
+name = "notes 003, 6.7"
+units = { length = "cm", angle = "deg" }
+
+[positions]
+points = [[0, 0], [5, 8], [10, 15], [18, 20]]
+angles = [10, 20, 30]            # alpha_2..alpha_4, from position 1
+
+[pivots]
+a0x = -20.195
+b0x = -29.167
+"""
+
+NOTES_6_5 = """
+task = "motion"
+[positions]
+points = [[1, 1], [2, 0.5], [3, 1.5]]
+angles = [0, 0, 0.7853981633974483]
+[pivots]
+A0 = [5, 0]
+B0 = [0, 0]
+"""
+
+
+def run(tmp_path, text, *args):
+    task = tmp_path / "task.toml"
+    task.write_text(text)
+    return CliRunner().invoke(synth, [str(task), "--out", str(tmp_path / "out"), *args])
+
+
+def test_four_positions_from_a_task_file(tmp_path):
+    res = run(tmp_path, NOTES_6_7)
+    assert res.exit_code == 0, res.output
+    assert "notes 003, 6.7: motion generation, 9 linkage(s)" in res.output
+    # Table 7 is among them, printed in the file's unit (cm)
+    assert "A0 (-20.1950, 25.5653) B0 (-29.1670, 42.3552) A1 (-25.3492, 25.3793)" in res.output
+    out = tmp_path / "out"
+    names = sorted(p.name for p in out.iterdir())
+    assert "curves.png" in names and "positions.png" in names and "summary.json" in names
+    assert sum(n.startswith("solution_") and n.endswith(".json") for n in names) == 9
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["units"] == {"length": "cm", "angle": "deg"} and len(summary["solutions"]) == 9
+
+
+def test_model_file_is_the_linkage_in_si(tmp_path):
+    res = run(tmp_path, NOTES_6_5, "--no-figures")
+    assert res.exit_code == 0, res.output
+    data = json.loads((tmp_path / "out" / "solution_1.json").read_text())
+    assert data["units"] == {"length": "m", "angle": "rad"}
+    m = Mechanism.from_dict(data)
+    np.testing.assert_allclose(m.point("A").xy, [3.547722, -1.654555], atol=1e-6)  # Table 4
+    # the engine moves the model file's linkage through the three prescribed points
+    P = np.array([[1, 1], [2, 0.5], [3, 1.5]])
+    sol = kl.synthesis.three_positions(P, [0, 0, np.pi / 4], (5, 0), (0, 0))
+    np.testing.assert_allclose(kl.analyze(m, q=sol.q).position("P"), P, atol=1e-9)
+    assert not any(p.suffix == ".png" for p in (tmp_path / "out").iterdir())
+
+
+def test_function_and_path_tasks(tmp_path):
+    res = run(tmp_path, """
+task = "function"
+units = { angle = "deg" }
+[function]
+expression = "log10(x)"
+x_range = [1, 2]
+input_range = [90, 150]
+output_range = [0, 90]
+""")
+    assert res.exit_code == 0, res.output
+    assert "max structural error 0.000419" in res.output
+    assert (tmp_path / "out" / "solution_1.png").stat().st_size > 5000
+    res = run(tmp_path, """
+task = "path"
+[positions]
+points = [[0, 0], [0.25, 0.02], [0.5, 0.03], [0.75, 0.02], [1, 0]]
+[search]
+runs = 1
+maxiter = 20
+seed = 0
+""", "--json")
+    assert res.exit_code == 0, res.output
+    summary = json.loads(res.output)
+    assert summary["task"] == "path" and summary["solutions"][0]["valid"]
+
+
+def test_every_problem_of_a_task_file_at_once(tmp_path):
+    res = run(tmp_path, """
+task = "motion"
+units = { length = "furlong" }
+colour = "red"
+[positions]
+points = [[0, 0], [1, 1], [2, 0]]
+angles = [0, 10, 20]
+[pivots]
+A0 = [5, 0]
+a0x = 3
+""")
+    assert res.exit_code != 0
+    for problem in ["units.length: expected one of 'm', 'cm', 'mm', 'in', 'ft', got 'furlong'",
+                    "colour: unknown key",
+                    "pivots.a0x: not used with 3 positions",
+                    "pivots: give exactly one of B0 (fixed pivot) and B1"]:
+        assert problem in res.output, res.output
+    assert "task.toml: " in res.output             # the file is named
+    assert not (tmp_path / "out").exists()         # nothing half written
+
+
+def test_synthesis_failure_is_reported(tmp_path):
+    res = run(tmp_path, """
+task = "motion"
+[positions]
+points = [[0, 0], [1, 0], [3, 0]]
+angles = [0, 0, 0]
+[pivots]
+A1 = [0, 1]
+B0 = [1, 1]
+""")
+    assert res.exit_code != 0
+    assert "its positions are collinear" in res.output
+
+
+@pytest.mark.parametrize("expr, message", [("log(y)", "the only variable allowed is x, got 'y'"),
+                                           ("x +* 2", "cannot read 'x +* 2' as a formula in x")])
+def test_bad_formula(tmp_path, expr, message):
+    res = run(tmp_path, f"""
+task = "function"
+[function]
+expression = "{expr}"
+x_range = [1, 2]
+input_range = [1, 2]
+output_range = [0, 1]
+""")
+    assert res.exit_code != 0
+    assert message in res.output, res.output
