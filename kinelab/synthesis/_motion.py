@@ -217,8 +217,8 @@ def two_positions(points, angles=None, A1: ArrayLike = None, B1: ArrayLike = Non
     --------
     >>> fam = kl.synthesis.two_positions([(0, 0), (1, 1)], [0, 90], A1=(0, -1), B1=(1, -1),
     ...                                  degrees=True)
-    >>> fam.pole.round(12) + 0.0                      # the bisectors meet at P12
-    array([1., 0.])
+    >>> fam.pole.round(12) + 0.0          # P12: a quarter turn about (0, 1) takes P1 to P2
+    array([0., 1.])
     >>> sol = fam.solution(s=1.0, t=2.0)
     >>> bool(np.allclose(np.linalg.norm(sol.A0 - fam.A1), np.linalg.norm(sol.A0 - fam.A2)))
     True
