@@ -1,1 +1,19 @@
-"""Spatial kinematics: 3-D transforms, spatial mechanisms and serial/parallel robots."""
+"""Spatial kinematics: 3-D transforms, spatial mechanisms and serial/parallel robots.
+
+Notes 003 §4.2, §4.8 and §7.  Everything takes one configuration or a batch of N along
+axis 0, in SI units and radians.
+"""
+from kinelab.spatial._transforms import (
+    AngularMotion, AxisAngle, PointMotion, TransformRates, axis_angle, compose,
+    euler_angles, euler_parameters, euler_rates, euler_rotation, homogeneous, invert,
+    planar_transform, point_motion, rotation, rotation_from_euler_parameters, skew,
+    transform_points, transform_rates, translation,
+)
+
+__all__ = [
+    "AngularMotion", "AxisAngle", "PointMotion", "TransformRates", "axis_angle", "compose",
+    "euler_angles", "euler_parameters", "euler_rates", "euler_rotation", "homogeneous",
+    "invert", "planar_transform", "point_motion", "rotation",
+    "rotation_from_euler_parameters", "skew", "transform_points", "transform_rates",
+    "translation",
+]
