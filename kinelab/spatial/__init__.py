@@ -9,8 +9,12 @@ from kinelab.spatial._transforms import (
     planar_transform, point_motion, rotation, rotation_from_euler_parameters, skew,
     transform_points, transform_rates, translation,
 )
+from kinelab.spatial._robots import (
+    JointRates, RobotJoint, SerialRobot, ToolMotion, pr, prr, rp, rr, rrr,
+)
 
 __all__ = [
+    "JointRates", "RobotJoint", "SerialRobot", "ToolMotion", "pr", "prr", "rp", "rr", "rrr",
     "AngularMotion", "AxisAngle", "PointMotion", "TransformRates", "axis_angle", "compose",
     "euler_angles", "euler_parameters", "euler_rates", "euler_rotation", "homogeneous",
     "invert", "planar_transform", "point_motion", "rotation",
