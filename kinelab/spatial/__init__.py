@@ -12,8 +12,10 @@ from kinelab.spatial._transforms import (
 from kinelab.spatial._robots import (
     JointRates, RobotJoint, SerialRobot, ToolMotion, pr, prr, rp, rr, rrr,
 )
+from kinelab.spatial._rssr import RSSR, RSSRPositions, RSSRSolution
 
 __all__ = [
+    "RSSR", "RSSRPositions", "RSSRSolution",
     "JointRates", "RobotJoint", "SerialRobot", "ToolMotion", "pr", "prr", "rp", "rr", "rrr",
     "AngularMotion", "AxisAngle", "PointMotion", "TransformRates", "axis_angle", "compose",
     "euler_angles", "euler_parameters", "euler_rates", "euler_rotation", "homogeneous",
