@@ -12,9 +12,15 @@ from kinelab.spatial._transforms import (
 from kinelab.spatial._robots import (
     JointRates, RobotJoint, SerialRobot, ToolMotion, pr, prr, rp, rr, rrr,
 )
+from kinelab.spatial._cardan import (
+    CardanMotion, DoubleCardanMotion, cardan_motion, cardan_output, cardan_velocity_ratio,
+    double_cardan,
+)
 from kinelab.spatial._rssr import RSSR, RSSRPositions, RSSRSolution
 
 __all__ = [
+    "CardanMotion", "DoubleCardanMotion", "cardan_motion", "cardan_output",
+    "cardan_velocity_ratio", "double_cardan",
     "RSSR", "RSSRPositions", "RSSRSolution",
     "JointRates", "RobotJoint", "SerialRobot", "ToolMotion", "pr", "prr", "rp", "rr", "rrr",
     "AngularMotion", "AxisAngle", "PointMotion", "TransformRates", "axis_angle", "compose",
