@@ -17,11 +17,15 @@ from kinelab.spatial._cardan import (
     double_cardan,
 )
 from kinelab.spatial._rssr import RSSR, RSSRPositions, RSSRSolution
+from kinelab.spatial._stewart import (
+    StewartPose, stewart_forward, stewart_inverse_jacobian, stewart_leg_lengths,
+)
 
 __all__ = [
     "CardanMotion", "DoubleCardanMotion", "cardan_motion", "cardan_output",
     "cardan_velocity_ratio", "double_cardan",
     "RSSR", "RSSRPositions", "RSSRSolution",
+    "StewartPose", "stewart_forward", "stewart_inverse_jacobian", "stewart_leg_lengths",
     "JointRates", "RobotJoint", "SerialRobot", "ToolMotion", "pr", "prr", "rp", "rr", "rrr",
     "AngularMotion", "AxisAngle", "PointMotion", "TransformRates", "axis_angle", "compose",
     "euler_angles", "euler_parameters", "euler_rates", "euler_rotation", "homogeneous",
