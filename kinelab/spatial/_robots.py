@@ -198,7 +198,17 @@ class SerialRobot:
         ndarray, shape (d,) or (N, d), m
         """
         q, single = self._joint_array("q", q)
-        point = self._chain(q)[2][:, :self.dim]
+        # From the tool back to the base, x <- Trans(offset_j) Motion_j(q_j) x: vectors
+        # only, no products of rotation matrices.
+        x = np.broadcast_to(np.asarray(self.tool), (q.shape[0], 3))
+        for j in range(self.n - 1, -1, -1):
+            joint = self.joints[j]
+            if joint.kind == "R":
+                x = np.einsum("nij,nj->ni", _joint_rotation(joint, q[:, j]), x)
+            else:
+                x = x + np.asarray(joint.axis) * q[:, j, None]
+            x = x + np.asarray(joint.offset)
+        point = x[:, :self.dim]
         return point[0] if single else point
 
     def jacobian(self, q: ArrayLike) -> np.ndarray:
@@ -386,7 +396,7 @@ class SerialRobot:
             axes.append(a)
             centres.append(p)
             if joint.kind == "R":
-                R = R @ rotation(np.asarray(joint.axis), q[:, j]).as_matrix()
+                R = R @ _joint_rotation(joint, q[:, j])
             else:
                 p = p + a * q[:, j, None]
         return np.stack(axes), np.stack(centres), p + R @ np.asarray(self.tool)
@@ -475,6 +485,16 @@ class SerialRobot:
                 f"infinitely many solutions: {np.round(points[first], 6).tolist()} lies "
                 f"{solved.free_reason}; move the point off it, or pass guess= to pick one "
                 f"solution by Newton")
+
+
+def _joint_rotation(joint: RobotJoint, angle: np.ndarray) -> np.ndarray:
+    """Rotation matrices (N, 3, 3) of a revolute joint; a coordinate axis takes scipy's
+    faster single-axis path."""
+    axis = np.asarray(joint.axis)
+    for letter, unit in zip("xyz", np.eye(3)):
+        if np.array_equal(np.abs(axis), unit):
+            return rotation(letter, angle * float(axis @ unit)).as_matrix()
+    return rotation(axis, angle).as_matrix()
 
 
 def _solve(J: np.ndarray, b: np.ndarray, singular: np.ndarray) -> np.ndarray:
@@ -648,16 +668,17 @@ def rrr(L2: float, L3: float) -> SerialRobot:
         r = np.hypot(x, y)
         free = r <= _FREE * (L2 + L3)
         front = np.arctan2(-x, y)
-        solutions, counts, gaps = [], [], []
-        for rho, theta1, up_first in ((r, front, True), (-r, wrap(front + np.pi), False)):
-            t2, t3, count, gap, _ = _two_link(rho, z, L2, L3)
-            order = [0, 1] if up_first else [1, 0]     # the back plane is seen mirrored
-            for col in order:
-                solutions.append(np.stack([theta1, t2[:, col], t3[:, col]], -1))
-            counts.append(count)
-            gaps.append(gap)
-        distinct = np.concatenate([_distinct(c) for c in counts], axis=-1)
-        return _Branches(np.stack(solutions, 1), distinct, gaps[0], free & (gaps[0] == 0),
+        t2, t3, count, gap, _ = _two_link(r, z, L2, L3)     # columns: up, down
+        # Shoulder back: θ1 + π turns the arm plane round, and θ2 -> π - θ2, θ3 -> -θ3
+        # mirror the arm within it, which puts the elbow back where it was (so "up"
+        # stays up).
+        back = wrap(front + np.pi)
+        q = np.empty((len(r), 4, 3))
+        q[:, :2, 0], q[:, 2:, 0] = front[:, None], back[:, None]
+        q[:, :2, 1], q[:, 2:, 1] = t2, wrap(np.pi - t2)
+        q[:, :2, 2], q[:, 2:, 2] = t3, -t3
+        distinct = np.concatenate([_distinct(count)] * 2, axis=-1)
+        return _Branches(q, distinct, gap, free & (gap == 0),
                          _two_link_workspace(L2, L3, "distance from the shoulder"),
                          "on the θ1 axis (x = y = 0), so θ1 is arbitrary")
 

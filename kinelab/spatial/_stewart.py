@@ -63,9 +63,13 @@ def _pose(position: ArrayLike, rotation: Rotation) -> tuple[np.ndarray, np.ndarr
 
 
 def _legs(a: np.ndarray, b: np.ndarray, p: np.ndarray, R: np.ndarray):
-    """Leg vectors (m, N, 3) from base to platform joint, and platform arms R b (m, N, 3)."""
-    arms = np.stack([R @ bk for bk in b])         # loop over the legs, not the samples
-    return p + arms - a[:, None, :], arms
+    """Leg vectors (N, m, 3) from base to platform joint, and platform arms R b (N, m, 3)."""
+    arms = np.einsum("nij,kj->nki", R, b, optimize=True)   # one BLAS product for all
+    return arms + (p[:, None, :] - a), arms
+
+
+def _lengths(legs: np.ndarray) -> np.ndarray:
+    return np.sqrt(np.einsum("nki,nki->nk", legs, legs))
 
 
 def stewart_leg_lengths(base_points: ArrayLike, platform_points: ArrayLike,
@@ -101,19 +105,19 @@ def stewart_leg_lengths(base_points: ArrayLike, platform_points: ArrayLike,
     """
     a, b = _geometry(base_points, platform_points)
     p, R, single = _pose(position, rotation)
-    lengths = np.linalg.norm(_legs(a, b, p, R)[0], axis=-1).T
+    lengths = _lengths(_legs(a, b, p, R)[0])
     return lengths[0] if single else lengths
 
 
 def _jacobian(legs: np.ndarray, arms: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    lengths = np.linalg.norm(legs, axis=-1)                     # (m, N)
+    """Inverse Jacobian (N, m, 6) and leg lengths (N, m)."""
+    lengths = _lengths(legs)
     if (lengths == 0.0).any():
         raise SingularityError(f"a leg has zero length at sample(s) "
-                               f"{indices((lengths == 0.0).any(axis=0))}: its direction is "
+                               f"{indices((lengths == 0.0).any(axis=1))}: its direction is "
                                f"undefined; move the platform off the base joint")
     unit = legs / lengths[..., None]
-    J = np.concatenate([unit, np.cross(arms, unit)], axis=-1)  # (m, N, 6)
-    return np.moveaxis(J, 0, 1), lengths.T
+    return np.concatenate([unit, np.cross(arms, unit)], axis=-1), lengths
 
 
 def stewart_inverse_jacobian(base_points: ArrayLike, platform_points: ArrayLike,
