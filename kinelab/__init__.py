@@ -2,4 +2,4 @@
 from kinelab import errors, model, spatial
 from kinelab.model import Mechanism
 
-__all__ = ["errors", "model", "spatial", "Mechanism"]
+__all__ = ["errors", "model", "Mechanism"]
