@@ -38,25 +38,16 @@ def as_vectors(name: str, value: ArrayLike, d: int) -> np.ndarray:
     return x
 
 
-def as_positive(name: str, value: float) -> float:
-    """``value`` as a float > 0, or a :class:`ModelError` naming ``name``."""
+def as_length(name: str, value: float, *, positive: bool = False) -> float:
+    """``value`` as a finite float in m (> 0 with ``positive``), or a :class:`ModelError`
+    naming ``name``."""
+    kind = "a positive length" if positive else "a finite length"
     try:
         number = float(value)
     except (TypeError, ValueError):
-        raise ModelError(f"{name}: expected a positive length in m, got {value!r}") from None
-    if not (np.isfinite(number) and number > 0.0):
-        raise ModelError(f"{name}: expected a positive length in m, got {number!r}")
-    return number
-
-
-def as_length(name: str, value: float) -> float:
-    """``value`` as a finite float (a length that may be zero or negative)."""
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        raise ModelError(f"{name}: expected a length in m, got {value!r}") from None
-    if not np.isfinite(number):
-        raise ModelError(f"{name}: expected a finite length in m, got {number!r}")
+        raise ModelError(f"{name}: expected {kind} in m, got {value!r}") from None
+    if not np.isfinite(number) or (positive and number <= 0.0):
+        raise ModelError(f"{name}: expected {kind} in m, got {number!r}")
     return number
 
 

@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import AssemblyError, ConvergenceError, ModelError, SingularityError
-from kinelab.spatial._common import as_array, as_length, as_positive, as_vectors, \
+from kinelab.spatial._common import as_array, as_length, as_vectors, \
     check_choice, indices, wrap
 from kinelab.spatial._half_angle import half_angle
 from kinelab.spatial._transforms import rotation
@@ -556,7 +556,7 @@ def rr(l1: float, l2: float) -> SerialRobot:
     array([[ 90., -60.],
            [ 30.,  60.]])
     """
-    l1, l2 = as_positive("l1", l1), as_positive("l2", l2)
+    l1, l2 = as_length("l1", l1, positive=True), as_length("l2", l2, positive=True)
 
     def solve(points):
         t1, t2, count, gap, free = _two_link(points[:, 0], points[:, 1], l1, l2)
@@ -606,7 +606,7 @@ def pr(L: float) -> SerialRobot:
     array([[1.1339746 , 0.52359878],
            [2.8660254 , 2.61799388]])
     """
-    L = as_positive("L", L)
+    L = as_length("L", L, positive=True)
 
     def solve(points):
         x, y = points[:, 0], points[:, 1]
@@ -661,7 +661,7 @@ def rrr(L2: float, L3: float) -> SerialRobot:
            [135.,  90.,  30.],
            [135., 120., -30.]])
     """
-    L2, L3 = as_positive("L2", L2), as_positive("L3", L3)
+    L2, L3 = as_length("L2", L2, positive=True), as_length("L3", L3, positive=True)
 
     def solve(points):
         x, y, z = points.T
@@ -711,7 +711,7 @@ def prr(L1: float, L2: float, D: float = 0.0, H: float = 0.0, V: float = 0.0) ->
     >>> robot.forward([0.7, np.radians(60.0), np.radians(30.0)])
     array([0.6      , 1.8660254, 0.7      ])
     """
-    L1, L2 = as_positive("L1", L1), as_positive("L2", L2)
+    L1, L2 = as_length("L1", L1, positive=True), as_length("L2", L2, positive=True)
     D, H, V = as_length("D", D), as_length("H", H), as_length("V", V)
 
     def solve(points):

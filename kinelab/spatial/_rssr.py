@@ -8,7 +8,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import AssemblyError, ModelError, SingularityError
-from kinelab.spatial._common import as_array, as_length, as_positive, check_choice, indices
+from kinelab.spatial._common import as_array, as_length, check_choice, indices
 from kinelab.spatial._half_angle import half_angle
 
 __all__ = ["RSSR", "RSSRPositions", "RSSRSolution"]
@@ -147,7 +147,7 @@ class RSSR:
     def __post_init__(self):
         for name in ("H1", "L1", "L0", "H3", "L3"):
             object.__setattr__(self, name, as_length(name, getattr(self, name)))
-        object.__setattr__(self, "L2", as_positive("L2", self.L2))
+        object.__setattr__(self, "L2", as_length("L2", self.L2, positive=True))
         if self.H3 == 0.0 and self.L3 == 0.0:
             raise ModelError("H3, L3: the output crank has zero length (B on its axis); give "
                              "B an offset from the output axis")

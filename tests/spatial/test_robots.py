@@ -38,6 +38,12 @@ def far_from_singular(robot, q, ratio=1e-3):
     return sv[..., -1] > ratio * sv[..., 0]
 
 
+def random_poses(robot, seed, n):
+    """n joint vectors with every coordinate in [-2.5, 2.5], and their tool points."""
+    q = np.random.default_rng(seed).uniform(-2.5, 2.5, (n, robot.n))
+    return q, robot.forward(q)
+
+
 @pytest.mark.parametrize("name", ROBOTS)
 @given(data=st.data())
 def test_inverse_of_forward_contains_the_pose(name, data):
@@ -58,9 +64,7 @@ def test_inverse_of_forward_contains_the_pose(name, data):
 @pytest.mark.parametrize("name", ROBOTS)
 def test_batched_inverse_has_every_branch_in_order(name):
     robot = ROBOTS[name]
-    rng = np.random.default_rng(1)
-    q = rng.uniform(-2.5, 2.5, (50, robot.n))
-    points = robot.forward(q)
+    _, points = random_poses(robot, 1, 50)
     all_q = robot.inverse(points)
     assert all_q.shape == (50, len(robot.branches), robot.n)
     for b, branch in enumerate(robot.branches):
@@ -73,8 +77,7 @@ def test_batched_inverse_has_every_branch_in_order(name):
 def test_closed_form_against_newton(name):
     robot = ROBOTS[name]
     rng = np.random.default_rng(2)
-    q = rng.uniform(-2.5, 2.5, (40, robot.n))
-    points = robot.forward(q)
+    _, points = random_poses(robot, 2, 40)
     for branch in robot.branches:
         exact = robot.inverse(points, branch=branch)
         # Near a singular pose two branches are close and Newton may take the other one.
