@@ -138,6 +138,20 @@ class SerialRobot:
     -----
     Shapes: with n joints and d = 2 (planar) or 3, ``q`` of shape (n,) gives points of
     shape (d,) and Jacobians (d, n); ``q`` of shape (N, n) gives (N, d) and (N, d, n).
+
+    Examples
+    --------
+    The RR robot of :func:`rr`, joint by joint (without its closed-form inverse, so
+    :meth:`inverse` uses Newton-Raphson):
+
+    >>> from kinelab.spatial import RobotJoint, SerialRobot
+    >>> arm = SerialRobot("RR by hand", (RobotJoint("R", (0, 0, 1)),
+    ...                                  RobotJoint("R", (0, 0, 1), offset=(1.0, 0, 0))),
+    ...                   tool=(1.0, 0.0, 0.0), planar=True)
+    >>> arm.forward([0.0, np.pi / 2]).round(12)
+    array([1., 1.])
+    >>> len(arm.inverse([1.0, 1.0]))
+    2
     """
 
     name: str
@@ -196,6 +210,13 @@ class SerialRobot:
         Returns
         -------
         ndarray, shape (d,) or (N, d), m
+
+        Examples
+        --------
+        >>> robot = kl.spatial.rr(1.0, 1.0)
+        >>> robot.forward([[0.0, 0.0], [np.pi / 2, -np.pi / 2]]).round(12) + 0.0
+        array([[2., 0.],
+               [1., 1.]])
         """
         q, single = self._joint_array("q", q)
         # From the tool back to the base, x <- Trans(offset_j) Motion_j(q_j) x: vectors
@@ -216,6 +237,14 @@ class SerialRobot:
 
         Column j is ``a_j × (P - p_j)`` for a revolute joint (axis ``a_j`` through
         ``p_j``) and ``a_j`` for a prismatic one.
+
+        Examples
+        --------
+        The RR robot stretched along x: both joints move P along y, by 2 and 1 m/rad.
+
+        >>> kl.spatial.rr(1.0, 1.0).jacobian([0.0, 0.0])
+        array([[0., 0.],
+               [2., 1.]])
         """
         q, single = self._joint_array("q", q)
         J = self._jacobian(*self._chain(q))
@@ -236,10 +265,18 @@ class SerialRobot:
         Returns
         -------
         ToolMotion
+
+        Examples
+        --------
+        The RP arm turning at 1 rad/s while the tool slides out at 1 m/s, 2 m out along x:
+        velocity (1, 2), acceleration (-2, 2) (centripetal -q2 θ̇1², Coriolis 2 θ̇1 q̇2).
+
+        >>> m = kl.spatial.rp().motion([0.0, 2.0], [1.0, 1.0])
+        >>> m.velocity, m.acceleration
+        (array([1., 2.]), array([-2.,  2.]))
         """
         q, single = self._joint_array("q", q)
-        qd = np.broadcast_to(np.asarray(qd, dtype=float), q.shape)
-        qdd = np.broadcast_to(np.asarray(qdd, dtype=float), q.shape)
+        qd, qdd = _like(q, "qd", qd), _like(q, "qdd", qdd)
         chain = self._chain(q)
         J = self._jacobian(*chain)
         velocity = np.einsum("nij,nj->ni", J, qd)
@@ -269,6 +306,15 @@ class SerialRobot:
             With ``on_singular='raise'``, naming the singular samples.
         ModelError
             If the robot does not have as many joints as tool coordinates.
+
+        Examples
+        --------
+        To move the tip of the stretched-out-and-folded RR arm (θ2 = 90°) at 1 m/s along
+        +x, only the elbow turns:
+
+        >>> robot = kl.spatial.rr(1.0, 1.0)
+        >>> robot.inverse_rates([0.0, np.pi / 2], [1.0, 0.0]).qd.round(12) + 0.0
+        array([ 0., -1.])
         """
         check_choice("on_singular", on_singular, ("raise", "flag"))
         if self.n != self.dim:
@@ -331,6 +377,15 @@ class SerialRobot:
             A point with infinitely many solutions (a joint angle is arbitrary there).
         ConvergenceError
             Newton did not converge from ``guess``.
+
+        Examples
+        --------
+        >>> robot = kl.spatial.rr(1.0, 1.0)
+        >>> np.degrees(robot.inverse([1.0, 1.0])).round(9) + 0.0          # up, down
+        array([[ 90., -90.],
+               [  0.,  90.]])
+        >>> np.degrees(robot.inverse([1.0, 1.0], guess=[0.1, 1.2])).round(9) + 0.0
+        array([ 0., 90.])
         """
         points, single = self._point_array(point)
         if guess is not None:
@@ -368,6 +423,11 @@ class SerialRobot:
         Returns
         -------
         ndarray of bool, shape () or (N,)
+
+        Examples
+        --------
+        >>> kl.spatial.rrr(1.0, 1.0).reachable([[0.0, 1.0, 1.0], [0.0, 2.0, 1.0]])
+        array([ True, False])
         """
         points, single = self._point_array(point)
         if self._solver is None:
@@ -485,6 +545,15 @@ class SerialRobot:
                 f"infinitely many solutions: {np.round(points[first], 6).tolist()} lies "
                 f"{solved.free_reason}; move the point off it, or pass guess= to pick one "
                 f"solution by Newton")
+
+
+def _like(q: np.ndarray, name: str, value: ArrayLike) -> np.ndarray:
+    """Joint rates broadcast to the shape of ``q`` (N, n)."""
+    try:
+        return np.broadcast_to(np.asarray(value, dtype=float), q.shape)
+    except ValueError:
+        raise ModelError(f"{name}: expected a number or shape ({q.shape[1]},) or "
+                         f"({q.shape[0]}, {q.shape[1]}) like q, got {np.shape(value)}") from None
 
 
 def _joint_rotation(joint: RobotJoint, angle: np.ndarray) -> np.ndarray:

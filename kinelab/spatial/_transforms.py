@@ -402,6 +402,13 @@ def transform_points(transform: ArrayLike, points: ArrayLike) -> np.ndarray:
     Returns
     -------
     ndarray, shape (..., d)
+
+    Examples
+    --------
+    >>> T = kl.spatial.homogeneous(kl.spatial.rotation("z", np.pi / 2), [1.0, 0.0, 0.0])
+    >>> kl.spatial.transform_points(T, [[1.0, 0.0, 0.0], [0.0, 0.0, 2.0]]).round(12) + 0.0
+    array([[1., 1., 0.],
+           [1., 0., 2.]])
     """
     T = np.asarray(transform, dtype=float)
     d = _dimension(T)

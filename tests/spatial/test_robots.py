@@ -276,6 +276,8 @@ def test_shapes_follow_the_input():
     (lambda: sp.SerialRobot("bad", (sp.RobotJoint("R", (1, 0, 0)),), (1, 0, 0), planar=True),
      ModelError, r"joints\[0\]: a planar robot turns about z"),
     (lambda: sp.RobotJoint("H", (0, 0, 1)), ModelError, r"kind: expected one of 'R', 'P'"),
+    (lambda: ROBOTS["RRR"].motion(np.zeros(3), [1.0, 2.0]), ModelError,
+     r"qd: expected a number or shape \(3,\) or \(1, 3\) like q, got \(2,\)"),
 ])
 def test_bad_arguments(call, error, message):
     with pytest.raises(error, match=message):
