@@ -12,6 +12,7 @@ from kinelab.kinematics import _kernel as k
 from kinelab.kinematics._plan import Plan, build_plan
 from kinelab.kinematics._solution import KinematicSolution
 from kinelab.model import Mechanism
+from kinelab.solvers import bisect
 
 __all__ = ["analyze", "plan", "reachable_ranges"]
 
@@ -137,13 +138,7 @@ def reachable_ranges(mechanism: Mechanism, *, samples: int = 1441,
     inside = ok[edges]          # True: the bound is between an assembled sample and a failing one
     a = np.where(inside, lo_ok, hi_ok)   # assembled side
     b = np.where(inside, hi_ok, lo_ok)   # failing side
-    for _ in range(60):
-        mid = 0.5 * (a + b)
-        good = _assembles(p, mid)
-        a = np.where(good, mid, a)
-        b = np.where(good, b, mid)
-        if np.all(np.abs(b - a) < 1e-13 * max(1.0, half)):
-            break
+    a, b = bisect(lambda x: _assembles(p, x), a, b)
     bounds = list(zip(edges.tolist(), a.tolist()))
     ranges = []
     start = q0 - half if ok[0] else None
