@@ -16,7 +16,7 @@ import numpy as np
 
 import kinelab as kl
 
-BUDGET = dict(runs=3, maxiter=300, popsize=15, seed=0)
+BUDGET = dict(runs=3, maxiter=300, popsize=15, seed=0, min_transmission_angle=np.radians(20.0))
 
 
 def _tasks():
@@ -35,7 +35,8 @@ def _tasks():
 
 def path_tasks():
     print(f"path generation: runs={BUDGET['runs']}, maxiter={BUDGET['maxiter']}, "
-          f"popsize={BUDGET['popsize']}, seed={BUDGET['seed']}")
+          f"popsize={BUDGET['popsize']}, seed={BUDGET['seed']}, transmission angle >= "
+          f"{np.degrees(BUDGET['min_transmission_angle']):.0f} deg")
     print(f"{'task':34s} {'time [s]':>9s} {'rms [m]':>10s} {'max [m]':>10s} "
           f"{'search only':>12s} {'class':>14s} {'min mu [deg]':>13s}")
     for name, pts in _tasks():

@@ -21,7 +21,7 @@ from kinelab.synthesis._burmester import (BurmesterCurves, burmester_curves, cen
                                           centre_points, four_positions)
 from kinelab.synthesis._function import (FunctionSolution, chebyshev_points, freudenstein,
                                          function_generation)
-from kinelab.synthesis._linkage import fourbar_model, transmission_angle
+from kinelab.synthesis._linkage import fourbar_model
 from kinelab.synthesis._motion import (MotionSolution, TwoPositions, three_positions,
                                        two_positions)
 from kinelab.synthesis._path import PathSolution, coupler_curves, path_generation
@@ -34,4 +34,4 @@ __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "four_positions", "centre_points", "centre_point_cubic", "burmester_curves",
            "BurmesterCurves", "SolutionList", "function_generation", "FunctionSolution",
            "chebyshev_points", "freudenstein", "path_generation", "PathSolution",
-           "coupler_curves", "fourbar_model", "transmission_angle"]
+           "coupler_curves", "fourbar_model"]

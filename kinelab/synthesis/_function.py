@@ -21,10 +21,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError
-from kinelab.kinematics import analyze
+from kinelab.kinematics import analyze, transmission_angle
 from kinelab.mechanisms import Grashof
 from kinelab.model import Mechanism
-from kinelab.synthesis._linkage import fourbar_model, model_grashof, transmission_angle
+from kinelab.synthesis._linkage import CheckedLinkage, fourbar_model, model_grashof
 from kinelab.synthesis._positions import wrap
 
 __all__ = ["chebyshev_points", "freudenstein", "FunctionSolution", "function_generation"]
@@ -91,7 +91,7 @@ def freudenstein(theta2: ArrayLike, theta4: ArrayLike) -> np.ndarray:
 
 
 @dataclass(frozen=True, eq=False)
-class FunctionSolution:
+class FunctionSolution(CheckedLinkage):
     """A four-bar function generator and its structural error.
 
     Attributes
@@ -142,18 +142,9 @@ class FunctionSolution:
         """Largest |structural error| over [x0, xf], units of y."""
         return float(np.max(np.abs(self.structural_error)))
 
-    @property
-    def valid(self) -> bool:
-        return not self.defects
-
-    @property
-    def lengths(self) -> dict[str, float]:
-        """``ground, crank, coupler, rocker``, m."""
-        return {k: self.model.parameters[k] for k in ("ground", "crank", "coupler", "rocker")}
-
     def __repr__(self) -> str:
         L = ", ".join(f"{k}={v:.6g}" for k, v in self.lengths.items())
-        state = "valid" if self.valid else "branch defect"
+        state = self._state()
         return (f"FunctionSolution({L}, max structural error={self.max_structural_error:.3g}, "
                 f"{state})")
 

@@ -23,12 +23,12 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError
-from kinelab.kinematics import KinematicSolution, analyze
+from kinelab.kinematics import KinematicSolution, analyze, transmission_angle
 from kinelab.mechanisms import Grashof, grashof
 from kinelab.model import Input, Joint, Link, Mechanism, Point
 from kinelab.synthesis._positions import as_xy, cross, fmt
 
-__all__ = ["fourbar_model", "transmission_angle", "Travel", "travel"]
+__all__ = ["fourbar_model", "CheckedLinkage", "Travel", "travel"]
 
 _SWEEP_STEP = math.radians(0.5)   # crank step of the sweeps that look for limit positions
 _DEGENERATE = 1e-12               # relative length below which a link has no length
@@ -118,16 +118,26 @@ def model_grashof(model: Mechanism) -> Grashof:
     return grashof(p["ground"], p["crank"], p["coupler"], p["rocker"])
 
 
-def transmission_angle(sol: KinematicSolution) -> np.ndarray:
-    """Transmission angle of a four-bar at each sample, folded to [0, pi/2], rad.
+class CheckedLinkage:
+    """What every synthesized four-bar result offers (it has ``model`` and ``defects``)."""
 
-    The angle mu at B between the coupler (B -> A) and the rocker (B -> O4); a linkage
-    transmits force worst where mu is near 0 or pi, so ``min(mu, pi - mu)`` is returned.
-    """
-    A, B, O4 = sol.position("A"), sol.position("B"), sol.position("O4")
-    u, v = A - B, O4 - B
-    mu = np.arctan2(np.abs(cross(u, v)), np.sum(u * v, axis=-1))
-    return np.minimum(mu, np.pi - mu)
+    model: Mechanism
+    defects: tuple[str, ...]
+
+    @property
+    def valid(self) -> bool:
+        """No defect: the engine reaches every prescribed configuration, in order, on one
+        branch."""
+        return not self.defects
+
+    @property
+    def lengths(self) -> dict[str, float]:
+        """The link lengths ``ground, crank, coupler, rocker``, m."""
+        return {k: self.model.parameters[k] for k in ("ground", "crank", "coupler", "rocker")}
+
+    def _state(self) -> str:
+        """'valid', or the names of the defects (for reprs)."""
+        return "valid" if self.valid else "; ".join(d.split(":")[0] for d in self.defects)
 
 
 @dataclass(frozen=True, eq=False)

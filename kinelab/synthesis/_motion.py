@@ -13,8 +13,8 @@ from numpy.typing import ArrayLike
 from kinelab.errors import ModelError
 from kinelab.mechanisms import Grashof
 from kinelab.model import Mechanism
-from kinelab.synthesis._linkage import (at_inputs, finite_or_inf, fourbar_model, model_grashof,
-                                        travel)
+from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, finite_or_inf, fourbar_model,
+                                        model_grashof, travel)
 from kinelab.synthesis._pivots import fixed_pivot, moving_pivot
 from kinelab.synthesis._positions import Positions, as_positions, as_xy, poles, wrap
 
@@ -24,7 +24,7 @@ _REACHED = 1e-8   # relative pose error under which the engine reaches a prescri
 
 
 @dataclass(frozen=True, eq=False)
-class MotionSolution:
+class MotionSolution(CheckedLinkage):
     """A four-bar that guides its coupler through prescribed positions, with its checks.
 
     Attributes
@@ -80,19 +80,9 @@ class MotionSolution:
     angle_errors: np.ndarray
     defects: tuple[str, ...]
 
-    @property
-    def valid(self) -> bool:
-        """No defect, and the engine reaches every prescribed pose."""
-        return not self.defects
-
-    @property
-    def lengths(self) -> dict[str, float]:
-        """The link lengths ``ground, crank, coupler, rocker``, m."""
-        return {k: self.model.parameters[k] for k in ("ground", "crank", "coupler", "rocker")}
-
     def __repr__(self) -> str:
         f = np.array2string
-        state = "valid" if self.valid else "; ".join(d.split(":")[0] for d in self.defects)
+        state = self._state()
         return (f"MotionSolution(A0={f(self.A0, precision=6)}, B0={f(self.B0, precision=6)}, "
                 f"A1={f(self.A1, precision=6)}, B1={f(self.B1, precision=6)}, "
                 f"{self.grashof.kind}, {state})")

@@ -22,7 +22,8 @@ from numpy.typing import ArrayLike
 from kinelab.errors import ModelError
 from kinelab.mechanisms import Grashof
 from kinelab.model import Mechanism
-from kinelab.synthesis._linkage import at_inputs, fourbar_model, model_grashof, travel
+from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, fourbar_model, model_grashof,
+                                        travel)
 from kinelab.synthesis._results import SolutionList
 
 __all__ = ["coupler_curves", "PathSolution", "path_generation"]
@@ -167,7 +168,7 @@ class _Objective:
 
 
 @dataclass(frozen=True, eq=False)
-class PathSolution:
+class PathSolution(CheckedLinkage):
     """A four-bar whose coupler point passes near prescribed points, with its checks.
 
     Attributes
@@ -221,17 +222,8 @@ class PathSolution:
         """Largest distance of a target from the coupler curve, m."""
         return float(self.errors.max())
 
-    @property
-    def valid(self) -> bool:
-        return not self.defects
-
-    @property
-    def lengths(self) -> dict[str, float]:
-        """``ground, crank, coupler, rocker``, m."""
-        return {k: self.model.parameters[k] for k in ("ground", "crank", "coupler", "rocker")}
-
     def __repr__(self) -> str:
-        state = "valid" if self.valid else "; ".join(d.split(":")[0] for d in self.defects)
+        state = self._state()
         return (f"PathSolution(rms error={self.rms_error:.3g} m, max error={self.max_error:.3g} m, "
                 f"{self.grashof.kind}, {state})")
 
