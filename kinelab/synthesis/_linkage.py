@@ -169,11 +169,19 @@ def travel(model: Mechanism, q: np.ndarray,
     reach = {}
     deltas = {}
     mu_min = {}
+    # The distance from the crank pin to O4 is monotonic between its extremes, where the
+    # crank points at O4 or away from it; so is the transmission angle.  Sampling those two
+    # angles as well makes the sweep exact: a limit position, however narrow the gap it
+    # opens, and the smallest transmission angle are both met at a sample.
+    g = np.subtract(model.point("O4").xy, model.point("O2").xy)
+    extremes = math.atan2(g[1], g[0]) + np.array([0.0, np.pi])
     for d in (1, -1):
         delta = np.mod(d * (q - q[0]), 2 * np.pi)
         delta[0] = 0.0
+        turns = np.mod(d * (extremes - q[0]), 2 * np.pi)
         grid = np.unique(np.concatenate([
-            np.linspace(0.0, delta.max(), max(2, math.ceil(delta.max() / _SWEEP_STEP) + 1)), delta]))
+            np.linspace(0.0, delta.max(), max(2, math.ceil(delta.max() / _SWEEP_STEP) + 1)),
+            delta, turns[turns < delta.max()]]))
         sol = analyze(model, q[0] + d * grid, unreachable="mask", at_singular="flag")
         sign0 = np.sign(sol.det_J[0])
         good = sol.assembled & ~sol.singular & (np.sign(sol.det_J) == sign0)

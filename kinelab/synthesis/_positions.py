@@ -329,10 +329,3 @@ def pole(points, angles=None, *, degrees: bool = False) -> np.ndarray:
     if pos.n != 2:
         raise ModelError(f"points: pole() takes two positions, got {pos.n}; use poles() for more")
     return poles(pos)[1, 2]
-
-
-def size_of(pos: Positions, *pts: np.ndarray) -> float:
-    """A length scale of a task and the pivots chosen for it (m)."""
-    allp = np.vstack([pos.points, *[np.reshape(p, (-1, 2)) for p in pts]])
-    return max(float(np.ptp(allp, axis=0).max()), 1e-300)
-

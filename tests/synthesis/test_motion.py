@@ -162,3 +162,18 @@ def test_no_finite_pivot_is_an_error():
 def test_three_positions_wants_three():
     with pytest.raises(ModelError, match=r"points: expected three positions, got 4; use four_positions"):
         three_positions(np.zeros((4, 2)) + np.arange(4)[:, None], [0, 1, 2, 3], (0, 0), (1, 1))
+
+
+def test_a_limit_position_narrower_than_the_sweep_step_is_found():
+    """Crank 1, ground 3, coupler 2.5, rocker 1.499999: the loop cannot close for a crank angle
+    within 0.094 deg of 180 deg (crank pin 4 from O4, coupler + rocker 3.999999), a gap
+    narrower than the sweep's 0.5 deg steps.  The crank angles 1.9, pi - 0.01 and -2 rad are
+    then met in order only through that gap: an order defect."""
+    from kinelab.synthesis._motion import motion_solution
+    fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=2.5, rocker=1.499999,
+                               coupler_point=(1.5, 1.0))
+    s = kl.analyze(fb, q=np.array([1.9, np.pi - 0.01, -2.0]))
+    sol = motion_solution(Positions(s.position("P"), s.angle("coupler")), (0, 0), (3, 0),
+                          s.position("A")[0], s.position("B")[0])
+    assert sol.order_defect and not sol.branch_defect
+    assert sol.position_errors.max() < 1e-12
