@@ -258,18 +258,22 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
     out_off = np.pi if c < 0 else 0.0
 
     xs = np.linspace(x0, xf, samples)
-    grid = np.concatenate([xs, x])
+    # also where the crank points along the ground line (crank pin nearest and farthest from
+    # O4): a limit position or the worst transmission angle in between cannot be missed
+    k = np.arange(np.floor((min(t2s, t2e) + q_off) / np.pi), np.ceil((max(t2s, t2e) + q_off) / np.pi) + 1)
+    along = (k * np.pi - q_off - t2s) / (t2e - t2s)
+    turns = x0 + along[(along > 0) & (along < 1)] * (xf - x0)
+    grid = np.concatenate([xs, x, turns])
     sol = analyze(model, theta2(grid) + q_off, unreachable="mask", at_singular="flag")
     miss = wrap(sol.angle("rocker") - out_off - theta4(grid))
     error = np.where(sol.assembled, miss * (yf - y0) / (t4e - t4s), np.inf)
-    order = np.argsort(grid, kind="stable")
-    sign0 = np.sign(sol.det_J[np.argmin(np.abs(grid - x[0]))])
-    good = (sol.assembled & ~sol.singular & (np.sign(sol.det_J) == sign0))[order]
+    sign0 = np.sign(sol.det_J[samples])            # at the first precision point (the sketch)
+    good = sol.assembled & ~sol.singular & (np.sign(sol.det_J) == sign0)
     defects = []
     # three points are met exactly, so a miss there means the other branch; with more (least
     # squares) the sweep alone decides
     exact = x.size == 3
-    if not good.all() or (exact and np.any(np.abs(miss[samples:]) > _REACHED)):
+    if not good.all() or (exact and np.any(np.abs(miss[samples:samples + x.size]) > _REACHED)):
         defects.append("branch defect: the linkage cannot move over the whole input range on the "
                        "branch of the first precision point (a limit or dead-centre position, "
                        "or a precision point on the other branch)")

@@ -177,3 +177,19 @@ def test_a_limit_position_narrower_than_the_sweep_step_is_found():
                           s.position("A")[0], s.position("B")[0])
     assert sol.order_defect and not sol.branch_defect
     assert sol.position_errors.max() < 1e-12
+
+
+@given(three_poses(), st.tuples(coord, coord), st.tuples(coord, coord))
+def test_every_three_position_linkage_is_checked_by_the_engine(pos, A0, B0):
+    """Random tasks and fixed pivots: the synthesized model, moved by the engine, puts the
+    coupler on every pose unless its checks report a branch defect."""
+    try:
+        sol = three_positions(pos, A0=A0, B0=B0)
+    except ModelError:              # a pivot at infinity, or two pivots in one place
+        assume(False)
+    assume(max(np.abs(sol.A1).max(), np.abs(sol.B1).max()) < 1e2)
+    assert sol.valid == (not sol.branch_defect and not sol.order_defect)
+    if not sol.branch_defect:
+        dpos, dang = engine_pose_errors(sol.model, sol.q, pos.points, pos.alpha)
+        # 1e-9 relative to the linkage: the pivots solve 2 x 2 systems of this conditioning
+        assert dpos.max() < 1e-9 * (1.0 + max(sol.lengths.values())) and dang.max() < 1e-9
