@@ -59,9 +59,12 @@ def test_notes_003_table_7():
     sol = _table_7_solution(-20.195 * CM, -29.167 * CM)
     got = np.concatenate([sol.A0, sol.B0, sol.A1, sol.B1])
 
-    def f(x):
-        s = _table_7_solution(*x)
-        return np.concatenate([s.A0, s.B0, s.A1, s.B1])
+    def f(x):          # the same pivots without building and checking all nine linkages
+        A0, B0 = (min(centre_points(P7, ALPHA7, a0x=v), key=lambda c: abs(c[1] - t))
+                  for v, t in zip(x, TABLE_7[[1, 3]]))
+        return np.concatenate([A0, B0, moving_pivot(P7, ALPHA7, fixed=A0),
+                               moving_pivot(P7, ALPHA7, fixed=B0)])
+    np.testing.assert_allclose(f([-20.195 * CM, -29.167 * CM]), got, atol=1e-12)
     # a0x and b0x are printed to 0.001 cm, and so is every output
     tol = rounding_bound(f, [-20.195 * CM, -29.167 * CM], [0.0005 * CM] * 2) + 0.0005 * CM
     assert np.all(np.abs(got - TABLE_7) <= tol + 1e-12)
@@ -81,9 +84,10 @@ HALF_8 = np.r_[[0.005] * 6, [0.005] * 2, 0.005, 0.05, 0.05, 0.05]
 
 
 def _exercise(x):
-    P, alpha, A0, B0 = x[:6].reshape(3, 2), x[6:8], x[8:10], x[10:12]
-    s = three_positions(P * CM, alpha, A0 * CM, B0 * CM, degrees=True)
-    return np.concatenate([s.A1, s.B1]) / CM
+    """A1 and B1 (cm) of the exercise, by eq. 68, from its inputs (cm and deg)."""
+    P, alpha, A0, B0 = x[:6].reshape(3, 2) * CM, np.radians(x[6:8]), x[8:10], x[10:12]
+    return np.concatenate([moving_pivot(P, alpha, fixed=A0 * CM),
+                           moving_pivot(P, alpha, fixed=B0 * CM)]) / CM
 
 
 def test_notes_003_table_10_within_what_its_rounded_inputs_allow():
@@ -97,6 +101,7 @@ def test_notes_003_table_10_within_what_its_rounded_inputs_allow():
     assert np.all(np.abs(exact - TABLE_10) <= tol)
     assert np.abs(exact - TABLE_10)[0] > 0.25          # the slip the tolerance has to absorb
     sol = three_positions(P8 * CM, ALPHA8, A0_8 * CM, B0_8 * CM, degrees=True)
+    np.testing.assert_allclose(np.concatenate([sol.A1, sol.B1]) / CM, exact, atol=1e-12)
     assert sol.valid
     dpos, dang = engine_pose_errors(sol.model, sol.q, sol.points, sol.alpha)
     assert dpos.max() < 1e-9 and dang.max() < 1e-9
