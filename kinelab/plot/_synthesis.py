@@ -149,7 +149,7 @@ def burmester_curves(curves: BurmesterCurves, *, ax=None, positions=None, soluti
     """
     ax = _axes(ax)
     for k in range(2):
-        c = np.where(curves.valid[k][:, None], curves.centre[k], np.nan)
+        c = np.where(curves.valid[k][:, None], curves.center[k], np.nan)
         m = np.where(curves.valid[k][:, None], curves.circle[k], np.nan)
         ax.plot(*c.T, "-", color="tab:blue", lw=1.2, label="centre points (A0)" if k == 0 else None)
         ax.plot(*m.T, "-", color="tab:red", lw=1.2, label="circle points (A1)" if k == 0 else None)
@@ -171,7 +171,7 @@ def burmester_curves(curves: BurmesterCurves, *, ax=None, positions=None, soluti
         keep += [positions.points, p.P[p.finite]]
     allp = np.vstack(keep)
     if len(allp) < 2:
-        allp = np.percentile(np.vstack([curves.centre[curves.valid], curves.circle[curves.valid]]),
+        allp = np.percentile(np.vstack([curves.center[curves.valid], curves.circle[curves.valid]]),
                              [10, 90], axis=0)
     lo, hi = allp.min(axis=0), allp.max(axis=0)
     pad = 0.25 * (hi - lo).max()

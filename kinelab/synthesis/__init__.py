@@ -17,8 +17,8 @@ All lengths in metres and angles in radians (``degrees=True`` where people type 
 The notes' examples in centimetres are reproduced in metres: the synthesis is
 scale-free, so every length simply scales by 0.01.
 """
-from kinelab.synthesis._burmester import (BurmesterCurves, burmester_curves, centre_point_cubic,
-                                          centre_points, four_positions)
+from kinelab.synthesis._burmester import (BurmesterCurves, burmester_curves, center_point_cubic,
+                                          center_points, four_positions)
 from kinelab.synthesis._function import (FunctionSolution, chebyshev_points, freudenstein,
                                          function_generation)
 from kinelab.synthesis._linkage import fourbar_model
@@ -31,7 +31,7 @@ from kinelab.synthesis._results import SolutionList
 
 __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "two_positions", "TwoPositions", "three_positions", "MotionSolution",
-           "four_positions", "centre_points", "centre_point_cubic", "burmester_curves",
+           "four_positions", "center_points", "center_point_cubic", "burmester_curves",
            "BurmesterCurves", "SolutionList", "function_generation", "FunctionSolution",
            "chebyshev_points", "freudenstein", "path_generation", "PathSolution",
            "coupler_curves", "fourbar_model"]

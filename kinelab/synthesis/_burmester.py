@@ -31,7 +31,7 @@ from kinelab.synthesis._pivots import solve_rows, suh_radcliffe_rows
 from kinelab.synthesis._positions import Positions, as_positions, fmt
 from kinelab.synthesis._results import SolutionList
 
-__all__ = ["centre_points", "centre_point_cubic", "BurmesterCurves", "burmester_curves",
+__all__ = ["center_points", "center_point_cubic", "BurmesterCurves", "burmester_curves",
            "four_positions"]
 
 _IMAG = 1e-7       # |imaginary part| (relative, normalised task) below which a root is real
@@ -52,7 +52,7 @@ def _normalised(pos: Positions) -> tuple[Positions, np.ndarray, float]:
     return Positions((pos.points - origin) / L, pos.alpha), origin, L
 
 
-def centre_point_cubic(points, angles=None, a0x: ArrayLike = 0.0, *,
+def center_point_cubic(points, angles=None, a0x: ArrayLike = 0.0, *,
                        degrees: bool = False) -> np.ndarray:
     """Coefficients of the compatibility determinant (seed 003, eq. 71) as a cubic in a0y.
 
@@ -74,7 +74,7 @@ def centre_point_cubic(points, angles=None, a0x: ArrayLike = 0.0, *,
     The §6.7 example (in cm, the equation is homogeneous in the length unit):
 
     >>> P, alpha = [(0, 0), (5, 8), (10, 15), (18, 20)], np.radians([10, 20, 30])
-    >>> c = kl.synthesis.centre_point_cubic(P, alpha, a0x=-20.195)
+    >>> c = kl.synthesis.center_point_cubic(P, alpha, a0x=-20.195)
     >>> float(np.polyval(c, 25.56533151756147) / np.abs(c).max()) < 1e-9
     True
     """
@@ -113,7 +113,7 @@ def _real_roots(c: np.ndarray) -> list[np.ndarray]:
     return out
 
 
-def centre_points(points, angles=None, a0x: float = 0.0, *, degrees: bool = False) -> np.ndarray:
+def center_points(points, angles=None, a0x: float = 0.0, *, degrees: bool = False) -> np.ndarray:
     """Every centre point with a given abscissa: all real roots a0y of eq. 71.
 
     Parameters
@@ -139,14 +139,14 @@ def centre_points(points, angles=None, a0x: float = 0.0, *, degrees: bool = Fals
     Seed 003 §6.7 (cm): three real roots, the middle one is Table 7's 25.566:
 
     >>> P, alpha = [(0, 0), (5, 8), (10, 15), (18, 20)], np.radians([10, 20, 30])
-    >>> kl.synthesis.centre_points(P, alpha, a0x=-20.195)[:, 1].round(3)
+    >>> kl.synthesis.center_points(P, alpha, a0x=-20.195)[:, 1].round(3)
     array([-49.678,  25.565,  54.167])
     """
     pos = _four(points, angles, degrees)
-    return _centre_points(pos, np.array([float(a0x)]))[0]
+    return _center_points(pos, np.array([float(a0x)]))[0]
 
 
-def _centre_points(pos: Positions, xs: np.ndarray) -> list[np.ndarray]:
+def _center_points(pos: Positions, xs: np.ndarray) -> list[np.ndarray]:
     npos, origin, L = _normalised(pos)
     roots = _real_roots(_cubic(npos, (xs - origin[0]) / L))
     out = []
@@ -167,18 +167,18 @@ class BurmesterCurves:
     ----------
     beta2 : ndarray, shape (m,)
         Rotation of the crank from position 1 to 2, rad: the parameter of the tracing.
-    centre : ndarray, shape (2, m, 2)
+    center : ndarray, shape (2, m, 2)
         Centre points A0 (fixed pivots), m: two tracks, one per closure of the
         compatibility triangle.
     circle : ndarray, shape (2, m, 2)
         The matching circle points A1 (moving pivots in position 1), m.
     valid : ndarray of bool, shape (2, m)
         Where the track exists (the triangle closes and the dyad is not the trivial
-        one); elsewhere ``centre`` and ``circle`` hold NaN.
+        one); elsewhere ``center`` and ``circle`` hold NaN.
     """
 
     beta2: np.ndarray
-    centre: np.ndarray
+    center: np.ndarray
     circle: np.ndarray
     valid: np.ndarray
 
@@ -205,7 +205,7 @@ def burmester_curves(points, angles=None, *, samples: int = 1441,
     --------
     >>> P, alpha = [(0, 0), (5, 8), (10, 15), (18, 20)], np.radians([10, 20, 30])
     >>> cur = kl.synthesis.burmester_curves(P, alpha, samples=361)
-    >>> cur.centre.shape, bool(cur.valid.any())
+    >>> cur.center.shape, bool(cur.valid.any())
     ((2, 361, 2), True)
     """
     pos = _four(points, angles, degrees)
@@ -227,7 +227,7 @@ def burmester_curves(points, angles=None, *, samples: int = 1441,
     h2 = a * a - p * p
     closes = (c > 0) & (h2 >= 0)
     h = np.sqrt(np.where(closes, h2, 0.0))
-    centre = np.full((2, samples, 2), np.nan)
+    center = np.full((2, samples, 2), np.nan)
     circle = np.full((2, samples, 2), np.nan)
     valid = np.zeros((2, samples), bool)
     for k, sgn in enumerate((1.0, -1.0)):
@@ -237,12 +237,12 @@ def burmester_curves(points, angles=None, *, samples: int = 1441,
         ok = closes & (cond > _TRIVIAL)
         A1 = -Z                                                            # P1 = 0 here
         A0 = A1 - W
-        centre[k, ok] = origin + L * np.stack([A0.real, A0.imag], -1)[ok]
+        center[k, ok] = origin + L * np.stack([A0.real, A0.imag], -1)[ok]
         circle[k, ok] = origin + L * np.stack([A1.real, A1.imag], -1)[ok]
         valid[k] = ok
-    for arr in (beta2, centre, circle, valid):
+    for arr in (beta2, center, circle, valid):
         arr.setflags(write=False)
-    return BurmesterCurves(beta2, centre, circle, valid)
+    return BurmesterCurves(beta2, center, circle, valid)
 
 
 def _dyads(e, ea, delta):
@@ -311,7 +311,7 @@ def four_positions(points, angles=None, a0x: float = None, b0x: float = None, *,
         raise ModelError(problems)
     roots = {}
     for name, x in (("A", float(a0x)), ("B", float(b0x))):
-        roots[name] = _centre_points(pos, np.array([x]))[0]
+        roots[name] = _center_points(pos, np.array([x]))[0]
     reasons = [f"no centre point has {n.lower()}0x = {float(v):.6g} m (the centre-point curve "
                "does not cross that vertical)" for n, v in (("A", a0x), ("B", b0x))
                if roots[n].shape[0] == 0]

@@ -378,11 +378,14 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 300, pop
                          ("samples", samples, 24)):
         if not (isinstance(v, (int, np.integer)) and v >= low):
             raise ModelError(f"{name}: expected an integer >= {low}, got {v!r}")
+    mu = min_transmission_angle
+    if not (isinstance(mu, (int, float)) and 0.0 <= mu < np.pi / 2):
+        raise ModelError(f"min_transmission_angle: expected an angle in [0, pi/2) rad, got {mu!r}")
     from scipy.optimize import differential_evolution
 
-    centre = T.mean(axis=0)
-    scale = float(np.linalg.norm(T - centre, axis=1).max())
-    obj = _Objective((T - centre) / scale, samples, float(min_transmission_angle))
+    center = T.mean(axis=0)
+    scale = float(np.linalg.norm(T - center, axis=1).max())
+    obj = _Objective((T - center) / scale, samples, float(min_transmission_angle))
     bounds = [(-3, 3)] * 4 + [(0.05, 3.0), (0.05, 6.0), (0.05, 6.0), (-4, 4), (-4, 4), (-1, 1)]
     found, reasons = [], []
     for r in range(runs):
@@ -400,7 +403,7 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 300, pop
         sol = None
         for d, q in candidates:
             phys = d.copy()
-            phys[0:4] = (centre + scale * d[0:4].reshape(2, 2)).ravel()
+            phys[0:4] = (center + scale * d[0:4].reshape(2, 2)).ravel()
             phys[4:9] *= scale
             try:
                 s = _solution(T, phys, np.asarray(q, float).copy())

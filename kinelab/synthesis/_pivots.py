@@ -69,7 +69,7 @@ def solve_rows(rows: np.ndarray, scale: float, what: str, why_singular: str) -> 
             raise ModelError(f"{what}: with {rows.shape[0] + 1} positions the pivot must satisfy "
                              f"the compatibility condition (seed 003, eq. 71), and this one misses "
                              f"it by {res.max():.3g} (relative); choose it on the centre-point "
-                             "curve (see four_positions / centre_points)")
+                             "curve (see four_positions / center_points)")
     return x
 
 

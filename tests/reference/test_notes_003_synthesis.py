@@ -11,7 +11,7 @@ synthesis, summed in absolute value as a worst case).
 import numpy as np
 import pytest
 
-from kinelab.synthesis import centre_points, four_positions, moving_pivot, three_positions
+from kinelab.synthesis import center_points, four_positions, moving_pivot, three_positions
 from tests.synthesis.helpers import engine_pose_errors
 
 CM = 0.01
@@ -45,8 +45,8 @@ TABLE_7 = np.array([-20.195, 25.566, -29.167, 42.355, -25.349, 25.379, -37.086, 
 
 def test_notes_003_eq_71_has_three_real_roots_for_each_abscissa():
     # the determinant condition is a cubic in a0y; here all three roots are real
-    assert len(centre_points(P7, ALPHA7, a0x=-20.195 * CM)) == 3
-    assert len(centre_points(P7, ALPHA7, a0x=-29.167 * CM)) == 3
+    assert len(center_points(P7, ALPHA7, a0x=-20.195 * CM)) == 3
+    assert len(center_points(P7, ALPHA7, a0x=-29.167 * CM)) == 3
     assert len(four_positions(P7, ALPHA7, -20.195 * CM, -29.167 * CM)) == 9
 
 
@@ -60,7 +60,7 @@ def test_notes_003_table_7():
     got = np.concatenate([sol.A0, sol.B0, sol.A1, sol.B1])
 
     def f(x):          # the same pivots without building and checking all nine linkages
-        A0, B0 = (min(centre_points(P7, ALPHA7, a0x=v), key=lambda c: abs(c[1] - t))
+        A0, B0 = (min(center_points(P7, ALPHA7, a0x=v), key=lambda c: abs(c[1] - t))
                   for v, t in zip(x, TABLE_7[[1, 3]]))
         return np.concatenate([A0, B0, moving_pivot(P7, ALPHA7, fixed=A0),
                                moving_pivot(P7, ALPHA7, fixed=B0)])

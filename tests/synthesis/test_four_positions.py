@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from kinelab.errors import ModelError
-from kinelab.synthesis import (Positions, burmester_curves, centre_point_cubic, centre_points,
+from kinelab.synthesis import (Positions, burmester_curves, center_point_cubic, center_points,
                                four_positions, moving_pivot, poles)
 from kinelab.synthesis._pivots import suh_radcliffe_rows
 from tests.synthesis.helpers import catalogue_poses, engine_pose_errors
@@ -20,7 +20,7 @@ def normalised_det(pos, A0):
 def test_cubic_coefficients_against_the_determinant():
     """The multilinear expansion against numpy's determinant at arbitrary a0y."""
     x = np.array([-2.0, 0.3, 4.0])
-    c = centre_point_cubic(POS, a0x=x)
+    c = center_point_cubic(POS, a0x=x)
     for y in (-3.0, 0.0, 1.7, 5.0):
         rows = suh_radcliffe_rows(POS, np.stack([x, np.full(3, y)], -1))
         det = np.linalg.det(rows)
@@ -28,9 +28,9 @@ def test_cubic_coefficients_against_the_determinant():
         np.testing.assert_array_less(np.abs(np.polyval(c.T, y) - det), 1e-12 * scale)
 
 
-def test_centre_points_are_centres_of_circles():
+def test_center_points_are_centers_of_circles():
     for x in (-1.0, 0.0, 0.5, 3.0):
-        for A0 in centre_points(POS, a0x=x):
+        for A0 in center_points(POS, a0x=x):
             A1 = moving_pivot(POS, fixed=A0)
             r = np.linalg.norm(POS.carry(A1) - A0, axis=1)
             assert np.ptp(r) <= 1e-10 * r.max()         # |A_j - A0| all equal (eq. 69)
@@ -41,19 +41,19 @@ def test_traced_curves_against_the_determinant_and_the_linear_system():
     and its circle point must be the Suh-Radcliffe moving pivot."""
     cur = burmester_curves(POS, samples=361)
     assert cur.valid.sum() > 300
-    A0 = cur.centre[cur.valid]
+    A0 = cur.center[cur.valid]
     assert np.abs(normalised_det(POS, A0)).max() < 1e-12
     near = np.abs(A0).max(-1) < 20            # far points are ill-conditioned for eq. 70
     A1 = np.array([moving_pivot(POS, fixed=a) for a in A0[near]])
     np.testing.assert_allclose(A1, cur.circle[cur.valid][near], atol=1e-8)
 
 
-def test_centre_points_see_opposite_pole_sides_under_equal_angles():
+def test_center_points_see_opposite_pole_sides_under_equal_angles():
     """Burmester (seed 003 §6.3, fig. 54): a centre point sees the opposite sides P13P23 and
     P14P24 of the pole quadrilateral under the same angle (mod pi)."""
     p = poles(POS)
     M = burmester_curves(POS, samples=181)
-    M = M.centre[M.valid]
+    M = M.center[M.valid]
 
     def seen(a, b):
         u, v = a - M, b - M
@@ -62,7 +62,7 @@ def test_centre_points_see_opposite_pole_sides_under_equal_angles():
     assert np.abs(np.sin(diff)).max() < 1e-9
 
 
-def test_poles_lie_on_the_centre_point_curve():
+def test_poles_lie_on_the_center_point_curve():
     p = poles(POS)
     assert np.abs(normalised_det(POS, p.P)).max() < 1e-12
 
@@ -93,7 +93,7 @@ def test_order_defect_is_found():
     assert own.direction == 0 and own.position_errors.max() < 1e-9
 
 
-def test_no_centre_point_on_a_vertical_gives_an_empty_result():
+def test_no_center_point_on_a_vertical_gives_an_empty_result():
     """Turn the task until the real asymptote of the circular cubic is vertical: then a0y
     solves a quadratic, and some verticals miss the curve."""
     from scipy.optimize import brentq
@@ -103,13 +103,13 @@ def test_no_centre_point_on_a_vertical_gives_an_empty_result():
         return Positions(POS.points @ np.array([[c, s], [-s, c]]), POS.alpha)
 
     def lead(phi):       # the a0y^3 coefficient, constant along the curve's abscissa
-        return centre_point_cubic(rotated(phi), a0x=0.0)[0]
+        return center_point_cubic(rotated(phi), a0x=0.0)[0]
     grid = np.linspace(0, np.pi, 37)
     v = np.array([lead(g) for g in grid])
     k = np.flatnonzero(np.sign(v[:-1]) != np.sign(v[1:]))[0]
     pos = rotated(brentq(lead, grid[k], grid[k + 1], xtol=1e-15))
     xs = np.linspace(-20, 20, 401)
-    counts = np.array([len(centre_points(pos, a0x=x)) for x in xs])
+    counts = np.array([len(center_points(pos, a0x=x)) for x in xs])
     x_empty = xs[counts == 0][0]
     sols = four_positions(pos, None, a0x=x_empty, b0x=3.0)
     assert len(sols) == 0

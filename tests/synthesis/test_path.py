@@ -33,9 +33,9 @@ def test_coupler_curves_against_the_engine(seed):
 
 
 def test_objective_is_zero_on_an_exact_design_and_penalises_the_wrong_order():
-    centre, scale = EXACT_TASK.mean(0), 1.0
-    obj = _Objective((EXACT_TASK - centre) / scale, 360, 0.0)
-    design = np.array([0 - centre[0], 0 - centre[1], 3 - centre[0], 0 - centre[1],
+    center, scale = EXACT_TASK.mean(0), 1.0
+    obj = _Objective((EXACT_TASK - center) / scale, 360, 0.0)
+    design = np.array([0 - center[0], 0 - center[1], 3 - center[0], 0 - center[1],
                        1.0, 3.0, 2.5, 1.5, 1.0, 1.0])
     assert obj(design[:, None])[0] < 1e-5        # second-order sampling error, 1 deg steps
     shuffled = _Objective(obj.T[[0, 2, 1, 3, 4, 5]], 360, 0.0)
@@ -75,6 +75,8 @@ def test_transmission_angle_bound_is_kept():
     ([(0, 0), (1, 1), (0, 0)], {}, r"points: points 1 and 3 coincide"),
     ([(0, 0), (1, 1), (2, 0)], dict(runs=0), r"runs: expected an integer >= 1, got 0"),
     ([(0, 0), (1, 1), (2, 0)], dict(popsize=2), r"popsize: expected an integer >= 5, got 2"),
+    ([(0, 0), (1, 1), (2, 0)], dict(min_transmission_angle=30.0),
+     r"min_transmission_angle: expected an angle in \[0, pi/2\) rad, got 30.0"),
 ])
 def test_bad_path_tasks(points, kwargs, message):
     with pytest.raises(ModelError, match=message):
