@@ -1,0 +1,9 @@
+"""Solvers: the generic numerical kernels of the course.
+
+- :func:`half_angle` — ``E cos θ + F sin θ + G = 0`` by the half-angle substitution;
+- :func:`dialytic` — two polynomial equations in two unknowns by dialytic elimination;
+- :func:`newton` — batched Newton-Raphson with an analytic Jacobian and its iteration table.
+"""
+from kinelab.solvers._half_angle import HalfAngleSolution, half_angle
+
+__all__ = ["HalfAngleSolution", "half_angle"]
