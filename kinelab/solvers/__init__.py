@@ -5,5 +5,7 @@
 - :func:`newton` — batched Newton-Raphson with an analytic Jacobian and its iteration table.
 """
 from kinelab.solvers._half_angle import HalfAngleSolution, half_angle
+from kinelab.solvers._newton import NewtonHistory, NewtonResult, iteration_table, newton
 
-__all__ = ["HalfAngleSolution", "half_angle"]
+__all__ = ["HalfAngleSolution", "half_angle", "NewtonHistory", "NewtonResult",
+           "iteration_table", "newton"]
