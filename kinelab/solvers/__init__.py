@@ -4,8 +4,9 @@
 - :func:`dialytic` — two polynomial equations in two unknowns by dialytic elimination;
 - :func:`newton` — batched Newton-Raphson with an analytic Jacobian and its iteration table.
 """
+from kinelab.solvers._dialytic import DialyticSolution, dialytic
 from kinelab.solvers._half_angle import HalfAngleSolution, half_angle
 from kinelab.solvers._newton import NewtonHistory, NewtonResult, iteration_table, newton
 
-__all__ = ["HalfAngleSolution", "half_angle", "NewtonHistory", "NewtonResult",
-           "iteration_table", "newton"]
+__all__ = ["DialyticSolution", "dialytic", "HalfAngleSolution", "half_angle",
+           "NewtonHistory", "NewtonResult", "iteration_table", "newton"]

@@ -137,7 +137,8 @@ def newton(fun: Callable[[np.ndarray], ArrayLike], jac: Callable[[np.ndarray], A
         ``jac(x)[s, i, j] = ∂Φ_i/∂x_j`` at sample s.
     x0 : array_like, shape (n,) or (N, n)
         Starting guess; units of the unknowns (rad, m, ...).  With shape (n,), ``fun`` and
-        ``jac`` get N = 1 and the result drops the sample axis.
+        ``jac`` get N = 1 and the result drops the sample axis.  A complex ``x0`` makes
+        the iteration complex (for complex roots of polynomial systems).
     tol : float, default 1e-12
         Step tolerance (above).
     max_iter : int, default 50
@@ -210,7 +211,8 @@ def newton(fun: Callable[[np.ndarray], ArrayLike], jac: Callable[[np.ndarray], A
         raise ModelError(f"max_iter: expected a positive integer, got {max_iter!r}")
     if not tol > 0:
         raise ModelError(f"tol: expected a positive number, got {tol!r}")
-    x = np.array(x0, dtype=float)
+    x = np.array(x0)
+    x = x.astype(np.result_type(x.dtype, float))     # complex x0 stays complex
     batched = x.ndim == 2
     if x.ndim not in (1, 2) or x.shape[-1] == 0:
         raise ModelError(f"x0: expected shape (n,) or (N, n) with n >= 1, got {x.shape}")
@@ -316,7 +318,11 @@ def _names(names: Sequence[str] | None, n: int) -> list[str]:
 
 
 def _evaluate(f: Callable, x: np.ndarray, shape: tuple[int, ...], what: str) -> np.ndarray:
-    value = np.asarray(f(x.copy()), dtype=float)
+    value = np.asarray(f(x.copy()))
+    if np.iscomplexobj(value) and not np.iscomplexobj(x):
+        raise ModelError(f"{what}: expected real values for a real x, got complex ones; pass "
+                         f"a complex x0 to iterate in complex arithmetic")
+    value = value.astype(x.dtype, copy=False)
     if value.shape != shape:
         expected = "(N, n)" if len(shape) == 2 else "(N, n, n)"
         raise ModelError(f"{what}: expected an array of shape {expected} = {shape} for x of "

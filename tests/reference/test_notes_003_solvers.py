@@ -7,8 +7,9 @@ from decimal import Decimal
 
 import numpy as np
 import pytest
+import sympy as sp
 
-from kinelab.solvers import half_angle, newton
+from kinelab.solvers import dialytic, half_angle, newton
 
 # --- §4.5, Ex. 4.2: four-bar L1 = 2, L2 = L3 = L4 = 1, θ2 = 0 -------------------------------
 
@@ -59,6 +60,59 @@ def test_case_G_equal_E_loses_theta_pi():
     u_notes = -(G + E) / (2 * F)
     assert np.sort(sol.theta) == pytest.approx(np.sort([2 * np.arctan(u_notes), np.pi]),
                                                abs=1e-15)
+
+
+# --- §4.6, Ex. 4.3: dialytic elimination ---------------------------------------------------
+# Checked: eq. 36 (det M in terms of A … E) expands to the determinant of eq. 35's M; eq. 37
+# is det M for eqs. 27-28, sign included; its roots and y = (10x - 8)/(6x) (eq. 27 minus
+# 5 x eq. 28) are right to the digits printed.  No slip found.
+
+x, y = sp.symbols("x y")
+ELLIPSE = 5 * x**2 + 5 * y**2 - 6 * x * y - 8       # eq. 27
+CIRCLE = x**2 + y**2 - 2 * x                        # eq. 28
+
+
+@pytest.fixture(scope="module")
+def ex_4_3():
+    return dialytic(ELLIPSE, CIRCLE)
+
+
+def test_ex_4_3_matrix_and_eliminant(ex_4_3):
+    A, B, C, D, E = 5, -6 * x, 5 * x**2 - 8, 1, x**2 - 2 * x       # eqs. 31-32
+    M = sp.Matrix([[0, A, B, C], [0, D, 0, E], [A, B, C, 0], [D, 0, E, 0]])   # eq. 35
+    assert ex_4_3.matrix.equals(M)
+    eq_36 = -(A * E) ** 2 + A * C * D * E - B**2 * D * E + D * C * (A * E - C * D)
+    assert sp.expand(eq_36 - ex_4_3.eliminant.as_expr()) == 0
+    # Eq. 37, exactly as printed (sign and all): -36x⁴ + 72x³ - 100x² + 160x - 64.
+    assert ex_4_3.eliminant.all_coeffs() == [-36, 72, -100, 160, -64]
+    # Against sympy's resultant (subresultants, another method): equal up to sign.
+    assert sp.expand(sp.resultant(ELLIPSE, CIRCLE, y) + ex_4_3.eliminant.as_expr()) == 0
+
+
+def test_ex_4_3_all_four_solutions(ex_4_3):
+    # Printed: x = (0.5237, 1.5734, -0.0486 + 1.468j, -0.0486 - 1.468j), to the digits shown.
+    assert ex_4_3.real.tolist() == [True, True, False, False]
+    assert ex_4_3.x.real[:2] == pytest.approx([0.5237, 1.5734], abs=5e-5)
+    assert ex_4_3.x[2:] == pytest.approx([-0.0486 - 1.468j, -0.0486 + 1.468j], abs=5e-4)
+    # y from the notes' back-substitution, y = (10x - 8)/(6x), for all four.
+    assert ex_4_3.y == pytest.approx((10 * ex_4_3.x - 8) / (6 * ex_4_3.x), rel=1e-13)
+    # Checked by substitution: 1e-13, the rounding of quartic roots of size ~1.
+    assert np.all(ex_4_3.residual < 1e-13)
+    for xi, yi in zip(ex_4_3.x, ex_4_3.y):
+        assert abs(complex(ELLIPSE.subs({x: xi, y: yi}))) < 1e-13
+        assert abs(complex(CIRCLE.subs({x: xi, y: yi}))) < 1e-13
+
+
+def test_ex_4_3_real_points_are_where_the_ellipse_meets_the_circle(ex_4_3):
+    # The circle is (x - 1)² + y² = 1: parametrise it and find the ellipse's sign changes.
+    t = np.linspace(-np.pi, np.pi, 200001)
+    cx, cy = 1 + np.cos(t), np.sin(t)
+    g = 5 * cx**2 + 5 * cy**2 - 6 * cx * cy - 8
+    crossings = np.flatnonzero(np.sign(g[:-1]) != np.sign(g[1:]))
+    points = np.column_stack([cx[crossings], cy[crossings]])
+    points = points[np.argsort(points[:, 0])]
+    # 1e-4: the grid spacing on the unit circle is 3e-5.
+    np.testing.assert_allclose(ex_4_3.real_solutions, points, rtol=0, atol=1e-4)
 
 
 # --- §4.7, Ex. 4.4: Newton-Raphson on the slider-crank ------------------------------------
