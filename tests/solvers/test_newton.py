@@ -169,3 +169,17 @@ def test_fun_with_the_wrong_shape_is_explained():
         newton(lambda x: fun(x)[0], jac, [0.0, 3.0])
     with pytest.raises(ModelError, match=r"x0: expected shape \(n,\) or \(N, n\)"):
         newton(fun, jac, np.zeros((1, 1, 2)))
+
+
+def test_complex_start_iterates_in_complex_arithmetic():
+    # z² + 1 = 0 has no real root; from a complex start Newton finds i.
+    def fun(z):
+        return z**2 + 1
+
+    def jac(z):
+        return (2 * z)[..., None]
+    sol = newton(fun, jac, [0.5 + 0.5j])
+    assert sol.converged and abs(sol.x[0] - 1j) < 1e-15
+    with pytest.raises(ModelError, match=r"fun: expected real values for a real x, got "
+                                         r"complex ones; pass a complex x0"):
+        newton(lambda x: x + 1j, jac, [1.0])
