@@ -172,12 +172,11 @@ def dialytic(p: Polynomial, q: Polynomial, variables: tuple | None = None, *,
         M = M.evalf()
         eliminant = sp.Poly(eliminant.as_expr().evalf(), x)
 
-    p_num = sp.lambdify((x, y), P.as_expr(), "numpy")
-    q_num = sp.lambdify((x, y), Q.as_expr(), "numpy")
-    ys = _back_substitute(xs, P, Q, x, y, p_num, q_num)
-    xs, ys = _polish(xs, ys, P, Q, x, y)
+    pn, qn = _Bivariate(P), _Bivariate(Q)
+    ys = _back_substitute(xs, pn, qn)
+    xs, ys = _polish(xs, ys, pn, qn)
 
-    residual = np.abs(np.column_stack([p_num(xs, ys) + 0 * xs, q_num(xs, ys) + 0 * xs]))
+    residual = np.abs(np.column_stack([pn(xs, ys), qn(xs, ys)]))
     real = (np.abs(xs.imag) <= imag_tol * np.maximum(1.0, np.abs(xs))) \
         & (np.abs(ys.imag) <= imag_tol * np.maximum(1.0, np.abs(ys)))
     order = np.lexsort((xs.imag, xs.real, ~real))
@@ -281,56 +280,87 @@ def _roots(eliminant: sp.Poly) -> np.ndarray:
     return np.concatenate([np.zeros(0), *roots]).astype(complex)
 
 
-def _back_substitute(xs, P, Q, x, y, p_num, q_num) -> np.ndarray:
+class _Bivariate:
+    """A polynomial Σ c xⁱ yʲ evaluated with numpy, in complex arithmetic."""
+
+    def __init__(self, P: sp.Poly):
+        terms = P.terms()
+        self.i = np.array([e[0] for e, _ in terms])
+        self.j = np.array([e[1] for e, _ in terms])
+        self.c = np.array([complex(c) for _, c in terms])
+
+    def __call__(self, x, y, di: int = 0, dj: int = 0) -> np.ndarray:
+        """The value, or with di / dj = 1 the partial derivative in x / y."""
+        x = np.asarray(x, dtype=complex)[..., None]
+        y = np.asarray(y, dtype=complex)[..., None]
+        c = self.c * (self.i if di else 1) * (self.j if dj else 1)
+        terms = c * x ** np.maximum(self.i - di, 0) * y ** np.maximum(self.j - dj, 0)
+        return terms.sum(axis=-1)
+
+    def size(self, x, y) -> np.ndarray:
+        """The size of its terms at (x, y), powers of max(1, |x|), max(1, |y|): near the
+        origin, where all terms but the constant vanish, it falls back on the
+        coefficients."""
+        X = np.maximum(1.0, np.abs(np.asarray(x)))[..., None]
+        Y = np.maximum(1.0, np.abs(np.asarray(y)))[..., None]
+        return (np.abs(self.c) * X**self.i * Y**self.j).sum(axis=-1)
+
+    def roots_in_y(self, x) -> np.ndarray | None:
+        """Roots in y at this x; None when there are none to offer (identically zero, or
+        a non-zero constant, in y)."""
+        a = np.zeros(self.j.max() + 1, dtype=complex)
+        np.add.at(a, self.j, self.c * complex(x) ** self.i)
+        scale = np.max(np.abs(a))
+        if scale == 0.0:
+            return None
+        a = np.where(np.abs(a) <= 1e-13 * scale, 0.0, a)
+        roots = np.roots(a[::-1]).astype(complex)
+        return roots if roots.size else None
+
+
+def _back_substitute(xs: np.ndarray, p: _Bivariate, q: _Bivariate) -> np.ndarray:
     """y at each root x: the common root of p(x, ·) and q(x, ·).
 
-    Candidates are the roots in y of both polynomials at that x; the one that best satisfies
-    both equations wins.  Roots of the eliminant that coincide (several solutions sharing
-    one x, or a double root) take distinct candidates, best first.
+    Every common root is a root of each polynomial: the candidates are the roots in y of
+    the one of lower degree in y at that x (fewer to reject; one source, so a root shared
+    by two solutions appears once per multiplicity, not once per polynomial), and those
+    that best satisfy both equations win.  Roots of the eliminant that coincide (several
+    solutions sharing one x, or a double root) take distinct candidates, best first.
     """
     ys = np.zeros_like(xs)
     taken = np.zeros(xs.size, dtype=bool)
-    a = [sp.lambdify(x, c, "numpy") for c in _coefficients_in(P, y, max(P.degree(y), 0))]
-    b = [sp.lambdify(x, c, "numpy") for c in _coefficients_in(Q, y, max(Q.degree(y), 0))]
     for i in range(xs.size):                 # over the roots (a handful), not over samples
         if taken[i]:
             continue
         group = np.flatnonzero(~taken & (np.abs(xs - xs[i])
                                          <= _SAME_X * max(1.0, abs(xs[i]))))
         xc = xs[group].mean()
-        # Every common root is a root of each polynomial: take the candidates from the one
-        # of lower degree in y at this x (fewer to reject; one source, so a root shared by
-        # two solutions of the group appears once per multiplicity, not once per source).
-        sources = [r for r in (_roots_in_y(a, xc), _roots_in_y(b, xc)) if r is not None]
+        sources = [r for r in (p.roots_in_y(xc), q.roots_in_y(xc)) if r is not None]
         candidates = min(sources, key=len) if sources else np.zeros(1, dtype=complex)
-        score = _relative(p_num, P, xc, candidates, x, y) + _relative(q_num, Q, xc,
-                                                                     candidates, x, y)
+        score = sum(np.abs(f(xc, candidates)) / f.size(xc, candidates) for f in (p, q))
         best = candidates[np.argsort(score, kind="stable")]
         ys[group] = best[np.arange(group.size) % best.size]
         taken[group] = True
     return ys
 
 
-def _polish(xs, ys, P, Q, x, y) -> tuple[np.ndarray, np.ndarray]:
+def _polish(xs, ys, p: _Bivariate, q: _Bivariate) -> tuple[np.ndarray, np.ndarray]:
     """A few Newton steps on p = q = 0 itself, from each (x, y) found.
 
     Two solutions with (nearly) the same x make a (nearly) double root of the eliminant,
     which the companion matrix resolves only to ~1e-8, even when each solution is a simple,
     well-conditioned root of the system; Newton on the system restores full accuracy.
-    Samples whose Jacobian is singular (a genuine double solution) keep their values.
+    Solutions whose Jacobian is singular (a genuine double solution) keep their values.
     """
     if xs.size == 0:
         return xs, ys
-    grads = [[sp.lambdify((x, y), sp.diff(F.as_expr(), v), "numpy") for v in (x, y)]
-             for F in (P, Q)]
-    values = [sp.lambdify((x, y), F.as_expr(), "numpy") for F in (P, Q)]
 
     def fun(X):
-        return np.stack([f(X[:, 0], X[:, 1]) + 0 * X[:, 0] for f in values], axis=-1)
+        return np.stack([f(X[:, 0], X[:, 1]) for f in (p, q)], axis=-1)
 
     def jac(X):
-        return np.stack([np.stack([g(X[:, 0], X[:, 1]) + 0 * X[:, 0] for g in row], -1)
-                         for row in grads], -2)
+        return np.stack([np.stack([f(X[:, 0], X[:, 1], 1, 0), f(X[:, 0], X[:, 1], 0, 1)], -1)
+                         for f in (p, q)], -2)
 
     start = np.column_stack([xs, ys])
     polished = newton(fun, jac, start, max_iter=8, on_failure="mask")
@@ -339,25 +369,3 @@ def _polish(xs, ys, P, Q, x, y) -> tuple[np.ndarray, np.ndarray]:
     keep = polished.converged & (after <= before)
     best = np.where(keep[:, None], polished.x, start)
     return best[:, 0], best[:, 1]
-
-
-def _roots_in_y(coeffs, xc) -> np.ndarray | None:
-    """Roots in y of Σ c_j(xc) yʲ; None when there are none to offer."""
-    values = np.array([complex(c(xc)) for c in coeffs])[::-1]     # highest power first
-    scale = np.max(np.abs(values)) if values.size else 0.0
-    if scale == 0.0:                          # identically zero at this x: no information
-        return None
-    values = np.where(np.abs(values) <= 1e-13 * scale, 0.0, values)
-    roots = np.roots(values).astype(complex)
-    return roots if roots.size else None     # a non-zero constant: no root in y
-
-
-def _relative(f_num, F: sp.Poly, xc, ys, x, y) -> np.ndarray:
-    """|f(x, y)| over the size of its terms there: a residual free of scaling.
-
-    Powers are of max(1, |x|), max(1, |y|), so that near the origin, where every term but
-    the constant vanishes, the residual is measured against the coefficients instead.
-    """
-    X, Y = max(1.0, abs(xc)), np.maximum(1.0, np.abs(ys))
-    size = sum(abs(complex(c)) * X**i * Y**j for (i, j), c in F.terms())
-    return np.abs(f_num(xc, ys) + 0 * ys) / size

@@ -4,24 +4,7 @@ import pytest
 from kinelab.errors import ConvergenceError, ModelError
 from kinelab.solvers import continuation
 
-
-def slider_crank(L2, L3):
-    """Φ(θ3, l; θ2) of an in-line slider-crank and ∂Φ/∂θ2 (notes 003, eqs. 38-39)."""
-    def fun(x, th2):
-        th3, l = x[:, 0], x[:, 1]
-        return np.stack([L2 * np.cos(th2) + L3 * np.cos(th3) - l,
-                         L2 * np.sin(th2) + L3 * np.sin(th3)], -1)
-
-    def jac(x, th2):
-        th3 = x[:, 0]
-        one = np.ones_like(th3)
-        return np.stack([np.stack([-L3 * np.sin(th3), -one], -1),
-                         np.stack([L3 * np.cos(th3), 0 * one], -1)], -2)
-
-    def dfun_dp(x, th2):
-        zero = np.zeros_like(x[:, 0])
-        return np.stack([-L2 * np.sin(th2) + zero, L2 * np.cos(th2) + zero], -1)
-    return fun, jac, dfun_dp
+from _slider_crank import closed_form, equations as slider_crank
 
 
 def wrapped(a):
@@ -35,10 +18,10 @@ def test_follows_one_branch_over_a_cycle(tangent):
     th2 = np.radians(np.arange(0.0, 361.0, 10.0))
     path = continuation(fun, jac, [0.1, 2.0], th2, dfun_dp=dfun_dp if tangent else None)
     assert path.reached.all() and path.x.shape == (37, 2)
-    th3 = -np.arcsin(L2 * np.sin(th2) / L3)              # the branch started on
+    th3, l = closed_form(L2, L3, th2)                    # the branch started on
     # 1e-10: closed form against the engine (DESIGN.md).
     assert np.max(np.abs(wrapped(path.x[:, 0] - th3))) < 1e-10
-    assert np.max(np.abs(path.x[:, 1] - (L2 * np.cos(th2) + L3 * np.cos(th3)))) < 1e-10
+    assert np.max(np.abs(path.x[:, 1] - l)) < 1e-10
 
 
 def test_slow_contraction_halves_the_step_instead_of_changing_branch():
@@ -49,7 +32,7 @@ def test_slow_contraction_halves_the_step_instead_of_changing_branch():
     th2 = np.linspace(0.0, 2 * np.pi, 4)
     path = continuation(fun, jac, [0.0, 3.0], th2)
     assert path.halvings.sum() > 0
-    th3 = -np.arcsin(L2 * np.sin(th2) / L3)
+    th3, _ = closed_form(L2, L3, th2)
     assert np.max(np.abs(wrapped(path.x[:, 0] - th3))) < 1e-10
 
 
@@ -58,7 +41,7 @@ def test_several_paths_advance_together():
     x0 = np.array([[0.0, 4.0], [np.pi, -2.0]])          # both assembly modes
     path = continuation(fun, jac, x0, np.linspace(0, 1, 5), dfun_dp=dfun_dp)
     assert path.x.shape == (5, 2, 2)
-    th3 = -np.arcsin(np.sin(np.linspace(0, 1, 5)) / 3.0)
+    th3, _ = closed_form(1.0, 3.0, np.linspace(0, 1, 5))
     assert np.max(np.abs(wrapped(path.x[:, 0, 0] - th3))) < 1e-10
     assert np.max(np.abs(wrapped(path.x[:, 1, 0] - (np.pi - th3)))) < 1e-10
 

@@ -6,25 +6,13 @@ from hypothesis import strategies as st
 from kinelab.errors import ConvergenceError, ModelError, SingularityError
 from kinelab.solvers import iteration_table, newton
 
+from _slider_crank import closed_form, equations
+
 
 def slider_crank(L2, L3, th2):
-    """Φ(θ3, l) of an in-line slider-crank (notes 003, eqs. 38-39), per sample."""
-    def fun(x):
-        th3, l = x[:, 0], x[:, 1]
-        return np.stack([L2 * np.cos(th2) + L3 * np.cos(th3) - l,
-                         L2 * np.sin(th2) + L3 * np.sin(th3)], axis=-1)
-
-    def jac(x):
-        th3 = x[:, 0]
-        one = np.ones_like(th3)
-        return np.stack([np.stack([-L3 * np.sin(th3), -one], -1),
-                         np.stack([L3 * np.cos(th3), 0 * one], -1)], -2)
-    return fun, jac
-
-
-def closed_form(L2, L3, th2):
-    th3 = -np.arcsin(L2 * np.sin(th2) / L3)        # the branch with the slider to the right
-    return th3, L2 * np.cos(th2) + L3 * np.cos(th3)
+    """Φ(θ3, l) and its Jacobian at the crank angles θ2 (one per sample)."""
+    fun, jac, _ = equations(L2, L3)
+    return (lambda x: fun(x, th2)), (lambda x: jac(x, th2))
 
 
 @given(st.floats(0.1, 1.0), st.floats(1.5, 5.0))
