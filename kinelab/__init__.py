@@ -1,5 +1,5 @@
 """kinelab: analysis and synthesis of mechanisms."""
-from kinelab import errors, model
+from kinelab import errors, model, structure
 from kinelab.model import Mechanism
 
 __all__ = ["errors", "model", "Mechanism"]
