@@ -1,10 +1,18 @@
 """Structure: mobility, connectivity, number and type synthesis (topology only)."""
+from kinelab.structure._connectivity import (Chain, Connectivity, LieMobility, connectivity,
+                                             lie_mobility)
 from kinelab.structure._count import (LAMBDAS, PairClass, joint_catalogue, kutzbach_gruebler,
                                       pair_counts, pair_freedoms, space_dimension)
+from kinelab.structure._groups import DisplacementGroup, displacement_group, generated_group
 from kinelab.structure._mobility import Mobility, mobility
 
 __all__ = [
+    # counting (seed 003 §2.1)
     "LAMBDAS", "PairClass", "joint_catalogue", "kutzbach_gruebler", "pair_counts",
     "pair_freedoms", "space_dimension",
+    # exact mobility
     "Mobility", "mobility",
+    # Lie groups and connectivity (§1.3, §2.2)
+    "DisplacementGroup", "displacement_group", "generated_group",
+    "Chain", "Connectivity", "LieMobility", "connectivity", "lie_mobility",
 ]
