@@ -1,4 +1,6 @@
 """Structure: mobility, connectivity, number and type synthesis (topology only)."""
+from kinelab.structure._chains import (Inversion, KinematicChain, chain_of, count_chains,
+                                       planar_chains)
 from kinelab.structure._connectivity import (Chain, Connectivity, LieMobility, connectivity,
                                              lie_mobility)
 from kinelab.structure._count import (LAMBDAS, PairClass, joint_catalogue, kutzbach_gruebler,
@@ -15,4 +17,6 @@ __all__ = [
     # Lie groups and connectivity (§1.3, §2.2)
     "DisplacementGroup", "displacement_group", "generated_group",
     "Chain", "Connectivity", "LieMobility", "connectivity", "lie_mobility",
+    # structural synthesis of planar chains
+    "Inversion", "KinematicChain", "chain_of", "count_chains", "planar_chains",
 ]
