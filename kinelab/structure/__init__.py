@@ -7,6 +7,9 @@ from kinelab.structure._count import (LAMBDAS, PairClass, joint_catalogue, kutzb
                                       pair_counts, pair_freedoms, space_dimension)
 from kinelab.structure._groups import DisplacementGroup, displacement_group, generated_group
 from kinelab.structure._mobility import Mobility, mobility
+from kinelab.structure._types import (Architecture, ChainType, Motion, TypeSynthesis,
+                                      active_chains, alternative_method, chain_types,
+                                      number_synthesis, passive_chain, type_synthesis)
 
 __all__ = [
     # counting (seed 003 §2.1)
@@ -19,4 +22,8 @@ __all__ = [
     "Chain", "Connectivity", "LieMobility", "connectivity", "lie_mobility",
     # structural synthesis of planar chains
     "Inversion", "KinematicChain", "chain_of", "count_chains", "planar_chains",
+    # type synthesis (§3)
+    "Architecture", "ChainType", "Motion", "TypeSynthesis", "active_chains",
+    "alternative_method", "chain_types", "number_synthesis", "passive_chain",
+    "type_synthesis",
 ]

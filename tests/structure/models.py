@@ -190,3 +190,47 @@ def spherical_fourbar(concurrent=True):
     pairs = [("ground", "l2"), ("l2", "l3"), ("l3", "l4"), ("l4", "ground")]
     joints = tuple(_R(f"j{k + 1}", *pairs[k], f"J{k + 1}", dirs[k]) for k in range(4))
     return Mechanism("spherical four-bar", pts, links, joints, space="spherical")
+
+
+def parallel(chains, space, seed=0):
+    """A mechanism with the given chains (strings of pair types, base to platform) between
+    a base and a platform, every pair in general position (spherical: every axis through
+    the origin)."""
+    rng = np.random.default_rng(seed)
+    dim = 2 if space == "planar" else 3
+
+    def unit():
+        u = rng.standard_normal(dim)
+        return tuple(u / np.linalg.norm(u))
+    pts, links, joints = [], [], []
+    carried = {"base": [], "platform": []}
+    for k, chain in enumerate(chains):
+        names = ["base"] + [f"c{k}l{i}" for i in range(1, len(chain))] + ["platform"]
+        for n in names[1:-1]:
+            carried[n] = []
+        for i, t in enumerate(chain):
+            p = rng.standard_normal(dim)
+            if space == "spherical":
+                p = 1.5 * p / np.linalg.norm(p)
+            pname = f"c{k}p{i}"
+            pts.append(Point(pname, *p))
+            a, b = names[i], names[i + 1]
+            carried[b].append(pname)
+            if t in ("R", "S", "U"):  # the model hinges shared points with these only
+                carried[a].append(pname)
+            axis = (tuple(p / np.linalg.norm(p)) if space == "spherical" else unit())
+            kw = {}
+            if t in ("R", "P", "C", "H") and (space != "planar" or t == "P"):
+                kw["axis"] = axis
+            if t == "U":
+                kw["axis"], kw["axis2"] = axis, unit()
+            if t == "H":
+                kw["pitch"] = 0.1
+            joints.append(Joint(f"c{k}j{i}", t, (a, b), point=pname, **kw))
+    for n, ps in carried.items():
+        while len(ps) < 2:  # a guide of a P pair carries a point of its own
+            extra = f"{n}x{len(ps)}"
+            pts.append(Point(extra, *rng.standard_normal(dim)))
+            ps.append(extra)
+    links = [Link(n, tuple(ps), ground=(n == "base")) for n, ps in carried.items()]
+    return Mechanism("+".join(chains), tuple(pts), tuple(links), tuple(joints), space=space)
