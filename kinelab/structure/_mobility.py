@@ -2,13 +2,14 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from kinelab.errors import ModelError
 from kinelab.model import Mechanism
 from kinelab.structure._count import kutzbach_gruebler, pair_counts, space_dimension
+from kinelab.structure._motion import moved
 from kinelab.structure._screws import RTOL, null_basis, rank
 from kinelab.structure._system import ConstraintSystem
 
@@ -51,8 +52,12 @@ class Mobility:
     assumed : tuple of str
         Geometry the model leaves out and that was taken in general position.
     singular_values : tuple of float
-        Of the dimensionless constraint Jacobian, largest first; those below
-        ``rtol`` times the largest count as zero.
+        Of the dimensionless constraint Jacobian at the sketch, largest first; those
+        below ``rtol`` times the largest count as zero.
+    singular : bool
+        The sketch is a singular configuration: the Jacobian there allows more motions
+        than the mechanism has once moved a little (a linkage folded flat at a change
+        point), and ``exact`` is the value nearby.
     """
 
     kutzbach_gruebler: int
@@ -68,6 +73,7 @@ class Mobility:
     local: tuple[str, ...] = ()
     assumed: tuple[str, ...] = ()
     singular_values: tuple[float, ...] = field(default=(), repr=False)
+    singular: bool = False
 
     def __str__(self) -> str:
         return self.explanation
@@ -170,6 +176,32 @@ def _local_motions(system: ConstraintSystem, rtol: float):
     return passive, counted, passive_txt, counted_txt
 
 
+@dataclass(frozen=True)
+class _State:
+    """What the constraint Jacobian says at one configuration."""
+
+    freedoms: int
+    passive: int
+    passive_txt: tuple[str, ...]
+    counted_txt: tuple[str, ...]
+    rows: int
+    singular_values: tuple[float, ...]
+
+
+def _state(system: ConstraintSystem, rtol: float) -> _State:
+    c = system.matrix()
+    s = np.linalg.svd(c, compute_uv=False) if c.size else np.zeros(0)
+    passive_v, counted_v, passive_txt, counted_txt = _local_motions(system, rtol)
+    return _State(system.unknowns - rank(c, rtol),
+                  rank(np.array(passive_v), rtol) if passive_v else 0,
+                  tuple(passive_txt), tuple(counted_txt) if counted_v else (), c.shape[0],
+                  tuple(float(x) for x in s))
+
+
+def _motions(n: int) -> str:
+    return _plural(n, "independent motion", "independent motions")
+
+
 def mobility(model: Mechanism, *, rtol: float = RTOL) -> Mobility:
     """Mobility of a mechanism: Kutzbach-Gruebler's count and the exact value.
 
@@ -191,9 +223,13 @@ def mobility(model: Mechanism, *, rtol: float = RTOL) -> Mobility:
     model : Mechanism
         Planar models use planar twists (R, P and the planar higher pairs); spherical and
         spatial models use spatial ones (R, P, H, C, U, S, E and the higher pairs).  The
-        sketch is the configuration examined: draw it in a general position (not folded
-        flat, not at a dead centre), since at a singular configuration the rank drops and
-        the instantaneous mobility exceeds the true one.
+        sketch is the configuration examined.  At a singular one (a linkage folded flat
+        at a change point) the rank drops and the motions at that instant exceed the
+        mechanism's; so a mechanism with lower pairs only (and pins in slots) is also
+        moved a little along its motion, by Gauss-Newton on its finite-displacement
+        constraints, and where the sketch proves singular the value nearby is reported
+        (``singular``).  Cam, gear and rolling contacts need profiles the model does not
+        hold: draw such mechanisms in a general position.
     rtol : float, optional
         Relative tolerance on the singular values of the dimensionless ``C``.
 
@@ -241,17 +277,37 @@ def mobility(model: Mechanism, *, rtol: float = RTOL) -> Mobility:
     ne = len(model.links)
     count = kutzbach_gruebler(ne, pairs, lam)
     system = ConstraintSystem.of(model)
-    c = system.matrix()
-    s = np.linalg.svd(c, compute_uv=False) if c.size else np.zeros(0)
-    freedoms = system.unknowns - rank(c, rtol)
-    passive_v, counted_v, passive_txt, counted_txt = _local_motions(system, rtol)
-    passive = rank(np.array(passive_v), rtol) if passive_v else 0
+    here = _state(system, rtol)
+    state, singular, note = here, False, ""
+    if here.freedoms > 0:
+        moved_models = moved(system, seed=0)
+        if moved_models is None:
+            pass  # contact profiles or assumed geometry: the sketch is taken as general
+        elif not moved_models:
+            state, singular = replace(here, freedoms=0, passive=0, counted_txt=()), True
+            note = (f"at the sketch the constraint Jacobian allows {_motions(here.freedoms)}, "
+                    "but none goes any distance: the sketch is a singular configuration of a "
+                    "structure that cannot move (a shaky structure: the lengths allow only "
+                    "this assembly)")
+        else:
+            state = min((_state(ConstraintSystem.of(m), rtol) for m in moved_models),
+                        key=lambda st: st.freedoms - st.passive)
+            if state.freedoms < here.freedoms:
+                singular = True
+                note = (f"at the sketch the constraint Jacobian allows "
+                        f"{_motions(here.freedoms)}: it is a singular configuration (folded "
+                        "flat, a change point); moved a little along its motion the "
+                        f"mechanism allows {_motions(state.freedoms)}")
+            else:
+                state = here
+    freedoms, passive = state.freedoms, state.passive
     exact = freedoms - passive
     redundant = freedoms - count
 
     lines = [f"Kutzbach-Gruebler ({model.space}, λ = {lam}): {_formula(lam, ne, pairs, count)}."]
-    head = f"Exact (rank of the constraint Jacobian at the sketch): M = {exact}"
-    reasons = []
+    where = "near" if singular else "at"
+    head = f"Exact (rank of the constraint Jacobian {where} the sketch): M = {exact}"
+    reasons = [note] if note else []
     special = freedoms - max(count, 0)
     if count < 0:
         reasons.append(
@@ -261,22 +317,21 @@ def mobility(model: Mechanism, *, rtol: float = RTOL) -> Mobility:
         if count < 0:
             of, more = "", "beyond those, "
         else:
-            of, more = (f" of the {c.shape[0]}" if lam == system.dim else ""), ""
+            of, more = (f" of the {state.rows}" if lam == system.dim else ""), ""
         reasons.append(
             f"{more}{_plural(special, 'constraint equation', 'constraint equations')}{of} "
             f"{'repeats' if special == 1 else 'repeat'} others because the geometry is special "
             "(over-constraint: parallel or concurrent axes, equal lengths, ...), which the "
             "count cannot see")
-    elif special < 0:
+    elif special < 0 and not singular:
         reasons.append(
             f"the geometry gives {_plural(-special, 'freedom', 'freedoms')} fewer than the "
             "count: the joint axes do not all pass through one point, so the linkage is not "
             "the spherical one the count assumes")
     if passive:
         reasons.append(f"{_plural(passive, 'freedom is', 'freedoms are')} passive and not "
-                       "counted: " + "; ".join(passive_txt))
-    if counted_v:
-        reasons += counted_txt
+                       "counted: " + "; ".join(state.passive_txt))
+    reasons += state.counted_txt
     if exact == count and not reasons:
         lines.append(f"{head}, as counted: no constraint repeats another and no freedom is "
                      "passive.")
@@ -286,5 +341,5 @@ def mobility(model: Mechanism, *, rtol: float = RTOL) -> Mobility:
     if system.notes:
         lines.append("Assumed: " + "; ".join(system.notes) + ".")
     return Mobility(count, exact, "\n".join(lines), model.space, lam, ne, pairs, freedoms,
-                    passive, redundant, tuple(counted_txt), system.notes,
-                    tuple(float(x) for x in s))
+                    passive, redundant, state.counted_txt, system.notes, here.singular_values,
+                    singular)

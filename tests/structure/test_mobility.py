@@ -188,3 +188,44 @@ def test_generic_spatial_loop_of_n_revolutes(n, seed):
 @given(st.floats(0.2, 2.9), st.floats(0.5, 2.0), st.floats(0.5, 2.0))
 def test_parallelogram_moves_at_any_angle(angle, s1, s2):
     assert mobility(parallelogram_fivebar(angle, (0.0, s1, s1 + s2))).exact == 1
+
+
+# -- sketches at singular configurations -----------------------------------------------------
+def test_parallelogram_drawn_flat_is_a_change_point():
+    # crank 1, coupler 2, rocker 1, ground 2 with every joint on the x axis: two branches
+    # (parallelogram, antiparallelogram) cross here, the Jacobian allows 2 motions
+    m = mobility(fourbar(sketch=((0, 0), (1, 0), (3, 0), (2, 0))))
+    assert (m.kutzbach_gruebler, m.exact, m.singular) == (1, 1, True)
+    assert "at the sketch the constraint Jacobian allows 2 independent motions" in m.explanation
+    assert m.explanation.splitlines()[1].startswith("Exact (rank of the constraint Jacobian near")
+
+
+@pytest.mark.parametrize("sketch", [((0, 0), (1, 0), (2, 0), (3, 0)), ((0, 0), (1, 0), (2, 0), (4, 0))])
+def test_fourbar_that_only_assembles_flat_cannot_move(sketch):
+    # 1 + 1 + 1 = 3 and 1 + 1 + 2 = 4: the three moving links only reach as a straight line
+    m = mobility(fourbar(sketch=sketch))
+    assert (m.kutzbach_gruebler, m.exact, m.singular) == (1, 0, True)
+    assert "cannot move" in m.explanation
+
+
+def test_dead_centre_is_not_singular_for_the_whole_jacobian():
+    # a slider-crank at its dead centre: the input cannot advance, but every link still
+    # has one motion; the rank method is not fooled and nothing needs moving
+    m = Mechanism("sc at dead centre", (Point("O2", 0, 0), Point("A", 1, 0), Point("B", 4, 0)),
+                  slider_crank().links, slider_crank().joints)
+    r = mobility(m)
+    assert (r.exact, r.singular, r.freedoms) == (1, False, 1)
+
+
+def test_sarrus_plate_moves_along_z_only():
+    # a finite move of the RRRRRR mechanism keeps the plate parallel to itself above the
+    # same place: its displacement is a pure Tz (seed 003 §2.2), to the closing tolerance
+    from kinelab.structure._motion import moved
+    from kinelab.structure._system import ConstraintSystem
+    model = sarrus()
+    (after, *_) = moved(ConstraintSystem.of(model))
+    before = {p.name: np.array([p.x, p.y, p.z]) for p in model.points}
+    shift = [np.array([p.x, p.y, p.z]) - before[p.name] for p in after.points if p.name in ("A3", "B3")]
+    assert np.allclose(shift[0], shift[1], rtol=0, atol=1e-10)
+    assert abs(shift[0][2]) > 1e-3 and np.allclose(shift[0][:2], 0.0, rtol=0, atol=1e-10)
+    assert mobility(after).exact == 1
