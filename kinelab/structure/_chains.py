@@ -34,6 +34,8 @@ import numpy as np
 from kinelab.errors import ModelError
 from kinelab.model import Input, Joint, Link, Mechanism, Point
 from kinelab.structure._canon import canonical_form, orbits
+from kinelab.structure._screws import rank
+from kinelab.structure._system import ConstraintSystem
 
 __all__ = ["Inversion", "KinematicChain", "chain_of", "count_chains", "planar_chains"]
 
@@ -480,10 +482,6 @@ def _letters(k: int) -> str:
 
 
 def _sketch(chain: KinematicChain, ground: int, name: str | None, seed: int) -> Mechanism:
-    from kinelab.structure._mobility import mobility
-    from kinelab.structure._system import ConstraintSystem
-    from kinelab.structure._screws import rank
-
     n = chain.links
     order, todo = [ground], [ground]
     while todo:  # breadth first from the fixed link: link1, link2, ...
@@ -514,10 +512,10 @@ def _sketch(chain: KinematicChain, ground: int, name: str | None, seed: int) -> 
                    for k, (u, v) in enumerate(joints))
         m = Mechanism(name or f"{chain.name} with link {ground} fixed",
                       tuple(pts), links, js)
-        if mobility(m).exact != chain.mobility:
-            continue
         system = ConstraintSystem.of(m)
         c = system.matrix()
+        if system.unknowns - rank(c) != chain.mobility:  # a special sketch: draw again
+            continue
         chosen = []
         for j in sorted(js, key=lambda j: "link1" not in j.links):  # the fixed link's first
             lock = system.relative(*j.links)[:1]  # the joint's relative rotation

@@ -279,7 +279,9 @@ def mobility(model: Mechanism, *, rtol: float = RTOL) -> Mobility:
     system = ConstraintSystem.of(model)
     here = _state(system, rtol)
     state, singular, note = here, False, ""
-    if here.freedoms > 0:
+    # The rank can only drop at special configurations, so the motions nearby are at
+    # least unknowns - rows; a sketch that already has that few is not singular.
+    if here.freedoms > max(0, system.unknowns - here.rows):
         moved_models = moved(system, seed=0)
         if moved_models is None:
             pass  # contact profiles or assumed geometry: the sketch is taken as general
@@ -290,9 +292,10 @@ def mobility(model: Mechanism, *, rtol: float = RTOL) -> Mobility:
                     "structure that cannot move (a shaky structure: the lengths allow only "
                     "this assembly)")
         else:
-            state = min((_state(ConstraintSystem.of(m), rtol) for m in moved_models),
-                        key=lambda st: st.freedoms - st.passive)
-            if state.freedoms < here.freedoms:
+            systems = [ConstraintSystem.of(m) for m in moved_models]
+            nearest = min(systems, key=lambda sy: sy.unknowns - rank(sy.matrix(), rtol))
+            if nearest.unknowns - rank(nearest.matrix(), rtol) < here.freedoms:
+                state = _state(nearest, rtol)
                 singular = True
                 note = (f"at the sketch the constraint Jacobian allows "
                         f"{_motions(here.freedoms)}: it is a singular configuration (folded "

@@ -14,7 +14,6 @@ profiles the model does not describe, so mechanisms with them are not moved.
 from __future__ import annotations
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from kinelab.model import Joint, Mechanism, Point
 from kinelab.structure._screws import annihilator, null_basis
@@ -40,11 +39,20 @@ def _v_matrix(w: np.ndarray) -> np.ndarray:
 
 
 def _exp(xi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    return Rotation.from_rotvec(xi[:3]).as_matrix(), _v_matrix(xi[:3]) @ xi[3:]
+    w = xi[:3]
+    th, k = np.linalg.norm(w), _hat(w)
+    if th < 1e-8:
+        rot = np.eye(3) + k + 0.5 * k @ k
+    else:  # Rodrigues
+        rot = np.eye(3) + np.sin(th) / th * k + (1 - np.cos(th)) / th**2 * k @ k
+    return rot, _v_matrix(w) @ xi[3:]
 
 
 def _log(rot: np.ndarray, t: np.ndarray) -> np.ndarray:
-    w = Rotation.from_matrix(rot).as_rotvec()
+    # the displacements met here turn by far less than pi, where this is well conditioned
+    axis = 0.5 * np.array([rot[2, 1] - rot[1, 2], rot[0, 2] - rot[2, 0], rot[1, 0] - rot[0, 1]])
+    th = np.arctan2(np.linalg.norm(axis), 0.5 * (np.trace(rot) - 1.0))
+    w = axis * (1.0 + th**2 / 6.0 if th < 1e-6 else th / np.sin(th))
     return np.concatenate([w, np.linalg.solve(_v_matrix(w), t)])
 
 
