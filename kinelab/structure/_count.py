@@ -11,6 +11,7 @@ number of pairs that allow ``j`` relative freedoms (class ``Pj``).
 """
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 from numbers import Integral
@@ -211,7 +212,8 @@ def kutzbach_gruebler(links: int, pairs: Mapping[int, int], space: str | int) ->
     links : int
         ``Ne``, the number of links including the fixed one.
     pairs : mapping of int to int
-        ``{j: nPj}``: how many pairs allow ``j`` freedoms, ``1 <= j <= lambda``.
+        ``{j: nPj}``: how many pairs allow ``j`` freedoms, ``1 <= j <= lambda`` (the
+        classes may also be written ``'P1'``, ``'P2'``, ...).
     space : {'planar', 'spherical', 'spatial'} or int
         The motion space, or lambda itself (2, 3 or 6).
 
@@ -251,9 +253,10 @@ def kutzbach_gruebler(links: int, pairs: Mapping[int, int], space: str | int) ->
         raise ModelError(f"pairs: expected a mapping {{freedoms of the pair: count}}, got "
                          f"{type(pairs).__name__}; e.g. {{1: 4}} for four R or P pairs")
     removed = 0
-    for j, n in pairs.items():
+    for key, n in pairs.items():
+        j = int(key[1]) if isinstance(key, str) and re.fullmatch(r"P[1-6]", key) else key
         if not isinstance(j, Integral) or isinstance(j, bool) or not 1 <= j <= lam:
             raise ModelError(f"pairs: a pair allows 1 to {lam} freedoms when lambda = {lam}, "
-                             f"got {j!r}")
-        removed += (lam - int(j)) * _check_count(n, f"pairs[{j}]", 0)
+                             f"got {key!r}")
+        removed += (lam - int(j)) * _check_count(n, f"pairs[{key!r}]", 0)
     return lam * (ne - 1) - removed

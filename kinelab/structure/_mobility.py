@@ -25,9 +25,9 @@ class Mobility:
     kutzbach_gruebler : int
         ``M = lambda (Ne - 1) - sum (lambda - j) nPj`` from the counts alone.
     exact : int
-        Independent motions at the sketch that move some point of the model: the
-        dimension of the null space of the constraint Jacobian, less the passive
-        freedoms.
+        Independent motions at the sketch (near it, if the sketch is singular) that move
+        some point of the model: the dimension of the null space of the constraint
+        Jacobian, less the passive freedoms.
     explanation : str
         The count written out, the exact value, and why they differ.
     space : str
@@ -45,10 +45,12 @@ class Mobility:
     redundant : int
         ``freedoms - kutzbach_gruebler``: constraint equations the count takes as
         independent but which the geometry makes repeat others (over-constraint).  It is
-        negative only for a spherical model whose axes do not meet at one point.
+        negative only for a spherical model whose axes do not meet at one point, or a
+        linkage whose lengths let it assemble in the sketch's flat shape alone.
     local : tuple of str
-        Links that can move while all the others stay at rest, with a motion that moves
-        some of their points (so it counts), e.g. a roller spinning on its pin.
+        Local freedoms that count, described: a link (or links together) that can move
+        while all the others stay at rest and moves some of its points doing so, e.g. a
+        roller spinning on its pin or the knuckle of a suspension turning to steer.
     assumed : tuple of str
         Geometry the model leaves out and that was taken in general position.
     singular_values : tuple of float

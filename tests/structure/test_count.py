@@ -98,3 +98,9 @@ def test_catalogue_classes():
 def test_pair_freedoms_errors(joint, space, message):
     with pytest.raises(ModelError, match=message):
         pair_freedoms(joint, space)
+
+
+def test_pair_classes_by_name():
+    assert kutzbach_gruebler(4, {"P1": 2, "P3": 2}, "spatial") == 2
+    with pytest.raises(ModelError, match=r"a pair allows 1 to 3 freedoms when lambda = 3, got 'P5'"):
+        kutzbach_gruebler(4, {"P5": 1}, "planar")
