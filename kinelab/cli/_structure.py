@@ -116,6 +116,6 @@ def types(space, mobility_, method, motion, joints, max_joints, links, limit, as
         sets = "; ".join(str(c) for c in s.connectivities)
         click.echo(f"  C_T = {s.total_connectivity}; chain connectivities {sets}")
     more = f" (first {len(archs)})" if len(archs) < s.count() else ""
-    click.echo(f"{s.count()} architectures{more}:")
+    click.echo(f"{s.count()} architecture{'' if s.count() == 1 else 's'}{more}:")
     for a in archs:
         click.echo(f"  {a.name}")
