@@ -100,9 +100,10 @@ class Motion:
         if isinstance(motion, Motion):
             tokens = motion.tokens
         else:
-            raw = re.split(r"[\s,{}]+", motion) if isinstance(motion, str) else list(motion)
+            raw = (re.split(r"[\s,{}]+", motion) if isinstance(motion, str)
+                   else list(motion) if isinstance(motion, Sequence) else [motion])
             tokens = tuple(t for t in raw if t)
-        bad = [t for t in tokens if not re.fullmatch(r"[RT]\w*", t)]
+        bad = [t for t in tokens if not (isinstance(t, str) and re.fullmatch(r"[RT]\w*", t))]
         if bad or not tokens:
             raise ModelError(f"motion: expected translations and rotations such as 'Tx Tz Ry' "
                              f"(T or R, then a direction), got {motion!r}")
