@@ -4,7 +4,7 @@ import pytest
 from kinelab.errors import ConvergenceError, ModelError
 from kinelab.solvers import continuation
 
-from _slider_crank import closed_form, equations as slider_crank
+from tests.solvers._slider_crank import closed_form, equations as slider_crank
 
 
 def wrapped(a):

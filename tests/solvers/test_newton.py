@@ -6,7 +6,7 @@ from hypothesis import strategies as st
 from kinelab.errors import ConvergenceError, ModelError, SingularityError
 from kinelab.solvers import iteration_table, newton
 
-from _slider_crank import closed_form, equations
+from tests.solvers._slider_crank import closed_form, equations
 
 
 def slider_crank(L2, L3, th2):
