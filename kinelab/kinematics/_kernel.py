@@ -479,6 +479,18 @@ def _jac_point(A, row, gi, rx, ry, x, cx, cy):
 
 
 @_jit()
+def _slide_frame(con_i, con_f, k, x, jet):
+    """Guide angle, slide direction u and d = p - o of prismatic constraint k."""
+    gg, po, lg, gs, pp = con_i[k, 1], con_i[k, 2], con_i[k, 3], con_i[k, 4], con_i[k, 5]
+    tg = _side_angle(gg, lg, x, jet)
+    ux = math.cos(tg + con_f[k, 4])
+    uy = math.sin(tg + con_f[k, 4])
+    ox, oy = _side_pos(gg, po, con_f[k, 0], con_f[k, 1], x, jet)
+    px, py = _side_pos(gs, pp, con_f[k, 2], con_f[k, 3], x, jet)
+    return tg, ux, uy, px - ox, py - oy
+
+
+@_jit()
 def _group_residual(c0, c1, con_i, con_f, x, q, jet, A, phi, with_jac):
     """Residuals phi and (optionally) Jacobian A of one group's constraints."""
     row = 0
@@ -509,16 +521,10 @@ def _group_residual(c0, c1, con_i, con_f, x, q, jet, A, phi, with_jac):
         else:  # prismatic constraint or driven slide
             gg, po, lg, gs, pp, ls = (con_i[k, 1], con_i[k, 2], con_i[k, 3], con_i[k, 4],
                                       con_i[k, 5], con_i[k, 6])
-            rox, roy, rpx, rpy, beta = con_f[k, 0], con_f[k, 1], con_f[k, 2], con_f[k, 3], con_f[k, 4]
-            tg = _side_angle(gg, lg, x, jet)
-            ux = math.cos(tg + beta)
-            uy = math.sin(tg + beta)
+            rox, roy, rpx, rpy = con_f[k, 0], con_f[k, 1], con_f[k, 2], con_f[k, 3]
+            tg, ux, uy, dx, dy = _slide_frame(con_i, con_f, k, x, jet)
             nx = -uy
             ny = ux
-            ox, oy = _side_pos(gg, po, rox, roy, x, jet)
-            px, py = _side_pos(gs, pp, rpx, rpy, x, jet)
-            dx = px - ox
-            dy = py - oy
             if kind == C_PRISMATIC:
                 phi[row] = _side_angle(gs, ls, x, jet) - tg - con_f[k, 5]
                 phi[row + 1] = nx * dx + ny * dy
@@ -572,16 +578,10 @@ def _group_rhs(c0, c1, con_i, con_f, x, gK, jet, m, n, second, M, rhs):
         else:
             gg, po, lg, gs, pp, ls = (con_i[k, 1], con_i[k, 2], con_i[k, 3], con_i[k, 4],
                                       con_i[k, 5], con_i[k, 6])
-            rox, roy, rpx, rpy, beta = con_f[k, 0], con_f[k, 1], con_f[k, 2], con_f[k, 3], con_f[k, 4]
-            tg = _side_angle(gg, lg, x, jet)
-            ux = math.cos(tg + beta)
-            uy = math.sin(tg + beta)
+            rox, roy, rpx, rpy = con_f[k, 0], con_f[k, 1], con_f[k, 2], con_f[k, 3]
+            tg, ux, uy, dx, dy = _slide_frame(con_i, con_f, k, x, jet)
             nx = -uy
             ny = ux
-            ox, oy = _side_pos(gg, po, rox, roy, x, jet)
-            px, py = _side_pos(gs, pp, rpx, rpy, x, jet)
-            dx = px - ox
-            dy = py - oy
             ud = ux * dx + uy * dy
             nd = nx * dx + ny * dy
             if not second:

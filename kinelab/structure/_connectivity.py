@@ -180,15 +180,7 @@ def connectivity(model: Mechanism, a: str, b: str) -> Connectivity:
     In a four-bar the coupler has 2 freedoms relative to the ground along either side
     (a planar RR chain) and 1 with both sides acting.
 
-    >>> from kinelab.model import Mechanism, Point, Link, Joint
-    >>> from kinelab.structure import connectivity
-    >>> pts = (Point("O2", 0, 0), Point("A", 0, 1), Point("B", 3, 2), Point("O4", 3, 0))
-    >>> links = (Link("ground", ("O2", "O4"), ground=True), Link("crank", ("O2", "A")),
-    ...          Link("coupler", ("A", "B")), Link("rocker", ("O4", "B")))
-    >>> joints = tuple(Joint(f"j{p}", "R", pair, point=p) for p, pair in
-    ...                [("O2", ("ground", "crank")), ("A", ("crank", "coupler")),
-    ...                 ("B", ("coupler", "rocker")), ("O4", ("ground", "rocker"))])
-    >>> c = connectivity(Mechanism("four-bar", pts, links, joints), "ground", "coupler")
+    >>> c = connectivity(kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5), "ground", "coupler")
     >>> [(ch.joints, ch.connectivity, ch.group.label) for ch in c.chains]
     [(('jO2', 'jA'), 2, '{Tx, Ty, Rz}'), (('jO4', 'jB'), 2, '{Tx, Ty, Rz}')]
     >>> c.overall

@@ -257,15 +257,7 @@ def mobility(model: Mechanism, *, rtol: float = RTOL) -> Mobility:
     --------
     A four-bar: count and rank agree.
 
-    >>> from kinelab.model import Mechanism, Point, Link, Joint
-    >>> from kinelab.structure import mobility
-    >>> pts = (Point("O2", 0, 0), Point("A", 0, 1), Point("B", 3, 2), Point("O4", 3, 0))
-    >>> links = (Link("ground", ("O2", "O4"), ground=True), Link("crank", ("O2", "A")),
-    ...          Link("coupler", ("A", "B")), Link("rocker", ("O4", "B")))
-    >>> joints = tuple(Joint(f"j{p}", "R", pair, point=p) for p, pair in
-    ...                [("O2", ("ground", "crank")), ("A", ("crank", "coupler")),
-    ...                 ("B", ("coupler", "rocker")), ("O4", ("ground", "rocker"))])
-    >>> m = mobility(Mechanism("four-bar", pts, links, joints))
+    >>> m = mobility(kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5))
     >>> m.kutzbach_gruebler, m.exact
     (1, 1)
     >>> print(m.explanation)
