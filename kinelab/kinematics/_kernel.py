@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import literally, njit, prange
+from numba import njit, prange
 
 
 def _jit(**options):
@@ -747,82 +747,107 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
 # One sample: run every operation of the plan
 # --------------------------------------------------------------------------------------
 @_jit()
-def _evaluate(qs, qi, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i, con_i, con_f, scale,
-              gx, gK, gL, gq, gdet, work, piv, res):
-    """Run the plan at input q = qs[qi].  res <- (det, measure, gap, failed op); returns the
-    status.  Kt, Kt2 (M,) and Lt (M, M) are scratch for the groups' own slides.
+def _evaluate(qs, qd, qdd, lo, hi, write, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i, con_i,
+              con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, n_angles, n_out,
+              o_jet, o_rate, o_diag, o_status, o_failed):
+    """Run the plan at the inputs qs[lo:hi], one sample after the other.
+
+    After each sample res holds (det, measure, gap, failed op); with ``write`` the sample's
+    status, diagnostics and (when it assembles) its jets and rates go to row i of the
+    outputs.  Returns the status of the last sample.  Kt, Kt2 (M,) and Lt (M, M) are
+    scratch for the groups' own slides.  The sample loop lives here, with the operation
+    dispatch, so that a sample costs no function call.
     """
-    q = qs[qi]
-    det = 1.0
-    meas = 1.0
-    for k in range(ops_i.shape[0]):
-        op = ops_i[k, 0]
-        d = 1.0
-        ms = 1.0
+    status = ST_OK
+    for i in range(lo, hi):
+        status = ST_OK
+        det = 1.0
+        meas = 1.0
+        failed = -1
         gap = 0.0
-        if op == OP_RIGID_POINT:
-            _rigid_point(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], ops_f[k, 1], M)
-        elif op == OP_DRIVE_ANGLE:
-            b, a, mi = ops_i[k, 1], ops_i[k, 2], ops_i[k, 3]
-            sgn = ops_f[k, 0]
-            jet[b, 0] = (jet[a, 0] if a >= 0 else 0.0) + sgn * q[mi]
-            for c in range(1, 1 + M + M * M):
-                jet[b, c] = jet[a, c] if a >= 0 else 0.0
-            jet[b, 1 + mi] += sgn
-        elif op == OP_TWO_POINTS:
-            _two_points(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], M)
-        elif op == OP_LOCK_ANGLE:
-            b, a = ops_i[k, 1], ops_i[k, 2]
-            jet[b, 0] = jet[a, 0] + ops_f[k, 0]
-            for c in range(1, 1 + M + M * M):
-                jet[b, c] = jet[a, c]
-        elif op == OP_SLIDE_POINT:
-            mi = ops_i[k, 4]
-            sgn = ops_f[k, 2]
-            for m in range(M):
-                Kt[m] = sgn if m == mi else 0.0
-                for n in range(M):
-                    Lt[m, n] = 0.0
-            _line_point(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0],
-                        sgn * (q[mi] - ops_f[k, 1]), Kt, Lt, M)
-        elif op == OP_RRR:
-            d, ms, gap = _rrr(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4], ops_i[k, 5],
-                              ops_f[k, 0], ops_f[k, 1], ops_f[k, 2], ops_f[k, 3], ops_f[k, 4], M)
-        elif op == OP_RRP:
-            d, ms, gap = _rrp(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4], ops_i[k, 5],
-                              ops_f[k, 0], ops_f[k, 1], ops_f[k, 2], ops_f[k, 3], M, Kt)
-        elif op == OP_RPR:
-            d, ms, gap = _rpr(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], ops_f[k, 1],
-                              ops_f[k, 2], ops_f[k, 3], ops_f[k, 4], M, Kt)
-        elif op == OP_LINES:
-            d, ms, gap = _lines(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4], ops_i[k, 5],
-                                ops_f[k, 0], ops_f[k, 1], M, Kt, Kt2, Lt)
-        elif op == OP_NEWTON:
-            st, d, ms = _newton_group(ops_i[k, 1], groups_i, con_i, con_f, scale, q, jet,
-                                      gx, gK, gL, gq, gdet, M, work, piv)
-            if st != ST_OK:
-                res[2] = 0.0
-                res[3] = k
-                return st
-        elif op == OP_SLIDE_OUT:
-            s = ops_i[k, 1]
-            v = _relative_slide(jet, ops_i[k, 2], ops_i[k, 3], ops_i[k, 4], ops_f[k, 0], M, Kt, Lt)
-            jet[s, 0] = ops_f[k, 1] + v
-            for m in range(M):
-                jet[s, 1 + m] = Kt[m]
-                for n in range(M):
-                    jet[s, 1 + M + m * M + n] = Lt[m, n]
-        if gap > 0.0:
-            res[2] = gap
-            res[3] = k
-            return ST_NO_ASSEMBLY
-        det *= d
-        meas = min(meas, ms)
-    res[0] = det
-    res[1] = meas
-    res[2] = 0.0
-    res[3] = -1
-    return ST_OK
+        for k in range(ops_i.shape[0]):
+            op = ops_i[k, 0]
+            d = 1.0
+            ms = 1.0
+            if op == OP_RIGID_POINT:
+                _rigid_point(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], ops_f[k, 1], M)
+            elif op == OP_DRIVE_ANGLE:
+                b, a, mi = ops_i[k, 1], ops_i[k, 2], ops_i[k, 3]
+                sgn = ops_f[k, 0]
+                jet[b, 0] = (jet[a, 0] if a >= 0 else 0.0) + sgn * qs[i, mi]
+                for c in range(1, 1 + M + M * M):
+                    jet[b, c] = jet[a, c] if a >= 0 else 0.0
+                jet[b, 1 + mi] += sgn
+            elif op == OP_TWO_POINTS:
+                _two_points(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], M)
+            elif op == OP_LOCK_ANGLE:
+                b, a = ops_i[k, 1], ops_i[k, 2]
+                jet[b, 0] = jet[a, 0] + ops_f[k, 0]
+                for c in range(1, 1 + M + M * M):
+                    jet[b, c] = jet[a, c]
+            elif op == OP_SLIDE_POINT:
+                mi = ops_i[k, 4]
+                sgn = ops_f[k, 2]
+                for m in range(M):
+                    Kt[m] = sgn if m == mi else 0.0
+                    for n in range(M):
+                        Lt[m, n] = 0.0
+                _line_point(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0],
+                            sgn * (qs[i, mi] - ops_f[k, 1]), Kt, Lt, M)
+            elif op == OP_RRR:
+                d, ms, gap = _rrr(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4],
+                                  ops_i[k, 5], ops_f[k, 0], ops_f[k, 1], ops_f[k, 2], ops_f[k, 3],
+                                  ops_f[k, 4], M)
+            elif op == OP_RRP:
+                d, ms, gap = _rrp(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4],
+                                  ops_i[k, 5], ops_f[k, 0], ops_f[k, 1], ops_f[k, 2], ops_f[k, 3],
+                                  M, Kt)
+            elif op == OP_RPR:
+                d, ms, gap = _rpr(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0],
+                                  ops_f[k, 1], ops_f[k, 2], ops_f[k, 3], ops_f[k, 4], M, Kt)
+            elif op == OP_LINES:
+                d, ms, gap = _lines(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4],
+                                    ops_i[k, 5], ops_f[k, 0], ops_f[k, 1], M, Kt, Kt2, Lt)
+            elif op == OP_NEWTON:
+                st, d, ms = _newton_group(ops_i[k, 1], groups_i, con_i, con_f, scale, qs[i], jet,
+                                          gx, gK, gL, gq, gdet, M, work, piv)
+                if st != ST_OK:
+                    status = st
+                    failed = k
+                    break
+            elif op == OP_SLIDE_OUT:
+                sl = ops_i[k, 1]
+                v = _relative_slide(jet, ops_i[k, 2], ops_i[k, 3], ops_i[k, 4], ops_f[k, 0], M,
+                                    Kt, Lt)
+                jet[sl, 0] = ops_f[k, 1] + v
+                for m in range(M):
+                    jet[sl, 1 + m] = Kt[m]
+                    for n in range(M):
+                        jet[sl, 1 + M + m * M + n] = Lt[m, n]
+            if gap > 0.0:
+                status = ST_NO_ASSEMBLY
+                failed = k
+                break
+            det *= d
+            meas = min(meas, ms)
+        res[0] = det
+        res[1] = meas
+        res[2] = gap if status == ST_NO_ASSEMBLY else 0.0
+        res[3] = failed
+        if write:
+            _write_status(i, status, res, o_diag, o_status, o_failed)
+            if status == ST_OK:
+                _write_sample(i, qd, qdd, M, n_angles, n_out, jet, o_jet, o_rate)
+    return status
+
+
+@_jit()
+def _write_status(i, status, res, o_diag, o_status, o_failed):
+    o_status[i] = status
+    o_diag[i, 0] = res[0]
+    o_diag[i, 1] = res[1]
+    o_diag[i, 2] = res[2]
+    o_failed[i] = int(res[3])
 
 
 @_jit()
@@ -871,10 +896,9 @@ def run_closed_form(q, qd, qdd, ops_i, ops_f, const_items, const_values, n_items
                     n_out, o_jet, o_rate, o_diag, o_status, o_failed, M):
     """Evaluate a plan without Newton groups: samples are independent and run in parallel.
 
-    o_jet (N, n_out, 1 + M + M*M), o_rate (N, n_out, 2), o_diag (N, 3): det, measure, gap.
-    M (= q.shape[1]) is compiled in as a constant, so the loops over inputs unroll.
+    o_jet (N, n_out, 1 + M + M*M), o_rate (N, n_out, 2), o_diag (N, 3): det, measure, gap;
+    M = q.shape[1].
     """
-    literally(M)
     N = q.shape[0]
     nchunks = min(N, 64)
     for c in prange(nchunks):
@@ -891,16 +915,9 @@ def run_closed_form(q, qd, qdd, ops_i, ops_f, const_items, const_values, n_items
         g2 = np.zeros((1, M))
         g3 = np.zeros((1, M, M))
         piv = np.zeros(1, np.int64)
-        for i in range(lo, hi):
-            st = _evaluate(q, i, ops_i, ops_f, jet, M, Kt, Kt2, Lt, gi, gi, gf, 1.0, g1, g2, g3,
-                           g2, g1, g1, piv, res)
-            o_status[i] = st
-            o_diag[i, 0] = res[0]
-            o_diag[i, 1] = res[1]
-            o_diag[i, 2] = res[2]
-            o_failed[i] = int(res[3])
-            if st == ST_OK:
-                _write_sample(i, qd, qdd, M, n_angles, n_out, jet, o_jet, o_rate)
+        _evaluate(q, qd, qdd, lo, hi, True, ops_i, ops_f, jet, M, Kt, Kt2, Lt, gi, gi, gf, 1.0,
+                  g1, g2, g3, g2, g1, g1, piv, res, n_angles, n_out, o_jet, o_rate, o_diag,
+                  o_status, o_failed)
 
 
 @_jit()
@@ -913,7 +930,6 @@ def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, c
     ``max_step`` (Euclidean, in input units), and halved again while a Newton group fails
     to converge or jumps (its correction is large against the predicted step).
     """
-    literally(M)
     N = q.shape[0]
     ng = groups_i.shape[0]
     nx = grp_x0.shape[0]
@@ -943,8 +959,9 @@ def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, c
     qt = q_start.copy().reshape((1, M))
     qprev = q_start.copy()
     # the sketch itself: the groups converge at once and get their K and L
-    st0 = _evaluate(qt, 0, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i, con_i, con_f, scale,
-                    gx, gK, gL, gq, gdet, work, piv, res)
+    st0 = _evaluate(qt, qd, qdd, 0, 1, False, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i,
+                    con_i, con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, n_angles, n_out,
+                    o_jet, o_rate, o_diag, o_status, o_failed)
     if st0 != ST_OK:
         for i in range(N):
             o_status[i] = st0
@@ -969,8 +986,9 @@ def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, c
             bL[:] = gL
             bq[:] = gq
             bdet[:] = gdet
-            st = _evaluate(qt, 0, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i, con_i, con_f, scale,
-                           gx, gK, gL, gq, gdet, work, piv, res)
+            st = _evaluate(qt, qd, qdd, 0, 1, False, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i,
+                           con_i, con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, n_angles,
+                           n_out, o_jet, o_rate, o_diag, o_status, o_failed)
             if st == ST_OK:
                 t = tt
                 h = min(2.0 * h, max_step / dist) if dist > 0.0 else 1.0
@@ -983,11 +1001,7 @@ def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, c
                 if st == ST_NO_ASSEMBLY or h < 1e-9:
                     break
                 h *= 0.5
-        o_status[i] = st
-        o_diag[i, 0] = res[0]
-        o_diag[i, 1] = res[1]
-        o_diag[i, 2] = res[2]
-        o_failed[i] = int(res[3])
+        _write_status(i, st, res, o_diag, o_status, o_failed)
         if st == ST_OK:
             _write_sample(i, qd, qdd, M, n_angles, n_out, jet, o_jet, o_rate)
         # the next sample starts where the mechanism last assembled
