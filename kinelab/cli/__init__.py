@@ -1,5 +1,15 @@
-"""The ``kinelab`` command."""
+"""The ``kinelab`` command: thin, it parses, calls library functions and prints.
 
+Each command lives in a module of this package and is registered here with one line, so a
+room adds its commands with ``main.add_command(command)``.
+"""
+from kinelab.cli._analyze import analyze, check
+from kinelab.cli._draw import animate, plot
+from kinelab.cli._main import main
 
-def main() -> None:  # pragma: no cover - replaced by the full command line
-    raise SystemExit("kinelab: no commands yet")
+main.add_command(analyze)
+main.add_command(check)
+main.add_command(plot)
+main.add_command(animate)
+
+__all__ = ["main"]
