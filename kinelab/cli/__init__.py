@@ -5,11 +5,14 @@ room adds its commands with ``main.add_command(command)``.
 """
 from kinelab.cli._analyze import analyze, check
 from kinelab.cli._draw import animate, plot
+from kinelab.cli._exchange import export, import_
 from kinelab.cli._main import main
 
 main.add_command(analyze)
 main.add_command(check)
 main.add_command(plot)
 main.add_command(animate)
+main.add_command(export)
+main.add_command(import_)
 
 __all__ = ["main"]
