@@ -8,7 +8,7 @@ import numpy as np
 
 from kinelab import io, kinematics
 from kinelab.cli._format import configuration_text, summary_text
-from kinelab.cli._main import errors_from, output_path, parse_inputs, read_model, sweep
+from kinelab.cli._main import errors_from, output_path, parse_inputs, read_model, stem, sweep
 from kinelab.errors import ModelError
 
 __all__ = ["analyze", "check"]
@@ -58,8 +58,8 @@ def analyze(model, out, fmt, samples, degrees, at, quiet):
         return
     sol = sweep(mf, samples)
     s = None if quiet else summarise(mf, sol)
-    stem = _stem(model)
-    path = output_path(out, stem, fmt or "csv")
+    name = stem(model)
+    path = output_path(out, name, fmt or "csv")
     written = io.write_results(sol, path, format=fmt, degrees=degrees)
     if s is not None:
         click.echo(summary_text(s, degrees=degrees))
@@ -133,8 +133,3 @@ def _mobility(m) -> str:
     except Exception:      # the count is extra information; the check stands without it
         return ""
     return f"Kutzbach-Gruebler count {result.kutzbach_gruebler}, exact {result.exact}"
-
-
-def _stem(model: str) -> str:
-    from pathlib import Path
-    return Path(model).stem

@@ -5,7 +5,8 @@ import click
 
 from kinelab import io
 from kinelab.cli._analyze import DEGREES, MODEL, SAMPLES
-from kinelab.cli._main import errors_from, output_path, read_model, sweep
+from kinelab.cli._main import errors_from, output_path, read_model, stem, sweep
+from kinelab.errors import ModelError
 
 __all__ = ["plot", "animate"]
 
@@ -44,7 +45,13 @@ def plot(model, out, formats, outputs, samples, degrees):
     sol = sweep(mf, samples)
     m = mf.mechanism
     chosen = _names(outputs) or list(mf.outputs.report) or list(io.default_outputs(m))
-    stem = _stem(model)
+    base = stem(model)
+    known = list(sol.link_item) + list(sol.slide_item) + list(sol.point_item)
+    unknown = [n for n in chosen if n not in known]
+    if unknown:
+        raise ModelError(f"--outputs: expected links, slides or points of {m.name}, got "
+                         f"{', '.join(repr(n) for n in unknown)}; they are "
+                         f"{', '.join(repr(n) for n in known)}")
     figures = []
     with errors_from(mf, "outputs"):
         curve_names = [n for n in chosen if n in sol.link_item or n in sol.slide_item]
@@ -59,9 +66,9 @@ def plot(model, out, formats, outputs, samples, degrees):
     if not figures:
         raise click.UsageError("nothing to plot: name links, slides or points with --outputs")
     written = []
-    for name, fig in figures:
+    for kind, fig in figures:
         for fmt in formats:
-            written.append(kplot.save(fig, output_path(out, f"{stem}_{name}", fmt)))
+            written.append(kplot.save(fig, output_path(out, f"{base}_{kind}", fmt)))
         plt.close(fig)
     for path in written:
         click.echo(f"wrote {path}")
@@ -86,12 +93,7 @@ def animate(model, out, fmt, trace, frames, fps, samples):
     if fmt == "auto":
         fmt = "mp4" if kplot.can_write_mp4() else "gif"
     sol = sweep(mf, samples)
-    path = output_path(out, _stem(model), fmt)
+    path = output_path(out, stem(model), fmt)
     with errors_from(mf, "--trace" if trace else ""):
         written = kplot.animate(sol, path, trace=_names(trace), frames=frames, fps=fps)
     click.echo(f"wrote {written}")
-
-
-def _stem(model: str) -> str:
-    from pathlib import Path
-    return Path(model).stem

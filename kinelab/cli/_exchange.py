@@ -7,7 +7,7 @@ import click
 
 from kinelab import io
 from kinelab.cli._analyze import MODEL
-from kinelab.cli._main import errors_from, output_path, read_model, sweep
+from kinelab.cli._main import errors_from, output_path, read_model, stem, sweep
 from kinelab.errors import ModelError
 
 __all__ = ["export", "import_"]
@@ -40,7 +40,7 @@ def export(model, target, out, unit, layout, width, hole, ground):
     m = mf.mechanism
     unit = unit or mf.units.length
     scale = io.LENGTH_UNITS[unit]
-    path = output_path(out, Path(model).stem, target)
+    path = output_path(out, stem(model), target)
     if target in ("svg", "dxf"):
         sol = sweep(mf, 181)          # slots span the sliders' travel
         write = io.to_svg if target == "svg" else io.to_dxf

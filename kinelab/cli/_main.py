@@ -16,7 +16,7 @@ from kinelab.errors import KinelabError, ModelError
 from kinelab.io import LENGTH_UNITS, ModelFile
 from kinelab.kinematics import KinematicSolution
 
-__all__ = ["main", "read_model", "errors_from", "sweep", "output_path", "parse_inputs"]
+__all__ = ["main", "read_model", "errors_from", "sweep", "output_path", "parse_inputs", "stem"]
 
 BAD_INPUT = 2      # exit status for a bad file, option or input value
 
@@ -104,6 +104,11 @@ def analyze_in_chunks(m, q, qd, qdd, *, chunks: int, label: str = "") -> Kinemat
                          "assembled")}
     return KinematicSolution(mechanism=m, link_item=first.link_item, point_item=first.point_item,
                              slide_item=first.slide_item, single=False, **join)
+
+
+def stem(model: str) -> str:
+    """A model file's name without its suffix: what its outputs are named after."""
+    return Path(model).stem
 
 
 def output_path(out: str | None, stem: str, suffix: str) -> Path:

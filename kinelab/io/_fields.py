@@ -43,6 +43,14 @@ def _is_number(value: Any) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
+def _scaled(value: int | float, scale: float) -> float:
+    """``value * scale`` as a float; inf when a huge integer does not fit one."""
+    try:
+        return float(value) * scale
+    except OverflowError:
+        return math.inf
+
+
 class Reader:
     """Collects problems while converting fields; see the module docstring."""
 
@@ -83,17 +91,23 @@ class Reader:
         return list(value)
 
     # -- scalars --------------------------------------------------------------------------
-    def string(self, value: Any, field: str, *, choices: Iterable[str] | None = None) -> str | None:
+    def _text(self, value: Any, field: str, what: str, options: Iterable[str] | None,
+              complaint) -> str | None:
+        """Non-empty text, one of ``options`` when given (else ``complaint(value, options)``)."""
         if not isinstance(value, str) or not value.strip():
-            self.fail(field, f"expected a non-empty text, got {describe(value)}")
+            self.fail(field, f"expected {what}, got {describe(value)}")
             return None
-        if choices is not None:
-            choices = list(choices)
-            if value not in choices:
-                self.fail(field, f"expected one of {quoted(choices)}, got '{value}'"
-                          f"{suggest(value, choices)}")
-                return None
-        return value
+        if options is None:
+            return value
+        options = list(options)
+        if value in options:
+            return value
+        self.fail(field, complaint(value, options))
+        return None
+
+    def string(self, value: Any, field: str, *, choices: Iterable[str] | None = None) -> str | None:
+        return self._text(value, field, "a non-empty text", choices, lambda v, c: (
+            f"expected one of {quoted(c)}, got '{v}'{suggest(v, c)}"))
 
     def boolean(self, value: Any, field: str) -> bool | None:
         if not isinstance(value, bool):
@@ -113,10 +127,7 @@ class Reader:
         if not _is_number(value):
             self.fail(field, f"expected a number, got {describe(value)}")
             return None
-        try:
-            v = float(value) * scale
-        except OverflowError:
-            v = math.inf
+        v = _scaled(value, scale)
         if not math.isfinite(v):
             self.fail(field, f"expected a finite number, got {describe(value)}")
             return None
@@ -135,31 +146,18 @@ class Reader:
                 or not all(_is_number(v) for v in value)):
             self.fail(field, f"expected {shape}, got {describe(value)}")
             return None
-        out = []
-        for v in value:
-            try:
-                x = float(v) * scale
-            except OverflowError:
-                x = math.inf
-            if not math.isfinite(x):
-                self.fail(field, f"expected finite numbers, got {describe(value)}")
-                return None
-            out.append(x)
-        return tuple(out)
+        out = tuple(_scaled(v, scale) for v in value)
+        if not all(math.isfinite(x) for x in out):
+            self.fail(field, f"expected finite numbers, got {describe(value)}")
+            return None
+        return out
 
     def name(self, value: Any, field: str, known: Iterable[str] | None = None,
              kind: str = "", plural: str | None = None) -> str | None:
         """A name, optionally one of ``known`` (then the message lists them as ``plural``)."""
-        if not isinstance(value, str) or not value.strip():
-            self.fail(field, f"expected a name, got {describe(value)}")
-            return None
-        if known is not None:
-            known = list(known)
-            if value not in known:
-                self.fail(field, f"expected a declared {kind}, got '{value}'{suggest(value, known)}; "
-                          f"{plural or 'declared ' + kind + 's'} are {quoted(known) or 'none'}")
-                return None
-        return value
+        return self._text(value, field, "a name", known, lambda v, k: (
+            f"expected a declared {kind}, got '{v}'{suggest(v, k)}; "
+            f"{plural or 'declared ' + kind + 's'} are {quoted(k) or 'none'}"))
 
     def names(self, value: Any, field: str, known: Iterable[str] | None = None, kind: str = "",
               count: int | None = None, plural: str | None = None) -> tuple[str, ...] | None:

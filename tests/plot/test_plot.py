@@ -109,3 +109,14 @@ def test_plot_and_animate_commands(tmp_path):
                                   "--samples", "13", "--frames", "6", "--format", "gif"])
     assert r.exit_code == 0, r.output
     assert Image.open(tmp_path / "crank_rocker.gif").n_frames == 6
+
+
+def test_plot_command_refuses_unknown_outputs(tmp_path):
+    from click.testing import CliRunner
+    from kinelab.cli import main
+    r = CliRunner().invoke(main, ["plot", "examples/crank_rocker.toml", "--out", str(tmp_path),
+                                  "--samples", "9", "--outputs", "rocker,nope"])
+    assert r.exit_code == 2
+    assert r.stderr.startswith("kinelab: error: --outputs: expected links, slides or points of "
+                               "crank-rocker, got 'nope'; they are 'ground', 'crank'")
+    assert list(tmp_path.iterdir()) == []
