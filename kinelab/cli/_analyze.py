@@ -9,7 +9,7 @@ import numpy as np
 from kinelab import io, kinematics
 from kinelab.cli._format import configuration_text, summary_text
 from kinelab.cli._main import errors_from, output_path, parse_inputs, read_model, stem, sweep
-from kinelab.errors import ModelError
+from kinelab.errors import KinelabError, ModelError
 
 __all__ = ["analyze", "check"]
 
@@ -130,6 +130,6 @@ def _mobility(m) -> str:
         return ""
     try:
         result = mobility(m)
-    except Exception:      # the count is extra information; the check stands without it
+    except KinelabError:      # the count is extra information; the check stands without it
         return ""
     return f"Kutzbach-Gruebler count {result.kutzbach_gruebler}, exact {result.exact}"

@@ -356,5 +356,6 @@ def to_pyslvs(model: Mechanism, *, length: str = "mm") -> str:
         pivot = model.joint(inp.joint).point if inp.joint is not None else model.link(link).points[0]
         other = next(q for q in model.link(link).points if q != pivot)
         pairs.append((index[pivot], index[other]))
-    head = f"# {model.name}: inputs (pivot joint, driven joint) = {pairs}"
+    title = " ".join(str(model.name).split())      # one line: it is a comment
+    head = f"# {title}: inputs (pivot joint, driven joint) = {pairs}"
     return head + "\nM[\n" + "".join(f"  {r},\n" for r in rows) + "]\n"

@@ -179,3 +179,12 @@ def test_chunked_sweep_matches_one_sweep():
         np.testing.assert_allclose(parts.jets, one.jets, rtol=0, atol=1e-9)
         np.testing.assert_allclose(parts.rates, one.rates, rtol=0, atol=1e-8)
         np.testing.assert_array_equal(parts.singular, one.singular)
+
+
+def test_progress_sweep_gives_the_same_results():
+    from kinelab.cli._main import sweep
+    mf = kl.io.ModelFile.read(EX / "crank_rocker.toml")
+    quiet = sweep(mf, 20001, progress=False)
+    shown = sweep(mf, 20001, progress=True)          # in pieces, behind a bar on stderr
+    np.testing.assert_allclose(shown.jets, quiet.jets, rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(shown.q, quiet.q)
