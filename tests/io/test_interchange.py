@@ -294,3 +294,28 @@ def test_export_and_import_commands(tmp_path):
     assert r.stderr == "kinelab: error: bad.pyslvs: expression: the end: expected ']' (the end " \
                        "of the mechanism), got 'the end'\n"
     assert not (tmp_path / "b.toml").exists()
+
+
+_l2d_values = st.recursive(
+    st.one_of(st.none(), st.booleans(), st.integers(-5, 5), st.floats(-1e3, 1e3),
+              st.sampled_from(["L1", "L2", "L3", "L4", "O", "A", "B", "G", "x", "revolute",
+                               "prismatic", "pin-in-slot", "weld", "gear", "mm"])),
+    lambda inner: st.one_of(st.lists(inner, max_size=3), st.dictionaries(st.sampled_from(
+        ["id", "name", "type", "parent", "child", "point_id_parent", "point_id_child", "points",
+         "position", "pose", "angle", "axis_parent", "axis_child", "point_id", "direction_id",
+         "directions", "lines", "point_ids", "line_id_parent", "relative_pos", "relative_angle",
+         "isGrounded"]), inner, max_size=4)), max_leaves=10)
+
+
+@given(st.sampled_from(["links", "joints"]), st.integers(0, 3),
+       st.sampled_from(["id", "type", "parent", "child", "point_id_parent", "point_id_child",
+                        "points", "pose", "axis_parent", "axis_child", "directions", "isGrounded"]),
+       _l2d_values)
+def test_corrupted_linkage2d_data_raises_only_model_error(section, index, key, value):
+    import copy
+    data = copy.deepcopy(SLIDER)
+    data[section][index][key] = value
+    try:
+        kl.io.from_linkage2d_json(data)
+    except ModelError:
+        pass
