@@ -262,6 +262,25 @@ def mechanism(sol: KinematicSolution, i: int = 0, *, ax=None, artists: dict | No
                                                  label=link.name, zorder=2)[0]
         else:
             store[("link", link.name)].set_data(closed[:, 0], closed[:, 1])
+    for k, j in enumerate(m.joints):
+        if j.type != "P":
+            continue
+        guide = m.link(j.links[0])
+        if guide.ground:      # a rail: the slider's whole travel, drawn once
+            if first:
+                travel = sol.position(j.point).reshape(-1, 2)
+                travel = travel[np.isfinite(travel).all(axis=1)]
+                ends = travel[[np.argmin(travel @ np.asarray(j.axis)), np.argmax(travel @ np.asarray(j.axis))]]
+                ax.plot(ends[:, 0], ends[:, 1], lw=1.2, color="0.55", zorder=1)
+            continue
+        # a slot along a moving guide, from its first point to the slider
+        seg = np.array([pos[guide.points[0]], pos[j.point]])
+        i_guide = m.link_names.index(guide.name)
+        if first:
+            store[("slot", j.name)] = ax.plot(seg[:, 0], seg[:, 1], lw=1.5, ls="--", zorder=1,
+                                              color=colors[i_guide % len(colors)])[0]
+        else:
+            store[("slot", j.name)].set_data(seg[:, 0], seg[:, 1])
     pins = [p for p in sol.point_names if len(m.links_carrying(p)) > 1]
     pxy = np.array([pos[p] for p in pins]) if pins else np.zeros((0, 2))
     if first:
