@@ -7,6 +7,7 @@ from kinelab.cli._analyze import analyze, check
 from kinelab.cli._draw import animate, plot
 from kinelab.cli._exchange import export, import_
 from kinelab.cli._main import main
+from kinelab.cli._structure import mobility, types
 
 main.add_command(analyze)
 main.add_command(check)
@@ -14,5 +15,7 @@ main.add_command(plot)
 main.add_command(animate)
 main.add_command(export)
 main.add_command(import_)
+main.add_command(mobility)
+main.add_command(types)
 
 __all__ = ["main"]

@@ -3,6 +3,7 @@ outputs, sweeping with a progress bar, and turning kinelab errors into exit stat
 from __future__ import annotations
 
 import math
+import os
 import re
 import sys
 from contextlib import contextmanager
@@ -32,6 +33,10 @@ class _Group(click.Group):
             for line in str(exc).splitlines() or [type(exc).__name__]:
                 click.echo(f"kinelab: error: {line}", err=True)
             ctx.exit(BAD_INPUT if isinstance(exc, ValueError) else 1)
+        except BrokenPipeError:     # the reader went away (| head): nothing more to say
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, sys.stdout.fileno())
+            ctx.exit(1)
         except OSError as exc:      # an output that cannot be written: say where, no traceback
             where = f" {exc.filename}" if exc.filename else ""
             click.echo(f"kinelab: error: cannot write{where}: {exc.strerror or exc}", err=True)

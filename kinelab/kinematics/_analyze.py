@@ -82,13 +82,14 @@ def _run(p: Plan, q, qd, qdd):
     tail = (out["jets"], out["rates"], out["diag"], out["status"], out["failed"])
     if p.groups is None:
         k.run_closed_form(q, qd, qdd, p.ops_i, p.ops_f, p.const_items, p.const_values,
-                          p.n_items, p.n_angles, p.n_out, *tail)
+                          p.n_items, p.n_angles, p.n_out, *tail, M)
     else:
         # continuation steps of at most 0.05 rad (or 0.05 sizes of the mechanism for slides)
         max_step = _CONTINUATION_STEP * (1.0 if all(kd == "angle" for kd in p.input_kinds)
                                          else min(1.0, p.scale))
         k.run_continuation(q, qd, qdd, p.q_sketch, max_step, p.ops_i, p.ops_f, p.const_items,
-                           p.const_values, p.n_items, p.n_angles, p.n_out, *p.groups, p.scale, *tail)
+                           p.const_values, p.n_items, p.n_angles, p.n_out, *p.groups, p.scale, *tail,
+                           M)
     return out
 
 

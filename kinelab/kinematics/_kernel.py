@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import literally, njit, prange
 
 
 def _jit(**options):
@@ -479,6 +479,18 @@ def _jac_point(A, row, gi, rx, ry, x, cx, cy):
 
 
 @_jit()
+def _slide_frame(con_i, con_f, k, x, jet):
+    """Guide angle, slide direction u and d = p - o of prismatic constraint k."""
+    gg, po, lg, gs, pp = con_i[k, 1], con_i[k, 2], con_i[k, 3], con_i[k, 4], con_i[k, 5]
+    tg = _side_angle(gg, lg, x, jet)
+    ux = math.cos(tg + con_f[k, 4])
+    uy = math.sin(tg + con_f[k, 4])
+    ox, oy = _side_pos(gg, po, con_f[k, 0], con_f[k, 1], x, jet)
+    px, py = _side_pos(gs, pp, con_f[k, 2], con_f[k, 3], x, jet)
+    return tg, ux, uy, px - ox, py - oy
+
+
+@_jit()
 def _group_residual(c0, c1, con_i, con_f, x, q, jet, A, phi, with_jac):
     """Residuals phi and (optionally) Jacobian A of one group's constraints."""
     row = 0
@@ -509,16 +521,10 @@ def _group_residual(c0, c1, con_i, con_f, x, q, jet, A, phi, with_jac):
         else:  # prismatic constraint or driven slide
             gg, po, lg, gs, pp, ls = (con_i[k, 1], con_i[k, 2], con_i[k, 3], con_i[k, 4],
                                       con_i[k, 5], con_i[k, 6])
-            rox, roy, rpx, rpy, beta = con_f[k, 0], con_f[k, 1], con_f[k, 2], con_f[k, 3], con_f[k, 4]
-            tg = _side_angle(gg, lg, x, jet)
-            ux = math.cos(tg + beta)
-            uy = math.sin(tg + beta)
+            rox, roy, rpx, rpy = con_f[k, 0], con_f[k, 1], con_f[k, 2], con_f[k, 3]
+            tg, ux, uy, dx, dy = _slide_frame(con_i, con_f, k, x, jet)
             nx = -uy
             ny = ux
-            ox, oy = _side_pos(gg, po, rox, roy, x, jet)
-            px, py = _side_pos(gs, pp, rpx, rpy, x, jet)
-            dx = px - ox
-            dy = py - oy
             if kind == C_PRISMATIC:
                 phi[row] = _side_angle(gs, ls, x, jet) - tg - con_f[k, 5]
                 phi[row + 1] = nx * dx + ny * dy
@@ -572,16 +578,10 @@ def _group_rhs(c0, c1, con_i, con_f, x, gK, jet, m, n, second, M, rhs):
         else:
             gg, po, lg, gs, pp, ls = (con_i[k, 1], con_i[k, 2], con_i[k, 3], con_i[k, 4],
                                       con_i[k, 5], con_i[k, 6])
-            rox, roy, rpx, rpy, beta = con_f[k, 0], con_f[k, 1], con_f[k, 2], con_f[k, 3], con_f[k, 4]
-            tg = _side_angle(gg, lg, x, jet)
-            ux = math.cos(tg + beta)
-            uy = math.sin(tg + beta)
+            rox, roy, rpx, rpy = con_f[k, 0], con_f[k, 1], con_f[k, 2], con_f[k, 3]
+            tg, ux, uy, dx, dy = _slide_frame(con_i, con_f, k, x, jet)
             nx = -uy
             ny = ux
-            ox, oy = _side_pos(gg, po, rox, roy, x, jet)
-            px, py = _side_pos(gs, pp, rpx, rpy, x, jet)
-            dx = px - ox
-            dy = py - oy
             ud = ux * dx + uy * dy
             nd = nx * dx + ny * dy
             if not second:
@@ -746,7 +746,7 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
 # --------------------------------------------------------------------------------------
 # One sample: run every operation of the plan
 # --------------------------------------------------------------------------------------
-@_jit(inline="always")
+@_jit()
 def _evaluate(qs, qi, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i, con_i, con_f, scale,
               gx, gK, gL, gq, gdet, work, piv, res):
     """Run the plan at input q = qs[qi].  res <- (det, measure, gap, failed op); returns the
@@ -868,12 +868,14 @@ def _new_jet(n_items, M, const_items, const_values):
 
 @_jit(parallel=True)
 def run_closed_form(q, qd, qdd, ops_i, ops_f, const_items, const_values, n_items, n_angles,
-                    n_out, o_jet, o_rate, o_diag, o_status, o_failed):
+                    n_out, o_jet, o_rate, o_diag, o_status, o_failed, M):
     """Evaluate a plan without Newton groups: samples are independent and run in parallel.
 
     o_jet (N, n_out, 1 + M + M*M), o_rate (N, n_out, 2), o_diag (N, 3): det, measure, gap.
+    M (= q.shape[1]) is compiled in as a constant, so the loops over inputs unroll.
     """
-    N, M = q.shape
+    literally(M)
+    N = q.shape[0]
     nchunks = min(N, 64)
     for c in prange(nchunks):
         lo = c * N // nchunks
@@ -904,14 +906,15 @@ def run_closed_form(q, qd, qdd, ops_i, ops_f, const_items, const_values, n_items
 @_jit()
 def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
                      n_items, n_angles, n_out, groups_i, con_i, con_f, grp_x0, scale,
-                     o_jet, o_rate, o_diag, o_status, o_failed):
+                     o_jet, o_rate, o_diag, o_status, o_failed, M):
     """Evaluate a plan with Newton groups, following the samples in order from the sketch.
 
     Each step from the previous input to the next is split so that no step exceeds
     ``max_step`` (Euclidean, in input units), and halved again while a Newton group fails
     to converge or jumps (its correction is large against the predicted step).
     """
-    N, M = q.shape
+    literally(M)
+    N = q.shape[0]
     ng = groups_i.shape[0]
     nx = grp_x0.shape[0]
     nmax = 1

@@ -32,6 +32,9 @@ class JointType:
         Whether the joint must give an axis (slide direction, rotation axis).
     description : str
         A short description for people.
+    spatial_freedoms : int, optional
+        Freedoms the pair allows when it joins two links of a spatial mechanism, where
+        they differ from ``freedoms`` (the planar higher pairs); ``None`` means the same.
     """
 
     symbol: str
@@ -41,6 +44,7 @@ class JointType:
     needs_point: bool
     needs_axis: bool
     description: str
+    spatial_freedoms: int | None = None
 
 
 JOINT_TYPES: dict[str, JointType] = {t.symbol: t for t in (
@@ -51,8 +55,11 @@ JOINT_TYPES: dict[str, JointType] = {t.symbol: t for t in (
     JointType("U", 2, False, False, True, True, "universal (Hooke, Cardan)"),
     JointType("S", 3, False, False, True, False, "spherical (ball)"),
     JointType("E", 3, False, False, False, True, "planar pair (flat contact)"),
-    JointType("cam", 2, True, True, False, False, "cam and follower (rolling and sliding contact)"),
-    JointType("gear", 2, True, True, False, False, "gear mesh"),
-    JointType("rolling", 1, True, True, False, False, "rolling contact without slip"),
-    JointType("pin_in_slot", 2, True, True, True, True, "pin in slot"),
+    # In space: cam and gear teeth touch at a point (P5), a rolling contact without slip
+    # leaves the three rotations about the contact point (P3), and a pin in a slot is a
+    # ball whose centre stays on the slot's line (P4).
+    JointType("cam", 2, True, True, False, False, "cam and follower (rolling and sliding contact)", 5),
+    JointType("gear", 2, True, True, False, False, "gear mesh", 5),
+    JointType("rolling", 1, True, True, False, False, "rolling contact without slip", 3),
+    JointType("pin_in_slot", 2, True, True, True, True, "pin in slot", 4),
 )}

@@ -22,7 +22,7 @@ from numpy.typing import ArrayLike
 from kinelab.errors import AssemblyError, ConvergenceError, ModelError, SingularityError
 from kinelab.spatial._common import as_array, as_length, as_vectors, \
     check_choice, indices, wrap
-from kinelab.spatial._half_angle import half_angle
+from kinelab.solvers import half_angle
 from kinelab.spatial._transforms import rotation
 
 __all__ = ["RobotJoint", "SerialRobot", "ToolMotion", "JointRates",
@@ -591,7 +591,8 @@ def _two_link(u: np.ndarray, v: np.ndarray, a: float, b: float):
     Returns θa (N, 2), θb (N, 2), count (N,), gap (N,) in m, free (N,) bool.
     """
     E, F, G = -2.0 * u * a, -2.0 * v * a, u * u + v * v + a * a - b * b
-    theta_a, count, _ = half_angle(E, F, G)
+    _roots = half_angle(E, F, G)
+    theta_a, count = _roots.theta, _roots.count
     elbow = a * np.stack([np.cos(theta_a), np.sin(theta_a)])
     theta_b = wrap(np.arctan2(v[:, None] - elbow[1], u[:, None] - elbow[0]) - theta_a)
     d = np.hypot(u, v)
@@ -679,7 +680,8 @@ def pr(L: float) -> SerialRobot:
 
     def solve(points):
         x, y = points[:, 0], points[:, 1]
-        theta, count, gap = half_angle(0.0, L, -y)       # L sin θ2 = y
+        _roots = half_angle(0.0, L, -y)       # L sin θ2 = y
+        theta, count, gap = _roots.theta, _roots.count, _roots.gap
         q1 = x[:, None] - L * np.cos(theta)
         return _Branches(np.stack([q1, theta], -1), _distinct(count), gap,
                          np.zeros_like(x, dtype=bool), f"the strip |y| <= {L:.6g} m", "")

@@ -9,7 +9,7 @@ from numpy.typing import ArrayLike
 
 from kinelab.errors import AssemblyError, ModelError, SingularityError
 from kinelab.spatial._common import as_array, as_length, check_choice, indices
-from kinelab.spatial._half_angle import half_angle
+from kinelab.solvers import half_angle
 
 __all__ = ["RSSR", "RSSRPositions", "RSSRSolution"]
 
@@ -176,7 +176,8 @@ class RSSR:
         """
         theta1 = as_array("theta1", theta1)
         E, F, G = self._coefficients(theta1)
-        theta3, count, gap = half_angle(E, F, G)
+        _roots = half_angle(E, F, G)
+        theta3, count, gap = _roots.theta, _roots.count, _roots.gap
         A = np.stack([self.H1 * np.sin(theta1), np.full_like(theta1, self.L1),
                       self.H1 * np.cos(theta1)], axis=-1)
         return RSSRPositions(theta1=theta1, E=E, F=F, G=G, theta3=theta3, feasible=count > 0,

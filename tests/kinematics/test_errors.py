@@ -6,6 +6,7 @@ import kinelab as kl
 from kinelab.errors import AssemblyError, ModelError, SingularityError
 from kinelab.model import Input, Joint, Link, Mechanism, Point
 from tests.kinematics.checks import closure_residual
+from tests.model.test_mechanism import fourbar_parts
 
 NON_GRASHOF = dict(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)   # |A O4| <= 2.5: cos q >= -5/16
 
@@ -80,19 +81,8 @@ def test_branch_and_length_errors():
         kl.mechanisms.fourbar(10.0, 1.0, 1.0, 1.0)
 
 
-def _fourbar_parts(extra_inputs=()):
-    points = (Point("O2", 0, 0), Point("A", 0, 1), Point("B", 3, 2), Point("O4", 3, 0))
-    links = (Link("ground", ("O2", "O4"), ground=True), Link("crank", ("O2", "A")),
-             Link("coupler", ("A", "B")), Link("rocker", ("O4", "B")))
-    joints = (Joint("jO2", "R", ("ground", "crank"), point="O2"),
-              Joint("jA", "R", ("crank", "coupler"), point="A"),
-              Joint("jB", "R", ("coupler", "rocker"), point="B"),
-              Joint("jO4", "R", ("ground", "rocker"), point="O4"))
-    return points, links, joints
-
-
 def test_missing_input_and_too_many_inputs():
-    p, l_, j = _fourbar_parts()
+    p, l_, j = fourbar_parts()
     with pytest.raises(ModelError, match="the mechanism has no input"):
         kl.analyze(Mechanism("fb", p, l_, j), q=0.0)
     two = Mechanism("fb", p, l_, j, (Input(joint="jO2"), Input(joint="jO4")))
@@ -103,7 +93,7 @@ def test_missing_input_and_too_many_inputs():
 
 
 def test_too_few_inputs():
-    p, l_, j = _fourbar_parts()
+    p, l_, j = fourbar_parts()
     p = p + (Point("C", 5, 1),)
     l_ = l_ + (Link("arm", ("B", "C")),)
     j = j + (Joint("jB2", "R", ("rocker", "arm"), point="B"),)
@@ -113,7 +103,7 @@ def test_too_few_inputs():
 
 
 def test_planar_engine_rejects_spatial_pairs():
-    p, l_, j = _fourbar_parts()
+    p, l_, j = fourbar_parts()
     j = j + (Joint("contact", "cam", ("rocker", "crank")),)
     with pytest.raises(ModelError, match="handles R and P joints, got 'cam'"):
         kl.analyze(Mechanism("fb", p, l_, j, (Input(joint="jO2"),)), q=0.0)

@@ -1,0 +1,17 @@
+"""Time the enumeration of planar kinematic chains and their inversions (prints numbers)."""
+import time
+
+from kinelab.structure import planar_chains
+from kinelab.structure._chains import _enumerate
+
+for links, dof, expected in [(8, 1, 16), (10, 1, 230), (9, 2, 40), (11, 2, None), (12, 1, None)]:
+    _enumerate.cache_clear()
+    t = time.perf_counter()
+    chains = planar_chains(links, dof)
+    t_chains = time.perf_counter() - t
+    t = time.perf_counter()
+    mechanisms = sum(len(c.inversions()) for c in chains)
+    t_inv = time.perf_counter() - t
+    check = "" if expected is None else ("  (expected %d)" % expected)
+    print(f"{links:2d} links, F = {dof}: {len(chains):5d} chains in {t_chains:6.2f} s{check}; "
+          f"{mechanisms:6d} inversions in {t_inv:6.2f} s")

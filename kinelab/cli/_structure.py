@@ -1,0 +1,121 @@
+"""``kinelab mobility`` and ``kinelab types``: the structure room at the command line.
+
+Two click commands for the main ``kinelab`` group to register
+(``cli.add_command(mobility)``, ``cli.add_command(types)``).  They parse, call
+:mod:`kinelab.structure` and print; every computation lives there.
+"""
+from __future__ import annotations
+
+import json
+
+import click
+
+from kinelab import structure
+from kinelab.errors import KinelabError
+
+__all__ = ["mobility", "types"]
+
+
+def _load(path: str):
+    try:
+        from kinelab.io import load  # lazy: model files are the io room's business
+    except ImportError:
+        raise click.ClickException(
+            "reading model files needs kinelab.io.load, which this installation does not "
+            "have yet; call kinelab.structure.mobility(model) from Python instead") from None
+    return load(path)
+
+
+@click.command("mobility")
+@click.argument("model", type=click.Path(exists=True, dir_okay=False))
+@click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
+def mobility(model: str, as_json: bool) -> None:
+    """Mobility of MODEL: Kutzbach-Gruebler's count and the exact value, with the reason
+    they differ."""
+    try:
+        m = _load(model)
+        result = structure.mobility(m)
+    except KinelabError as exc:
+        raise click.ClickException(str(exc)) from None
+    if as_json:
+        click.echo(json.dumps(result.to_dict(), indent=2, ensure_ascii=False))
+        return
+    pairs = ", ".join(f"{n} of class P{j}" for j, n in result.pairs.items())
+    click.echo(f"{m.name}: {result.space}, {result.links} links, pairs: {pairs or 'none'}")
+    click.echo(result.explanation)
+
+
+def _print_chains(links: int, mobility_: int, limit: int | None, as_json: bool) -> None:
+    chains = structure.planar_chains(links, mobility_)
+    rows = [{"name": c.name, "assortment": c.assortment, "joints": [list(j) for j in c.joints],
+             "inversions": [i.description for i in c.inversions()]} for c in chains]
+    if as_json:
+        click.echo(json.dumps({"links": links, "mobility": mobility_, "chains": rows[:limit]},
+                              indent=2))
+        return
+    total = sum(len(r["inversions"]) for r in rows)
+    click.echo(f"{len(chains)} planar chains with {links} links and mobility {mobility_} "
+               f"(simple revolute joints, no rigid part); {total} inversions")
+    for r in rows[:limit]:
+        a = ", ".join(f"{n}×{d}" for d, n in r["assortment"].items())
+        click.echo(f"  {r['name']}: links by joints carried {a}; {len(r['inversions'])} inversions")
+
+
+@click.command("types")
+@click.option("--space", type=click.Choice(["planar", "spherical", "spatial"]), required=True,
+              help="The motion space (lambda = 3, 3, 6).")
+@click.option("--mobility", "mobility_", type=int, default=None,
+              help="M, the freedoms of the end link (or of the chain with --links).")
+@click.option("--method", type=click.Choice(["open", "active", "passive", "alternative"]),
+              default="active", show_default=True,
+              help="Number synthesis of an open chain, active-chain enumeration, passive-"
+                   "chain addition, or the alternative method (seed 003, §3).")
+@click.option("--motion", default=None,
+              help="Wanted motion of the end link, e.g. 'Tx Ty' or 'Rx Ry Tr'.")
+@click.option("--joints", default=None, help="Pair types to use, e.g. RPUS.")
+@click.option("--max-joints", type=int, default=3, show_default=True,
+              help="At most this many pairs per chain.")
+@click.option("--links", type=int, default=None,
+              help="Planar only: list every kinematic chain with this many links instead.")
+@click.option("--limit", type=int, default=50, show_default=True,
+              help="Print at most this many architectures.")
+@click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
+def types(space, mobility_, method, motion, joints, max_joints, links, limit, as_json) -> None:
+    """Type synthesis: candidate architectures for a space and a mobility."""
+    try:
+        if links is not None:
+            if space != "planar":
+                raise click.UsageError("--links lists planar kinematic chains; use --space planar")
+            _print_chains(links, 1 if mobility_ is None else mobility_, limit, as_json)
+            return
+        options = {"max_joints": max_joints}
+        if joints:
+            options["joints"] = tuple(joints.replace(",", "").replace(" ", ""))
+        if method == "open":
+            options.pop("max_joints")
+        s = structure.type_synthesis(space, mobility_, method=method, motion=motion, **options)
+    except KinelabError as exc:
+        raise click.ClickException(str(exc)) from None
+    archs = s.architectures(limit)
+    if as_json:
+        click.echo(json.dumps({
+            "method": s.method, "space": s.space, "lambda": s.lam, "mobility": s.mobility,
+            "total_connectivity": s.total_connectivity,
+            "connectivities": [list(c) for c in s.connectivities], "count": s.count(),
+            "table": [[n, str(ne)] for n, ne in s.table],
+            "architectures": [{"name": a.name, "connectivities": list(a.connectivities)}
+                              for a in archs]}, indent=2))
+        return
+    head = f"{s.method}, {s.space} (λ = {s.lam}), M = {s.mobility}"
+    if s.motion is not None:
+        head += f", motion {s.motion}"
+    click.echo(head)
+    for n, ne in s.table:
+        click.echo(f"  nP1 = {n}: Ne = {ne}" + ("" if ne.denominator > 1 else "  (consistent)"))
+    if s.method != "open chain":
+        sets = "; ".join(str(c) for c in s.connectivities)
+        click.echo(f"  C_T = {s.total_connectivity}; chain connectivities {sets}")
+    more = f" (first {len(archs)})" if len(archs) < s.count() else ""
+    click.echo(f"{s.count()} architecture{'' if s.count() == 1 else 's'}{more}:")
+    for a in archs:
+        click.echo(f"  {a.name}")

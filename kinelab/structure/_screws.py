@@ -1,0 +1,204 @@
+"""The twists each pair allows at the sketch, and numerical rank with its tolerance.
+
+A twist is the velocity field of a rigid body, written as the angular velocity and the
+velocity of the body point that passes through the origin: ``(wx, wy, wz, vx, vy, vz)``
+in space, ``(w, vx, vy)`` in the plane.  A pair allows a subspace of relative twists
+(spanned by its *freedom screws*): a rotation about ``u`` through ``p`` is ``(u, p x u)``,
+a translation along ``u`` is ``(0, u)``, a screw motion of pitch ``h`` is
+``(u, p x u + h u)``.
+
+Lengths are first made dimensionless: the origin moves to the centroid of the sketch and
+lengths are divided by the sketch's size, so that angular and linear parts of a twist
+are numbers of the same order and one relative rank tolerance serves every model.
+"""
+from __future__ import annotations
+
+import zlib
+from dataclasses import dataclass
+
+import numpy as np
+
+from kinelab.errors import ModelError
+from kinelab.model import Joint, Mechanism
+
+__all__ = ["RTOL", "Frame", "annihilator", "joint_screws", "null_basis", "rank", "row_basis"]
+
+RTOL = 1e-9
+"""Relative tolerance on singular values.  A sketch typed or computed in double precision
+satisfies a special geometry (parallel axes, Bennett's conditions) to about 1e-15 of its
+size, and the constraint matrices are built from it with a few more roundings, so a
+dependent row leaves a singular value of about 1e-14 of the largest.  A geometry that is
+*not* special but close to it (an axis 1e-6 rad off parallel) leaves one of about its
+distance from the special case.  1e-9 sits between the two with five orders of margin
+each side."""
+
+
+def _threshold(s: np.ndarray, rtol: float, scale: float | None) -> float:
+    # Relative to the largest singular value, or to a given scale when the matrix may be
+    # all (numerically) zero, as the velocities of points that do not move.
+    ref = s[0] if s.size else 0.0
+    return rtol * max(ref, scale or 0.0)
+
+
+def rank(a: np.ndarray, rtol: float = RTOL, *, scale: float | None = None) -> int:
+    """Numerical rank: singular values above ``rtol`` times the largest (or ``scale``)."""
+    a = np.atleast_2d(a)
+    if a.size == 0:
+        return 0
+    s = np.linalg.svd(a, compute_uv=False)
+    return int(np.sum(s > _threshold(s, rtol, scale)))
+
+
+def row_basis(a: np.ndarray, rtol: float = RTOL, *, scale: float | None = None) -> np.ndarray:
+    """Orthonormal rows spanning the row space of ``a``."""
+    a = np.atleast_2d(a)
+    if a.size == 0:
+        return np.zeros((0, a.shape[1]))
+    _, s, vt = np.linalg.svd(a)
+    return vt[:int(np.sum(s > _threshold(s, rtol, scale)))]
+
+
+def null_basis(a: np.ndarray, rtol: float = RTOL, *, scale: float | None = None) -> np.ndarray:
+    """Orthonormal columns spanning the null space of ``a`` (all of R^n when ``a`` has no row)."""
+    a = np.atleast_2d(a)
+    n = a.shape[1]
+    if a.shape[0] == 0:
+        return np.eye(n)
+    _, s, vt = np.linalg.svd(a)
+    return vt[int(np.sum(s > _threshold(s, rtol, scale))):].T
+
+
+def annihilator(screws: np.ndarray, rtol: float = RTOL) -> np.ndarray:
+    """Rows ``W`` with ``W @ s = 0`` for every row ``s`` of ``screws``: the constraints."""
+    return null_basis(screws, rtol).T
+
+
+@dataclass(frozen=True)
+class Frame:
+    """Where the dimensionless frame of a model sits: origin and unit of length (m)."""
+
+    center: np.ndarray
+    scale: float
+
+    @classmethod
+    def of(cls, model: Mechanism) -> Frame:
+        xyz = np.array([(p.x, p.y, p.z) for p in model.points], dtype=float)
+        center = xyz.mean(axis=0)
+        size = float(np.max(np.linalg.norm(xyz - center, axis=1))) if len(xyz) else 0.0
+        return cls(center, size if size > 0.0 else 1.0)
+
+    def point(self, model: Mechanism, name: str) -> np.ndarray:
+        p = model.point(name)
+        return (np.array([p.x, p.y, p.z]) - self.center) / self.scale
+
+
+def _rng(joint: Joint) -> np.random.Generator:
+    # Reproducible "generic" geometry: the same joint name always draws the same numbers.
+    return np.random.default_rng(zlib.crc32(joint.name.encode()))
+
+
+def _unit(v, where: str, dim: int) -> np.ndarray:
+    v = np.asarray(v, dtype=float)
+    if v.shape != (dim,) or not np.all(np.isfinite(v)) or np.linalg.norm(v) == 0.0:
+        raise ModelError(f"{where}: expected {dim} finite numbers, not all zero, got {list(v)}")
+    return v / np.linalg.norm(v)
+
+
+def _rot(u: np.ndarray, p: np.ndarray) -> np.ndarray:
+    return np.concatenate([u, np.cross(p, u)])
+
+
+def _trans(u: np.ndarray) -> np.ndarray:
+    return np.concatenate([np.zeros(3), u])
+
+
+def _perpendicular(n: np.ndarray) -> np.ndarray:
+    """Two unit vectors completing ``n`` to an orthonormal basis."""
+    return np.linalg.svd(n[None, :])[2][1:]
+
+
+def joint_screws(model: Mechanism, joint: Joint, frame: Frame,
+                 planar: bool) -> tuple[np.ndarray, list[str]]:
+    """Freedom screws of a joint at the sketch, one per row, in the frame's units.
+
+    Returns the screws, shape ``(f, 3)`` in the plane or ``(f, 6)`` in space, and notes
+    on geometry that had to be assumed (a missing axis or contact point is taken in
+    general position, drawn reproducibly from the joint's name).
+    """
+    notes: list[str] = []
+    where = f"joint '{joint.name}'"
+
+    def point() -> np.ndarray:
+        if joint.point is not None:
+            return frame.point(model, joint.point)
+        pts = [frame.point(model, q) for link in joint.links for q in model.link(link).points]
+        notes.append(f"{where} names no contact point; one in general position near its "
+                     "links was assumed")
+        p = np.mean(pts, axis=0) + 0.3 * _rng(joint).standard_normal(3)
+        if planar:
+            p[2] = 0.0
+        return p
+
+    def axis(attr: str = "axis") -> np.ndarray:
+        given = getattr(joint, attr)
+        if given is not None:
+            u = _unit(given, f"{where}: {attr}", 2 if planar else 3)
+            return np.append(u, 0.0) if planar else u
+        if model.space == "spherical" and attr == "axis" and joint.point is not None:
+            p = model.point(joint.point)
+            radial = np.array([p.x, p.y, p.z])
+            if np.linalg.norm(radial) > 0.0:
+                notes.append(f"{where} gives no axis; it was taken through the origin, the "
+                             "centre of the spherical mechanism")
+                return radial / np.linalg.norm(radial)
+        notes.append(f"{where} gives no {attr}; one in general position was assumed")
+        u = _rng(joint).standard_normal((2, 3))[0 if attr == "axis" else 1]
+        if planar:
+            u[2] = 0.0
+        return u / np.linalg.norm(u)
+
+    t = joint.type
+    if planar:
+        if t in ("R", "rolling"):
+            rows = [_rot(np.array([0, 0, 1.0]), point())]
+        elif t == "P":
+            rows = [_trans(axis())]
+        elif t in ("cam", "gear"):
+            p, n = point(), axis()
+            rows = [_rot(np.array([0, 0, 1.0]), p), _trans(np.array([-n[1], n[0], 0.0]))]
+        elif t == "pin_in_slot":
+            rows = [_rot(np.array([0, 0, 1.0]), point()), _trans(axis())]
+        else:  # pragma: no cover - the model rejects non-planar pairs in planar models
+            raise ModelError(f"{where}: a {t} joint cannot join links of a planar mechanism")
+        # planar twist (w, vx, vy): the z rotation and the x, y velocity of the origin point
+        return np.array(rows)[:, [2, 3, 4]], notes
+    if t == "R":
+        rows = [_rot(axis(), point())]
+    elif t == "P":
+        rows = [_trans(axis())]
+    elif t == "H":
+        u, p = axis(), point()
+        rows = [_rot(u, p) + np.concatenate([np.zeros(3), (joint.pitch or 0.0) / frame.scale * u])]
+        if joint.pitch is None:
+            notes.append(f"{where} gives no pitch; a pitch of zero (a revolute) was assumed")
+    elif t == "C":
+        u, p = axis(), point()
+        rows = [_rot(u, p), _trans(u)]
+    elif t == "U":
+        p, u1, u2 = point(), axis(), axis("axis2")
+        rows = [_rot(u1, p), _rot(u2, p)]
+    elif t in ("S", "rolling"):
+        p = point()
+        rows = [_rot(e, p) for e in np.eye(3)]
+    elif t == "E":
+        n = axis()
+        rows = [_rot(n, np.zeros(3))] + [_trans(e) for e in _perpendicular(n)]
+    elif t in ("cam", "gear"):
+        p, n = point(), axis()
+        rows = [_rot(e, p) for e in np.eye(3)] + [_trans(e) for e in _perpendicular(n)]
+    elif t == "pin_in_slot":
+        p, u = point(), axis()
+        rows = [_rot(e, p) for e in np.eye(3)] + [_trans(u)]
+    else:  # pragma: no cover - every type of JOINT_TYPES is handled above
+        raise ModelError(f"{where}: unknown joint type '{t}'")
+    return np.array(rows), notes
