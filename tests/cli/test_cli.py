@@ -22,7 +22,7 @@ def run(*args):
 
 
 def test_commands_are_registered():
-    assert {"analyze", "check", "plot", "animate", "export", "import"} <= set(main.commands)
+    assert {"analyze", "check", "plot", "animate", "export", "import", "mobility", "types"} <= set(main.commands)
     result = run("--help")
     assert result.exit_code == 0 and "analyze" in result.output
 
