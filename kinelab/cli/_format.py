@@ -9,10 +9,10 @@ from kinelab.kinematics import KinematicSolution
 __all__ = ["summary_text", "configuration_text"]
 
 
-def _num(v: float) -> str:
+def _num(v: float, digits: int = 6) -> str:
     if not math.isfinite(v):
         return "-"
-    return f"{v:.6g}" if v != 0 else "0"
+    return f"{v:.{digits}g}" if v != 0 else "0"
 
 
 class _Units:
@@ -105,6 +105,6 @@ def configuration_text(sol: KinematicSolution, *, degrees: bool = False) -> str:
             lines.append("")
         last = item
         v = values[0]
-        text = str(bool(v)).lower() if name in ("singular", "assembled") else _num(float(v))
+        text = str(bool(v)).lower() if name in ("singular", "assembled") else _num(float(v), 10)
         lines.append(f"  {name.ljust(width)}  {text}")
     return "\n".join(lines)
