@@ -79,7 +79,8 @@ def test_K_and_L_against_finite_differences(case, branch):
         assume(False)
     assume(np.abs(sol.K).max() < 20 and np.abs(sol.L).max() < 200)   # away from dead points
     t = np.unwrap(sol.theta3)
-    assert sol.K[1] == pytest.approx((t[2] - t[0]) / (2 * h), rel=1e-8, abs=1e-8)
+    # theta3's own rounding grows as 1/L3 for short output cranks (2e-8 seen at L3 = 1/128)
+    assert sol.K[1] == pytest.approx((t[2] - t[0]) / (2 * h), rel=1e-7, abs=1e-7)
     assert sol.L[1] == pytest.approx((sol.K[2] - sol.K[0]) / (2 * h), rel=1e-7, abs=1e-7)
 
 
