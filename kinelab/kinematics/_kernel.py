@@ -29,7 +29,7 @@ from numba import njit, prange
 def _jit(**options):
     # error_model="numpy": a division by zero at an exact singularity gives inf/nan (then
     # flagged), not a Python exception from inside the kernel
-    return njit(cache=True, error_model="numpy", **options)
+    return njit(cache=True, error_model="numpy", fastmath={"contract"}, **options)
 
 
 # operation codes: rows of ops_i / ops_f.  Points are given by the item of their x.
