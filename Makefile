@@ -13,8 +13,13 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet -e ".[dev]"
 	touch $(STAMP)
 
+DEMO := examples/crank_rocker.toml
+
 demo: $(STAMP)
-	$(BIN)/python examples/demo.py
+	$(BIN)/kinelab check $(DEMO)
+	$(BIN)/kinelab analyze $(DEMO) --out out/
+	$(BIN)/kinelab plot $(DEMO) --out out/
+	$(BIN)/kinelab animate $(DEMO) --out out/ --format gif
 
 test: $(STAMP)
 	$(BIN)/python -m pytest

@@ -6,9 +6,12 @@
 >>> sol.angle("coupler").shape, sol.position("B").shape
 ((720,), (720, 2))
 """
-from kinelab import errors, kinematics, mechanisms, model, solvers, spatial, structure, synthesis
+from kinelab import (errors, io, kinematics, mechanisms, model, plot, solvers, spatial, structure,
+                     synthesis)
+from kinelab.io import load
 from kinelab.kinematics import KinematicSolution, analyze
 from kinelab.model import Mechanism
 
-__all__ = ["errors", "model", "solvers", "mechanisms", "kinematics", "spatial", "structure", "analyze",
+__all__ = ["errors", "model", "solvers", "mechanisms", "kinematics", "spatial", "structure", "io",
+           "plot", "analyze", "load",
            "Mechanism", "KinematicSolution"]

@@ -17,11 +17,18 @@ def atomic_write(path: str | os.PathLike, write: Callable[[IO], None], *, binary
     try:
         with os.fdopen(fd, "wb" if binary else "w", **({} if binary else {"newline": ""})) as f:
             write(f)
+        os.chmod(tmp, 0o666 & ~_umask())   # mkstemp makes it private; give it a file's usual mode
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
     return path
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
 
 
 def write_csv(columns: dict, path: str | os.PathLike) -> Path:

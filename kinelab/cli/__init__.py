@@ -1,5 +1,21 @@
-"""The ``kinelab`` command."""
+"""The ``kinelab`` command: thin, it parses, calls library functions and prints.
 
+Each command lives in a module of this package and is registered here with one line, so a
+room adds its commands with ``main.add_command(command)``.
+"""
+from kinelab.cli._analyze import analyze, check
+from kinelab.cli._draw import animate, plot
+from kinelab.cli._exchange import export, import_
+from kinelab.cli._main import main
+from kinelab.cli._structure import mobility, types
 
-def main() -> None:  # pragma: no cover - replaced by the full command line
-    raise SystemExit("kinelab: no commands yet")
+main.add_command(analyze)
+main.add_command(check)
+main.add_command(plot)
+main.add_command(animate)
+main.add_command(export)
+main.add_command(import_)
+main.add_command(mobility)
+main.add_command(types)
+
+__all__ = ["main"]

@@ -1,8 +1,8 @@
 """``kinelab mobility`` and ``kinelab types``: the structure room at the command line.
 
-Two click commands for the main ``kinelab`` group to register
-(``cli.add_command(mobility)``, ``cli.add_command(types)``).  They parse, call
-:mod:`kinelab.structure` and print; every computation lives there.
+Two click commands of the main ``kinelab`` group.  They parse, call
+:mod:`kinelab.structure` and print; every computation lives there, and the group turns
+kinelab errors into one-line messages with exit status 2.
 """
 from __future__ import annotations
 
@@ -11,19 +11,13 @@ import json
 import click
 
 from kinelab import structure
-from kinelab.errors import KinelabError
 
 __all__ = ["mobility", "types"]
 
 
 def _load(path: str):
-    try:
-        from kinelab.io import load  # lazy: model files are the io room's business
-    except ImportError:
-        raise click.ClickException(
-            "reading model files needs kinelab.io.load, which this installation does not "
-            "have yet; call kinelab.structure.mobility(model) from Python instead") from None
-    return load(path)
+    from kinelab import io     # looked up at call time (tests may stand in a loader)
+    return io.load(path)
 
 
 @click.command("mobility")
@@ -32,11 +26,8 @@ def _load(path: str):
 def mobility(model: str, as_json: bool) -> None:
     """Mobility of MODEL: Kutzbach-Gruebler's count and the exact value, with the reason
     they differ."""
-    try:
-        m = _load(model)
-        result = structure.mobility(m)
-    except KinelabError as exc:
-        raise click.ClickException(str(exc)) from None
+    m = _load(model)
+    result = structure.mobility(m)
     if as_json:
         click.echo(json.dumps(result.to_dict(), indent=2, ensure_ascii=False))
         return
@@ -82,20 +73,17 @@ def _print_chains(links: int, mobility_: int, limit: int | None, as_json: bool) 
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 def types(space, mobility_, method, motion, joints, max_joints, links, limit, as_json) -> None:
     """Type synthesis: candidate architectures for a space and a mobility."""
-    try:
-        if links is not None:
-            if space != "planar":
-                raise click.UsageError("--links lists planar kinematic chains; use --space planar")
-            _print_chains(links, 1 if mobility_ is None else mobility_, limit, as_json)
-            return
-        options = {"max_joints": max_joints}
-        if joints:
-            options["joints"] = tuple(joints.replace(",", "").replace(" ", ""))
-        if method == "open":
-            options.pop("max_joints")
-        s = structure.type_synthesis(space, mobility_, method=method, motion=motion, **options)
-    except KinelabError as exc:
-        raise click.ClickException(str(exc)) from None
+    if links is not None:
+        if space != "planar":
+            raise click.UsageError("--links lists planar kinematic chains; use --space planar")
+        _print_chains(links, 1 if mobility_ is None else mobility_, limit, as_json)
+        return
+    options = {"max_joints": max_joints}
+    if joints:
+        options["joints"] = tuple(joints.replace(",", "").replace(" ", ""))
+    if method == "open":
+        options.pop("max_joints")
+    s = structure.type_synthesis(space, mobility_, method=method, motion=motion, **options)
     archs = s.architectures(limit)
     if as_json:
         click.echo(json.dumps({

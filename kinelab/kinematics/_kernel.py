@@ -23,13 +23,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import literally, njit, prange
+from numba import njit, prange
 
 
 def _jit(**options):
     # error_model="numpy": a division by zero at an exact singularity gives inf/nan (then
     # flagged), not a Python exception from inside the kernel
-    return njit(cache=True, error_model="numpy", **options)
+    return njit(cache=True, error_model="numpy", fastmath={"contract"}, **options)
 
 
 # operation codes: rows of ops_i / ops_f.  Points are given by the item of their x.
@@ -405,23 +405,29 @@ def _lu_solve(A, piv, b, n):
 # returns a quantity of one end of a constraint, from the group or from the known jet.
 
 @_jit()
-def _side_pos(gi, p, rx, ry, x, jet):
+def _link_trig(x, nlk, cs):
+    """cs[2j], cs[2j+1] <- cos and sin of the angle of group link j (once per evaluation)."""
+    for j in range(nlk):
+        cs[2 * j] = math.cos(x[3 * j + 2])
+        cs[2 * j + 1] = math.sin(x[3 * j + 2])
+
+
+@_jit()
+def _side_pos(gi, p, rx, ry, x, cs, jet):
     if gi >= 0:
-        th = x[3 * gi + 2]
-        c = math.cos(th)
-        s = math.sin(th)
+        c = cs[2 * gi]
+        s = cs[2 * gi + 1]
         return x[3 * gi] + c * rx - s * ry, x[3 * gi + 1] + s * rx + c * ry
     return jet[p, 0], jet[p + 1, 0]
 
 
 @_jit()
-def _side_vel(gi, p, rx, ry, x, gK, jet, m, known_only):
+def _side_vel(gi, p, rx, ry, cs, gK, jet, m, known_only):
     if gi >= 0:
         if known_only:
             return 0.0, 0.0
-        th = x[3 * gi + 2]
-        c = math.cos(th)
-        s = math.sin(th)
+        c = cs[2 * gi]
+        s = cs[2 * gi + 1]
         vx = c * rx - s * ry
         vy = s * rx + c * ry
         w = gK[3 * gi + 2, m]
@@ -430,12 +436,11 @@ def _side_vel(gi, p, rx, ry, x, gK, jet, m, known_only):
 
 
 @_jit()
-def _side_acc(gi, p, rx, ry, x, gK, jet, m, n, M):
+def _side_acc(gi, p, rx, ry, cs, gK, jet, m, n, M):
     """Second derivative without the group's own second derivatives (those are J L)."""
     if gi >= 0:
-        th = x[3 * gi + 2]
-        c = math.cos(th)
-        s = math.sin(th)
+        c = cs[2 * gi]
+        s = cs[2 * gi + 1]
         kk = gK[3 * gi + 2, m] * gK[3 * gi + 2, n]
         return -kk * (c * rx - s * ry), -kk * (s * rx + c * ry)
     c2 = 1 + M + m * M + n
@@ -464,13 +469,12 @@ def _side_second(gi, link, jet, m, n, M):
 
 
 @_jit()
-def _jac_point(A, row, gi, rx, ry, x, cx, cy):
+def _jac_point(A, row, gi, rx, ry, cs, cx, cy):
     """Add d(c . p)/d(unknowns) for a point p of group link gi (nothing if p is known)."""
     if gi < 0:
         return
-    th = x[3 * gi + 2]
-    c = math.cos(th)
-    s = math.sin(th)
+    c = cs[2 * gi]
+    s = cs[2 * gi + 1]
     vx = c * rx - s * ry
     vy = s * rx + c * ry
     A[row, 3 * gi] += cx
@@ -479,34 +483,35 @@ def _jac_point(A, row, gi, rx, ry, x, cx, cy):
 
 
 @_jit()
-def _slide_frame(con_i, con_f, k, x, jet):
+def _slide_frame(con_i, con_f, k, x, cs, jet):
     """Guide angle, slide direction u and d = p - o of prismatic constraint k."""
     gg, po, lg, gs, pp = con_i[k, 1], con_i[k, 2], con_i[k, 3], con_i[k, 4], con_i[k, 5]
     tg = _side_angle(gg, lg, x, jet)
     ux = math.cos(tg + con_f[k, 4])
     uy = math.sin(tg + con_f[k, 4])
-    ox, oy = _side_pos(gg, po, con_f[k, 0], con_f[k, 1], x, jet)
-    px, py = _side_pos(gs, pp, con_f[k, 2], con_f[k, 3], x, jet)
+    ox, oy = _side_pos(gg, po, con_f[k, 0], con_f[k, 1], x, cs, jet)
+    px, py = _side_pos(gs, pp, con_f[k, 2], con_f[k, 3], x, cs, jet)
     return tg, ux, uy, px - ox, py - oy
 
 
 @_jit()
-def _group_residual(c0, c1, con_i, con_f, x, q, jet, A, phi, with_jac):
-    """Residuals phi and (optionally) Jacobian A of one group's constraints."""
+def _group_residual(c0, c1, con_i, con_f, x, cs, q, jet, A, phi, with_jac):
+    """Residuals phi and (optionally) Jacobian A of one group's constraints; cs holds the
+    cosines and sines of the group's link angles (``_link_trig``)."""
     row = 0
     for k in range(c0, c1):
         kind = con_i[k, 0]
         if kind == C_REVOLUTE:
             gi, pi_, gj, pj = con_i[k, 1], con_i[k, 2], con_i[k, 4], con_i[k, 5]
-            xi, yi = _side_pos(gi, pi_, con_f[k, 0], con_f[k, 1], x, jet)
-            xj, yj = _side_pos(gj, pj, con_f[k, 2], con_f[k, 3], x, jet)
+            xi, yi = _side_pos(gi, pi_, con_f[k, 0], con_f[k, 1], x, cs, jet)
+            xj, yj = _side_pos(gj, pj, con_f[k, 2], con_f[k, 3], x, cs, jet)
             phi[row] = xi - xj
             phi[row + 1] = yi - yj
             if with_jac:
-                _jac_point(A, row, gi, con_f[k, 0], con_f[k, 1], x, 1.0, 0.0)
-                _jac_point(A, row, gj, con_f[k, 2], con_f[k, 3], x, -1.0, 0.0)
-                _jac_point(A, row + 1, gi, con_f[k, 0], con_f[k, 1], x, 0.0, 1.0)
-                _jac_point(A, row + 1, gj, con_f[k, 2], con_f[k, 3], x, 0.0, -1.0)
+                _jac_point(A, row, gi, con_f[k, 0], con_f[k, 1], cs, 1.0, 0.0)
+                _jac_point(A, row, gj, con_f[k, 2], con_f[k, 3], cs, -1.0, 0.0)
+                _jac_point(A, row + 1, gi, con_f[k, 0], con_f[k, 1], cs, 0.0, 1.0)
+                _jac_point(A, row + 1, gj, con_f[k, 2], con_f[k, 3], cs, 0.0, -1.0)
             row += 2
         elif kind == C_DRIVE_ANGLE:
             ga, la, gb, lb, m = con_i[k, 1], con_i[k, 3], con_i[k, 4], con_i[k, 6], con_i[k, 7]
@@ -522,7 +527,7 @@ def _group_residual(c0, c1, con_i, con_f, x, q, jet, A, phi, with_jac):
             gg, po, lg, gs, pp, ls = (con_i[k, 1], con_i[k, 2], con_i[k, 3], con_i[k, 4],
                                       con_i[k, 5], con_i[k, 6])
             rox, roy, rpx, rpy = con_f[k, 0], con_f[k, 1], con_f[k, 2], con_f[k, 3]
-            tg, ux, uy, dx, dy = _slide_frame(con_i, con_f, k, x, jet)
+            tg, ux, uy, dx, dy = _slide_frame(con_i, con_f, k, x, cs, jet)
             nx = -uy
             ny = ux
             if kind == C_PRISMATIC:
@@ -534,8 +539,8 @@ def _group_residual(c0, c1, con_i, con_f, x, q, jet, A, phi, with_jac):
                     if gg >= 0:
                         A[row, 3 * gg + 2] -= 1.0
                         A[row + 1, 3 * gg + 2] -= ux * dx + uy * dy
-                    _jac_point(A, row + 1, gs, rpx, rpy, x, nx, ny)
-                    _jac_point(A, row + 1, gg, rox, roy, x, -nx, -ny)
+                    _jac_point(A, row + 1, gs, rpx, rpy, cs, nx, ny)
+                    _jac_point(A, row + 1, gg, rox, roy, cs, -nx, -ny)
                 row += 2
             else:
                 m = con_i[k, 7]
@@ -543,13 +548,13 @@ def _group_residual(c0, c1, con_i, con_f, x, q, jet, A, phi, with_jac):
                 if with_jac:
                     if gg >= 0:
                         A[row, 3 * gg + 2] += nx * dx + ny * dy
-                    _jac_point(A, row, gs, rpx, rpy, x, ux, uy)
-                    _jac_point(A, row, gg, rox, roy, x, -ux, -uy)
+                    _jac_point(A, row, gs, rpx, rpy, cs, ux, uy)
+                    _jac_point(A, row, gg, rox, roy, cs, -ux, -uy)
                 row += 1
 
 
 @_jit()
-def _group_rhs(c0, c1, con_i, con_f, x, gK, jet, m, n, second, M, rhs):
+def _group_rhs(c0, c1, con_i, con_f, x, cs, gK, jet, m, n, second, M, rhs):
     """Right-hand sides of J K[:, m] = rhs (second=False) and J L[:, m, n] = rhs (second=True)."""
     row = 0
     for k in range(c0, c1):
@@ -557,11 +562,11 @@ def _group_rhs(c0, c1, con_i, con_f, x, gK, jet, m, n, second, M, rhs):
         if kind == C_REVOLUTE:
             gi, pi_, gj, pj = con_i[k, 1], con_i[k, 2], con_i[k, 4], con_i[k, 5]
             if second:
-                aix, aiy = _side_acc(gi, pi_, con_f[k, 0], con_f[k, 1], x, gK, jet, m, n, M)
-                ajx, ajy = _side_acc(gj, pj, con_f[k, 2], con_f[k, 3], x, gK, jet, m, n, M)
+                aix, aiy = _side_acc(gi, pi_, con_f[k, 0], con_f[k, 1], cs, gK, jet, m, n, M)
+                ajx, ajy = _side_acc(gj, pj, con_f[k, 2], con_f[k, 3], cs, gK, jet, m, n, M)
             else:
-                aix, aiy = _side_vel(gi, pi_, con_f[k, 0], con_f[k, 1], x, gK, jet, m, True)
-                ajx, ajy = _side_vel(gj, pj, con_f[k, 2], con_f[k, 3], x, gK, jet, m, True)
+                aix, aiy = _side_vel(gi, pi_, con_f[k, 0], con_f[k, 1], cs, gK, jet, m, True)
+                ajx, ajy = _side_vel(gj, pj, con_f[k, 2], con_f[k, 3], cs, gK, jet, m, True)
             rhs[row] = -(aix - ajx)
             rhs[row + 1] = -(aiy - ajy)
             row += 2
@@ -579,15 +584,15 @@ def _group_rhs(c0, c1, con_i, con_f, x, gK, jet, m, n, second, M, rhs):
             gg, po, lg, gs, pp, ls = (con_i[k, 1], con_i[k, 2], con_i[k, 3], con_i[k, 4],
                                       con_i[k, 5], con_i[k, 6])
             rox, roy, rpx, rpy = con_f[k, 0], con_f[k, 1], con_f[k, 2], con_f[k, 3]
-            tg, ux, uy, dx, dy = _slide_frame(con_i, con_f, k, x, jet)
+            tg, ux, uy, dx, dy = _slide_frame(con_i, con_f, k, x, cs, jet)
             nx = -uy
             ny = ux
             ud = ux * dx + uy * dy
             nd = nx * dx + ny * dy
             if not second:
                 wg = _side_rate(gg, lg, gK, jet, m, True)
-                vpx, vpy = _side_vel(gs, pp, rpx, rpy, x, gK, jet, m, True)
-                vox, voy = _side_vel(gg, po, rox, roy, x, gK, jet, m, True)
+                vpx, vpy = _side_vel(gs, pp, rpx, rpy, cs, gK, jet, m, True)
+                vox, voy = _side_vel(gg, po, rox, roy, cs, gK, jet, m, True)
                 ddx = vpx - vox
                 ddy = vpy - voy
                 if kind == C_PRISMATIC:
@@ -602,16 +607,16 @@ def _group_rhs(c0, c1, con_i, con_f, x, gK, jet, m, n, second, M, rhs):
                 wm = _side_rate(gg, lg, gK, jet, m, False)
                 wn = _side_rate(gg, lg, gK, jet, n, False)
                 ag = _side_second(gg, lg, jet, m, n, M)
-                vpx, vpy = _side_vel(gs, pp, rpx, rpy, x, gK, jet, m, False)
-                vox, voy = _side_vel(gg, po, rox, roy, x, gK, jet, m, False)
+                vpx, vpy = _side_vel(gs, pp, rpx, rpy, cs, gK, jet, m, False)
+                vox, voy = _side_vel(gg, po, rox, roy, cs, gK, jet, m, False)
                 dmx = vpx - vox
                 dmy = vpy - voy
-                vpx, vpy = _side_vel(gs, pp, rpx, rpy, x, gK, jet, n, False)
-                vox, voy = _side_vel(gg, po, rox, roy, x, gK, jet, n, False)
+                vpx, vpy = _side_vel(gs, pp, rpx, rpy, cs, gK, jet, n, False)
+                vox, voy = _side_vel(gg, po, rox, roy, cs, gK, jet, n, False)
                 dnx = vpx - vox
                 dny = vpy - voy
-                apx, apy = _side_acc(gs, pp, rpx, rpy, x, gK, jet, m, n, M)
-                aox, aoy = _side_acc(gg, po, rox, roy, x, gK, jet, m, n, M)
+                apx, apy = _side_acc(gs, pp, rpx, rpy, cs, gK, jet, m, n, M)
+                aox, aoy = _side_acc(gg, po, rox, roy, cs, gK, jet, m, n, M)
                 adx = apx - aox
                 ady = apy - aoy
                 if kind == C_PRISMATIC:
@@ -664,11 +669,21 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
         x[i] = v
         step += (v - gx[o + i]) ** 2
     step = math.sqrt(step)
+    cs = work[n * n + 3 * n + n * M + n * M * M:n * n + 3 * n + n * M + n * M * M + 2 * nlk]
     converged = False
+    det = 0.0
+    hada = 1.0
     for it in range(_NEWTON_MAX_ITER):
         A[:, :] = 0.0
-        _group_residual(c0, c1, con_i, con_f, x, q, jet, A, phi, True)
-        _lu_factor(A, piv, n)
+        _link_trig(x, nlk, cs)
+        _group_residual(c0, c1, con_i, con_f, x, cs, q, jet, A, phi, True)
+        hada = 1.0
+        for i in range(n):
+            rn = 0.0
+            for j in range(n):
+                rn += A[i, j] * A[i, j]
+            hada *= math.sqrt(rn)
+        det = _lu_factor(A, piv, n)
         for i in range(n):
             phi[i] = -phi[i]
         _lu_solve(A, piv, phi, n)
@@ -681,36 +696,27 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
         if math.sqrt(dn) <= _NEWTON_TOL * scale:
             converged = True
             break
-    if not converged:
+    if not converged or det == 0.0:
         return ST_NO_CONVERGENCE, 0.0, 0.0
     corr = 0.0
     for i in range(n):
         corr += (x[i] - xp[i]) ** 2
     if math.sqrt(corr) > _JUMP_RATIO * step + 1e-9 * scale:
         return ST_NO_CONVERGENCE, 0.0, 0.0
-    # K and L with the Jacobian at the solution, factorised once
-    A[:, :] = 0.0
-    _group_residual(c0, c1, con_i, con_f, x, q, jet, A, phi, True)
-    hada = 1.0
-    for i in range(n):
-        rn = 0.0
-        for j in range(n):
-            rn += A[i, j] * A[i, j]
-        hada *= math.sqrt(rn)
-    det = _lu_factor(A, piv, n)
-    if det == 0.0:
-        return ST_NO_CONVERGENCE, 0.0, 0.0
     if gdet[g] != 0.0 and det * gdet[g] < 0.0 and step > 0.0:
         # the determinant changed sign: the step crossed a singular configuration
         return ST_NO_CONVERGENCE, 0.0, 0.0
+    # K and L: linear solves with the last factorisation, whose Jacobian differs from the
+    # one at the solution by the last Newton step (below 1e-13 of the mechanism's size)
+    _link_trig(x, nlk, cs)
     for m in range(M):
-        _group_rhs(c0, c1, con_i, con_f, x, Kw, jet, m, m, False, M, phi)
+        _group_rhs(c0, c1, con_i, con_f, x, cs, Kw, jet, m, m, False, M, phi)
         _lu_solve(A, piv, phi, n)
         for i in range(n):
             Kw[i, m] = phi[i]
     for m in range(M):
         for k in range(m, M):
-            _group_rhs(c0, c1, con_i, con_f, x, Kw, jet, m, k, True, M, phi)
+            _group_rhs(c0, c1, con_i, con_f, x, cs, Kw, jet, m, k, True, M, phi)
             _lu_solve(A, piv, phi, n)
             for i in range(n):
                 Lw[i, m, k] = phi[i]
@@ -747,82 +753,107 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
 # One sample: run every operation of the plan
 # --------------------------------------------------------------------------------------
 @_jit()
-def _evaluate(qs, qi, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i, con_i, con_f, scale,
-              gx, gK, gL, gq, gdet, work, piv, res):
-    """Run the plan at input q = qs[qi].  res <- (det, measure, gap, failed op); returns the
-    status.  Kt, Kt2 (M,) and Lt (M, M) are scratch for the groups' own slides.
+def _evaluate(qs, qd, qdd, lo, hi, write, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i, con_i,
+              con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, n_angles, n_out,
+              o_jet, o_rate, o_diag, o_status, o_failed):
+    """Run the plan at the inputs qs[lo:hi], one sample after the other.
+
+    After each sample res holds (det, measure, gap, failed op); with ``write`` the sample's
+    status, diagnostics and (when it assembles) its jets and rates go to row i of the
+    outputs.  Returns the status of the last sample.  Kt, Kt2 (M,) and Lt (M, M) are
+    scratch for the groups' own slides.  The sample loop lives here, with the operation
+    dispatch, so that a sample costs no function call.
     """
-    q = qs[qi]
-    det = 1.0
-    meas = 1.0
-    for k in range(ops_i.shape[0]):
-        op = ops_i[k, 0]
-        d = 1.0
-        ms = 1.0
+    status = ST_OK
+    for i in range(lo, hi):
+        status = ST_OK
+        det = 1.0
+        meas = 1.0
+        failed = -1
         gap = 0.0
-        if op == OP_RIGID_POINT:
-            _rigid_point(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], ops_f[k, 1], M)
-        elif op == OP_DRIVE_ANGLE:
-            b, a, mi = ops_i[k, 1], ops_i[k, 2], ops_i[k, 3]
-            sgn = ops_f[k, 0]
-            jet[b, 0] = (jet[a, 0] if a >= 0 else 0.0) + sgn * q[mi]
-            for c in range(1, 1 + M + M * M):
-                jet[b, c] = jet[a, c] if a >= 0 else 0.0
-            jet[b, 1 + mi] += sgn
-        elif op == OP_TWO_POINTS:
-            _two_points(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], M)
-        elif op == OP_LOCK_ANGLE:
-            b, a = ops_i[k, 1], ops_i[k, 2]
-            jet[b, 0] = jet[a, 0] + ops_f[k, 0]
-            for c in range(1, 1 + M + M * M):
-                jet[b, c] = jet[a, c]
-        elif op == OP_SLIDE_POINT:
-            mi = ops_i[k, 4]
-            sgn = ops_f[k, 2]
-            for m in range(M):
-                Kt[m] = sgn if m == mi else 0.0
-                for n in range(M):
-                    Lt[m, n] = 0.0
-            _line_point(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0],
-                        sgn * (q[mi] - ops_f[k, 1]), Kt, Lt, M)
-        elif op == OP_RRR:
-            d, ms, gap = _rrr(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4], ops_i[k, 5],
-                              ops_f[k, 0], ops_f[k, 1], ops_f[k, 2], ops_f[k, 3], ops_f[k, 4], M)
-        elif op == OP_RRP:
-            d, ms, gap = _rrp(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4], ops_i[k, 5],
-                              ops_f[k, 0], ops_f[k, 1], ops_f[k, 2], ops_f[k, 3], M, Kt)
-        elif op == OP_RPR:
-            d, ms, gap = _rpr(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], ops_f[k, 1],
-                              ops_f[k, 2], ops_f[k, 3], ops_f[k, 4], M, Kt)
-        elif op == OP_LINES:
-            d, ms, gap = _lines(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4], ops_i[k, 5],
-                                ops_f[k, 0], ops_f[k, 1], M, Kt, Kt2, Lt)
-        elif op == OP_NEWTON:
-            st, d, ms = _newton_group(ops_i[k, 1], groups_i, con_i, con_f, scale, q, jet,
-                                      gx, gK, gL, gq, gdet, M, work, piv)
-            if st != ST_OK:
-                res[2] = 0.0
-                res[3] = k
-                return st
-        elif op == OP_SLIDE_OUT:
-            s = ops_i[k, 1]
-            v = _relative_slide(jet, ops_i[k, 2], ops_i[k, 3], ops_i[k, 4], ops_f[k, 0], M, Kt, Lt)
-            jet[s, 0] = ops_f[k, 1] + v
-            for m in range(M):
-                jet[s, 1 + m] = Kt[m]
-                for n in range(M):
-                    jet[s, 1 + M + m * M + n] = Lt[m, n]
-        if gap > 0.0:
-            res[2] = gap
-            res[3] = k
-            return ST_NO_ASSEMBLY
-        det *= d
-        meas = min(meas, ms)
-    res[0] = det
-    res[1] = meas
-    res[2] = 0.0
-    res[3] = -1
-    return ST_OK
+        for k in range(ops_i.shape[0]):
+            op = ops_i[k, 0]
+            d = 1.0
+            ms = 1.0
+            if op == OP_RIGID_POINT:
+                _rigid_point(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], ops_f[k, 1], M)
+            elif op == OP_DRIVE_ANGLE:
+                b, a, mi = ops_i[k, 1], ops_i[k, 2], ops_i[k, 3]
+                sgn = ops_f[k, 0]
+                jet[b, 0] = (jet[a, 0] if a >= 0 else 0.0) + sgn * qs[i, mi]
+                for c in range(1, 1 + M + M * M):
+                    jet[b, c] = jet[a, c] if a >= 0 else 0.0
+                jet[b, 1 + mi] += sgn
+            elif op == OP_TWO_POINTS:
+                _two_points(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], M)
+            elif op == OP_LOCK_ANGLE:
+                b, a = ops_i[k, 1], ops_i[k, 2]
+                jet[b, 0] = jet[a, 0] + ops_f[k, 0]
+                for c in range(1, 1 + M + M * M):
+                    jet[b, c] = jet[a, c]
+            elif op == OP_SLIDE_POINT:
+                mi = ops_i[k, 4]
+                sgn = ops_f[k, 2]
+                for m in range(M):
+                    Kt[m] = sgn if m == mi else 0.0
+                    for n in range(M):
+                        Lt[m, n] = 0.0
+                _line_point(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0],
+                            sgn * (qs[i, mi] - ops_f[k, 1]), Kt, Lt, M)
+            elif op == OP_RRR:
+                d, ms, gap = _rrr(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4],
+                                  ops_i[k, 5], ops_f[k, 0], ops_f[k, 1], ops_f[k, 2], ops_f[k, 3],
+                                  ops_f[k, 4], M)
+            elif op == OP_RRP:
+                d, ms, gap = _rrp(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4],
+                                  ops_i[k, 5], ops_f[k, 0], ops_f[k, 1], ops_f[k, 2], ops_f[k, 3],
+                                  M, Kt)
+            elif op == OP_RPR:
+                d, ms, gap = _rpr(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0],
+                                  ops_f[k, 1], ops_f[k, 2], ops_f[k, 3], ops_f[k, 4], M, Kt)
+            elif op == OP_LINES:
+                d, ms, gap = _lines(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4],
+                                    ops_i[k, 5], ops_f[k, 0], ops_f[k, 1], M, Kt, Kt2, Lt)
+            elif op == OP_NEWTON:
+                st, d, ms = _newton_group(ops_i[k, 1], groups_i, con_i, con_f, scale, qs[i], jet,
+                                          gx, gK, gL, gq, gdet, M, work, piv)
+                if st != ST_OK:
+                    status = st
+                    failed = k
+                    break
+            elif op == OP_SLIDE_OUT:
+                sl = ops_i[k, 1]
+                v = _relative_slide(jet, ops_i[k, 2], ops_i[k, 3], ops_i[k, 4], ops_f[k, 0], M,
+                                    Kt, Lt)
+                jet[sl, 0] = ops_f[k, 1] + v
+                for m in range(M):
+                    jet[sl, 1 + m] = Kt[m]
+                    for n in range(M):
+                        jet[sl, 1 + M + m * M + n] = Lt[m, n]
+            if gap > 0.0:
+                status = ST_NO_ASSEMBLY
+                failed = k
+                break
+            det *= d
+            meas = min(meas, ms)
+        res[0] = det
+        res[1] = meas
+        res[2] = gap if status == ST_NO_ASSEMBLY else 0.0
+        res[3] = failed
+        if write:
+            _write_status(i, status, res, o_diag, o_status, o_failed)
+            if status == ST_OK:
+                _write_sample(i, qd, qdd, M, n_angles, n_out, jet, o_jet, o_rate)
+    return status
+
+
+@_jit()
+def _write_status(i, status, res, o_diag, o_status, o_failed):
+    o_status[i] = status
+    o_diag[i, 0] = res[0]
+    o_diag[i, 1] = res[1]
+    o_diag[i, 2] = res[2]
+    o_failed[i] = int(res[3])
 
 
 @_jit()
@@ -871,10 +902,9 @@ def run_closed_form(q, qd, qdd, ops_i, ops_f, const_items, const_values, n_items
                     n_out, o_jet, o_rate, o_diag, o_status, o_failed, M):
     """Evaluate a plan without Newton groups: samples are independent and run in parallel.
 
-    o_jet (N, n_out, 1 + M + M*M), o_rate (N, n_out, 2), o_diag (N, 3): det, measure, gap.
-    M (= q.shape[1]) is compiled in as a constant, so the loops over inputs unroll.
+    o_jet (N, n_out, 1 + M + M*M), o_rate (N, n_out, 2), o_diag (N, 3): det, measure, gap;
+    M = q.shape[1].
     """
-    literally(M)
     N = q.shape[0]
     nchunks = min(N, 64)
     for c in prange(nchunks):
@@ -891,16 +921,9 @@ def run_closed_form(q, qd, qdd, ops_i, ops_f, const_items, const_values, n_items
         g2 = np.zeros((1, M))
         g3 = np.zeros((1, M, M))
         piv = np.zeros(1, np.int64)
-        for i in range(lo, hi):
-            st = _evaluate(q, i, ops_i, ops_f, jet, M, Kt, Kt2, Lt, gi, gi, gf, 1.0, g1, g2, g3,
-                           g2, g1, g1, piv, res)
-            o_status[i] = st
-            o_diag[i, 0] = res[0]
-            o_diag[i, 1] = res[1]
-            o_diag[i, 2] = res[2]
-            o_failed[i] = int(res[3])
-            if st == ST_OK:
-                _write_sample(i, qd, qdd, M, n_angles, n_out, jet, o_jet, o_rate)
+        _evaluate(q, qd, qdd, lo, hi, True, ops_i, ops_f, jet, M, Kt, Kt2, Lt, gi, gi, gf, 1.0,
+                  g1, g2, g3, g2, g1, g1, piv, res, n_angles, n_out, o_jet, o_rate, o_diag,
+                  o_status, o_failed)
 
 
 @_jit()
@@ -913,7 +936,6 @@ def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, c
     ``max_step`` (Euclidean, in input units), and halved again while a Newton group fails
     to converge or jumps (its correction is large against the predicted step).
     """
-    literally(M)
     N = q.shape[0]
     ng = groups_i.shape[0]
     nx = grp_x0.shape[0]
@@ -935,7 +957,7 @@ def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, c
     bL = gL.copy()
     bq = gq.copy()
     bdet = gdet.copy()
-    work = np.zeros(nmax * nmax + 3 * nmax + nmax * M + nmax * M * M)
+    work = np.zeros(nmax * nmax + 3 * nmax + nmax * M + nmax * M * M + nmax)
     piv = np.zeros(nmax, np.int64)
     for g in range(ng):
         for m in range(M):
@@ -943,8 +965,9 @@ def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, c
     qt = q_start.copy().reshape((1, M))
     qprev = q_start.copy()
     # the sketch itself: the groups converge at once and get their K and L
-    st0 = _evaluate(qt, 0, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i, con_i, con_f, scale,
-                    gx, gK, gL, gq, gdet, work, piv, res)
+    st0 = _evaluate(qt, qd, qdd, 0, 1, False, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i,
+                    con_i, con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, n_angles, n_out,
+                    o_jet, o_rate, o_diag, o_status, o_failed)
     if st0 != ST_OK:
         for i in range(N):
             o_status[i] = st0
@@ -969,8 +992,9 @@ def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, c
             bL[:] = gL
             bq[:] = gq
             bdet[:] = gdet
-            st = _evaluate(qt, 0, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i, con_i, con_f, scale,
-                           gx, gK, gL, gq, gdet, work, piv, res)
+            st = _evaluate(qt, qd, qdd, 0, 1, False, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i,
+                           con_i, con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, n_angles,
+                           n_out, o_jet, o_rate, o_diag, o_status, o_failed)
             if st == ST_OK:
                 t = tt
                 h = min(2.0 * h, max_step / dist) if dist > 0.0 else 1.0
@@ -983,11 +1007,7 @@ def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, c
                 if st == ST_NO_ASSEMBLY or h < 1e-9:
                     break
                 h *= 0.5
-        o_status[i] = st
-        o_diag[i, 0] = res[0]
-        o_diag[i, 1] = res[1]
-        o_diag[i, 2] = res[2]
-        o_failed[i] = int(res[3])
+        _write_status(i, st, res, o_diag, o_status, o_failed)
         if st == ST_OK:
             _write_sample(i, qd, qdd, M, n_angles, n_out, jet, o_jet, o_rate)
         # the next sample starts where the mechanism last assembled

@@ -42,7 +42,8 @@ class TimeRatio:
     ratio : float
         Slow-stroke input angle over fast-stroke input angle (>= 1).
     dead_centres : ndarray, shape (2,)
-        Input values (rad) where the output reverses: its velocity coefficient K is zero.
+        Input values (rad, in [0, 2 pi)) where the output reverses: its velocity
+        coefficient K is zero.
     slow, fast : float
         Input angles swept during each stroke, rad (they add up to one turn).
     """
@@ -95,4 +96,4 @@ def time_ratio(mechanism: Mechanism, output: str, *, samples: int = 3601) -> Tim
     first = float(dc[1] - dc[0])
     second = 2.0 * math.pi - first
     slow, fast = max(first, second), min(first, second)
-    return TimeRatio(ratio=slow / fast, dead_centres=dc, slow=slow, fast=fast)
+    return TimeRatio(ratio=slow / fast, dead_centres=np.mod(dc, 2.0 * math.pi), slow=slow, fast=fast)

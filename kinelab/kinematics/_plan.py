@@ -653,7 +653,9 @@ class _Builder:
         rows = sum(2 if r[0] in (k.C_REVOLUTE, k.C_PRISMATIC) else 1 for r in ci)
         A = np.zeros((rows, 3 * len(links)))
         phi = np.zeros(rows)
-        k._group_residual(0, len(ci), ci, cf, x0, self.q_sketch, jet, A, phi, True)
+        cs = np.zeros(2 * len(links))
+        k._link_trig(x0, len(links), cs)
+        k._group_residual(0, len(ci), ci, cf, x0, cs, self.q_sketch, jet, A, phi, True)
         return A
 
     def _full_rank(self, links, cons) -> bool:

@@ -1,6 +1,19 @@
-"""Figures and animations of results (matplotlib, imported lazily)."""
+"""Figures and animations of results (matplotlib, imported only inside the functions).
+
+:func:`curves` (position, velocity, acceleration against the input), :func:`coefficients`
+(K and L), :func:`coupler_curve`, :func:`transmission`, :func:`mechanism` (the linkage at one
+sample), :func:`animate` (GIF or MP4) and :func:`save` (a figure, atomically).
+
+Synthesis: :func:`prescribed_positions` (and their poles), :func:`motion_solution` (the
+linkage in each position), :func:`burmester_curves`, :func:`structural_error`,
+:func:`path_solution`.
+"""
+from kinelab.plot._animate import animate, can_write_mp4
+from kinelab.plot._figures import (coefficients, coupler_curve, curves, input_axis, mechanism, save,
+                                   transmission)
 from kinelab.plot._synthesis import (burmester_curves, motion_solution, path_solution,
                                      prescribed_positions, structural_error)
 
-__all__ = ["prescribed_positions", "motion_solution", "burmester_curves", "structural_error",
-           "path_solution"]
+__all__ = ["curves", "coefficients", "coupler_curve", "transmission", "mechanism", "animate",
+           "save", "can_write_mp4", "input_axis", "prescribed_positions", "motion_solution",
+           "burmester_curves", "structural_error", "path_solution"]

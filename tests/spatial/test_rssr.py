@@ -70,10 +70,8 @@ def test_equation_74_is_the_loop_length(case, theta1, theta3):
 @given(assembled(), st.sampled_from([1, -1]))
 def test_K_and_L_against_finite_differences(case, branch):
     m, theta1, _ = case
-    # Central differences: truncation h²/6 × third derivative, roundoff 1e-16/h ~ 1e-10.
-    # Near the dead points kept here the third derivative reaches ~1e5 (|L| ~ 90 at
-    # θ1 = 0.0078 for H1 = 0.461, L1 = -0.887, L0 = 0, L2 = 2.000, H3 = 1, L3 = 0.0078):
-    # ~2e-8 relative, hence rel=1e-7.
+    # Central differences: truncation h²/6 × (third derivative, up to ~1e3 near the
+    # dead points kept here) ~ 1e-10, roundoff 1e-16/h ~ 1e-10.
     h = 1e-6
     try:
         sol = m.analyze(np.array([theta1 - h, theta1, theta1 + h]), branch=branch)
@@ -81,7 +79,8 @@ def test_K_and_L_against_finite_differences(case, branch):
         assume(False)
     assume(np.abs(sol.K).max() < 20 and np.abs(sol.L).max() < 200)   # away from dead points
     t = np.unwrap(sol.theta3)
-    assert sol.K[1] == pytest.approx((t[2] - t[0]) / (2 * h), rel=1e-7, abs=1e-8)
+    # theta3's own rounding grows as 1/L3 for short output cranks (2e-8 seen at L3 = 1/128)
+    assert sol.K[1] == pytest.approx((t[2] - t[0]) / (2 * h), rel=1e-7, abs=1e-7)
     assert sol.L[1] == pytest.approx((sol.K[2] - sol.K[0]) / (2 * h), rel=1e-7, abs=1e-7)
 
 

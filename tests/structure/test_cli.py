@@ -1,18 +1,18 @@
-"""The `mobility` and `types` commands (registered later by the main `kinelab` group)."""
+"""The `mobility` and `types` commands of the `kinelab` group."""
 import json
 
 import pytest
 from click.testing import CliRunner
 
 import kinelab.io
-from kinelab.cli._structure import mobility, types
+from kinelab.cli import main
 
 from .models import sarrus
 
 
 @pytest.fixture
 def model_file(tmp_path, monkeypatch):
-    """A model file whose loading returns the Sarrus mechanism (the io room comes later)."""
+    """A model file whose loading returns the (spatial) Sarrus mechanism."""
     path = tmp_path / "sarrus.toml"
     path.write_text("# read by kinelab.io.load\n")
     monkeypatch.setattr(kinelab.io, "load", lambda p: sarrus(), raising=False)
@@ -20,24 +20,16 @@ def model_file(tmp_path, monkeypatch):
 
 
 def test_mobility_command(model_file):
-    out = CliRunner().invoke(mobility, [model_file])
+    out = CliRunner().invoke(main, ["mobility", model_file])
     assert out.exit_code == 0, out.output
     assert out.output.splitlines()[0] == "RRRRRR (Sarrus): spatial, 6 links, pairs: 6 of class P1"
     assert "M = 6(6 − 1) − 5·6 = 0" in out.output and "M = 1, not 0 as counted" in out.output
 
 
 def test_mobility_command_json(model_file):
-    out = CliRunner().invoke(mobility, [model_file, "--json"])
+    out = CliRunner().invoke(main, ["mobility", model_file, "--json"])
     data = json.loads(out.output)
     assert (data["kutzbach_gruebler"], data["exact"], data["pairs"]) == (0, 1, {"P1": 6})
-
-
-def test_mobility_command_without_a_loader(tmp_path, monkeypatch):
-    monkeypatch.delattr(kinelab.io, "load", raising=False)
-    path = tmp_path / "m.toml"
-    path.write_text("")
-    out = CliRunner().invoke(mobility, [str(path)])
-    assert out.exit_code == 1 and "needs kinelab.io.load" in out.output
 
 
 def test_mobility_command_reports_model_errors(tmp_path, monkeypatch):
@@ -48,32 +40,33 @@ def test_mobility_command_reports_model_errors(tmp_path, monkeypatch):
     monkeypatch.setattr(kinelab.io, "load", broken, raising=False)
     path = tmp_path / "m.toml"
     path.write_text("")
-    out = CliRunner().invoke(mobility, [str(path)])
-    assert out.exit_code == 1 and "links[2].points: expected a declared point, got 'Q'" in out.output
+    out = CliRunner().invoke(main, ["mobility", str(path)])
+    assert out.exit_code == 2
+    assert "kinelab: error: " in out.output and "links[2].points: expected a declared point, got 'Q'" in out.output
 
 
 def test_types_active_chains():
-    out = CliRunner().invoke(types, ["--space", "spatial", "--mobility", "6"])
+    out = CliRunner().invoke(main, ["types", "--space", "spatial", "--mobility", "6"])
     assert out.exit_code == 0, out.output
     assert "C_T = 36; chain connectivities (6, 6, 6, 6, 6, 6)" in out.output
     assert "  6-UPS\n" in out.output
 
 
 def test_types_open_chain_table():
-    out = CliRunner().invoke(types, ["--space", "spatial", "--mobility", "3", "--method", "open"])
+    out = CliRunner().invoke(main, ["types", "--space", "spatial", "--mobility", "3", "--method", "open"])
     assert "nP1 = 1: Ne = 7/3" in out.output and "nP1 = 3: Ne = 4  (consistent)" in out.output
     assert "8 architectures:" in out.output
 
 
 def test_types_alternative_json():
-    out = CliRunner().invoke(types, ["--space", "planar", "--method", "alternative",
+    out = CliRunner().invoke(main, ["types", "--space", "planar", "--method", "alternative",
                                      "--motion", "Tx Ty", "--json"])
     data = json.loads(out.output)
     assert data["total_connectivity"] == 5 and data["architectures"][0]["name"] == "RRR+PP"
 
 
 def test_types_limit_and_joints():
-    out = CliRunner().invoke(types, ["--space", "spatial", "--mobility", "3", "--limit", "2",
+    out = CliRunner().invoke(main, ["types", "--space", "spatial", "--mobility", "3", "--limit", "2",
                                      "--joints", "RPS"])
     assert out.exit_code == 0, out.output
     lines = out.output.splitlines()
@@ -82,7 +75,7 @@ def test_types_limit_and_joints():
 
 
 def test_types_chains():
-    out = CliRunner().invoke(types, ["--space", "planar", "--mobility", "1", "--links", "8"])
+    out = CliRunner().invoke(main, ["types", "--space", "planar", "--mobility", "1", "--links", "8"])
     assert out.output.startswith("16 planar chains with 8 links and mobility 1")
     assert "71 inversions" in out.output
 
@@ -94,5 +87,5 @@ def test_types_chains():
     (["--space", "moon", "--mobility", "1"], "Invalid value for '--space'"),
 ])
 def test_types_errors(args, message):
-    out = CliRunner().invoke(types, args)
+    out = CliRunner().invoke(main, ["types", *args])
     assert out.exit_code != 0 and message in out.output

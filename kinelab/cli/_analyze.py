@@ -1,0 +1,135 @@
+"""``kinelab analyze`` and ``kinelab check``."""
+from __future__ import annotations
+
+import math
+
+import click
+import numpy as np
+
+from kinelab import io, kinematics
+from kinelab.cli._format import configuration_text, summary_text
+from kinelab.cli._main import errors_from, output_path, parse_inputs, read_model, stem, sweep
+from kinelab.errors import KinelabError, ModelError
+
+__all__ = ["analyze", "check"]
+
+MODEL = click.argument("model", type=click.Path(dir_okay=False))
+SAMPLES = click.option("--samples", type=click.IntRange(2, 10_000_000), default=None,
+                       help="Samples per input, instead of the file's.")
+DEGREES = click.option("--degrees", is_flag=True,
+                       help="Angles in degrees (default: radians, as all results are SI).")
+
+
+def summarise(mf, sol):
+    o = mf.outputs
+    with errors_from(mf):
+        return io.summary(sol, report=o.report or None, transmission=o.transmission or None,
+                          time_ratio=o.time_ratio)
+
+
+@click.command()
+@MODEL
+@click.option("--out", "-o", "out", default=None, metavar="PATH",
+              help="Directory (the table is named after the model) or file name; default: "
+                   "the current directory.")
+@click.option("--format", "fmt", type=click.Choice(io.RESULT_FORMATS), default=None,
+              help="Table format (default: from the file name, else csv).")
+@SAMPLES
+@DEGREES
+@click.option("--at", "at", default=None, metavar="VALUE",
+              help="Print one configuration in full instead of sweeping: the input value in "
+                   "the file's unit, or with a unit (30deg, 0.5rad, 12mm); comma-separated for "
+                   "several inputs.")
+@click.option("--quiet", "-q", is_flag=True, help="Do not print the summary.")
+def analyze(model, out, fmt, samples, degrees, at, quiet):
+    """Sweep MODEL's input range and write one row per sample: inputs; every link's angle,
+    omega, alpha; every slide and its rates; every point's x, y, vx, vy, ax, ay; K and L of
+    each; det J and the singular flag.  Prints a summary."""
+    mf = read_model(model)
+    m = mf.mechanism
+    if at is not None:
+        q = parse_inputs(at, mf)
+        M = len(m.inputs)
+        qd = np.array([i.speed for i in m.inputs]) if M > 1 else m.inputs[0].speed
+        qdd = np.array([i.acceleration for i in m.inputs]) if M > 1 else m.inputs[0].acceleration
+        with errors_from(mf, "--at"):
+            sol = kinematics.analyze(m, q, qd, qdd, at_singular="flag")
+        click.echo(configuration_text(sol, degrees=degrees))
+        return
+    sol = sweep(mf, samples)
+    s = None if quiet else summarise(mf, sol)
+    name = stem(model)
+    path = output_path(out, name, fmt or "csv")
+    written = io.write_results(sol, path, format=fmt, degrees=degrees)
+    if s is not None:
+        click.echo(summary_text(s, degrees=degrees))
+    click.echo(f"wrote {written} ({sol.N} rows, {len(sol.columns())} columns)")
+
+
+@click.command()
+@MODEL
+@DEGREES
+def check(model, degrees):
+    """Validate MODEL, assemble it at its sketch, and report its mobility and the reachable
+    input range.  Exit status 2 when something is wrong."""
+    mf = read_model(model)
+    m = mf.mechanism
+    with errors_from(mf):
+        p = kinematics.plan(m)
+    click.echo(f"{model}: {m.name}: {len(m.points)} points, {len(m.links)} links, "
+               f"{len(m.joints)} joints, {len(m.inputs)} input(s); units {mf.units.length}, "
+               f"{mf.units.angle}")
+    mobility = _mobility(m)
+    click.echo(f"mobility: {len(m.inputs)} degree(s) of freedom at the sketch, one per input"
+               + (f"; {mobility}" if mobility else ""))
+    click.echo("assembles at the sketch, solved as: " + "; ".join(
+        s.label for s in p.steps if s.kind not in ("locked", "placed")))
+    angle = mf.units.angle_scale
+    unit = [mf.units.angle if k == "angle" else mf.units.length for k in p.input_kinds]
+    scale = [angle if k == "angle" else mf.units.length_scale for k in p.input_kinds]
+    click.echo("sketch: " + ", ".join(f"{n} = {q / s:.6g} {u}" for n, q, s, u in
+                                      zip(m.input_names, p.q_sketch, scale, unit)))
+    if len(m.inputs) == 1:
+        with errors_from(mf):
+            ranges = io.reachable(m)
+        full = p.input_kinds[0] == "angle" and ranges and ranges[0][1] - ranges[0][0] >= 2 * math.pi - 1e-12
+        if full:
+            click.echo(f"reachable: {m.input_names[0]} turns fully")
+        else:
+            click.echo(f"reachable: {m.input_names[0]} in " + ", ".join(
+                f"[{lo / scale[0]:.6g}, {hi / scale[0]:.6g}] {unit[0]}" for lo, hi in ranges)
+                + " (its limit positions)")
+        _check_range(mf, ranges, full, scale[0], unit[0])
+    with errors_from(mf, "inputs"):
+        q, qd, qdd = mf.sample_inputs(min(mf.samples or (361,)))
+        sol = kinematics.analyze(m, q, qd, qdd, at_singular="flag")
+    n_sing = int(sol.singular.sum())
+    click.echo(f"sweep: {sol.N} samples assemble" + (f", {n_sing} singular" if n_sing else
+                                                     ", none singular"))
+    click.echo("ok")
+
+
+def _check_range(mf, ranges, full, scale, unit):
+    inp = mf.mechanism.inputs[0]
+    if inp.range is None or full:
+        return
+    lo, hi = sorted(inp.range)
+    turns = [2 * math.pi * k for k in range(-3, 4)]
+    if not any(a + t - 1e-9 <= lo and hi <= b + t + 1e-9 for a, b in ranges for t in turns):
+        spans = ", ".join(f"[{a / scale:.6g}, {b / scale:.6g}]" for a, b in ranges)
+        raise ModelError(f"{mf.source}: inputs[0].range: [{inp.range[0] / scale:.6g}, "
+                         f"{inp.range[1] / scale:.6g}] {unit} goes where the mechanism does not "
+                         f"assemble; it reaches {spans} {unit}; narrow the range")
+
+
+def _mobility(m) -> str:
+    """Kutzbach-Gruebler's count, when the structure room provides it."""
+    from kinelab import structure
+    mobility = getattr(structure, "mobility", None)
+    if mobility is None:
+        return ""
+    try:
+        result = mobility(m)
+    except KinelabError:      # the count is extra information; the check stands without it
+        return ""
+    return f"Kutzbach-Gruebler count {result.kutzbach_gruebler}, exact {result.exact}"

@@ -1,0 +1,99 @@
+"""``kinelab plot`` and ``kinelab animate``."""
+from __future__ import annotations
+
+import click
+
+from kinelab import io
+from kinelab.cli._analyze import DEGREES, MODEL, SAMPLES
+from kinelab.cli._main import errors_from, output_path, read_model, stem, sweep
+from kinelab.errors import ModelError
+
+__all__ = ["plot", "animate"]
+
+FIGURE_FORMATS = ("png", "svg", "pdf")
+
+
+def _agg():
+    import matplotlib
+    matplotlib.use("Agg")      # files only: no window, no display needed
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def _names(text: str | None) -> list[str] | None:
+    return [n.strip() for n in text.split(",") if n.strip()] if text else None
+
+
+@click.command()
+@MODEL
+@click.option("--out", "-o", "out", default=".", show_default=True, metavar="DIR",
+              help="Directory for the figures.")
+@click.option("--format", "formats", type=click.Choice(FIGURE_FORMATS), multiple=True,
+              default=("png", "svg"), show_default=True, help="Repeat for several formats.")
+@click.option("--outputs", default=None, metavar="NAMES",
+              help="Comma-separated links, slides and points to plot (default: the file's "
+                   "[outputs], else the moving links, slides and coupler points).")
+@SAMPLES
+@DEGREES
+def plot(model, out, formats, outputs, samples, degrees):
+    """Write MODEL's figures: outputs' position, velocity and acceleration against the input;
+    K and L; coupler curves; transmission angle."""
+    from kinelab import plot as kplot
+    from kinelab.io._summary import _default_pairs
+    plt = _agg()
+    mf = read_model(model)
+    sol = sweep(mf, samples)
+    m = mf.mechanism
+    chosen = _names(outputs) or list(mf.outputs.report) or list(io.default_outputs(m))
+    base = stem(model)
+    known = list(sol.link_item) + list(sol.slide_item) + list(sol.point_item)
+    unknown = [n for n in chosen if n not in known]
+    if unknown:
+        raise ModelError(f"--outputs: expected links, slides or points of {m.name}, got "
+                         f"{', '.join(repr(n) for n in unknown)}; they are "
+                         f"{', '.join(repr(n) for n in known)}")
+    figures = []
+    with errors_from(mf, "outputs"):
+        curve_names = [n for n in chosen if n in sol.link_item or n in sol.slide_item]
+        if curve_names:
+            figures.append(("motion", kplot.curves(sol, curve_names, degrees=degrees)))
+            figures.append(("coefficients", kplot.coefficients(sol, curve_names, degrees=degrees)))
+        for p in (n for n in chosen if n in sol.point_item):
+            figures.append((f"path_{p}", kplot.coupler_curve(sol, p).figure))
+        pairs = list(mf.outputs.transmission) or _default_pairs(m)
+        if pairs:
+            figures.append(("transmission", kplot.transmission(sol, pairs, degrees=degrees).figure))
+    if not figures:
+        raise click.UsageError("nothing to plot: name links, slides or points with --outputs")
+    written = []
+    for kind, fig in figures:
+        for fmt in formats:
+            written.append(kplot.save(fig, output_path(out, f"{base}_{kind}", fmt)))
+        plt.close(fig)
+    for path in written:
+        click.echo(f"wrote {path}")
+
+
+@click.command()
+@MODEL
+@click.option("--out", "-o", "out", default=".", show_default=True, metavar="PATH",
+              help="Directory (the file is named after the model) or file name.")
+@click.option("--format", "fmt", type=click.Choice(("auto", "gif", "mp4")), default="auto",
+              show_default=True, help="auto: MP4 when ffmpeg is installed, else GIF.")
+@click.option("--trace", default=None, metavar="POINTS",
+              help="Comma-separated points whose paths are traced (default: coupler points).")
+@click.option("--frames", type=click.IntRange(2, 2000), default=120, show_default=True)
+@click.option("--fps", type=click.IntRange(1, 120), default=30, show_default=True)
+@SAMPLES
+def animate(model, out, fmt, trace, frames, fps, samples):
+    """Write an animation of MODEL moving through its sweep, with its coupler curves traced."""
+    from kinelab import plot as kplot
+    _agg()
+    mf = read_model(model)
+    if fmt == "auto":
+        fmt = "mp4" if kplot.can_write_mp4() else "gif"
+    sol = sweep(mf, samples)
+    path = output_path(out, stem(model), fmt)
+    with errors_from(mf, "--trace" if trace else ""):
+        written = kplot.animate(sol, path, trace=_names(trace), frames=frames, fps=fps)
+    click.echo(f"wrote {written}")

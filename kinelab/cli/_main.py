@@ -1,0 +1,150 @@
+"""The ``kinelab`` command group and what its commands share: reading a model file, naming
+outputs, sweeping with a progress bar, and turning kinelab errors into exit status 2."""
+from __future__ import annotations
+
+import math
+import os
+import re
+import sys
+from contextlib import contextmanager
+from pathlib import Path
+
+import click
+import numpy as np
+
+from kinelab import kinematics
+from kinelab.errors import KinelabError, ModelError
+from kinelab.io import LENGTH_UNITS, ModelFile
+from kinelab.kinematics import KinematicSolution
+
+__all__ = ["main", "read_model", "errors_from", "sweep", "output_path", "parse_inputs", "stem"]
+
+BAD_INPUT = 2      # exit status for a bad file, option or input value
+
+
+class _Group(click.Group):
+    """A click group whose commands report kinelab errors in one line each, no traceback:
+    exit status 2 for bad input (the errors that are also ValueErrors), 1 otherwise."""
+
+    def invoke(self, ctx: click.Context):
+        try:
+            return super().invoke(ctx)
+        except KinelabError as exc:
+            for line in str(exc).splitlines() or [type(exc).__name__]:
+                click.echo(f"kinelab: error: {line}", err=True)
+            ctx.exit(BAD_INPUT if isinstance(exc, ValueError) else 1)
+        except BrokenPipeError:     # the reader went away (| head): nothing more to say
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, sys.stdout.fileno())
+            ctx.exit(1)
+        except OSError as exc:      # an output that cannot be written: say where, no traceback
+            where = f" {exc.filename}" if exc.filename else ""
+            click.echo(f"kinelab: error: cannot write{where}: {exc.strerror or exc}", err=True)
+            ctx.exit(1)
+
+
+@click.group(cls=_Group, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(package_name="kinelab")
+def main() -> None:
+    """kinelab: analysis of planar mechanisms described in model files.
+
+    A model file (TOML or JSON, see docs/model-format.md) describes a linkage; the commands
+    check it, sweep its input and write tables, plots and animations.
+    """
+
+
+def read_model(path: str) -> ModelFile:
+    return ModelFile.read(path)
+
+
+@contextmanager
+def errors_from(mf: ModelFile, field: str = ""):
+    """Name the file (and a field) in the errors the analysis raises for it."""
+    try:
+        yield
+    except KinelabError as exc:
+        prefix = f"{mf.source or 'model'}: {field + ': ' if field else ''}"
+        if isinstance(exc, ModelError):
+            raise ModelError([prefix + p for p in exc.problems]) from None
+        raise type(exc)("\n".join(prefix + line for line in str(exc).splitlines())) from None
+
+
+def sweep(mf: ModelFile, samples: int | None = None, *, progress: bool | None = None
+          ) -> KinematicSolution:
+    """Analyse the file's sweep; on a terminal, in chunks with a progress bar."""
+    m = mf.mechanism
+    q, qd, qdd = mf.sample_inputs(samples)
+    if progress is None:
+        progress = sys.stderr.isatty()
+    p = kinematics.plan(m)
+    # continuation restarts from the sketch in each chunk: the same path only for one input
+    chunkable = not p.uses_newton or len(m.inputs) == 1
+    big = len(q) >= (200 if p.uses_newton else 20000)
+    with errors_from(mf, "inputs"):
+        if not (progress and chunkable and big):
+            return kinematics.analyze(m, q, qd, qdd, at_singular="flag")
+        return analyze_in_chunks(m, q, qd, qdd, chunks=50, label=f"analysing {m.name}")
+
+
+def analyze_in_chunks(m, q, qd, qdd, *, chunks: int, label: str = "") -> KinematicSolution:
+    """``analyze`` over ``q`` in ``chunks`` pieces (a progress bar on stderr when a label is
+    given), joined into one solution."""
+    parts = []
+    bounds = np.linspace(0, len(q), chunks + 1).astype(int)
+    pieces = [(a, b) for a, b in zip(bounds[:-1], bounds[1:]) if b > a]
+    bar = click.progressbar(length=len(q), label=label, file=sys.stderr) if label else None
+    try:
+        if bar is not None:
+            bar.__enter__()
+        for a, b in pieces:
+            parts.append(kinematics.analyze(m, q[a:b], qd[a:b], qdd[a:b], at_singular="flag"))
+            if bar is not None:
+                bar.update(b - a)
+    finally:
+        if bar is not None:
+            bar.__exit__(None, None, None)
+    first = parts[0]
+    join = {name: np.concatenate([getattr(s, name) for s in parts])
+            for name in ("q", "qd", "qdd", "jets", "rates", "det_J", "singularity", "singular",
+                         "assembled")}
+    return KinematicSolution(mechanism=m, link_item=first.link_item, point_item=first.point_item,
+                             slide_item=first.slide_item, single=False, **join)
+
+
+def stem(model: str) -> str:
+    """A model file's name without its suffix: what its outputs are named after."""
+    return Path(model).stem
+
+
+def output_path(out: str | None, stem: str, suffix: str) -> Path:
+    """``out`` itself when it names a file with ``suffix``'s kind, else ``out/stem.suffix``."""
+    if out is None:
+        return Path(f"{stem}.{suffix}")
+    path = Path(out)
+    if path.suffix and not out.endswith(("/", "\\")) and not path.is_dir():
+        return path
+    return path / f"{stem}.{suffix}"
+
+
+_VALUE = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([a-z]*)\s*$")
+
+
+def parse_inputs(text: str, mf: ModelFile) -> np.ndarray:
+    """Input values typed by a person, ``30``, ``30deg``, ``0.5rad``, ``12mm`` or ``30,60``,
+    in SI; a bare number is in the file's unit."""
+    kinds = kinematics.plan(mf.mechanism).input_kinds
+    parts = text.split(",")
+    if len(parts) != len(kinds):
+        raise ModelError(f"--at: expected {len(kinds)} value(s) separated by commas (one per "
+                         f"input: {', '.join(mf.mechanism.input_names)}), got {text!r}")
+    out = []
+    for part, kind in zip(parts, kinds):
+        match = _VALUE.match(part)
+        unit = match.group(2) if match else ""
+        units = {"deg": math.pi / 180, "rad": 1.0} if kind == "angle" else LENGTH_UNITS
+        default = mf.units.angle_scale if kind == "angle" else mf.units.length_scale
+        if not match or (unit and unit not in units):
+            raise ModelError(f"--at: expected a number, optionally followed by one of "
+                             f"{', '.join(units)}, got {part.strip()!r}")
+        out.append(float(match.group(1)) * (units[unit] if unit else default))
+    return np.array(out) if len(out) > 1 else np.array(out[0])

@@ -1,0 +1,172 @@
+"""Reading untrusted plain data field by field, collecting every problem.
+
+A model file is checked as a whole: each reader method returns the converted value, or
+``None`` after recording a one-line problem that names the field (``links[2].points``),
+says what was expected and what was found.  Nothing but :class:`ModelError` leaves.
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Mapping
+from difflib import get_close_matches
+from typing import Any
+
+__all__ = ["Reader", "quoted", "suggest", "describe"]
+
+
+def quoted(names: Iterable[str]) -> str:
+    return ", ".join(f"'{n}'" for n in names)
+
+
+def suggest(name: str, choices: Iterable[str]) -> str:
+    close = get_close_matches(str(name), [str(c) for c in choices], n=1, cutoff=0.6)
+    return f" (did you mean '{close[0]}'?)" if close else ""
+
+
+def describe(value: Any) -> str:
+    """A short, one-line rendering of a value found in a file."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, Mapping):
+        return "a table"
+    if isinstance(value, str):
+        text = value if len(value) <= 40 else value[:37] + "..."
+        return repr(text).replace("\n", "\\n")
+    if isinstance(value, (list, tuple)):
+        inner = ", ".join(describe(v) for v in list(value)[:4])
+        return f"[{inner}{', ...' if len(value) > 4 else ''}]"
+    text = repr(value)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+def _is_number(value: Any) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _scaled(value: int | float, scale: float) -> float:
+    """``value * scale`` as a float; inf when a huge integer does not fit one."""
+    try:
+        return float(value) * scale
+    except OverflowError:
+        return math.inf
+
+
+class Reader:
+    """Collects problems while converting fields; see the module docstring."""
+
+    def __init__(self) -> None:
+        self.problems: list[str] = []
+
+    def fail(self, field: str, message: str) -> None:
+        self.problems.append(f"{field}: {message}" if field else message)
+
+    # -- structure ------------------------------------------------------------------------
+    def table(self, value: Any, field: str, allowed: Iterable[str], *,
+              required: Iterable[str] = (), reserved: Mapping[str, str] | None = None
+              ) -> dict[str, Any] | None:
+        """A table with only the ``allowed`` keys (and all the ``required`` ones)."""
+        if not isinstance(value, Mapping):
+            self.fail(field, f"expected a table, got {describe(value)}")
+            return None
+        allowed = list(allowed)
+        reserved = reserved or {}
+        prefix = f"{field}." if field else ""
+        for key in value:
+            if key in allowed:
+                continue
+            if key in reserved:
+                self.fail(prefix + str(key), reserved[key])
+            else:
+                self.fail(prefix + str(key), f"unknown field{suggest(key, allowed)}; "
+                          f"valid fields are {quoted(allowed)}")
+        for key in required:
+            if key not in value:
+                self.fail(prefix + key, "missing; this field is required")
+        return {k: v for k, v in value.items() if k in allowed}
+
+    def array(self, value: Any, field: str, what: str) -> list | None:
+        if not isinstance(value, (list, tuple)):
+            self.fail(field, f"expected a list of {what}, got {describe(value)}")
+            return None
+        return list(value)
+
+    # -- scalars --------------------------------------------------------------------------
+    def _text(self, value: Any, field: str, what: str, options: Iterable[str] | None,
+              complaint) -> str | None:
+        """Non-empty text, one of ``options`` when given (else ``complaint(value, options)``)."""
+        if not isinstance(value, str) or not value.strip():
+            self.fail(field, f"expected {what}, got {describe(value)}")
+            return None
+        if options is None:
+            return value
+        options = list(options)
+        if value in options:
+            return value
+        self.fail(field, complaint(value, options))
+        return None
+
+    def string(self, value: Any, field: str, *, choices: Iterable[str] | None = None) -> str | None:
+        return self._text(value, field, "a non-empty text", choices, lambda v, c: (
+            f"expected one of {quoted(c)}, got '{v}'{suggest(v, c)}"))
+
+    def boolean(self, value: Any, field: str) -> bool | None:
+        if not isinstance(value, bool):
+            self.fail(field, f"expected true or false, got {describe(value)}")
+            return None
+        return value
+
+    def integer(self, value: Any, field: str, *, low: int, high: int) -> int | None:
+        if not (isinstance(value, int) and not isinstance(value, bool)) or not low <= value <= high:
+            self.fail(field, f"expected a whole number from {low} to {high:,}, got {describe(value)}")
+            return None
+        return int(value)
+
+    def number(self, value: Any, field: str, *, scale: float = 1.0, positive: bool = False,
+               unit: str = "") -> float | None:
+        """A finite number times ``scale`` (the unit's factor to SI)."""
+        if not _is_number(value):
+            self.fail(field, f"expected a number, got {describe(value)}")
+            return None
+        v = _scaled(value, scale)
+        if not math.isfinite(v):
+            self.fail(field, f"expected a finite number, got {describe(value)}")
+            return None
+        if positive and v <= 0:
+            self.fail(field, f"expected a positive {'length' if unit else 'number'}, got "
+                      f"{describe(value)}{' ' + unit if unit else ''}")
+            return None
+        return v
+
+    def numbers(self, value: Any, field: str, count: int | tuple[int, ...], *, scale: float = 1.0,
+                what: str = "numbers") -> tuple[float, ...] | None:
+        counts = (count,) if isinstance(count, int) else count
+        shape = " or ".join(f"[{', '.join(['x', 'y', 'z'][:n])}]" if what == "coordinates"
+                            else f"{n} numbers" for n in counts)
+        if (not isinstance(value, (list, tuple)) or len(value) not in counts
+                or not all(_is_number(v) for v in value)):
+            self.fail(field, f"expected {shape}, got {describe(value)}")
+            return None
+        out = tuple(_scaled(v, scale) for v in value)
+        if not all(math.isfinite(x) for x in out):
+            self.fail(field, f"expected finite numbers, got {describe(value)}")
+            return None
+        return out
+
+    def name(self, value: Any, field: str, known: Iterable[str] | None = None,
+             kind: str = "", plural: str | None = None) -> str | None:
+        """A name, optionally one of ``known`` (then the message lists them as ``plural``)."""
+        return self._text(value, field, "a name", known, lambda v, k: (
+            f"expected a declared {kind}, got '{v}'{suggest(v, k)}; "
+            f"{plural or 'declared ' + kind + 's'} are {quoted(k) or 'none'}"))
+
+    def names(self, value: Any, field: str, known: Iterable[str] | None = None, kind: str = "",
+              count: int | None = None, plural: str | None = None) -> tuple[str, ...] | None:
+        items = self.array(value, field, f"{kind or 'name'}s")
+        if items is None:
+            return None
+        if count is not None and len(items) != count:
+            self.fail(field, f"expected {count} {kind}s, got {describe(items)}")
+            return None
+        before = len(self.problems)
+        out = tuple(self.name(v, f"{field}[{i}]", known, kind, plural) for i, v in enumerate(items))
+        return None if len(self.problems) > before else out

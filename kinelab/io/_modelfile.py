@@ -1,0 +1,906 @@
+"""Model files: a mechanism described in TOML (or JSON), with its units and its sweep.
+
+The format is documented field by field in ``docs/model-format.md``.  Reading converts
+every length and angle to SI once, on entry; writing converts back once, on export.
+Every problem of a file is collected and raised together as one
+:class:`~kinelab.errors.ModelError` whose lines each name the file and the field.
+"""
+from __future__ import annotations
+
+import dataclasses
+import inspect
+import json
+import math
+import os
+import re
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+
+from kinelab import mechanisms as catalogue
+from kinelab._files import atomic_write
+from kinelab.errors import ModelError
+from kinelab.io import _toml
+from kinelab.io._fields import Reader, describe, quoted, suggest
+from kinelab.model import JOINT_TYPES, SPACES, Input, Joint, Link, Mechanism, Point
+
+__all__ = ["SCHEMA", "LENGTH_UNITS", "ANGLE_UNITS", "Units", "Outputs", "ModelFile", "load",
+           "save", "from_toml", "to_toml", "from_json", "to_json"]
+
+SCHEMA = 1
+"""The newest schema version this kinelab reads and the one it writes."""
+
+LENGTH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254}
+ANGLE_UNITS = {"rad": 1.0, "deg": math.pi / 180.0}
+DEFAULT_SAMPLES = 361
+MAX_SAMPLES = 10_000_000
+LENGTH_RTOL = 1e-6    # a declared link length agrees with the sketch to this relative error
+CATALOGUE_KINDS = ("fourbar", "slider_crank", "inverted_slider_crank", "slotted_link",
+                   "whitworth", "fivebar", "watt6", "stephenson6", "triad6")
+
+_TOP = ("schema", "name", "description", "space", "units", "points", "links", "joints",
+        "inputs", "sweep", "catalogue", "outputs")
+_RESERVED = {key: "reserved for dynamics (masses, forces, gravity), which a later version of "
+             "kinelab reads; remove it for now" for key in ("dynamics", "forces", "gravity", "loads")}
+_LINK = ("name", "points", "ground", "length", "mass", "center_of_mass", "inertia")
+_JOINT = ("name", "type", "links", "point", "axis", "origin", "axis2", "pitch")
+_INPUT = ("joint", "links", "name", "range", "speed", "acceleration", "samples")
+_OUTPUTS = ("report", "transmission", "time_ratio")
+_SWEEPS = ("together", "grid")
+_SIGNED_PARAMETERS = ("offset", "ram_height")   # catalogue lengths that may be zero or negative
+
+
+@dataclass(frozen=True)
+class Units:
+    """The units a model file is written in: lengths and angles.
+
+    Examples
+    --------
+    >>> Units("mm", "deg").length_scale          # metres per file unit
+    0.001
+    """
+
+    length: Literal["m", "cm", "mm", "in"] = "m"
+    angle: Literal["rad", "deg"] = "rad"
+
+    def __post_init__(self):
+        problems = []
+        for attr, table in (("length", LENGTH_UNITS), ("angle", ANGLE_UNITS)):
+            v = getattr(self, attr)
+            if v not in table:
+                problems.append(f"units.{attr}: expected one of {quoted(table)}, got {describe(v)}"
+                                f"{suggest(str(v), table)}")
+        if problems:
+            raise ModelError(problems)
+
+    @property
+    def length_scale(self) -> float:
+        """Metres per length unit."""
+        return LENGTH_UNITS[self.length]
+
+    @property
+    def angle_scale(self) -> float:
+        """Radians per angle unit."""
+        return ANGLE_UNITS[self.angle]
+
+
+@dataclass(frozen=True)
+class Outputs:
+    """What a person wants reported and plotted (the file's optional ``[outputs]``).
+
+    Attributes
+    ----------
+    report : tuple of str
+        Links, points and prismatic joints (slides) to summarise and plot.
+    transmission : tuple of (str, str)
+        Pairs of links whose transmission angle is reported (coupler, output).
+    time_ratio : str, optional
+        The output (a link or a slide) whose quick-return time ratio is reported.
+    """
+
+    report: tuple[str, ...] = ()
+    transmission: tuple[tuple[str, str], ...] = ()
+    time_ratio: str | None = None
+
+    def __bool__(self) -> bool:
+        return bool(self.report or self.transmission or self.time_ratio)
+
+
+@dataclass(frozen=True)
+class ModelFile:
+    """A mechanism as a model file holds it: the model (SI), the file's units, how many
+    samples each input is swept over, and what to report.
+
+    Build one with :meth:`read` (or :meth:`from_toml`, :meth:`from_json`,
+    :meth:`from_dict`); ``kinelab.load(path)`` is ``ModelFile.read(path).mechanism``.
+
+    Attributes
+    ----------
+    mechanism : Mechanism
+    units : Units
+    samples : tuple of int
+        Samples per input (empty: the default, 361).
+    sweep : {"together", "grid"}
+        With several inputs, "together" moves them all at once from their start to their
+        stop (N samples); "grid" takes every combination (N1 x N2 ... samples).
+    outputs : Outputs
+    description : str
+    source : str, optional
+        Where the file came from (for messages); not part of equality.
+    """
+
+    mechanism: Mechanism
+    units: Units = Units()
+    samples: tuple[int, ...] = ()
+    sweep: Literal["together", "grid"] = "together"
+    outputs: Outputs = Outputs()
+    description: str = ""
+    source: str | None = field(default=None, compare=False)
+
+    # -- reading ---------------------------------------------------------------------------
+    @classmethod
+    def read(cls, path: str | os.PathLike) -> ModelFile:
+        """Read a ``.toml`` or ``.json`` model file.
+
+        Examples
+        --------
+        >>> mf = kl.io.ModelFile.read("examples/crank_rocker.toml")
+        >>> mf.units, mf.mechanism.link_names
+        (Units(length='mm', angle='deg'), ('ground', 'crank', 'coupler', 'rocker'))
+        """
+        path = Path(path)
+        source = path.name
+        suffix = path.suffix.lower()
+        if suffix not in (".toml", ".json"):
+            raise ModelError(f"expected a .toml or .json model file, got '{path.suffix or path.name}'; "
+                             "rename it or convert it (kinelab import reads Pyslvs and "
+                             "linkage2d files)", source=source)
+        try:
+            raw = path.read_bytes()
+        except FileNotFoundError:
+            raise ModelError("no such file; check the path", source=str(path)) from None
+        except OSError as exc:
+            raise ModelError(f"cannot read it: {exc.strerror or exc}", source=str(path)) from None
+        try:
+            text = raw.decode("utf-8-sig")
+        except UnicodeDecodeError as exc:
+            line = raw[:exc.start].count(b"\n") + 1
+            raise ModelError(f"line {line}: not UTF-8 text; save the file as UTF-8",
+                             source=source) from None
+        parse = cls.from_toml if suffix == ".toml" else cls.from_json
+        mf = parse(text, source=source, _stem=path.stem)
+        return mf
+
+    @classmethod
+    def from_toml(cls, text: str, *, source: str | None = None, _stem: str | None = None) -> ModelFile:
+        """Parse model-file text in TOML."""
+        try:
+            data = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as exc:
+            raise ModelError(_syntax_message(str(exc), text, "TOML"), source=source) from None
+        except RecursionError:
+            raise ModelError("nested too deeply to be a model file", source=source) from None
+        return cls.from_dict(data, source=source, _stem=_stem)
+
+    @classmethod
+    def from_json(cls, text: str, *, source: str | None = None, _stem: str | None = None) -> ModelFile:
+        """Parse model-file text in JSON (the same fields as TOML)."""
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise ModelError(f"line {exc.lineno}, column {exc.colno}: JSON syntax error: "
+                             f"{exc.msg}; fix the syntax there", source=source) from None
+        except RecursionError:
+            raise ModelError("nested too deeply to be a model file", source=source) from None
+        return cls.from_dict(data, source=source, _stem=_stem)
+
+    @classmethod
+    def from_dict(cls, data: Any, *, source: str | None = None, _stem: str | None = None) -> ModelFile:
+        """Build from plain data shaped like the file (in the file's units)."""
+        return _Parser(source, _stem).parse(data)
+
+    # -- writing ---------------------------------------------------------------------------
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data shaped like the file, in the file's units (inverse of :meth:`from_dict`)."""
+        return _dump(self)
+
+    def to_toml(self) -> str:
+        """TOML text of the file."""
+        return _toml.dumps(self.to_dict())
+
+    def to_json(self) -> str:
+        """JSON text of the file."""
+        return json.dumps(self.to_dict(), indent=2, ensure_ascii=False) + "\n"
+
+    def write(self, path: str | os.PathLike) -> Path:
+        """Write TOML or JSON, by the suffix of ``path`` (to a temporary file, then renamed)."""
+        suffix = Path(path).suffix.lower()
+        if suffix not in (".toml", ".json"):
+            raise ModelError(f"path: expected a .toml or .json file name, got '{Path(path).name}'")
+        text = self.to_toml() if suffix == ".toml" else self.to_json()
+        return atomic_write(path, lambda f: f.write(text))
+
+    # -- the sweep -------------------------------------------------------------------------
+    def sample_inputs(self, samples: int | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Input values, rates and accelerations of the file's sweep, SI.
+
+        Each input runs from its ``range`` start to its stop; an input without a range (one
+        input only) covers the range where the mechanism assembles on its sketch's branch:
+        one full turn from 0 when it turns fully, else from one limit position to the other.
+
+        Parameters
+        ----------
+        samples : int, optional
+            Samples per input, instead of the file's.
+
+        Returns
+        -------
+        q, qd, qdd : ndarray, shape (N,) for one input, (N, M) for M inputs
+
+        Examples
+        --------
+        >>> q, qd, qdd = kl.io.ModelFile.read("examples/crank_rocker.toml").sample_inputs(5)
+        >>> np.degrees(q).round(9), float(qd[0])            # 600 deg/s
+        (array([  0.,  90., 180., 270., 360.]), 10.471975511965978)
+        """
+        m = self.mechanism
+        M = len(m.inputs)
+        if M == 0:
+            raise ModelError("inputs: the mechanism has no input; add one under [[inputs]]",
+                             source=self.source)
+        counts = [samples] * M if samples is not None else (
+            list(self.samples) if self.samples else [DEFAULT_SAMPLES] * M)
+        if samples is not None and not (isinstance(samples, int) and 2 <= samples <= MAX_SAMPLES):
+            raise ModelError(f"samples: expected a whole number from 2 to {MAX_SAMPLES:,}, got {samples!r}")
+        axes = []
+        for k, inp in enumerate(m.inputs):
+            if inp.range is not None:
+                lo, hi = inp.range
+            elif M == 1:
+                lo, hi = _reachable_span(m)
+            else:
+                raise ModelError(f"inputs[{k}].range: missing; with more than one input every "
+                                 "input needs a range [start, stop]", source=self.source)
+            axes.append(np.linspace(lo, hi, counts[k]))
+        if M == 1:
+            q = axes[0]
+        elif self.sweep == "grid":
+            q = np.stack([g.ravel() for g in np.meshgrid(*axes, indexing="ij")], axis=-1)
+        else:
+            q = np.stack(axes, axis=-1)
+        shape = (len(q),) if M == 1 else (len(q), M)
+        qd = np.broadcast_to(np.array([i.speed for i in m.inputs]).reshape(shape[1:] or ()), shape)
+        qdd = np.broadcast_to(np.array([i.acceleration for i in m.inputs]).reshape(shape[1:] or ()),
+                              shape)
+        return q, np.array(qd), np.array(qdd)
+
+
+def _reachable_span(m: Mechanism) -> tuple[float, float]:
+    from kinelab.kinematics import reachable_ranges, plan
+    q0 = float(plan(m).q_sketch[0])
+    ranges = reachable_ranges(m)
+    if not ranges:
+        raise ModelError("inputs[0].range: the mechanism does not assemble near its sketch; "
+                         "check the sketch")
+    kind = plan(m).input_kinds[0]
+    lo, hi = next(((a, b) for a, b in ranges if a <= q0 <= b), ranges[0])
+    if kind == "angle" and hi - lo >= 2 * math.pi - 1e-12:
+        return 0.0, 2 * math.pi
+    shrink = 1e-9 * (hi - lo)     # stop just short of the limit positions, which are singular
+    return lo + shrink, hi - shrink
+
+
+def _syntax_message(text: str, source_text: str, language: str) -> str:
+    match = re.match(r"^(.*) \(at (?:line (\d+), column (\d+)|end of document)\)$", text, re.S)
+    what = match.group(1) if match else text
+    if match and match.group(2):
+        where = f"line {match.group(2)}, column {match.group(3)}"
+    else:
+        where = f"line {source_text.count(chr(10)) + 1} (end of file)"
+    what = what[:1].lower() + what[1:]
+    return f"{where}: {language} syntax error: {what}; fix the syntax there"
+
+
+# ------------------------------------------------------------------------------------------
+# reading
+# ------------------------------------------------------------------------------------------
+class _Parser:
+    def __init__(self, source: str | None, stem: str | None):
+        self.source = source
+        self.stem = stem
+        self.r = Reader()
+        self.where: dict[tuple[str, str], str] = {}   # (kind, name) -> "links[2]"
+
+    def fail(self, problems=None):
+        raise ModelError(problems or self.r.problems, source=self.source)
+
+    def parse(self, data: Any) -> ModelFile:
+        r = self.r
+        top = r.table(data, "", _TOP, reserved=_RESERVED)
+        if top is None:
+            self.fail()
+        if "schema" not in top:
+            r.fail("schema", f"missing; add schema = {SCHEMA} at the top of the file")
+        if "units" not in top:
+            r.fail("units", "missing; say which units the file is written in, e.g. [units] "
+                   "length = \"mm\", angle = \"deg\"")
+        if "schema" in top:
+            schema = top["schema"]
+            if isinstance(schema, int) and not isinstance(schema, bool) and schema > SCHEMA:
+                self.fail([f"schema: this file is written for schema {schema}, but this kinelab "
+                           f"reads schema {SCHEMA} and older; upgrade kinelab"])
+            r.integer(schema, "schema", low=1, high=SCHEMA)
+        name = r.string(top.get("name", self.stem or "mechanism"), "name")
+        description = top.get("description", "")
+        if not isinstance(description, str):
+            r.fail("description", f"expected a text, got {describe(description)}")
+            description = ""
+        space = r.string(top.get("space", "planar"), "space", choices=SPACES) or "planar"
+        units = self.units(top.get("units"))
+        sweep = r.string(top.get("sweep", "together"), "sweep", choices=_SWEEPS) or "together"
+        explicit = [k for k in ("points", "links", "joints") if k in top]
+        if "catalogue" in top and not explicit:
+            mech, samples = self.from_catalogue(top, units, name)
+        else:
+            for k in ("points", "links", "joints"):
+                if k not in top:
+                    r.fail(k, f"missing; a model needs [points], [[links]] and [[joints]] (or a "
+                           "[catalogue] table instead of all three)")
+            mech, samples = self.explicit(top, units, name, space)
+        if r.problems:
+            self.fail()
+        outputs = self.outputs(top.get("outputs"), mech) if "outputs" in top else Outputs()
+        if samples and sweep == "together" and len(set(samples)) > 1:
+            r.fail("inputs", f"samples: expected the same number for every input when sweep = "
+                   f"'together', got {list(samples)}; make them equal or set sweep = 'grid'")
+        if r.problems:
+            self.fail()
+        return ModelFile(mechanism=mech, units=units, samples=samples, sweep=sweep,
+                         outputs=outputs, description=description, source=self.source)
+
+    # -- sections ----------------------------------------------------------------------------
+    def units(self, value) -> Units:
+        if value is None:
+            return Units()
+        t = self.r.table(value, "units", ("length", "angle"), required=("length", "angle"))
+        if t is None:
+            return Units()
+        length = self.r.string(t.get("length", "m"), "units.length", choices=LENGTH_UNITS)
+        angle = self.r.string(t.get("angle", "rad"), "units.angle", choices=ANGLE_UNITS)
+        return Units(length or "m", angle or "rad")
+
+    def explicit(self, top, units: Units, name, space):
+        r = self.r
+        ls, dim = units.length_scale, (2 if space == "planar" else 3)
+        points: dict[str, tuple[float, ...]] = {}
+        raw_points = top.get("points", {})
+        point_names = None        # unknown: references to points are not checked
+        if not isinstance(raw_points, Mapping):
+            r.fail("points", f"expected a table of name = [x, y], got {describe(raw_points)}")
+            raw_points = {}
+        elif "points" in top:
+            point_names = list(raw_points)
+        for pname, xy in raw_points.items():
+            v = r.numbers(xy, f"points.{_field_key(pname)}", dim, scale=ls, what="coordinates")
+            if v is not None:
+                points[pname] = v
+        raw_links = list(self.items(top.get("links", []), "links", _LINK, ("name", "points")))
+        raw_joints = list(self.items(top.get("joints", []), "joints", _JOINT, ("type", "links")))
+        # names first, so that one bad field does not make every reference to it fail too
+        taken = {p: f"points.{_field_key(p)}" for p in point_names or ()}
+        link_names = self.declare(raw_links, "links", taken, lambda t: t.get("name"))
+        joint_names = self.declare(raw_joints, "joints", taken, _joint_name)
+        joint_types: dict[str, Any] = {}
+        for t in raw_joints:
+            if t is not None and _joint_name(t) in joint_names:
+                joint_types.setdefault(_joint_name(t), t.get("type"))
+        links, lengths = [], []
+        for i, t in enumerate(raw_links):
+            where = f"links[{i}]"
+            if t is None:
+                continue
+            lname = r.name(t["name"], f"{where}.name") if "name" in t else None
+            pts = r.names(t["points"], f"{where}.points", point_names, "point") if "points" in t else None
+            ground = r.boolean(t.get("ground", False), f"{where}.ground")
+            mass = self.optional_number(t, "mass", where, positive=True)
+            inertia = self.optional_number(t, "inertia", where, scale=ls * ls, positive=True)
+            com = t.get("center_of_mass")
+            if com is not None:
+                com = r.name(com, f"{where}.center_of_mass", pts or (), "point",
+                             "the link's points")
+            length = self.optional_number(t, "length", where, scale=ls, positive=True,
+                                          unit=units.length)
+            if None in (lname, pts, ground):
+                continue
+            links.append(Link(lname, pts, ground=ground, mass=mass, center_of_mass=com,
+                              inertia=inertia))
+            if length is not None:
+                lengths.append((i, lname, pts, length))
+        joints = []
+        for i, t in enumerate(raw_joints):
+            if t is not None:
+                j = self.joint(t, f"joints[{i}]", point_names, link_names, units, dim)
+                if j is not None:
+                    joints.append(j)
+        inputs, samples = self.inputs(top.get("inputs", []), joint_types, link_names, units)
+        if r.problems:
+            self.fail()
+        mech = self.build(lambda: Mechanism(
+            name=name, points=tuple(Point(n, *xy) for n, xy in points.items()), links=tuple(links),
+            joints=tuple(joints), inputs=tuple(inputs), space=space))
+        for i, lname, pts, length in lengths:
+            self.check_length(mech, i, pts, length, units)
+        if "catalogue" in top and not self.r.problems:
+            built, _ = self.catalogue(top["catalogue"], units)
+            if built is not None:
+                self.check_catalogue(mech, built, units)
+                mech = dataclasses.replace(mech, parameters=built.parameters)
+        return mech, samples
+
+    def items(self, value, section: str, allowed, required):
+        rows = self.r.array(value, section, "tables")
+        for i, t in enumerate(rows or []):
+            yield self.r.table(t, f"{section}[{i}]", allowed, required=required)
+
+    def declare(self, tables, section: str, taken: dict[str, str], name_of) -> list[str]:
+        """The names of a section's entries, each checked to be unique across the file."""
+        names = []
+        for i, t in enumerate(tables):
+            n = name_of(t) if t is not None else None
+            if not isinstance(n, str) or not n.strip():
+                continue
+            if n in taken:
+                self.r.fail(f"{section}[{i}].name", f"'{n}' is already the name of {taken[n]}; "
+                            "names must be unique across points, links and joints")
+            else:
+                taken[n] = f"{section}[{i}]"
+            if n in names:
+                continue
+            self.where[(section[:-1], n)] = f"{section}[{i}]"
+            names.append(n)
+        return names
+
+    def optional_number(self, t, key, where, *, scale=1.0, positive=False, unit=""):
+        if t.get(key) is None:
+            return None
+        return self.r.number(t[key], f"{where}.{key}", scale=scale, positive=positive, unit=unit)
+
+    def joint(self, t, where, point_names, link_names, units: Units, dim: int) -> Joint | None:
+        r = self.r
+        jtype = r.string(t["type"], f"{where}.type", choices=JOINT_TYPES) if "type" in t else None
+        jlinks = (r.names(t["links"], f"{where}.links", link_names, "link", count=2)
+                  if "links" in t else None)
+        point = t.get("point")
+        if point is not None:
+            point = r.name(point, f"{where}.point", point_names, "point")
+        jname = _joint_name(t)
+        if jname is None:
+            if jtype is not None and JOINT_TYPES[jtype].needs_point:
+                r.fail(f"{where}.point", f"missing; a joint of type '{jtype}' needs the point where it acts")
+            else:
+                r.fail(f"{where}.name", "missing; a joint without a point needs a name")
+        else:
+            jname = r.name(jname, f"{where}.name")
+        origin = t.get("origin")
+        if origin is not None:
+            origin = r.name(origin, f"{where}.origin", point_names, "point")
+        axis = self.axis(t.get("axis"), f"{where}.axis", units, dim) if "axis" in t else None
+        axis2 = self.axis(t.get("axis2"), f"{where}.axis2", units, dim) if "axis2" in t else None
+        pitch = self.optional_number(t, "pitch", where, scale=units.length_scale / units.angle_scale)
+        if None in (jtype, jlinks, jname) or ("point" in t and point is None) or (
+                "origin" in t and origin is None) or ("axis" in t and axis is None):
+            return None
+        return Joint(jname, jtype, jlinks, point=point, axis=axis, origin=origin, axis2=axis2,
+                     pitch=pitch)
+
+    def axis(self, value, where, units: Units, dim: int):
+        if isinstance(value, (int, float)) and not isinstance(value, bool) and dim == 2:
+            a = self.r.number(value, where, scale=units.angle_scale)
+            return None if a is None else (math.cos(a), math.sin(a))
+        v = self.r.numbers(value, where, dim)
+        if v is not None and math.hypot(*v) == 0.0:
+            self.r.fail(where, "expected a direction, got the zero vector")
+            return None
+        if v is None and dim == 2:
+            self.r.problems[-1] = (f"{where}: expected an angle ({units.angle}) or a direction "
+                                   f"[x, y], got {describe(value)}")
+        return v
+
+    def inputs(self, value, joint_types: Mapping[str, Any], link_names, units: Units):
+        r = self.r
+        inputs, samples = [], []
+        for i, t in enumerate(self.items(value, "inputs", _INPUT, ())):
+            if t is None:
+                continue
+            where = f"inputs[{i}]"
+            if ("joint" in t) == ("links" in t):
+                r.fail(where, "expected either joint = \"name\" or links = [\"a\", \"b\"]")
+                continue
+            joint = links = None
+            if "joint" in t:
+                joint = r.name(t["joint"], f"{where}.joint", list(joint_types), "joint")
+            else:
+                links = r.names(t["links"], f"{where}.links", link_names, "link", count=2)
+            slide = joint is not None and joint_types[joint] == "P"
+            scale = units.length_scale if slide else units.angle_scale
+            unit = units.length if slide else units.angle
+            rng = None
+            if "range" in t:
+                rng = r.numbers(t["range"], f"{where}.range", 2, scale=scale)
+                if rng is not None and rng[0] == rng[1]:
+                    r.fail(f"{where}.range", f"start and stop are equal ({describe(t['range'][0])} "
+                           f"{unit}); give an interval")
+            speed = self.optional_number(t, "speed", where, scale=scale)
+            accel = self.optional_number(t, "acceleration", where, scale=scale)
+            name = t.get("name")
+            if name is not None:
+                name = r.name(name, f"{where}.name")
+            if "samples" in t:
+                n = r.integer(t["samples"], f"{where}.samples", low=2, high=MAX_SAMPLES)
+                samples.append(n or DEFAULT_SAMPLES)
+            else:
+                samples.append(DEFAULT_SAMPLES)
+            if (joint is None and links is None) or ("range" in t and rng is None):
+                continue
+            inputs.append(Input(joint=joint, links=links, range=rng, speed=speed or 0.0,
+                                acceleration=accel or 0.0, name=name))
+        stated = isinstance(value, (list, tuple)) and any(
+            isinstance(t, Mapping) and "samples" in t for t in value)
+        return inputs, tuple(samples) if stated else ()
+
+    def outputs(self, value, m: Mechanism) -> Outputs:
+        r = self.r
+        t = r.table(value, "outputs", _OUTPUTS)
+        if t is None:
+            return Outputs()
+        slides = [j.name for j in m.joints if j.type == "P"]
+        reportable = list(m.link_names) + list(m.point_names) + slides
+        report = ()
+        if "report" in t:
+            report = r.names(t["report"], "outputs.report", reportable, "link, point or slide",
+                             plural="its links, points and slides") or ()
+        pairs = ()
+        if "transmission" in t:
+            v = t["transmission"]
+            if isinstance(v, (list, tuple)) and v and all(isinstance(x, str) for x in v):
+                v = [v]
+            rows = r.array(v, "outputs.transmission", "pairs of links") or []
+            pairs = tuple(p for k, x in enumerate(rows)
+                          if (p := r.names(x, f"outputs.transmission[{k}]", m.link_names, "link",
+                                           count=2)) is not None)
+        ratio = None
+        if "time_ratio" in t:
+            ratio = r.name(t["time_ratio"], "outputs.time_ratio", list(m.link_names) + slides,
+                           "link or slide", "its links and slides")
+        return Outputs(tuple(report), pairs, ratio)
+
+    # -- catalogue ---------------------------------------------------------------------------
+    def catalogue(self, value, units: Units):
+        """(mechanism built by the catalogue constructor, its parameter problems)."""
+        r = self.r
+        if not isinstance(value, Mapping):
+            r.fail("catalogue", f"expected a table with kind = \"...\" and parameters, got "
+                   f"{describe(value)}")
+            return None, True
+        kind = r.string(value.get("kind"), "catalogue.kind", choices=CATALOGUE_KINDS)
+        if kind is None:
+            return None, True
+        make = getattr(catalogue, kind)
+        params = [p for p in inspect.signature(make).parameters if p != "q0"]
+        t = r.table(value, "catalogue", ["kind"] + params)
+        before = len(r.problems)
+        kwargs = {}
+        for key, v in (t or {}).items():
+            if key == "kind":
+                continue
+            where = f"catalogue.{key}"
+            if key == "branch":
+                kwargs[key] = r.string(v, where)
+            elif key == "coupler_point":
+                kwargs[key] = r.numbers(v, where, 2, scale=units.length_scale)
+            elif key == "points":
+                if not isinstance(v, Mapping):
+                    r.fail(where, f"expected a table of name = [x, y], got {describe(v)}")
+                    continue
+                kwargs[key] = {n: r.numbers(xy, f"{where}.{_field_key(n)}", 2,
+                                            scale=units.length_scale, what="coordinates")
+                               for n, xy in v.items()}
+            else:
+                kwargs[key] = r.number(v, where, scale=units.length_scale, unit=units.length,
+                                       positive=key not in _SIGNED_PARAMETERS)
+        for p, sig in inspect.signature(make).parameters.items():
+            if sig.default is inspect.Parameter.empty and p not in kwargs:
+                r.fail(f"catalogue.{p}", f"missing; a {kind} needs it")
+        if len(r.problems) > before or t is None:
+            return None, True
+        try:
+            return make(**kwargs), False
+        except ModelError as exc:
+            for p in exc.problems:
+                base = re.sub(r"[\[._:].*$", "", p)
+                if base in params:
+                    r.fail("", f"catalogue.{p}")
+                else:
+                    r.fail("catalogue", p if p.startswith(kind) else f"{kind}: {p}")
+        return None, True
+
+    def from_catalogue(self, top, units: Units, name):
+        built, bad = self.catalogue(top["catalogue"], units)
+        if bad:
+            self.fail()
+        joint_types = {j.name: j.type for j in built.joints}
+        inputs, samples = (self.inputs(top["inputs"], joint_types, built.link_names, units)
+                           if "inputs" in top else (list(built.inputs), ()))
+        if self.r.problems:
+            self.fail()
+        mech = self.build(lambda: dataclasses.replace(built, name=name, inputs=tuple(inputs)))
+        return mech, samples
+
+    def check_catalogue(self, m: Mechanism, built: Mechanism, units: Units) -> None:
+        kind = built.parameters.get("kind")
+        for attr in ("point_names", "link_names", "joint_names"):
+            mine, theirs = getattr(m, attr), getattr(built, attr)
+            if set(mine) != set(theirs):
+                extra = sorted(set(mine) - set(theirs))
+                gone = sorted(set(theirs) - set(mine))
+                self.r.fail("catalogue", f"the model's {attr.split('_')[0]}s differ from {kind}'s"
+                            + (f": {quoted(extra)} not in it" if extra else "")
+                            + (f"; {quoted(gone)} missing" if gone else "")
+                            + "; fix the names or delete [catalogue]")
+                return
+        scale = max(1e-300, max(math.dist(a.xy, b.xy) for a in built.points for b in built.points))
+        ls = units.length_scale
+        for link in m.links:
+            pts = link.points
+            for a, b in zip(pts, pts[1:] + pts[:1]):
+                mine = math.dist(m.point(a).xy, m.point(b).xy)
+                theirs = math.dist(built.point(a).xy, built.point(b).xy)
+                if abs(mine - theirs) > LENGTH_RTOL * scale:
+                    self.r.fail("catalogue", f"the sketch does not match {kind}: link '{link.name}' "
+                                f"has {a}-{b} = {mine / ls:.6g} {units.length} in the sketch but "
+                                f"{theirs / ls:.6g} {units.length} from the parameters; fix the points "
+                                "or the parameters, or delete [catalogue]")
+                    return
+
+    # -- whole-model checks --------------------------------------------------------------------
+    def build(self, make) -> Mechanism:
+        try:
+            return make()
+        except ModelError as exc:
+            self.fail([_locate(p, self.where) for p in exc.problems])
+
+    def check_length(self, m: Mechanism, i: int, pts, length: float, units: Units) -> None:
+        where = f"links[{i}].length"
+        if len(pts) < 2:
+            self.r.fail(where, "a link with one point has no length; remove it")
+            return
+        a, b = m.point(pts[0]), m.point(pts[1])
+        d = math.dist((a.x, a.y, a.z), (b.x, b.y, b.z))
+        if abs(d - length) > LENGTH_RTOL * length:
+            s = units.length_scale
+            self.r.fail(where, f"the sketch puts {a.name} and {b.name} {d / s:.6g} {units.length} "
+                        f"apart, but the length says {length / s:.6g} {units.length}; move a point "
+                        "or correct the length")
+
+
+def _joint_name(t: Mapping[str, Any]) -> Any:
+    """A joint's name: its ``name``, else ``j`` + its point."""
+    if "name" in t:
+        return t["name"]
+    return f"j{t['point']}" if isinstance(t.get("point"), str) else None
+
+
+def _field_key(name: str) -> str:
+    return name if re.match(r"^[A-Za-z0-9_-]+$", str(name)) else json.dumps(name)
+
+
+def _locate(problem: str, where: Mapping[tuple[str, str], str]) -> str:
+    """Turn the model's "link 'coupler': points: ..." into the file's "links[2].points: ..."."""
+    m = re.match(r"^(link|joint|point) '([^']*)': (?:(\w+): )?(.*)$", problem, re.S)
+    if not m:
+        return problem
+    kind, name, fld, rest = m.groups()
+    place = (f"points.{_field_key(name)}" if kind == "point"
+             else where.get((kind, name), f"{kind}s['{name}']"))
+    return f"{place}{'.' + fld if fld else ''}: {rest}"
+
+
+# ------------------------------------------------------------------------------------------
+# writing
+# ------------------------------------------------------------------------------------------
+def _out(v: float, scale: float) -> float | int:
+    """A value in file units; rounded to 12 digits when converted, to stay readable."""
+    if scale == 1.0:
+        return v
+    x = float(f"{v / scale:.12g}")
+    return x
+
+
+def _dump(mf: ModelFile) -> dict[str, Any]:
+    m, u = mf.mechanism, mf.units
+    ls, a_s = u.length_scale, u.angle_scale
+    out: dict[str, Any] = {"schema": SCHEMA, "name": m.name}
+    if mf.description:
+        out["description"] = mf.description
+    if m.space != "planar":
+        out["space"] = m.space
+    if mf.sweep != "together":
+        out["sweep"] = mf.sweep
+    out["units"] = {"length": u.length, "angle": u.angle}
+    out["points"] = {p.name: [_out(c, ls) for c in (p.xy if m.space == "planar" else (p.x, p.y, p.z))]
+                     for p in m.points}
+    links = []
+    for link in m.links:
+        d: dict[str, Any] = {"name": link.name, "points": list(link.points)}
+        if link.ground:
+            d["ground"] = True
+        if link.mass is not None:
+            d["mass"] = link.mass
+        if link.center_of_mass is not None:
+            d["center_of_mass"] = link.center_of_mass
+        if link.inertia is not None:
+            d["inertia"] = _out(link.inertia, ls * ls)
+        links.append(d)
+    out["links"] = links
+    joints = []
+    for j in m.joints:
+        d = {"name": j.name, "type": j.type, "links": list(j.links)}
+        for key in ("point", "origin"):
+            if getattr(j, key) is not None:
+                d[key] = getattr(j, key)
+        for key in ("axis", "axis2"):
+            if getattr(j, key) is not None:
+                d[key] = [float(c) for c in getattr(j, key)]
+        if j.pitch is not None:
+            d["pitch"] = _out(j.pitch, ls / a_s)
+        joints.append(d)
+    out["joints"] = joints
+    inputs = []
+    for k, inp in enumerate(m.inputs):
+        slide = inp.joint is not None and m.joint(inp.joint).type == "P"
+        s = ls if slide else a_s
+        d = {"joint": inp.joint} if inp.joint is not None else {"links": list(inp.links)}
+        if inp.name:
+            d["name"] = inp.name
+        if inp.range is not None:
+            d["range"] = [_out(v, s) for v in inp.range]
+        if inp.speed:
+            d["speed"] = _out(inp.speed, s)
+        if inp.acceleration:
+            d["acceleration"] = _out(inp.acceleration, s)
+        if mf.samples:
+            d["samples"] = mf.samples[k]
+        inputs.append(d)
+    if inputs:
+        out["inputs"] = inputs
+    params = dict(m.parameters)
+    if params.get("kind") in CATALOGUE_KINDS:
+        cat: dict[str, Any] = {"kind": params.pop("kind")}
+        for key, v in params.items():
+            if v is None:
+                continue
+            if isinstance(v, str):
+                cat[key] = v
+            elif isinstance(v, Mapping):
+                cat[key] = {n: [_out(float(c), ls) for c in xy] for n, xy in v.items()}
+            elif isinstance(v, (list, tuple)):
+                cat[key] = [_out(float(c), ls) for c in v]
+            else:
+                cat[key] = _out(float(v), ls)
+        out["catalogue"] = cat
+    if mf.outputs:
+        o: dict[str, Any] = {}
+        if mf.outputs.report:
+            o["report"] = list(mf.outputs.report)
+        if mf.outputs.transmission:
+            o["transmission"] = [list(p) for p in mf.outputs.transmission]
+        if mf.outputs.time_ratio:
+            o["time_ratio"] = mf.outputs.time_ratio
+        out["outputs"] = o
+    return out
+
+
+# ------------------------------------------------------------------------------------------
+# the short public names
+# ------------------------------------------------------------------------------------------
+def load(path: str | os.PathLike) -> Mechanism:
+    """Read a model file (TOML or JSON) and return its mechanism, in SI units.
+
+    Parameters
+    ----------
+    path : str or path-like
+        A ``.toml`` or ``.json`` file in the format of ``docs/model-format.md``.
+
+    Returns
+    -------
+    Mechanism
+
+    Raises
+    ------
+    ModelError
+        Every problem of the file at once, one line each, naming the file and the field.
+
+    Examples
+    --------
+    >>> m = kl.load("examples/crank_rocker.toml")        # written in mm and degrees
+    >>> m.point("O4").xy                                  # metres
+    (0.3, 0.0)
+    """
+    return ModelFile.read(path).mechanism
+
+
+def save(model: Mechanism | ModelFile, path: str | os.PathLike, *,
+         units: Units | Mapping[str, str] | None = None) -> Path:
+    """Write a mechanism to a model file, TOML or JSON by the suffix of ``path``.
+
+    The sketch (every point's position) is written, so reading the file back gives the
+    same mechanism on the same assembly branch; a catalogue mechanism also records its
+    kind and parameters under ``[catalogue]``.
+
+    Parameters
+    ----------
+    model : Mechanism or ModelFile
+    path : str or path-like
+        Ends in ``.toml`` or ``.json``; written to a temporary file, then renamed.
+    units : Units or mapping, optional
+        ``{"length": "mm", "angle": "deg"}``; default: the model file's units, else SI.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> fb = kl.mechanisms.fourbar(ground=0.3, crank=0.1, coupler=0.3, rocker=0.25)
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "fourbar.toml"
+    >>> _ = kl.io.save(fb, path, units={"length": "mm", "angle": "deg"})
+    >>> kl.load(path).point("O4").xy
+    (0.3, 0.0)
+    """
+    mf = model if isinstance(model, ModelFile) else ModelFile(mechanism=_as_mechanism(model))
+    if units is not None:
+        mf = dataclasses.replace(mf, units=units if isinstance(units, Units) else _units(units))
+    return mf.write(path)
+
+
+def _units(mapping: Mapping[str, str]) -> Units:
+    if not isinstance(mapping, Mapping) or set(mapping) - {"length", "angle"}:
+        raise ModelError(f"units: expected a mapping with 'length' and 'angle', got {mapping!r}")
+    return Units(**mapping)
+
+
+def _as_mechanism(model: Any) -> Mechanism:
+    if not isinstance(model, Mechanism):
+        raise ModelError(f"model: expected a kinelab Mechanism or ModelFile, got "
+                         f"{type(model).__name__}")
+    return model
+
+
+def from_toml(text: str) -> Mechanism:
+    """The mechanism of model-file text in TOML (see :func:`load`)."""
+    return ModelFile.from_toml(text).mechanism
+
+
+def to_toml(model: Mechanism, *, units: Units | Mapping[str, str] | None = None) -> str:
+    """Model-file text in TOML (see :func:`save`).
+
+    Examples
+    --------
+    >>> sc = kl.mechanisms.slider_crank(crank=0.05, rod=0.2)
+    >>> kl.io.from_toml(kl.io.to_toml(sc)) == sc
+    True
+    """
+    u = units if isinstance(units, Units) or units is None else _units(units)
+    return ModelFile(mechanism=_as_mechanism(model), units=u or Units()).to_toml()
+
+
+def from_json(text: str) -> Mechanism:
+    """The mechanism of model-file text in JSON."""
+    return ModelFile.from_json(text).mechanism
+
+
+def to_json(model: Mechanism, *, units: Units | Mapping[str, str] | None = None) -> str:
+    """Model-file text in JSON."""
+    u = units if isinstance(units, Units) or units is None else _units(units)
+    return ModelFile(mechanism=_as_mechanism(model), units=u or Units()).to_json()

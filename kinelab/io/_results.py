@@ -1,0 +1,83 @@
+"""Results export: one row per sample, as CSV, JSON or Parquet."""
+from __future__ import annotations
+
+import json
+import math
+import os
+from pathlib import Path
+from typing import Literal
+
+import numpy as np
+
+from kinelab._files import atomic_write, write_csv
+from kinelab.errors import ModelError
+from kinelab.kinematics import KinematicSolution
+
+__all__ = ["RESULT_FORMATS", "write_results"]
+
+RESULT_FORMATS = ("csv", "json", "parquet")
+
+
+def write_results(sol: KinematicSolution, path: str | os.PathLike, *,
+                  format: Literal["csv", "json", "parquet"] | None = None,
+                  degrees: bool = False) -> Path:
+    """Write a sweep with one row per sample, every column of ``sol.columns()``.
+
+    The columns are the inputs; every link's angle, omega, alpha, K and L; every slide with
+    its rates, K and L; every point's x, y, vx, vy, ax, ay, K and L; det J and the singular
+    flag.  Each column name carries its unit (``rocker.angle [rad]``).
+
+    Parameters
+    ----------
+    sol : KinematicSolution
+    path : str or path-like
+        Written to a temporary file beside it, then renamed: no half-written output.
+    format : {"csv", "json", "parquet"}, optional
+        Default: from the suffix of ``path``, else CSV.  JSON is a list of row objects
+        (``null`` where a value is undefined); Parquet needs the optional ``pyarrow``.
+    degrees : bool
+        Angles (and angular rates, K and L) in degrees instead of radians.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, csv
+    >>> sol = kl.analyze(kl.mechanisms.slider_crank(1.0, 3.0), q=[0.0, 0.5, 1.0], qd=1.0)
+    >>> path = kl.io.write_results(sol, pathlib.Path(tempfile.mkdtemp()) / "sc.csv", degrees=True)
+    >>> rows = list(csv.DictReader(path.open()))
+    >>> len(rows), rows[1]["jO2.q [deg]"]
+    (3, '28.64788975654116')
+    """
+    path = Path(path)
+    fmt = format or {".json": "json", ".parquet": "parquet"}.get(path.suffix.lower(), "csv")
+    if fmt not in RESULT_FORMATS:
+        raise ModelError(f"format: expected one of {', '.join(repr(f) for f in RESULT_FORMATS)}, "
+                         f"got {fmt!r}")
+    columns = sol.columns(degrees=degrees)
+    if fmt == "csv":
+        return write_csv(columns, path)
+    if fmt == "json":
+        return atomic_write(path, lambda f: _write_json(columns, f))
+    try:
+        import pyarrow  # noqa: F401
+    except ImportError:
+        raise ModelError("format: Parquet needs the optional dependency pyarrow; install it with "
+                         "pip install 'kinelab[parquet]', or choose csv or json") from None
+    frame = sol.to_dataframe(degrees=degrees)
+    return atomic_write(path, lambda f: frame.to_parquet(f, index=False), binary=True)
+
+
+def _write_json(columns: dict[str, np.ndarray], f) -> None:
+    names = list(columns)
+    data = [np.asarray(columns[n]) for n in names]
+
+    def cell(v):
+        if isinstance(v, (bool, np.bool_)):
+            return bool(v)
+        x = float(v)
+        return x if math.isfinite(x) else None
+    f.write("[\n")
+    n = len(data[0]) if data else 0
+    for i in range(n):
+        row = {name: cell(col[i]) for name, col in zip(names, data)}
+        f.write("  " + json.dumps(row, allow_nan=False) + (",\n" if i < n - 1 else "\n"))
+    f.write("]\n")

@@ -1,0 +1,105 @@
+"""Instant centres of velocity of every pair of links (seed 002, §4.5)."""
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+
+import numpy as np
+
+from kinelab.kinematics._solution import KinematicSolution
+
+__all__ = ["InstantCenter", "instant_center", "instant_centers"]
+
+_PARALLEL = 1e-12   # relative angular velocity, against the fastest link's, below which the
+                    # pair translates: its instant centre is at infinity
+
+
+@dataclass(frozen=True)
+class InstantCenter:
+    """The instant centre I_ab of links a and b: the point with the same velocity on both.
+
+    Attributes
+    ----------
+    links : (str, str)
+    position : ndarray, shape (2,) or (N, 2)
+        m; meaningful where ``at_infinity`` is False.
+    at_infinity : ndarray of bool, shape () or (N,)
+        The links translate relative to each other: the centre lies at infinity.
+    direction : ndarray, shape (2,) or (N, 2)
+        Unit direction towards the centre at infinity (perpendicular to the relative
+        velocity); zero where the centre is finite.
+    """
+
+    links: tuple[str, str]
+    position: np.ndarray
+    at_infinity: np.ndarray
+    direction: np.ndarray
+
+
+def _link_motion(sol: KinematicSolution, link: str, column: int | None):
+    """(point on the link, its velocity-like vector, angular velocity-like scalar), (N, ...).
+
+    ``column`` = an input index: use the velocity coefficients K of that input (M = 1 gives
+    centres independent of speed); None: use the actual velocities.
+    """
+    m = sol.mechanism
+    ref = m.link(link).points[0]
+    i = sol.point_item[ref]
+    li = sol.link_item[link]
+    p = sol.jets[:, i:i + 2, 0]
+    if column is None:
+        return p, sol.rates[:, i:i + 2, 0], sol.rates[:, li, 0]
+    return p, sol.jets[:, i:i + 2, 1 + column], sol.jets[:, li, 1 + column]
+
+
+def instant_center(sol: KinematicSolution, a: str, b: str) -> InstantCenter:
+    """Instant centre of links ``a`` and ``b`` at every sample.
+
+    With one input the centres come from the velocity coefficients K, so they do not depend
+    on the input speed; with several inputs they come from the velocities (which depend on
+    the ratio of the input speeds ``qd``).
+
+    Solving ``v_a + w_a k x (P - A) = v_b + w_b k x (P - B)`` for P gives
+    ``P = -k x (v_b - v_a + w_a k x A - w_b k x B) / (w_a - w_b)``.
+
+    Examples
+    --------
+    >>> fb = kl.mechanisms.fourbar(ground=2.0, crank=1.0, coupler=2.0, rocker=1.0)
+    >>> sol = kl.analyze(fb, q=np.pi / 2)         # a parallelogram: crank and rocker upright
+    >>> ic = kl.kinematics.instant_center(sol, "ground", "coupler")
+    >>> bool(ic.at_infinity), np.abs(ic.direction).round(12).tolist()  # the coupler translates
+    (True, [0.0, 1.0])
+    >>> kl.kinematics.instant_center(sol, "crank", "coupler").position.round(12).tolist()
+    [0.0, 1.0]
+    """
+    column = 0 if sol.M == 1 else None
+    pa, va, wa = _link_motion(sol, a, column)
+    pb, vb, wb = _link_motion(sol, b, column)
+
+    def kx(v):
+        return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+    rhs = vb - va + wa[:, None] * kx(pa) - wb[:, None] * kx(pb)
+    dw = wa - wb
+    # angular-velocity scale of the mechanism at each sample: the fastest link
+    items = list(sol.link_item.values())
+    scale = np.max(np.abs(sol.jets[:, items, 1 + column] if column is not None
+                          else sol.rates[:, items, 0]), axis=1)
+    infinite = np.abs(dw) <= _PARALLEL * np.maximum(scale, 1e-300)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        position = np.where(infinite[:, None], 0.0, -kx(rhs) / np.where(infinite, 1.0, dw)[:, None])
+    rel = vb - va                      # relative translation velocity where dw = 0
+    norm = np.linalg.norm(rel, axis=-1)
+    direction = np.where((infinite & (norm > 0))[:, None], kx(rel) / np.where(norm > 0, norm, 1.0)[:, None], 0.0)
+    if sol.single:
+        position, infinite, direction = position[0], infinite[0], direction[0]
+    return InstantCenter((a, b), position, infinite, direction)
+
+
+def instant_centers(sol: KinematicSolution) -> dict[tuple[str, str], InstantCenter]:
+    """Every instant centre, keyed by the pair of link names (in model order).
+
+    A mechanism of n links has n (n - 1) / 2 of them; by Kennedy's theorem the three
+    centres of any three links lie on one line (tested).
+    """
+    return {(a, b): instant_center(sol, a, b)
+            for a, b in itertools.combinations(sol.link_names, 2)}

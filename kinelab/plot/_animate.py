@@ -1,0 +1,116 @@
+"""Animations of a sweep: the mechanism moving, with its points' paths traced."""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+
+from kinelab.errors import ModelError
+from kinelab.kinematics import KinematicSolution
+from kinelab.plot._figures import mechanism
+
+__all__ = ["animate", "can_write_mp4"]
+
+
+def can_write_mp4() -> bool:
+    """Whether matplotlib finds ffmpeg, which MP4 needs."""
+    from matplotlib import animation
+    return animation.writers.is_available("ffmpeg")
+
+
+def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, frames: int = 120,
+            fps: int = 30) -> Path:
+    """Write an animation of the mechanism moving through the sweep, the paths of the
+    ``trace`` points drawn as they go.
+
+    Parameters
+    ----------
+    sol : KinematicSolution
+        A sweep; at most ``frames`` of its samples are shown, evenly spaced.
+    path : str or path-like
+        ``.gif`` (Pillow) or ``.mp4`` (needs ffmpeg); written to a temporary file, then renamed.
+    trace : list of str, optional
+        Points whose paths are traced (default: the points carried by one moving link only,
+        such as coupler points; else every moving point).
+    frames, fps : int
+
+    Returns
+    -------
+    Path
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
+    >>> sol = kl.analyze(fb, q=np.linspace(0, 2 * np.pi, 25))
+    >>> path = kl.plot.animate(sol, pathlib.Path(tempfile.mkdtemp()) / "fb.gif", frames=12)
+    >>> path.stat().st_size > 0
+    True
+    """
+    import matplotlib.pyplot as plt
+    from matplotlib import animation
+
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in (".gif", ".mp4"):
+        raise ModelError(f"path: expected a .gif or .mp4 file name, got '{path.name}'")
+    if suffix == ".mp4" and not can_write_mp4():
+        raise ModelError("path: MP4 needs ffmpeg, which is not installed; write a .gif instead")
+    if sol.single or sol.N < 2:
+        raise ModelError("sol: an animation needs a sweep of at least two samples")
+    m = sol.mechanism
+    if trace is None:
+        from kinelab.io import default_outputs
+        trace = [n for n in default_outputs(m) if n in sol.point_item]
+        if not trace:
+            ground = set(m.ground.points)
+            trace = [p for p in sol.point_names if p not in ground][-1:]
+    idx = np.unique(np.linspace(0, sol.N - 1, min(frames, sol.N)).round().astype(int))
+    all_xy = np.concatenate([sol.position(p) for p in sol.point_names])
+    all_xy = all_xy[np.isfinite(all_xy).all(axis=1)]
+    lo, hi = all_xy.min(axis=0), all_xy.max(axis=0)
+    pad = 0.08 * max(hi - lo) + 1e-9
+    fig = plt.figure(figsize=(5, 5), dpi=90)
+    ax = fig.add_axes((0.17, 0.1, 0.8, 0.82))
+    ax.set_xlim(lo[0] - pad, hi[0] + pad)
+    ax.set_ylim(lo[1] - pad, hi[1] + pad)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.grid(True, alpha=0.3)
+    ax.set_title(sol.mechanism.name)
+    paths = {p: sol.position(p) for p in trace}
+    for p, xy in paths.items():
+        ax.plot(xy[:, 0], xy[:, 1], lw=0.8, color="0.75", zorder=1)
+    traced = {p: ax.plot([], [], lw=1.6, color="black", zorder=1, label=f"path of {p}")[0]
+              for p in paths}
+    artists: dict = {}
+    mechanism(sol, int(idx[0]), ax=ax, artists=artists)
+    if traced:
+        ax.legend(fontsize="small", loc="upper right")
+    ax.set_aspect("equal", adjustable="box")
+    ax.set_xlim(lo[0] - pad, hi[0] + pad)
+    ax.set_ylim(lo[1] - pad, hi[1] + pad)
+
+    def draw(k):
+        i = int(idx[k])
+        mechanism(sol, i, ax=ax, artists=artists)
+        for p, line in traced.items():
+            line.set_data(paths[p][:i + 1, 0], paths[p][:i + 1, 1])
+        return list(artists.values()) + list(traced.values())
+
+    anim = animation.FuncAnimation(fig, draw, frames=len(idx), blit=False)
+    writer = (animation.PillowWriter(fps=fps) if suffix == ".gif"
+              else animation.FFMpegWriter(fps=fps))
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.stem}.partial{suffix}")
+    try:
+        anim.save(tmp, writer=writer)
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+    finally:
+        plt.close(fig)
+    return path

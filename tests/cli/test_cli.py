@@ -1,0 +1,195 @@
+"""The kinelab command: files written, summary printed, bad input refused with status 2."""
+import csv
+import json
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+import kinelab as kl
+from kinelab.cli import main
+from kinelab.cli._main import analyze_in_chunks
+from tests.io.bad_cases import BASE, CASES
+
+ROOT = Path(__file__).resolve().parents[2]
+EX = ROOT / "examples"
+
+
+def run(*args):
+    return CliRunner().invoke(main, [str(a) for a in args])
+
+
+def test_commands_are_registered():
+    assert {"analyze", "check", "plot", "animate", "export", "import", "mobility", "types"} <= set(main.commands)
+    result = run("--help")
+    assert result.exit_code == 0 and "analyze" in result.output
+
+
+def test_analyze_writes_csv_and_prints_summary(tmp_path):
+    result = run("analyze", EX / "crank_rocker.toml", "--out", tmp_path)
+    assert result.exit_code == 0, result.output
+    out = result.stdout
+    assert "Grashof: crank-rocker (GCRR)" in out
+    assert "time ratio of rocker: 1.211" in out          # (180 + 17.15) / (180 - 17.15) deg
+    assert "transmission angle coupler-rocker: min 0.72" in out
+    assert "limit positions: none; crank angle turns fully" in out
+    rows = list(csv.DictReader((tmp_path / "crank_rocker.csv").open()))
+    assert len(rows) == 361
+    header = rows[0].keys()
+    for column in ("crank angle.q [rad]", "rocker.angle [rad]", "rocker.omega [rad/s]",
+                   "rocker.alpha [rad/s^2]", "rocker.K [rad/rad]", "rocker.L [rad/(rad*rad)]",
+                   "P.x [m]", "P.vy [m/s]", "P.ay [m/s^2]", "det_J", "singular"):
+        assert column in header, column
+    # mm in the file, SI out
+    assert float(rows[0]["O4.x [m]"]) == 0.3
+    assert float(rows[90]["crank angle.q [rad]"]) == pytest.approx(math.pi / 2, abs=1e-15)
+    assert float(rows[0]["crank angle.qd [rad/s]"]) == pytest.approx(600 * math.pi / 180, rel=1e-14)
+
+
+def test_analyze_in_degrees_and_json(tmp_path):
+    result = run("analyze", EX / "crank_rocker.toml", "--out", tmp_path / "r.json", "--degrees",
+                 "--samples", "5", "--quiet")
+    assert result.exit_code == 0, result.output
+    assert "Grashof" not in result.stdout
+    rows = json.loads((tmp_path / "r.json").read_text())
+    assert [r["crank angle.q [deg]"] for r in rows] == pytest.approx([0, 90, 180, 270, 360], abs=1e-12)
+    assert rows[0]["crank angle.qd [deg/s]"] == pytest.approx(600.0, rel=1e-14)
+    m = kl.load(EX / "crank_rocker.toml")
+    ref = kl.analyze(m, np.radians([0.0, 90, 180, 270, 360]))
+    assert [r["rocker.angle [deg]"] for r in rows] == pytest.approx(
+        np.degrees(ref.angle("rocker")), abs=1e-10)
+
+
+def test_analyze_parquet(tmp_path):
+    pd = pytest.importorskip("pandas")
+    pytest.importorskip("pyarrow")
+    result = run("analyze", EX / "offset_slider_crank.toml", "--out", tmp_path, "--format",
+                 "parquet", "--samples", "7", "-q")
+    assert result.exit_code == 0, result.output
+    frame = pd.read_parquet(tmp_path / "offset_slider_crank.parquet")
+    assert frame.shape[0] == 7 and "slide.slide [m]" in frame.columns
+
+
+@pytest.mark.parametrize("path", sorted(EX.glob("*.toml")), ids=lambda p: p.stem)
+def test_every_example_checks_and_analyses(path, tmp_path):
+    result = run("check", path)
+    assert result.exit_code == 0, result.output
+    assert result.stdout.rstrip().endswith("ok")
+    result = run("analyze", path, "--out", tmp_path, "--samples", "37")
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / f"{path.stem}.csv").exists()
+
+
+def test_unwritable_output_is_a_one_line_error(tmp_path):
+    (tmp_path / "file").write_text("")
+    result = run("analyze", EX / "whitworth.toml", "--out", tmp_path / "file" / "x.csv",
+                 "--samples", "3", "-q")
+    assert result.exit_code == 1
+    assert result.stderr.startswith("kinelab: error: cannot write ") and result.stderr.count("\n") == 1
+
+
+def test_whitworth_time_ratio_is_two(tmp_path):
+    result = run("analyze", EX / "whitworth.toml", "--out", tmp_path)
+    assert "time ratio of ram_slide: 2 " in result.stdout, result.output   # (pi + pi/3) / (pi - pi/3)
+
+
+def test_check_reports_mobility_and_reachable_range():
+    result = run("check", EX / "crank_rocker.toml")
+    assert "mobility: 1 degree(s) of freedom at the sketch" in result.stdout
+    assert "reachable: crank angle turns fully" in result.stdout
+    assert "dyad 'coupler'-'rocker' (RRR A-B-O4)" in result.stdout
+
+
+def test_at_prints_one_configuration():
+    result = run("analyze", EX / "crank_rocker.toml", "--at", "90")      # the file's degrees
+    assert result.exit_code == 0, result.output
+    again = run("analyze", EX / "crank_rocker.toml", "--at", f"{math.pi / 2}rad")
+    assert again.stdout == result.stdout
+    values = dict(re.split(r"\s{2,}", line.strip()) for line in result.stdout.splitlines()[1:]
+                  if line.strip())
+    ref = kl.analyze(kl.load(EX / "crank_rocker.toml"), math.pi / 2, 600 * math.pi / 180)
+    # printed to 10 significant digits
+    assert float(values["rocker.angle [rad]"]) == pytest.approx(float(ref.angle("rocker")), rel=1e-9)
+    assert float(values["rocker.omega [rad/s]"]) == pytest.approx(float(ref.omega("rocker")), rel=1e-9)
+    assert float(values["A.y [m]"]) == pytest.approx(0.1, abs=1e-12)
+    assert values["singular"] == "false"
+    assert "O2.x [m]" not in values            # the frame's points are not repeated
+
+
+@pytest.mark.parametrize("at, message", [
+    ("abc", "kinelab: error: --at: expected a number, optionally followed by one of deg, rad, got 'abc'"),
+    ("30mm", "kinelab: error: --at: expected a number, optionally followed by one of deg, rad, got '30mm'"),
+    ("30,40", "kinelab: error: --at: expected 1 value(s) separated by commas (one per input: crank "
+              "angle), got '30,40'"),
+])
+def test_bad_at_value(at, message):
+    result = run("analyze", EX / "crank_rocker.toml", "--at", at)
+    assert result.exit_code == 2
+    assert result.stderr.strip() == message
+
+
+@pytest.mark.parametrize("name, text, message", CASES[::4], ids=[c[0] for c in CASES[::4]])
+def test_bad_file_exit_status_2_one_line_and_no_output(name, text, message, tmp_path):
+    model = tmp_path / "fb.toml"
+    model.write_text(text)
+    out = tmp_path / "out"
+    for command in (["analyze", model, "--out", out], ["check", model], ["plot", model, "--out", out]):
+        result = run(*command)
+        assert result.exit_code == 2, result.output
+        assert result.stderr == f"kinelab: error: {message}\n"
+        assert "Traceback" not in result.output
+    assert not out.exists()
+
+
+def test_unreachable_input_range_names_file_and_field(tmp_path):
+    model = tmp_path / "nongrashof.toml"
+    # non-Grashof: crank 200, coupler 100, rocker 150, ground 100; reaches |q| <= 108.21 deg
+    model.write_text(BASE.replace("A = [0, 100]", "A = [200, 0]")
+                     .replace("B = [261.506227, 247.018682]", "B = [212.5, -99.215674]")
+                     .replace("O4 = [300, 0]", "O4 = [100, 0]").replace("length = 100", "length = 200"))
+    result = run("check", model)
+    assert result.exit_code == 2
+    assert result.stderr.startswith("kinelab: error: nongrashof.toml: inputs[0].range: [0, 360] deg "
+                                    "goes where the mechanism does not assemble; it reaches "
+                                    "[-108.21, 108.21] deg; narrow the range")
+    result = run("analyze", model, "--out", tmp_path / "out")
+    assert result.exit_code == 2
+    assert result.stderr.startswith("kinelab: error: nongrashof.toml: inputs: dyad 'coupler'-'rocker' "
+                                    "(RRR A-B-O4) cannot close at q = ")
+    assert "narrow the input range" in result.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_singular_sketch_is_refused(tmp_path):
+    model = tmp_path / "straight.toml"
+    # B halfway from A to O4: coupler and rocker drawn folded in one line, so the sketch cannot
+    # tell the assembly branch
+    model.write_text(BASE.replace("B = [261.506227, 247.018682]", "B = [150, 50]"))
+    result = run("check", model)
+    assert result.exit_code == 2
+    assert result.stderr.startswith("kinelab: error: straight.toml: the sketch puts the dyad "
+                                    "'coupler'-'rocker'")
+    assert result.stderr.count("\n") == 1
+
+
+def test_chunked_sweep_matches_one_sweep():
+    for m, q in ((kl.load(EX / "crank_rocker.toml"), np.linspace(0, 2 * np.pi, 101)),
+                 (kl.mechanisms.triad6(), np.linspace(0.0, 2 * np.pi, 101) + np.pi / 2)):
+        qd, qdd = np.full_like(q, 2.0), np.full_like(q, 1.0)
+        one = kl.analyze(m, q, qd, qdd, at_singular="flag")
+        parts = analyze_in_chunks(m, q, qd, qdd, chunks=7)
+        np.testing.assert_allclose(parts.jets, one.jets, rtol=0, atol=1e-9)
+        np.testing.assert_allclose(parts.rates, one.rates, rtol=0, atol=1e-8)
+        np.testing.assert_array_equal(parts.singular, one.singular)
+
+
+def test_progress_sweep_gives_the_same_results():
+    from kinelab.cli._main import sweep
+    mf = kl.io.ModelFile.read(EX / "crank_rocker.toml")
+    quiet = sweep(mf, 20001, progress=False)
+    shown = sweep(mf, 20001, progress=True)          # in pieces, behind a bar on stderr
+    np.testing.assert_allclose(shown.jets, quiet.jets, rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(shown.q, quiet.q)

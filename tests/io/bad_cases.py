@@ -1,0 +1,219 @@
+BASE = '''schema = 1
+name = "fb"
+
+[units]
+length = "mm"
+angle = "deg"
+
+[points]
+O2 = [0, 0]
+A = [0, 100]
+B = [261.506227, 247.018682]
+O4 = [300, 0]
+
+[[links]]
+name = "ground"
+points = ["O2", "O4"]
+ground = true
+
+[[links]]
+name = "crank"
+points = ["O2", "A"]
+length = 100
+
+[[links]]
+name = "coupler"
+points = ["A", "B"]
+
+[[links]]
+name = "rocker"
+points = ["O4", "B"]
+
+[[joints]]
+type = "R"
+links = ["ground", "crank"]
+point = "O2"
+
+[[joints]]
+type = "R"
+links = ["crank", "coupler"]
+point = "A"
+
+[[joints]]
+type = "R"
+links = ["coupler", "rocker"]
+point = "B"
+
+[[joints]]
+type = "R"
+links = ["ground", "rocker"]
+point = "O4"
+
+[[inputs]]
+joint = "jO2"
+range = [0, 360]
+speed = 600
+'''
+
+
+def _replace(old: str, new: str) -> str:
+    assert old in BASE, old
+    return BASE.replace(old, new, 1)
+
+
+_HEAD = BASE.split("[points]")[0]
+_SLIDER = ('[[links]]\nname = "slider"\npoints = ["B"]\n\n[[joints]]\ntype = "R"\n'
+           'links = ["rocker", "slider"]\npoint = "B"\nname = "jBs"\n\n[[joints]]\nname = "s"\n'
+           'type = "P"\nlinks = ["ground", "slider"]\npoint = "B"\n')
+_FOURBAR = 'kind = "fourbar"\nground = 300\ncrank = 100\ncoupler = 300\n'
+
+# (id, TOML text, the whole message: one line naming the file and the field)
+CASES = [
+    ("syntax: value missing", BASE + "\nx = \n",
+     "fb.toml: line 57, column 5: TOML syntax error: invalid value; fix the syntax there"),
+    ("syntax: key twice", _replace('name = "fb"', 'name = "fb"\nname = "x"'),
+     "fb.toml: line 3, column 11: TOML syntax error: cannot overwrite a value; fix the syntax there"),
+    ("syntax: newline in text", _replace('name = "fb"', 'name = "fb\n"'),
+     "fb.toml: line 2, column 11: TOML syntax error: illegal character '\\n'; fix the syntax there"),
+    ("syntax: unclosed table", BASE + "\n[outputs\n",
+     "fb.toml: line 57, column 9: TOML syntax error: expected ']' at the end of a table "
+     "declaration; fix the syntax there"),
+    ("unknown top-level field", _replace('name = "fb"', 'nme = "fb"'),
+     "fb.toml: nme: unknown field (did you mean 'name'?); valid fields are 'schema', 'name', "
+     "'description', 'space', 'units', 'points', 'links', 'joints', 'inputs', 'sweep', "
+     "'catalogue', 'outputs'"),
+    ("unknown link field", _replace('ground = true', 'groud = true'),
+     "fb.toml: links[0].groud: unknown field (did you mean 'ground'?); valid fields are 'name', "
+     "'points', 'ground', 'length', 'mass', 'center_of_mass', 'inertia'"),
+    ("unknown units field", _replace('angle = "deg"', 'angle = "deg"\ntime = "s"'),
+     "fb.toml: units.time: unknown field; valid fields are 'length', 'angle'"),
+    ("reserved dynamics table", BASE + '\n[dynamics]\ngravity = 9.81\n',
+     "fb.toml: dynamics: reserved for dynamics (masses, forces, gravity), which a later version "
+     "of kinelab reads; remove it for now"),
+    ("unknown point in a link", _replace('points = ["A", "B"]', 'points = ["A", "Q"]'),
+     "fb.toml: links[2].points[1]: expected a declared point, got 'Q'; declared points are "
+     "'O2', 'A', 'B', 'O4'"),
+    ("unknown point of a joint", _replace('point = "O4"', 'point = "O5"'),
+     "fb.toml: joints[3].point: expected a declared point, got 'O5'; declared points are "
+     "'O2', 'A', 'B', 'O4'"),
+    ("missing point of a joint", _replace('point = "B"\n', ''),
+     "fb.toml: joints[2].point: missing; a joint of type 'R' needs the point where it acts"),
+    ("unknown link of a joint", _replace('links = ["ground", "rocker"]', 'links = ["ground", "roker"]'),
+     "fb.toml: joints[3].links[1]: expected a declared link, got 'roker' (did you mean "
+     "'rocker'?); declared links are 'ground', 'crank', 'coupler', 'rocker'"),
+    ("unknown joint of an input", _replace('joint = "jO2"', 'joint = "jO3"'),
+     "fb.toml: inputs[0].joint: expected a declared joint, got 'jO3' (did you mean 'jO4'?); "
+     "declared joints are 'jO2', 'jA', 'jB', 'jO4'"),
+    ("coordinates of the wrong type", _replace('A = [0, 100]', 'A = [0, "100"]'),
+     "fb.toml: points.A: expected [x, y], got [0, '100']"),
+    ("three coordinates in the plane", _replace('A = [0, 100]', 'A = [0, 100, 0]'),
+     "fb.toml: points.A: expected [x, y], got [0, 100, 0]"),
+    ("a boolean coordinate", _replace('A = [0, 100]', 'A = [0, true]'),
+     "fb.toml: points.A: expected [x, y], got [0, true]"),
+    ("an infinite coordinate", _replace('A = [0, 100]', 'A = [0, inf]'),
+     "fb.toml: points.A: expected finite numbers, got [0, inf]"),
+    ("link points as text", _replace('points = ["O4", "B"]', 'points = "O4"'),
+     "fb.toml: links[3].points: expected a list of points, got 'O4'"),
+    ("ground not a boolean", _replace('ground = true', 'ground = "yes"'),
+     "fb.toml: links[0].ground: expected true or false, got 'yes'"),
+    ("non-positive length", _replace('length = 100', 'length = -100'),
+     "fb.toml: links[1].length: expected a positive length, got -100 mm"),
+    ("sketch disagrees with a length", _replace('length = 100', 'length = 110'),
+     "fb.toml: links[1].length: the sketch puts O2 and A 100 mm apart, but the length says "
+     "110 mm; move a point or correct the length"),
+    ("non-positive mass", _replace('length = 100', 'length = 100\nmass = 0'),
+     "fb.toml: links[1].mass: expected a positive number, got 0"),
+    ("centre of mass off the link", _replace('length = 100', 'length = 100\ncenter_of_mass = "B"'),
+     "fb.toml: links[1].center_of_mass: expected a declared point, got 'B'; the link's points "
+     "are 'O2', 'A'"),
+    ("unknown length unit", _replace('length = "mm"', 'length = "mmm"'),
+     "fb.toml: units.length: expected one of 'm', 'cm', 'mm', 'in', got 'mmm' (did you mean 'mm'?)"),
+    ("unknown angle unit", _replace('angle = "deg"', 'angle = "degree"'),
+     "fb.toml: units.angle: expected one of 'rad', 'deg', got 'degree' (did you mean 'deg'?)"),
+    ("units missing", _replace('[units]\nlength = "mm"\nangle = "deg"\n', ''),
+     "fb.toml: units: missing; say which units the file is written in, e.g. [units] length = "
+     "\"mm\", angle = \"deg\""),
+    ("schema missing", _replace('schema = 1\n', ''),
+     "fb.toml: schema: missing; add schema = 1 at the top of the file"),
+    ("schema from the future", _replace('schema = 1', 'schema = 2'),
+     "fb.toml: schema: this file is written for schema 2, but this kinelab reads schema 1 and "
+     "older; upgrade kinelab"),
+    ("schema not a number", _replace('schema = 1', 'schema = "1"'),
+     "fb.toml: schema: expected a whole number from 1 to 1, got '1'"),
+    ("unknown joint type", _replace('type = "R"\nlinks = ["ground", "rocker"]',
+                                    'type = "Q"\nlinks = ["ground", "rocker"]'),
+     "fb.toml: joints[3].type: expected one of 'R', 'P', 'H', 'C', 'U', 'S', 'E', 'cam', 'gear', "
+     "'rolling', 'pin_in_slot', got 'Q'"),
+    ("prismatic joint without an axis", _replace('[[inputs]]', _SLIDER + '\n[[inputs]]'),
+     "fb.toml: joints[5].axis: a P joint needs an axis"),
+    ("zero axis", _replace('[[inputs]]', _SLIDER + 'axis = [0, 0]\n\n[[inputs]]'),
+     "fb.toml: joints[5].axis: expected a direction, got the zero vector"),
+    ("axis as text", _replace('[[inputs]]', _SLIDER + 'axis = "x"\n\n[[inputs]]'),
+     "fb.toml: joints[5].axis: expected an angle (deg) or a direction [x, y], got 'x'"),
+    ("input range of one number", _replace('range = [0, 360]', 'range = [0]'),
+     "fb.toml: inputs[0].range: expected 2 numbers, got [0]"),
+    ("empty input range", _replace('range = [0, 360]', 'range = [10, 10]'),
+     "fb.toml: inputs[0].range: start and stop are equal (10 deg); give an interval"),
+    ("too few samples", _replace('speed = 600', 'speed = 600\nsamples = 1'),
+     "fb.toml: inputs[0].samples: expected a whole number from 2 to 10,000,000, got 1"),
+    ("speed as text", _replace('speed = 600', 'speed = "fast"'),
+     "fb.toml: inputs[0].speed: expected a number, got 'fast'"),
+    ("speed not a number", _replace('speed = 600', 'speed = nan'),
+     "fb.toml: inputs[0].speed: expected a finite number, got nan"),
+    ("input with joint and links", _replace('joint = "jO2"', 'joint = "jO2"\nlinks = ["ground", "crank"]'),
+     "fb.toml: inputs[0]: expected either joint = \"name\" or links = [\"a\", \"b\"]"),
+    ("two ground links", _replace('name = "crank"', 'name = "crank"\nground = true'),
+     "fb.toml: links: expected exactly one ground link, got 2 ('ground', 'crank'); mark one "
+     "link ground = true"),
+    ("no ground link", _replace('ground = true\n', ''),
+     "fb.toml: links: expected exactly one ground link, got 0; mark one link ground = true"),
+    ("a name used twice", _replace('point = "O4"', 'point = "O4"\nname = "A"'),
+     "fb.toml: joints[3].name: 'A' is already the name of points.A; names must be unique across "
+     "points, links and joints"),
+    ("a link name used twice", _replace('name = "rocker"\npoints = ["O4", "B"]',
+                                        'name = "rocker"\npoints = ["O4", "B"]\n\n[[links]]\n'
+                                        'name = "rocker"\npoints = ["O4", "B"]'),
+     "fb.toml: links[4].name: 'rocker' is already the name of links[3]; names must be unique "
+     "across points, links and joints"),
+    ("link of no length", _replace('A = [0, 100]', 'A = [0, 0]'),
+     "fb.toml: links[1]: its first two points 'O2' and 'A' coincide, so the link has no length "
+     "and no direction; move one of them"),
+    ("links not hinged at a shared point",
+     _replace('[[joints]]\ntype = "R"\nlinks = ["crank", "coupler"]\npoint = "A"\n', ''),
+     "fb.toml: points.A: carried by 'crank', 'coupler', which are not all joined by revolute "
+     "joints at 'A'; add the joints or give each link its own point"),
+    ("unknown space", _replace('name = "fb"', 'name = "fb"\nspace = "plane"'),
+     "fb.toml: space: expected one of 'planar', 'spherical', 'spatial', got 'plane' (did you "
+     "mean 'planar'?)"),
+    ("unknown sweep", _replace('name = "fb"', 'name = "fb"\nsweep = "grid3"'),
+     "fb.toml: sweep: expected one of 'together', 'grid', got 'grid3' (did you mean 'grid'?)"),
+    ("name not text", _replace('name = "fb"', 'name = 3'),
+     "fb.toml: name: expected a non-empty text, got 3"),
+    ("unknown output", BASE + '\n[outputs]\nreport = ["rockr"]\n',
+     "fb.toml: outputs.report[0]: expected a declared link, point or slide, got 'rockr' (did you "
+     "mean 'rocker'?); its links, points and slides are 'ground', 'crank', 'coupler', 'rocker', "
+     "'O2', 'A', 'B', 'O4'"),
+    ("transmission of one link", BASE + '\n[outputs]\ntransmission = ["coupler"]\n',
+     "fb.toml: outputs.transmission[0]: expected 2 links, got ['coupler']"),
+    ("catalogue: unknown kind", _HEAD + '[catalogue]\nkind = "fourbars"\n',
+     "fb.toml: catalogue.kind: expected one of 'fourbar', 'slider_crank', 'inverted_slider_crank', "
+     "'slotted_link', 'whitworth', 'fivebar', 'watt6', 'stephenson6', 'triad6', got 'fourbars' "
+     "(did you mean 'fourbar'?)"),
+    ("catalogue: negative length", _HEAD + '[catalogue]\n' + _FOURBAR.replace("100", "-100")
+     + 'rocker = 250\n', "fb.toml: catalogue.crank: expected a positive length, got -100 mm"),
+    ("catalogue: unknown parameter", _HEAD + '[catalogue]\n' + _FOURBAR + 'rocker = 250\nrockr = 2\n',
+     "fb.toml: catalogue.rockr: unknown field (did you mean 'rocker'?); valid fields are 'kind', "
+     "'ground', 'crank', 'coupler', 'rocker', 'coupler_point', 'branch'"),
+    ("catalogue: missing parameter", _HEAD + '[catalogue]\n' + _FOURBAR,
+     "fb.toml: catalogue.rocker: missing; a fourbar needs it"),
+    ("catalogue: lengths that never close", _HEAD + '[catalogue]\nkind = "fourbar"\nground = 3000\n'
+     'crank = 100\ncoupler = 100\nrocker = 100\n',
+     "fb.toml: catalogue: fourbar: these lengths cannot be assembled at any input angle; check them"),
+    ("catalogue: unknown branch", _HEAD + '[catalogue]\n' + _FOURBAR + 'rocker = 250\nbranch = "cross"\n',
+     "fb.toml: catalogue.branch: expected one of 'open', 'crossed', got 'cross'"),
+    ("catalogue disagrees with the sketch", BASE + '\n[catalogue]\n'
+     + _FOURBAR.replace("coupler = 300", "coupler = 310") + 'rocker = 250\n',
+     "fb.toml: catalogue: the sketch does not match fourbar: link 'coupler' has A-B = 300 mm in "
+     "the sketch but 310 mm from the parameters; fix the points or the parameters, or delete "
+     "[catalogue]"),
+]

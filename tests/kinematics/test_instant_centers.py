@@ -1,0 +1,78 @@
+"""Instant centres: the four-bar's known centres, Kennedy's theorem, the angular-velocity
+ratio theorem (seed 002, §4.5-4.6)."""
+import itertools
+
+import numpy as np
+import pytest
+
+import kinelab as kl
+
+Q = np.radians(np.arange(0.0, 360.0, 10.0)) + 0.01
+
+
+def line_intersection(p1, d1, p2, d2):
+    """Intersection of p1 + s d1 and p2 + t d2, per row."""
+    cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    w = p2 - p1
+    s = (w[:, 0] * d2[:, 1] - w[:, 1] * d2[:, 0]) / cross
+    return p1 + s[:, None] * d1
+
+
+def test_fourbar_centres_by_construction():
+    sol = kl.analyze(kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5), q=Q)
+    ic = kl.kinematics.instant_centers(sol)
+    O2, A, B, O4 = (sol.position(n) for n in ("O2", "A", "B", "O4"))
+    np.testing.assert_allclose(ic["ground", "crank"].position, O2, atol=1e-12)
+    np.testing.assert_allclose(ic["crank", "coupler"].position, A, atol=1e-12)
+    np.testing.assert_allclose(ic["coupler", "rocker"].position, B, atol=1e-12)
+    np.testing.assert_allclose(ic["ground", "rocker"].position, O4, atol=1e-12)
+    # I13 on the lines O2A and O4B; I24 on the lines AB and O2O4
+    np.testing.assert_allclose(ic["ground", "coupler"].position,
+                               line_intersection(O2, A - O2, O4, B - O4), rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(ic["crank", "rocker"].position,
+                               line_intersection(A, B - A, O2, O4 - O2), rtol=1e-9, atol=1e-9)
+
+
+def collinear_error(p, q, r):
+    a, b = q - p, r - p
+    return np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]) / (np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1) + 1e-300)
+
+
+@pytest.mark.parametrize("make", [kl.mechanisms.stephenson6, kl.mechanisms.watt6,
+                                  lambda: kl.mechanisms.slider_crank(1.0, 3.0, offset=0.4)])
+def test_kennedy_theorem(make):
+    sol = kl.analyze(make(), q=Q)
+    ic = kl.kinematics.instant_centers(sol)
+    for a, b, c in itertools.combinations(sol.link_names, 3):
+        cs = [ic[a, b], ic[a, c], ic[b, c]]
+        finite = [x for x in cs if not np.any(x.at_infinity)]
+        if len(finite) == 3:
+            err = collinear_error(*(x.position for x in finite))
+            # coincident centres make the test empty; skip rows where two coincide
+            spread = np.min([np.linalg.norm(finite[i].position - finite[j].position, axis=1)
+                             for i, j in ((0, 1), (0, 2), (1, 2))], axis=0)
+            assert np.all(err[spread > 1e-6] < 1e-7), (a, b, c)
+        elif len(finite) == 2:
+            inf = next(x for x in cs if np.all(x.at_infinity))
+            d = finite[1].position - finite[0].position
+            n = np.linalg.norm(d, axis=1)
+            cross = np.abs(d[:, 0] * inf.direction[:, 1] - d[:, 1] * inf.direction[:, 0])
+            assert np.all(cross[n > 1e-6] / n[n > 1e-6] < 1e-7), (a, b, c)
+
+
+def test_angular_velocity_ratio_theorem():
+    """omega4 / omega2 = I12I24 / I14I24, signed along the line of centres (seed 002 eq. 4.121)."""
+    sol = kl.analyze(kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5), q=Q, qd=1.0)
+    ic = kl.kinematics.instant_centers(sol)
+    I12, I14 = ic["ground", "crank"].position, ic["ground", "rocker"].position
+    I24 = ic["crank", "rocker"].position
+    u = (I14 - I12) / np.linalg.norm(I14 - I12, axis=1)[:, None]
+    ratio = ((I24 - I12) * u).sum(1) / ((I24 - I14) * u).sum(1)
+    np.testing.assert_allclose(sol.omega("rocker") / sol.omega("crank"), ratio, rtol=1e-9)
+
+
+def test_slider_centre_at_infinity():
+    sol = kl.analyze(kl.mechanisms.slider_crank(1.0, 3.0), q=Q)
+    ic = kl.kinematics.instant_center(sol, "ground", "slider")
+    assert ic.at_infinity.all()
+    np.testing.assert_allclose(np.abs(ic.direction), [[0.0, 1.0]] * len(Q), atol=1e-12)
