@@ -663,21 +663,18 @@ class _Builder:
         return bool(s[-1] > 1e-9 * s[0])
 
     def check_mobility(self) -> None:
-        """The inputs must match the degrees of freedom of the linkage at the sketch: the
-        number of link coordinates minus the rank of the joints' constraint Jacobian."""
-        moving = [n for n in self.m.link_names if n != self.ground]
-        cons = [("joint", j, None) for j in self.m.joints]
-        A = self._sketch_jacobian(moving, cons)
-        s = np.linalg.svd(A, compute_uv=False)
-        rank = int(np.sum(s > 1e-9 * s[0])) if s.size else 0
-        dof = 3 * len(moving) - rank
+        """The inputs must match the linkage's degrees of freedom: its exact mobility at the
+        sketch (the rank of the joints' constraints, kinelab.structure)."""
+        from kinelab.structure import mobility
+
+        mob = mobility(self.m)
         n_in = len(self.m.inputs)
-        if dof != n_in:
-            more = "more" if dof > n_in else "fewer"
+        if mob.exact != n_in:
+            more = "more" if mob.exact > n_in else "fewer"
             raise ModelError(
-                f"inputs: the linkage has {dof} degree(s) of freedom at the sketch (3 x "
-                f"{len(moving)} link coordinates minus {rank} independent joint constraints) "
-                f"but {n_in} input(s); give it {dof} input(s), or {more} joints")
+                f"inputs: the linkage has {mob.exact} degree(s) of freedom at the sketch (exact "
+                f"mobility; Kutzbach-Gruebler counts {mob.kutzbach_gruebler}) but {n_in} "
+                f"input(s); give it {mob.exact} input(s), or {more} joints")
 
     def _emit_group(self, links, cons) -> None:
         anchors, ci, cf, x0 = self._group_tables(links, cons)
