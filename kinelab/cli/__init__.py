@@ -8,6 +8,7 @@ from kinelab.cli._draw import animate, plot
 from kinelab.cli._exchange import export, import_
 from kinelab.cli._main import main
 from kinelab.cli._structure import mobility, types
+from kinelab.cli._synthesis import synth
 
 main.add_command(analyze)
 main.add_command(check)
@@ -17,5 +18,6 @@ main.add_command(export)
 main.add_command(import_)
 main.add_command(mobility)
 main.add_command(types)
+main.add_command(synth)
 
 __all__ = ["main"]

@@ -1,11 +1,11 @@
 """``kinelab synth TASK``: dimensional synthesis from a task file.
 
-A click command for the main ``kinelab`` group to register (``cli.add_command(synth)``).
-It reads a TOML task file (the format is in ``docs/synthesis.md``), converts its units to SI
-once, calls :mod:`kinelab.synthesis`, prints a table of the linkages found and writes each
-as a model file (JSON, SI units) with a figure.  Everything is computed before anything is
-written, and every file is written to a temporary name first, so a failure never leaves a
-half-written output behind.
+A click command of the main ``kinelab`` group.  It reads a TOML task file (the format is in
+``docs/synthesis.md``), converts its units to SI once, calls :mod:`kinelab.synthesis`,
+prints a table of the linkages found and writes each as a model file (``kinelab.io``, in
+the task's units) with a figure.  Everything is computed before anything is written, and
+every file is written to a temporary name first, so a failure never leaves a half-written
+output behind; the group turns kinelab errors into one-line messages with exit status 2.
 """
 from __future__ import annotations
 
@@ -21,12 +21,11 @@ import click
 import numpy as np
 
 from kinelab import synthesis
-from kinelab.errors import KinelabError, ModelError
+from kinelab.errors import ModelError
+from kinelab.io import ANGLE_UNITS, LENGTH_UNITS
 
 __all__ = ["synth", "load_task", "Task"]
 
-LENGTH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254, "ft": 0.3048}
-ANGLE_UNITS = {"rad": 1.0, "deg": math.pi / 180.0}
 KINDS = ("motion", "function", "path")
 _SECTIONS = {"task", "name", "units", "positions", "pivots", "function", "search", "output"}
 
@@ -328,21 +327,19 @@ def _fmt_xy(v, L):
 def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool) -> None:
     """Dimensional synthesis of a four-bar from the TOML task file TASK.
 
-    Writes each linkage found as a model file solution_<i>.json (SI units) and, unless
-    --no-figures, a figure solution_<i>.png, with summary.json.
+    Writes each linkage found as a model file solution_<i>.toml (in the task's units)
+    and, unless --no-figures, a figure solution_<i>.png, with summary.json.
     """
     from kinelab._files import atomic_write
+    from kinelab.io import to_toml
 
-    try:
-        task = load_task(task_file)
-        sols, extra = solve(task)
-    except KinelabError as exc:
-        raise click.ClickException(str(exc)) from None
+    task = load_task(task_file)
+    sols, extra = solve(task)
     rows = _summary(task, sols)
     files: dict[str, bytes | str] = {}
+    units = {"length": task.length_unit, "angle": task.angle_unit}
     for i, s in enumerate(sols, 1):
-        model = s.model.to_dict() | {"units": {"length": "m", "angle": "rad"}}
-        files[f"solution_{i}.json"] = json.dumps(model, indent=2)
+        files[f"solution_{i}.toml"] = to_toml(s.model, units=units)
     summary = {"task": task.kind, "name": task.name,
                "units": {"length": task.length_unit, "angle": task.angle_unit},
                "reason": extra.get("reason", ""), "solutions": rows}
