@@ -134,7 +134,7 @@ def dialytic(p: Polynomial, q: Polynomial, variables: tuple | None = None, *,
     array([[ 0.52370692, -0.87928659],
            [ 1.57342472,  0.81925826]])
     >>> sol.x[~sol.real]
-    array([-0.04856582-1.46802710j, -0.04856582+1.46802710j])
+    array([-0.04856582-1.4680271j, -0.04856582+1.4680271j])
     >>> bool(sol.residual.max() < 1e-12)
     True
 
