@@ -116,7 +116,8 @@ def reachable_ranges(mechanism: Mechanism, *, samples: int = 1441,
 
     Angle inputs are searched over one turn centred on the sketch, slides over +-10 sizes
     of the mechanism; each bound is refined by bisection to 1e-12.  A full turn is
-    reported as ``[(q0 - pi, q0 + pi)]``.
+    reported as ``[(q0 - pi, q0 + pi)]``.  With closed-form groups every interval of the
+    search is reported; with Newton groups, the one continuation reaches from the sketch.
 
     Examples
     --------
@@ -130,6 +131,8 @@ def reachable_ranges(mechanism: Mechanism, *, samples: int = 1441,
                          f"{len(p.input_kinds)} inputs; it is defined for one")
     q0 = float(p.q_sketch[0])
     half = math.pi if p.input_kinds[0] == "angle" else 10.0 * p.scale
+    if p.groups is not None:
+        return [_continued_range(p, q0, half, samples)]
     grid = np.linspace(q0 - half, q0 + half, samples)
     ok = _assembles(p, grid)
     if ok.all():
@@ -152,6 +155,23 @@ def reachable_ranges(mechanism: Mechanism, *, samples: int = 1441,
     if start is not None:
         ranges.append((start, q0 + half))
     return [(float(lo), float(hi)) for lo, hi in ranges]
+
+
+def _continued_range(p: Plan, q0: float, half: float, samples: int) -> tuple[float, float]:
+    """The input interval around the sketch that continuation reaches (Newton plans): one
+    sweep outwards each way, then bisection between the last sample reached and the next."""
+    bounds = []
+    for sign in (-1.0, 1.0):
+        path = q0 + sign * np.linspace(0.0, half, samples // 2 + 1)
+        q = path.reshape(-1, 1)
+        ok = _run(p, q, np.zeros_like(q), np.zeros_like(q))["status"] == k.ST_OK
+        if ok.all():
+            bounds.append(float(path[-1]))
+            continue
+        i = int(np.argmin(ok))
+        a, _ = bisect(lambda x: _assembles(p, x), path[i - 1:i], path[i:i + 1])
+        bounds.append(float(a[0]))
+    return min(bounds), max(bounds)
 
 
 def _assembles(p: Plan, qs: np.ndarray) -> np.ndarray:

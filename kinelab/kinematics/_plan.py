@@ -544,7 +544,7 @@ class _Builder:
                 continue
             mi = self._driven_slide(j) if j.type == "P" else None
             cons.append(("joint", j, mi))
-            count += 2 if (j.type == "R" or mi is None) else 1
+            count += 2 if mi is None else 3      # a driven slide adds its driving equation
         for rel in self.relations:
             if rel[0] != "angle":
                 continue
@@ -608,11 +608,10 @@ class _Builder:
                     g1, p1, l1, r1 = side(j.links[0], xy)
                     g2, p2, l2, r2 = side(j.links[1], xy)
                     beta = self._axis_angle(j) - self.theta_s[j.links[0]]
-                    if mi is None:
-                        rows_i.append([k.C_PRISMATIC, g1, p1, l1, g2, p2, l2, 0])
-                        rows_f.append([r1[0], r1[1], r2[0], r2[1], beta,
-                                       self.theta_s[j.links[1]] - self.theta_s[j.links[0]], 0.0, 0.0])
-                    else:
+                    rows_i.append([k.C_PRISMATIC, g1, p1, l1, g2, p2, l2, 0])
+                    rows_f.append([r1[0], r1[1], r2[0], r2[1], beta,
+                                   self.theta_s[j.links[1]] - self.theta_s[j.links[0]], 0.0, 0.0])
+                    if mi is not None:
                         rows_i.append([k.C_DRIVE_SLIDE, g1, p1, l1, g2, p2, l2, mi])
                         rows_f.append([r1[0], r1[1], r2[0], r2[1], beta, self._slide_sketch(j), 0.0, 0.0])
             else:

@@ -57,7 +57,8 @@ class Link:
     points : tuple of str
         The points the link carries.  The angle of the link is the direction from its
         first point to its second (CCW from +x, rad); a link with a single point must
-        slide in a prismatic joint, and then its angle is the direction of that slide.
+        belong to a prismatic joint, and then its angle is the direction of that joint's
+        axis.
     ground : bool
         The fixed link (exactly one per mechanism).
     mass : float, optional
@@ -299,7 +300,7 @@ def _validate(m: Mechanism) -> list[str]:
     if len(grounds) != 1:
         add(f"links: expected exactly one ground link, got {len(grounds)}"
             + (f" ({_quoted(grounds)})" if grounds else "") + "; mark one link ground = true")
-    slider_links = {j.links[1] for j in m.joints if j.type == "P"}
+    sliding_links = {n for j in m.joints if j.type == "P" for n in j.links}
     for link in m.links:
         where = f"link '{link.name}'"
         for pn in link.points:
@@ -310,9 +311,9 @@ def _validate(m: Mechanism) -> list[str]:
             add(f"{where}: points: a point is listed twice")
         if len(link.points) == 0:
             add(f"{where}: points: a link must carry at least one point")
-        elif len(link.points) < 2 and not link.ground and link.name not in slider_links:
-            add(f"{where}: points: a moving link needs at least two points (one is enough only "
-                "for a slider in a prismatic joint); add a second point")
+        elif len(link.points) < 2 and not link.ground and link.name not in sliding_links:
+            add(f"{where}: points: a moving link needs at least two points (one is enough for a "
+                "link of a prismatic joint, whose axis gives its direction); add a second point")
         elif len(link.points) >= 2 and all(p in points for p in link.points[:2]):
             a, b = points[link.points[0]], points[link.points[1]]
             if math.dist((a.x, a.y, a.z), (b.x, b.y, b.z)) <= _LENGTH_TOL:

@@ -170,3 +170,54 @@ def test_transmission_angle_against_law_of_cosines():
     mu = np.arccos((b ** 2 + c ** 2 - diag2) / (2 * b * c))
     np.testing.assert_allclose(kl.kinematics.transmission_angle(sol, acute=False), mu, atol=1e-12)
     np.testing.assert_allclose(kl.kinematics.transmission_angle(sol), np.minimum(mu, np.pi - mu), atol=1e-12)
+
+
+def _with_input(m, inp):
+    return kl.model.Mechanism(m.name, m.points, m.links, m.joints, (inp,))
+
+
+def _hydraulic_boom():
+    """A boom raised by a hydraulic cylinder: the input is the cylinder's extension."""
+    P, L, J, I = kl.model.Point, kl.model.Link, kl.model.Joint, kl.model.Input
+    axis = (2.0 - 0.8, 1.2 - 0.0)          # from the barrel pivot C to the rod end D
+    return kl.model.Mechanism(
+        "boom",
+        points=(P("O", 0, 0), P("C", 0.8, 0.0), P("D", 2.0, 1.2), P("T", 4.0, 2.0)),
+        links=(L("ground", ("O", "C"), ground=True), L("boom", ("O", "D", "T")),
+               L("barrel", ("C",)), L("rod", ("D",))),
+        joints=(J("jO", "R", ("ground", "boom"), point="O"),
+                J("jC", "R", ("ground", "barrel"), point="C"),
+                J("jD", "R", ("boom", "rod"), point="D"),
+                J("cylinder", "P", ("barrel", "rod"), point="D", axis=axis, origin="C")),
+        inputs=(I(joint="cylinder"),))
+
+
+@pytest.mark.parametrize("make, q", [
+    # the four-bar driven by the angle at B between coupler and rocker (a Newton group)
+    (lambda: _with_input(kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5), kl.model.Input(joint="jB")), None),
+    # the slider-crank driven by its piston (a driven slide, then an RRR dyad)
+    (lambda: _with_input(kl.mechanisms.slider_crank(1.0, 3.0, 0.2), kl.model.Input(joint="slide")),
+     np.linspace(2.3, 3.8, 25)),
+    # the four-bar driven by the coupler's absolute angle (links = ground, coupler)
+    (lambda: _with_input(kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5),
+                         kl.model.Input(links=("ground", "coupler"))), None),
+    (_hydraulic_boom, None),
+], ids=["relative-angle", "piston", "coupler-angle", "cylinder"])
+def test_other_kinds_of_input(make, q):
+    m = make()
+    if q is None:     # inside the reachable range, away from its limits
+        lo, hi = kl.kinematics.reachable_ranges(m)[0]
+        q = lo + (hi - lo) * np.linspace(0.05, 0.95, 25)
+    sol = kl.analyze(m, q=q)
+    assert closure_residual(sol) < 1e-10
+    err_K, err_L = finite_difference_errors(m, q)
+    assert err_K < 1e-6 and err_L < 1e-6
+    assert engine_difference(m, q) < 1e-9
+
+
+def test_cylinder_reach_is_the_triangle_inequality():
+    """The boom's cylinder reaches |OD| -+ |OC| (Newton plan: continuation and bisection)."""
+    lo, hi = kl.kinematics.reachable_ranges(_hydraulic_boom())[0]
+    OD, OC = np.hypot(2.0, 1.2), 0.8
+    # at a limit position Newton converges slowly: the bound is good to about 1e-8
+    assert lo == pytest.approx(OD - OC, abs=1e-7) and hi == pytest.approx(OD + OC, abs=1e-7)
