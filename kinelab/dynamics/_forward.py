@@ -201,9 +201,10 @@ def _state(name: str, value, M: int) -> np.ndarray:
         a = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         raise ModelError(f"{name}: expected numbers, got {value!r}") from None
-    if a.size != M or a.ndim > 1:
-        raise ModelError(f"{name}: expected {M} value(s), one per input ({'shape ()' if M == 1 else ''}"
-                         f"{' or ' if M == 1 else ''}shape ({M},)), got shape {a.shape}")
+    if a.ndim == 0:
+        a = np.full(M, float(a))
+    if a.shape != (M,):
+        raise ModelError(f"{name}: expected one value per input, shape () or ({M},), got shape {a.shape}")
     if not np.all(np.isfinite(a)):
         raise ModelError(f"{name}: expected finite numbers, got {a.tolist()}")
     return a.reshape(M)

@@ -38,6 +38,9 @@ class System:
     r_items: np.ndarray       # (nr,) angle item of each link with inertia
     r_inertia: np.ndarray     # (nr,) kg m^2
     gravity: np.ndarray       # (2,)
+    items: np.ndarray         # (k,) every coordinate with inertia: x, y of each mass, angles
+    weights: np.ndarray       # (k,) its mass or moment of inertia
+    weight: np.ndarray        # (k,) the gravity force along it (zero for angles), N
     force_items: np.ndarray   # (nf,) x item of each point force
     torque_items: np.ndarray  # (nt, 2) angle items of the link and the reacting link (-1: none)
     spring_items: np.ndarray  # (ns, 2) x items of the ends of springs, then dampers
@@ -72,9 +75,13 @@ def build_system(model: Mechanism, loads: Loads | None, masses: MassProperties |
     t_links = tuple(b.link for b in masses.links) + tuple(
         default_carrier(model, m.point, m.link) for m in masses.points)
     rot = [(li[b.link], b.inertia) for b in masses.links if b.inertia > 0]
+    gravity = np.array(loads.gravity, float)
+    items = [i + d for i in t_items for d in (0, 1)] + [r[0] for r in rot]
+    weights = [m for m in t_mass for _ in (0, 1)] + [r[1] for r in rot]
+    weight = [m * gravity[d] for m in t_mass for d in (0, 1)] + [0.0] * len(rot)
     ends, k, l0, c, names = [], [], [], [], []
-    for kind, items in (("spring", loads.springs), ("damper", loads.dampers)):
-        for s in items:
+    for kind, pairs in (("spring", loads.springs), ("damper", loads.dampers)):
+        for s in pairs:
             ends.append([pt[s.points[0]], pt[s.points[1]]])
             k.append(getattr(s, "stiffness", 0.0))
             l0.append(getattr(s, "free_length", 0.0))
@@ -84,7 +91,8 @@ def build_system(model: Mechanism, loads: Loads | None, masses: MassProperties |
         model=model, masses=masses, loads=loads, M=len(model.inputs),
         t_items=np.array(t_items, np.int64), t_mass=np.array(t_mass, float), t_links=t_links,
         r_items=np.array([r[0] for r in rot], np.int64), r_inertia=np.array([r[1] for r in rot], float),
-        gravity=np.array(loads.gravity, float),
+        gravity=gravity, items=np.array(items, np.int64), weights=np.array(weights, float),
+        weight=np.array(weight, float),
         force_items=np.array([pt[f.point] for f in loads.forces], np.int64),
         torque_items=np.array([[li[tq.link], li[tq.reacting] if tq.reacting else -1]
                                for tq in loads.torques], np.int64).reshape(-1, 2),
@@ -124,24 +132,17 @@ def evaluate(system: System, sol: KinematicSolution, t: np.ndarray, *,
     """Kane's terms at every sample of ``sol`` (times ``t``, shape (N,))."""
     q, qd = sol.q, sol.qd
     N, M = q.shape
-    g = system.gravity
-    r, v, a, KT = point_block(sol, system.t_items)
-    m = system.t_mass
-    inertia = np.einsum("nbim,b,nbi->nm", KT, m, a)
-    applied = np.einsum("nbim,b,i->nm", KT, m, g)
-    kinetic = 0.5 * np.einsum("b,nbi,nbi->n", m, v, v)
-    potential = -np.einsum("b,nbi,i->n", m, r, g)
-    energy_rate = np.einsum("b,nbi,nbi->n", m, v, a) - np.einsum("b,nbi,i->n", m, v, g)
-    MM = np.einsum("nbim,b,nbik->nmk", KT, m, KT) if mass_matrix else None
-    if len(system.r_items):
-        I = system.r_inertia
-        KR = sol.jets[:, system.r_items, 1:1 + M]
-        w, al = sol.rates[:, system.r_items, 0], sol.rates[:, system.r_items, 1]
-        inertia = inertia + np.einsum("nbm,b,nb->nm", KR, I, al)
-        kinetic = kinetic + 0.5 * np.einsum("b,nb,nb->n", I, w, w)
-        energy_rate = energy_rate + np.einsum("b,nb,nb->n", I, w, al)
-        if mass_matrix:
-            MM = MM + np.einsum("nbm,b,nbk->nmk", KR, I, KR)
+    # every x, y of a mass and every angle of a link with inertia, weighted by m or I
+    K = sol.jets[:, system.items, 1:1 + M]
+    value, rate, accel = (sol.jets[:, system.items, 0], sol.rates[:, system.items, 0],
+                          sol.rates[:, system.items, 1])
+    w, weight = system.weights, system.weight
+    inertia = np.einsum("nkm,k,nk->nm", K, w, accel)
+    applied = np.einsum("nkm,k->nm", K, weight)
+    kinetic = 0.5 * np.einsum("k,nk,nk->n", w, rate, rate)
+    potential = -(value @ weight)
+    energy_rate = np.einsum("k,nk,nk->n", w, rate, accel) - rate @ weight
+    MM = np.einsum("nkm,k,nkl->nml", K, w, K) if mass_matrix else None
     applied_power = np.zeros(N)
     loads = system.loads
     forces = np.zeros((N, len(loads.forces), 2))
