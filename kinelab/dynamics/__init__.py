@@ -9,6 +9,7 @@ vectorised product of K, L and the mass data over the samples.
 - :func:`simulate` -- the motion under given actuator laws and loads;
 - :class:`Loads` -- gravity, point forces, torques, springs, dampers;
 - :class:`MassProperties` -- the links' masses and inertias, point masses, lumping;
+- :class:`DynamicsSetup` -- a model file's ``[dynamics]`` section (loads, actuator laws);
 - :func:`flywheel` -- flywheel sizing from a torque curve;
 - :func:`equations_of_motion` -- the equations in symbols (sympy), for open chains.
 """
@@ -18,7 +19,8 @@ from kinelab.dynamics._inverse import InverseDynamics, inverse
 from kinelab.dynamics._loads import (STANDARD_GRAVITY, Damper, Law, Loads, PointForce, Spring,
                                      Torque)
 from kinelab.dynamics._masses import LinkMass, MassProperties, PointMass
+from kinelab.dynamics._setup import DynamicsSetup
 
 __all__ = ["inverse", "InverseDynamics", "simulate", "Simulation", "Loads", "PointForce", "Torque", "Spring", "Damper",
            "Law", "STANDARD_GRAVITY", "MassProperties", "LinkMass", "PointMass",
-           "parse_expression", "parse_table"]
+           "DynamicsSetup", "parse_expression", "parse_table"]
