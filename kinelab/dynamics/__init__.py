@@ -13,14 +13,17 @@ vectorised product of K, L and the mass data over the samples.
 - :func:`flywheel` -- flywheel sizing from a torque curve;
 - :func:`equations_of_motion` -- the equations in symbols (sympy), for open chains.
 """
-from kinelab.dynamics._expressions import parse_expression, parse_table
+from kinelab.dynamics._expressions import parse_expression, parse_table, to_sympy
+from kinelab.dynamics._flywheel import Flywheel, flywheel
 from kinelab.dynamics._forward import Simulation, simulate
 from kinelab.dynamics._inverse import InverseDynamics, inverse
 from kinelab.dynamics._loads import (STANDARD_GRAVITY, Damper, Law, Loads, PointForce, Spring,
                                      Torque)
 from kinelab.dynamics._masses import LinkMass, MassProperties, PointMass
 from kinelab.dynamics._setup import DynamicsSetup
+from kinelab.dynamics._symbolic import EquationsOfMotion, equations_of_motion
 
 __all__ = ["inverse", "InverseDynamics", "simulate", "Simulation", "Loads", "PointForce", "Torque", "Spring", "Damper",
            "Law", "STANDARD_GRAVITY", "MassProperties", "LinkMass", "PointMass",
-           "DynamicsSetup", "parse_expression", "parse_table"]
+           "DynamicsSetup", "flywheel", "Flywheel", "equations_of_motion", "EquationsOfMotion",
+           "parse_expression", "parse_table", "to_sympy"]

@@ -26,7 +26,7 @@ import numpy as np
 
 from kinelab.errors import ModelError
 
-__all__ = ["parse_expression", "parse_table", "FUNCTIONS"]
+__all__ = ["parse_expression", "parse_table", "to_sympy", "FUNCTIONS"]
 
 MAX_LENGTH = 2000   # characters: a force law is a formula, not a program
 
@@ -274,3 +274,65 @@ def parse_table(spec: Mapping[str, Any], *, where: str = "table") -> Callable[[A
                              f"{hi:.6g}]; extend the table or give its period")
         return np.interp(s, x, y)
     return table
+
+
+def to_sympy(text: str, t, q, qd, *, where: str = "expression"):
+    """The sympy form of an expression, for symbolic equations of motion.
+
+    ``t`` is a sympy symbol, ``q`` and ``qd`` sequences of symbols (one per input).  The
+    text is checked by :func:`parse_expression` first, so only whitelisted constructs
+    reach this walk.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> t, q1, u1 = sp.symbols("t q1 u1")
+    >>> to_sympy("2 * sin(q) - 0.5 * qd", t, [q1], [u1])
+    -0.5*u1 + 2*sin(q1)
+    """
+    import sympy as sp
+
+    parse_expression(text, where=where)          # the whitelist
+    fn = {"sin": sp.sin, "cos": sp.cos, "tan": sp.tan, "asin": sp.asin, "acos": sp.acos,
+          "atan": sp.atan, "atan2": sp.atan2, "sinh": sp.sinh, "cosh": sp.cosh, "tanh": sp.tanh,
+          "exp": sp.exp, "log": sp.log, "log10": lambda x: sp.log(x, 10), "sqrt": sp.sqrt,
+          "abs": sp.Abs, "sign": sp.sign, "floor": sp.floor, "ceil": sp.ceiling, "min": sp.Min,
+          "max": sp.Max, "hypot": lambda a, b: sp.sqrt(a ** 2 + b ** 2),
+          "clip": lambda x, lo, hi: sp.Min(sp.Max(x, lo), hi),
+          "where": lambda c, a, b: sp.Piecewise((a, c), (b, True))}
+    binary = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
+              ast.Div: operator.truediv, ast.Pow: operator.pow, ast.Mod: sp.Mod}
+    compare = {ast.Lt: sp.Lt, ast.LtE: sp.Le, ast.Gt: sp.Gt, ast.GtE: sp.Ge, ast.Eq: sp.Eq,
+               ast.NotEq: sp.Ne}
+    names = {"t": t, "pi": sp.pi, "e": sp.E}
+    if len(q) == 1:
+        names.update(q=q[0], qd=qd[0])
+
+    def walk(node):
+        if isinstance(node, ast.Constant):
+            return sp.nsimplify(node.value) if isinstance(node.value, int) else sp.Float(node.value)
+        if isinstance(node, ast.Name):
+            if node.id not in names:
+                raise ModelError(f"{where}: '{node.id}' in {text!r}: the mechanism has {len(q)} inputs; "
+                                 f"write {node.id}[0] ... {node.id}[{len(q) - 1}]")
+            return names[node.id]
+        if isinstance(node, ast.Subscript):
+            seq = q if node.value.id == "q" else qd
+            if node.slice.value >= len(seq):
+                raise ModelError(f"{where}: {node.value.id}[{node.slice.value}] in {text!r}: the "
+                                 f"mechanism has {len(seq)} input(s), numbered from 0")
+            return seq[node.slice.value]
+        if isinstance(node, ast.BinOp):
+            return binary[type(node.op)](walk(node.left), walk(node.right))
+        if isinstance(node, ast.UnaryOp):
+            v = walk(node.operand)
+            return {ast.USub: lambda: -v, ast.UAdd: lambda: v, ast.Not: lambda: sp.Not(v)}[type(node.op)]()
+        if isinstance(node, ast.Compare):
+            terms = [walk(node.left)] + [walk(n) for n in node.comparators]
+            return sp.And(*(compare[type(o)](a, b) for o, a, b in zip(node.ops, terms, terms[1:])))
+        if isinstance(node, ast.BoolOp):
+            return (sp.And if isinstance(node.op, ast.And) else sp.Or)(*(walk(n) for n in node.values))
+        if isinstance(node, ast.IfExp):
+            return sp.Piecewise((walk(node.body), walk(node.test)), (walk(node.orelse), True))
+        return fn[node.func.id](*(walk(a) for a in node.args))      # ast.Call, checked above
+    return walk(ast.parse(text.strip(), mode="eval").body)
