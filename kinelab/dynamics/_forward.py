@@ -85,6 +85,11 @@ class Simulation:
         return self.mechanism.input_names
 
     @property
+    def input_kinds(self) -> tuple[str, ...]:
+        """"angle" (effort a torque, N m) or "slide" (a force, N) for each input."""
+        return input_kinds(self.mechanism)
+
+    @property
     def energy(self) -> np.ndarray:
         return self.kinetic_energy + self.potential_energy
 

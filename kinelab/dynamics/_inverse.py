@@ -122,6 +122,11 @@ class InverseDynamics:
         return self.mechanism.input_names
 
     @property
+    def input_kinds(self) -> tuple[str, ...]:
+        """"angle" (effort a torque, N m) or "slide" (a force, N) for each input."""
+        return input_kinds(self.mechanism)
+
+    @property
     def singular(self) -> np.ndarray:
         """(N,) bool: singular configurations, where every force is NaN."""
         return self.kinematics.singular
