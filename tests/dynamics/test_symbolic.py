@@ -47,18 +47,29 @@ def double_pendulum():
         (Input(joint="shoulder"), Input(joint="elbow")))
 
 
-def test_symbols_against_numbers_with_every_kind_of_load():
-    m = double_pendulum()
-    loads = Loads(gravity=(0.0, -9.81), forces=[PointForce("B", ("3 * cos(t)", "-q[1]"))],
-                  torques=[Torque("lower", "0.5 * qd[1]", reacting="upper")],
-                  springs=[Spring(("O", "B"), 40.0, 0.8)], dampers=[Damper(("O", "G2"), 1.5)])
-    eom = equations_of_motion(m, loads=loads, lengths="symbols")
+def against_inverse(m, loads, lengths):
+    eom = equations_of_motion(m, loads=loads, lengths=lengths)
+    M = len(m.inputs)
     rng = np.random.default_rng(5)
-    q, qd, qdd = (rng.uniform(-2, 2, (20, 2)) for _ in range(3))
+    q, qd, qdd = (rng.uniform(-2, 2, (20, M)) for _ in range(3))
     t = rng.uniform(0, 3, 20)
-    expected = inverse(m, q, qd, qdd, loads=loads, t=t).input_forces
+    squeeze = (lambda a: a[:, 0]) if M == 1 else (lambda a: a)
+    expected = inverse(m, squeeze(q), squeeze(qd), squeeze(qdd), loads=loads, t=t).input_forces
     np.testing.assert_allclose(eom.numeric()(q, qd, qdd, t), expected, rtol=1e-11, atol=1e-11)
+    return eom
+
+
+def test_symbols_against_numbers_with_forces_and_torques():
+    loads = Loads(gravity=(0.0, -9.81), forces=[PointForce("B", ("3 * cos(t)", "-q[1]"))],
+                  torques=[Torque("lower", "0.5 * qd[1]", reacting="upper")])
+    eom = against_inverse(double_pendulum(), loads, "symbols")
     assert r"\ddot{q}_{2}" in eom.latex() and str(eom).startswith("tau_shoulder = ")
+
+
+def test_symbols_against_numbers_with_springs_and_dampers():
+    loads = Loads(gravity=(0.0, -9.81), springs=[Spring(("O", "G"), 40.0, 0.8)],
+                  dampers=[Damper(("X", "G"), 1.5)])
+    against_inverse(pr_robot(), loads, "numeric")
 
 
 def test_closed_chains_and_passive_joints_are_refused():
