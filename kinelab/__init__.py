@@ -6,7 +6,7 @@
 >>> sol.angle("coupler").shape, sol.position("B").shape
 ((720,), (720, 2))
 """
-from kinelab import errors, kinematics, mechanisms, model
+from kinelab import dynamics, errors, kinematics, mechanisms, model
 from kinelab.kinematics import KinematicSolution, analyze
 from kinelab.model import Mechanism
 
