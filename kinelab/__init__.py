@@ -6,9 +6,9 @@
 >>> sol.angle("coupler").shape, sol.position("B").shape
 ((720,), (720, 2))
 """
-from kinelab import dynamics, errors, kinematics, mechanisms, model
+from kinelab import dynamics, errors, kinematics, mechanisms, model, solvers, spatial
 from kinelab.kinematics import KinematicSolution, analyze
 from kinelab.model import Mechanism
 
-__all__ = ["errors", "model", "mechanisms", "kinematics", "analyze", "Mechanism",
-           "KinematicSolution"]
+__all__ = ["errors", "model", "solvers", "mechanisms", "kinematics", "spatial", "analyze",
+           "Mechanism", "KinematicSolution"]

@@ -12,6 +12,7 @@ from kinelab.kinematics import _kernel as k
 from kinelab.kinematics._plan import Plan, build_plan
 from kinelab.kinematics._solution import KinematicSolution
 from kinelab.model import Mechanism
+from kinelab.solvers import bisect
 
 __all__ = ["analyze", "plan", "reachable_ranges"]
 
@@ -81,13 +82,14 @@ def _run(p: Plan, q, qd, qdd):
     tail = (out["jets"], out["rates"], out["diag"], out["status"], out["failed"])
     if p.groups is None:
         k.run_closed_form(q, qd, qdd, p.ops_i, p.ops_f, p.const_items, p.const_values,
-                          p.n_items, p.n_angles, p.n_out, *tail)
+                          p.n_items, p.n_angles, p.n_out, *tail, M)
     else:
         # continuation steps of at most 0.05 rad (or 0.05 sizes of the mechanism for slides)
         max_step = _CONTINUATION_STEP * (1.0 if all(kd == "angle" for kd in p.input_kinds)
                                          else min(1.0, p.scale))
         k.run_continuation(q, qd, qdd, p.q_sketch, max_step, p.ops_i, p.ops_f, p.const_items,
-                           p.const_values, p.n_items, p.n_angles, p.n_out, *p.groups, p.scale, *tail)
+                           p.const_values, p.n_items, p.n_angles, p.n_out, *p.groups, p.scale, *tail,
+                           M)
     return out
 
 
@@ -137,13 +139,7 @@ def reachable_ranges(mechanism: Mechanism, *, samples: int = 1441,
     inside = ok[edges]          # True: the bound is between an assembled sample and a failing one
     a = np.where(inside, lo_ok, hi_ok)   # assembled side
     b = np.where(inside, hi_ok, lo_ok)   # failing side
-    for _ in range(60):
-        mid = 0.5 * (a + b)
-        good = _assembles(p, mid)
-        a = np.where(good, mid, a)
-        b = np.where(good, b, mid)
-        if np.all(np.abs(b - a) < 1e-13 * max(1.0, half)):
-            break
+    a, b = bisect(lambda x: _assembles(p, x), a, b)
     bounds = list(zip(edges.tolist(), a.tolist()))
     ranges = []
     start = q0 - half if ok[0] else None

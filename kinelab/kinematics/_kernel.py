@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import literally, njit, prange
 
 
 def _jit(**options):
@@ -746,7 +746,7 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
 # --------------------------------------------------------------------------------------
 # One sample: run every operation of the plan
 # --------------------------------------------------------------------------------------
-@_jit(inline="always")
+@_jit()
 def _evaluate(qs, qi, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i, con_i, con_f, scale,
               gx, gK, gL, gq, gdet, work, piv, res):
     """Run the plan at input q = qs[qi].  res <- (det, measure, gap, failed op); returns the
@@ -868,12 +868,14 @@ def _new_jet(n_items, M, const_items, const_values):
 
 @_jit(parallel=True)
 def run_closed_form(q, qd, qdd, ops_i, ops_f, const_items, const_values, n_items, n_angles,
-                    n_out, o_jet, o_rate, o_diag, o_status, o_failed):
+                    n_out, o_jet, o_rate, o_diag, o_status, o_failed, M):
     """Evaluate a plan without Newton groups: samples are independent and run in parallel.
 
     o_jet (N, n_out, 1 + M + M*M), o_rate (N, n_out, 2), o_diag (N, 3): det, measure, gap.
+    M (= q.shape[1]) is compiled in as a constant, so the loops over inputs unroll.
     """
-    N, M = q.shape
+    literally(M)
+    N = q.shape[0]
     nchunks = min(N, 64)
     for c in prange(nchunks):
         lo = c * N // nchunks
@@ -904,14 +906,15 @@ def run_closed_form(q, qd, qdd, ops_i, ops_f, const_items, const_values, n_items
 @_jit()
 def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
                      n_items, n_angles, n_out, groups_i, con_i, con_f, grp_x0, scale,
-                     o_jet, o_rate, o_diag, o_status, o_failed):
+                     o_jet, o_rate, o_diag, o_status, o_failed, M):
     """Evaluate a plan with Newton groups, following the samples in order from the sketch.
 
     Each step from the previous input to the next is split so that no step exceeds
     ``max_step`` (Euclidean, in input units), and halved again while a Newton group fails
     to converge or jumps (its correction is large against the predicted step).
     """
-    N, M = q.shape
+    literally(M)
+    N = q.shape[0]
     ng = groups_i.shape[0]
     nx = grp_x0.shape[0]
     nmax = 1

@@ -140,3 +140,33 @@ def test_random_slider_cranks(crank, rod, offset, branch):
     np.testing.assert_allclose(sol.slide("slide"), x, rtol=0, atol=1e-12)
     np.testing.assert_allclose(sol.K("slide"), dx, rtol=0, atol=1e-11)
     assert engine_difference(sc, q) < 1e-10
+
+
+def test_time_ratio_whitworth_closed_form():
+    # dead centres where the crank pin crosses the x axis: sin q = -d/R
+    for d in (0.2, 0.5, 0.8):
+        w = kl.mechanisms.whitworth(crank=1.0, distance=d, lever=1.2, rod=2.5)
+        tr = kl.kinematics.time_ratio(w, "ram_slide")
+        a = np.arcsin(d)
+        assert tr.ratio == pytest.approx((np.pi + 2 * a) / (np.pi - 2 * a), rel=1e-11)
+        np.testing.assert_allclose(np.sin(tr.dead_centres), -d, atol=1e-11)
+
+
+def test_time_ratio_slotted_link_closed_form():
+    # the lever reverses when O4A is tangent to the crank circle: q = pi -+ acos(R/C)
+    R, C = 1.0, 2.0
+    tr = kl.kinematics.time_ratio(kl.mechanisms.slotted_link(R, C), "lever")
+    phi = np.arccos(R / C)
+    assert tr.ratio == pytest.approx((2 * np.pi - 2 * phi) / (2 * phi), rel=1e-11)
+    assert tr.fast == pytest.approx(2 * phi, rel=1e-11)
+
+
+def test_transmission_angle_against_law_of_cosines():
+    a, b, c, d = 1.0, 3.0, 2.5, 3.0
+    fb = kl.mechanisms.fourbar(d, a, b, c)
+    q = np.radians(np.arange(0.0, 360.0, 5.0))
+    sol = kl.analyze(fb, q=q)
+    diag2 = a ** 2 + d ** 2 - 2 * a * d * np.cos(q)          # |A O4|^2
+    mu = np.arccos((b ** 2 + c ** 2 - diag2) / (2 * b * c))
+    np.testing.assert_allclose(kl.kinematics.transmission_angle(sol, acute=False), mu, atol=1e-12)
+    np.testing.assert_allclose(kl.kinematics.transmission_angle(sol), np.minimum(mu, np.pi - mu), atol=1e-12)

@@ -1,0 +1,98 @@
+"""Design measures computed from the analysis: transmission angle, quick-return time ratio."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from kinelab.errors import ModelError
+from kinelab.kinematics._solution import KinematicSolution
+from kinelab.model import Mechanism
+from kinelab.solvers import bisect
+
+__all__ = ["transmission_angle", "time_ratio", "TimeRatio"]
+
+
+def transmission_angle(sol: KinematicSolution, links: tuple[str, str] = ("coupler", "rocker"),
+                       *, acute: bool = True) -> np.ndarray:
+    """Transmission angle: the angle between the coupler and the output link, rad.
+
+    For the catalogue four-bar (coupler A->B, rocker O4->B) it is the angle at B between BA
+    and BO4, in [0, pi]; with ``acute=True`` (the usual design measure) it is folded to
+    [0, pi/2]: 90 deg is ideal, near 0 the linkage locks.  Shape () or (N,).
+
+    Examples
+    --------
+    >>> fb = kl.mechanisms.fourbar(ground=2.0, crank=1.0, coupler=1.0, rocker=1.0)
+    >>> float(np.degrees(kl.kinematics.transmission_angle(kl.analyze(fb, q=0.0))))  # Ex. 4.2
+    60.0
+    """
+    a, b = links
+    mu = np.abs(np.angle(np.exp(1j * (sol.angle(a) - sol.angle(b)))))
+    return np.minimum(mu, np.pi - mu) if acute else mu
+
+
+@dataclass(frozen=True)
+class TimeRatio:
+    """Quick-return time ratio of a crank-driven output.
+
+    Attributes
+    ----------
+    ratio : float
+        Slow-stroke input angle over fast-stroke input angle (>= 1).
+    dead_centres : ndarray, shape (2,)
+        Input values (rad) where the output reverses: its velocity coefficient K is zero.
+    slow, fast : float
+        Input angles swept during each stroke, rad (they add up to one turn).
+    """
+
+    ratio: float
+    dead_centres: np.ndarray
+    slow: float
+    fast: float
+
+
+def time_ratio(mechanism: Mechanism, output: str, *, samples: int = 3601) -> TimeRatio:
+    """Time ratio of a quick-return mechanism driven at constant crank speed.
+
+    The output (a link angle or a slide) reverses where its velocity coefficient K
+    vanishes; the crank angles between the two reversals give the two strokes.
+
+    Examples
+    --------
+    >>> w = kl.mechanisms.whitworth(crank=1.0, distance=0.5, lever=1.0, rod=2.0)
+    >>> round(kl.kinematics.time_ratio(w, "ram_slide").ratio, 12)   # (pi + 2 asin 1/2) / (pi - 2 asin 1/2)
+    2.0
+    """
+    from kinelab.kinematics._analyze import analyze, plan
+
+    p = plan(mechanism)
+    if p.input_kinds != ("angle",):
+        raise ModelError("time_ratio: expected a mechanism driven by one crank angle, "
+                         f"got inputs {list(mechanism.input_names)}")
+    q0 = float(p.q_sketch[0])
+    q = q0 + np.linspace(0.0, 2.0 * math.pi, samples)
+
+    def K(x):
+        return analyze(mechanism, q=x, unreachable="mask", at_singular="flag").K(output)
+
+    k = K(q)
+    if not np.all(np.isfinite(k)):
+        raise ModelError(f"time_ratio: the crank does not turn fully (or passes a singular "
+                         f"position); the time ratio of '{output}' is not defined")
+    sign = np.sign(k)
+    changes = np.flatnonzero(sign[:-1] * sign[1:] < 0)
+    if len(changes) != 2:
+        raise ModelError(f"time_ratio: '{output}' reverses {len(changes)} times per turn; a "
+                         "quick-return output reverses exactly twice")
+    positive = sign[changes] > 0        # K > 0 on the left side of each bracket
+
+    def inside(x):
+        return np.where(positive, K(x) > 0, K(x) < 0)
+    a, b = bisect(inside, q[changes], q[changes + 1])
+    dc = 0.5 * (a + b)
+    first = float(dc[1] - dc[0])
+    second = 2.0 * math.pi - first
+    slow, fast = max(first, second), min(first, second)
+    return TimeRatio(ratio=slow / fast, dead_centres=dc, slow=slow, fast=fast)

@@ -1,0 +1,17 @@
+"""Solvers: the generic numerical kernels of the course.
+
+- :func:`half_angle` — ``E cos θ + F sin θ + G = 0`` by the half-angle substitution;
+- :func:`dialytic` — two polynomial equations in two unknowns by dialytic elimination;
+- :func:`newton` — batched Newton-Raphson with an analytic Jacobian and its iteration table;
+- :func:`continuation` — predictor-corrector along a parameter, with step halving;
+- :func:`bisect` — vectorised bisection on a boolean predicate.
+"""
+from kinelab.solvers._bisect import bisect
+from kinelab.solvers._continuation import ContinuationResult, continuation
+from kinelab.solvers._dialytic import DialyticSolution, dialytic
+from kinelab.solvers._half_angle import HalfAngleSolution, half_angle
+from kinelab.solvers._newton import NewtonHistory, NewtonResult, iteration_table, newton
+
+__all__ = ["bisect", "ContinuationResult", "continuation", "DialyticSolution", "dialytic",
+           "HalfAngleSolution", "half_angle",
+           "NewtonHistory", "NewtonResult", "iteration_table", "newton"]

@@ -1,0 +1,803 @@
+"""Serial robots described by their joint sequence: forward and inverse kinematics, rates.
+
+A robot is a chain of revolute (R) and prismatic (P) joints.  Link ``j`` carries the
+frame of joint ``j + 1``: ``(j-1)_T_j = Trans(offset_j) · Motion_j(q_j)``, where the motion is
+``Rot(axis_j, q_j)`` for R and ``Trans(q_j axis_j)`` for P (notes 003 §4.3 and §7.5 build
+their robots this way), and the tool point is fixed in the last link.
+
+Closed forms (half-angle method, notes 003 §4.5) give every inverse solution of the
+catalogue robots (:func:`rr`, :func:`rp`, :func:`pr`, :func:`rrr`, :func:`prr`); any other
+chain is inverted by batched Newton-Raphson.
+"""
+from __future__ import annotations
+
+import itertools
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from kinelab.errors import AssemblyError, ConvergenceError, ModelError, SingularityError
+from kinelab.spatial._common import as_array, as_length, as_vectors, \
+    check_choice, indices, wrap
+from kinelab.spatial._half_angle import half_angle
+from kinelab.spatial._transforms import rotation
+
+__all__ = ["RobotJoint", "SerialRobot", "ToolMotion", "JointRates",
+           "rr", "rp", "pr", "rrr", "prr"]
+
+# Relative tolerances.  _SINGULAR: smallest/largest singular value of J below which a
+# pose counts as singular (J is then rank-deficient to ~10 significant digits).
+# _FREE: a tool point closer than this (relative to the robot's size) to an axis about
+# which a joint angle becomes arbitrary is *on* that axis.
+_SINGULAR = 1e-10
+_FREE = 1e-12
+_NEWTON_TOL = 1e-12
+
+
+@dataclass(frozen=True)
+class RobotJoint:
+    """One joint of a serial robot.
+
+    Parameters
+    ----------
+    kind : {'R', 'P'}
+        Revolute (q in rad) or prismatic (q in m).
+    axis : array_like, shape (3,)
+        Rotation axis (R) or slide direction (P) in the frame of the previous link;
+        normalised here.
+    offset : array_like, shape (3,)
+        Where this joint's frame sits in the previous link's frame (m), before the joint
+        moves.
+    """
+
+    kind: Literal["R", "P"]
+    axis: tuple[float, float, float]
+    offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    def __post_init__(self):
+        check_choice("kind", self.kind, ("R", "P"))
+        axis = as_array("axis", self.axis, (3,), batch=False)
+        norm = float(np.linalg.norm(axis))
+        if norm == 0.0:
+            raise ModelError("axis: expected a nonzero direction, got (0, 0, 0)")
+        object.__setattr__(self, "axis", tuple(float(a) for a in axis / norm))
+        offset = as_array("offset", self.offset, (3,), batch=False)
+        object.__setattr__(self, "offset", tuple(float(o) for o in offset))
+
+
+@dataclass(frozen=True)
+class ToolMotion:
+    """Position, velocity and acceleration of a robot's tool point.
+
+    Attributes
+    ----------
+    position : ndarray, shape (d,) or (N, d), m
+    velocity : ndarray, shape (d,) or (N, d), m/s
+        ``J q̇``.
+    acceleration : ndarray, shape (d,) or (N, d), m/s²
+        ``J q̈ + J̇ q̇``.
+    """
+
+    position: np.ndarray
+    velocity: np.ndarray
+    acceleration: np.ndarray
+
+
+@dataclass(frozen=True)
+class JointRates:
+    """Joint rates that give a tool velocity and acceleration (notes 003 eq. 51).
+
+    Attributes
+    ----------
+    qd : ndarray, shape (n,) or (N, n)
+        rad/s (R) or m/s (P).
+    qdd : ndarray, shape (n,) or (N, n)
+        rad/s² or m/s².
+    singular : ndarray of bool, shape () or (N,)
+        The Jacobian is singular there; ``qd`` and ``qdd`` are then the least-squares
+        (minimum-norm) rates, which need not produce the asked tool motion.
+    """
+
+    qd: np.ndarray
+    qdd: np.ndarray
+    singular: np.ndarray
+
+
+@dataclass(frozen=True)
+class _Branches:
+    """What a closed-form inverse returns for N tool points (private protocol)."""
+
+    q: np.ndarray            # (N, B, n) joint coordinates, branch by branch
+    distinct: np.ndarray     # (N, B) bool: branch b is not a repeat of an earlier one
+    gap: np.ndarray          # (N,) m outside the workspace, 0 where reachable
+    free: np.ndarray         # (N,) bool: infinitely many solutions
+    workspace: str           # the reachable set, for messages
+    free_reason: str         # why a joint is arbitrary where ``free``
+
+
+@dataclass(frozen=True)
+class SerialRobot:
+    """A serial (open-chain) robot and its tool point.
+
+    Parameters
+    ----------
+    name : str
+    joints : sequence of RobotJoint
+    tool : array_like, shape (3,)
+        The tool point P in the frame of the last link, m.
+    planar : bool
+        A robot of the xy plane (R axes along z, P axes, offsets and tool in the plane):
+        its points, velocities and Jacobian rows are 2-D.
+    branches : tuple of str
+        Names of the closed-form inverse solutions (set by the catalogue constructors).
+
+    Notes
+    -----
+    Shapes: with n joints and d = 2 (planar) or 3, ``q`` of shape (n,) gives points of
+    shape (d,) and Jacobians (d, n); ``q`` of shape (N, n) gives (N, d) and (N, d, n).
+
+    Examples
+    --------
+    The RR robot of :func:`rr`, joint by joint (without its closed-form inverse, so
+    :meth:`inverse` uses Newton-Raphson):
+
+    >>> from kinelab.spatial import RobotJoint, SerialRobot
+    >>> arm = SerialRobot("RR by hand", (RobotJoint("R", (0, 0, 1)),
+    ...                                  RobotJoint("R", (0, 0, 1), offset=(1.0, 0, 0))),
+    ...                   tool=(1.0, 0.0, 0.0), planar=True)
+    >>> arm.forward([0.0, np.pi / 2]).round(12)
+    array([1., 1.])
+    >>> len(arm.inverse([1.0, 1.0]))
+    2
+    """
+
+    name: str
+    joints: tuple[RobotJoint, ...]
+    tool: tuple[float, float, float]
+    planar: bool = False
+    branches: tuple[str, ...] = ()
+    _solver: Callable[[np.ndarray], _Branches] | None = field(
+        default=None, repr=False, compare=False)
+
+    def __post_init__(self):
+        object.__setattr__(self, "joints", tuple(self.joints))
+        if not self.joints or not all(isinstance(j, RobotJoint) for j in self.joints):
+            raise ModelError(f"robot '{self.name}': joints: expected one or more "
+                             f"RobotJoint, got {self.joints!r}")
+        tool = as_array("tool", self.tool, (3,), batch=False)
+        object.__setattr__(self, "tool", tuple(float(t) for t in tool))
+        if self.planar:
+            problems = [f"joints[{i}]: a planar robot turns about z and slides in the "
+                        f"xy plane, got a {j.kind} joint with axis {j.axis}"
+                        for i, j in enumerate(self.joints)
+                        if (abs(j.axis[2]) != 1.0 if j.kind == "R" else j.axis[2] != 0.0)]
+            problems += [f"joints[{i}].offset: expected z = 0 in a planar robot, got "
+                         f"{j.offset}" for i, j in enumerate(self.joints) if j.offset[2]]
+            if self.tool[2]:
+                problems.append(f"tool: expected z = 0 in a planar robot, got {self.tool}")
+            if problems:
+                raise ModelError(problems, source=f"robot '{self.name}'")
+
+    # -- sizes ------------------------------------------------------------------------------
+    @property
+    def n(self) -> int:
+        """Number of joints."""
+        return len(self.joints)
+
+    @property
+    def dim(self) -> int:
+        """2 for a planar robot, 3 otherwise: the length of a tool point."""
+        return 2 if self.planar else 3
+
+    @property
+    def scale(self) -> float:
+        """A length for tolerances: the sum of the fixed link lengths (at least 1 m)."""
+        size = sum(np.linalg.norm(j.offset) for j in self.joints) + np.linalg.norm(self.tool)
+        return float(max(size, 1.0))
+
+    # -- kinematics -------------------------------------------------------------------------
+    def forward(self, q: ArrayLike) -> np.ndarray:
+        """Tool point for joint coordinates ``q``.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,) or (N, n)
+            rad (R joints), m (P joints).
+
+        Returns
+        -------
+        ndarray, shape (d,) or (N, d), m
+
+        Examples
+        --------
+        >>> robot = kl.spatial.rr(1.0, 1.0)
+        >>> robot.forward([[0.0, 0.0], [np.pi / 2, -np.pi / 2]]).round(12) + 0.0
+        array([[2., 0.],
+               [1., 1.]])
+        """
+        q, single = self._joint_array("q", q)
+        # From the tool back to the base, x <- Trans(offset_j) Motion_j(q_j) x: vectors
+        # only, no products of rotation matrices.
+        x = np.broadcast_to(np.asarray(self.tool), (q.shape[0], 3))
+        for j in range(self.n - 1, -1, -1):
+            joint = self.joints[j]
+            if joint.kind == "R":
+                x = np.einsum("nij,nj->ni", _joint_rotation(joint, q[:, j]), x)
+            else:
+                x = x + np.asarray(joint.axis) * q[:, j, None]
+            x = x + np.asarray(joint.offset)
+        point = x[:, :self.dim]
+        return point[0] if single else point
+
+    def jacobian(self, q: ArrayLike) -> np.ndarray:
+        """``J = ∂P/∂q``, shape (d, n) or (N, d, n).
+
+        Column j is ``a_j × (P - p_j)`` for a revolute joint (axis ``a_j`` through
+        ``p_j``) and ``a_j`` for a prismatic one.
+
+        Examples
+        --------
+        The RR robot stretched along x: both joints move P along y, by 2 and 1 m/rad.
+
+        >>> kl.spatial.rr(1.0, 1.0).jacobian([0.0, 0.0])
+        array([[0., 0.],
+               [2., 1.]])
+        """
+        q, single = self._joint_array("q", q)
+        J = self._jacobian(*self._chain(q))
+        return J[0] if single else J
+
+    def motion(self, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayLike = 0.0) -> ToolMotion:
+        """Tool position, velocity ``J q̇`` and acceleration ``J q̈ + J̇ q̇``.
+
+        ``J̇ q̇`` is analytic: each joint axis turns with the link that carries it
+        (``ȧ_j = ω_(j-1) × a_j``) and each joint centre moves with it.
+
+        Parameters
+        ----------
+        q, qd, qdd : array_like, shape (n,) or (N, n)
+            Joint coordinates and their first and second time derivatives; ``qd`` and
+            ``qdd`` broadcast to the shape of ``q``.
+
+        Returns
+        -------
+        ToolMotion
+
+        Examples
+        --------
+        The RP arm turning at 1 rad/s while the tool slides out at 1 m/s, 2 m out along x:
+        velocity (1, 2), acceleration (-2, 2) (centripetal -q2 θ̇1², Coriolis 2 θ̇1 q̇2).
+
+        >>> m = kl.spatial.rp().motion([0.0, 2.0], [1.0, 1.0])
+        >>> m.velocity, m.acceleration
+        (array([1., 2.]), array([-2.,  2.]))
+        """
+        q, single = self._joint_array("q", q)
+        qd, qdd = _like(q, "qd", qd), _like(q, "qdd", qdd)
+        chain = self._chain(q)
+        J = self._jacobian(*chain)
+        velocity = np.einsum("nij,nj->ni", J, qd)
+        acceleration = np.einsum("nij,nj->ni", J, qdd) + self._bias(*chain, qd)
+        result = (chain[2][:, :self.dim], velocity, acceleration)
+        return ToolMotion(*(r[0] if single else r for r in result))
+
+    # -- inverse rates (notes 003 eq. 51) ---------------------------------------------------
+    def inverse_rates(self, q: ArrayLike, velocity: ArrayLike, acceleration: ArrayLike = 0.0,
+                      *, on_singular: Literal["raise", "flag"] = "raise") -> JointRates:
+        """Joint rates ``q̇ = J⁻¹ v`` and ``q̈ = J⁻¹ (a - J̇ q̇)`` for a tool velocity and
+        acceleration at pose ``q``.
+
+        Parameters
+        ----------
+        q : array_like, shape (n,) or (N, n)
+        velocity, acceleration : array_like, shape (d,) or (N, d)
+            Of the tool point, m/s and m/s².
+        on_singular : {'raise', 'flag'}
+            At a singular pose (``J`` loses rank, smallest singular value below 1e-10
+            of the largest) raise :class:`SingularityError`, or return least-squares
+            rates there with ``singular`` set.
+
+        Raises
+        ------
+        SingularityError
+            With ``on_singular='raise'``, naming the singular samples.
+        ModelError
+            If the robot does not have as many joints as tool coordinates.
+
+        Examples
+        --------
+        To move the tip of the stretched-out-and-folded RR arm (θ2 = 90°) at 1 m/s along
+        +x, only the elbow turns:
+
+        >>> robot = kl.spatial.rr(1.0, 1.0)
+        >>> robot.inverse_rates([0.0, np.pi / 2], [1.0, 0.0]).qd.round(12) + 0.0
+        array([ 0., -1.])
+        """
+        check_choice("on_singular", on_singular, ("raise", "flag"))
+        if self.n != self.dim:
+            raise ModelError(f"robot '{self.name}': inverse_rates needs as many joints as "
+                             f"tool coordinates, got {self.n} joints for {self.dim}")
+        q, single = self._joint_array("q", q)
+        shape = q.shape[:1] + (self.dim,)
+        v = np.broadcast_to(as_vectors("velocity", velocity, self.dim), shape)
+        a = np.broadcast_to(as_vectors("acceleration", acceleration, self.dim), shape)
+        chain = self._chain(q)
+        J = self._jacobian(*chain)
+        sv = np.linalg.svd(J, compute_uv=False)
+        singular = sv[:, -1] <= _SINGULAR * sv[:, 0]
+        if singular.any() and on_singular == "raise":
+            first = int(np.flatnonzero(singular)[0])
+            raise SingularityError(
+                f"robot '{self.name}': the Jacobian is singular at sample(s) "
+                f"{indices(singular)} (q = {np.round(q[first], 6).tolist()}): the tool "
+                f"cannot move in every direction there, so no joint rates give an arbitrary "
+                f"tool velocity; move off that pose, or pass on_singular='flag' for "
+                f"least-squares rates with those samples flagged")
+        qd = _solve(J, v, singular)
+        qdd = _solve(J, a - self._bias(*chain, qd), singular)
+        if single:
+            return JointRates(qd=qd[0], qdd=qdd[0], singular=singular[0])
+        return JointRates(qd=qd, qdd=qdd, singular=singular)
+
+    # -- inverse position -------------------------------------------------------------------
+    def inverse(self, point: ArrayLike, *, branch: str | None = None,
+                guess: ArrayLike | None = None) -> np.ndarray:
+        """Joint coordinates that put the tool at ``point``.
+
+        Parameters
+        ----------
+        point : array_like, shape (d,) or (N, d)
+            m.
+        branch : str, optional
+            One of :attr:`branches` (closed-form robots): return that solution only.
+        guess : array_like, shape (n,) or (N, n), optional
+            Start Newton-Raphson here and return the solution it reaches.
+
+        Returns
+        -------
+        ndarray
+            - ``guess`` or ``branch`` given: shape (n,) or (N, n).
+            - Otherwise, for one point, **all** solutions, shape (K, n): the distinct
+              branches in the order of :attr:`branches` (a branch that coincides with an
+              earlier one, at the edge of the workspace, is left out).  For N points,
+              shape (N, B, n) with every branch, repeats included.
+            - A robot without a closed form and no guess: Newton from a grid of 3ⁿ starts
+              keeps every distinct solution it reaches (one point only).
+
+            Revolute coordinates are in (-π, π].
+
+        Raises
+        ------
+        AssemblyError
+            A point out of reach (the message says by how much and what is reachable).
+        SingularityError
+            A point with infinitely many solutions (a joint angle is arbitrary there).
+        ConvergenceError
+            Newton did not converge from ``guess``.
+
+        Examples
+        --------
+        >>> robot = kl.spatial.rr(1.0, 1.0)
+        >>> np.degrees(robot.inverse([1.0, 1.0])).round(9) + 0.0          # up, down
+        array([[ 90., -90.],
+               [  0.,  90.]])
+        >>> np.degrees(robot.inverse([1.0, 1.0], guess=[0.1, 1.2])).round(9) + 0.0
+        array([ 0., 90.])
+        """
+        points, single = self._point_array(point)
+        if guess is not None:
+            if branch is not None:
+                raise ModelError("inverse: give branch or guess, not both")
+            q0 = np.broadcast_to(self._joint_array("guess", guess)[0],
+                                 (points.shape[0], self.n))
+            q, ok, residual = self._newton(points, q0)
+            if not ok.all():
+                raise ConvergenceError(
+                    f"robot '{self.name}': Newton did not converge for sample(s) "
+                    f"{indices(~ok)} (residual {residual[~ok].max():.3g} m); the point may "
+                    f"be out of reach, or start nearer a solution")
+            return q[0] if single else q
+        if self._solver is None:
+            if branch is not None:
+                raise ModelError(f"robot '{self.name}': branch: this robot has no closed-form "
+                                 f"branches; pass guess= to follow one solution")
+            if not single:
+                raise ModelError(f"robot '{self.name}': point: without a closed form, give "
+                                 f"one point (shape ({self.dim},)) or a guess for N points")
+            return self._newton_all(points[0])
+        if branch is not None:
+            check_choice("branch", branch, self.branches)
+        solved = self._solver(points)
+        self._check_reach(points, solved)
+        if branch is not None:
+            q = solved.q[:, self.branches.index(branch)]
+            return q[0] if single else q
+        return solved.q[0][solved.distinct[0]] if single else solved.q
+
+    def reachable(self, point: ArrayLike) -> np.ndarray:
+        """Whether each point is inside the workspace (closed-form robots).
+
+        Returns
+        -------
+        ndarray of bool, shape () or (N,)
+
+        Examples
+        --------
+        >>> kl.spatial.rrr(1.0, 1.0).reachable([[0.0, 1.0, 1.0], [0.0, 2.0, 1.0]])
+        array([ True, False])
+        """
+        points, single = self._point_array(point)
+        if self._solver is None:
+            raise ModelError(f"robot '{self.name}': reachable needs a closed-form robot")
+        gap = self._solver(points).gap
+        return gap[0] == 0.0 if single else gap == 0.0
+
+    # -- internals --------------------------------------------------------------------------
+    def _joint_array(self, name: str, q: ArrayLike) -> tuple[np.ndarray, bool]:
+        q = as_array(name, q, (self.n,))
+        return np.atleast_2d(q), q.ndim == 1
+
+    def _point_array(self, point: ArrayLike) -> tuple[np.ndarray, bool]:
+        p = as_array("point", point, (self.dim,))
+        return np.atleast_2d(p), p.ndim == 1
+
+    def _chain(self, q: np.ndarray):
+        """World axes (n, N, 3), joint centres (n, N, 3) and tool point (N, 3)."""
+        N = q.shape[0]
+        R = np.broadcast_to(np.eye(3), (N, 3, 3))
+        p = np.zeros((N, 3))
+        axes, centres = [], []
+        for j, joint in enumerate(self.joints):
+            p = p + R @ np.asarray(joint.offset)
+            a = R @ np.asarray(joint.axis)
+            axes.append(a)
+            centres.append(p)
+            if joint.kind == "R":
+                R = R @ _joint_rotation(joint, q[:, j])
+            else:
+                p = p + a * q[:, j, None]
+        return np.stack(axes), np.stack(centres), p + R @ np.asarray(self.tool)
+
+    def _columns(self, axes, centres, x, upto: int) -> list[np.ndarray]:
+        """Velocity of point x per unit rate of each of the first ``upto`` joints."""
+        return [np.cross(axes[j], x - centres[j]) if joint.kind == "R" else axes[j]
+                for j, joint in enumerate(self.joints[:upto])]
+
+    def _jacobian(self, axes, centres, tool) -> np.ndarray:
+        J = np.stack(self._columns(axes, centres, tool, self.n), axis=-1)
+        return J[:, :self.dim]
+
+    def _bias(self, axes, centres, tool, qd) -> np.ndarray:
+        """``J̇ q̇`` (N, d): the tool acceleration at zero joint accelerations."""
+        tool_velocity = sum(c * qd[:, i, None] for i, c in
+                            enumerate(self._columns(axes, centres, tool, self.n)))
+        omega = np.zeros_like(tool)               # of the link carrying joint j
+        bias = np.zeros_like(tool)
+        for j, joint in enumerate(self.joints):
+            a_dot = np.cross(omega, axes[j])
+            if joint.kind == "R":
+                centre_velocity = sum((c * qd[:, i, None] for i, c in enumerate(
+                    self._columns(axes, centres, centres[j], j))), np.zeros_like(tool))
+                column_dot = (np.cross(a_dot, tool - centres[j])
+                              + np.cross(axes[j], tool_velocity - centre_velocity))
+                omega = omega + axes[j] * qd[:, j, None]
+            else:
+                column_dot = a_dot
+            bias = bias + column_dot * qd[:, j, None]
+        return bias[:, :self.dim]
+
+    def _newton(self, targets: np.ndarray, q0: np.ndarray,
+                max_iter: int = 50) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Batched Newton-Raphson on ``P(q) = target`` (least squares steps at singular J)."""
+        revolute = np.array([j.kind == "R" for j in self.joints])
+        size = np.where(revolute, 1.0, self.scale)      # step measure: rad and scale-m
+        tol = _NEWTON_TOL * (self.scale + np.linalg.norm(targets, axis=-1))
+        q = np.array(q0, dtype=float)
+        for _ in range(max_iter):
+            chain = self._chain(q)
+            residual = chain[2][:, :self.dim] - targets
+            error = np.linalg.norm(residual, axis=-1)
+            active = error > tol
+            if not active.any():
+                break
+            J = self._jacobian(*chain)[active]
+            step = -np.einsum("nij,nj->ni", np.linalg.pinv(J), residual[active])
+            length = np.linalg.norm(step / size, axis=-1, keepdims=True)
+            q[active] += step * np.minimum(1.0, 0.5 / np.maximum(length, 1e-300))
+        else:
+            error = np.linalg.norm(self._chain(q)[2][:, :self.dim] - targets, axis=-1)
+        q[:, revolute] = wrap(q[:, revolute])
+        return q, error <= tol, error
+
+    def _newton_all(self, target: np.ndarray) -> np.ndarray:
+        """Distinct Newton solutions from a 3ⁿ grid of starts (one target)."""
+        values = [(-2 * np.pi / 3, 0.0, 2 * np.pi / 3) if j.kind == "R"
+                  else (-0.5 * self.scale, 0.0, 0.5 * self.scale) for j in self.joints]
+        starts = np.array(list(itertools.product(*values)))
+        q, ok, _ = self._newton(np.broadcast_to(target, (len(starts), self.dim)), starts)
+        found: list[np.ndarray] = []
+        for candidate in q[ok]:
+            if not any(np.abs(wrap(candidate - f)).max() < 1e-8 for f in found):
+                found.append(candidate)
+        if not found:
+            raise AssemblyError(f"robot '{self.name}': Newton reached no solution for point "
+                                f"{target.tolist()} from {len(starts)} starts; the point is "
+                                f"probably out of reach")
+        return np.array(found)
+
+    def _check_reach(self, points: np.ndarray, solved: _Branches) -> None:
+        out = solved.gap > 0.0
+        if out.any():
+            first = int(np.flatnonzero(out)[0])
+            raise AssemblyError(
+                f"robot '{self.name}': point(s) at index {indices(out)} out of reach: "
+                f"{np.round(points[first], 6).tolist()} lies {solved.gap[first]:.6g} m "
+                f"outside the workspace ({solved.workspace}); choose points inside it "
+                f"(robot.reachable(points) tells which are)", loop=self.name,
+                gap=float(solved.gap.max()))
+        if solved.free.any():
+            first = int(np.flatnonzero(solved.free)[0])
+            raise SingularityError(
+                f"robot '{self.name}': point(s) at index {indices(solved.free)} have "
+                f"infinitely many solutions: {np.round(points[first], 6).tolist()} lies "
+                f"{solved.free_reason}; move the point off it, or pass guess= to pick one "
+                f"solution by Newton")
+
+
+def _like(q: np.ndarray, name: str, value: ArrayLike) -> np.ndarray:
+    """Joint rates broadcast to the shape of ``q`` (N, n)."""
+    try:
+        return np.broadcast_to(np.asarray(value, dtype=float), q.shape)
+    except ValueError:
+        raise ModelError(f"{name}: expected a number or shape ({q.shape[1]},) or "
+                         f"({q.shape[0]}, {q.shape[1]}) like q, got {np.shape(value)}") from None
+
+
+def _joint_rotation(joint: RobotJoint, angle: np.ndarray) -> np.ndarray:
+    """Rotation matrices (N, 3, 3) of a revolute joint; a coordinate axis takes scipy's
+    faster single-axis path."""
+    axis = np.asarray(joint.axis)
+    for letter, unit in zip("xyz", np.eye(3)):
+        if np.array_equal(np.abs(axis), unit):
+            return rotation(letter, angle * float(axis @ unit)).as_matrix()
+    return rotation(axis, angle).as_matrix()
+
+
+def _solve(J: np.ndarray, b: np.ndarray, singular: np.ndarray) -> np.ndarray:
+    """``J x = b`` per sample: LU where regular, least squares (pinv) where singular."""
+    x = np.empty(b.shape[:1] + J.shape[2:])
+    regular = ~singular
+    if regular.any():
+        x[regular] = np.linalg.solve(J[regular], b[regular][..., None])[..., 0]
+    if singular.any():
+        x[singular] = np.einsum("nij,nj->ni", np.linalg.pinv(J[singular]), b[singular])
+    return x
+
+
+# -- closed forms ---------------------------------------------------------------------------
+
+def _two_link(u: np.ndarray, v: np.ndarray, a: float, b: float):
+    """Planar 2R: angles that put the end of links a, b at (u, v) from the first axis.
+
+    The first angle solves ``E cos θa + F sin θa + G = 0`` with ``E = -2ua``, ``F = -2va``,
+    ``G = u² + v² + a² - b²`` (notes 003 eq. 79, there for the RRR robot); then
+    ``θa + θb = atan2(v - a sin θa, u - a cos θa)``.  Column 0 (``∂Φ/∂θa > 0``) has the
+    elbow on the left of the line from the first axis to the point (counter-clockwise
+    side), column 1 on the right.
+
+    Returns θa (N, 2), θb (N, 2), count (N,), gap (N,) in m, free (N,) bool.
+    """
+    E, F, G = -2.0 * u * a, -2.0 * v * a, u * u + v * v + a * a - b * b
+    theta_a, count, _ = half_angle(E, F, G)
+    elbow = a * np.stack([np.cos(theta_a), np.sin(theta_a)])
+    theta_b = wrap(np.arctan2(v[:, None] - elbow[1], u[:, None] - elbow[0]) - theta_a)
+    d = np.hypot(u, v)
+    tol = _FREE * (a + b)
+    free = (d <= tol) & (abs(a - b) <= tol)
+    outside = np.maximum(d - (a + b), abs(a - b) - d)
+    gap = np.where((count > 0) | free, 0.0, np.maximum(outside, tol))
+    return theta_a, theta_b, count, gap, free
+
+
+def _two_link_workspace(a: float, b: float, where: str) -> str:
+    return f"{where} between {abs(a - b):.6g} m and {a + b:.6g} m"
+
+
+def rr(l1: float, l2: float) -> SerialRobot:
+    """The planar RR robot of notes 003 Ex. 4.1: links ``l1``, ``l2`` (m).
+
+    ``P = (l1 cos θ1 + l2 cos(θ1 + θ2), l1 sin θ1 + l2 sin(θ1 + θ2))`` (eq. 21): joint 1 at
+    the origin, joint 2 at the end of link 1, θ1 from +x, θ2 from link 1, both
+    counter-clockwise.
+
+    Branches: ``"up"`` has the elbow on the left of the line from the origin to P
+    (θ2 <= 0), ``"down"`` on the right (θ2 >= 0).
+
+    Examples
+    --------
+    >>> robot = kl.spatial.rr(1.0, 1.0)
+    >>> robot.forward(np.radians([30.0, 60.0]))           # (√3/2, 1.5)
+    array([0.8660254, 1.5      ])
+    >>> np.degrees(robot.inverse([np.sqrt(3) / 2, 1.5])).round(9)
+    array([[ 90., -60.],
+           [ 30.,  60.]])
+    """
+    l1, l2 = as_length("l1", l1, positive=True), as_length("l2", l2, positive=True)
+
+    def solve(points):
+        t1, t2, count, gap, free = _two_link(points[:, 0], points[:, 1], l1, l2)
+        return _Branches(np.stack([t1, t2], axis=-1), _distinct(count), gap, free,
+                         _two_link_workspace(l1, l2, "distance from the origin"),
+                         "at the origin, so θ1 is arbitrary (l1 = l2)")
+
+    return SerialRobot("RR", (RobotJoint("R", (0, 0, 1)), RobotJoint("R", (0, 0, 1), (l1, 0, 0))),
+                       tool=(l2, 0.0, 0.0), planar=True, branches=("up", "down"), _solver=solve)
+
+
+def rp() -> SerialRobot:
+    """The planar RP robot of notes 003 §5.5: an arm turning by θ1 about the origin, with
+    the tool sliding along it by q2: ``P = q2 (cos θ1, sin θ1)``.
+
+    Branches: ``"positive"`` (q2 >= 0, the arm points at P) and ``"negative"`` (q2 <= 0,
+    the arm points away and the slide is negative).
+
+    Examples
+    --------
+    >>> kl.spatial.rp().inverse([0.0, 2.0], branch="positive")
+    array([1.57079633, 2.        ])
+    """
+    def solve(points):
+        r = np.hypot(points[:, 0], points[:, 1])
+        theta = np.arctan2(points[:, 1], points[:, 0])
+        q = np.stack([np.stack([theta, r], -1), np.stack([wrap(theta + np.pi), -r], -1)], 1)
+        free = r <= _FREE
+        return _Branches(q, np.stack([np.ones_like(free), ~free], -1), np.zeros_like(r),
+                         free, "the whole plane", "at the origin, so θ1 is arbitrary")
+
+    return SerialRobot("RP", (RobotJoint("R", (0, 0, 1)), RobotJoint("P", (1, 0, 0))),
+                       tool=(0.0, 0.0, 0.0), planar=True, branches=("positive", "negative"),
+                       _solver=solve)
+
+
+def pr(L: float) -> SerialRobot:
+    """The planar PR robot of notes 003 §5.6: a block sliding by q1 along x carries an arm
+    of length ``L`` (m) turning by θ2: ``P = (q1 + L cos θ2, L sin θ2)``.
+
+    Branches: ``"forward"`` (cos θ2 >= 0, the arm points along +x) and ``"backward"``.
+
+    Examples
+    --------
+    >>> robot = kl.spatial.pr(1.0)
+    >>> robot.inverse([2.0, 0.5])            # θ2 = 30° or 150°
+    array([[1.1339746 , 0.52359878],
+           [2.8660254 , 2.61799388]])
+    """
+    L = as_length("L", L, positive=True)
+
+    def solve(points):
+        x, y = points[:, 0], points[:, 1]
+        theta, count, gap = half_angle(0.0, L, -y)       # L sin θ2 = y
+        q1 = x[:, None] - L * np.cos(theta)
+        return _Branches(np.stack([q1, theta], -1), _distinct(count), gap,
+                         np.zeros_like(x, dtype=bool), f"the strip |y| <= {L:.6g} m", "")
+
+    return SerialRobot("PR", (RobotJoint("P", (1, 0, 0)), RobotJoint("R", (0, 0, 1))),
+                       tool=(L, 0.0, 0.0), planar=True, branches=("forward", "backward"),
+                       _solver=solve)
+
+
+def rrr(L2: float, L3: float) -> SerialRobot:
+    """The spatial RRR (articulated) robot of notes 003 §7.5, with H = 0.
+
+    ``0_T_1 = Rot(z, θ1)``, ``1_T_2 = Rot(x, θ2)``, ``2_T_3 = Trans(0, L2, 0) Rot(x, θ3)``
+    and ``3_r_P = (0, L3, 0)`` (eq. 77), so, with ``ρ = L2 cos θ2 + L3 cos(θ2 + θ3)``::
+
+        P = (-ρ sin θ1,  ρ cos θ1,  L2 sin θ2 + L3 sin(θ2 + θ3))
+
+    θ1 turns the arm about the vertical z axis (θ1 = 0 points it along +y); θ2 raises the
+    upper arm L2 from the horizontal; θ3 turns the forearm L3 relative to the upper arm.
+    The shoulder is at the origin (no base height).
+
+    Branches, in this order: ``"front-up"``, ``"front-down"``, ``"back-up"``,
+    ``"back-down"``.  *Front*: the arm plane points at P (ρ > 0); *back*: θ1 turned by
+    180° and the arm bent over backwards (ρ < 0).  *Up*: the elbow lies above the line
+    from the shoulder to P.  Front-up has θ3 <= 0, back-up θ3 >= 0.
+
+    A point on the z axis (x = y = 0) leaves θ1 arbitrary: :meth:`~SerialRobot.inverse`
+    raises :class:`~kinelab.errors.SingularityError` there.
+
+    Parameters
+    ----------
+    L2, L3 : float
+        Upper arm and forearm, m.
+
+    Examples
+    --------
+    Notes 003 eq. 78: θ = (-45°, 60°, 30°) puts P at (√2/4, √2/4, 1 + √3/2):
+
+    >>> robot = kl.spatial.rrr(1.0, 1.0)
+    >>> robot.forward(np.radians([-45.0, 60.0, 30.0]))
+    array([0.35355339, 0.35355339, 1.8660254 ])
+
+    and back again, all four solutions (the notes print the two front ones):
+
+    >>> np.degrees(robot.inverse([np.sqrt(2) / 4, np.sqrt(2) / 4, 1 + np.sqrt(3) / 2])).round(9)
+    array([[-45.,  90., -30.],
+           [-45.,  60.,  30.],
+           [135.,  90.,  30.],
+           [135., 120., -30.]])
+    """
+    L2, L3 = as_length("L2", L2, positive=True), as_length("L3", L3, positive=True)
+
+    def solve(points):
+        x, y, z = points.T
+        r = np.hypot(x, y)
+        free = r <= _FREE * (L2 + L3)
+        front = np.arctan2(-x, y)
+        t2, t3, count, gap, _ = _two_link(r, z, L2, L3)     # columns: up, down
+        # Shoulder back: θ1 + π turns the arm plane round, and θ2 -> π - θ2, θ3 -> -θ3
+        # mirror the arm within it, which puts the elbow back where it was (so "up"
+        # stays up).
+        back = wrap(front + np.pi)
+        q = np.empty((len(r), 4, 3))
+        q[:, :2, 0], q[:, 2:, 0] = front[:, None], back[:, None]
+        q[:, :2, 1], q[:, 2:, 1] = t2, wrap(np.pi - t2)
+        q[:, :2, 2], q[:, 2:, 2] = t3, -t3
+        distinct = np.concatenate([_distinct(count)] * 2, axis=-1)
+        return _Branches(q, distinct, gap, free & (gap == 0),
+                         _two_link_workspace(L2, L3, "distance from the shoulder"),
+                         "on the θ1 axis (x = y = 0), so θ1 is arbitrary")
+
+    joints = (RobotJoint("R", (0, 0, 1)), RobotJoint("R", (1, 0, 0)),
+              RobotJoint("R", (1, 0, 0), (0, L2, 0)))
+    return SerialRobot("RRR", joints, tool=(0.0, L3, 0.0),
+                       branches=("front-up", "front-down", "back-up", "back-down"),
+                       _solver=solve)
+
+
+def prr(L1: float, L2: float, D: float = 0.0, H: float = 0.0, V: float = 0.0) -> SerialRobot:
+    """A PRR robot (notes 003 Ex. 6.1): a vertical slide d1 carrying a horizontal
+    two-link arm (θ2, θ3 about vertical axes).
+
+    The exercise's figure is not in the notes' text, so kinelab fixes the geometry:
+    the column slides by d1 along z; the first revolute axis is parallel to z, offset
+    by ``D`` along x and raised by ``H`` above the slider; links ``L1`` and ``L2`` turn in
+    the horizontal plane; the tool point hangs ``V`` below the end of ``L2``::
+
+        P = (D + L1 cos θ2 + L2 cos(θ2 + θ3),  L1 sin θ2 + L2 sin(θ2 + θ3),  d1 + H - V)
+
+    q = (d1, θ2, θ3), m and rad.  Branches: ``"left"`` (elbow on the left of the line from
+    the first revolute axis to P, seen from above, θ3 <= 0) and ``"right"``.
+
+    Examples
+    --------
+    Ex. 6.1 (d): d1 = 0.7 m, θ2 = 60°, θ3 = 30°, D = H = V = 0.1 m, L1 = L2 = 1 m:
+
+    >>> robot = kl.spatial.prr(1.0, 1.0, D=0.1, H=0.1, V=0.1)
+    >>> robot.forward([0.7, np.radians(60.0), np.radians(30.0)])
+    array([0.6      , 1.8660254, 0.7      ])
+    """
+    L1, L2 = as_length("L1", L1, positive=True), as_length("L2", L2, positive=True)
+    D, H, V = as_length("D", D), as_length("H", H), as_length("V", V)
+
+    def solve(points):
+        x, y, z = points.T
+        t2, t3, count, gap, free = _two_link(x - D, y, L1, L2)
+        d1 = np.broadcast_to((z - H + V)[:, None], t2.shape)
+        return _Branches(np.stack([d1, t2, t3], -1), _distinct(count), gap, free,
+                         _two_link_workspace(L1, L2, "horizontal distance from the first "
+                                             "revolute axis"),
+                         "on the first revolute axis, so θ2 is arbitrary (L1 = L2)")
+
+    joints = (RobotJoint("P", (0, 0, 1)), RobotJoint("R", (0, 0, 1), (D, 0, H)),
+              RobotJoint("R", (0, 0, 1), (L1, 0, 0)))
+    return SerialRobot("PRR", joints, tool=(L2, 0.0, -V), branches=("left", "right"),
+                       _solver=solve)
+
+
+def _distinct(count: np.ndarray) -> np.ndarray:
+    """(N, 2) bool for a pair of half-angle branches: the second is new only if count == 2."""
+    return np.stack([np.ones(count.shape, dtype=bool), count == 2], axis=-1)
