@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import math
-import os
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -11,9 +10,9 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.dynamics._inverse import input_kinds
 from kinelab.dynamics._loads import Law, Loads
 from kinelab.dynamics._masses import MassProperties
+from kinelab.dynamics._results import MotionResult
 from kinelab.dynamics._terms import System, build_system, evaluate
 from kinelab.errors import AssemblyError, ModelError, SingularityError
 from kinelab.kinematics import KinematicSolution, analyze, plan
@@ -25,7 +24,7 @@ SINGULAR_STOP = 1e-4   # singularity measure (a sine) at which the integration s
 
 
 @dataclass(frozen=True, eq=False)
-class Simulation:
+class Simulation(MotionResult):
     """A motion computed by forward dynamics, with its energy balance.
 
     Attributes
@@ -77,19 +76,6 @@ class Simulation:
     kinematics: KinematicSolution
 
     @property
-    def mechanism(self) -> Mechanism:
-        return self.kinematics.mechanism
-
-    @property
-    def input_names(self) -> tuple[str, ...]:
-        return self.mechanism.input_names
-
-    @property
-    def input_kinds(self) -> tuple[str, ...]:
-        """"angle" (effort a torque, N m) or "slide" (a force, N) for each input."""
-        return input_kinds(self.mechanism)
-
-    @property
     def energy(self) -> np.ndarray:
         return self.kinetic_energy + self.potential_energy
 
@@ -108,28 +94,12 @@ class Simulation:
 
     def columns(self, degrees: bool = False) -> dict[str, np.ndarray]:
         """Named (N,) columns with units, for export."""
-        kinds = input_kinds(self.mechanism)
-        cols: dict[str, np.ndarray] = {"t [s]": self.t}
-        for i, (name, kind) in enumerate(zip(self.input_names, kinds)):
-            u, s = (("deg" if degrees else "rad"), (180 / math.pi if degrees else 1.0)) \
-                if kind == "angle" else ("m", 1.0)
-            cols[f"{name}.q [{u}]"] = self.q[:, i] * s
-            cols[f"{name}.qd [{u}/s]"] = self.qd[:, i] * s
-            cols[f"{name}.qdd [{u}/s^2]"] = self.qdd[:, i] * s
-            cols[f"{name}.{'torque [N m]' if kind == 'angle' else 'force [N]'}"] = self.input_forces[:, i]
+        cols = self._motion_columns(degrees)
         for label in ("kinetic_energy", "potential_energy", "energy", "actuator_work",
                       "applied_work", "dissipated", "energy_balance"):
             cols[f"{label} [J]"] = getattr(self, label)
         cols["drift"] = self.drift
         return cols
-
-    def to_dataframe(self, degrees: bool = False):
-        import pandas as pd
-        return pd.DataFrame(self.columns(degrees=degrees))
-
-    def to_csv(self, path: str | os.PathLike, degrees: bool = False) -> None:
-        from kinelab._files import write_csv
-        write_csv(self.columns(degrees=degrees), path)
 
     def __repr__(self) -> str:
         return (f"Simulation('{self.mechanism.name}', t = {self.t[0]:.4g}..{self.t[-1]:.4g} s, "

@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -10,17 +9,12 @@ from numpy.typing import ArrayLike
 
 from kinelab.dynamics._loads import Loads, default_carrier
 from kinelab.dynamics._masses import MassProperties
+from kinelab.dynamics._results import MotionResult
 from kinelab.dynamics._terms import System, Terms, build_system, evaluate, point_block, times
 from kinelab.errors import ModelError
 from kinelab.kinematics import KinematicSolution, analyze, plan
 
 __all__ = ["inverse", "InverseDynamics"]
-
-
-def input_kinds(model) -> tuple[str, ...]:
-    """"angle" or "slide" for each input of the model."""
-    return tuple("slide" if (i.joint is not None and model.joint(i.joint).type == "P") else "angle"
-                 for i in model.inputs)
 
 
 def _pick(names: tuple[str, ...], name: str, kind: str) -> int:
@@ -33,7 +27,7 @@ def _pick(names: tuple[str, ...], name: str, kind: str) -> int:
 
 
 @dataclass(frozen=True, eq=False)
-class InverseDynamics:
+class InverseDynamics(MotionResult):
     """Actuator efforts, joint reactions and shaking force over a motion.
 
     Every array has the sample axis first, also for a single configuration (N = 1).
@@ -94,10 +88,6 @@ class InverseDynamics:
 
     # -- the motion ---------------------------------------------------------------------
     @property
-    def mechanism(self):
-        return self.kinematics.mechanism
-
-    @property
     def q(self) -> np.ndarray:
         return self.kinematics.q
 
@@ -116,15 +106,6 @@ class InverseDynamics:
     @property
     def M(self) -> int:
         return self.q.shape[1]
-
-    @property
-    def input_names(self) -> tuple[str, ...]:
-        return self.mechanism.input_names
-
-    @property
-    def input_kinds(self) -> tuple[str, ...]:
-        """"angle" (effort a torque, N m) or "slide" (a force, N) for each input."""
-        return input_kinds(self.mechanism)
 
     @property
     def singular(self) -> np.ndarray:
@@ -158,16 +139,7 @@ class InverseDynamics:
         """Named (N,) columns with units: time, inputs, efforts, energies, powers, shaking
         force and moment, and each joint's reaction.  ``degrees=True`` shows angle inputs
         in degrees."""
-        kinds = input_kinds(self.mechanism)
-        f = 180.0 / math.pi if degrees else 1.0
-        cols: dict[str, np.ndarray] = {"t [s]": self.t}
-        for i, (name, kind) in enumerate(zip(self.input_names, kinds)):
-            u, s = (("deg" if degrees else "rad"), f) if kind == "angle" else ("m", 1.0)
-            cols[f"{name}.q [{u}]"] = self.q[:, i] * s
-            cols[f"{name}.qd [{u}/s]"] = self.qd[:, i] * s
-            cols[f"{name}.qdd [{u}/s^2]"] = self.qdd[:, i] * s
-        for i, (name, kind) in enumerate(zip(self.input_names, kinds)):
-            cols[f"{name}.{'torque [N m]' if kind == 'angle' else 'force [N]'}"] = self.input_forces[:, i]
+        cols = self._motion_columns(degrees)
         cols["kinetic_energy [J]"] = self.kinetic_energy
         cols["potential_energy [J]"] = self.potential_energy
         cols["actuator_power [W]"] = self.actuator_power
@@ -182,16 +154,6 @@ class InverseDynamics:
                 if self.mechanism.joint(name).type == "P":
                     cols[f"{name}.reaction_moment [N m]"] = self.reaction_moments[:, j]
         return cols
-
-    def to_dataframe(self, degrees: bool = False):
-        """A pandas DataFrame of :meth:`columns`."""
-        import pandas as pd
-        return pd.DataFrame(self.columns(degrees=degrees))
-
-    def to_csv(self, path: str | os.PathLike, degrees: bool = False) -> None:
-        """Write :meth:`columns` as CSV (to a temporary file, then renamed)."""
-        from kinelab._files import write_csv
-        write_csv(self.columns(degrees=degrees), path)
 
     def __repr__(self) -> str:
         peak = np.nanmax(np.abs(self.input_forces), axis=0) if self.N else []
