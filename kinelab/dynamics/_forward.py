@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any, Literal
@@ -106,41 +106,75 @@ class Simulation(MotionResult):
                 f"N={len(self.t)}, {self.status}, energy error {self.energy_error:.2g})")
 
 
-def actuator_laws(model: Mechanism, inputs: Mapping[str, Any] | None) -> tuple[Law | None, ...]:
-    """One law per input of the model (None: no actuator), from a mapping by input name."""
+def actuator_laws(model: Mechanism, inputs) -> Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray]:
+    """The actuators' efforts as one function ``f(t, q, qd) -> (N, M)``.
+
+    ``inputs`` is None (no actuator), a mapping from input name to law (inputs not named
+    are free), a sequence of M laws (None for a free input), or one callable
+    ``f(t, q, qd)`` returning every effort, shape (M,) or (N, M).
+    """
     names = model.input_names
-    laws: list[Law | None] = [None] * len(names)
-    if inputs is None:
-        return tuple(laws)
-    if not isinstance(inputs, Mapping):
-        raise ModelError(f"inputs: expected a mapping from input name to actuator law, got "
-                         f"{type(inputs).__name__}")
+    M = len(names)
+    laws: list[Law | None] = [None] * M
     problems = []
-    for key, law in inputs.items():
-        if key in names:
-            try:
-                laws[names.index(key)] = Law(law, f"inputs['{key}']")
-            except ModelError as exc:
-                problems.extend(exc.problems)
-        elif key in model.joint_names:
-            problems.append(f"inputs: joint '{key}' is not an input of '{model.name}', so no actuator "
-                            f"can drive it; the inputs are {', '.join(map(repr, names))}; add an input "
-                            f"for '{key}' to the model, or apply its effort as a load (Torque, PointForce)")
-        else:
-            problems.append(f"inputs: expected an input name, one of {', '.join(map(repr, names))}, "
-                            f"got '{key}'")
+    if callable(inputs) and not isinstance(inputs, (Mapping, Law)):
+        def all_at_once(t, q, qd):
+            qa, qda = (q[:, 0], qd[:, 0]) if M == 1 else (q, qd)
+            out = np.asarray(inputs(t, qa, qda), dtype=float)
+            if M == 1 and out.ndim == 1 and out.shape == t.shape:
+                out = out[:, None]
+            return _finite_efforts(out, t, q)
+        return all_at_once
+    if isinstance(inputs, Mapping):
+        for key, law in inputs.items():
+            if key in names:
+                try:
+                    laws[names.index(key)] = Law(law, f"inputs['{key}']")
+                except ModelError as exc:
+                    problems.extend(exc.problems)
+            elif key in model.joint_names:
+                problems.append(f"inputs: joint '{key}' is not an input of '{model.name}', so no actuator "
+                                f"can drive it; the inputs are {', '.join(map(repr, names))}; add an input "
+                                f"for '{key}' to the model, or apply its effort as a load (Torque, PointForce)")
+            else:
+                problems.append(f"inputs: expected an input name, one of {', '.join(map(repr, names))}, "
+                                f"got '{key}'")
+    elif isinstance(inputs, (list, tuple)):
+        if len(inputs) != M:
+            problems.append(f"inputs: expected {M} law(s), one per input ({', '.join(map(repr, names))}), "
+                            f"got {len(inputs)}")
+        for k, law in enumerate(inputs[:M]):
+            if law is not None:
+                try:
+                    laws[k] = Law(law, f"inputs[{k}] ('{names[k]}')")
+                except ModelError as exc:
+                    problems.extend(exc.problems)
+    elif inputs is not None:
+        problems.append(f"inputs: expected a mapping from input name to actuator law, a sequence of "
+                        f"{M} law(s) or a callable f(t, q, qd), got {type(inputs).__name__}")
     if problems:
         raise ModelError(problems, source=f"mechanism '{model.name}'")
-    return tuple(laws)
+
+    def by_input(t, q, qd):
+        out = np.zeros(q.shape)
+        for k, law in enumerate(laws):
+            if law is not None:
+                out[:, k] = law(t, q, qd)
+        return out
+    return by_input
 
 
-def efforts(laws, t, q, qd) -> np.ndarray:
-    """(N, M) actuator efforts."""
-    out = np.zeros(q.shape)
-    for k, law in enumerate(laws):
-        if law is not None:
-            out[:, k] = law(t, q, qd)
-    return out
+def _finite_efforts(out: np.ndarray, t, q) -> np.ndarray:
+    try:
+        out = np.broadcast_to(out, q.shape)
+    except ValueError:
+        raise ModelError(f"inputs: the actuator law returned shape {out.shape}; expected ({q.shape[1]},) "
+                         f"or {q.shape}") from None
+    if not np.all(np.isfinite(out)):
+        i = int(np.argwhere(~np.isfinite(out))[0][0])
+        raise ModelError(f"inputs: the actuator law gives {out[i].tolist()} at t = {float(t[i]):.6g} s, "
+                         f"q = {np.round(q[i], 6).tolist()}; an effort must be finite there")
+    return np.array(out)
 
 
 def _as_q(a: np.ndarray, M: int) -> np.ndarray:
@@ -227,7 +261,7 @@ def drift(sol: KinematicSolution) -> np.ndarray:
 
 
 def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: ArrayLike = 0.0, *,
-             inputs: Mapping[str, Any] | None = None, loads: Loads | None = None,
+             inputs=None, loads: Loads | None = None,
              masses: MassProperties | None = None, t_eval: ArrayLike | None = None,
              method: Literal["DOP853", "RK45", "Radau", "LSODA", "BDF"] = "DOP853",
              rtol: float = 1e-10, atol: float = 1e-12, max_step: float = np.inf,
@@ -249,10 +283,12 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
         Start and end time, s.
     q0, qd0 : float or array_like, shape () or (M,)
         Initial inputs (rad or m) and rates.
-    inputs : mapping of str to law, optional
+    inputs : mapping of str to law, sequence of laws, or callable, optional
         Actuator effort at each input, by input name: a number, an expression of
         ``t, q, qd``, a table or a callable ``f(t, q, qd)`` (see :class:`Law`); a torque
         for an angle input, a force for a slide.  Inputs not named are free (no effort).
+        Also accepted: a sequence of M laws in the order of the inputs (None: free), or
+        one callable ``f(t, q, qd)`` returning every effort, shape (M,) or (N, M).
     loads : Loads, optional
     masses : MassProperties, optional
         Default ``MassProperties.from_model(model)``.
@@ -300,7 +336,7 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
 
     system = build_system(model, loads, masses)
     M = system.M
-    laws = actuator_laws(model, inputs)
+    actuators = actuator_laws(model, inputs)
     try:
         t0, t1 = (float(v) for v in t_span)
     except (TypeError, ValueError):
@@ -329,7 +365,7 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
 
     def accelerations(system: System, sol, t):
         terms = evaluate(system, sol, t, mass_matrix=True)
-        tau = efforts(laws, t, sol.q, sol.qd)
+        tau = actuators(t, sol.q, sol.qd)
         rhs = tau + terms.applied - terms.inertia     # inertia at qdd = 0 is the bias h
         try:
             qdd = np.linalg.solve(terms.mass_matrix, rhs[..., None])[..., 0]

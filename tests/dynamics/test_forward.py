@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 import kinelab as kl
-from kinelab.dynamics import Damper, Loads, PointForce, Spring, Torque, inverse, simulate
+from kinelab.dynamics import Damper, Law, Loads, PointForce, Spring, Torque, inverse, simulate
 from kinelab.errors import ModelError
 from kinelab.model import Link, Mechanism
 from tests.dynamics.models import engine, fourbar, pendulum, rp_robot
@@ -123,3 +123,23 @@ def test_massless_input_cannot_be_integrated():
     masses = MassProperties.from_model(m, massless=("arm", "gripper"))
     with pytest.raises(ModelError, match=r"mass matrix of 'rp' is singular"):
         simulate(m, (0.0, 1.0), [0.0, 0.5], masses=masses)
+
+
+def test_actuator_laws_by_name_by_position_or_all_at_once():
+    """Three ways to give the RP robot's efforts describe the same motion."""
+    m, laws, loads = driven_rp()
+    tau1, tau2 = laws["shoulder"], laws["reach"]
+    shoulder = Law(tau1)
+
+    def both(t, q, qd):
+        return np.stack([shoulder(t, q, qd), tau2(t, q, qd)], axis=-1)
+    runs = [simulate(m, (0.0, 0.5), q0=[0.1, 0.8], qd0=[0.5, -0.2], inputs=form, loads=loads,
+                     t_eval=[0.0, 0.25, 0.5]) for form in (laws, [tau1, tau2], both)]
+    for r in runs[1:]:
+        np.testing.assert_allclose(r.q, runs[0].q, rtol=0, atol=1e-13)
+    with pytest.raises(ModelError, match=r"inputs: expected 2 law\(s\), one per input \('shoulder', "
+                                         r"'reach'\), got 1"):
+        simulate(m, (0.0, 0.5), q0=[0.1, 0.8], inputs=[tau1], loads=loads)
+    with pytest.raises(ModelError, match=r"inputs: the actuator law returned shape \(3,\); expected "
+                                         r"\(2,\) or \(1, 2\)"):
+        simulate(m, (0.0, 0.5), q0=[0.1, 0.8], inputs=lambda t, q, qd: np.zeros(3), loads=loads)
