@@ -6,12 +6,13 @@
 >>> sol.angle("coupler").shape, sol.position("B").shape
 ((720,), (720, 2))
 """
-from kinelab import (errors, io, kinematics, mechanisms, model, plot, solvers, spatial, structure,
-                     synthesis)
+from kinelab import (dynamics, errors, io, kinematics, mechanisms, model, plot, solvers, spatial,
+                     structure, synthesis)
 from kinelab.io import load
 from kinelab.kinematics import KinematicSolution, analyze
 from kinelab.model import Mechanism
 
-__all__ = ["errors", "model", "solvers", "mechanisms", "kinematics", "spatial", "structure", "io",
+__all__ = ["errors", "model", "solvers", "mechanisms", "kinematics", "spatial", "structure",
+           "synthesis", "dynamics", "io",
            "plot", "analyze", "load",
            "Mechanism", "KinematicSolution"]

@@ -1,1 +1,29 @@
-"""Dynamics by Gibbs-Appell / Kane: inverse and forward dynamics."""
+"""Dynamics by Gibbs-Appell / Kane: inverse and forward dynamics of planar mechanisms.
+
+The notes' equations ``C^T D f = 0`` (seed 003 §5) in the independent coordinates q:
+C is the engine's velocity-coefficient matrix K (with the identity rows of the inputs)
+and its time derivative comes from the acceleration coefficients L, so every term is a
+vectorised product of K, L and the mass data over the samples.
+
+- :func:`inverse` -- actuator efforts, joint reactions and shaking force over a motion;
+- :func:`simulate` -- the motion under given actuator laws and loads;
+- :class:`Loads` -- gravity, point forces, torques, springs, dampers;
+- :class:`MassProperties` -- the links' masses and inertias, point masses, lumping;
+- :class:`DynamicsSetup` -- a model file's ``[dynamics]`` section (loads, actuator laws);
+- :func:`flywheel` -- flywheel sizing from a torque curve;
+- :func:`equations_of_motion` -- the equations in symbols (sympy), for open chains.
+"""
+from kinelab.dynamics._expressions import parse_expression, parse_table, to_sympy
+from kinelab.dynamics._flywheel import Flywheel, flywheel
+from kinelab.dynamics._forward import Simulation, simulate
+from kinelab.dynamics._inverse import InverseDynamics, inverse
+from kinelab.dynamics._loads import (STANDARD_GRAVITY, Damper, Law, Loads, PointForce, Spring,
+                                     Torque)
+from kinelab.dynamics._masses import LinkMass, MassProperties, PointMass
+from kinelab.dynamics._setup import DynamicsSetup
+from kinelab.dynamics._symbolic import EquationsOfMotion, equations_of_motion
+
+__all__ = ["inverse", "InverseDynamics", "simulate", "Simulation", "Loads", "PointForce", "Torque", "Spring", "Damper",
+           "Law", "STANDARD_GRAVITY", "MassProperties", "LinkMass", "PointMass",
+           "DynamicsSetup", "flywheel", "Flywheel", "equations_of_motion", "EquationsOfMotion",
+           "parse_expression", "parse_table", "to_sympy"]

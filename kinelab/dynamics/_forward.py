@@ -1,0 +1,420 @@
+"""Forward dynamics: the motion of a mechanism under given actuator laws and loads."""
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterator, Mapping
+from contextlib import contextmanager
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from kinelab.dynamics._loads import Law, Loads
+from kinelab.dynamics._masses import MassProperties
+from kinelab.dynamics._results import MotionResult
+from kinelab.dynamics._terms import System, build_system, evaluate
+from kinelab.errors import AssemblyError, ModelError, SingularityError
+from kinelab.kinematics import KinematicSolution, analyze, plan
+from kinelab.model import Mechanism
+
+__all__ = ["simulate", "Simulation"]
+
+SINGULAR_STOP = 1e-4   # singularity measure (a sine) at which the integration stops
+
+
+@dataclass(frozen=True, eq=False)
+class Simulation(MotionResult):
+    """A motion computed by forward dynamics, with its energy balance.
+
+    Attributes
+    ----------
+    t : ndarray, shape (N,)
+        Output times, s.
+    q, qd, qdd : ndarray, shape (N, M)
+        Inputs, rates and accelerations.
+    input_forces : ndarray, shape (N, M)
+        The actuators' efforts that were applied (N m or N).
+    kinetic_energy, potential_energy : ndarray, shape (N,)
+        J.
+    energy : ndarray, shape (N,)
+        Mechanical energy, kinetic + potential, J.
+    actuator_work, applied_work, dissipated : ndarray, shape (N,)
+        Work done since ``t[0]`` by the actuators and by the loads' forces and torques,
+        and energy lost in the dampers, J (integrated with the motion).
+    energy_balance : ndarray, shape (N,)
+        ``energy - energy[0] - actuator_work - applied_work + dissipated``: zero but for
+        the integration error, J.
+    drift : ndarray, shape (N,)
+        Measured violation of the constraints at each output (link lengths and angles,
+        slides off their lines), m or rad.  The position problem is solved at every
+        step, so this stays at rounding level.
+    status : {"finished", "singular"}
+        "singular": stopped where the mechanism came within ``singular_stop`` of a
+        singular configuration (see ``message``).
+    message : str
+    nfev : int
+        Evaluations of the equations of motion.
+    kinematics : KinematicSolution
+        Every link and point at the output times.
+    """
+
+    t: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+    input_forces: np.ndarray
+    kinetic_energy: np.ndarray
+    potential_energy: np.ndarray
+    actuator_work: np.ndarray
+    applied_work: np.ndarray
+    dissipated: np.ndarray
+    drift: np.ndarray
+    status: str
+    message: str
+    nfev: int
+    kinematics: KinematicSolution
+
+    @property
+    def energy(self) -> np.ndarray:
+        return self.kinetic_energy + self.potential_energy
+
+    @property
+    def energy_balance(self) -> np.ndarray:
+        return self.energy - self.energy[0] - self.actuator_work - self.applied_work + self.dissipated
+
+    @property
+    def energy_error(self) -> float:
+        """Largest |energy_balance| relative to the largest energy involved (kinetic,
+        potential, work or losses)."""
+        scale = max(float(np.max(np.abs(a))) for a in (
+            self.kinetic_energy, self.potential_energy, self.actuator_work, self.applied_work,
+            self.dissipated, [1e-300]))
+        return float(np.max(np.abs(self.energy_balance))) / scale
+
+    def columns(self, degrees: bool = False) -> dict[str, np.ndarray]:
+        """Named (N,) columns with units, for export."""
+        cols = self._motion_columns(degrees)
+        for label in ("kinetic_energy", "potential_energy", "energy", "actuator_work",
+                      "applied_work", "dissipated", "energy_balance"):
+            cols[f"{label} [J]"] = getattr(self, label)
+        cols["drift"] = self.drift
+        return cols
+
+    def __repr__(self) -> str:
+        return (f"Simulation('{self.mechanism.name}', t = {self.t[0]:.4g}..{self.t[-1]:.4g} s, "
+                f"N={len(self.t)}, {self.status}, energy error {self.energy_error:.2g})")
+
+
+def actuator_laws(model: Mechanism, inputs) -> Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray]:
+    """The actuators' efforts as one function ``f(t, q, qd) -> (N, M)``.
+
+    ``inputs`` is None (no actuator), a mapping from input name to law (inputs not named
+    are free), a sequence of M laws (None for a free input), or one callable
+    ``f(t, q, qd)`` returning every effort, shape (M,) or (N, M).
+    """
+    names = model.input_names
+    M = len(names)
+    laws: list[Law | None] = [None] * M
+    problems = []
+    if callable(inputs) and not isinstance(inputs, (Mapping, Law)):
+        def all_at_once(t, q, qd):
+            qa, qda = (q[:, 0], qd[:, 0]) if M == 1 else (q, qd)
+            out = np.asarray(inputs(t, qa, qda), dtype=float)
+            if M == 1 and out.ndim == 1 and out.shape == t.shape:
+                out = out[:, None]
+            return _finite_efforts(out, t, q)
+        return all_at_once
+    if isinstance(inputs, Mapping):
+        for key, law in inputs.items():
+            if key in names:
+                try:
+                    laws[names.index(key)] = Law(law, f"inputs['{key}']")
+                except ModelError as exc:
+                    problems.extend(exc.problems)
+            elif key in model.joint_names:
+                problems.append(f"inputs: joint '{key}' is not an input of '{model.name}', so no actuator "
+                                f"can drive it; the inputs are {', '.join(map(repr, names))}; add an input "
+                                f"for '{key}' to the model, or apply its effort as a load (Torque, PointForce)")
+            else:
+                problems.append(f"inputs: expected an input name, one of {', '.join(map(repr, names))}, "
+                                f"got '{key}'")
+    elif isinstance(inputs, (list, tuple)):
+        if len(inputs) != M:
+            problems.append(f"inputs: expected {M} law(s), one per input ({', '.join(map(repr, names))}), "
+                            f"got {len(inputs)}")
+        for k, law in enumerate(inputs[:M]):
+            if law is not None:
+                try:
+                    laws[k] = Law(law, f"inputs[{k}] ('{names[k]}')")
+                except ModelError as exc:
+                    problems.extend(exc.problems)
+    elif inputs is not None:
+        problems.append(f"inputs: expected a mapping from input name to actuator law, a sequence of "
+                        f"{M} law(s) or a callable f(t, q, qd), got {type(inputs).__name__}")
+    if problems:
+        raise ModelError(problems, source=f"mechanism '{model.name}'")
+
+    def by_input(t, q, qd):
+        out = np.zeros(q.shape)
+        for k, law in enumerate(laws):
+            if law is not None:
+                out[:, k] = law(t, q, qd)
+        return out
+    return by_input
+
+
+def _finite_efforts(out: np.ndarray, t, q) -> np.ndarray:
+    try:
+        out = np.broadcast_to(out, q.shape)
+    except ValueError:
+        raise ModelError(f"inputs: the actuator law returned shape {out.shape}; expected ({q.shape[1]},) "
+                         f"or {q.shape}") from None
+    if not np.all(np.isfinite(out)):
+        i = int(np.argwhere(~np.isfinite(out))[0][0])
+        raise ModelError(f"inputs: the actuator law gives {out[i].tolist()} at t = {float(t[i]):.6g} s, "
+                         f"q = {np.round(q[i], 6).tolist()}; an effort must be finite there")
+    return np.array(out)
+
+
+def _as_q(a: np.ndarray, M: int) -> np.ndarray:
+    return a[:, 0] if M == 1 else a
+
+
+@contextmanager
+def _serial() -> Iterator[None]:
+    """Run the compiled kinematics on this thread only.
+
+    Every step of the integration analyses a single configuration; waking the kernel's
+    worker threads for one sample costs far more than the work (about 20x on a busy
+    two-core machine), so the integration asks numba for one thread and restores the
+    setting afterwards.
+    """
+    import numba
+    n = numba.get_num_threads()
+    numba.set_num_threads(1)
+    try:
+        yield
+    finally:
+        numba.set_num_threads(n)
+
+
+class _Halt(Exception):
+    def __init__(self, t, q, kind, detail=""):
+        super().__init__(kind)
+        self.t, self.q, self.kind, self.detail = t, q, kind, detail
+
+
+def _state(name: str, value, M: int) -> np.ndarray:
+    try:
+        a = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ModelError(f"{name}: expected numbers, got {value!r}") from None
+    if a.ndim == 0:
+        a = np.full(M, float(a))
+    if a.shape != (M,):
+        raise ModelError(f"{name}: expected one value per input, shape () or ({M},), got shape {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise ModelError(f"{name}: expected finite numbers, got {a.tolist()}")
+    return a.reshape(M)
+
+
+def drift(sol: KinematicSolution) -> np.ndarray:
+    """Largest violation of the model's constraints at each sample, m (or rad for angles).
+
+    Measured on the engine's output: every link keeps the distances from its first point
+    to the others and the direction of its first two points; every slider keeps its
+    point on the guide's line and its angle to the guide.
+    """
+    m = sol.mechanism
+    p = plan(m)
+    xy = {pt.name: np.array(pt.xy) for pt in m.points}
+    pos = {n: sol.jets[:, i:i + 2, 0] for n, i in p.point_item.items()}
+    ang = {n: sol.jets[:, i, 0] - p.sketch_angles[i] for n, i in p.link_index.items()}
+    worst = np.zeros(sol.N)
+
+    def wrap(a):
+        return np.abs(np.angle(np.exp(1j * a)))
+    for link in m.links:
+        pts = link.points
+        for b in pts[1:]:
+            d = np.linalg.norm(pos[b] - pos[pts[0]], axis=-1)
+            worst = np.maximum(worst, np.abs(d - np.linalg.norm(xy[b] - xy[pts[0]])))
+        if len(pts) >= 2:
+            v = pos[pts[1]] - pos[pts[0]]
+            v0 = xy[pts[1]] - xy[pts[0]]
+            turn = np.arctan2(v[:, 1], v[:, 0]) - math.atan2(v0[1], v0[0])
+            worst = np.maximum(worst, wrap(turn - ang[link.name]))
+    for j in m.joints:
+        if j.type != "P":
+            continue
+        g, s = j.links
+        worst = np.maximum(worst, wrap(ang[s] - ang[g]))
+        th = ang[g] + math.atan2(j.axis[1], j.axis[0])
+        origin = j.origin or m.link(g).points[0]
+        d = pos[j.point] - pos[origin]
+        normal = -np.sin(th) * d[:, 0] + np.cos(th) * d[:, 1]
+        u0 = np.asarray(j.axis, float) / math.hypot(*j.axis)
+        d0 = xy[j.point] - xy[origin]
+        worst = np.maximum(worst, np.abs(normal - (-u0[1] * d0[0] + u0[0] * d0[1])))
+    return worst
+
+
+def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: ArrayLike = 0.0, *,
+             inputs=None, loads: Loads | None = None,
+             masses: MassProperties | None = None, t_eval: ArrayLike | None = None,
+             method: Literal["DOP853", "RK45", "Radau", "LSODA", "BDF"] = "DOP853",
+             rtol: float = 1e-10, atol: float = 1e-12, max_step: float = np.inf,
+             singular_stop: float = SINGULAR_STOP) -> Simulation:
+    """Integrate the motion of a mechanism under actuator laws and loads.
+
+    The state is the independent coordinates q and their rates; at every evaluation the
+    position problem is solved by the kinematics engine (so the loops always close) and
+    Kane's equations give ``M(q) q'' = tau + Q - h`` with the mass matrix
+    ``M = sum m K_G^T K_G + I K_theta^T K_theta`` and the velocity terms
+    ``h = sum m K_G^T (q'^T L_G q') + I K_theta^T (q'^T L_theta q')``.  The actuators'
+    work, the loads' work and the dampers' losses are integrated with the motion, so the
+    result carries its own energy balance.
+
+    Parameters
+    ----------
+    model : Mechanism
+    t_span : (float, float)
+        Start and end time, s.
+    q0, qd0 : float or array_like, shape () or (M,)
+        Initial inputs (rad or m) and rates.
+    inputs : mapping of str to law, sequence of laws, or callable, optional
+        Actuator effort at each input, by input name: a number, an expression of
+        ``t, q, qd``, a table or a callable ``f(t, q, qd)`` (see :class:`Law`); a torque
+        for an angle input, a force for a slide.  Inputs not named are free (no effort).
+        Also accepted: a sequence of M laws in the order of the inputs (None: free), or
+        one callable ``f(t, q, qd)`` returning every effort, shape (M,) or (N, M).
+    loads : Loads, optional
+    masses : MassProperties, optional
+        Default ``MassProperties.from_model(model)``.
+    t_eval : array_like, shape (N,), optional
+        Output times (default: the integrator's steps).
+    method : str
+        A :func:`scipy.integrate.solve_ivp` method; DOP853 (default) for accuracy, Radau
+        or BDF for stiff springs and dampers.
+    rtol, atol : float
+        Integration tolerances.
+    max_step : float
+        Largest step, s.
+    singular_stop : float
+        Stop when the distance from a singular configuration (the kinematics'
+        ``singularity``, a sine) falls below this; the result says so.
+
+    Returns
+    -------
+    Simulation
+
+    Raises
+    ------
+    ModelError
+        Bad model data, a law for a joint that is not an input, a mass matrix that
+        cannot be inverted (a coordinate without inertia).
+    AssemblyError
+        The motion runs into a position where the loops cannot close.
+
+    Examples
+    --------
+    A pendulum released from rest at the horizontal swings to the other side:
+
+    >>> from kinelab.model import Mechanism, Point, Link, Joint, Input
+    >>> from kinelab.dynamics import Loads, simulate
+    >>> pendulum = Mechanism("pendulum", (Point("O", 0, 0), Point("G", 1.0, 0)),
+    ...     (Link("ground", ("O",), ground=True),
+    ...      Link("arm", ("O", "G"), mass=1.0, center_of_mass="G", inertia=1e-3)),
+    ...     (Joint("pivot", "R", ("ground", "arm"), point="O"),), (Input(joint="pivot"),))
+    >>> sim = simulate(pendulum, (0.0, 1.0), q0=0.0, qd0=0.0,
+    ...                loads=Loads(gravity=(0.0, -9.81)), t_eval=[0.0, 0.5, 1.0])
+    >>> sim.q.shape, bool(sim.q[-1, 0] < 0), sim.energy_error < 1e-9
+    ((3, 1), True, True)
+    """
+    from scipy.integrate import solve_ivp
+
+    system = build_system(model, loads, masses)
+    M = system.M
+    actuators = actuator_laws(model, inputs)
+    try:
+        t0, t1 = (float(v) for v in t_span)
+    except (TypeError, ValueError):
+        raise ModelError(f"t_span: expected (start, end) in s, got {t_span!r}") from None
+    if not (math.isfinite(t0) and math.isfinite(t1) and t1 > t0):
+        raise ModelError(f"t_span: expected finite start < end, got {t_span!r}")
+    q_init, qd_init = _state("q0", q0, M), _state("qd0", qd0, M)
+    if t_eval is not None:
+        t_eval = np.asarray(t_eval, dtype=float).ravel()
+        if t_eval.size == 0 or np.any(t_eval < t0) or np.any(t_eval > t1) or np.any(np.diff(t_eval) <= 0):
+            raise ModelError(f"t_eval: expected increasing times within t_span [{t0}, {t1}] s")
+    cache: dict[str, Any] = {}
+
+    def kinematics(t, y):
+        key = y[:2 * M].tobytes()
+        if cache.get("key") == key:
+            return cache["sol"]
+        q, qd = y[None, :M], y[None, M:2 * M]
+        sol = analyze(model, _as_q(q, M), _as_q(qd, M), 0.0, unreachable="mask", at_singular="flag")
+        if not sol.assembled[0]:
+            raise _Halt(t, q[0], "assembly")
+        if sol.singular[0]:
+            raise _Halt(t, q[0], "singular")
+        cache.update(key=key, sol=sol)
+        return sol
+
+    def accelerations(system: System, sol, t):
+        terms = evaluate(system, sol, t, mass_matrix=True)
+        tau = actuators(t, sol.q, sol.qd)
+        rhs = tau + terms.applied - terms.inertia     # inertia at qdd = 0 is the bias h
+        try:
+            qdd = np.linalg.solve(terms.mass_matrix, rhs[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            raise ModelError(f"the mass matrix of '{model.name}' is singular at q = "
+                             f"{np.round(sol.q[0], 6).tolist()}: some input moves no mass; give the "
+                             "links it drives mass and inertia") from None
+        return qdd, tau, terms
+
+    def rhs(t, y):
+        sol = kinematics(t, y)
+        qdd, tau, terms = accelerations(system, sol, np.array([t]))
+        return np.concatenate([y[M:2 * M], qdd[0], [tau[0] @ sol.qd[0], terms.applied_power[0],
+                                                      terms.dissipation[0]]])
+
+    def near_singular(t, y):
+        return kinematics(t, y).singularity[0] - singular_stop
+    near_singular.terminal = True
+    near_singular.direction = -1
+
+    y0 = np.concatenate([q_init, qd_init, np.zeros(3)])
+    try:
+        with _serial():
+            out = solve_ivp(rhs, (t0, t1), y0, method=method, t_eval=t_eval, rtol=rtol, atol=atol,
+                            max_step=max_step, events=near_singular if singular_stop > 0 else None)
+    except _Halt as h:
+        where = f"at t = {h.t:.6g} s (q = {np.round(h.q, 6).tolist()})"
+        if h.kind == "assembly":
+            raise AssemblyError(f"the motion of '{model.name}' reaches a position where its loops "
+                                f"cannot close {where}: a limit position; limit the motion or check "
+                                "the loads") from None
+        raise SingularityError(f"the motion of '{model.name}' reaches a singular configuration {where}; "
+                               "raise singular_stop to stop before it") from None
+    if out.status == -1:
+        raise ModelError(f"the integration of '{model.name}' failed: {out.message}; try "
+                         "method='Radau' for stiff springs or dampers, or looser tolerances")
+    status, message = "finished", "reached the end of t_span"
+    if out.status == 1:
+        status = "singular"
+        message = (f"stopped at t = {out.t_events[0][0]:.6g} s: within {singular_stop:g} of a singular "
+                   f"configuration (q = {np.round(out.y_events[0][0][:M], 6).tolist()})")
+    y = out.y.T
+    q, qd = y[:, :M], y[:, M:2 * M]
+    t = out.t
+    sol = analyze(model, _as_q(q, M), _as_q(qd, M), 0.0, at_singular="flag")
+    qdd, tau, terms = accelerations(system, sol, t)
+    sol = analyze(model, _as_q(q, M), _as_q(qd, M), _as_q(qdd, M), at_singular="flag")
+    return Simulation(
+        t=t, q=q, qd=qd, qdd=qdd, input_forces=tau, kinetic_energy=terms.kinetic,
+        potential_energy=terms.potential, actuator_work=y[:, 2 * M], applied_work=y[:, 2 * M + 1],
+        dissipated=y[:, 2 * M + 2], drift=drift(sol), status=status, message=message,
+        nfev=int(out.nfev), kinematics=sol)

@@ -1,0 +1,390 @@
+"""Inverse dynamics: actuator efforts (Kane), joint reactions (Newton-Euler), shaking."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from kinelab.dynamics._loads import Loads, default_carrier
+from kinelab.dynamics._masses import MassProperties
+from kinelab.dynamics._results import MotionResult
+from kinelab.dynamics._terms import System, Terms, build_system, evaluate, point_block, times
+from kinelab.errors import ModelError
+from kinelab.kinematics import KinematicSolution, analyze, plan
+
+__all__ = ["inverse", "InverseDynamics"]
+
+
+def _pick(names: tuple[str, ...], name: str, kind: str) -> int:
+    if name in names:
+        return names.index(name)
+    from difflib import get_close_matches
+    close = get_close_matches(str(name), list(names), n=1)
+    hint = f" (did you mean '{close[0]}'?)" if close else ""
+    raise ModelError(f"{kind}: expected one of {', '.join(map(repr, names))}, got '{name}'{hint}")
+
+
+@dataclass(frozen=True, eq=False)
+class InverseDynamics(MotionResult):
+    """Actuator efforts, joint reactions and shaking force over a motion.
+
+    Every array has the sample axis first, also for a single configuration (N = 1).
+
+    Attributes
+    ----------
+    kinematics : KinematicSolution
+        The motion the forces were computed for.
+    t : ndarray, shape (N,)
+        Times the loads were evaluated at, s.
+    input_forces : ndarray, shape (N, M)
+        Effort of each actuator: a torque (N m) for an angle input, a force (N) along the
+        slide for a slide input; it acts on the input's second link and reacts on the first.
+    inertia_forces, load_forces : ndarray, shape (N, M)
+        The generalised inertia force F* and the generalised force Q of the loads:
+        ``input_forces = inertia_forces - load_forces`` (Kane's equations).
+    kinetic_energy, potential_energy : ndarray, shape (N,)
+        J; the potential is that of gravity (zero at the origin) and of the springs.
+    energy_rate : ndarray, shape (N,)
+        d(kinetic + potential)/dt, W.
+    actuator_power, applied_power, dissipation : ndarray, shape (N,)
+        Power of the actuators, of the point forces and torques of the loads, and lost in
+        the dampers, W.  ``actuator_power + applied_power = energy_rate + dissipation``.
+    shaking_force : ndarray, shape (N, 2)
+        Resultant force the mechanism exerts on the ground (through its ground joints,
+        the actuators' reactions and springs or dampers anchored to the ground), N.
+    shaking_moment : ndarray, shape (N,)
+        Its moment about the ground origin, N m (about a point P: subtract
+        ``P x shaking_force``).
+    joint_names : tuple of str
+    reaction_forces : ndarray, shape (N, J, 2), or None
+        Force on the second link of each joint from the first, N (prefer :meth:`reactions`).
+    reaction_moments : ndarray, shape (N, J), or None
+        Moment a prismatic joint transmits to its slider, N m (zero for revolute joints).
+    reactions_unique : bool
+        False for a mechanism with redundant joints: the reactions shown are then the
+        smallest (least-squares) set that balances every link.
+    """
+
+    kinematics: KinematicSolution
+    t: np.ndarray
+    input_forces: np.ndarray
+    inertia_forces: np.ndarray
+    load_forces: np.ndarray
+    kinetic_energy: np.ndarray
+    potential_energy: np.ndarray
+    energy_rate: np.ndarray
+    actuator_power: np.ndarray
+    applied_power: np.ndarray
+    dissipation: np.ndarray
+    shaking_force: np.ndarray | None
+    shaking_moment: np.ndarray | None
+    joint_names: tuple[str, ...]
+    reaction_forces: np.ndarray | None
+    reaction_moments: np.ndarray | None
+    reactions_unique: bool = True
+    newton_euler_efforts: np.ndarray | None = None
+
+    # -- the motion ---------------------------------------------------------------------
+    @property
+    def q(self) -> np.ndarray:
+        return self.kinematics.q
+
+    @property
+    def qd(self) -> np.ndarray:
+        return self.kinematics.qd
+
+    @property
+    def qdd(self) -> np.ndarray:
+        return self.kinematics.qdd
+
+    @property
+    def N(self) -> int:
+        return self.q.shape[0]
+
+    @property
+    def M(self) -> int:
+        return self.q.shape[1]
+
+    @property
+    def singular(self) -> np.ndarray:
+        """(N,) bool: singular configurations, where every force is NaN."""
+        return self.kinematics.singular
+
+    # -- accessors ----------------------------------------------------------------------
+    def input_force(self, name: str) -> np.ndarray:
+        """Effort of one actuator by input name, shape (N,)."""
+        return self.input_forces[:, _pick(self.input_names, name, "input")]
+
+    def reactions(self, joint: str) -> np.ndarray:
+        """Force on the second link of ``joint`` from the first, N; shape (N, 2).
+
+        For a prismatic joint it is the constraint force, normal to the slide; the effort
+        of a slide actuator is in :attr:`input_forces`.
+        """
+        if self.reaction_forces is None:
+            raise ModelError("reactions: this result was computed with reactions=False; "
+                             "call inverse(..., reactions=True)")
+        return self.reaction_forces[:, _pick(self.joint_names, joint, "joint")]
+
+    def reaction_moment(self, joint: str) -> np.ndarray:
+        """Moment on the slider of a prismatic joint from its guide, N m; shape (N,)."""
+        if self.reaction_moments is None:
+            raise ModelError("reaction_moment: this result was computed with reactions=False")
+        return self.reaction_moments[:, _pick(self.joint_names, joint, "joint")]
+
+    # -- export -------------------------------------------------------------------------
+    def columns(self, degrees: bool = False) -> dict[str, np.ndarray]:
+        """Named (N,) columns with units: time, inputs, efforts, energies, powers, shaking
+        force and moment, and each joint's reaction.  ``degrees=True`` shows angle inputs
+        in degrees."""
+        cols = self._motion_columns(degrees)
+        cols["kinetic_energy [J]"] = self.kinetic_energy
+        cols["potential_energy [J]"] = self.potential_energy
+        cols["actuator_power [W]"] = self.actuator_power
+        if self.shaking_force is not None:
+            cols["shaking_force.x [N]"] = self.shaking_force[:, 0]
+            cols["shaking_force.y [N]"] = self.shaking_force[:, 1]
+            cols["shaking_moment [N m]"] = self.shaking_moment
+        if self.reaction_forces is not None:
+            for j, name in enumerate(self.joint_names):
+                cols[f"{name}.reaction.x [N]"] = self.reaction_forces[:, j, 0]
+                cols[f"{name}.reaction.y [N]"] = self.reaction_forces[:, j, 1]
+                if self.mechanism.joint(name).type == "P":
+                    cols[f"{name}.reaction_moment [N m]"] = self.reaction_moments[:, j]
+        return cols
+
+    def __repr__(self) -> str:
+        peak = np.nanmax(np.abs(self.input_forces), axis=0) if self.N else []
+        efforts = ", ".join(f"{n}: {p:.4g}" for n, p in zip(self.input_names, peak))
+        return f"InverseDynamics('{self.mechanism.name}', N={self.N}, peak |effort| {{{efforts}}})"
+
+
+def inverse(model, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayLike = 0.0, *,
+            loads: Loads | None = None, masses: MassProperties | None = None,
+            t: ArrayLike = 0.0, reactions: bool = True) -> InverseDynamics:
+    """Actuator efforts that produce a motion, with the joint reactions and shaking force.
+
+    Kane's equations (the notes' ``C^T D f = 0``, seed 003 eq. 58-66) in the independent
+    coordinates q: with K and L from the kinematics engine, the generalised inertia force
+    is ``F* = sum K_G^T m a_G + K_theta^T I alpha`` and the loads give ``Q``; the
+    actuators supply the rest, ``tau = F* - Q``.  The reactions come from the free-body
+    (Newton-Euler) equations of every moving link, solved for all samples at once; they
+    give the same efforts, which the tests check.
+
+    Parameters
+    ----------
+    model : Mechanism
+        With mass data on its links (or pass ``masses``).
+    q : float or array_like, shape () or (N,); (M,) or (N, M) when M > 1
+        Input coordinates, rad or m.
+    qd, qdd : float or array_like, broadcast to the shape of q
+        Their rates and accelerations.
+    loads : Loads, optional
+        Gravity, forces, torques, springs and dampers (default: none).
+    masses : MassProperties, optional
+        Default ``MassProperties.from_model(model)``: every moving link needs mass data.
+    t : float or array_like, shape () or (N,)
+        Time of each sample, s, for loads that depend on time (default 0).
+    reactions : bool
+        Also solve for the joint reactions and the shaking force (default True).
+
+    Returns
+    -------
+    InverseDynamics
+        ``input_forces`` (N, M), ``reactions(joint)`` (N, 2), ``shaking_force`` (N, 2) ...
+        At singular configurations (``kinematics.singular``) the forces are NaN.
+
+    Raises
+    ------
+    ModelError
+        Missing or invalid mass data, a load naming an unknown point or link.
+
+    References
+    ----------
+    Seed 003 §5 (Gibbs-Appell / Kane); Kane and Levinson, *Dynamics: Theory and
+    Applications* (1985), ch. 6.
+
+    Examples
+    --------
+    A pendulum held still at angle theta needs ``tau = m g L cos(theta)`` (seed 003 §5):
+
+    >>> from kinelab.model import Mechanism, Point, Link, Joint, Input
+    >>> from kinelab.dynamics import Loads, inverse
+    >>> pendulum = Mechanism("pendulum", (Point("O", 0, 0), Point("G", 0.5, 0)),
+    ...     (Link("ground", ("O",), ground=True),
+    ...      Link("arm", ("O", "G"), mass=2.0, center_of_mass="G", inertia=0.01)),
+    ...     (Joint("pivot", "R", ("ground", "arm"), point="O"),), (Input(joint="pivot"),))
+    >>> res = inverse(pendulum, q=[0.0, np.pi / 3], loads=Loads(gravity=(0.0, -10.0)))
+    >>> res.input_forces                       # 2 kg * 10 m/s^2 * 0.5 m * cos(theta)
+    array([[10.],
+           [ 5.]])
+    >>> res.reactions("pivot")                 # the pivot carries the weight
+    array([[ 0., 20.],
+           [ 0., 20.]])
+    """
+    system = build_system(model, loads, masses)
+    sol = analyze(model, q, qd, qdd)
+    tt = times(t, sol.N)
+    terms = evaluate(system, sol, tt)
+    tau = terms.inertia - terms.applied
+    ne = newton_euler(system, sol, terms, tau_known=None) if reactions else None
+    return InverseDynamics(
+        kinematics=sol, t=tt, input_forces=tau, inertia_forces=terms.inertia,
+        load_forces=terms.applied, kinetic_energy=terms.kinetic,
+        potential_energy=terms.potential, energy_rate=terms.energy_rate,
+        actuator_power=np.einsum("nm,nm->n", tau, sol.qd), applied_power=terms.applied_power,
+        dissipation=terms.dissipation,
+        shaking_force=ne["shaking_force"] if ne else None,
+        shaking_moment=ne["shaking_moment"] if ne else None,
+        joint_names=model.joint_names,
+        reaction_forces=ne["forces"] if ne else None,
+        reaction_moments=ne["moments"] if ne else None,
+        reactions_unique=ne["unique"] if ne else True,
+        newton_euler_efforts=ne["efforts"] if ne else None)
+
+
+def _cross(r: np.ndarray, f: np.ndarray) -> np.ndarray:
+    return r[..., 0] * f[..., 1] - r[..., 1] * f[..., 0]
+
+
+def newton_euler(system: System, sol: KinematicSolution, terms: Terms, tau_known=None) -> dict:
+    """Solve the free-body equations of every moving link, for all samples at once.
+
+    Unknowns: at each revolute joint the force (x, y) on its second link; at each
+    prismatic joint the normal force and the moment on its slider; each actuator's
+    effort.  Equations: force (x, y) and moment balance of each moving link, moments
+    about the link's first point.  What the links push on the ground gives the shaking
+    force and moment.
+    """
+    m = system.model
+    p = plan(m)
+    N = sol.N
+    ground = m.ground.name
+    moving = [n for n in m.link_names if n != ground]
+    row = {n: 3 * i for i, n in enumerate(moving)}
+    J = len(m.joints)
+    M = system.M
+    nu = 2 * J + M
+    A = np.zeros((N, 3 * len(moving), nu))
+    b = np.zeros((N, 3 * len(moving)))
+    G = np.zeros((N, 3, nu))        # force (x, y) and moment about the origin on the ground
+    g0 = np.zeros((N, 3))
+
+    def pos(point):
+        i = p.point_item[point]
+        return sol.jets[:, i:i + 2, 0]
+    ref = {n: pos(m.link(n).points[0]) for n in moving}
+
+    def on(link, force, at, col=None, moment=None):
+        """Add a force (N, 2) at a point (N, 2) and a moment (N,) acting on a link, as
+        coefficients of unknown ``col`` or, with col None, as a known load."""
+        if link == ground:
+            target = (G[:, :, col] if col is not None else g0)
+            if force is not None:
+                target[:, :2] += force
+                target[:, 2] += _cross(at, force)
+            if moment is not None:
+                target[:, 2] += moment
+            return
+        r = row[link]
+        if col is not None:
+            if force is not None:
+                A[:, r:r + 2, col] += force
+                A[:, r + 2, col] += _cross(at - ref[link], force)
+            if moment is not None:
+                A[:, r + 2, col] += moment
+        else:   # a known load moves to the right-hand side
+            if force is not None:
+                b[:, r:r + 2] -= force
+                b[:, r + 2] -= _cross(at - ref[link], force)
+            if moment is not None:
+                b[:, r + 2] -= moment
+
+    ones = np.ones(N)
+    ex, ey = np.tile([1.0, 0.0], (N, 1)), np.tile([0.0, 1.0], (N, 1))
+
+    def axis(j):
+        gi = p.link_index[j.links[0]]
+        th = sol.jets[:, gi, 0] - p.sketch_angles[gi] + math.atan2(j.axis[1], j.axis[0])
+        return np.stack([np.cos(th), np.sin(th)], axis=-1)
+
+    for c, j in enumerate(m.joints):
+        a, s = j.links
+        at = pos(j.point)
+        if j.type == "R":
+            for k, e in enumerate((ex, ey)):
+                on(s, e, at, 2 * c + k)
+                on(a, -e, at, 2 * c + k)
+        else:
+            u = axis(j)
+            n = np.stack([-u[:, 1], u[:, 0]], axis=-1)
+            on(s, n, at, 2 * c)
+            on(a, -n, at, 2 * c)
+            on(s, None, at, 2 * c + 1, ones)
+            on(a, None, at, 2 * c + 1, -ones)
+    for k, inp in enumerate(m.inputs):
+        col = 2 * J + k
+        if inp.joint is not None and m.joint(inp.joint).type == "P":
+            j = m.joint(inp.joint)
+            u = axis(j)
+            at = pos(j.point)
+            on(j.links[1], u, at, col)
+            on(j.links[0], -u, at, col)
+        else:
+            a, s = m.joint(inp.joint).links if inp.joint is not None else inp.links
+            on(s, None, None, col, ones)
+            on(a, None, None, col, -ones)
+    # inertia and gravity of every mass, on the link that carries it
+    r, v, acc, _ = point_block(sol, system.t_items)
+    for i, (link, mass) in enumerate(zip(system.t_links, system.t_mass)):
+        if link == ground:
+            continue
+        rr = row[link]
+        b[:, rr:rr + 2] += mass * acc[:, i]
+        b[:, rr + 2] += _cross(r[:, i] - ref[link], mass * acc[:, i])
+        on(link, mass * np.broadcast_to(system.gravity, (N, 2)), r[:, i])
+    li = {item: name for name, item in p.link_index.items()}
+    for item, inertia in zip(system.r_items, system.r_inertia):
+        b[:, row[li[item]] + 2] += inertia * sol.rates[:, item, 1]
+    # loads
+    loads = system.loads
+    for i, f in enumerate(loads.forces):
+        link = default_carrier(m, f.point, f.link)
+        if link != ground:     # a force on the ground itself does not load the linkage
+            on(link, terms.forces[:, i], pos(f.point))
+    for i, tq in enumerate(loads.torques):
+        if tq.link != ground:
+            on(tq.link, None, None, None, terms.torques[:, i])
+        if tq.reacting is not None:
+            on(tq.reacting, None, None, None, -terms.torques[:, i])
+    for i, s in enumerate(tuple(loads.springs) + tuple(loads.dampers)):
+        pull = terms.tensions[:, i, None] * terms.directions[:, i]     # on the first end
+        for end, sign in ((0, 1.0), (1, -1.0)):
+            link = default_carrier(m, s.points[end], s.links[end])
+            on(link, sign * pull, pos(s.points[end]))
+    # solve every sample at once; singular samples (NaN kinematics) stay NaN
+    x = np.full((N, nu), np.nan)
+    ok = np.isfinite(b).all(axis=1) & np.isfinite(A).all(axis=(1, 2))
+    unique = A.shape[1] == nu
+    if ok.any():
+        if unique:
+            try:
+                x[ok] = np.linalg.solve(A[ok], b[ok][..., None])[..., 0]
+            except np.linalg.LinAlgError:
+                unique = False
+        if not unique:
+            x[ok] = np.einsum("nij,nj->ni", np.linalg.pinv(A[ok]), b[ok])
+    shaking = np.einsum("nkc,nc->nk", G, x) + g0
+    forces = np.zeros((N, J, 2))
+    moments = np.zeros((N, J))
+    for c, j in enumerate(m.joints):
+        if j.type == "R":
+            forces[:, c] = x[:, 2 * c:2 * c + 2]
+        else:
+            u = axis(j)
+            forces[:, c] = x[:, 2 * c, None] * np.stack([-u[:, 1], u[:, 0]], axis=-1)
+            moments[:, c] = x[:, 2 * c + 1]
+    return dict(forces=forces, moments=moments, efforts=x[:, 2 * J:], unique=unique,
+                shaking_force=shaking[:, :2], shaking_moment=shaking[:, 2])

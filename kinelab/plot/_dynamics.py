@@ -1,0 +1,129 @@
+"""Figures of dynamics results: actuator efforts, joint reactions, shaking, energy.
+
+matplotlib is imported inside the functions, so ``import kinelab`` never needs it.  Each
+function draws on a new figure (or the one given) and returns the figure.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from kinelab.dynamics import InverseDynamics, Simulation
+
+__all__ = ["effort_curves", "reaction_curves", "shaking_curves", "energy_curves"]
+
+
+def _pyplot():
+    import matplotlib.pyplot as plt     # lazy: drawing is the only thing that needs it
+    return plt
+
+
+def _abscissa(res, degrees: bool) -> tuple[np.ndarray, str]:
+    """The input for a one-input sweep, else time (or the sample number for a still sweep)."""
+    kinds = res.input_kinds
+    if isinstance(res, InverseDynamics) and res.M == 1:
+        name, kind = res.input_names[0], kinds[0]
+        if kind == "angle":
+            return (np.degrees(res.q[:, 0]), f"{name} [deg]") if degrees else (res.q[:, 0], f"{name} [rad]")
+        return res.q[:, 0], f"{name} [m]"
+    if np.ptp(res.t) > 0:
+        return res.t, "t [s]"
+    return np.arange(len(res.t)), "sample"
+
+
+def _figure(figure, rows: int):
+    plt = _pyplot()
+    fig = figure if figure is not None else plt.figure(figsize=(8, 2.6 * rows + 0.6))
+    return fig, fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
+
+
+def effort_curves(res: InverseDynamics | Simulation, *, degrees: bool = False, figure=None):
+    """Each actuator's effort (torque or force) against the input or time.
+
+    Examples
+    --------
+    >>> from kinelab.dynamics import inverse, Loads
+    >>> from kinelab.model import Mechanism, Point, Link, Joint, Input
+    >>> m = Mechanism("pendulum", (Point("O", 0, 0), Point("G", 0.5, 0)),
+    ...     (Link("ground", ("O",), ground=True),
+    ...      Link("arm", ("O", "G"), mass=2.0, center_of_mass="G", inertia=0.01)),
+    ...     (Joint("pivot", "R", ("ground", "arm"), point="O"),), (Input(joint="pivot"),))
+    >>> res = inverse(m, np.linspace(0, 2 * np.pi, 37), loads=Loads(gravity=(0, -9.81)))
+    >>> from kinelab.plot._dynamics import effort_curves
+    >>> fig = effort_curves(res, degrees=True)
+    >>> fig.axes[0].get_ylabel()
+    'pivot [N m]'
+    """
+    kinds = res.input_kinds
+    fig, axes = _figure(figure, len(kinds))
+    x, label = _abscissa(res, degrees)
+    for ax, name, kind, y in zip(axes, res.input_names, kinds, res.input_forces.T):
+        ax.plot(x, y)
+        ax.set_ylabel(f"{name} [{'N m' if kind == 'angle' else 'N'}]")
+        ax.grid(True, alpha=0.3)
+    axes[0].set_title(f"{res.mechanism.name}: actuator efforts")
+    axes[-1].set_xlabel(label)
+    return fig
+
+
+def reaction_curves(res: InverseDynamics, joints=None, *, degrees: bool = False, figure=None):
+    """The magnitude of each joint's reaction force (and a prismatic joint's moment)."""
+    joints = list(res.joint_names if joints is None else joints)
+    fig, axes = _figure(figure, 2 if any(res.mechanism.joint(j).type == "P" for j in joints) else 1)
+    x, label = _abscissa(res, degrees)
+    for j in joints:
+        axes[0].plot(x, np.hypot(*res.reactions(j).T), label=j)
+    axes[0].set_ylabel("|reaction| [N]")
+    axes[0].legend(loc="best", fontsize="small")
+    axes[0].set_title(f"{res.mechanism.name}: joint reactions")
+    if len(axes) > 1:
+        for j in joints:
+            if res.mechanism.joint(j).type == "P":
+                axes[1].plot(x, res.reaction_moment(j), label=j)
+        axes[1].set_ylabel("slide moment [N m]")
+        axes[1].legend(loc="best", fontsize="small")
+    for ax in axes:
+        ax.grid(True, alpha=0.3)
+    axes[-1].set_xlabel(label)
+    return fig
+
+
+def shaking_curves(res: InverseDynamics, *, degrees: bool = False, figure=None):
+    """The shaking force as a polar trace (its tip over the cycle) and the shaking moment."""
+    plt = _pyplot()
+    fig = figure if figure is not None else plt.figure(figsize=(10, 4.2))
+    left, right = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1, 1.6]})
+    F = res.shaking_force
+    left.plot(F[:, 0], F[:, 1])
+    left.plot([0], [0], "k+")
+    left.set_aspect("equal", adjustable="datalim")
+    left.set_xlabel("Fx [N]")
+    left.set_ylabel("Fy [N]")
+    left.set_title("shaking force on the ground")
+    x, label = _abscissa(res, degrees)
+    right.plot(x, res.shaking_moment)
+    right.set_xlabel(label)
+    right.set_ylabel("shaking moment about O [N m]")
+    for ax in (left, right):
+        ax.grid(True, alpha=0.3)
+    fig.suptitle(res.mechanism.name)
+    return fig
+
+
+def energy_curves(sim: Simulation, *, figure=None):
+    """Kinetic, potential and mechanical energy of a simulation, the work done on it, and
+    the energy balance (which should stay at the integration error)."""
+    fig, axes = _figure(figure, 2)
+    for label in ("kinetic_energy", "potential_energy", "energy", "actuator_work", "applied_work",
+                  "dissipated"):
+        y = getattr(sim, label)
+        if np.any(y != 0):
+            axes[0].plot(sim.t, y, label=label.replace("_", " "))
+    axes[0].set_ylabel("J")
+    axes[0].legend(loc="best", fontsize="small")
+    axes[0].set_title(f"{sim.mechanism.name}: energy")
+    axes[1].plot(sim.t, sim.energy_balance)
+    axes[1].set_ylabel("balance [J]")
+    axes[1].set_xlabel("t [s]")
+    for ax in axes:
+        ax.grid(True, alpha=0.3)
+    return fig
