@@ -5,6 +5,7 @@ room adds its commands with ``main.add_command(command)``.
 """
 from kinelab.cli._analyze import analyze, check
 from kinelab.cli._draw import animate, plot
+from kinelab.cli._dynamics import dynamics_command
 from kinelab.cli._exchange import export, import_
 from kinelab.cli._main import main
 from kinelab.cli._structure import mobility, types
@@ -19,5 +20,6 @@ main.add_command(import_)
 main.add_command(mobility)
 main.add_command(types)
 main.add_command(synth)
+main.add_command(dynamics_command)
 
 __all__ = ["main"]

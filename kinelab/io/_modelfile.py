@@ -43,9 +43,9 @@ CATALOGUE_KINDS = ("fourbar", "slider_crank", "inverted_slider_crank", "slotted_
                    "whitworth", "fivebar", "watt6", "stephenson6", "triad6")
 
 _TOP = ("schema", "name", "description", "space", "units", "points", "links", "joints",
-        "inputs", "sweep", "catalogue", "outputs")
-_RESERVED = {key: "reserved for dynamics (masses, forces, gravity), which a later version of "
-             "kinelab reads; remove it for now" for key in ("dynamics", "forces", "gravity", "loads")}
+        "inputs", "sweep", "catalogue", "outputs", "dynamics")
+_RESERVED = {key: "loads belong in the [dynamics] section (see docs/dynamics.md); move it there"
+             for key in ("forces", "gravity", "loads")}
 _LINK = ("name", "points", "ground", "length", "mass", "center_of_mass", "inertia")
 _JOINT = ("name", "type", "links", "point", "axis", "origin", "axis2", "pitch")
 _INPUT = ("joint", "links", "name", "range", "speed", "acceleration", "samples")
@@ -353,6 +353,8 @@ class _Parser:
             mech, samples = self.explicit(top, units, name, space)
         if r.problems:
             self.fail()
+        if "dynamics" in top:
+            mech = self.dynamics(top["dynamics"], mech)
         outputs = self.outputs(top.get("outputs"), mech) if "outputs" in top else Outputs()
         if samples and sweep == "together" and len(set(samples)) > 1:
             r.fail("inputs", f"samples: expected the same number for every input when sweep = "
@@ -363,6 +365,21 @@ class _Parser:
                          outputs=outputs, description=description, source=self.source)
 
     # -- sections ----------------------------------------------------------------------------
+    def dynamics(self, value, mech: Mechanism) -> Mechanism:
+        """The [dynamics] section (SI units), checked against the model and kept, as plain
+        data, in ``mechanism.parameters["dynamics"]`` for kinelab.dynamics."""
+        from kinelab.dynamics import DynamicsSetup
+
+        try:
+            setup = DynamicsSetup.from_dict(value, where="dynamics")
+            setup.check(mech)
+        except ModelError as exc:
+            for problem in exc.problems:
+                field, _, what = problem.partition(": ")
+                self.r.fail(field, what)
+            return mech
+        return dataclasses.replace(mech, parameters={**mech.parameters, "dynamics": setup.to_dict()})
+
     def units(self, value) -> Units:
         if value is None:
             return Units()
@@ -778,6 +795,7 @@ def _dump(mf: ModelFile) -> dict[str, Any]:
     if inputs:
         out["inputs"] = inputs
     params = dict(m.parameters)
+    dynamics = params.pop("dynamics", None)
     if params.get("kind") in CATALOGUE_KINDS:
         cat: dict[str, Any] = {"kind": params.pop("kind")}
         for key, v in params.items():
@@ -801,6 +819,8 @@ def _dump(mf: ModelFile) -> dict[str, Any]:
         if mf.outputs.time_ratio:
             o["time_ratio"] = mf.outputs.time_ratio
         out["outputs"] = o
+    if dynamics:
+        out["dynamics"] = dynamics
     return out
 
 

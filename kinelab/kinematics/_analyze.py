@@ -18,6 +18,7 @@ __all__ = ["analyze", "plan", "reachable_ranges"]
 
 SINGULAR_TOL = 1e-7   # singularity measure (a sine) below which det J is zero to rounding
 _CONTINUATION_STEP = 0.05  # largest continuation step of a Newton group, rad (or m / scale)
+_PARALLEL_FROM = 4096      # samples from which the closed-form kernel uses the thread pool
 
 
 def plan(mechanism: Mechanism, *, method: Literal["auto", "newton"] = "auto") -> Plan:
@@ -81,8 +82,9 @@ def _run(p: Plan, q, qd, qdd):
                diag=np.empty((N, 3)), status=np.empty(N, np.int8), failed=np.empty(N, np.int32))
     tail = (out["jets"], out["rates"], out["diag"], out["status"], out["failed"])
     if p.groups is None:
-        k.run_closed_form(q, qd, qdd, p.ops_i, p.ops_f, p.const_items, p.const_values,
-                          p.n_items, p.n_angles, p.n_out, *tail, M)
+        run = k.run_closed_form if N >= _PARALLEL_FROM else k.run_closed_form_serial
+        run(q, qd, qdd, p.ops_i, p.ops_f, p.const_items, p.const_values, p.n_items, p.n_angles,
+            p.n_out, *tail, M)
     else:
         # continuation steps of at most 0.05 rad (or 0.05 sizes of the mechanism for slides)
         max_step = _CONTINUATION_STEP * (1.0 if all(kd == "angle" for kd in p.input_kinds)

@@ -897,6 +897,26 @@ def _new_jet(n_items, M, const_items, const_values):
     return jet
 
 
+@_jit()
+def _closed_form_chunk(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_items,
+                       n_angles, n_out, o_jet, o_rate, o_diag, o_status, o_failed, M):
+    """Samples lo:hi of a plan without Newton groups, with their own scratch state."""
+    jet = _new_jet(n_items, M, const_items, const_values)
+    Kt = np.zeros(M)
+    Kt2 = np.zeros(M)
+    Lt = np.zeros((M, M))
+    res = np.zeros(4)
+    gi = np.zeros((1, 8), np.int64)      # no Newton group: empty stand-ins
+    gf = np.zeros((1, 8))
+    g1 = np.zeros(1)
+    g2 = np.zeros((1, M))
+    g3 = np.zeros((1, M, M))
+    piv = np.zeros(1, np.int64)
+    _evaluate(q, qd, qdd, lo, hi, True, ops_i, ops_f, jet, M, Kt, Kt2, Lt, gi, gi, gf, 1.0,
+              g1, g2, g3, g2, g1, g1, piv, res, n_angles, n_out, o_jet, o_rate, o_diag,
+              o_status, o_failed)
+
+
 @_jit(parallel=True)
 def run_closed_form(q, qd, qdd, ops_i, ops_f, const_items, const_values, n_items, n_angles,
                     n_out, o_jet, o_rate, o_diag, o_status, o_failed, M):
@@ -908,22 +928,18 @@ def run_closed_form(q, qd, qdd, ops_i, ops_f, const_items, const_values, n_items
     N = q.shape[0]
     nchunks = min(N, 64)
     for c in prange(nchunks):
-        lo = c * N // nchunks
-        hi = (c + 1) * N // nchunks
-        jet = _new_jet(n_items, M, const_items, const_values)
-        Kt = np.zeros(M)
-        Kt2 = np.zeros(M)
-        Lt = np.zeros((M, M))
-        res = np.zeros(4)
-        gi = np.zeros((1, 8), np.int64)
-        gf = np.zeros((1, 8))
-        g1 = np.zeros(1)
-        g2 = np.zeros((1, M))
-        g3 = np.zeros((1, M, M))
-        piv = np.zeros(1, np.int64)
-        _evaluate(q, qd, qdd, lo, hi, True, ops_i, ops_f, jet, M, Kt, Kt2, Lt, gi, gi, gf, 1.0,
-                  g1, g2, g3, g2, g1, g1, piv, res, n_angles, n_out, o_jet, o_rate, o_diag,
-                  o_status, o_failed)
+        _closed_form_chunk(q, qd, qdd, c * N // nchunks, (c + 1) * N // nchunks, ops_i, ops_f,
+                           const_items, const_values, n_items, n_angles, n_out, o_jet, o_rate,
+                           o_diag, o_status, o_failed, M)
+
+
+@_jit()
+def run_closed_form_serial(q, qd, qdd, ops_i, ops_f, const_items, const_values, n_items,
+                           n_angles, n_out, o_jet, o_rate, o_diag, o_status, o_failed, M):
+    """As :func:`run_closed_form` on the calling thread: for a few samples, waking the
+    thread pool costs more than the work."""
+    _closed_form_chunk(q, qd, qdd, 0, q.shape[0], ops_i, ops_f, const_items, const_values,
+                       n_items, n_angles, n_out, o_jet, o_rate, o_diag, o_status, o_failed, M)
 
 
 @_jit()

@@ -4,11 +4,15 @@
 (K and L), :func:`coupler_curve`, :func:`transmission`, :func:`mechanism` (the linkage at one
 sample), :func:`animate` (GIF or MP4) and :func:`save` (a figure, atomically).
 
+Dynamics: :func:`effort_curves`, :func:`reaction_curves`, :func:`shaking_curves`,
+:func:`energy_curves`.
+
 Synthesis: :func:`prescribed_positions` (and their poles), :func:`motion_solution` (the
 linkage in each position), :func:`burmester_curves`, :func:`structural_error`,
 :func:`path_solution`.
 """
 from kinelab.plot._animate import animate, can_write_mp4
+from kinelab.plot._dynamics import effort_curves, energy_curves, reaction_curves, shaking_curves
 from kinelab.plot._figures import (coefficients, coupler_curve, curves, input_axis, mechanism, save,
                                    transmission)
 from kinelab.plot._synthesis import (burmester_curves, motion_solution, path_solution,
@@ -16,4 +20,5 @@ from kinelab.plot._synthesis import (burmester_curves, motion_solution, path_sol
 
 __all__ = ["curves", "coefficients", "coupler_curve", "transmission", "mechanism", "animate",
            "save", "can_write_mp4", "input_axis", "prescribed_positions", "motion_solution",
-           "burmester_curves", "structural_error", "path_solution"]
+           "burmester_curves", "structural_error", "path_solution", "effort_curves",
+           "reaction_curves", "shaking_curves", "energy_curves"]

@@ -81,15 +81,16 @@ CASES = [
     ("unknown top-level field", _replace('name = "fb"', 'nme = "fb"'),
      "fb.toml: nme: unknown field (did you mean 'name'?); valid fields are 'schema', 'name', "
      "'description', 'space', 'units', 'points', 'links', 'joints', 'inputs', 'sweep', "
-     "'catalogue', 'outputs'"),
+     "'catalogue', 'outputs', 'dynamics'"),
     ("unknown link field", _replace('ground = true', 'groud = true'),
      "fb.toml: links[0].groud: unknown field (did you mean 'ground'?); valid fields are 'name', "
      "'points', 'ground', 'length', 'mass', 'center_of_mass', 'inertia'"),
     ("unknown units field", _replace('angle = "deg"', 'angle = "deg"\ntime = "s"'),
      "fb.toml: units.time: unknown field; valid fields are 'length', 'angle'"),
-    ("reserved dynamics table", BASE + '\n[dynamics]\ngravity = 9.81\n',
-     "fb.toml: dynamics: reserved for dynamics (masses, forces, gravity), which a later version "
-     "of kinelab reads; remove it for now"),
+    ("gravity outside [dynamics]", 'gravity = [0, -9.81]\n' + BASE,
+     "fb.toml: gravity: loads belong in the [dynamics] section (see docs/dynamics.md); move it there"),
+    ("bad gravity in [dynamics]", BASE + '\n[dynamics]\ngravity = 9.81\n',
+     "fb.toml: dynamics.gravity: expected two finite numbers (gx, gy) in m/s^2, got 9.81"),
     ("unknown point in a link", _replace('points = ["A", "B"]', 'points = ["A", "Q"]'),
      "fb.toml: links[2].points[1]: expected a declared point, got 'Q'; declared points are "
      "'O2', 'A', 'B', 'O4'"),
