@@ -13,7 +13,7 @@ vectorised product of K, L and the mass data over the samples.
 - :func:`flywheel` -- flywheel sizing from a torque curve;
 - :func:`equations_of_motion` -- the equations in symbols (sympy), for open chains.
 """
-from kinelab.dynamics._expressions import parse_expression, parse_table, to_sympy
+from kinelab._expressions import parse_expression, parse_table, to_sympy
 from kinelab.dynamics._flywheel import Flywheel, flywheel
 from kinelab.dynamics._forward import Simulation, simulate
 from kinelab.dynamics._inverse import InverseDynamics, inverse

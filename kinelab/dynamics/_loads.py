@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from kinelab.dynamics._expressions import parse_expression, parse_table
+from kinelab._expressions import parse_expression, parse_table
 from kinelab.errors import ModelError
 from kinelab.model import Mechanism
 

@@ -8,7 +8,7 @@ from typing import Literal
 
 import numpy as np
 
-from kinelab.dynamics._expressions import to_sympy
+from kinelab._expressions import to_sympy
 from kinelab.dynamics._loads import Law, Loads
 from kinelab.dynamics._masses import MassProperties
 from kinelab.dynamics._terms import build_system

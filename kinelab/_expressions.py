@@ -1,4 +1,5 @@
-"""Force laws written as text: arithmetic expressions of t, q, q' and tables to interpolate.
+"""Formulas written as text in files: arithmetic expressions of t, q, q' (force laws) or of
+one variable (a function to generate), and tables to interpolate.
 
 A model file never executes code.  An expression is parsed with :mod:`ast` and checked
 against a small whitelist (numbers, the names ``t``, ``q``, ``qd``, ``pi``, ``e``, the
@@ -26,7 +27,7 @@ import numpy as np
 
 from kinelab.errors import ModelError
 
-__all__ = ["parse_expression", "parse_table", "to_sympy", "FUNCTIONS"]
+__all__ = ["parse_expression", "parse_function", "parse_table", "to_sympy", "FUNCTIONS"]
 
 MAX_LENGTH = 2000   # characters: a force law is a formula, not a program
 
@@ -49,9 +50,9 @@ _COMPARE = {ast.Lt: np.less, ast.LtE: np.less_equal, ast.Gt: np.greater,
 _BOOL = {ast.And: np.logical_and, ast.Or: np.logical_or}
 _STATE = ("t", "q", "qd")
 
-ALLOWED = ("numbers, t, q, qd (q[i], qd[i] with several inputs), pi, e, + - * / ** %, "
-           "comparisons, and/or/not, 'a if c else b' and the functions "
-           + ", ".join(FUNCTIONS))
+_OPERATIONS = ("pi, e, + - * / ** %, comparisons, and/or/not, 'a if c else b' and the "
+               "functions " + ", ".join(FUNCTIONS))
+ALLOWED = "numbers, t, q, qd (q[i], qd[i] with several inputs), " + _OPERATIONS
 
 
 class _Env:
@@ -63,9 +64,10 @@ class _Env:
         self.t, self.q, self.qd = t, q, qd
 
 
-def _refuse(where: str, text: str, what: str) -> ModelError:
+def _refuse(where: str, text: str, what: str, variable: str | None = None) -> ModelError:
+    allowed = ALLOWED if variable is None else f"numbers, {variable}, {_OPERATIONS}"
     return ModelError(f"{where}: {what} is not allowed in the expression {text!r}; "
-                      f"an expression may use {ALLOWED}")
+                      f"an expression may use {allowed}")
 
 
 def parse_expression(text: str, *, where: str = "expression") -> Callable[[Any, Any, Any], np.ndarray]:
@@ -99,18 +101,7 @@ def parse_expression(text: str, *, where: str = "expression") -> Callable[[Any, 
     ...
     kinelab.errors.ModelError: expression: the function '__import__' is not allowed ...
     """
-    if not isinstance(text, str):
-        raise ModelError(f"{where}: expected an expression (text) or a number, got {text!r}")
-    if len(text) > MAX_LENGTH:
-        raise ModelError(f"{where}: the expression is {len(text)} characters long; a force law "
-                         f"is limited to {MAX_LENGTH}; use a table for long laws")
-    try:
-        tree = ast.parse(text.strip(), mode="eval")
-    except SyntaxError as exc:
-        raise ModelError(f"{where}: cannot parse the expression {text!r}: {exc.msg} "
-                         f"(column {exc.offset}); check the brackets and operators") from None
-    except (RecursionError, MemoryError):
-        raise ModelError(f"{where}: the expression {text!r} is nested too deeply") from None
+    tree = _parse(text, where)
     node = _compile(tree.body, where, text)
 
     def law(t, q, qd):
@@ -119,18 +110,67 @@ def parse_expression(text: str, *, where: str = "expression") -> Callable[[Any, 
     return law
 
 
-def _compile(node: ast.AST, where: str, text: str) -> Callable[[_Env], Any]:
-    """A closure computing ``node``; refuses every node type outside the whitelist."""
-    c = lambda n: _compile(n, where, text)   # noqa: E731 - local shorthand
+def parse_function(text: str, variable: str = "x", *, where: str = "expression"
+                   ) -> Callable[[Any], np.ndarray]:
+    """Turn a formula of one variable into a vectorised function, without executing it.
+
+    Same whitelist as :func:`parse_expression`, with ``variable`` the only name.
+
+    Examples
+    --------
+    >>> f = parse_function("log10(x) + x**2")
+    >>> f(np.array([1.0, 10.0]))
+    array([  1., 101.])
+    """
+    tree = _parse(text, where)
+    node = _compile(tree.body, where, text, variable)
+
+    def function(x):
+        x = np.asarray(x, float)
+        return np.broadcast_to(np.asarray(node(_Env(x, None, None)), float), x.shape)
+    function.text = text
+    return function
+
+
+def _parse(text: str, where: str) -> ast.Expression:
+    if not isinstance(text, str):
+        raise ModelError(f"{where}: expected an expression (text) or a number, got {text!r}")
+    if len(text) > MAX_LENGTH:
+        raise ModelError(f"{where}: the expression is {len(text)} characters long; a formula "
+                         f"is limited to {MAX_LENGTH}; use a table for long laws")
+    try:
+        return ast.parse(text.strip(), mode="eval")
+    except SyntaxError as exc:
+        raise ModelError(f"{where}: cannot parse the expression {text!r}: {exc.msg} "
+                         f"(column {exc.offset}); check the brackets and operators") from None
+    except (RecursionError, MemoryError):
+        raise ModelError(f"{where}: the expression {text!r} is nested too deeply") from None
+
+
+def _compile(node: ast.AST, where: str, text: str, variable: str | None = None
+             ) -> Callable[[_Env], Any]:
+    """A closure computing ``node``; refuses every node type outside the whitelist.
+
+    With ``variable`` the formula is of that one name (held in ``env.t``) and t, q, qd are
+    not allowed.
+    """
+    c = lambda n: _compile(n, where, text, variable)   # noqa: E731 - local shorthand
+
+    def _refuse_here(what):
+        return _refuse(where, text, what, variable)
     if isinstance(node, ast.Constant):
         if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
-            raise _refuse(where, text, f"the constant {node.value!r}")
+            raise _refuse_here(f"the constant {node.value!r}")
         value = float(node.value)
         return lambda env: value
     if isinstance(node, ast.Name):
         if node.id in _CONSTANTS:
             value = _CONSTANTS[node.id]
             return lambda env: value
+        if variable is not None:
+            if node.id == variable:
+                return lambda env: env.t
+            raise _refuse_here(f"the name {node.id!r} (the only variable is {variable!r})")
         if node.id == "t":
             return lambda env: env.t
         if node.id in ("q", "qd"):
@@ -143,14 +183,15 @@ def _compile(node: ast.AST, where: str, text: str) -> Callable[[_Env], Any]:
                                      f"{a.shape[1]} inputs; write {name}[0] ... {name}[{a.shape[1] - 1}]")
                 return a[:, 0]
             return whole
-        raise _refuse(where, text, f"the name {node.id!r}")
+        raise _refuse_here(f"the name {node.id!r}")
     if isinstance(node, ast.Subscript):
-        if not (isinstance(node.value, ast.Name) and node.value.id in ("q", "qd")):
-            raise _refuse(where, text, "indexing anything but q or qd")
+        if variable is not None or not (isinstance(node.value, ast.Name)
+                                        and node.value.id in ("q", "qd")):
+            raise _refuse_here("indexing anything but q or qd")
         index = node.slice
         if not (isinstance(index, ast.Constant) and isinstance(index.value, int)
                 and not isinstance(index.value, bool) and index.value >= 0):
-            raise _refuse(where, text, "an index that is not a whole number >= 0")
+            raise _refuse_here("an index that is not a whole number >= 0")
         name, k = node.value.id, index.value
 
         def column(env):
@@ -163,19 +204,19 @@ def _compile(node: ast.AST, where: str, text: str) -> Callable[[_Env], Any]:
     if isinstance(node, ast.BinOp):
         op = _BINARY.get(type(node.op))
         if op is None:
-            raise _refuse(where, text, f"the operator {type(node.op).__name__}")
+            raise _refuse_here(f"the operator {type(node.op).__name__}")
         left, right = c(node.left), c(node.right)
         return lambda env: op(left(env), right(env))
     if isinstance(node, ast.UnaryOp):
         op = _UNARY.get(type(node.op))
         if op is None:
-            raise _refuse(where, text, f"the operator {type(node.op).__name__}")
+            raise _refuse_here(f"the operator {type(node.op).__name__}")
         operand = c(node.operand)
         return lambda env: op(operand(env))
     if isinstance(node, ast.Compare):
         ops = [_COMPARE.get(type(o)) for o in node.ops]
         if None in ops:
-            raise _refuse(where, text, "this comparison")
+            raise _refuse_here("this comparison")
         terms = [c(node.left)] + [c(n) for n in node.comparators]
 
         def compare(env):
@@ -201,16 +242,16 @@ def _compile(node: ast.AST, where: str, text: str) -> Callable[[_Env], Any]:
     if isinstance(node, ast.Call):
         if not isinstance(node.func, ast.Name) or node.func.id not in FUNCTIONS:
             name = node.func.id if isinstance(node.func, ast.Name) else ast.unparse(node.func)
-            raise _refuse(where, text, f"the function {name!r}")
+            raise _refuse_here(f"the function {name!r}")
         if node.keywords:
-            raise _refuse(where, text, "a keyword argument")
+            raise _refuse_here("a keyword argument")
         fn, nargs = FUNCTIONS[node.func.id]
         if len(node.args) != nargs:
             raise ModelError(f"{where}: {node.func.id}() takes {nargs} argument(s), got "
                              f"{len(node.args)} in {text!r}")
         args = [c(a) for a in node.args]
         return lambda env: fn(*(a(env) for a in args))
-    raise _refuse(where, text, f"{type(node).__name__} ({ast.unparse(node)!r})")
+    raise _refuse_here(f"{type(node).__name__} ({ast.unparse(node)!r})")
 
 
 def parse_table(spec: Mapping[str, Any], *, where: str = "table") -> Callable[[Any, Any, Any], np.ndarray]:
