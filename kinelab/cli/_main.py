@@ -77,18 +77,16 @@ def sweep(mf: ModelFile, samples: int | None = None, *, progress: bool | None = 
     if progress is None:
         progress = sys.stderr.isatty()
     p = kinematics.plan(m)
-    # continuation restarts from the sketch in each chunk: the same path only for one input
-    chunkable = not p.uses_newton or len(m.inputs) == 1
     big = len(q) >= (200 if p.uses_newton else 20000)
     with errors_from(mf, "inputs"):
-        if not (progress and chunkable and big):
+        if not (progress and big):
             return kinematics.analyze(m, q, qd, qdd, at_singular="flag")
         return analyze_in_chunks(m, q, qd, qdd, chunks=50, label=f"analysing {m.name}")
 
 
 def analyze_in_chunks(m, q, qd, qdd, *, chunks: int, label: str = "") -> KinematicSolution:
     """``analyze`` over ``q`` in ``chunks`` pieces (a progress bar on stderr when a label is
-    given), joined into one solution."""
+    given), each continuing where the last ended, joined into one solution."""
     parts = []
     bounds = np.linspace(0, len(q), chunks + 1).astype(int)
     pieces = [(a, b) for a, b in zip(bounds[:-1], bounds[1:]) if b > a]
@@ -97,7 +95,8 @@ def analyze_in_chunks(m, q, qd, qdd, *, chunks: int, label: str = "") -> Kinemat
         if bar is not None:
             bar.__enter__()
         for a, b in pieces:
-            parts.append(kinematics.analyze(m, q[a:b], qd[a:b], qdd[a:b], at_singular="flag"))
+            parts.append(kinematics.analyze(m, q[a:b], qd[a:b], qdd[a:b], at_singular="flag",
+                                            start=parts[-1] if parts else None))
             if bar is not None:
                 bar.update(b - a)
     finally:
@@ -108,7 +107,8 @@ def analyze_in_chunks(m, q, qd, qdd, *, chunks: int, label: str = "") -> Kinemat
             for name in ("q", "qd", "qdd", "jets", "rates", "det_J", "singularity", "singular",
                          "assembled")}
     return KinematicSolution(mechanism=m, link_item=first.link_item, point_item=first.point_item,
-                             slide_item=first.slide_item, single=False, **join)
+                             slide_item=first.slide_item, single=False,
+                             newton_state=parts[-1].newton_state, **join)
 
 
 def stem(model: str) -> str:

@@ -355,7 +355,9 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
         if cache.get("key") == key:
             return cache["sol"]
         q, qd = y[None, :M], y[None, M:2 * M]
-        sol = analyze(model, _as_q(q, M), _as_q(qd, M), 0.0, unreachable="mask", at_singular="flag")
+        # Newton groups continue from the last state evaluated: the motion's own branch
+        sol = analyze(model, _as_q(q, M), _as_q(qd, M), 0.0, unreachable="mask", at_singular="flag",
+                      start=cache.get("sol"))
         if not sol.assembled[0]:
             raise _Halt(t, q[0], "assembly")
         if sol.singular[0]:

@@ -76,7 +76,8 @@ def _normalise_q(q, qd, qdd, M):
     return to2(qa), to2(qd_a), to2(qdd_a), single
 
 
-def _run(p: Plan, q, qd, qdd):
+def _run(p: Plan, q, qd, qdd, start=None):
+    """Run the kernel; ``start`` = (q, group state) to continue from instead of the sketch."""
     N, M = q.shape
     out = dict(jets=np.empty((N, p.n_out, 1 + M + M * M)), rates=np.empty((N, p.n_out, 2)),
                diag=np.empty((N, 3)), status=np.empty(N, np.int8), failed=np.empty(N, np.int32))
@@ -86,12 +87,18 @@ def _run(p: Plan, q, qd, qdd):
         run(q, qd, qdd, p.ops_i, p.ops_f, p.const_items, p.const_values, p.n_items, p.n_angles,
             p.n_out, *tail, M)
     else:
+        groups_i, con_i, con_f, x0 = p.groups
+        q0 = p.q_sketch
+        if start is not None:
+            q0, x0 = start
         # continuation steps of at most 0.05 rad (or 0.05 sizes of the mechanism for slides)
         max_step = _CONTINUATION_STEP * (1.0 if all(kd == "angle" for kd in p.input_kinds)
                                          else min(1.0, p.scale))
-        k.run_continuation(q, qd, qdd, p.q_sketch, max_step, p.ops_i, p.ops_f, p.const_items,
-                           p.const_values, p.n_items, p.n_angles, p.n_out, *p.groups, p.scale, *tail,
-                           M)
+        state = np.empty(len(x0) + M)
+        k.run_continuation(q, qd, qdd, np.array(q0, float), max_step, p.ops_i, p.ops_f,
+                           p.const_items, p.const_values, p.n_items, p.n_angles, p.n_out,
+                           groups_i, con_i, con_f, np.array(x0, float), p.scale, *tail, state, M)
+        out["state"] = (state[len(x0):].copy(), state[:len(x0)].copy())
     return out
 
 
@@ -235,7 +242,8 @@ def _check_redundant(p: Plan, jets, ok):
 def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayLike = 0.0, *,
             unreachable: Literal["raise", "mask"] = "raise",
             at_singular: Literal["auto", "raise", "flag"] = "auto",
-            method: Literal["auto", "newton"] = "auto") -> KinematicSolution:
+            method: Literal["auto", "newton"] = "auto",
+            start: KinematicSolution | None = None) -> KinematicSolution:
     """Position, velocity and acceleration of every link, point and slide.
 
     The position equations Phi(q, S) = 0 are solved group by group (see
@@ -262,6 +270,11 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
     method : {"auto", "newton"}
         "auto" solves dyads in closed form and the rest by Newton-Raphson; "newton" uses the
         general Newton engine for every group (to cross-check).
+    start : KinematicSolution, optional
+        An earlier analysis of the same mechanism: Newton groups continue from where it
+        ended (its last assembled sample) instead of from the sketch, so a sweep can be run
+        in pieces, or a simulation can follow the motion step by step, on the branch it is
+        on.  Closed-form groups need no start and ignore it.
 
     Returns
     -------
@@ -285,7 +298,16 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
     if at_singular not in ("auto", "raise", "flag"):
         raise ModelError(f"at_singular: expected one of 'auto', 'raise', 'flag', got '{at_singular}'")
     q2, qd2, qdd2, single = _normalise_q(q, qd, qdd, M)
-    out = _run(p, q2, qd2, qdd2)
+    resume = None
+    if start is not None:
+        if not isinstance(start, KinematicSolution) or start.mechanism != mechanism:
+            raise ModelError("start: expected an earlier KinematicSolution of this mechanism")
+        if p.groups is not None:
+            if start.newton_state is None:
+                raise ModelError("start: the earlier analysis used another method; analyze "
+                                 "with the same method to continue from it")
+            resume = start.newton_state
+    out = _run(p, q2, qd2, qdd2, resume)
     jets, rates, diag = out["jets"], out["rates"], out["diag"]
     ok = out["status"] == k.ST_OK
     if not ok.all():
@@ -324,4 +346,4 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
         mechanism=mechanism, q=q2, qd=qd2, qdd=qdd2, jets=jets, rates=rates,
         det_J=diag[:, 0], singularity=diag[:, 1], singular=singular, assembled=ok,
         link_item=dict(p.link_index), point_item=dict(p.point_item),
-        slide_item=dict(p.slide_item), single=single)
+        slide_item=dict(p.slide_item), single=single, newton_state=out.get("state"))

@@ -945,12 +945,14 @@ def run_closed_form_serial(q, qd, qdd, ops_i, ops_f, const_items, const_values, 
 @_jit()
 def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
                      n_items, n_angles, n_out, groups_i, con_i, con_f, grp_x0, scale,
-                     o_jet, o_rate, o_diag, o_status, o_failed, M):
-    """Evaluate a plan with Newton groups, following the samples in order from the sketch.
+                     o_jet, o_rate, o_diag, o_status, o_failed, o_state, M):
+    """Evaluate a plan with Newton groups, following the samples in order from a start.
 
-    Each step from the previous input to the next is split so that no step exceeds
-    ``max_step`` (Euclidean, in input units), and halved again while a Newton group fails
-    to converge or jumps (its correction is large against the predicted step).
+    The start is the groups' state ``grp_x0`` at input ``q_start`` (the sketch, or where an
+    earlier run ended).  Each step from the previous input to the next is split so that no
+    step exceeds ``max_step`` (Euclidean, in input units), and halved again while a Newton
+    group fails to converge or jumps (its correction is large against the predicted step).
+    On return ``o_state`` holds the groups' state and the input where the run ended.
     """
     N = q.shape[0]
     ng = groups_i.shape[0]
@@ -988,6 +990,8 @@ def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, c
         for i in range(N):
             o_status[i] = st0
             o_failed[i] = int(res[3])
+        o_state[:nx] = grp_x0
+        o_state[nx:] = q_start
         return
     for i in range(N):
         dist = 0.0
@@ -1029,3 +1033,5 @@ def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, c
         # the next sample starts where the mechanism last assembled
         for m in range(M):
             qprev[m] = qprev[m] + t * (q[i, m] - qprev[m])
+    o_state[:nx] = gx
+    o_state[nx:] = qprev

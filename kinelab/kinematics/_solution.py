@@ -85,6 +85,8 @@ class KinematicSolution:
     point_item: dict[str, int]
     slide_item: dict[str, int]
     single: bool = False
+    newton_state: tuple[np.ndarray, np.ndarray] | None = None   # (q, groups' unknowns) at
+                                                                # the end, for analyze(start=)
 
     # -- shape rule ---------------------------------------------------------------------
     @property

@@ -221,3 +221,17 @@ def test_cylinder_reach_is_the_triangle_inequality():
     OD, OC = np.hypot(2.0, 1.2), 0.8
     # at a limit position Newton converges slowly: the bound is good to about 1e-8
     assert lo == pytest.approx(OD - OC, abs=1e-7) and hi == pytest.approx(OD + OC, abs=1e-7)
+
+
+def test_continuing_a_newton_sweep_in_pieces():
+    """A sweep run in two pieces, the second starting where the first ended, equals the whole."""
+    t6 = kl.mechanisms.triad6()
+    q = np.linspace(0.0, 4 * np.pi, 400)          # two full turns
+    whole = kl.analyze(t6, q=q)
+    first = kl.analyze(t6, q=q[:150])
+    second = kl.analyze(t6, q=q[150:], start=first)
+    for name in ("triad", "link4"):
+        np.testing.assert_allclose(second.angle(name), whole.angle(name)[150:], atol=1e-12)
+        np.testing.assert_allclose(second.L(name), whole.L(name)[150:], atol=1e-9)
+    with pytest.raises(kl.errors.ModelError, match="start: expected an earlier KinematicSolution"):
+        kl.analyze(t6, q=q[:3], start=kl.analyze(kl.mechanisms.stephenson6(), q=0.1))
