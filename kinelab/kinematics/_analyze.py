@@ -1,9 +1,13 @@
 """Position, velocity and acceleration analysis of any planar mechanism."""
 from __future__ import annotations
 
+import functools
 import math
+import os
+from concurrent.futures import ThreadPoolExecutor
 from typing import Literal
 
+import numba
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -18,7 +22,7 @@ __all__ = ["analyze", "plan", "reachable_ranges"]
 
 SINGULAR_TOL = 1e-7   # singularity measure (a sine) below which det J is zero to rounding
 _CONTINUATION_STEP = 0.05  # largest continuation step of a Newton group, rad (or m / scale)
-_PARALLEL_FROM = 4096      # samples from which the closed-form kernel uses the thread pool
+_PARALLEL_FROM = 4096      # samples per thread below which a sweep runs on the calling thread
 
 
 def plan(mechanism: Mechanism, *, method: Literal["auto", "newton"] = "auto") -> Plan:
@@ -76,6 +80,15 @@ def _normalise_q(q, qd, qdd, M):
     return to2(qa), to2(qd_a), to2(qdd_a), single
 
 
+def _threads() -> int:
+    return max(1, min(numba.get_num_threads(), os.cpu_count() or 1))
+
+
+@functools.cache
+def _pool(workers: int) -> ThreadPoolExecutor:
+    return ThreadPoolExecutor(max_workers=workers, thread_name_prefix="kinelab")
+
+
 def _run(p: Plan, q, qd, qdd, start=None):
     """Run the kernel; ``start`` = (q, group state) to continue from instead of the sketch."""
     N, M = q.shape
@@ -83,9 +96,20 @@ def _run(p: Plan, q, qd, qdd, start=None):
                diag=np.empty((N, 3)), status=np.empty(N, np.int8), failed=np.empty(N, np.int32))
     tail = (out["jets"], out["rates"], out["diag"], out["status"], out["failed"])
     if p.groups is None:
-        run = k.run_closed_form if N >= _PARALLEL_FROM else k.run_closed_form_serial
-        run(q, qd, qdd, p.ops_i, p.ops_f, p.const_items, p.const_values, p.n_items, p.n_angles,
-            p.n_out, *tail, M)
+        plan_args = (p.ops_i, p.ops_f, p.const_items, p.const_values, p.n_items, p.n_angles,
+                     p.n_out, *tail)
+        if M == 1:
+            def run(lo, hi):
+                k.run_closed_form_one_input(q, qd, qdd, lo, hi, *plan_args)
+        else:
+            def run(lo, hi):
+                k.run_closed_form(q, qd, qdd, lo, hi, *plan_args, M)
+        workers = min(_threads(), N // _PARALLEL_FROM)
+        if workers <= 1:
+            run(0, N)
+        else:   # the kernel releases the GIL: threads share the samples
+            bounds = np.linspace(0, N, workers + 1).astype(int)
+            list(_pool(workers).map(run, bounds[:-1], bounds[1:]))
     else:
         groups_i, con_i, con_f, x0 = p.groups
         q0 = p.q_sketch
@@ -95,9 +119,13 @@ def _run(p: Plan, q, qd, qdd, start=None):
         max_step = _CONTINUATION_STEP * (1.0 if all(kd == "angle" for kd in p.input_kinds)
                                          else min(1.0, p.scale))
         state = np.empty(len(x0) + M)
-        k.run_continuation(q, qd, qdd, np.array(q0, float), max_step, p.ops_i, p.ops_f,
-                           p.const_items, p.const_values, p.n_items, p.n_angles, p.n_out,
-                           groups_i, con_i, con_f, np.array(x0, float), p.scale, *tail, state, M)
+        args = (q, qd, qdd, np.array(q0, float), max_step, p.ops_i, p.ops_f, p.const_items,
+                p.const_values, p.n_items, p.n_angles, p.n_out, groups_i, con_i, con_f,
+                np.array(x0, float), p.scale, *tail, state)
+        if M == 1:
+            k.run_continuation_one_input(*args)
+        else:
+            k.run_continuation(*args, M)
         out["state"] = (state[len(x0):].copy(), state[:len(x0)].copy())
     return out
 

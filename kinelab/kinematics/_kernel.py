@@ -15,15 +15,16 @@ sample in one small array keeps it in cache and makes every call cheap.
 
 Derivatives are exact: every closed form is differentiated by hand; K and L of a dyad come
 from the same 2x2 matrix as its position (Cramer's rule), the notes' J.  For M > 1 inputs
-the second derivatives are bilinear: ``L[m, n] = d2 S / dq_m dq_n``.  Samples run in
-parallel when the plan has no Newton group; continuation is sequential.
+the second derivatives are bilinear: ``L[m, n] = d2 S / dq_m dq_n``.  The entry points
+release the GIL: threads share the samples of a plan without Newton groups; continuation
+is sequential.
 """
 from __future__ import annotations
 
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import njit
 
 
 def _jit(**options):
@@ -898,8 +899,8 @@ def _new_jet(n_items, M, const_items, const_values):
 
 
 @_jit()
-def _closed_form_chunk(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_items,
-                       n_angles, n_out, o_jet, o_rate, o_diag, o_status, o_failed, M):
+def _closed_form(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_items,
+                 n_angles, n_out, o_jet, o_rate, o_diag, o_status, o_failed, M):
     """Samples lo:hi of a plan without Newton groups, with their own scratch state."""
     jet = _new_jet(n_items, M, const_items, const_values)
     Kt = np.zeros(M)
@@ -917,35 +918,35 @@ def _closed_form_chunk(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_valu
               o_status, o_failed)
 
 
-@_jit(parallel=True)
-def run_closed_form(q, qd, qdd, ops_i, ops_f, const_items, const_values, n_items, n_angles,
-                    n_out, o_jet, o_rate, o_diag, o_status, o_failed, M):
-    """Evaluate a plan without Newton groups: samples are independent and run in parallel.
+# The entry points run without the GIL, so that Python threads can share a sweep's samples.
+# Each comes twice: for any number of inputs M, and with M = 1 compiled in as a constant
+# (the common case), which lets the loops over inputs unroll.
+
+@_jit(nogil=True)
+def run_closed_form(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_items,
+                    n_angles, n_out, o_jet, o_rate, o_diag, o_status, o_failed, M):
+    """Evaluate samples lo:hi of a plan without Newton groups (samples are independent).
 
     o_jet (N, n_out, 1 + M + M*M), o_rate (N, n_out, 2), o_diag (N, 3): det, measure, gap;
     M = q.shape[1].
     """
-    N = q.shape[0]
-    nchunks = min(N, 64)
-    for c in prange(nchunks):
-        _closed_form_chunk(q, qd, qdd, c * N // nchunks, (c + 1) * N // nchunks, ops_i, ops_f,
-                           const_items, const_values, n_items, n_angles, n_out, o_jet, o_rate,
-                           o_diag, o_status, o_failed, M)
+    _closed_form(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_items,
+                 n_angles, n_out, o_jet, o_rate, o_diag, o_status, o_failed, M)
+
+
+@_jit(nogil=True)
+def run_closed_form_one_input(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values,
+                              n_items, n_angles, n_out, o_jet, o_rate, o_diag, o_status,
+                              o_failed):
+    """:func:`run_closed_form` for one input."""
+    _closed_form(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_items,
+                 n_angles, n_out, o_jet, o_rate, o_diag, o_status, o_failed, 1)
 
 
 @_jit()
-def run_closed_form_serial(q, qd, qdd, ops_i, ops_f, const_items, const_values, n_items,
-                           n_angles, n_out, o_jet, o_rate, o_diag, o_status, o_failed, M):
-    """As :func:`run_closed_form` on the calling thread: for a few samples, waking the
-    thread pool costs more than the work."""
-    _closed_form_chunk(q, qd, qdd, 0, q.shape[0], ops_i, ops_f, const_items, const_values,
-                       n_items, n_angles, n_out, o_jet, o_rate, o_diag, o_status, o_failed, M)
-
-
-@_jit()
-def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
-                     n_items, n_angles, n_out, groups_i, con_i, con_f, grp_x0, scale,
-                     o_jet, o_rate, o_diag, o_status, o_failed, o_state, M):
+def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
+                  n_items, n_angles, n_out, groups_i, con_i, con_f, grp_x0, scale,
+                  o_jet, o_rate, o_diag, o_status, o_failed, o_state, M):
     """Evaluate a plan with Newton groups, following the samples in order from a start.
 
     The start is the groups' state ``grp_x0`` at input ``q_start`` (the sketch, or where an
@@ -1035,3 +1036,23 @@ def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, c
             qprev[m] = qprev[m] + t * (q[i, m] - qprev[m])
     o_state[:nx] = gx
     o_state[nx:] = qprev
+
+
+@_jit(nogil=True)
+def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
+                     n_items, n_angles, n_out, groups_i, con_i, con_f, grp_x0, scale,
+                     o_jet, o_rate, o_diag, o_status, o_failed, o_state, M):
+    """Evaluate a plan with Newton groups along the samples (see ``_continuation``)."""
+    _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
+                  n_items, n_angles, n_out, groups_i, con_i, con_f, grp_x0, scale,
+                  o_jet, o_rate, o_diag, o_status, o_failed, o_state, M)
+
+
+@_jit(nogil=True)
+def run_continuation_one_input(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items,
+                               const_values, n_items, n_angles, n_out, groups_i, con_i, con_f,
+                               grp_x0, scale, o_jet, o_rate, o_diag, o_status, o_failed, o_state):
+    """:func:`run_continuation` for one input."""
+    _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
+                  n_items, n_angles, n_out, groups_i, con_i, con_f, grp_x0, scale,
+                  o_jet, o_rate, o_diag, o_status, o_failed, o_state, 1)
