@@ -2,8 +2,7 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator, Mapping
-from contextlib import contextmanager
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -179,24 +178,6 @@ def _finite_efforts(out: np.ndarray, t, q) -> np.ndarray:
 
 def _as_q(a: np.ndarray, M: int) -> np.ndarray:
     return a[:, 0] if M == 1 else a
-
-
-@contextmanager
-def _serial() -> Iterator[None]:
-    """Run the compiled kinematics on this thread only.
-
-    Every step of the integration analyses a single configuration; waking the kernel's
-    worker threads for one sample costs far more than the work (about 20x on a busy
-    two-core machine), so the integration asks numba for one thread and restores the
-    setting afterwards.
-    """
-    import numba
-    n = numba.get_num_threads()
-    numba.set_num_threads(1)
-    try:
-        yield
-    finally:
-        numba.set_num_threads(n)
 
 
 class _Halt(Exception):
@@ -390,9 +371,8 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
 
     y0 = np.concatenate([q_init, qd_init, np.zeros(3)])
     try:
-        with _serial():
-            out = solve_ivp(rhs, (t0, t1), y0, method=method, t_eval=t_eval, rtol=rtol, atol=atol,
-                            max_step=max_step, events=near_singular if singular_stop > 0 else None)
+        out = solve_ivp(rhs, (t0, t1), y0, method=method, t_eval=t_eval, rtol=rtol, atol=atol,
+                        max_step=max_step, events=near_singular if singular_stop > 0 else None)
     except _Halt as h:
         where = f"at t = {h.t:.6g} s (q = {np.round(h.q, 6).tolist()})"
         if h.kind == "assembly":
