@@ -270,9 +270,12 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
         for an angle input, a force for a slide.  Inputs not named are free (no effort).
         Also accepted: a sequence of M laws in the order of the inputs (None: free), or
         one callable ``f(t, q, qd)`` returning every effort, shape (M,) or (N, M).
+        Default: the model file's ``[dynamics.actuators]``, else every input free.
     loads : Loads, optional
+        Default: the model file's ``[dynamics]`` loads, else none.
     masses : MassProperties, optional
-        Default ``MassProperties.from_model(model)``.
+        Default: the links' mass data with the ``[dynamics]`` section's massless links and
+        point masses.
     t_eval : array_like, shape (N,), optional
         Output times (default: the integrator's steps).
     method : str
@@ -317,6 +320,9 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
 
     system = build_system(model, loads, masses)
     M = system.M
+    if inputs is None:      # the model file's [dynamics.actuators], if any
+        from kinelab.dynamics._setup import DynamicsSetup
+        inputs = DynamicsSetup.from_model(model).inputs() or None
     actuators = actuator_laws(model, inputs)
     try:
         t0, t1 = (float(v) for v in t_span)

@@ -182,9 +182,11 @@ def inverse(model, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayLike = 0.0, *,
     qd, qdd : float or array_like, broadcast to the shape of q
         Their rates and accelerations.
     loads : Loads, optional
-        Gravity, forces, torques, springs and dampers (default: none).
+        Gravity, forces, torques, springs and dampers.  Default: those of the model file's
+        ``[dynamics]`` section (``model.parameters["dynamics"]``), else none.
     masses : MassProperties, optional
-        Default ``MassProperties.from_model(model)``: every moving link needs mass data.
+        Default: the links' mass data, with the ``[dynamics]`` section's massless links and
+        point masses; every moving link needs mass data.
     t : float or array_like, shape () or (N,)
         Time of each sample, s, for loads that depend on time (default 0).
     reactions : bool

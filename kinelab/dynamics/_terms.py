@@ -58,7 +58,12 @@ def build_system(model: Mechanism, loads: Loads | None, masses: MassProperties |
     """Check loads and masses against the model (every problem at once) and index them."""
     if not isinstance(model, Mechanism):
         raise ModelError(f"model: expected a kinelab Mechanism, got {type(model).__name__}")
-    loads = Loads() if loads is None else loads
+    if loads is None or masses is None:
+        # what the model file's [dynamics] section says (nothing when there is none)
+        from kinelab.dynamics._setup import DynamicsSetup
+        setup = DynamicsSetup.from_model(model)
+        loads = setup.loads if loads is None else loads
+        masses = setup.masses(model) if masses is None else masses
     if not isinstance(loads, Loads):
         raise ModelError(f"loads: expected a kinelab.dynamics.Loads, got {type(loads).__name__}")
     if masses is None:
