@@ -86,11 +86,16 @@ def _rigid_point(jet, p, link, a, rx, ry, M):
 
 
 @_jit()
+def _direction(jet, link, beta):
+    """Unit vector at angle theta_link + beta (a slide direction fixed in the link)."""
+    phi = jet[link, 0] + beta
+    return math.cos(phi), math.sin(phi)
+
+
+@_jit()
 def _line_point(jet, out, base, dirlink, beta, t, Kt, Lt, M):
     """out = base + t u, u at angle theta_dirlink + beta; t with its K (M,) and L (M, M)."""
-    phi = jet[dirlink, 0] + beta
-    ux = math.cos(phi)
-    uy = math.sin(phi)
+    ux, uy = _direction(jet, dirlink, beta)
     jet[out, 0] = jet[base, 0] + t * ux
     jet[out + 1, 0] = jet[base + 1, 0] + t * uy
     for m in range(M):
@@ -109,9 +114,7 @@ def _line_point(jet, out, base, dirlink, beta, t, Kt, Lt, M):
 @_jit()
 def _relative_slide(jet, p, o, g, beta, M, Ks, Ls):
     """s = u . (p - o) with u at angle theta_g + beta; returns s, fills Ks (M,), Ls (M, M)."""
-    phi = jet[g, 0] + beta
-    ux = math.cos(phi)
-    uy = math.sin(phi)
+    ux, uy = _direction(jet, g, beta)
     nx = -uy
     ny = ux
     dx = jet[p, 0] - jet[o, 0]
@@ -191,9 +194,7 @@ def _rrr(jet, b, c, X, Y, Z, lb, lc, sigma, offb, offc, M):
 @_jit()
 def _rrp(jet, b, X, Y, o, g, lb, beta, sigma, offb, M, Ks):
     """Circle-line dyad: Y on the line o + s u (u fixed in link g), |Y - X| = lb."""
-    phi = jet[g, 0] + beta
-    ux = math.cos(phi)
-    uy = math.sin(phi)
+    ux, uy = _direction(jet, g, beta)
     nx = -uy
     ny = ux
     w0x = jet[o, 0] - jet[X, 0]
