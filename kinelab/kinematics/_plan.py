@@ -42,6 +42,8 @@ class Step:
     joints: tuple[str, ...]
     label: str
     op: int = -1               # index of its operation in the plan (groups with a det J)
+    points: tuple[str, ...] = ()   # points that bound the group (for messages)
+    lengths: tuple[float, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -458,7 +460,8 @@ class _Builder:
         self.place(b, self.P[jx.point])
         self.place(c, self.P[jz.point])
         self.steps.append(Step("RRR", (b, c), (jx.name, j.name, jz.name),
-                               f"dyad '{b}'-'{c}' (RRR {jx.point}-{j.point}-{jz.point})", op))
+                               f"dyad '{b}'-'{c}' (RRR {jx.point}-{j.point}-{jz.point})", op,
+                               (jx.point, j.point, jz.point), (lb, lc)))
         return True
 
     def _rrp(self, j, b, c) -> bool:
@@ -483,7 +486,7 @@ class _Builder:
         self.place(c, self.P[j.point])
         self.steps.append(Step("RRP", (b, c), (jx.name, j.name, jp.name),
                                f"dyad '{b}'-'{c}' (RRP {jx.point}-{j.point} on slide '{jp.name}')",
-                               op))
+                               op, (jx.point, j.point), (lb,)))
         return True
 
     def _prp(self, j, b, c) -> bool:
@@ -526,7 +529,8 @@ class _Builder:
         self.place(G, self.P[jz.point])
         self.place(S, self.P[jx.point])
         self.steps.append(Step("RPR", (G, S), (jz.name, j.name, jx.name),
-                               f"dyad '{G}'-'{S}' (RPR {jz.point}-slide '{j.name}'-{jx.point})", op))
+                               f"dyad '{G}'-'{S}' (RPR {jz.point}-slide '{j.name}'-{jx.point})", op,
+                               (jz.point, jx.point)))
         return True
 
     # -- larger groups: Newton-Raphson ------------------------------------------------------
