@@ -42,8 +42,7 @@ class Step:
     joints: tuple[str, ...]
     label: str
     op: int = -1               # index of its operation in the plan (groups with a det J)
-    points: tuple[str, ...] = ()   # points that bound the group (for messages)
-    lengths: tuple[float, ...] = ()
+    points: tuple[str, ...] = ()   # the group's joint points, in order (e.g. X-Y-Z of an RRR)
 
 
 @dataclass(frozen=True)
@@ -461,7 +460,7 @@ class _Builder:
         self.place(c, self.P[jz.point])
         self.steps.append(Step("RRR", (b, c), (jx.name, j.name, jz.name),
                                f"dyad '{b}'-'{c}' (RRR {jx.point}-{j.point}-{jz.point})", op,
-                               (jx.point, j.point, jz.point), (lb, lc)))
+                               (jx.point, j.point, jz.point)))
         return True
 
     def _rrp(self, j, b, c) -> bool:
@@ -486,7 +485,7 @@ class _Builder:
         self.place(c, self.P[j.point])
         self.steps.append(Step("RRP", (b, c), (jx.name, j.name, jp.name),
                                f"dyad '{b}'-'{c}' (RRP {jx.point}-{j.point} on slide '{jp.name}')",
-                               op, (jx.point, j.point), (lb,)))
+                               op, (jx.point, j.point)))
         return True
 
     def _prp(self, j, b, c) -> bool:
