@@ -102,13 +102,7 @@ def analyze_in_chunks(m, q, qd, qdd, *, chunks: int, label: str = "") -> Kinemat
     finally:
         if bar is not None:
             bar.__exit__(None, None, None)
-    first = parts[0]
-    join = {name: np.concatenate([getattr(s, name) for s in parts])
-            for name in ("q", "qd", "qdd", "jets", "rates", "det_J", "singularity", "singular",
-                         "assembled")}
-    return KinematicSolution(mechanism=m, link_item=first.link_item, point_item=first.point_item,
-                             slide_item=first.slide_item, single=False,
-                             newton_state=parts[-1].newton_state, **join)
+    return KinematicSolution.concatenate(parts)
 
 
 def stem(model: str) -> str:

@@ -210,8 +210,8 @@ def drift(sol: KinematicSolution) -> np.ndarray:
     m = sol.mechanism
     p = plan(m)
     xy = {pt.name: np.array(pt.xy) for pt in m.points}
-    pos = {n: sol.jets[:, i:i + 2, 0] for n, i in p.point_item.items()}
-    ang = {n: sol.jets[:, i, 0] - p.sketch_angles[i] for n, i in p.link_index.items()}
+    pos = {n: sol.item_jets([i, i + 1])[:, :, 0] for n, i in p.point_item.items()}
+    ang = {n: sol.item_jets([i])[:, 0, 0] - p.sketch_angles[i] for n, i in p.link_index.items()}
     worst = np.zeros(sol.N)
 
     def wrap(a):

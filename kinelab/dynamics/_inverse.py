@@ -276,7 +276,7 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms, tau_known
 
     def pos(point):
         i = p.point_item[point]
-        return sol.jets[:, i:i + 2, 0]
+        return sol.item_jets([i, i + 1])[:, :, 0]
     ref = {n: pos(m.link(n).points[0]) for n in moving}
 
     def on(link, force, at, col=None, moment=None):
@@ -309,7 +309,7 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms, tau_known
 
     def axis(j):
         gi = p.link_index[j.links[0]]
-        th = sol.jets[:, gi, 0] - p.sketch_angles[gi] + math.atan2(j.axis[1], j.axis[0])
+        th = sol.item_jets([gi])[:, 0, 0] - p.sketch_angles[gi] + math.atan2(j.axis[1], j.axis[0])
         return np.stack([np.cos(th), np.sin(th)], axis=-1)
 
     for c, j in enumerate(m.joints):
@@ -349,7 +349,7 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms, tau_known
         on(link, mass * np.broadcast_to(system.gravity, (N, 2)), r[:, i])
     li = {item: name for name, item in p.link_index.items()}
     for item, inertia in zip(system.r_items, system.r_inertia):
-        b[:, row[li[item]] + 2] += inertia * sol.rates[:, item, 1]
+        b[:, row[li[item]] + 2] += inertia * sol.item_rates([item])[:, 0, 1]
     # loads
     loads = system.loads
     for i, f in enumerate(loads.forces):

@@ -110,8 +110,9 @@ def point_block(sol: KinematicSolution, items: np.ndarray):
     M = sol.q.shape[1]
     xy = np.stack([items, items + 1], axis=-1).ravel()
     N, n = sol.q.shape[0], len(items)
-    return (sol.jets[:, xy, 0].reshape(N, n, 2), sol.rates[:, xy, 0].reshape(N, n, 2),
-            sol.rates[:, xy, 1].reshape(N, n, 2), sol.jets[:, xy, 1:1 + M].reshape(N, n, 2, M))
+    jets, rates = sol.item_jets(xy), sol.item_rates(xy)
+    return (jets[:, :, 0].reshape(N, n, 2), rates[:, :, 0].reshape(N, n, 2),
+            rates[:, :, 1].reshape(N, n, 2), jets[:, :, 1:1 + M].reshape(N, n, 2, M))
 
 
 @dataclass(frozen=True, eq=False)
@@ -138,9 +139,9 @@ def evaluate(system: System, sol: KinematicSolution, t: np.ndarray, *,
     q, qd = sol.q, sol.qd
     N, M = q.shape
     # every x, y of a mass and every angle of a link with inertia, weighted by m or I
-    K = sol.jets[:, system.items, 1:1 + M]
-    value, rate, accel = (sol.jets[:, system.items, 0], sol.rates[:, system.items, 0],
-                          sol.rates[:, system.items, 1])
+    jets, rates = sol.item_jets(system.items), sol.item_rates(system.items)
+    K = jets[:, :, 1:1 + M]
+    value, rate, accel = jets[:, :, 0], rates[:, :, 0], rates[:, :, 1]
     w, weight = system.weights, system.weight
     inertia = np.einsum("nkm,k,nk->nm", K, w, accel)
     applied = np.einsum("nkm,k->nm", K, weight)
@@ -160,11 +161,11 @@ def evaluate(system: System, sol: KinematicSolution, t: np.ndarray, *,
     torques = np.zeros((N, len(loads.torques)))
     for i, (tq, (own, other)) in enumerate(zip(loads.torques, system.torque_items)):
         torques[:, i] = tq.value(t, q, qd)
-        K = sol.jets[:, own, 1:1 + M]
-        w = sol.rates[:, own, 0]
+        K = sol.item_jets([own])[:, 0, 1:1 + M]
+        w = sol.item_rates([own])[:, 0, 0]
         if other >= 0:
-            K = K - sol.jets[:, other, 1:1 + M]
-            w = w - sol.rates[:, other, 0]
+            K = K - sol.item_jets([other])[:, 0, 1:1 + M]
+            w = w - sol.item_rates([other])[:, 0, 0]
         applied = applied + K * torques[:, i:i + 1]
         applied_power = applied_power + w * torques[:, i]
     dissipation = np.zeros(N)

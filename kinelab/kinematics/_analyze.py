@@ -92,12 +92,13 @@ def _pool(workers: int) -> ThreadPoolExecutor:
 def _run(p: Plan, q, qd, qdd, start=None):
     """Run the kernel; ``start`` = (q, group state) to continue from instead of the sketch."""
     N, M = q.shape
-    out = dict(jets=np.empty((N, p.n_out, 1 + M + M * M)), rates=np.empty((N, p.n_out, 2)),
-               diag=np.empty((N, 3)), status=np.empty(N, np.int8), failed=np.empty(N, np.int32))
-    tail = (out["jets"], out["rates"], out["diag"], out["status"], out["failed"])
+    n = len(p.stored_items)
+    out = dict(jets=np.empty((N, n, 1 + M + M * M)), rates=np.empty((N, n, 2)),
+               diag=np.empty((N, 2)), status=np.empty(N, np.int8), fail=np.empty((N, 2)))
+    tail = (out["jets"], out["rates"], out["diag"], out["status"], out["fail"])
     if p.groups is None:
         plan_args = (p.ops_i, p.ops_f, p.const_items, p.const_values, p.n_items, p.n_angles,
-                     p.n_out, *tail)
+                     p.stored_items, *tail)
         if M == 1:
             def run(lo, hi):
                 k.run_closed_form_one_input(q, qd, qdd, lo, hi, *plan_args)
@@ -120,7 +121,7 @@ def _run(p: Plan, q, qd, qdd, start=None):
                                          else min(1.0, p.scale))
         state = np.empty(len(x0) + M)
         args = (q, qd, qdd, np.array(q0, float), max_step, p.ops_i, p.ops_f, p.const_items,
-                p.const_values, p.n_items, p.n_angles, p.n_out, groups_i, con_i, con_f,
+                p.const_values, p.n_items, p.n_angles, p.stored_items, groups_i, con_i, con_f,
                 np.array(x0, float), p.scale, *tail, state)
         if M == 1:
             k.run_continuation_one_input(*args)
@@ -132,12 +133,12 @@ def _run(p: Plan, q, qd, qdd, start=None):
 
 def _describe_failure(p: Plan, out, q, bad: np.ndarray) -> str:
     i = int(bad[0])
-    op = int(out["failed"][i])
+    op = int(out["fail"][i, 1])
     step = p.step_of_op(op)
     where = step.label if step is not None else f"operation {op}"
     qtxt = _format_q(p, q[i])
     if out["status"][i] == k.ST_NO_ASSEMBLY:
-        return f"{where} cannot close at q = {qtxt}: it misses by {out['diag'][i, 2]:.6g} m"
+        return f"{where} cannot close at q = {qtxt}: it misses by {out['fail'][i, 0]:.6g} m"
     return (f"{where} cannot follow the motion to q = {qtxt}: the continuation stopped at a limit "
             "position or a singular configuration")
 
@@ -226,18 +227,20 @@ def _assembles(p: Plan, qs: np.ndarray) -> np.ndarray:
     return res
 
 
-def _check_redundant(p: Plan, jets, ok):
+def _check_redundant(p: Plan, sol: KinematicSolution):
     """Joints the plan did not need must stay closed on their own (parallelogram links)."""
     m = p.mechanism
+    ok = sol.assembled
     tol = 1e-9 * p.scale
     xy = {pt.name: np.array([pt.x, pt.y]) for pt in m.points}
 
     def position(point):
         i = p.point_item[point]
-        return jets[:, i:i + 2, 0]
+        return sol.item_jets([i, i + 1])[:, :, 0]
 
     def angle(link):
-        return jets[:, p.link_index[link], 0] - p.sketch_angles[p.link_index[link]]
+        i = p.link_index[link]
+        return sol.item_jets([i])[:, 0, 0] - p.sketch_angles[i]
 
     def seen_from(link, point):
         ref = next((n for n in m.link(link).points if n != point), None)
@@ -350,12 +353,13 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
                 msg += (f"; reachable q is {spans} {unit}" if reach else
                         "; it assembles nowhere near the sketch")
                 msg += "; narrow the input range (or pass unreachable='mask')"
-            step = p.step_of_op(int(out["failed"][bad[0]]))
-            raise AssemblyError(msg, loop=step.label if step else "", gap=float(diag[bad[0], 2]),
+            gap, op = out["fail"][bad[0]]
+            step = p.step_of_op(int(op))
+            raise AssemblyError(msg, loop=step.label if step else "", gap=float(gap),
                                 reachable=reach)
         jets[bad] = np.nan
         rates[bad] = np.nan
-        diag[bad, :2] = np.nan
+        diag[bad] = np.nan
     singular = ok & (diag[:, 1] < SINGULAR_TOL)
     if singular.any():
         policy = at_singular if at_singular != "auto" else ("raise" if single else "flag")
@@ -368,10 +372,12 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
                 "positions with the sample flagged")
         jets[singular, :, 1:] = np.nan
         rates[singular] = np.nan
-    if p.redundant:
-        _check_redundant(p, jets, ok)
-    return KinematicSolution(
-        mechanism=mechanism, q=q2, qd=qd2, qdd=qdd2, jets=jets, rates=rates,
+    sol = KinematicSolution(
+        mechanism=mechanism, q=q2, qd=qd2, qdd=qdd2, stored_jets=jets, stored_rates=rates,
+        stored_items=p.stored_items, fixed_values=p.fixed_values,
         det_J=diag[:, 0], singularity=diag[:, 1], singular=singular, assembled=ok,
         link_item=dict(p.link_index), point_item=dict(p.point_item),
         slide_item=dict(p.slide_item), single=single, newton_state=out.get("state"))
+    if p.redundant:
+        _check_redundant(p, sol)
+    return sol

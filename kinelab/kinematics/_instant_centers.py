@@ -46,10 +46,10 @@ def _link_motion(sol: KinematicSolution, link: str, column: int | None):
     ref = m.link(link).points[0]
     i = sol.point_item[ref]
     li = sol.link_item[link]
-    p = sol.jets[:, i:i + 2, 0]
+    jets, rates = sol.item_jets([i, i + 1, li]), sol.item_rates([i, i + 1, li])
     if column is None:
-        return p, sol.rates[:, i:i + 2, 0], sol.rates[:, li, 0]
-    return p, sol.jets[:, i:i + 2, 1 + column], sol.jets[:, li, 1 + column]
+        return jets[:, :2, 0], rates[:, :2, 0], rates[:, 2, 0]
+    return jets[:, :2, 0], jets[:, :2, 1 + column], jets[:, 2, 1 + column]
 
 
 def instant_center(sol: KinematicSolution, a: str, b: str) -> InstantCenter:
@@ -82,8 +82,8 @@ def instant_center(sol: KinematicSolution, a: str, b: str) -> InstantCenter:
     dw = wa - wb
     # angular-velocity scale of the mechanism at each sample: the fastest link
     items = list(sol.link_item.values())
-    scale = np.max(np.abs(sol.jets[:, items, 1 + column] if column is not None
-                          else sol.rates[:, items, 0]), axis=1)
+    scale = np.max(np.abs(sol.item_jets(items)[:, :, 1 + column] if column is not None
+                          else sol.item_rates(items)[:, :, 0]), axis=1)
     infinite = np.abs(dw) <= _PARALLEL * np.maximum(scale, 1e-300)
     with np.errstate(divide="ignore", invalid="ignore"):
         position = np.where(infinite[:, None], 0.0, -kx(rhs) / np.where(infinite, 1.0, dw)[:, None])

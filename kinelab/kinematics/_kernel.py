@@ -45,6 +45,7 @@ OP_RPR = 8           # i: G, X, Z                               f: rho_x, rho_y,
 OP_NEWTON = 9        # i: group
 OP_SLIDE_OUT = 10    # i: slide, p, o, g                        f: beta, s0
 OP_TWO_POINTS = 11   # i: b, p1, p2                             f: offset
+OP_FRAME_POINT = 12  # i: p, a, b                               f: lam, mu
 
 # Newton-group constraint kinds (rows of con_i / con_f); a side is either a link of the
 # group (g >= 0, with a point given in the link's frame) or known (g = -1, a point item).
@@ -64,7 +65,7 @@ _DISC_TOL = 1e-12  # relative: a discriminant this far below zero is rounding at
 # --------------------------------------------------------------------------------------
 # closed-form groups
 # --------------------------------------------------------------------------------------
-@_jit()
+@_jit(inline="always")
 def _rigid_point(jet, p, link, a, rx, ry, M):
     """p = a + R(theta_link) r."""
     c = math.cos(jet[link, 0])
@@ -85,7 +86,19 @@ def _rigid_point(jet, p, link, a, rx, ry, M):
             jet[p + 1, c2] = jet[a + 1, c2] + lmn * vx - kk * vy
 
 
-@_jit()
+@_jit(inline="always")
+def _frame_point(jet, p, a, b, lam, mu, M):
+    """p = a + lam d + mu k x d with d = b - a: a point rigid with a link through two of its
+    known points.  Linear in the two points, so their K and L carry over with no angle (and
+    no sine or cosine) at all."""
+    for c in range(1 + M + M * M):
+        dx = jet[b, c] - jet[a, c]
+        dy = jet[b + 1, c] - jet[a + 1, c]
+        jet[p, c] = jet[a, c] + lam * dx - mu * dy
+        jet[p + 1, c] = jet[a + 1, c] + lam * dy + mu * dx
+
+
+@_jit(inline="always")
 def _direction(jet, link, beta):
     """Unit vector at angle theta_link + beta (a slide direction fixed in the link)."""
     phi = jet[link, 0] + beta
@@ -139,7 +152,7 @@ def _relative_slide(jet, p, o, g, beta, M, Ks, Ls):
     return ud
 
 
-@_jit()
+@_jit(inline="always")
 def _rrr(jet, b, c, X, Y, Z, lb, lc, sigma, offb, offc, M):
     """Circle-circle dyad; returns (det, measure, gap).  gap > 0: cannot close by gap (m)."""
     dx = jet[Z, 0] - jet[X, 0]
@@ -148,15 +161,16 @@ def _rrr(jet, b, c, X, Y, Z, lb, lc, sigma, offb, offc, M):
     D = math.sqrt(D2)
     if D == 0.0:
         return 0.0, 0.0, abs(lb - lc)
-    a = (lb * lb - lc * lc + D2) / (2.0 * D)
+    inv_D = 1.0 / D
+    a = 0.5 * (lb * lb - lc * lc + D2) * inv_D
     h2 = lb * lb - a * a
     if h2 < 0.0:
         if h2 < -_DISC_TOL * lb * lb:
             return 0.0, 0.0, max(D - (lb + lc), abs(lb - lc) - D)
         h2 = 0.0
     h = math.sqrt(h2)
-    ex = dx / D
-    ey = dy / D
+    ex = dx * inv_D
+    ey = dy * inv_D
     rbx = a * ex - sigma * h * ey          # r_b = Y - X
     rby = a * ey + sigma * h * ex
     jet[Y, 0] = jet[X, 0] + rbx
@@ -164,15 +178,16 @@ def _rrr(jet, b, c, X, Y, Z, lb, lc, sigma, offb, offc, M):
     rcx = rbx - dx                          # r_c = Y - Z
     rcy = rby - dy
     cr = rbx * rcy - rby * rcx              # cross(r_b, r_c)
+    inv_cr = 1.0 / cr
     jet[b, 0] = math.atan2(rby, rbx) + offb
     jet[c, 0] = math.atan2(rcy, rcx) + offc
     # velocity: wb k x rb - wc k x rc = vZ - vX  (dot with rc and with rb)
     for m in range(M):
         wx = jet[Z, 1 + m] - jet[X, 1 + m]
         wy = jet[Z + 1, 1 + m] - jet[X + 1, 1 + m]
-        kb = (wx * rcx + wy * rcy) / cr
+        kb = (wx * rcx + wy * rcy) * inv_cr
         jet[b, 1 + m] = kb
-        jet[c, 1 + m] = (wx * rbx + wy * rby) / cr
+        jet[c, 1 + m] = (wx * rbx + wy * rby) * inv_cr
         jet[Y, 1 + m] = jet[X, 1 + m] - kb * rby
         jet[Y + 1, 1 + m] = jet[X + 1, 1 + m] + kb * rbx
     # acceleration: same matrix, right side with the centripetal terms
@@ -183,9 +198,9 @@ def _rrr(jet, b, c, X, Y, Z, lb, lc, sigma, offb, offc, M):
             kc = jet[c, 1 + m] * jet[c, 1 + n]
             wx = jet[Z, c2] - jet[X, c2] + kb * rbx - kc * rcx
             wy = jet[Z + 1, c2] - jet[X + 1, c2] + kb * rby - kc * rcy
-            lb_ = (wx * rcx + wy * rcy) / cr
+            lb_ = (wx * rcx + wy * rcy) * inv_cr
             jet[b, c2] = lb_
-            jet[c, c2] = (wx * rbx + wy * rby) / cr
+            jet[c, c2] = (wx * rbx + wy * rby) * inv_cr
             jet[Y, c2] = jet[X, c2] - lb_ * rby - kb * rbx
             jet[Y + 1, c2] = jet[X + 1, c2] + lb_ * rbx - kb * rby
     return -cr, abs(cr) / (lb * lc), 0.0
@@ -756,8 +771,8 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
 # --------------------------------------------------------------------------------------
 @_jit()
 def _evaluate(qs, qd, qdd, lo, hi, write, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i, con_i,
-              con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, n_angles, n_out,
-              o_jet, o_rate, o_diag, o_status, o_failed):
+              con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, n_angles, stored,
+              o_jet, o_rate, o_diag, o_status, o_fail):
     """Run the plan at the inputs qs[lo:hi], one sample after the other.
 
     After each sample res holds (det, measure, gap, failed op); with ``write`` the sample's
@@ -777,7 +792,9 @@ def _evaluate(qs, qd, qdd, lo, hi, write, ops_i, ops_f, jet, M, Kt, Kt2, Lt, gro
             op = ops_i[k, 0]
             d = 1.0
             ms = 1.0
-            if op == OP_RIGID_POINT:
+            if op == OP_FRAME_POINT:
+                _frame_point(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], ops_f[k, 1], M)
+            elif op == OP_RIGID_POINT:
                 _rigid_point(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], ops_f[k, 1], M)
             elif op == OP_DRIVE_ANGLE:
                 b, a, mi = ops_i[k, 1], ops_i[k, 2], ops_i[k, 3]
@@ -843,52 +860,75 @@ def _evaluate(qs, qd, qdd, lo, hi, write, ops_i, ops_f, jet, M, Kt, Kt2, Lt, gro
         res[2] = gap if status == ST_NO_ASSEMBLY else 0.0
         res[3] = failed
         if write:
-            _write_status(i, status, res, o_diag, o_status, o_failed)
+            _write_status(i, status, res, o_diag, o_status, o_fail)
             if status == ST_OK:
-                _write_sample(i, qd, qdd, M, n_angles, n_out, jet, o_jet, o_rate)
+                _write_sample(i, qd, qdd, M, n_angles, stored, jet, o_jet, o_rate)
     return status
 
 
-@_jit()
-def _write_status(i, status, res, o_diag, o_status, o_failed):
+@_jit(inline="always")
+def _write_status(i, status, res, o_diag, o_status, o_fail):
+    """Row i of the status (an int8), of det J and the singularity measure, and, only for
+    a sample that failed, of o_fail: the gap (m) and the operation that failed."""
     o_status[i] = status
     o_diag[i, 0] = res[0]
     o_diag[i, 1] = res[1]
-    o_diag[i, 2] = res[2]
-    o_failed[i] = int(res[3])
+    if status != ST_OK:
+        o_fail[i, 0] = res[2]
+        o_fail[i, 1] = res[3]
 
 
-@_jit()
-def _write_sample(i, qd, qdd, M, n_angles, n_out, jet, o_jet, o_rate):
-    """Copy the named items' jets out; rates: S' = K q', S'' = K q'' + q'^T L q'."""
+@_jit(inline="always")
+def _write_sample(i, qd, qdd, M, n_angles, stored, jet, o_jet, o_rate):
+    """Copy the jets of the stored items (those that move) to row i, angles wrapped to
+    [-pi, pi); rates: S' = K q', S'' = K q'' + q'^T L q'.
+
+    This is where a sweep meets memory: the inputs' rates are read once, before the items
+    (a store to o_jet could alias them), and only an angle out of range is wrapped.
+    """
+    n = stored.shape[0]
     if M == 1:
         w = qd[i, 0]
         wd = qdd[i, 0]
-        for it in range(n_out):
+        ww = w * w
+        for j in range(n):
+            it = stored[j]
             k1 = jet[it, 1]
             l1 = jet[it, 2]
-            o_jet[i, it, 0] = jet[it, 0]
-            o_jet[i, it, 1] = k1
-            o_jet[i, it, 2] = l1
-            o_rate[i, it, 0] = k1 * w
-            o_rate[i, it, 1] = k1 * wd + l1 * w * w
-    else:
-        for it in range(n_out):
-            for c in range(1 + M + M * M):
-                o_jet[i, it, c] = jet[it, c]
-            v = 0.0
-            a = 0.0
-            for m in range(M):
-                km = jet[it, 1 + m]
-                v += km * qd[i, m]
-                a += km * qdd[i, m]
-                for n in range(M):
-                    a += jet[it, 1 + M + m * M + n] * qd[i, m] * qd[i, n]
-            o_rate[i, it, 0] = v
-            o_rate[i, it, 1] = a
-    for it in range(n_angles):
+            t = jet[it, 0]
+            if it < n_angles and not -math.pi <= t < math.pi:
+                t = _wrapped(t)
+            o_jet[i, j, 0] = t
+            o_jet[i, j, 1] = k1
+            o_jet[i, j, 2] = l1
+            o_rate[i, j, 0] = k1 * w
+            o_rate[i, j, 1] = k1 * wd + l1 * ww
+        return
+    for j in range(n):
+        it = stored[j]
         t = jet[it, 0]
-        o_jet[i, it, 0] = t - 2.0 * math.pi * math.floor((t + math.pi) / (2.0 * math.pi))
+        if it < n_angles and not -math.pi <= t < math.pi:
+            t = _wrapped(t)
+        o_jet[i, j, 0] = t
+        v = 0.0
+        a = 0.0
+        for m in range(M):
+            km = jet[it, 1 + m]
+            o_jet[i, j, 1 + m] = km
+            v += km * qd[i, m]
+            a += km * qdd[i, m]
+            for n_ in range(M):
+                lmn = jet[it, 1 + M + m * M + n_]
+                o_jet[i, j, 1 + M + m * M + n_] = lmn
+                a += lmn * qd[i, m] * qd[i, n_]
+        o_rate[i, j, 0] = v
+        o_rate[i, j, 1] = a
+
+
+@_jit()
+def _wrapped(t):
+    """An angle in [-pi, pi)."""
+    return t - 2.0 * math.pi * math.floor((t + math.pi) / (2.0 * math.pi))
 
 
 @_jit()
@@ -901,7 +941,7 @@ def _new_jet(n_items, M, const_items, const_values):
 
 @_jit()
 def _closed_form(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_items,
-                 n_angles, n_out, o_jet, o_rate, o_diag, o_status, o_failed, M):
+                 n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail, M):
     """Samples lo:hi of a plan without Newton groups, with their own scratch state."""
     jet = _new_jet(n_items, M, const_items, const_values)
     Kt = np.zeros(M)
@@ -915,8 +955,8 @@ def _closed_form(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_
     g3 = np.zeros((1, M, M))
     piv = np.zeros(1, np.int64)
     _evaluate(q, qd, qdd, lo, hi, True, ops_i, ops_f, jet, M, Kt, Kt2, Lt, gi, gi, gf, 1.0,
-              g1, g2, g3, g2, g1, g1, piv, res, n_angles, n_out, o_jet, o_rate, o_diag,
-              o_status, o_failed)
+              g1, g2, g3, g2, g1, g1, piv, res, n_angles, stored, o_jet, o_rate, o_diag,
+              o_status, o_fail)
 
 
 # The entry points run without the GIL, so that Python threads can share a sweep's samples.
@@ -925,29 +965,30 @@ def _closed_form(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_
 
 @_jit(nogil=True)
 def run_closed_form(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_items,
-                    n_angles, n_out, o_jet, o_rate, o_diag, o_status, o_failed, M):
+                    n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail, M):
     """Evaluate samples lo:hi of a plan without Newton groups (samples are independent).
 
-    o_jet (N, n_out, 1 + M + M*M), o_rate (N, n_out, 2), o_diag (N, 3): det, measure, gap;
-    M = q.shape[1].
+    o_jet (N, len(stored), 1 + M + M*M) and o_rate (N, len(stored), 2) for the items listed
+    in ``stored``; o_diag (N, 2): det, measure; o_fail (N, 2): gap, failed operation (only
+    where the status is not ST_OK); M = q.shape[1].
     """
     _closed_form(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_items,
-                 n_angles, n_out, o_jet, o_rate, o_diag, o_status, o_failed, M)
+                 n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail, M)
 
 
 @_jit(nogil=True)
 def run_closed_form_one_input(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values,
-                              n_items, n_angles, n_out, o_jet, o_rate, o_diag, o_status,
-                              o_failed):
+                              n_items, n_angles, stored, o_jet, o_rate, o_diag, o_status,
+                              o_fail):
     """:func:`run_closed_form` for one input."""
     _closed_form(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_items,
-                 n_angles, n_out, o_jet, o_rate, o_diag, o_status, o_failed, 1)
+                 n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail, 1)
 
 
 @_jit()
 def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
-                  n_items, n_angles, n_out, groups_i, con_i, con_f, grp_x0, scale,
-                  o_jet, o_rate, o_diag, o_status, o_failed, o_state, M):
+                  n_items, n_angles, stored, groups_i, con_i, con_f, grp_x0, scale,
+                  o_jet, o_rate, o_diag, o_status, o_fail, o_state, M):
     """Evaluate a plan with Newton groups, following the samples in order from a start.
 
     The start is the groups' state ``grp_x0`` at input ``q_start`` (the sketch, or where an
@@ -986,12 +1027,11 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
     qprev = q_start.copy()
     # the sketch itself: the groups converge at once and get their K and L
     st0 = _evaluate(qt, qd, qdd, 0, 1, False, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i,
-                    con_i, con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, n_angles, n_out,
-                    o_jet, o_rate, o_diag, o_status, o_failed)
+                    con_i, con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, n_angles, stored,
+                    o_jet, o_rate, o_diag, o_status, o_fail)
     if st0 != ST_OK:
         for i in range(N):
-            o_status[i] = st0
-            o_failed[i] = int(res[3])
+            _write_status(i, st0, res, o_diag, o_status, o_fail)
         o_state[:nx] = grp_x0
         o_state[nx:] = q_start
         return
@@ -1016,7 +1056,7 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
             bdet[:] = gdet
             st = _evaluate(qt, qd, qdd, 0, 1, False, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i,
                            con_i, con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, n_angles,
-                           n_out, o_jet, o_rate, o_diag, o_status, o_failed)
+                           stored, o_jet, o_rate, o_diag, o_status, o_fail)
             if st == ST_OK:
                 t = tt
                 h = min(2.0 * h, max_step / dist) if dist > 0.0 else 1.0
@@ -1029,9 +1069,9 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
                 if st == ST_NO_ASSEMBLY or h < 1e-9:
                     break
                 h *= 0.5
-        _write_status(i, st, res, o_diag, o_status, o_failed)
+        _write_status(i, st, res, o_diag, o_status, o_fail)
         if st == ST_OK:
-            _write_sample(i, qd, qdd, M, n_angles, n_out, jet, o_jet, o_rate)
+            _write_sample(i, qd, qdd, M, n_angles, stored, jet, o_jet, o_rate)
         # the next sample starts where the mechanism last assembled
         for m in range(M):
             qprev[m] = qprev[m] + t * (q[i, m] - qprev[m])
@@ -1041,19 +1081,19 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
 
 @_jit(nogil=True)
 def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
-                     n_items, n_angles, n_out, groups_i, con_i, con_f, grp_x0, scale,
-                     o_jet, o_rate, o_diag, o_status, o_failed, o_state, M):
+                     n_items, n_angles, stored, groups_i, con_i, con_f, grp_x0, scale,
+                     o_jet, o_rate, o_diag, o_status, o_fail, o_state, M):
     """Evaluate a plan with Newton groups along the samples (see ``_continuation``)."""
     _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
-                  n_items, n_angles, n_out, groups_i, con_i, con_f, grp_x0, scale,
-                  o_jet, o_rate, o_diag, o_status, o_failed, o_state, M)
+                  n_items, n_angles, stored, groups_i, con_i, con_f, grp_x0, scale,
+                  o_jet, o_rate, o_diag, o_status, o_fail, o_state, M)
 
 
 @_jit(nogil=True)
 def run_continuation_one_input(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items,
-                               const_values, n_items, n_angles, n_out, groups_i, con_i, con_f,
-                               grp_x0, scale, o_jet, o_rate, o_diag, o_status, o_failed, o_state):
+                               const_values, n_items, n_angles, stored, groups_i, con_i, con_f,
+                               grp_x0, scale, o_jet, o_rate, o_diag, o_status, o_fail, o_state):
     """:func:`run_continuation` for one input."""
     _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
-                  n_items, n_angles, n_out, groups_i, con_i, con_f, grp_x0, scale,
-                  o_jet, o_rate, o_diag, o_status, o_failed, o_state, 1)
+                  n_items, n_angles, stored, groups_i, con_i, con_f, grp_x0, scale,
+                  o_jet, o_rate, o_diag, o_status, o_fail, o_state, 1)

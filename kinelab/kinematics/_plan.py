@@ -51,8 +51,10 @@ class Plan:
 
     The kernel's state is one jet row per item: the link angles (items ``0 .. nl-1``, in
     model order), then x and y of each named point, then the slides of the prismatic
-    joints (the *named* items, ``n_out`` of them, which are written out), then the points
-    the plan adds on links (lines' reference points).
+    joints (the *named* items, ``n_out`` of them), then the points the plan adds on links
+    (lines' reference points).  Of the named items, those that move (``stored_items``) are
+    written out per sample; the rest (the ground's angle and points) keep the values in
+    ``fixed_values``, with K = L = 0.
     """
 
     mechanism: Mechanism
@@ -65,6 +67,8 @@ class Plan:
     ops_f: np.ndarray
     const_items: np.ndarray
     const_values: np.ndarray
+    stored_items: np.ndarray
+    fixed_values: dict[int, float]
     groups: tuple[np.ndarray, ...] | None
     q_sketch: np.ndarray
     sketch_angles: np.ndarray
@@ -91,11 +95,16 @@ class Plan:
 # fields of each operation that hold point indices (converted to items at the end)
 _POINT_FIELDS = {k.OP_RIGID_POINT: (1, 3), k.OP_SLIDE_POINT: (1, 2), k.OP_LINES: (1, 2, 4),
                  k.OP_RRR: (3, 4, 5), k.OP_RRP: (2, 3, 4), k.OP_RPR: (2, 3),
-                 k.OP_SLIDE_OUT: (2, 3), k.OP_TWO_POINTS: (2, 3)}
+                 k.OP_SLIDE_OUT: (2, 3), k.OP_TWO_POINTS: (2, 3), k.OP_FRAME_POINT: (1, 2, 3)}
 
 
 def _angle(v) -> float:
     return math.atan2(v[1], v[0])
+
+
+def _wrap(angle: float) -> float:
+    """An angle in (-pi, pi], as the kernel writes it."""
+    return angle - 2.0 * math.pi * math.floor((angle + math.pi) / (2.0 * math.pi))
 
 
 def _rot(theta: float, v) -> np.ndarray:
@@ -216,9 +225,29 @@ class _Builder:
             if link == self.ground:
                 self._set_const(idx, xy)
             else:
-                r = self._local(link, xy)
-                self._emit([k.OP_RIGID_POINT, idx, self.L[link], self.anchor[link]], r)
+                self._emit_rigid(idx, link, xy)
         return self.virtual[key]
+
+    def _emit_rigid(self, idx: int, link: str, xy) -> None:
+        """Emit the operation placing point idx (at sketch xy) rigid with a placed link.
+
+        Through the anchor a and the known point b of the link farthest from it, p = a +
+        lam (b - a) + mu k x (b - a) needs no sine or cosine; a link with one known point
+        (a crank on its pivot) turns r by its angle instead.
+        """
+        a = self.anchor[link]
+        a_xy = self._xy_of(a)
+        known = [(float(np.hypot(*(self.xy[pn] - a_xy))), self.P[pn]) for pn in self.m.link(link).points
+                 if self.P[pn] in self.computed and self.P[pn] not in (a, idx)]
+        far = max(known, default=(0.0, -1))
+        if far[0] > 1e-6 * self.scale:
+            d = self._xy_of(far[1]) - a_xy
+            r = np.asarray(xy, float) - a_xy
+            d2 = float(d @ d)
+            self._emit([k.OP_FRAME_POINT, idx, a, far[1]],
+                       [float(r @ d) / d2, float(d[0] * r[1] - d[1] * r[0]) / d2])
+        else:
+            self._emit([k.OP_RIGID_POINT, idx, self.L[link], a], self._local(link, xy))
 
     def place(self, link: str, anchor: int) -> None:
         """Mark a link placed (angle and anchor known) and compute its named points."""
@@ -229,7 +258,7 @@ class _Builder:
         for pn in self.m.link(link).points:
             idx = self.P[pn]
             if idx not in self.computed:
-                self._emit([k.OP_RIGID_POINT, idx, self.L[link], anchor], self._local(link, self.xy[pn]))
+                self._emit_rigid(idx, link, self.xy[pn])
                 self.computed.add(idx)
 
     # -- the decomposition -----------------------------------------------------------------
@@ -262,6 +291,8 @@ class _Builder:
         for idx, xy in zip(self.const_points, self.const_xy):
             const_items += [item(idx), item(idx) + 1]
             const_values += [float(xy[0]), float(xy[1])]
+        fixed = {i: v for i, v in zip(const_items, const_values) if i < nl + 2 * npn + ns}
+        fixed[self.L[self.ground]] = _wrap(self.theta_s[self.ground])
         return Plan(
             mechanism=m, link_index=dict(self.L),
             point_item={name: item(i) for name, i in self.P.items()},
@@ -270,6 +301,8 @@ class _Builder:
             ops_i=ops_i, ops_f=np.array(self.ops_f, float).reshape(-1, 8),
             const_items=np.array(const_items, np.int64),
             const_values=np.array(const_values, float),
+            stored_items=np.array([i for i in range(nl + 2 * npn + ns) if i not in fixed], np.int64),
+            fixed_values=fixed,
             groups=self._pack_groups(item) if self.groups else None,
             q_sketch=self.q_sketch.copy(),
             sketch_angles=np.array([self.theta_s[n] for n in m.link_names]),

@@ -1,6 +1,7 @@
 """The result of a kinematic analysis: named arrays, with accessors by name."""
 from __future__ import annotations
 
+import functools
 import math
 import os
 from dataclasses import dataclass
@@ -51,9 +52,14 @@ class KinematicSolution:
         Inputs (rad or m), their rates and accelerations.
     jets : ndarray, shape (N, n, 1 + M + M*M)
         For each coordinate (link angles, then x and y of each point, then slides):
-        value, K, and L flattened.  Prefer the accessors.
+        value, K, and L flattened.  Built on first use from the stored items (below) and
+        the fixed ones; prefer the accessors, which read the stored arrays directly.
     rates : ndarray, shape (N, n, 2)
-        First and second time derivatives of each coordinate.
+        First and second time derivatives of each coordinate, built like ``jets``.
+    stored_jets, stored_rates : ndarray, shape (N, len(stored_items), ...)
+        ``jets`` and ``rates`` of the coordinates that move, ``stored_items``; the others
+        (the ground's angle and points) keep ``fixed_values`` with K = L = 0, and are not
+        repeated per sample.
     det_J : ndarray, shape (N,)
         Determinant of the Jacobian J = dPhi/dS of the position equations, written group
         by group as in the notes (for a four-bar ``L3 L4 sin(theta3 - theta4)``; for the
@@ -75,8 +81,10 @@ class KinematicSolution:
     q: np.ndarray
     qd: np.ndarray
     qdd: np.ndarray
-    jets: np.ndarray
-    rates: np.ndarray
+    stored_jets: np.ndarray
+    stored_rates: np.ndarray
+    stored_items: np.ndarray
+    fixed_values: dict[int, float]
     det_J: np.ndarray
     singularity: np.ndarray
     singular: np.ndarray
@@ -116,6 +124,63 @@ class KinematicSolution:
     def _out(self, a: np.ndarray) -> np.ndarray:
         return a[0] if self.single else a
 
+    # -- coordinates by item --------------------------------------------------------------
+    @functools.cached_property
+    def _slot(self) -> np.ndarray:
+        n = len(self.link_item) + 2 * len(self.point_item) + len(self.slide_item)
+        slot = np.full(n, -1, np.int64)
+        slot[self.stored_items] = np.arange(len(self.stored_items))
+        return slot
+
+    def item_jets(self, items) -> np.ndarray:
+        """``jets[:, items]`` without building ``jets``: shape (N, len(items), 1 + M + M*M)."""
+        return self._gather(items, self.stored_jets, values=True)
+
+    def item_rates(self, items) -> np.ndarray:
+        """``rates[:, items]`` without building ``rates``: shape (N, len(items), 2)."""
+        return self._gather(items, self.stored_rates, values=False)
+
+    def _gather(self, items, stored: np.ndarray, values: bool) -> np.ndarray:
+        items = np.atleast_1d(np.asarray(items, np.int64))
+        slots = self._slot[items]
+        if (slots >= 0).all():
+            s0 = int(slots[0]) if len(slots) else 0
+            if np.array_equal(slots, np.arange(s0, s0 + len(slots))):
+                return stored[:, s0:s0 + len(slots)]          # a view
+            return stored[:, slots]
+        out = np.zeros((self.N, len(items), stored.shape[2]))
+        moving = slots >= 0
+        out[:, moving] = stored[:, slots[moving]]
+        fixed = np.flatnonzero(~moving)
+        if values:
+            out[:, fixed, 0] = [self.fixed_values[int(i)] for i in items[fixed]]
+        # the same rule as the stored items: nothing where the loops do not close, no
+        # derivatives at a singular configuration
+        out[np.ix_(~self.assembled, fixed)] = np.nan
+        derivatives = np.arange(1 if values else 0, stored.shape[2])
+        out[np.ix_(self.singular, fixed, derivatives)] = np.nan
+        return out
+
+    @functools.cached_property
+    def jets(self) -> np.ndarray:
+        return self.item_jets(np.arange(len(self._slot)))
+
+    @functools.cached_property
+    def rates(self) -> np.ndarray:
+        return self.item_rates(np.arange(len(self._slot)))
+
+    @classmethod
+    def concatenate(cls, parts: list[KinematicSolution]) -> KinematicSolution:
+        """One solution from the analyses of consecutive pieces of a sweep."""
+        first = parts[0]
+        join = {name: np.concatenate([getattr(s, name) for s in parts])
+                for name in ("q", "qd", "qdd", "stored_jets", "stored_rates", "det_J",
+                             "singularity", "singular", "assembled")}
+        return cls(mechanism=first.mechanism, stored_items=first.stored_items,
+                   fixed_values=first.fixed_values, link_item=first.link_item,
+                   point_item=first.point_item, slide_item=first.slide_item, single=False,
+                   newton_state=parts[-1].newton_state, **join)
+
     def _find(self, name: str, kinds: str) -> tuple[int, int]:
         """(first item, number of items) of a link ("l"), point ("p") or slide ("s")."""
         tables = {"l": (self.link_item, 1, "link"), "p": (self.point_item, 2, "point"),
@@ -134,7 +199,8 @@ class KinematicSolution:
 
     def _value(self, name: str, kinds: str, column: int, source: str = "jets") -> np.ndarray:
         i, w = self._find(name, kinds)
-        a = getattr(self, source)[:, i:i + w, column]
+        take = self.item_jets if source == "jets" else self.item_rates
+        a = take(range(i, i + w))[:, :, column]
         return self._out(a if w > 1 else a[:, 0])
 
     # -- links --------------------------------------------------------------------------
@@ -186,7 +252,7 @@ class KinematicSolution:
         """
         i, w = self._find(name, "lsp")
         M = self.M
-        a = self.jets[:, i:i + w, 1:1 + M]
+        a = self.item_jets(range(i, i + w))[:, :, 1:1 + M]
         a = a if w > 1 else a[:, 0]
         return self._out(a[..., 0] if M == 1 else a)
 
@@ -195,7 +261,7 @@ class KinematicSolution:
         input axis when M > 1; then ``S'' = K q'' + q'^T L q'``."""
         i, w = self._find(name, "lsp")
         M = self.M
-        a = self.jets[:, i:i + w, 1 + M:].reshape(self.N, w, M, M)
+        a = self.item_jets(range(i, i + w))[:, :, 1 + M:].reshape(self.N, w, M, M)
         a = a if w > 1 else a[:, 0]
         return self._out(a[..., 0, 0] if M == 1 else a)
 
@@ -225,17 +291,18 @@ class KinematicSolution:
         gi = self.link_item[guide]
         oi, pi = self.point_item[origin], self.point_item[point]
         si = self.slide_item[j.name]
-        r = self.jets[:, pi:pi + 2, 0] - self.jets[:, oi:oi + 2, 0]
-        w = self.rates[:, gi, 0][:, None]
-        a = self.rates[:, gi, 1][:, None]
-        theta_axis = self.jets[:, gi, 0] + (math.atan2(j.axis[1], j.axis[0]) - sketch_angle(m, guide))
+        jets, rates = self.item_jets([pi, pi + 1, oi, oi + 1, gi]), self.item_rates([gi, si, oi, oi + 1])
+        r = jets[:, 0:2, 0] - jets[:, 2:4, 0]
+        w = rates[:, 0:1, 0]
+        a = rates[:, 0:1, 1]
+        theta_axis = jets[:, 4, 0] + (math.atan2(j.axis[1], j.axis[0]) - sketch_angle(m, guide))
         u = np.stack([np.cos(theta_axis), np.sin(theta_axis)], axis=-1)
 
         def k_cross(v):
             return np.stack([-v[:, 1], v[:, 0]], axis=-1)
-        sd = self.rates[:, si, 0][:, None]
-        sdd = self.rates[:, si, 1][:, None]
-        parts = dict(origin=self.rates[:, oi:oi + 2, 1], tangential=a * k_cross(r),
+        sd = rates[:, 1:2, 0]
+        sdd = rates[:, 1:2, 1]
+        parts = dict(origin=rates[:, 2:4, 1], tangential=a * k_cross(r),
                      normal=-(w ** 2) * r, coriolis=2.0 * w * k_cross(sd * u), sliding=sdd * u)
         return AccelerationComponents(**{k: self._out(v) for k, v in parts.items()})
 
@@ -255,6 +322,13 @@ class KinematicSolution:
         in_unit = [("deg" if degrees else "rad") if k == "angle" else "m" for k in kinds]
         in_angle = [k == "angle" for k in kinds]
         cols: dict[str, np.ndarray] = {}
+
+        def jet(item):
+            return self.item_jets([item])[:, 0]
+
+        def rate(item):
+            return self.item_rates([item])[:, 0]
+
         for mi, name in enumerate(self.input_names):
             f = deg if (degrees and in_angle[mi]) else 1.0
             u = in_unit[mi]
@@ -267,32 +341,32 @@ class KinematicSolution:
                 power = int(is_angle) - int(in_angle[mi])
                 tag = f"[{a}]" if M > 1 else ""
                 cols[f"{label}.K{tag} [{unit}/{in_unit[mi]}]"] = (
-                    self.jets[:, item, 1 + mi] * (deg ** power if degrees else 1.0))
+                    jet(item)[:, 1 + mi] * (deg ** power if degrees else 1.0))
                 for ni, b in enumerate(self.input_names):
                     power2 = power - int(in_angle[ni])
                     tag2 = f"[{a},{b}]" if M > 1 else ""
                     cols[f"{label}.L{tag2} [{unit}/({in_unit[mi]}*{in_unit[ni]})]"] = (
-                        self.jets[:, item, 1 + M + mi * M + ni] * (deg ** power2 if degrees else 1.0))
+                        jet(item)[:, 1 + M + mi * M + ni] * (deg ** power2 if degrees else 1.0))
 
         au = "deg" if degrees else "rad"
         fa = deg if degrees else 1.0
         for link, i in self.link_item.items():
-            cols[f"{link}.angle [{au}]"] = self.jets[:, i, 0] * fa
-            cols[f"{link}.omega [{au}/s]"] = self.rates[:, i, 0] * fa
-            cols[f"{link}.alpha [{au}/s^2]"] = self.rates[:, i, 1] * fa
+            cols[f"{link}.angle [{au}]"] = jet(i)[:, 0] * fa
+            cols[f"{link}.omega [{au}/s]"] = rate(i)[:, 0] * fa
+            cols[f"{link}.alpha [{au}/s^2]"] = rate(i)[:, 1] * fa
             coefficient_columns(link, i, au, True)
         for joint, i in self.slide_item.items():
-            cols[f"{joint}.slide [m]"] = self.jets[:, i, 0]
-            cols[f"{joint}.slide_velocity [m/s]"] = self.rates[:, i, 0]
-            cols[f"{joint}.slide_acceleration [m/s^2]"] = self.rates[:, i, 1]
+            cols[f"{joint}.slide [m]"] = jet(i)[:, 0]
+            cols[f"{joint}.slide_velocity [m/s]"] = rate(i)[:, 0]
+            cols[f"{joint}.slide_acceleration [m/s^2]"] = rate(i)[:, 1]
             coefficient_columns(joint, i, "m", False)
         for point, i in self.point_item.items():
             for d, ax in enumerate("xy"):
-                cols[f"{point}.{ax} [m]"] = self.jets[:, i + d, 0]
+                cols[f"{point}.{ax} [m]"] = jet(i + d)[:, 0]
             for d, ax in enumerate("xy"):
-                cols[f"{point}.v{ax} [m/s]"] = self.rates[:, i + d, 0]
+                cols[f"{point}.v{ax} [m/s]"] = rate(i + d)[:, 0]
             for d, ax in enumerate("xy"):
-                cols[f"{point}.a{ax} [m/s^2]"] = self.rates[:, i + d, 1]
+                cols[f"{point}.a{ax} [m/s^2]"] = rate(i + d)[:, 1]
             for d, ax in enumerate("xy"):
                 coefficient_columns(f"{point}.{ax}", i + d, "m", False)
         cols["det_J"] = self.det_J

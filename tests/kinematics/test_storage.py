@@ -1,0 +1,69 @@
+"""What a sweep stores: only the coordinates that move; the ground's are read back the same."""
+import numpy as np
+import pytest
+
+import kinelab as kl
+from kinelab.kinematics import KinematicSolution
+
+Q = np.linspace(0.1, 2 * np.pi + 0.1, 9)
+
+
+def coupler_fourbar():
+    return kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
+
+
+def test_ground_coordinates_are_not_stored_per_sample():
+    sol = kl.analyze(coupler_fourbar(), q=Q, qd=2.0, qdd=0.5)
+    # the ground's angle and the two pivots O2, O4 (five coordinates) are not repeated
+    assert sol.stored_jets.shape == (9, sol.jets.shape[1] - 5, 3)
+    np.testing.assert_array_equal(sol.position("O4"), np.tile([3.0, 0.0], (9, 1)))
+    np.testing.assert_array_equal(sol.angle("ground"), np.zeros(9))
+    for name in ("O2", "O4"):
+        np.testing.assert_array_equal(sol.K(name), np.zeros((9, 2)))
+        np.testing.assert_array_equal(sol.L(name), np.zeros((9, 2)))
+        np.testing.assert_array_equal(sol.velocity(name), np.zeros((9, 2)))
+        np.testing.assert_array_equal(sol.acceleration(name), np.zeros((9, 2)))
+
+
+def test_jets_built_on_demand_agree_with_every_accessor():
+    sol = kl.analyze(coupler_fourbar(), q=Q, qd=2.0, qdd=0.5)
+    for link, i in sol.link_item.items():
+        np.testing.assert_array_equal(sol.jets[:, i], np.stack([sol.angle(link), sol.K(link),
+                                                                  sol.L(link)], axis=-1))
+        np.testing.assert_array_equal(sol.rates[:, i], np.stack([sol.omega(link), sol.alpha(link)],
+                                                                   axis=-1))
+    for point, i in sol.point_item.items():
+        np.testing.assert_array_equal(sol.jets[:, i:i + 2, 0], sol.position(point))
+        np.testing.assert_array_equal(sol.jets[:, i:i + 2, 1], sol.K(point))
+        np.testing.assert_array_equal(sol.rates[:, i:i + 2, 1], sol.acceleration(point))
+    cols = sol.columns()
+    np.testing.assert_array_equal(cols["O4.x [m]"], np.full(9, 3.0))
+    np.testing.assert_array_equal(cols["ground.alpha [rad/s^2]"], np.zeros(9))
+
+
+def test_ground_coordinates_follow_the_nan_rules():
+    """Where the loops do not close every value is NaN; at a singular sample K, L and the
+    rates are NaN and positions are kept: for the ground's coordinates as for the others."""
+    fb = kl.mechanisms.fourbar(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)   # non-Grashof
+    _, limit = kl.kinematics.reachable_ranges(fb)[0]
+    sol = kl.analyze(fb, q=[0.0, limit, 3.0], qd=1.0, unreachable="mask")
+    np.testing.assert_array_equal(sol.singular, [False, True, False])
+    np.testing.assert_array_equal(sol.assembled, [True, True, False])
+    np.testing.assert_array_equal(sol.position("O4")[:2], [[1.0, 0.0], [1.0, 0.0]])
+    assert np.isnan(sol.position("O4")[2]).all() and np.isnan(sol.angle("ground")[2])
+    assert np.isnan(sol.K("O4")[1]).all() and np.isnan(sol.velocity("O4")[1]).all()
+    assert np.isnan(sol.omega("ground")[1]) and np.isnan(sol.L("ground")[1])
+    np.testing.assert_array_equal(sol.K("O4")[0], [0.0, 0.0])
+    np.testing.assert_array_equal(np.isnan(sol.jets[:, sol.point_item["O4"], 0]),
+                                  np.isnan(sol.jets[:, sol.point_item["B"], 0]))
+
+
+@pytest.mark.parametrize("make", [coupler_fourbar, kl.mechanisms.triad6])
+def test_pieces_concatenate_to_the_whole_sweep(make):
+    m = make()
+    whole = kl.analyze(m, q=Q, qd=1.5)
+    first = kl.analyze(m, q=Q[:4], qd=1.5)
+    joined = KinematicSolution.concatenate([first, kl.analyze(m, q=Q[4:], qd=1.5, start=first)])
+    np.testing.assert_allclose(joined.jets, whole.jets, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(joined.rates, whole.rates, rtol=0, atol=1e-11)
+    np.testing.assert_array_equal(joined.singular, whole.singular)
