@@ -154,30 +154,33 @@ def _relative_slide(jet, p, o, g, beta, M, Ks, Ls):
 
 @_jit(inline="always")
 def _rrr(jet, b, c, X, Y, Z, lb, lc, sigma, offb, offc, M):
-    """Circle-circle dyad; returns (det, measure, gap).  gap > 0: cannot close by gap (m)."""
+    """Circle-circle dyad; returns (det, measure, gap).  gap > 0: cannot close by gap (m).
+
+    With d = Z - X, the joint is Y = X + alpha d + sigma beta k x d, where alpha and beta
+    are the along and across distances of Y over |d|: no |d| is needed, so one square root
+    and one division stand between the input and Y.  Then r_b x r_c = sigma beta |d|^2.
+    """
     dx = jet[Z, 0] - jet[X, 0]
     dy = jet[Z + 1, 0] - jet[X + 1, 0]
     D2 = dx * dx + dy * dy
-    D = math.sqrt(D2)
-    if D == 0.0:
+    if D2 == 0.0:
         return 0.0, 0.0, abs(lb - lc)
-    inv_D = 1.0 / D
-    a = 0.5 * (lb * lb - lc * lc + D2) * inv_D
-    h2 = lb * lb - a * a
-    if h2 < 0.0:
-        if h2 < -_DISC_TOL * lb * lb:
+    inv_D2 = 1.0 / D2
+    alpha = 0.5 * (lb * lb - lc * lc + D2) * inv_D2
+    beta2 = lb * lb * inv_D2 - alpha * alpha
+    if beta2 < 0.0:
+        if beta2 < -_DISC_TOL * lb * lb * inv_D2:
+            D = math.sqrt(D2)
             return 0.0, 0.0, max(D - (lb + lc), abs(lb - lc) - D)
-        h2 = 0.0
-    h = math.sqrt(h2)
-    ex = dx * inv_D
-    ey = dy * inv_D
-    rbx = a * ex - sigma * h * ey          # r_b = Y - X
-    rby = a * ey + sigma * h * ex
+        beta2 = 0.0
+    sb = sigma * math.sqrt(beta2)
+    rbx = alpha * dx - sb * dy             # r_b = Y - X
+    rby = alpha * dy + sb * dx
     jet[Y, 0] = jet[X, 0] + rbx
     jet[Y + 1, 0] = jet[X + 1, 0] + rby
     rcx = rbx - dx                          # r_c = Y - Z
     rcy = rby - dy
-    cr = rbx * rcy - rby * rcx              # cross(r_b, r_c)
+    cr = sb * D2                            # cross(r_b, r_c)
     inv_cr = 1.0 / cr
     jet[b, 0] = math.atan2(rby, rbx) + offb
     jet[c, 0] = math.atan2(rcy, rcx) + offc
