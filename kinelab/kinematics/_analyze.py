@@ -374,7 +374,7 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
         rates[singular] = np.nan
     sol = KinematicSolution(
         mechanism=mechanism, q=q2, qd=qd2, qdd=qdd2, stored_jets=jets, stored_rates=rates,
-        stored_items=p.stored_items, fixed_values=p.fixed_values,
+        stored_items=p.stored_items, fixed_values=p.fixed_values, driven_items=p.driven_items,
         det_J=diag[:, 0], singularity=diag[:, 1], singular=singular, assembled=ok,
         link_item=dict(p.link_index), point_item=dict(p.point_item),
         slide_item=dict(p.slide_item), single=single, newton_state=out.get("state"))

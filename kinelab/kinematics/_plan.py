@@ -27,7 +27,7 @@ import numpy as np
 
 from kinelab.errors import ModelError
 from kinelab.kinematics import _kernel as k
-from kinelab.kinematics._geometry import sketch_angle
+from kinelab.kinematics._geometry import sketch_angle, wrap_angle
 from kinelab.model import Joint, Mechanism
 
 _SKETCH_SINGULAR = 1e-9   # a dyad this close to straight at the sketch cannot fix its branch
@@ -52,9 +52,10 @@ class Plan:
     The kernel's state is one jet row per item: the link angles (items ``0 .. nl-1``, in
     model order), then x and y of each named point, then the slides of the prismatic
     joints (the *named* items, ``n_out`` of them), then the points the plan adds on links
-    (lines' reference points).  Of the named items, those that move (``stored_items``) are
-    written out per sample; the rest (the ground's angle and points) keep the values in
-    ``fixed_values``, with K = L = 0.
+    (lines' reference points).  Of the named items, only ``stored_items`` are written out
+    per sample: the ground's angle and points keep ``fixed_values`` (K = L = 0), and a link
+    turned by an input from the ground has the angle ``sign q[m]`` (``driven_items``: item
+    -> (m, sign)), as its K and L are ``sign`` and 0.
     """
 
     mechanism: Mechanism
@@ -69,6 +70,7 @@ class Plan:
     const_values: np.ndarray
     stored_items: np.ndarray
     fixed_values: dict[int, float]
+    driven_items: dict[int, tuple[int, float]]
     groups: tuple[np.ndarray, ...] | None
     q_sketch: np.ndarray
     sketch_angles: np.ndarray
@@ -100,11 +102,6 @@ _POINT_FIELDS = {k.OP_RIGID_POINT: (1, 3), k.OP_SLIDE_POINT: (1, 2), k.OP_LINES:
 
 def _angle(v) -> float:
     return math.atan2(v[1], v[0])
-
-
-def _wrap(angle: float) -> float:
-    """An angle in (-pi, pi], as the kernel writes it."""
-    return angle - 2.0 * math.pi * math.floor((angle + math.pi) / (2.0 * math.pi))
 
 
 def _rot(theta: float, v) -> np.ndarray:
@@ -292,7 +289,9 @@ class _Builder:
             const_items += [item(idx), item(idx) + 1]
             const_values += [float(xy[0]), float(xy[1])]
         fixed = {i: v for i, v in zip(const_items, const_values) if i < nl + 2 * npn + ns}
-        fixed[self.L[self.ground]] = _wrap(self.theta_s[self.ground])
+        fixed[self.L[self.ground]] = wrap_angle(self.theta_s[self.ground])
+        driven = {int(row[1]): (int(row[3]), float(f[0])) for row, f in zip(ops_i, self.ops_f)
+                  if row[0] == k.OP_DRIVE_ANGLE and row[2] == -1}
         return Plan(
             mechanism=m, link_index=dict(self.L),
             point_item={name: item(i) for name, i in self.P.items()},
@@ -301,8 +300,9 @@ class _Builder:
             ops_i=ops_i, ops_f=np.array(self.ops_f, float).reshape(-1, 8),
             const_items=np.array(const_items, np.int64),
             const_values=np.array(const_values, float),
-            stored_items=np.array([i for i in range(nl + 2 * npn + ns) if i not in fixed], np.int64),
-            fixed_values=fixed,
+            stored_items=np.array([i for i in range(nl + 2 * npn + ns)
+                                   if i not in fixed and i not in driven], np.int64),
+            fixed_values=fixed, driven_items=driven,
             groups=self._pack_groups(item) if self.groups else None,
             q_sketch=self.q_sketch.copy(),
             sketch_angles=np.array([self.theta_s[n] for n in m.link_names]),

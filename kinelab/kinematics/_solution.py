@@ -10,7 +10,7 @@ import numpy as np
 
 from kinelab.errors import ModelError
 from kinelab.model import Mechanism
-from kinelab.kinematics._geometry import sketch_angle
+from kinelab.kinematics._geometry import sketch_angle, wrap_angle
 
 
 @dataclass(frozen=True)
@@ -57,9 +57,10 @@ class KinematicSolution:
     rates : ndarray, shape (N, n, 2)
         First and second time derivatives of each coordinate, built like ``jets``.
     stored_jets, stored_rates : ndarray, shape (N, len(stored_items), ...)
-        ``jets`` and ``rates`` of the coordinates that move, ``stored_items``; the others
-        (the ground's angle and points) keep ``fixed_values`` with K = L = 0, and are not
-        repeated per sample.
+        ``jets`` and ``rates`` of the coordinates that are solved, ``stored_items``.  The
+        others are not repeated per sample: the ground's angle and points keep
+        ``fixed_values`` (K = L = 0); a link turned from the ground by input m has the angle
+        ``sign q[:, m]`` (``driven_items``: item -> (m, sign)).
     det_J : ndarray, shape (N,)
         Determinant of the Jacobian J = dPhi/dS of the position equations, written group
         by group as in the notes (for a four-bar ``L3 L4 sin(theta3 - theta4)``; for the
@@ -85,6 +86,7 @@ class KinematicSolution:
     stored_rates: np.ndarray
     stored_items: np.ndarray
     fixed_values: dict[int, float]
+    driven_items: dict[int, tuple[int, float]]
     det_J: np.ndarray
     singularity: np.ndarray
     singular: np.ndarray
@@ -149,16 +151,27 @@ class KinematicSolution:
                 return stored[:, s0:s0 + len(slots)]          # a view
             return stored[:, slots]
         out = np.zeros((self.N, len(items), stored.shape[2]))
-        moving = slots >= 0
-        out[:, moving] = stored[:, slots[moving]]
-        fixed = np.flatnonzero(~moving)
-        if values:
-            out[:, fixed, 0] = [self.fixed_values[int(i)] for i in items[fixed]]
-        # the same rule as the stored items: nothing where the loops do not close, no
+        solved = slots >= 0
+        out[:, solved] = stored[:, slots[solved]]
+        others = np.flatnonzero(~solved)
+        for col in others:
+            item = int(items[col])
+            if item in self.fixed_values:
+                if values:
+                    out[:, col, 0] = self.fixed_values[item]
+                continue
+            m, sign = self.driven_items[item]
+            if values:
+                out[:, col, 0] = wrap_angle(sign * self.q[:, m])
+                out[:, col, 1 + m] = sign
+            else:
+                out[:, col, 0] = sign * self.qd[:, m]
+                out[:, col, 1] = sign * self.qdd[:, m]
+        # the same rule as the solved items: nothing where the loops do not close, no
         # derivatives at a singular configuration
-        out[np.ix_(~self.assembled, fixed)] = np.nan
+        out[np.ix_(~self.assembled, others)] = np.nan
         derivatives = np.arange(1 if values else 0, stored.shape[2])
-        out[np.ix_(self.singular, fixed, derivatives)] = np.nan
+        out[np.ix_(self.singular, others, derivatives)] = np.nan
         return out
 
     @functools.cached_property
@@ -177,7 +190,8 @@ class KinematicSolution:
                 for name in ("q", "qd", "qdd", "stored_jets", "stored_rates", "det_J",
                              "singularity", "singular", "assembled")}
         return cls(mechanism=first.mechanism, stored_items=first.stored_items,
-                   fixed_values=first.fixed_values, link_item=first.link_item,
+                   fixed_values=first.fixed_values, driven_items=first.driven_items,
+                   link_item=first.link_item,
                    point_item=first.point_item, slide_item=first.slide_item, single=False,
                    newton_state=parts[-1].newton_state, **join)
 

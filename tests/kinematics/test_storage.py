@@ -1,4 +1,5 @@
-"""What a sweep stores: only the coordinates that move; the ground's are read back the same."""
+"""What a sweep stores: only the coordinates it solves; the ground's and the inputs' are read
+back the same."""
 import numpy as np
 import pytest
 
@@ -12,10 +13,16 @@ def coupler_fourbar():
     return kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
 
 
-def test_ground_coordinates_are_not_stored_per_sample():
+def test_ground_and_input_coordinates_are_not_stored_per_sample():
     sol = kl.analyze(coupler_fourbar(), q=Q, qd=2.0, qdd=0.5)
-    # the ground's angle and the two pivots O2, O4 (five coordinates) are not repeated
-    assert sol.stored_jets.shape == (9, sol.jets.shape[1] - 5, 3)
+    # the ground's angle, the pivots O2, O4 and the crank's angle (six coordinates) are
+    # not repeated per sample
+    assert sol.stored_jets.shape == (9, sol.jets.shape[1] - 6, 3)
+    np.testing.assert_allclose(sol.angle("crank"), np.angle(np.exp(1j * Q)), rtol=0, atol=1e-15)
+    np.testing.assert_array_equal(sol.K("crank"), np.ones(9))
+    np.testing.assert_array_equal(sol.L("crank"), np.zeros(9))
+    np.testing.assert_array_equal(sol.omega("crank"), np.full(9, 2.0))
+    np.testing.assert_array_equal(sol.alpha("crank"), np.full(9, 0.5))
     np.testing.assert_array_equal(sol.position("O4"), np.tile([3.0, 0.0], (9, 1)))
     np.testing.assert_array_equal(sol.angle("ground"), np.zeros(9))
     for name in ("O2", "O4"):
@@ -53,6 +60,8 @@ def test_ground_coordinates_follow_the_nan_rules():
     assert np.isnan(sol.position("O4")[2]).all() and np.isnan(sol.angle("ground")[2])
     assert np.isnan(sol.K("O4")[1]).all() and np.isnan(sol.velocity("O4")[1]).all()
     assert np.isnan(sol.omega("ground")[1]) and np.isnan(sol.L("ground")[1])
+    assert np.isnan(sol.K("crank")[1]) and np.isnan(sol.omega("crank")[1])
+    assert np.isnan(sol.angle("crank")[2]) and sol.angle("crank")[1] == limit
     np.testing.assert_array_equal(sol.K("O4")[0], [0.0, 0.0])
     np.testing.assert_array_equal(np.isnan(sol.jets[:, sol.point_item["O4"], 0]),
                                   np.isnan(sol.jets[:, sol.point_item["B"], 0]))
