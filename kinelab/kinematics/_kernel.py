@@ -883,7 +883,7 @@ def _write_status(i, status, res, o_diag, o_status, o_fail):
 
 @_jit(inline="always")
 def _write_sample(i, qd, qdd, M, n_angles, stored, jet, o_jet, o_rate):
-    """Copy the jets of the stored items (those that move) to row i, angles wrapped to
+    """Copy the jets of the stored items (those the plan solves) to row i, angles wrapped to
     [-pi, pi); rates: S' = K q', S'' = K q'' + q'^T L q'.
 
     This is where a sweep meets memory: the inputs' rates are read once, before the items
