@@ -16,6 +16,7 @@ from kinelab.dynamics._terms import System, build_system, evaluate
 from kinelab.errors import AssemblyError, ModelError, SingularityError
 from kinelab.kinematics import KinematicSolution, analyze, plan
 from kinelab.model import Mechanism
+from kinelab.solvers import wrap_angle
 
 __all__ = ["simulate", "Simulation"]
 
@@ -211,11 +212,9 @@ def drift(sol: KinematicSolution) -> np.ndarray:
     p = plan(m)
     xy = {pt.name: np.array(pt.xy) for pt in m.points}
     pos = {n: sol.item_jets([i, i + 1])[:, :, 0] for n, i in p.point_item.items()}
-    ang = {n: sol.item_jets([i])[:, 0, 0] - p.sketch_angles[i] for n, i in p.link_index.items()}
+    ang = {n: sol.item_jets([i])[:, 0, 0] - p.sketch_angles[i] for n, i in p.link_item.items()}
     worst = np.zeros(sol.N)
 
-    def wrap(a):
-        return np.abs(np.angle(np.exp(1j * a)))
     for link in m.links:
         pts = link.points
         for b in pts[1:]:
@@ -225,12 +224,12 @@ def drift(sol: KinematicSolution) -> np.ndarray:
             v = pos[pts[1]] - pos[pts[0]]
             v0 = xy[pts[1]] - xy[pts[0]]
             turn = np.arctan2(v[:, 1], v[:, 0]) - math.atan2(v0[1], v0[0])
-            worst = np.maximum(worst, wrap(turn - ang[link.name]))
+            worst = np.maximum(worst, np.abs(wrap_angle(turn - ang[link.name])))
     for j in m.joints:
         if j.type != "P":
             continue
         g, s = j.links
-        worst = np.maximum(worst, wrap(ang[s] - ang[g]))
+        worst = np.maximum(worst, np.abs(wrap_angle(ang[s] - ang[g])))
         th = ang[g] + math.atan2(j.axis[1], j.axis[0])
         origin = j.origin or m.link(g).points[0]
         d = pos[j.point] - pos[origin]

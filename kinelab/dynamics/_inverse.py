@@ -308,7 +308,7 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms, tau_known
     ex, ey = np.tile([1.0, 0.0], (N, 1)), np.tile([0.0, 1.0], (N, 1))
 
     def axis(j):
-        gi = p.link_index[j.links[0]]
+        gi = p.link_item[j.links[0]]
         th = sol.item_jets([gi])[:, 0, 0] - p.sketch_angles[gi] + math.atan2(j.axis[1], j.axis[0])
         return np.stack([np.cos(th), np.sin(th)], axis=-1)
 
@@ -347,7 +347,7 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms, tau_known
         b[:, rr:rr + 2] += mass * acc[:, i]
         b[:, rr + 2] += _cross(r[:, i] - ref[link], mass * acc[:, i])
         on(link, mass * np.broadcast_to(system.gravity, (N, 2)), r[:, i])
-    li = {item: name for name, item in p.link_index.items()}
+    li = {item: name for name, item in p.link_item.items()}
     for item, inertia in zip(system.r_items, system.r_inertia):
         b[:, row[li[item]] + 2] += inertia * sol.item_rates([item])[:, 0, 1]
     # loads

@@ -248,7 +248,7 @@ def _place(model: Mechanism, q, lengths: str, param):
                          "is driven (pendulums, serial robots); use inverse() and simulate() for "
                          "closed chains")
     ground = model.ground.name
-    sk = {n: (0.0 if n == ground else float(p.sketch_angles[p.link_index[n]])) for n in model.link_names}
+    sk = {n: (0.0 if n == ground else float(p.sketch_angles[p.link_item[n]])) for n in model.link_names}
     xy = {pt.name: np.array(pt.xy) for pt in model.points}
 
     def rot(a, v):

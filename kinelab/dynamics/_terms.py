@@ -74,7 +74,7 @@ def build_system(model: Mechanism, loads: Loads | None, masses: MassProperties |
     if problems:
         raise ModelError(problems, source=f"mechanism '{model.name}'")
     p = plan(model)
-    pt, li = p.point_item, p.link_index
+    pt, li = p.point_item, p.link_item
     t_items = [pt[b.center_of_mass] for b in masses.links] + [pt[m.point] for m in masses.points]
     t_mass = [b.mass for b in masses.links] + [m.mass for m in masses.points]
     t_links = tuple(b.link for b in masses.links) + tuple(

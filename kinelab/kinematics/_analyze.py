@@ -16,7 +16,7 @@ from kinelab.kinematics import _kernel as k
 from kinelab.kinematics._plan import Plan, build_plan
 from kinelab.kinematics._solution import KinematicSolution
 from kinelab.model import Mechanism
-from kinelab.solvers import bisect
+from kinelab.solvers import bisect, wrap_angle
 
 __all__ = ["analyze", "plan", "reachable_ranges"]
 
@@ -239,7 +239,7 @@ def _check_redundant(p: Plan, sol: KinematicSolution):
         return sol.item_jets([i, i + 1])[:, :, 0]
 
     def angle(link):
-        i = p.link_index[link]
+        i = p.link_item[link]
         return sol.item_jets([i])[:, 0, 0] - p.sketch_angles[i]
 
     def seen_from(link, point):
@@ -256,7 +256,7 @@ def _check_redundant(p: Plan, sol: KinematicSolution):
             err = np.linalg.norm(seen_from(j.links[0], j.point) - seen_from(j.links[1], j.point), axis=-1)
         else:
             g, s_ = j.links
-            dang = np.abs(np.angle(np.exp(1j * (angle(s_) - angle(g))))) * p.scale
+            dang = np.abs(wrap_angle(angle(s_) - angle(g))) * p.scale
             th = angle(g) + math.atan2(j.axis[1], j.axis[0])
             d = seen_from(s_, j.point) - seen_from(g, j.point)
             err = np.maximum(dang, np.abs(-np.sin(th) * d[:, 0] + np.cos(th) * d[:, 1]))
@@ -373,11 +373,9 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
         jets[singular, :, 1:] = np.nan
         rates[singular] = np.nan
     sol = KinematicSolution(
-        mechanism=mechanism, q=q2, qd=qd2, qdd=qdd2, stored_jets=jets, stored_rates=rates,
-        stored_items=p.stored_items, fixed_values=p.fixed_values, driven_items=p.driven_items,
+        plan=p, q=q2, qd=qd2, qdd=qdd2, stored_jets=jets, stored_rates=rates,
         det_J=diag[:, 0], singularity=diag[:, 1], singular=singular, assembled=ok,
-        link_item=dict(p.link_index), point_item=dict(p.point_item),
-        slide_item=dict(p.slide_item), single=single, newton_state=out.get("state"))
+        single=single, newton_state=out.get("state"))
     if p.redundant:
         _check_redundant(p, sol)
     return sol

@@ -1,9 +1,7 @@
-"""Geometry shared by the plan builder and the results."""
+"""Sketch geometry shared by the plan builder and the results."""
 from __future__ import annotations
 
 import math
-
-import numpy as np
 
 from kinelab.model import Mechanism
 
@@ -20,10 +18,3 @@ def sketch_angle(m: Mechanism, link: str) -> float:
             return math.atan2(j.axis[1], j.axis[0])
     return 0.0
 
-
-def wrap_angle(angle):
-    """Angles (a float or an array) in [-pi, pi), as the kernel writes them."""
-    a = np.asarray(angle, float)
-    out = np.where((a >= -math.pi) & (a < math.pi), a,
-                   a - 2.0 * math.pi * np.floor((a + math.pi) / (2.0 * math.pi)))
-    return float(out) if out.ndim == 0 else out

@@ -66,24 +66,29 @@ _DISC_TOL = 1e-12  # relative: a discriminant this far below zero is rounding at
 # closed-form groups
 # --------------------------------------------------------------------------------------
 @_jit(inline="always")
-def _rigid_point(jet, p, link, a, rx, ry, M):
-    """p = a + R(theta_link) r."""
-    c = math.cos(jet[link, 0])
-    s = math.sin(jet[link, 0])
-    vx = c * rx - s * ry
-    vy = s * rx + c * ry
-    jet[p, 0] = jet[a, 0] + vx
-    jet[p + 1, 0] = jet[a + 1, 0] + vy
+def _carried(jet, p, a, link, rx, ry, M):
+    """p = a + r, with r (ground frame, now) fixed in a link whose jet is known:
+    K_p = K_a + K_link k x r,  L_p = L_a + L_link k x r - K_link K_link r."""
+    jet[p, 0] = jet[a, 0] + rx
+    jet[p + 1, 0] = jet[a + 1, 0] + ry
     for m in range(M):
         km = jet[link, 1 + m]
-        jet[p, 1 + m] = jet[a, 1 + m] - km * vy
-        jet[p + 1, 1 + m] = jet[a + 1, 1 + m] + km * vx
+        jet[p, 1 + m] = jet[a, 1 + m] - km * ry
+        jet[p + 1, 1 + m] = jet[a + 1, 1 + m] + km * rx
         for n in range(M):
             c2 = 1 + M + m * M + n
             kk = km * jet[link, 1 + n]
             lmn = jet[link, c2]
-            jet[p, c2] = jet[a, c2] - lmn * vy - kk * vx
-            jet[p + 1, c2] = jet[a + 1, c2] + lmn * vx - kk * vy
+            jet[p, c2] = jet[a, c2] - lmn * ry - kk * rx
+            jet[p + 1, c2] = jet[a + 1, c2] + lmn * rx - kk * ry
+
+
+@_jit(inline="always")
+def _rigid_point(jet, p, link, a, rx, ry, M):
+    """p = a + R(theta_link) r, r in the link's frame."""
+    c = math.cos(jet[link, 0])
+    s = math.sin(jet[link, 0])
+    _carried(jet, p, a, link, c * rx - s * ry, s * rx + c * ry, M)
 
 
 @_jit(inline="always")
@@ -176,8 +181,6 @@ def _rrr(jet, b, c, X, Y, Z, lb, lc, sigma, offb, offc, M):
     sb = sigma * math.sqrt(beta2)
     rbx = alpha * dx - sb * dy             # r_b = Y - X
     rby = alpha * dy + sb * dx
-    jet[Y, 0] = jet[X, 0] + rbx
-    jet[Y + 1, 0] = jet[X + 1, 0] + rby
     rcx = rbx - dx                          # r_c = Y - Z
     rcy = rby - dy
     cr = sb * D2                            # cross(r_b, r_c)
@@ -188,11 +191,8 @@ def _rrr(jet, b, c, X, Y, Z, lb, lc, sigma, offb, offc, M):
     for m in range(M):
         wx = jet[Z, 1 + m] - jet[X, 1 + m]
         wy = jet[Z + 1, 1 + m] - jet[X + 1, 1 + m]
-        kb = (wx * rcx + wy * rcy) * inv_cr
-        jet[b, 1 + m] = kb
+        jet[b, 1 + m] = (wx * rcx + wy * rcy) * inv_cr
         jet[c, 1 + m] = (wx * rbx + wy * rby) * inv_cr
-        jet[Y, 1 + m] = jet[X, 1 + m] - kb * rby
-        jet[Y + 1, 1 + m] = jet[X + 1, 1 + m] + kb * rbx
     # acceleration: same matrix, right side with the centripetal terms
     for m in range(M):
         for n in range(M):
@@ -201,11 +201,9 @@ def _rrr(jet, b, c, X, Y, Z, lb, lc, sigma, offb, offc, M):
             kc = jet[c, 1 + m] * jet[c, 1 + n]
             wx = jet[Z, c2] - jet[X, c2] + kb * rbx - kc * rcx
             wy = jet[Z + 1, c2] - jet[X + 1, c2] + kb * rby - kc * rcy
-            lb_ = (wx * rcx + wy * rcy) * inv_cr
-            jet[b, c2] = lb_
+            jet[b, c2] = (wx * rcx + wy * rcy) * inv_cr
             jet[c, c2] = (wx * rbx + wy * rby) * inv_cr
-            jet[Y, c2] = jet[X, c2] - lb_ * rby - kb * rbx
-            jet[Y + 1, c2] = jet[X + 1, c2] + lb_ * rbx - kb * rby
+    _carried(jet, Y, X, b, rbx, rby, M)
     return -cr, abs(cr) / (lb * lc), 0.0
 
 
@@ -228,8 +226,6 @@ def _rrp(jet, b, X, Y, o, g, lb, beta, sigma, offb, M, Ks):
     s = t - uw                          # slide along the line from o
     rx = hh * nx + t * ux               # r = Y - X
     ry = hh * ny + t * uy
-    jet[Y, 0] = jet[X, 0] + rx
-    jet[Y + 1, 0] = jet[X + 1, 0] + ry
     jet[b, 0] = math.atan2(ry, rx) + offb
     ru = t                              # r . u
     kru = -ry * ux + rx * uy            # (k x r) . u
@@ -240,8 +236,6 @@ def _rrp(jet, b, X, Y, o, g, lb, beta, sigma, offb, M, Ks):
         wb = (w1x * nx + w1y * ny) / ru
         jet[b, 1 + m] = wb
         Ks[m] = wb * kru - (w1x * ux + w1y * uy)
-        jet[Y, 1 + m] = jet[X, 1 + m] - wb * ry
-        jet[Y + 1, 1 + m] = jet[X + 1, 1 + m] + wb * rx
     for m in range(M):
         for n in range(M):
             c2 = 1 + M + m * M + n
@@ -251,10 +245,8 @@ def _rrp(jet, b, X, Y, o, g, lb, beta, sigma, offb, M, Ks):
             lg = jet[g, c2]
             w2x = jet[o, c2] + cor * nx + s * (lg * nx - kg * ux) - jet[X, c2] + kb * rx
             w2y = jet[o + 1, c2] + cor * ny + s * (lg * ny - kg * uy) - jet[X + 1, c2] + kb * ry
-            lb_ = (w2x * nx + w2y * ny) / ru
-            jet[b, c2] = lb_
-            jet[Y, c2] = jet[X, c2] - lb_ * ry - kb * rx
-            jet[Y + 1, c2] = jet[X + 1, c2] + lb_ * rx - kb * ry
+            jet[b, c2] = (w2x * nx + w2y * ny) / ru
+    _carried(jet, Y, X, b, rx, ry, M)
     return ru, abs(ru) / lb, 0.0
 
 
@@ -884,7 +876,7 @@ def _write_status(i, status, res, o_diag, o_status, o_fail):
 @_jit(inline="always")
 def _write_sample(i, qd, qdd, M, n_angles, stored, jet, o_jet, o_rate):
     """Copy the jets of the stored items (those the plan solves) to row i, angles wrapped to
-    [-pi, pi); rates: S' = K q', S'' = K q'' + q'^T L q'.
+    (-pi, pi]; rates: S' = K q', S'' = K q'' + q'^T L q'.
 
     This is where a sweep meets memory: the inputs' rates are read once, before the items
     (a store to o_jet could alias them), and only an angle out of range is wrapped.
@@ -899,7 +891,7 @@ def _write_sample(i, qd, qdd, M, n_angles, stored, jet, o_jet, o_rate):
             k1 = jet[it, 1]
             l1 = jet[it, 2]
             t = jet[it, 0]
-            if it < n_angles and not -math.pi <= t < math.pi:
+            if it < n_angles and not -math.pi < t <= math.pi:
                 t = _wrapped(t)
             o_jet[i, j, 0] = t
             o_jet[i, j, 1] = k1
@@ -910,7 +902,7 @@ def _write_sample(i, qd, qdd, M, n_angles, stored, jet, o_jet, o_rate):
     for j in range(n):
         it = stored[j]
         t = jet[it, 0]
-        if it < n_angles and not -math.pi <= t < math.pi:
+        if it < n_angles and not -math.pi < t <= math.pi:
             t = _wrapped(t)
         o_jet[i, j, 0] = t
         v = 0.0
@@ -930,8 +922,8 @@ def _write_sample(i, qd, qdd, M, n_angles, stored, jet, o_jet, o_rate):
 
 @_jit()
 def _wrapped(t):
-    """An angle in [-pi, pi)."""
-    return t - 2.0 * math.pi * math.floor((t + math.pi) / (2.0 * math.pi))
+    """An angle in (-pi, pi], as :func:`kinelab.solvers.wrap_angle`."""
+    return t - 2.0 * math.pi * math.ceil((t - math.pi) / (2.0 * math.pi))
 
 
 @_jit()

@@ -9,7 +9,7 @@ import numpy as np
 from kinelab.errors import ModelError
 from kinelab.kinematics._solution import KinematicSolution
 from kinelab.model import Mechanism
-from kinelab.solvers import bisect
+from kinelab.solvers import bisect, wrap_angle
 
 __all__ = ["transmission_angle", "time_ratio", "TimeRatio"]
 
@@ -29,7 +29,7 @@ def transmission_angle(sol: KinematicSolution, links: tuple[str, str] = ("couple
     60.0
     """
     a, b = links
-    mu = np.abs(np.angle(np.exp(1j * (sol.angle(a) - sol.angle(b)))))
+    mu = np.abs(wrap_angle(sol.angle(a) - sol.angle(b)))
     return np.minimum(mu, np.pi - mu) if acute else mu
 
 

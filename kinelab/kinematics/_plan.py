@@ -19,6 +19,7 @@ The assembly mode (branch) of every closed-form dyad is read off the sketch and 
 """
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 from dataclasses import dataclass, field
@@ -27,8 +28,9 @@ import numpy as np
 
 from kinelab.errors import ModelError
 from kinelab.kinematics import _kernel as k
-from kinelab.kinematics._geometry import sketch_angle, wrap_angle
+from kinelab.kinematics._geometry import sketch_angle
 from kinelab.model import Joint, Mechanism
+from kinelab.solvers import wrap_angle
 
 _SKETCH_SINGULAR = 1e-9   # a dyad this close to straight at the sketch cannot fix its branch
 
@@ -59,7 +61,7 @@ class Plan:
     """
 
     mechanism: Mechanism
-    link_index: dict[str, int]
+    link_item: dict[str, int]
     point_item: dict[str, int]
     slide_item: dict[str, int]
     n_items: int
@@ -81,7 +83,14 @@ class Plan:
 
     @property
     def n_angles(self) -> int:
-        return len(self.link_index)
+        return len(self.link_item)
+
+    @functools.cached_property
+    def item_slot(self) -> np.ndarray:
+        """For each named item, its column in the stored arrays, or -1 (fixed or driven)."""
+        slot = np.full(self.n_out, -1, np.int64)
+        slot[self.stored_items] = np.arange(len(self.stored_items))
+        return slot
 
     @property
     def uses_newton(self) -> bool:
@@ -293,7 +302,7 @@ class _Builder:
         driven = {int(row[1]): (int(row[3]), float(f[0])) for row, f in zip(ops_i, self.ops_f)
                   if row[0] == k.OP_DRIVE_ANGLE and row[2] == -1}
         return Plan(
-            mechanism=m, link_index=dict(self.L),
+            mechanism=m, link_item=dict(self.L),
             point_item={name: item(i) for name, i in self.P.items()},
             slide_item={name: nl + 2 * npn + i for name, i in self.slides.items()},
             n_items=nl + 2 * self.n_all + ns, n_out=nl + 2 * npn + ns,

@@ -9,8 +9,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from kinelab.errors import ModelError
+from kinelab.kinematics._geometry import sketch_angle
+from kinelab.kinematics._plan import Plan
 from kinelab.model import Mechanism
-from kinelab.kinematics._geometry import sketch_angle, wrap_angle
+from kinelab.solvers import wrap_angle
 
 
 @dataclass(frozen=True)
@@ -47,6 +49,8 @@ class KinematicSolution:
 
     Attributes
     ----------
+    plan : Plan
+        How the mechanism was solved (``plan.steps``), and where each coordinate is.
     mechanism : Mechanism
     q, qd, qdd : ndarray, shape (N, M)
         Inputs (rad or m), their rates and accelerations.
@@ -56,11 +60,11 @@ class KinematicSolution:
         the fixed ones; prefer the accessors, which read the stored arrays directly.
     rates : ndarray, shape (N, n, 2)
         First and second time derivatives of each coordinate, built like ``jets``.
-    stored_jets, stored_rates : ndarray, shape (N, len(stored_items), ...)
-        ``jets`` and ``rates`` of the coordinates that are solved, ``stored_items``.  The
-        others are not repeated per sample: the ground's angle and points keep
-        ``fixed_values`` (K = L = 0); a link turned from the ground by input m has the angle
-        ``sign q[:, m]`` (``driven_items``: item -> (m, sign)).
+    stored_jets, stored_rates : ndarray, shape (N, len(plan.stored_items), ...)
+        ``jets`` and ``rates`` of the coordinates the plan solves, ``plan.stored_items``.
+        The others are not repeated per sample: the ground's angle and points keep
+        ``plan.fixed_values`` (K = L = 0); a link turned from the ground by input m has the
+        angle ``sign q[:, m]`` (``plan.driven_items``: item -> (m, sign)).
     det_J : ndarray, shape (N,)
         Determinant of the Jacobian J = dPhi/dS of the position equations, written group
         by group as in the notes (for a four-bar ``L3 L4 sin(theta3 - theta4)``; for the
@@ -78,25 +82,39 @@ class KinematicSolution:
         of such a sample is NaN).
     """
 
-    mechanism: Mechanism
+    plan: Plan
     q: np.ndarray
     qd: np.ndarray
     qdd: np.ndarray
     stored_jets: np.ndarray
     stored_rates: np.ndarray
-    stored_items: np.ndarray
-    fixed_values: dict[int, float]
-    driven_items: dict[int, tuple[int, float]]
     det_J: np.ndarray
     singularity: np.ndarray
     singular: np.ndarray
     assembled: np.ndarray
-    link_item: dict[str, int]
-    point_item: dict[str, int]
-    slide_item: dict[str, int]
     single: bool = False
     newton_state: tuple[np.ndarray, np.ndarray] | None = None   # (q, groups' unknowns) at
                                                                 # the end, for analyze(start=)
+
+    # -- what was solved -----------------------------------------------------------------
+    @property
+    def mechanism(self) -> Mechanism:
+        return self.plan.mechanism
+
+    @property
+    def link_item(self) -> dict[str, int]:
+        """Item of each link's angle in ``jets`` and ``rates``."""
+        return self.plan.link_item
+
+    @property
+    def point_item(self) -> dict[str, int]:
+        """Item of each point's x (y is the next) in ``jets`` and ``rates``."""
+        return self.plan.point_item
+
+    @property
+    def slide_item(self) -> dict[str, int]:
+        """Item of each prismatic joint's slide in ``jets`` and ``rates``."""
+        return self.plan.slide_item
 
     # -- shape rule ---------------------------------------------------------------------
     @property
@@ -127,13 +145,6 @@ class KinematicSolution:
         return a[0] if self.single else a
 
     # -- coordinates by item --------------------------------------------------------------
-    @functools.cached_property
-    def _slot(self) -> np.ndarray:
-        n = len(self.link_item) + 2 * len(self.point_item) + len(self.slide_item)
-        slot = np.full(n, -1, np.int64)
-        slot[self.stored_items] = np.arange(len(self.stored_items))
-        return slot
-
     def item_jets(self, items) -> np.ndarray:
         """``jets[:, items]`` without building ``jets``: shape (N, len(items), 1 + M + M*M)."""
         return self._gather(items, self.stored_jets, values=True)
@@ -144,7 +155,7 @@ class KinematicSolution:
 
     def _gather(self, items, stored: np.ndarray, values: bool) -> np.ndarray:
         items = np.atleast_1d(np.asarray(items, np.int64))
-        slots = self._slot[items]
+        slots = self.plan.item_slot[items]
         if (slots >= 0).all():
             s0 = int(slots[0]) if len(slots) else 0
             if np.array_equal(slots, np.arange(s0, s0 + len(slots))):
@@ -156,11 +167,11 @@ class KinematicSolution:
         others = np.flatnonzero(~solved)
         for col in others:
             item = int(items[col])
-            if item in self.fixed_values:
+            if item in self.plan.fixed_values:
                 if values:
-                    out[:, col, 0] = self.fixed_values[item]
+                    out[:, col, 0] = self.plan.fixed_values[item]
                 continue
-            m, sign = self.driven_items[item]
+            m, sign = self.plan.driven_items[item]
             if values:
                 out[:, col, 0] = wrap_angle(sign * self.q[:, m])
                 out[:, col, 1 + m] = sign
@@ -176,24 +187,19 @@ class KinematicSolution:
 
     @functools.cached_property
     def jets(self) -> np.ndarray:
-        return self.item_jets(np.arange(len(self._slot)))
+        return self.item_jets(np.arange(self.plan.n_out))
 
     @functools.cached_property
     def rates(self) -> np.ndarray:
-        return self.item_rates(np.arange(len(self._slot)))
+        return self.item_rates(np.arange(self.plan.n_out))
 
     @classmethod
     def concatenate(cls, parts: list[KinematicSolution]) -> KinematicSolution:
         """One solution from the analyses of consecutive pieces of a sweep."""
-        first = parts[0]
         join = {name: np.concatenate([getattr(s, name) for s in parts])
                 for name in ("q", "qd", "qdd", "stored_jets", "stored_rates", "det_J",
                              "singularity", "singular", "assembled")}
-        return cls(mechanism=first.mechanism, stored_items=first.stored_items,
-                   fixed_values=first.fixed_values, driven_items=first.driven_items,
-                   link_item=first.link_item,
-                   point_item=first.point_item, slide_item=first.slide_item, single=False,
-                   newton_state=parts[-1].newton_state, **join)
+        return cls(plan=parts[0].plan, single=False, newton_state=parts[-1].newton_state, **join)
 
     def _find(self, name: str, kinds: str) -> tuple[int, int]:
         """(first item, number of items) of a link ("l"), point ("p") or slide ("s")."""

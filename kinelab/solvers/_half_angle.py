@@ -7,6 +7,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import AssemblyError, ModelError
+from kinelab.solvers._angles import wrap_angle
 
 __all__ = ["HalfAngleSolution", "half_angle"]
 
@@ -158,18 +159,12 @@ def half_angle(E: ArrayLike, F: ArrayLike, G: ArrayLike, *, strict: bool = False
 
     closest = np.where(G > 0, np.arctan2(-F, -E), np.arctan2(F, E))
     theta = np.where((count < 2)[..., None], closest[..., None], theta)
-    theta = _wrap(theta)
+    theta = wrap_angle(theta)
     gap = np.where(count == 0, np.maximum(-margin, 0.0), 0.0)
 
     if strict and (count == 0).any():
         raise _no_root_error(E, F, G, count, gap)
     return HalfAngleSolution(theta=theta, count=count, gap=gap)
-
-
-def _wrap(angle: np.ndarray) -> np.ndarray:
-    """Angles into (-π, π]."""
-    wrapped = np.remainder(angle + np.pi, 2 * np.pi) - np.pi
-    return np.where(wrapped == -np.pi, np.pi, wrapped)
 
 
 def _no_root_error(E, F, G, count, gap) -> AssemblyError:

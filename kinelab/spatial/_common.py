@@ -58,10 +58,6 @@ def check_choice(name: str, value, choices) -> None:
         raise ModelError(f"{name}: expected one of {listed}, got {value!r}")
 
 
-def wrap(angle: np.ndarray) -> np.ndarray:
-    """Angles into (-π, π]."""
-    wrapped = np.remainder(angle + np.pi, 2.0 * np.pi) - np.pi
-    return np.where(wrapped == -np.pi, np.pi, wrapped)
 
 
 def indices(mask: np.ndarray, most: int = 5) -> str:

@@ -20,9 +20,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import AssemblyError, ConvergenceError, ModelError, SingularityError
-from kinelab.spatial._common import as_array, as_length, as_vectors, \
-    check_choice, indices, wrap
-from kinelab.solvers import half_angle
+from kinelab.spatial._common import as_array, as_length, as_vectors, check_choice, indices
+from kinelab.solvers import half_angle, wrap_angle
 from kinelab.spatial._transforms import rotation
 
 __all__ = ["RobotJoint", "SerialRobot", "ToolMotion", "JointRates",
@@ -509,7 +508,7 @@ class SerialRobot:
             q[active] += step * np.minimum(1.0, 0.5 / np.maximum(length, 1e-300))
         else:
             error = np.linalg.norm(self._chain(q)[2][:, :self.dim] - targets, axis=-1)
-        q[:, revolute] = wrap(q[:, revolute])
+        q[:, revolute] = wrap_angle(q[:, revolute])
         return q, error <= tol, error
 
     def _newton_all(self, target: np.ndarray) -> np.ndarray:
@@ -520,7 +519,7 @@ class SerialRobot:
         q, ok, _ = self._newton(np.broadcast_to(target, (len(starts), self.dim)), starts)
         found: list[np.ndarray] = []
         for candidate in q[ok]:
-            if not any(np.abs(wrap(candidate - f)).max() < 1e-8 for f in found):
+            if not any(np.abs(wrap_angle(candidate - f)).max() < 1e-8 for f in found):
                 found.append(candidate)
         if not found:
             raise AssemblyError(f"robot '{self.name}': Newton reached no solution for point "
@@ -594,7 +593,7 @@ def _two_link(u: np.ndarray, v: np.ndarray, a: float, b: float):
     _roots = half_angle(E, F, G)
     theta_a, count = _roots.theta, _roots.count
     elbow = a * np.stack([np.cos(theta_a), np.sin(theta_a)])
-    theta_b = wrap(np.arctan2(v[:, None] - elbow[1], u[:, None] - elbow[0]) - theta_a)
+    theta_b = wrap_angle(np.arctan2(v[:, None] - elbow[1], u[:, None] - elbow[0]) - theta_a)
     d = np.hypot(u, v)
     tol = _FREE * (a + b)
     free = (d <= tol) & (abs(a - b) <= tol)
@@ -653,7 +652,7 @@ def rp() -> SerialRobot:
     def solve(points):
         r = np.hypot(points[:, 0], points[:, 1])
         theta = np.arctan2(points[:, 1], points[:, 0])
-        q = np.stack([np.stack([theta, r], -1), np.stack([wrap(theta + np.pi), -r], -1)], 1)
+        q = np.stack([np.stack([theta, r], -1), np.stack([wrap_angle(theta + np.pi), -r], -1)], 1)
         free = r <= _FREE
         return _Branches(q, np.stack([np.ones_like(free), ~free], -1), np.zeros_like(r),
                          free, "the whole plane", "at the origin, so θ1 is arbitrary")
@@ -743,10 +742,10 @@ def rrr(L2: float, L3: float) -> SerialRobot:
         # Shoulder back: θ1 + π turns the arm plane round, and θ2 -> π - θ2, θ3 -> -θ3
         # mirror the arm within it, which puts the elbow back where it was (so "up"
         # stays up).
-        back = wrap(front + np.pi)
+        back = wrap_angle(front + np.pi)
         q = np.empty((len(r), 4, 3))
         q[:, :2, 0], q[:, 2:, 0] = front[:, None], back[:, None]
-        q[:, :2, 1], q[:, 2:, 1] = t2, wrap(np.pi - t2)
+        q[:, :2, 1], q[:, 2:, 1] = t2, wrap_angle(np.pi - t2)
         q[:, :2, 2], q[:, 2:, 2] = t3, -t3
         distinct = np.concatenate([_distinct(count)] * 2, axis=-1)
         return _Branches(q, distinct, gap, free & (gap == 0),

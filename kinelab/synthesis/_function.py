@@ -24,8 +24,8 @@ from kinelab.errors import ModelError
 from kinelab.kinematics import analyze, transmission_angle
 from kinelab.mechanisms import Grashof
 from kinelab.model import Mechanism
+from kinelab.solvers import wrap_angle
 from kinelab.synthesis._linkage import CheckedLinkage, fourbar_model, model_grashof
-from kinelab.synthesis._positions import wrap
 
 __all__ = ["chebyshev_points", "freudenstein", "FunctionSolution", "function_generation"]
 
@@ -265,7 +265,7 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
     turns = x0 + along[(along > 0) & (along < 1)] * (xf - x0)
     grid = np.concatenate([xs, x, turns])
     sol = analyze(model, theta2(grid) + q_off, unreachable="mask", at_singular="flag")
-    miss = wrap(sol.angle("rocker") - out_off - theta4(grid))
+    miss = wrap_angle(sol.angle("rocker") - out_off - theta4(grid))
     error = np.where(sol.assembled, miss * (yf - y0) / (t4e - t4s), np.inf)
     sign0 = np.sign(sol.det_J[samples])            # at the first precision point (the sketch)
     good = sol.assembled & ~sol.singular & (np.sign(sol.det_J) == sign0)

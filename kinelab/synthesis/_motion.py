@@ -13,10 +13,11 @@ from numpy.typing import ArrayLike
 from kinelab.errors import ModelError
 from kinelab.mechanisms import Grashof
 from kinelab.model import Mechanism
+from kinelab.solvers import wrap_angle
 from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, finite_or_inf, fourbar_model,
                                         model_grashof, travel)
 from kinelab.synthesis._pivots import fixed_pivot, moving_pivot
-from kinelab.synthesis._positions import Positions, as_positions, as_xy, poles, wrap
+from kinelab.synthesis._positions import Positions, as_positions, as_xy, poles
 
 __all__ = ["MotionSolution", "TwoPositions", "two_positions", "three_positions", "motion_solution"]
 
@@ -100,7 +101,7 @@ def motion_solution(pos: Positions, A0, B0, A1, B1) -> MotionSolution:
         P = sol.position("P")[idx]
         th = sol.angle("coupler")
         dpos = np.linalg.norm(P - pos.points, axis=-1)
-        dang = np.abs(wrap(th[idx] - th[0] - pos.alpha))
+        dang = np.abs(wrap_angle(th[idx] - th[0] - pos.alpha))
         return finite_or_inf(dpos), finite_or_inf(dang)
 
     def reached(sol, idx):

@@ -16,6 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError
+from kinelab.solvers import wrap_angle
 
 __all__ = ["Positions", "Poles", "poles", "pole"]
 
@@ -48,11 +49,6 @@ def cross(u: ArrayLike, v: ArrayLike) -> np.ndarray:
     """z-component of the cross product of planar vectors, shape (...)."""
     u, v = np.asarray(u, float), np.asarray(v, float)
     return u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
-
-
-def wrap(angle: ArrayLike) -> np.ndarray:
-    """Angles wrapped to (-pi, pi]."""
-    return np.angle(np.exp(1j * np.asarray(angle, dtype=float)))
 
 
 @dataclass(frozen=True, eq=False)
@@ -135,7 +131,7 @@ class Positions:
         for i in range(n):
             for j in range(i + 1, n):
                 if (np.linalg.norm(p[i] - p[j]) <= _COINCIDENT * scale
-                        and abs(wrap(a[j] - a[i])) <= _COINCIDENT):
+                        and abs(wrap_angle(a[j] - a[i])) <= _COINCIDENT):
                     raise ModelError(f"positions {i + 1} and {j + 1} coincide (same point "
                                      f"{fmt(p[i])} and same orientation); remove one of them")
         p.setflags(write=False)
@@ -302,7 +298,7 @@ def poles(points, angles=None, *, degrees: bool = False) -> Poles:
     """
     pos = as_positions(points, angles, degrees)
     i, j = np.triu_indices(pos.n, 1)
-    alpha = wrap(pos.alpha[j] - pos.alpha[i])
+    alpha = wrap_angle(pos.alpha[j] - pos.alpha[i])
     finite = np.abs(alpha) > 1e-12
     P = np.full((i.size, 2), np.nan)
     if finite.any():

@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 
 import kinelab.spatial as sp
 from kinelab.errors import AssemblyError, ConvergenceError, ModelError, SingularityError
-from kinelab.spatial._common import wrap
+from kinelab.solvers import wrap_angle
 
 ROBOTS = {
     "RR": sp.rr(1.0, 0.7),
@@ -28,7 +28,7 @@ def same_joints(robot, a, b):
     """Joint coordinates equal, revolute ones modulo 2π."""
     diff = np.array(a, dtype=float) - np.array(b, dtype=float)
     revolute = np.array([j.kind == "R" for j in robot.joints])
-    diff[..., revolute] = wrap(diff[..., revolute])
+    diff[..., revolute] = wrap_angle(diff[..., revolute])
     return np.abs(diff).max(axis=-1)
 
 
