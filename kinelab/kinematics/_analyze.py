@@ -11,6 +11,7 @@ import numba
 import numpy as np
 from numpy.typing import ArrayLike
 
+from kinelab import _memory as memory
 from kinelab.errors import AssemblyError, ModelError, SingularityError
 from kinelab.kinematics import _kernel as k
 from kinelab.kinematics._plan import Plan, build_plan
@@ -75,9 +76,11 @@ def _normalise_q(q, qd, qdd, M):
     qd_a = _as_inputs("qd", qd, M, shape)
     qdd_a = _as_inputs("qdd", qdd, M, shape)
 
-    def to2(a):
-        return np.ascontiguousarray(np.reshape(a, (-1, M)), dtype=float)
-    return to2(qa), to2(qd_a), to2(qdd_a), single
+    def rows(a):
+        """(N, M); for rates broadcast from one value per input, the single row (1, M)."""
+        a = np.reshape(a, (-1, M))
+        return np.ascontiguousarray(a[:1] if a.strides[0] == 0 else a)
+    return np.ascontiguousarray(np.reshape(qa, (-1, M))), rows(qd_a), rows(qdd_a), single
 
 
 def _threads() -> int:
@@ -93,8 +96,9 @@ def _run(p: Plan, q, qd, qdd, start=None):
     """Run the kernel; ``start`` = (q, group state) to continue from instead of the sketch."""
     N, M = q.shape
     n = len(p.stored_items)
-    out = dict(jets=np.empty((N, n, 1 + M + M * M)), rates=np.empty((N, n, 2)),
-               diag=np.empty((N, 2)), status=np.empty(N, np.int8), fail=np.empty((N, 2)))
+    out = dict(jets=memory.empty((N, n, 1 + M + M * M)), rates=memory.empty((N, n, 2)),
+               diag=memory.empty((N, 2)), status=memory.empty((N,), np.int8),
+               fail=memory.empty((N, 2)))
     tail = (out["jets"], out["rates"], out["diag"], out["status"], out["fail"])
     if p.groups is None:
         plan_args = (p.ops_i, p.ops_f, p.const_items, p.const_values, p.n_items, p.n_angles,
@@ -373,7 +377,8 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
         jets[singular, :, 1:] = np.nan
         rates[singular] = np.nan
     sol = KinematicSolution(
-        plan=p, q=q2, qd=qd2, qdd=qdd2, stored_jets=jets, stored_rates=rates,
+        plan=p, q=q2, qd=np.broadcast_to(qd2, q2.shape), qdd=np.broadcast_to(qdd2, q2.shape),
+        stored_jets=jets, stored_rates=rates,
         det_J=diag[:, 0], singularity=diag[:, 1], singular=singular, assembled=ok,
         single=single, newton_state=out.get("state"))
     if p.redundant:

@@ -882,9 +882,11 @@ def _write_sample(i, qd, qdd, M, n_angles, stored, jet, o_jet, o_rate):
     (a store to o_jet could alias them), and only an angle out of range is wrapped.
     """
     n = stored.shape[0]
+    r = i if qd.shape[0] > 1 else 0         # the rates: one row per sample, or one for all
+    rr = i if qdd.shape[0] > 1 else 0
     if M == 1:
-        w = qd[i, 0]
-        wd = qdd[i, 0]
+        w = qd[r, 0]
+        wd = qdd[rr, 0]
         ww = w * w
         for j in range(n):
             it = stored[j]
@@ -910,12 +912,12 @@ def _write_sample(i, qd, qdd, M, n_angles, stored, jet, o_jet, o_rate):
         for m in range(M):
             km = jet[it, 1 + m]
             o_jet[i, j, 1 + m] = km
-            v += km * qd[i, m]
-            a += km * qdd[i, m]
+            v += km * qd[r, m]
+            a += km * qdd[rr, m]
             for n_ in range(M):
                 lmn = jet[it, 1 + M + m * M + n_]
                 o_jet[i, j, 1 + M + m * M + n_] = lmn
-                a += lmn * qd[i, m] * qd[i, n_]
+                a += lmn * qd[r, m] * qd[r, n_]
         o_rate[i, j, 0] = v
         o_rate[i, j, 1] = a
 

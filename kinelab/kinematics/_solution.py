@@ -53,7 +53,8 @@ class KinematicSolution:
         How the mechanism was solved (``plan.steps``), and where each coordinate is.
     mechanism : Mechanism
     q, qd, qdd : ndarray, shape (N, M)
-        Inputs (rad or m), their rates and accelerations.
+        Inputs (rad or m), their rates and accelerations.  A rate given as one value for
+        all samples is a read-only view of that value, broadcast to (N, M).
     jets : ndarray, shape (N, n, 1 + M + M*M)
         For each coordinate (link angles, then x and y of each point, then slides):
         value, K, and L flattened.  Built on first use from the stored items (below) and
