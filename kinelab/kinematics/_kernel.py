@@ -66,107 +66,107 @@ _DISC_TOL = 1e-12  # relative: a discriminant this far below zero is rounding at
 # closed-form groups
 # --------------------------------------------------------------------------------------
 @_jit(inline="always")
-def _carried(jet, p, a, link, rx, ry, M):
+def _carried(jet, lane, p, a, link, rx, ry, M):
     """p = a + r, with r (ground frame, now) fixed in a link whose jet is known:
     K_p = K_a + K_link k x r,  L_p = L_a + L_link k x r - K_link K_link r."""
-    jet[p, 0] = jet[a, 0] + rx
-    jet[p + 1, 0] = jet[a + 1, 0] + ry
+    jet[lane, p, 0] = jet[lane, a, 0] + rx
+    jet[lane, p + 1, 0] = jet[lane, a + 1, 0] + ry
     for m in range(M):
-        km = jet[link, 1 + m]
-        jet[p, 1 + m] = jet[a, 1 + m] - km * ry
-        jet[p + 1, 1 + m] = jet[a + 1, 1 + m] + km * rx
+        km = jet[lane, link, 1 + m]
+        jet[lane, p, 1 + m] = jet[lane, a, 1 + m] - km * ry
+        jet[lane, p + 1, 1 + m] = jet[lane, a + 1, 1 + m] + km * rx
         for n in range(M):
             c2 = 1 + M + m * M + n
-            kk = km * jet[link, 1 + n]
-            lmn = jet[link, c2]
-            jet[p, c2] = jet[a, c2] - lmn * ry - kk * rx
-            jet[p + 1, c2] = jet[a + 1, c2] + lmn * rx - kk * ry
+            kk = km * jet[lane, link, 1 + n]
+            lmn = jet[lane, link, c2]
+            jet[lane, p, c2] = jet[lane, a, c2] - lmn * ry - kk * rx
+            jet[lane, p + 1, c2] = jet[lane, a + 1, c2] + lmn * rx - kk * ry
 
 
 @_jit(inline="always")
-def _rigid_point(jet, p, link, a, rx, ry, M):
+def _rigid_point(jet, lane, p, link, a, rx, ry, M):
     """p = a + R(theta_link) r, r in the link's frame."""
-    c = math.cos(jet[link, 0])
-    s = math.sin(jet[link, 0])
-    _carried(jet, p, a, link, c * rx - s * ry, s * rx + c * ry, M)
+    c = math.cos(jet[lane, link, 0])
+    s = math.sin(jet[lane, link, 0])
+    _carried(jet, lane, p, a, link, c * rx - s * ry, s * rx + c * ry, M)
 
 
 @_jit(inline="always")
-def _frame_point(jet, p, a, b, lam, mu, M):
+def _frame_point(jet, lane, p, a, b, lam, mu, M):
     """p = a + lam d + mu k x d with d = b - a: a point rigid with a link through two of its
     known points.  Linear in the two points, so their K and L carry over with no angle (and
     no sine or cosine) at all."""
     for c in range(1 + M + M * M):
-        dx = jet[b, c] - jet[a, c]
-        dy = jet[b + 1, c] - jet[a + 1, c]
-        jet[p, c] = jet[a, c] + lam * dx - mu * dy
-        jet[p + 1, c] = jet[a + 1, c] + lam * dy + mu * dx
+        dx = jet[lane, b, c] - jet[lane, a, c]
+        dy = jet[lane, b + 1, c] - jet[lane, a + 1, c]
+        jet[lane, p, c] = jet[lane, a, c] + lam * dx - mu * dy
+        jet[lane, p + 1, c] = jet[lane, a + 1, c] + lam * dy + mu * dx
 
 
 @_jit(inline="always")
-def _direction(jet, link, beta):
+def _direction(jet, lane, link, beta):
     """Unit vector at angle theta_link + beta (a slide direction fixed in the link)."""
-    phi = jet[link, 0] + beta
+    phi = jet[lane, link, 0] + beta
     return math.cos(phi), math.sin(phi)
 
 
 @_jit()
-def _line_point(jet, out, base, dirlink, beta, t, Kt, Lt, M):
+def _line_point(jet, lane, out, base, dirlink, beta, t, Kt, Lt, M):
     """out = base + t u, u at angle theta_dirlink + beta; t with its K (M,) and L (M, M)."""
-    ux, uy = _direction(jet, dirlink, beta)
-    jet[out, 0] = jet[base, 0] + t * ux
-    jet[out + 1, 0] = jet[base + 1, 0] + t * uy
+    ux, uy = _direction(jet, lane, dirlink, beta)
+    jet[lane, out, 0] = jet[lane, base, 0] + t * ux
+    jet[lane, out + 1, 0] = jet[lane, base + 1, 0] + t * uy
     for m in range(M):
-        wm = jet[dirlink, 1 + m]
-        jet[out, 1 + m] = jet[base, 1 + m] + Kt[m] * ux - t * wm * uy
-        jet[out + 1, 1 + m] = jet[base + 1, 1 + m] + Kt[m] * uy + t * wm * ux
+        wm = jet[lane, dirlink, 1 + m]
+        jet[lane, out, 1 + m] = jet[lane, base, 1 + m] + Kt[m] * ux - t * wm * uy
+        jet[lane, out + 1, 1 + m] = jet[lane, base + 1, 1 + m] + Kt[m] * uy + t * wm * ux
         for n in range(M):
             c2 = 1 + M + m * M + n
-            wn = jet[dirlink, 1 + n]
-            nn = Kt[m] * wn + Kt[n] * wm + t * jet[dirlink, c2]   # along n = k x u
+            wn = jet[lane, dirlink, 1 + n]
+            nn = Kt[m] * wn + Kt[n] * wm + t * jet[lane, dirlink, c2]   # along n = k x u
             uu = Lt[m, n] - t * wm * wn                            # along u
-            jet[out, c2] = jet[base, c2] + uu * ux - nn * uy
-            jet[out + 1, c2] = jet[base + 1, c2] + uu * uy + nn * ux
+            jet[lane, out, c2] = jet[lane, base, c2] + uu * ux - nn * uy
+            jet[lane, out + 1, c2] = jet[lane, base + 1, c2] + uu * uy + nn * ux
 
 
 @_jit()
-def _relative_slide(jet, p, o, g, beta, M, Ks, Ls):
+def _relative_slide(jet, lane, p, o, g, beta, M, Ks, Ls):
     """s = u . (p - o) with u at angle theta_g + beta; returns s, fills Ks (M,), Ls (M, M)."""
-    ux, uy = _direction(jet, g, beta)
+    ux, uy = _direction(jet, lane, g, beta)
     nx = -uy
     ny = ux
-    dx = jet[p, 0] - jet[o, 0]
-    dy = jet[p + 1, 0] - jet[o + 1, 0]
+    dx = jet[lane, p, 0] - jet[lane, o, 0]
+    dy = jet[lane, p + 1, 0] - jet[lane, o + 1, 0]
     ud = ux * dx + uy * dy
     nd = nx * dx + ny * dy
     for m in range(M):
-        dmx = jet[p, 1 + m] - jet[o, 1 + m]
-        dmy = jet[p + 1, 1 + m] - jet[o + 1, 1 + m]
-        wm = jet[g, 1 + m]
+        dmx = jet[lane, p, 1 + m] - jet[lane, o, 1 + m]
+        dmy = jet[lane, p + 1, 1 + m] - jet[lane, o + 1, 1 + m]
+        wm = jet[lane, g, 1 + m]
         Ks[m] = wm * nd + ux * dmx + uy * dmy
         for n in range(M):
             c2 = 1 + M + m * M + n
-            dnx = jet[p, 1 + n] - jet[o, 1 + n]
-            dny = jet[p + 1, 1 + n] - jet[o + 1, 1 + n]
-            wn = jet[g, 1 + n]
-            ldx = jet[p, c2] - jet[o, c2]
-            ldy = jet[p + 1, c2] - jet[o + 1, c2]
-            Ls[m, n] = (jet[g, c2] * nd - wm * wn * ud
+            dnx = jet[lane, p, 1 + n] - jet[lane, o, 1 + n]
+            dny = jet[lane, p + 1, 1 + n] - jet[lane, o + 1, 1 + n]
+            wn = jet[lane, g, 1 + n]
+            ldx = jet[lane, p, c2] - jet[lane, o, c2]
+            ldy = jet[lane, p + 1, c2] - jet[lane, o + 1, c2]
+            Ls[m, n] = (jet[lane, g, c2] * nd - wm * wn * ud
                         + wm * (nx * dnx + ny * dny) + wn * (nx * dmx + ny * dmy)
                         + ux * ldx + uy * ldy)
     return ud
 
 
 @_jit(inline="always")
-def _rrr(jet, b, c, X, Y, Z, lb, lc, sigma, offb, offc, M):
+def _rrr(jet, lane, b, c, X, Y, Z, lb, lc, sigma, offb, offc, M):
     """Circle-circle dyad; returns (det, measure, gap).  gap > 0: cannot close by gap (m).
 
     With d = Z - X, the joint is Y = X + alpha d + sigma beta k x d, where alpha and beta
     are the along and across distances of Y over |d|: no |d| is needed, so one square root
     and one division stand between the input and Y.  Then r_b x r_c = sigma beta |d|^2.
     """
-    dx = jet[Z, 0] - jet[X, 0]
-    dy = jet[Z + 1, 0] - jet[X + 1, 0]
+    dx = jet[lane, Z, 0] - jet[lane, X, 0]
+    dy = jet[lane, Z + 1, 0] - jet[lane, X + 1, 0]
     D2 = dx * dx + dy * dy
     if D2 == 0.0:
         return 0.0, 0.0, abs(lb - lc)
@@ -185,36 +185,36 @@ def _rrr(jet, b, c, X, Y, Z, lb, lc, sigma, offb, offc, M):
     rcy = rby - dy
     cr = sb * D2                            # cross(r_b, r_c)
     inv_cr = 1.0 / cr
-    jet[b, 0] = math.atan2(rby, rbx) + offb
-    jet[c, 0] = math.atan2(rcy, rcx) + offc
+    jet[lane, b, 0] = math.atan2(rby, rbx) + offb
+    jet[lane, c, 0] = math.atan2(rcy, rcx) + offc
     # velocity: wb k x rb - wc k x rc = vZ - vX  (dot with rc and with rb)
     for m in range(M):
-        wx = jet[Z, 1 + m] - jet[X, 1 + m]
-        wy = jet[Z + 1, 1 + m] - jet[X + 1, 1 + m]
-        jet[b, 1 + m] = (wx * rcx + wy * rcy) * inv_cr
-        jet[c, 1 + m] = (wx * rbx + wy * rby) * inv_cr
+        wx = jet[lane, Z, 1 + m] - jet[lane, X, 1 + m]
+        wy = jet[lane, Z + 1, 1 + m] - jet[lane, X + 1, 1 + m]
+        jet[lane, b, 1 + m] = (wx * rcx + wy * rcy) * inv_cr
+        jet[lane, c, 1 + m] = (wx * rbx + wy * rby) * inv_cr
     # acceleration: same matrix, right side with the centripetal terms
     for m in range(M):
         for n in range(M):
             c2 = 1 + M + m * M + n
-            kb = jet[b, 1 + m] * jet[b, 1 + n]
-            kc = jet[c, 1 + m] * jet[c, 1 + n]
-            wx = jet[Z, c2] - jet[X, c2] + kb * rbx - kc * rcx
-            wy = jet[Z + 1, c2] - jet[X + 1, c2] + kb * rby - kc * rcy
-            jet[b, c2] = (wx * rcx + wy * rcy) * inv_cr
-            jet[c, c2] = (wx * rbx + wy * rby) * inv_cr
-    _carried(jet, Y, X, b, rbx, rby, M)
+            kb = jet[lane, b, 1 + m] * jet[lane, b, 1 + n]
+            kc = jet[lane, c, 1 + m] * jet[lane, c, 1 + n]
+            wx = jet[lane, Z, c2] - jet[lane, X, c2] + kb * rbx - kc * rcx
+            wy = jet[lane, Z + 1, c2] - jet[lane, X + 1, c2] + kb * rby - kc * rcy
+            jet[lane, b, c2] = (wx * rcx + wy * rcy) * inv_cr
+            jet[lane, c, c2] = (wx * rbx + wy * rby) * inv_cr
+    _carried(jet, lane, Y, X, b, rbx, rby, M)
     return -cr, abs(cr) / (lb * lc), 0.0
 
 
 @_jit()
-def _rrp(jet, b, X, Y, o, g, lb, beta, sigma, offb, M, Ks):
+def _rrp(jet, lane, b, X, Y, o, g, lb, beta, sigma, offb, M, Ks):
     """Circle-line dyad: Y on the line o + s u (u fixed in link g), |Y - X| = lb."""
-    ux, uy = _direction(jet, g, beta)
+    ux, uy = _direction(jet, lane, g, beta)
     nx = -uy
     ny = ux
-    w0x = jet[o, 0] - jet[X, 0]
-    w0y = jet[o + 1, 0] - jet[X + 1, 0]
+    w0x = jet[lane, o, 0] - jet[lane, X, 0]
+    w0y = jet[lane, o + 1, 0] - jet[lane, X + 1, 0]
     uw = ux * w0x + uy * w0y
     hh = nx * w0x + ny * w0y            # signed distance of X from the line
     t2 = lb * lb - hh * hh
@@ -226,35 +226,35 @@ def _rrp(jet, b, X, Y, o, g, lb, beta, sigma, offb, M, Ks):
     s = t - uw                          # slide along the line from o
     rx = hh * nx + t * ux               # r = Y - X
     ry = hh * ny + t * uy
-    jet[b, 0] = math.atan2(ry, rx) + offb
+    jet[lane, b, 0] = math.atan2(ry, rx) + offb
     ru = t                              # r . u
     kru = -ry * ux + rx * uy            # (k x r) . u
     for m in range(M):
-        wg = jet[g, 1 + m]
-        w1x = jet[o, 1 + m] + s * wg * nx - jet[X, 1 + m]
-        w1y = jet[o + 1, 1 + m] + s * wg * ny - jet[X + 1, 1 + m]
+        wg = jet[lane, g, 1 + m]
+        w1x = jet[lane, o, 1 + m] + s * wg * nx - jet[lane, X, 1 + m]
+        w1y = jet[lane, o + 1, 1 + m] + s * wg * ny - jet[lane, X + 1, 1 + m]
         wb = (w1x * nx + w1y * ny) / ru
-        jet[b, 1 + m] = wb
+        jet[lane, b, 1 + m] = wb
         Ks[m] = wb * kru - (w1x * ux + w1y * uy)
     for m in range(M):
         for n in range(M):
             c2 = 1 + M + m * M + n
-            kb = jet[b, 1 + m] * jet[b, 1 + n]
-            kg = jet[g, 1 + m] * jet[g, 1 + n]
-            cor = Ks[m] * jet[g, 1 + n] + Ks[n] * jet[g, 1 + m]
-            lg = jet[g, c2]
-            w2x = jet[o, c2] + cor * nx + s * (lg * nx - kg * ux) - jet[X, c2] + kb * rx
-            w2y = jet[o + 1, c2] + cor * ny + s * (lg * ny - kg * uy) - jet[X + 1, c2] + kb * ry
-            jet[b, c2] = (w2x * nx + w2y * ny) / ru
-    _carried(jet, Y, X, b, rx, ry, M)
+            kb = jet[lane, b, 1 + m] * jet[lane, b, 1 + n]
+            kg = jet[lane, g, 1 + m] * jet[lane, g, 1 + n]
+            cor = Ks[m] * jet[lane, g, 1 + n] + Ks[n] * jet[lane, g, 1 + m]
+            lg = jet[lane, g, c2]
+            w2x = jet[lane, o, c2] + cor * nx + s * (lg * nx - kg * ux) - jet[lane, X, c2] + kb * rx
+            w2y = jet[lane, o + 1, c2] + cor * ny + s * (lg * ny - kg * uy) - jet[lane, X + 1, c2] + kb * ry
+            jet[lane, b, c2] = (w2x * nx + w2y * ny) / ru
+    _carried(jet, lane, Y, X, b, rx, ry, M)
     return ru, abs(ru) / lb, 0.0
 
 
 @_jit()
-def _rpr(jet, G, X, Z, rho_x, rho_y, u_x, u_y, sigma, M, Ks):
+def _rpr(jet, lane, G, X, Z, rho_x, rho_y, u_x, u_y, sigma, M, Ks):
     """Turning-line dyad: X - Z = R(theta_G) (rho + s u), rho and u in G's frame."""
-    wx = jet[X, 0] - jet[Z, 0]
-    wy = jet[X + 1, 0] - jet[Z + 1, 0]
+    wx = jet[lane, X, 0] - jet[lane, Z, 0]
+    wy = jet[lane, X + 1, 0] - jet[lane, Z + 1, 0]
     D2 = wx * wx + wy * wy
     h = u_x * rho_y - u_y * rho_x           # distance of Z from the line, in G's frame
     t2 = D2 - h * h
@@ -267,7 +267,7 @@ def _rpr(jet, G, X, Z, rho_x, rho_y, u_x, u_y, sigma, M, Ks):
     lx = -h * u_y + t * u_x
     ly = h * u_x + t * u_y
     th = math.atan2(wy, wx) - math.atan2(ly, lx)
-    jet[G, 0] = th
+    jet[lane, G, 0] = th
     c = math.cos(th)
     sn = math.sin(th)
     ux = c * u_x - sn * u_y
@@ -277,28 +277,28 @@ def _rpr(jet, G, X, Z, rho_x, rho_y, u_x, u_y, sigma, M, Ks):
     wu = t                                  # w . u
     kwu = wx * uy - wy * ux                 # (k x w) . u
     for m in range(M):
-        dx = jet[X, 1 + m] - jet[Z, 1 + m]
-        dy = jet[X + 1, 1 + m] - jet[Z + 1, 1 + m]
+        dx = jet[lane, X, 1 + m] - jet[lane, Z, 1 + m]
+        dy = jet[lane, X + 1, 1 + m] - jet[lane, Z + 1, 1 + m]
         om = (dx * nx + dy * ny) / wu
-        jet[G, 1 + m] = om
+        jet[lane, G, 1 + m] = om
         Ks[m] = dx * ux + dy * uy - om * kwu
     for m in range(M):
         for n in range(M):
             c2 = 1 + M + m * M + n
-            kk = jet[G, 1 + m] * jet[G, 1 + n]
-            cor = Ks[m] * jet[G, 1 + n] + Ks[n] * jet[G, 1 + m]
-            r2x = jet[X, c2] - jet[Z, c2] + kk * wx - cor * nx
-            r2y = jet[X + 1, c2] - jet[Z + 1, c2] + kk * wy - cor * ny
-            jet[G, c2] = (r2x * nx + r2y * ny) / wu
+            kk = jet[lane, G, 1 + m] * jet[lane, G, 1 + n]
+            cor = Ks[m] * jet[lane, G, 1 + n] + Ks[n] * jet[lane, G, 1 + m]
+            r2x = jet[lane, X, c2] - jet[lane, Z, c2] + kk * wx - cor * nx
+            r2y = jet[lane, X + 1, c2] - jet[lane, Z + 1, c2] + kk * wy - cor * ny
+            jet[lane, G, c2] = (r2x * nx + r2y * ny) / wu
     D = math.sqrt(D2)
     return -wu, abs(wu) / D if D > 0.0 else 0.0, 0.0
 
 
 @_jit()
-def _lines(jet, out, o1, l1, o2, l2, beta1, beta2, M, K1, K2, L1):
+def _lines(jet, lane, out, o1, l1, o2, l2, beta1, beta2, M, K1, K2, L1):
     """Intersection of two lines o_i + t_i u_i, u_i at angle theta_{l_i} + beta_i."""
-    p1 = jet[l1, 0] + beta1
-    p2 = jet[l2, 0] + beta2
+    p1 = jet[lane, l1, 0] + beta1
+    p2 = jet[lane, l2, 0] + beta2
     u1x = math.cos(p1)
     u1y = math.sin(p1)
     u2x = math.cos(p2)
@@ -306,56 +306,56 @@ def _lines(jet, out, o1, l1, o2, l2, beta1, beta2, M, K1, K2, L1):
     cr = u1x * u2y - u1y * u2x
     if cr == 0.0:
         return 0.0, 0.0, 0.0
-    wx = jet[o2, 0] - jet[o1, 0]
-    wy = jet[o2 + 1, 0] - jet[o1 + 1, 0]
+    wx = jet[lane, o2, 0] - jet[lane, o1, 0]
+    wy = jet[lane, o2 + 1, 0] - jet[lane, o1 + 1, 0]
     t1 = (wx * u2y - wy * u2x) / cr
     t2 = (wx * u1y - wy * u1x) / cr
     for m in range(M):
-        a1 = jet[l1, 1 + m]
-        a2 = jet[l2, 1 + m]
-        vx = jet[o2, 1 + m] - t2 * a2 * u2y - jet[o1, 1 + m] + t1 * a1 * u1y
-        vy = jet[o2 + 1, 1 + m] + t2 * a2 * u2x - jet[o1 + 1, 1 + m] - t1 * a1 * u1x
+        a1 = jet[lane, l1, 1 + m]
+        a2 = jet[lane, l2, 1 + m]
+        vx = jet[lane, o2, 1 + m] - t2 * a2 * u2y - jet[lane, o1, 1 + m] + t1 * a1 * u1y
+        vy = jet[lane, o2 + 1, 1 + m] + t2 * a2 * u2x - jet[lane, o1 + 1, 1 + m] - t1 * a1 * u1x
         K1[m] = (vx * u2y - vy * u2x) / cr
         K2[m] = (vx * u1y - vy * u1x) / cr
     for m in range(M):
         for n in range(M):
             c2 = 1 + M + m * M + n
-            a1m = jet[l1, 1 + m]
-            a1n = jet[l1, 1 + n]
-            a2m = jet[l2, 1 + m]
-            a2n = jet[l2, 1 + n]
-            c1 = K1[m] * a1n + K1[n] * a1m + t1 * jet[l1, c2]   # normal part, line 1
-            cc2 = K2[m] * a2n + K2[n] * a2m + t2 * jet[l2, c2]
+            a1m = jet[lane, l1, 1 + m]
+            a1n = jet[lane, l1, 1 + n]
+            a2m = jet[lane, l2, 1 + m]
+            a2n = jet[lane, l2, 1 + n]
+            c1 = K1[m] * a1n + K1[n] * a1m + t1 * jet[lane, l1, c2]   # normal part, line 1
+            cc2 = K2[m] * a2n + K2[n] * a2m + t2 * jet[lane, l2, c2]
             q1 = t1 * a1m * a1n                                # centripetal part
             q2 = t2 * a2m * a2n
-            ax = (jet[o2, c2] - cc2 * u2y - q2 * u2x) - (jet[o1, c2] - c1 * u1y - q1 * u1x)
-            ay = (jet[o2 + 1, c2] + cc2 * u2x - q2 * u2y) - (jet[o1 + 1, c2] + c1 * u1x - q1 * u1y)
+            ax = (jet[lane, o2, c2] - cc2 * u2y - q2 * u2x) - (jet[lane, o1, c2] - c1 * u1y - q1 * u1x)
+            ay = (jet[lane, o2 + 1, c2] + cc2 * u2x - q2 * u2y) - (jet[lane, o1 + 1, c2] + c1 * u1x - q1 * u1y)
             L1[m, n] = (ax * u2y - ay * u2x) / cr
-    _line_point(jet, out, o1, l1, beta1, t1, K1, L1, M)
+    _line_point(jet, lane, out, o1, l1, beta1, t1, K1, L1, M)
     return -cr, abs(cr), 0.0
 
 
 @_jit()
-def _two_points(jet, b, p1, p2, offset, M):
+def _two_points(jet, lane, b, p1, p2, offset, M):
     """Angle of a link through two placed points: theta = atan2(p2 - p1) + offset."""
-    dx = jet[p2, 0] - jet[p1, 0]
-    dy = jet[p2 + 1, 0] - jet[p1 + 1, 0]
+    dx = jet[lane, p2, 0] - jet[lane, p1, 0]
+    dy = jet[lane, p2 + 1, 0] - jet[lane, p1 + 1, 0]
     d2 = dx * dx + dy * dy
-    jet[b, 0] = math.atan2(dy, dx) + offset
+    jet[lane, b, 0] = math.atan2(dy, dx) + offset
     for m in range(M):
-        kx = jet[p2, 1 + m] - jet[p1, 1 + m]
-        ky = jet[p2 + 1, 1 + m] - jet[p1 + 1, 1 + m]
-        jet[b, 1 + m] = (dx * ky - dy * kx) / d2
+        kx = jet[lane, p2, 1 + m] - jet[lane, p1, 1 + m]
+        ky = jet[lane, p2 + 1, 1 + m] - jet[lane, p1 + 1, 1 + m]
+        jet[lane, b, 1 + m] = (dx * ky - dy * kx) / d2
     for m in range(M):
-        kmx = jet[p2, 1 + m] - jet[p1, 1 + m]
-        kmy = jet[p2 + 1, 1 + m] - jet[p1 + 1, 1 + m]
+        kmx = jet[lane, p2, 1 + m] - jet[lane, p1, 1 + m]
+        kmy = jet[lane, p2 + 1, 1 + m] - jet[lane, p1 + 1, 1 + m]
         for n in range(M):
             c2 = 1 + M + m * M + n
-            knx = jet[p2, 1 + n] - jet[p1, 1 + n]
-            kny = jet[p2 + 1, 1 + n] - jet[p1 + 1, 1 + n]
-            lx = jet[p2, c2] - jet[p1, c2]
-            ly = jet[p2 + 1, c2] - jet[p1 + 1, c2]
-            jet[b, c2] = ((knx * kmy - kny * kmx + dx * ly - dy * lx) / d2
+            knx = jet[lane, p2, 1 + n] - jet[lane, p1, 1 + n]
+            kny = jet[lane, p2 + 1, 1 + n] - jet[lane, p1 + 1, 1 + n]
+            lx = jet[lane, p2, c2] - jet[lane, p1, c2]
+            ly = jet[lane, p2 + 1, c2] - jet[lane, p1 + 1, c2]
+            jet[lane, b, c2] = ((knx * kmy - kny * kmx + dx * ly - dy * lx) / d2
                           - 2.0 * (dx * kmy - dy * kmx) * (dx * knx + dy * kny) / (d2 * d2))
 
 
@@ -762,49 +762,66 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
 
 
 # --------------------------------------------------------------------------------------
-# One sample: run every operation of the plan
+# A block of samples: run every operation of the plan on each
 # --------------------------------------------------------------------------------------
+BLOCK = 4   # samples evaluated side by side; their chains of square roots, divisions and
+            # atan2 overlap in the processor (about a quarter faster than one at a time)
+
+
 @_jit()
 def _evaluate(qs, qd, qdd, lo, hi, write, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i, con_i,
-              con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, n_angles, stored,
-              o_jet, o_rate, o_diag, o_status, o_fail):
-    """Run the plan at the inputs qs[lo:hi], one sample after the other.
+              con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, lane_f, lane_i, n_angles,
+              stored, o_jet, o_rate, o_diag, o_status, o_fail):
+    """Run the plan at the inputs qs[lo:hi], a block of jet.shape[0] samples at a time.
 
-    After each sample res holds (det, measure, gap, failed op); with ``write`` the sample's
-    status, diagnostics and (when it assembles) its jets and rates go to row i of the
-    outputs.  Returns the status of the last sample.  Kt, Kt2 (M,) and Lt (M, M) are
-    scratch for the groups' own slides.  The sample loop lives here, with the operation
-    dispatch, so that a sample costs no function call.
+    jet (lanes, n_items, 1 + M + M*M) holds the block's samples, one per lane; lane_f
+    (3, lanes) their det, measure and gap (> 0: a group cannot close), lane_i (2, lanes)
+    their Newton status and first failed operation (-1: none).  Each operation runs on
+    every lane of the block before the next, so that the lanes' work overlaps; a lane that
+    failed runs on (its numbers are not used) except through Newton groups.  With ``write``
+    each sample's status, diagnostics and (when it assembles) its jets and rates go to its
+    row of the outputs.  Returns the status of the last sample, and leaves its (det,
+    measure, gap, failed op) in res.  Kt, Kt2 (M,) and Lt (M, M) are scratch for the
+    groups' own slides.  Newton groups keep one state (gx, ...), so a plan with them is
+    evaluated one sample at a time, as continuation does.
     """
+    lanes = jet.shape[0]
     status = ST_OK
-    for i in range(lo, hi):
-        status = ST_OK
-        det = 1.0
-        meas = 1.0
-        failed = -1
-        gap = 0.0
+    for i0 in range(lo, hi, lanes):
+        nb = min(lanes, hi - i0)
+        for e in range(nb):
+            lane_f[0, e] = 1.0
+            lane_f[1, e] = 1.0
+            lane_f[2, e] = 0.0
+            lane_i[0, e] = ST_OK
+            lane_i[1, e] = -1
         for k in range(ops_i.shape[0]):
             op = ops_i[k, 0]
-            d = 1.0
-            ms = 1.0
             if op == OP_FRAME_POINT:
-                _frame_point(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], ops_f[k, 1], M)
+                for e in range(nb):
+                    _frame_point(jet, e, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0],
+                                 ops_f[k, 1], M)
             elif op == OP_RIGID_POINT:
-                _rigid_point(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], ops_f[k, 1], M)
+                for e in range(nb):
+                    _rigid_point(jet, e, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0],
+                                 ops_f[k, 1], M)
             elif op == OP_DRIVE_ANGLE:
                 b, a, mi = ops_i[k, 1], ops_i[k, 2], ops_i[k, 3]
                 sgn = ops_f[k, 0]
-                jet[b, 0] = (jet[a, 0] if a >= 0 else 0.0) + sgn * qs[i, mi]
-                for c in range(1, 1 + M + M * M):
-                    jet[b, c] = jet[a, c] if a >= 0 else 0.0
-                jet[b, 1 + mi] += sgn
+                for e in range(nb):
+                    jet[e, b, 0] = (jet[e, a, 0] if a >= 0 else 0.0) + sgn * qs[i0 + e, mi]
+                    for c in range(1, 1 + M + M * M):
+                        jet[e, b, c] = jet[e, a, c] if a >= 0 else 0.0
+                    jet[e, b, 1 + mi] += sgn
             elif op == OP_TWO_POINTS:
-                _two_points(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], M)
+                for e in range(nb):
+                    _two_points(jet, e, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], M)
             elif op == OP_LOCK_ANGLE:
                 b, a = ops_i[k, 1], ops_i[k, 2]
-                jet[b, 0] = jet[a, 0] + ops_f[k, 0]
-                for c in range(1, 1 + M + M * M):
-                    jet[b, c] = jet[a, c]
+                for e in range(nb):
+                    jet[e, b, 0] = jet[e, a, 0] + ops_f[k, 0]
+                    for c in range(1, 1 + M + M * M):
+                        jet[e, b, c] = jet[e, a, c]
             elif op == OP_SLIDE_POINT:
                 mi = ops_i[k, 4]
                 sgn = ops_f[k, 2]
@@ -812,71 +829,104 @@ def _evaluate(qs, qd, qdd, lo, hi, write, ops_i, ops_f, jet, M, Kt, Kt2, Lt, gro
                     Kt[m] = sgn if m == mi else 0.0
                     for n in range(M):
                         Lt[m, n] = 0.0
-                _line_point(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0],
-                            sgn * (qs[i, mi] - ops_f[k, 1]), Kt, Lt, M)
+                for e in range(nb):
+                    _line_point(jet, e, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0],
+                                sgn * (qs[i0 + e, mi] - ops_f[k, 1]), Kt, Lt, M)
             elif op == OP_RRR:
-                d, ms, gap = _rrr(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4],
-                                  ops_i[k, 5], ops_f[k, 0], ops_f[k, 1], ops_f[k, 2], ops_f[k, 3],
-                                  ops_f[k, 4], M)
+                for e in range(nb):
+                    d, ms, gap = _rrr(jet, e, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4],
+                                      ops_i[k, 5], ops_f[k, 0], ops_f[k, 1], ops_f[k, 2],
+                                      ops_f[k, 3], ops_f[k, 4], M)
+                    _tally(lane_f, lane_i, e, k, d, ms, gap)
             elif op == OP_RRP:
-                d, ms, gap = _rrp(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4],
-                                  ops_i[k, 5], ops_f[k, 0], ops_f[k, 1], ops_f[k, 2], ops_f[k, 3],
-                                  M, Kt)
+                for e in range(nb):
+                    d, ms, gap = _rrp(jet, e, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4],
+                                      ops_i[k, 5], ops_f[k, 0], ops_f[k, 1], ops_f[k, 2],
+                                      ops_f[k, 3], M, Kt)
+                    _tally(lane_f, lane_i, e, k, d, ms, gap)
             elif op == OP_RPR:
-                d, ms, gap = _rpr(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0],
-                                  ops_f[k, 1], ops_f[k, 2], ops_f[k, 3], ops_f[k, 4], M, Kt)
+                for e in range(nb):
+                    d, ms, gap = _rpr(jet, e, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0],
+                                      ops_f[k, 1], ops_f[k, 2], ops_f[k, 3], ops_f[k, 4], M, Kt)
+                    _tally(lane_f, lane_i, e, k, d, ms, gap)
             elif op == OP_LINES:
-                d, ms, gap = _lines(jet, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4],
-                                    ops_i[k, 5], ops_f[k, 0], ops_f[k, 1], M, Kt, Kt2, Lt)
+                for e in range(nb):
+                    d, ms, gap = _lines(jet, e, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3],
+                                        ops_i[k, 4], ops_i[k, 5], ops_f[k, 0], ops_f[k, 1], M,
+                                        Kt, Kt2, Lt)
+                    _tally(lane_f, lane_i, e, k, d, ms, gap)
             elif op == OP_NEWTON:
-                st, d, ms = _newton_group(ops_i[k, 1], groups_i, con_i, con_f, scale, qs[i], jet,
-                                          gx, gK, gL, gq, gdet, M, work, piv)
-                if st != ST_OK:
-                    status = st
-                    failed = k
-                    break
+                for e in range(nb):
+                    if lane_i[1, e] < 0:            # no group of this sample failed so far
+                        st, d, ms = _newton_group(ops_i[k, 1], groups_i, con_i, con_f, scale,
+                                                  qs[i0 + e], jet[e], gx, gK, gL, gq, gdet, M,
+                                                  work, piv)
+                        _tally(lane_f, lane_i, e, k, d, ms, 0.0)
+                        if st != ST_OK:
+                            lane_i[0, e] = st
+                            lane_i[1, e] = k
             elif op == OP_SLIDE_OUT:
                 sl = ops_i[k, 1]
-                v = _relative_slide(jet, ops_i[k, 2], ops_i[k, 3], ops_i[k, 4], ops_f[k, 0], M,
-                                    Kt, Lt)
-                jet[sl, 0] = ops_f[k, 1] + v
-                for m in range(M):
-                    jet[sl, 1 + m] = Kt[m]
-                    for n in range(M):
-                        jet[sl, 1 + M + m * M + n] = Lt[m, n]
-            if gap > 0.0:
+                for e in range(nb):
+                    v = _relative_slide(jet, e, ops_i[k, 2], ops_i[k, 3], ops_i[k, 4],
+                                        ops_f[k, 0], M, Kt, Lt)
+                    jet[e, sl, 0] = ops_f[k, 1] + v
+                    for m in range(M):
+                        jet[e, sl, 1 + m] = Kt[m]
+                        for n in range(M):
+                            jet[e, sl, 1 + M + m * M + n] = Lt[m, n]
+        for e in range(nb):
+            status = lane_i[0, e]
+            if status == ST_OK and lane_f[2, e] > 0.0:
                 status = ST_NO_ASSEMBLY
-                failed = k
-                break
-            det *= d
-            meas = min(meas, ms)
-        res[0] = det
-        res[1] = meas
-        res[2] = gap if status == ST_NO_ASSEMBLY else 0.0
-        res[3] = failed
-        if write:
-            _write_status(i, status, res, o_diag, o_status, o_fail)
-            if status == ST_OK:
-                _write_sample(i, qd, qdd, M, n_angles, stored, jet, o_jet, o_rate)
+            if write:
+                i = i0 + e
+                _write_status(i, status, lane_f[0, e], lane_f[1, e], o_diag, o_status)
+                if status == ST_OK:
+                    _write_sample(i, qd, qdd, M, n_angles, stored, jet, e, o_jet, o_rate)
+                else:
+                    _write_failure(i, lane_f[2, e], lane_i[1, e], o_fail)
+    e = (hi - lo - 1) % lanes           # the last sample, for a caller that reads res
+    res[0] = lane_f[0, e]
+    res[1] = lane_f[1, e]
+    res[2] = lane_f[2, e]
+    res[3] = lane_i[1, e]
     return status
 
 
 @_jit(inline="always")
-def _write_status(i, status, res, o_diag, o_status, o_fail):
-    """Row i of the status (an int8), of det J and the singularity measure, and, only for
-    a sample that failed, of o_fail: the gap (m) and the operation that failed."""
-    o_status[i] = status
-    o_diag[i, 0] = res[0]
-    o_diag[i, 1] = res[1]
-    if status != ST_OK:
-        o_fail[i, 0] = res[2]
-        o_fail[i, 1] = res[3]
+def _tally(lane_f, lane_i, e, k, d, ms, gap):
+    """Account for a group (operation k) in lane e: its det multiplies the lane's, its
+    measure may lower the lane's, its gap (> 0: it cannot close) may raise the lane's; the
+    first operation with a gap is the one that failed."""
+    lane_f[0, e] *= d
+    lane_f[1, e] = min(lane_f[1, e], ms)
+    lane_f[2, e] = max(lane_f[2, e], gap)
+    if gap > 0.0 and lane_i[1, e] < 0:
+        lane_i[1, e] = k
 
 
 @_jit(inline="always")
-def _write_sample(i, qd, qdd, M, n_angles, stored, jet, o_jet, o_rate):
-    """Copy the jets of the stored items (those the plan solves) to row i, angles wrapped to
-    (-pi, pi]; rates: S' = K q', S'' = K q'' + q'^T L q'.
+def _write_status(i, status, det, measure, o_diag, o_status):
+    """Row i of the status (an int8), of det J and of the singularity measure."""
+    o_status[i] = status
+    o_diag[i, 0] = det
+    o_diag[i, 1] = measure
+
+
+@_jit(inline="always")
+def _write_failure(i, gap, failed, o_fail):
+    """Row i of o_fail, only for a sample that failed: the gap (m) and the operation that
+    failed.  (Callers reach it from the else of their write of a sample that assembled: a
+    separate ``if`` after the status costs every sample about 13 ns.)"""
+    o_fail[i, 0] = gap
+    o_fail[i, 1] = failed
+
+
+@_jit(inline="always")
+def _write_sample(i, qd, qdd, M, n_angles, stored, jet, lane, o_jet, o_rate):
+    """Copy the jets of the stored items (those the plan solves) from a lane of the block to
+    row i, angles wrapped to (-pi, pi]; rates: S' = K q', S'' = K q'' + q'^T L q'.
 
     This is where a sweep meets memory: the inputs' rates are read once, before the items
     (a store to o_jet could alias them), and only an angle out of range is wrapped.
@@ -890,9 +940,9 @@ def _write_sample(i, qd, qdd, M, n_angles, stored, jet, o_jet, o_rate):
         ww = w * w
         for j in range(n):
             it = stored[j]
-            k1 = jet[it, 1]
-            l1 = jet[it, 2]
-            t = jet[it, 0]
+            k1 = jet[lane, it, 1]
+            l1 = jet[lane, it, 2]
+            t = jet[lane, it, 0]
             if it < n_angles and not -math.pi < t <= math.pi:
                 t = _wrapped(t)
             o_jet[i, j, 0] = t
@@ -903,19 +953,19 @@ def _write_sample(i, qd, qdd, M, n_angles, stored, jet, o_jet, o_rate):
         return
     for j in range(n):
         it = stored[j]
-        t = jet[it, 0]
+        t = jet[lane, it, 0]
         if it < n_angles and not -math.pi < t <= math.pi:
             t = _wrapped(t)
         o_jet[i, j, 0] = t
         v = 0.0
         a = 0.0
         for m in range(M):
-            km = jet[it, 1 + m]
+            km = jet[lane, it, 1 + m]
             o_jet[i, j, 1 + m] = km
             v += km * qd[r, m]
             a += km * qdd[rr, m]
             for n_ in range(M):
-                lmn = jet[it, 1 + M + m * M + n_]
+                lmn = jet[lane, it, 1 + M + m * M + n_]
                 o_jet[i, j, 1 + M + m * M + n_] = lmn
                 a += lmn * qd[r, m] * qd[r, n_]
         o_rate[i, j, 0] = v
@@ -929,10 +979,11 @@ def _wrapped(t):
 
 
 @_jit()
-def _new_jet(n_items, M, const_items, const_values):
-    jet = np.zeros((n_items, 1 + M + M * M))
-    for j in range(const_items.shape[0]):
-        jet[const_items[j], 0] = const_values[j]
+def _new_jet(lanes, n_items, M, const_items, const_values):
+    jet = np.zeros((lanes, n_items, 1 + M + M * M))
+    for e in range(lanes):
+        for j in range(const_items.shape[0]):
+            jet[e, const_items[j], 0] = const_values[j]
     return jet
 
 
@@ -940,11 +991,13 @@ def _new_jet(n_items, M, const_items, const_values):
 def _closed_form(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_items,
                  n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail, M):
     """Samples lo:hi of a plan without Newton groups, with their own scratch state."""
-    jet = _new_jet(n_items, M, const_items, const_values)
+    jet = _new_jet(BLOCK, n_items, M, const_items, const_values)
     Kt = np.zeros(M)
     Kt2 = np.zeros(M)
     Lt = np.zeros((M, M))
     res = np.zeros(4)
+    lane_f = np.zeros((3, BLOCK))
+    lane_i = np.zeros((2, BLOCK), np.int64)
     gi = np.zeros((1, 8), np.int64)      # no Newton group: empty stand-ins
     gf = np.zeros((1, 8))
     g1 = np.zeros(1)
@@ -952,8 +1005,8 @@ def _closed_form(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_
     g3 = np.zeros((1, M, M))
     piv = np.zeros(1, np.int64)
     _evaluate(q, qd, qdd, lo, hi, True, ops_i, ops_f, jet, M, Kt, Kt2, Lt, gi, gi, gf, 1.0,
-              g1, g2, g3, g2, g1, g1, piv, res, n_angles, stored, o_jet, o_rate, o_diag,
-              o_status, o_fail)
+              g1, g2, g3, g2, g1, g1, piv, res, lane_f, lane_i, n_angles, stored, o_jet,
+              o_rate, o_diag, o_status, o_fail)
 
 
 # The entry points run without the GIL, so that Python threads can share a sweep's samples.
@@ -1000,11 +1053,13 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
     nmax = 1
     for g in range(ng):
         nmax = max(nmax, 3 * groups_i[g, 1])
-    jet = _new_jet(n_items, M, const_items, const_values)
+    jet = _new_jet(1, n_items, M, const_items, const_values)     # one sample at a time
     Kt = np.zeros(M)
     Kt2 = np.zeros(M)
     Lt = np.zeros((M, M))
     res = np.zeros(4)
+    lane_f = np.zeros((3, 1))
+    lane_i = np.zeros((2, 1), np.int64)
     gx = grp_x0.copy()
     gK = np.zeros((nx, M))
     gL = np.zeros((nx, M, M))
@@ -1024,11 +1079,12 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
     qprev = q_start.copy()
     # the sketch itself: the groups converge at once and get their K and L
     st0 = _evaluate(qt, qd, qdd, 0, 1, False, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i,
-                    con_i, con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, n_angles, stored,
-                    o_jet, o_rate, o_diag, o_status, o_fail)
+                    con_i, con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, lane_f, lane_i,
+                    n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail)
     if st0 != ST_OK:
         for i in range(N):
-            _write_status(i, st0, res, o_diag, o_status, o_fail)
+            _write_status(i, st0, res[0], res[1], o_diag, o_status)
+            _write_failure(i, res[2], res[3], o_fail)
         o_state[:nx] = grp_x0
         o_state[nx:] = q_start
         return
@@ -1052,8 +1108,8 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
             bq[:] = gq
             bdet[:] = gdet
             st = _evaluate(qt, qd, qdd, 0, 1, False, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i,
-                           con_i, con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, n_angles,
-                           stored, o_jet, o_rate, o_diag, o_status, o_fail)
+                           con_i, con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, lane_f,
+                           lane_i, n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail)
             if st == ST_OK:
                 t = tt
                 h = min(2.0 * h, max_step / dist) if dist > 0.0 else 1.0
@@ -1066,9 +1122,11 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
                 if st == ST_NO_ASSEMBLY or h < 1e-9:
                     break
                 h *= 0.5
-        _write_status(i, st, res, o_diag, o_status, o_fail)
+        _write_status(i, st, res[0], res[1], o_diag, o_status)
         if st == ST_OK:
-            _write_sample(i, qd, qdd, M, n_angles, stored, jet, o_jet, o_rate)
+            _write_sample(i, qd, qdd, M, n_angles, stored, jet, 0, o_jet, o_rate)
+        else:
+            _write_failure(i, res[2], res[3], o_fail)
         # the next sample starts where the mechanism last assembled
         for m in range(M):
             qprev[m] = qprev[m] + t * (q[i, m] - qprev[m])

@@ -76,3 +76,37 @@ def test_pieces_concatenate_to_the_whole_sweep(make):
     np.testing.assert_allclose(joined.jets, whole.jets, rtol=0, atol=1e-12)
     np.testing.assert_allclose(joined.rates, whole.rates, rtol=0, atol=1e-11)
     np.testing.assert_array_equal(joined.singular, whole.singular)
+
+
+@pytest.mark.parametrize("make, q", [
+    (lambda: kl.mechanisms.fourbar(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5),
+     np.linspace(-3.0, 3.0, 23)),                       # non-Grashof: some samples do not close
+    (kl.mechanisms.stephenson6, np.linspace(0.0, 2 * np.pi, 23)),
+    (lambda: kl.mechanisms.fivebar(1.0, 1.0, 1.5, 1.5, 1.0),
+     np.column_stack([np.linspace(0.0, 6.0, 23), np.linspace(2.0, 4.0, 23)])),
+])
+def test_samples_swept_together_are_those_analysed_alone(make, q):
+    """A sweep evaluates its samples side by side in blocks; a sample that fails (or is
+    singular) beside others does not change them."""
+    m = make()
+    sweep = kl.analyze(m, q=q, qd=1.5, qdd=-0.5, unreachable="mask")
+    assert sweep.assembled.any()
+    for i in range(len(q)):
+        alone = kl.analyze(m, q=q[i:i + 1], qd=1.5, qdd=-0.5, unreachable="mask")
+        assert alone.assembled[0] == sweep.assembled[i]
+        np.testing.assert_allclose(alone.stored_jets[0], sweep.stored_jets[i], rtol=1e-13, atol=1e-13)
+        np.testing.assert_allclose(alone.stored_rates[0], sweep.stored_rates[i], rtol=1e-13, atol=1e-13)
+        np.testing.assert_allclose(alone.det_J[0], sweep.det_J[i], rtol=1e-13, atol=1e-13)
+
+
+def test_the_first_sample_that_does_not_close_is_reported_from_within_a_block():
+    fb = kl.mechanisms.fourbar(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)
+    q = np.linspace(0.5, 5.5, 23)
+    bad = np.flatnonzero(~kl.analyze(fb, q=q, unreachable="mask").assembled)
+    assert bad.size and bad[0] % 4 != 0                   # inside a block, not at its start
+    with pytest.raises(kl.errors.AssemblyError) as swept:
+        kl.analyze(fb, q=q)
+    with pytest.raises(kl.errors.AssemblyError) as alone:
+        kl.analyze(fb, q=q[bad[0]])
+    assert swept.value.gap == alone.value.gap > 0
+    assert swept.value.loop == alone.value.loop
