@@ -24,6 +24,8 @@ __all__ = ["analyze", "plan", "reachable_ranges"]
 SINGULAR_TOL = 1e-7   # singularity measure (a sine) below which det J is zero to rounding
 _CONTINUATION_STEP = 0.05  # largest continuation step of a Newton group, rad (or m / scale)
 _PARALLEL_FROM = 4096      # samples per thread below which a sweep runs on the calling thread
+_PIECE = 1 << 16           # samples a thread takes at a time: a thread that the system
+                           # slows down leaves more of the sweep to the others
 
 
 def plan(mechanism: Mechanism, *, method: Literal["auto", "newton"] = "auto") -> Plan:
@@ -112,8 +114,9 @@ def _run(p: Plan, q, qd, qdd, start=None):
         workers = min(_threads(), N // _PARALLEL_FROM)
         if workers <= 1:
             run(0, N)
-        else:   # the kernel releases the GIL: threads share the samples
-            bounds = np.linspace(0, N, workers + 1).astype(int)
+        else:   # the kernel releases the GIL: threads take pieces of the sweep in turn
+            pieces = max(workers, N // _PIECE)
+            bounds = np.linspace(0, N, pieces + 1).astype(int)
             list(_pool(workers).map(run, bounds[:-1], bounds[1:]))
     else:
         groups_i, con_i, con_f, x0 = p.groups
