@@ -85,6 +85,11 @@ def _normalise_q(q, qd, qdd, M):
     return np.ascontiguousarray(np.reshape(qa, (-1, M))), rows(qd_a), rows(qdd_a), single
 
 
+def _per_sample(rates: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
+    """Rates of shape (N, M) as given, or their single row as a read-only (N, M) view."""
+    return rates if rates.shape == shape else np.broadcast_to(rates, shape)
+
+
 def _threads() -> int:
     return max(1, min(numba.get_num_threads(), os.cpu_count() or 1))
 
@@ -380,7 +385,7 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
         jets[singular, :, 1:] = np.nan
         rates[singular] = np.nan
     sol = KinematicSolution(
-        plan=p, q=q2, qd=np.broadcast_to(qd2, q2.shape), qdd=np.broadcast_to(qdd2, q2.shape),
+        plan=p, q=q2, qd=_per_sample(qd2, q2.shape), qdd=_per_sample(qdd2, q2.shape),
         stored_jets=jets, stored_rates=rates,
         det_J=diag[:, 0], singularity=diag[:, 1], singular=singular, assembled=ok,
         single=single, newton_state=out.get("state"))

@@ -63,7 +63,8 @@ _DISC_TOL = 1e-12  # relative: a discriminant this far below zero is rounding at
 
 
 # --------------------------------------------------------------------------------------
-# closed-form groups
+# closed-form groups.  jet has shape (lanes, n_items, 1 + M + M*M): one lane per sample of
+# a block (see _evaluate); each helper works on the lane it is given.
 # --------------------------------------------------------------------------------------
 @_jit(inline="always")
 def _carried(jet, lane, p, a, link, rx, ry, M):

@@ -84,6 +84,9 @@ def test_pieces_concatenate_to_the_whole_sweep(make):
     (kl.mechanisms.stephenson6, np.linspace(0.0, 2 * np.pi, 23)),
     (lambda: kl.mechanisms.fivebar(1.0, 1.0, 1.5, 1.5, 1.0),
      np.column_stack([np.linspace(0.0, 6.0, 23), np.linspace(2.0, 4.0, 23)])),
+    (lambda: kl.mechanisms.slider_crank(1.0, 3.0, offset=0.5), np.linspace(0.0, 2 * np.pi, 23)),
+    (lambda: kl.mechanisms.slotted_link(1.0, 2.0), np.linspace(0.0, 2 * np.pi, 23)),
+    (lambda: kl.mechanisms.whitworth(1.0, 0.5, 3.0, 2.0), np.linspace(0.0, 2 * np.pi, 23)),
 ])
 def test_samples_swept_together_are_those_analysed_alone(make, q):
     """A sweep evaluates its samples side by side in blocks; a sample that fails (or is
