@@ -91,7 +91,12 @@ def _per_sample(rates: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
 
 
 def _threads() -> int:
-    return max(1, min(numba.get_num_threads(), os.cpu_count() or 1))
+    return max(1, min(numba.get_num_threads(), _cpu_count()))
+
+
+@functools.cache
+def _cpu_count() -> int:
+    return os.cpu_count() or 1
 
 
 @functools.cache

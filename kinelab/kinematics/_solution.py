@@ -181,9 +181,11 @@ class KinematicSolution:
                 out[:, col, 1] = sign * self.qdd[:, m]
         # the same rule as the solved items: nothing where the loops do not close, no
         # derivatives at a singular configuration
-        out[np.ix_(~self.assembled, others)] = np.nan
-        derivatives = np.arange(1 if values else 0, stored.shape[2])
-        out[np.ix_(self.singular, others, derivatives)] = np.nan
+        if not self.assembled.all():
+            out[np.ix_(~self.assembled, others)] = np.nan
+        if self.singular.any():
+            derivatives = np.arange(1 if values else 0, stored.shape[2])
+            out[np.ix_(self.singular, others, derivatives)] = np.nan
         return out
 
     @functools.cached_property
