@@ -80,6 +80,7 @@ class Plan:
     redundant: tuple[str, ...]
     scale: float
     input_kinds: tuple[str, ...] = field(default=())   # "angle" or "slide" per input
+    _columns: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     @property
     def n_angles(self) -> int:
@@ -92,6 +93,16 @@ class Plan:
         slot[self.stored_items] = np.arange(len(self.stored_items))
         return slot
 
+    def item_columns(self, items) -> ItemColumns:
+        """Where the named ``items`` are: stored columns, fixed values, inputs (kept per
+        distinct list of items, as dynamics asks for the same ones at every step)."""
+        items = np.atleast_1d(np.asarray(items, np.int64))
+        key = items.tobytes()
+        cols = self._columns.get(key)
+        if cols is None:
+            cols = self._columns[key] = ItemColumns.of(self, items)
+        return cols
+
     @property
     def uses_newton(self) -> bool:
         return self.groups is not None
@@ -101,6 +112,40 @@ class Plan:
             if s.op == op:
                 return s
         return None
+
+
+@dataclass(frozen=True)
+class ItemColumns:
+    """Named items split by where their values are (``cols`` index the list of items)."""
+
+    slots: np.ndarray              # stored column of each item, -1 if not stored
+    contiguous: slice | None       # all stored, in consecutive columns: a view
+    solved_cols: np.ndarray
+    fixed_cols: np.ndarray
+    fixed_values: np.ndarray
+    driven_cols: np.ndarray
+    driven_inputs: np.ndarray      # the input m turning each driven item
+    driven_signs: np.ndarray
+    others: np.ndarray             # fixed and driven columns
+
+    @classmethod
+    def of(cls, plan: Plan, items: np.ndarray) -> ItemColumns:
+        slots = plan.item_slot[items]
+        contiguous = None
+        if (slots >= 0).all():
+            s0 = int(slots[0]) if len(slots) else 0
+            if np.array_equal(slots, np.arange(s0, s0 + len(slots))):
+                contiguous = slice(s0, s0 + len(slots))
+        fixed = [c for c, it in enumerate(items.tolist()) if it in plan.fixed_values]
+        driven = [c for c, it in enumerate(items.tolist()) if it in plan.driven_items]
+        drive = [plan.driven_items[int(items[c])] for c in driven]
+        ints = functools.partial(np.array, dtype=np.int64)
+        return cls(slots=slots, contiguous=contiguous, solved_cols=np.flatnonzero(slots >= 0),
+                   fixed_cols=ints(fixed),
+                   fixed_values=np.array([plan.fixed_values[int(items[c])] for c in fixed], float),
+                   driven_cols=ints(driven), driven_inputs=ints([m for m, _ in drive]),
+                   driven_signs=np.array([sg for _, sg in drive], float),
+                   others=np.flatnonzero(slots < 0))
 
 
 # fields of each operation that hold point indices (converted to items at the end)

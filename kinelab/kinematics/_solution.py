@@ -155,37 +155,28 @@ class KinematicSolution:
         return self._gather(items, self.stored_rates, values=False)
 
     def _gather(self, items, stored: np.ndarray, values: bool) -> np.ndarray:
-        items = np.atleast_1d(np.asarray(items, np.int64))
-        slots = self.plan.item_slot[items]
-        if (slots >= 0).all():
-            s0 = int(slots[0]) if len(slots) else 0
-            if np.array_equal(slots, np.arange(s0, s0 + len(slots))):
-                return stored[:, s0:s0 + len(slots)]          # a view
-            return stored[:, slots]
-        out = np.zeros((self.N, len(items), stored.shape[2]))
-        solved = slots >= 0
-        out[:, solved] = stored[:, slots[solved]]
-        others = np.flatnonzero(~solved)
-        for col in others:
-            item = int(items[col])
-            if item in self.plan.fixed_values:
-                if values:
-                    out[:, col, 0] = self.plan.fixed_values[item]
-                continue
-            m, sign = self.plan.driven_items[item]
-            if values:
-                out[:, col, 0] = wrap_angle(sign * self.q[:, m])
-                out[:, col, 1 + m] = sign
-            else:
-                out[:, col, 0] = sign * self.qd[:, m]
-                out[:, col, 1] = sign * self.qdd[:, m]
+        c = self.plan.item_columns(items)
+        if c.contiguous is not None:
+            return stored[:, c.contiguous]                  # a view
+        if not len(c.others):
+            return stored[:, c.slots]
+        out = np.zeros((self.N, len(c.slots), stored.shape[2]))
+        out[:, c.solved_cols] = stored[:, c.slots[c.solved_cols]]
+        signs, inputs = c.driven_signs, c.driven_inputs
+        if values:
+            out[:, c.fixed_cols, 0] = c.fixed_values
+            out[:, c.driven_cols, 0] = wrap_angle(self.q[:, inputs] * signs)
+            out[:, c.driven_cols, 1 + inputs] = signs        # K = sign, L = 0
+        else:
+            out[:, c.driven_cols, 0] = self.qd[:, inputs] * signs
+            out[:, c.driven_cols, 1] = self.qdd[:, inputs] * signs
         # the same rule as the solved items: nothing where the loops do not close, no
         # derivatives at a singular configuration
         if not self.assembled.all():
-            out[np.ix_(~self.assembled, others)] = np.nan
+            out[np.ix_(~self.assembled, c.others)] = np.nan
         if self.singular.any():
             derivatives = np.arange(1 if values else 0, stored.shape[2])
-            out[np.ix_(self.singular, others, derivatives)] = np.nan
+            out[np.ix_(self.singular, c.others, derivatives)] = np.nan
         return out
 
     @functools.cached_property

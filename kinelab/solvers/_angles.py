@@ -15,7 +15,11 @@ def wrap_angle(angle: ArrayLike) -> np.ndarray | float:
     [-1.570796, 3.141593, 3.141593, 0.5]
     """
     a = np.asarray(angle, dtype=float)
-    wrapped = np.remainder(a + np.pi, 2.0 * np.pi) - np.pi
-    wrapped = np.where(wrapped == -np.pi, np.pi, wrapped)
-    wrapped = np.where((a > -np.pi) & (a <= np.pi), a, wrapped)
+    inside = (a > -np.pi) & (a <= np.pi)
+    if inside.all():
+        wrapped = np.array(a)
+    else:
+        wrapped = np.remainder(a + np.pi, 2.0 * np.pi) - np.pi
+        wrapped = np.where(wrapped == -np.pi, np.pi, wrapped)
+        wrapped = np.where(inside, a, wrapped)
     return float(wrapped) if wrapped.ndim == 0 else wrapped
