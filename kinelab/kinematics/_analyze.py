@@ -79,10 +79,12 @@ def _normalise_q(q, qd, qdd, M):
     qdd_a = _as_inputs("qdd", qdd, M, shape)
 
     def rows(a):
-        """(N, M); for rates broadcast from one value per input, the single row (1, M)."""
+        """(N, M); for rates broadcast from one value per input, the single row (1, M).
+        Always a copy: the solution reads q and the rates back, so a caller who changes
+        their own array afterwards must not change it."""
         a = np.reshape(a, (-1, M))
-        return np.ascontiguousarray(a[:1] if a.strides[0] == 0 else a)
-    return np.ascontiguousarray(np.reshape(qa, (-1, M))), rows(qd_a), rows(qdd_a), single
+        return np.array(a[:1] if a.strides[0] == 0 else a, dtype=float, order="C")
+    return np.array(np.reshape(qa, (-1, M)), dtype=float, order="C"), rows(qd_a), rows(qdd_a), single
 
 
 def _per_sample(rates: np.ndarray, shape: tuple[int, int]) -> np.ndarray:

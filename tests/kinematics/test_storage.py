@@ -113,3 +113,18 @@ def test_the_first_sample_that_does_not_close_is_reported_from_within_a_block():
         kl.analyze(fb, q=q[bad[0]])
     assert swept.value.gap == alone.value.gap > 0
     assert swept.value.loop == alone.value.loop
+
+
+def test_the_solution_keeps_its_own_inputs():
+    """The crank's angle and rates are read back from q, qd and qdd: changing the arrays
+    passed in afterwards must not change the solution."""
+    q, qd, qdd = Q.copy(), np.full(9, 2.0), np.linspace(0.0, 1.0, 9)
+    sol = kl.analyze(coupler_fourbar(), q=q, qd=qd, qdd=qdd)
+    angle, omega, alpha = sol.angle("crank").copy(), sol.omega("crank").copy(), sol.alpha("crank").copy()
+    q += 1.0
+    qd *= 3.0
+    qdd[:] = -7.0
+    np.testing.assert_array_equal(sol.angle("crank"), angle)
+    np.testing.assert_array_equal(sol.omega("crank"), omega)
+    np.testing.assert_array_equal(sol.alpha("crank"), alpha)
+    assert sol.q.flags.writeable and sol.qd.flags.writeable
