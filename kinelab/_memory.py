@@ -93,7 +93,9 @@ def reuse_result_memory(max_bytes: int) -> int:
     takes about as long as the analysis.  kinelab therefore keeps the memory of large result
     arrays (1 MiB and over) once nothing references them, up to ``max_bytes`` in all (1 GiB
     by default), and writes later results into it.  ``reuse_result_memory(0)`` hands all of
-    it back and turns reuse off.
+    it back and turns reuse off.  A result you hold, or any numpy view of it, keeps its
+    memory; a raw pointer does not (turn reuse off before handing results to C code that
+    keeps their address after the arrays are dropped).
 
     >>> old = kl.reuse_result_memory(0)           # off: every result in fresh memory
     >>> kl.reuse_result_memory(old)
