@@ -79,3 +79,24 @@ def test_analysis_never_writes_over_a_result_still_in_use():
 def test_limit_must_be_a_whole_number_of_bytes(bad):
     with pytest.raises(ModelError, match="max_bytes"):
         kl.reuse_result_memory(bad)
+
+
+def test_analyses_in_several_threads_keep_their_own_results():
+    from concurrent.futures import ThreadPoolExecutor
+    mechanisms = [kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0)),
+                  kl.mechanisms.stephenson6(), kl.mechanisms.slider_crank(1.0, 3.0, offset=0.2)]
+    q = np.linspace(0.0, 2 * np.pi, 60_000)
+    expected = [kl.analyze(m, q=q, qd=2.0).stored_jets.copy() for m in mechanisms]
+
+    def work(k):
+        held = []
+        for _ in range(6):
+            held.append(kl.analyze(mechanisms[k % 3], q=q, qd=2.0))
+            if len(held) > 2:
+                held.pop(0)                                   # drop some, keep some
+        return k, [s.stored_jets for s in held]
+
+    with ThreadPoolExecutor(4) as pool:
+        for k, results in pool.map(work, range(8)):
+            for jets in results:
+                np.testing.assert_array_equal(jets, expected[k % 3])
