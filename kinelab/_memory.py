@@ -44,14 +44,13 @@ class _Pool:
             return np.empty(shape, dtype)
         with self._lock:
             block = self._take(nbytes)
-        if block is None:
-            return np.empty(shape, dtype)
         return block[:nbytes].view(dtype).reshape(shape)
 
     def _free(self) -> list[int]:
         return [i for i, n in enumerate(_reference_counts(self._blocks)) if n == _UNREFERENCED]
 
-    def _take(self, nbytes: int) -> np.ndarray | None:
+    def _take(self, nbytes: int) -> np.ndarray:
+        """A free block of at least nbytes, or a new one (kept if the limit allows)."""
         free = self._free()
         fits = [i for i in free if self._blocks[i].nbytes >= nbytes]
         if fits:
