@@ -29,8 +29,6 @@ def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
         degrees: bool = False, gravity: tuple[float, float] | None = None, plots: bool = True):
     """Sweep, solve and write ``<name>_dynamics.csv`` and the figures; returns the result and
     the paths written."""
-    from kinelab._files import atomic_write
-
     m = mf.mechanism
     setup = dynamics.DynamicsSetup.from_model(m)
     loads = setup.loads
@@ -45,14 +43,15 @@ def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
     written = [out / f"{m.name}_dynamics.csv"]
     res.to_csv(written[0], degrees=degrees)
     if plots:
-        import matplotlib.pyplot as plt
-
+        from kinelab.cli._draw import _agg
         from kinelab.plot import _dynamics as figs
+        from kinelab.plot import save
+        plt = _agg()
         for suffix, draw in (("efforts", figs.effort_curves), ("reactions", figs.reaction_curves),
                              ("shaking", figs.shaking_curves)):
             fig = draw(res, degrees=degrees)
             path = out / f"{m.name}_{suffix}.png"
-            atomic_write(path, lambda f, fig=fig: fig.savefig(f, format="png", dpi=120), binary=True)
+            save(fig, path)
             plt.close(fig)
             written.append(path)
     return res, written

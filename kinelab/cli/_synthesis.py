@@ -273,11 +273,9 @@ def _summary(task: Task, sols: list) -> list[dict[str, Any]]:
 
 
 def _figures(task: Task, sols: list, extra: dict) -> dict[str, bytes]:
-    import matplotlib
-    matplotlib.use("Agg")       # files only: no window
-    import matplotlib.pyplot as plt
-
     from kinelab import plot
+    from kinelab.cli._draw import _agg
+    plt = _agg()
 
     out: dict[str, bytes] = {}
 
@@ -360,7 +358,6 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool) -> 
             head += f"rms error {row['rms_error']:.3g} {task.length_unit}, "
         if "max_structural_error" in row:
             head += f"max structural error {row['max_structural_error']:.3g}, "
-        head += s.grashof.kind + (", valid" if s.valid else ", " + "; ".join(
-            d.split(":")[0] for d in s.defects))
+        head += f"{s.grashof.kind}, {s.state}"
         click.echo(head)
     click.echo(f"wrote {len(files)} file(s) to {out}")

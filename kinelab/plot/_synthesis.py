@@ -78,7 +78,7 @@ def prescribed_positions(points, angles=None, *, ax=None, show_poles: bool = Tru
     return _finish(ax, f"{pos.n} prescribed positions" + (" and their poles" if show_poles else ""))
 
 
-def _linkage(ax, sol, q, colours, *, label_first=True):
+def _linkage(ax, sol, q, colours):
     """Draw the four-bar of a synthesized model at crank angles q (engine positions)."""
     s = analyze(sol.model, q=np.asarray(q, float), unreachable="mask", at_singular="flag")
     O2, O4 = sol.model.point("O2").xy, sol.model.point("O4").xy
@@ -98,8 +98,7 @@ def _linkage(ax, sol, q, colours, *, label_first=True):
         ax.plot(*np.array([A, B]).T, "o", color=c, ms=4)
     for X, name in ((O2, "A0"), (O4, "B0")):
         ax.plot(*X, "k^", ms=9)
-        if label_first:
-            ax.annotate(name, X, textcoords="offset points", xytext=(5, -12))
+        ax.annotate(name, X, textcoords="offset points", xytext=(5, -12))
     return s
 
 
@@ -127,8 +126,7 @@ def motion_solution(sol: MotionSolution, *, ax=None):
         ax.plot(*P, "s", mfc="none", color=_colour(j), ms=9)
         ax.annotate(f"P{j + 1}", P, textcoords="offset points", xytext=(6, 4), color=_colour(j))
     _travel_curve(ax, sol, sol.q[0], sol.q[-1], sol.direction)
-    state = "valid" if sol.valid else "; ".join(d.split(":")[0] for d in sol.defects)
-    return _finish(ax, f"four-bar through {n} positions ({sol.grashof.kind}, {state})")
+    return _finish(ax, f"four-bar through {n} positions ({sol.grashof.kind}, {sol.state})")
 
 
 def burmester_curves(curves: BurmesterCurves, *, ax=None, positions=None, solutions=()):

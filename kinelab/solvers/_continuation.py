@@ -139,16 +139,17 @@ def continuation(fun: Callable, jac: Callable, x0: ArrayLike, params: ArrayLike,
             break
         p_from, x_from = params[i - 1], xs[i - 1]
         p_to = params[i]
+        slope = _slope(jac, dfun_dp, x_from, p_from, previous)     # kept while halving
         while True:
             dp = p_to - p_from
-            guess = _predict(jac, dfun_dp, x_from, p_from, dp, previous)
-            result = correct(guess, p_to)
+            result = correct(x_from + slope * dp, p_to)
             if result.converged.all() and _contracts(result.history):
                 previous = (p_from, x_from)
                 p_from, x_from = p_to, result.x
                 if p_to == params[i]:
                     break
                 p_to = params[i]
+                slope = _slope(jac, dfun_dp, x_from, p_from, previous)
             elif halvings[i] < max_halvings:
                 halvings[i] += 1
                 p_to = p_from + dp / 2
@@ -177,23 +178,21 @@ def continuation(fun: Callable, jac: Callable, x0: ArrayLike, params: ArrayLike,
     return out
 
 
-def _predict(jac, dfun_dp, x, p, dp, previous) -> np.ndarray:
-    """The predicted x at p + dp.
-
-    Tangent with ∂Φ/∂p, else the secant through the last two solutions, else the last
-    solution itself (the first step without ∂Φ/∂p).
-    """
+def _slope(jac, dfun_dp, x, p, previous) -> np.ndarray:
+    """dx/dp of the predictor x + slope dp: the tangent -J^-1 ∂Φ/∂p when ∂Φ/∂p is given,
+    else the secant through the last two solutions, else zero (the first step without
+    ∂Φ/∂p stays at the last solution)."""
     if dfun_dp is not None:
         J = np.asarray(jac(x, p), dtype=float)
         rhs = -np.asarray(dfun_dp(x, p), dtype=float)[..., None]
         try:
-            return x + np.linalg.solve(J, rhs)[..., 0] * dp
+            return np.linalg.solve(J, rhs)[..., 0]
         except np.linalg.LinAlgError:     # singular here: fall back to the secant
             pass
     if previous is not None:
         p_prev, x_prev = previous
-        return x + (x - x_prev) * (dp / (p - p_prev))
-    return x.copy()
+        return (x - x_prev) / (p - p_prev)
+    return np.zeros_like(x)
 
 
 def _contracts(history) -> bool:

@@ -144,7 +144,7 @@ class FunctionSolution(CheckedLinkage):
 
     def __repr__(self) -> str:
         L = ", ".join(f"{k}={v:.6g}" for k, v in self.lengths.items())
-        state = self._state()
+        state = self.state
         return (f"FunctionSolution({L}, max structural error={self.max_structural_error:.3g}, "
                 f"{state})")
 

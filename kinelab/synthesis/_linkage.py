@@ -135,8 +135,9 @@ class CheckedLinkage:
         """The link lengths ``ground, crank, coupler, rocker``, m."""
         return {k: self.model.parameters[k] for k in ("ground", "crank", "coupler", "rocker")}
 
-    def _state(self) -> str:
-        """'valid', or the names of the defects (for reprs)."""
+    @property
+    def state(self) -> str:
+        """'valid', or the names of the defects."""
         return "valid" if self.valid else "; ".join(d.split(":")[0] for d in self.defects)
 
 

@@ -83,7 +83,7 @@ class MotionSolution(CheckedLinkage):
 
     def __repr__(self) -> str:
         f = np.array2string
-        state = self._state()
+        state = self.state
         return (f"MotionSolution(A0={f(self.A0, precision=6)}, B0={f(self.B0, precision=6)}, "
                 f"A1={f(self.A1, precision=6)}, B1={f(self.B1, precision=6)}, "
                 f"{self.grashof.kind}, {state})")

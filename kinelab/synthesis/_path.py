@@ -22,8 +22,8 @@ from numpy.typing import ArrayLike
 from kinelab.errors import ModelError
 from kinelab.mechanisms import Grashof
 from kinelab.model import Mechanism
-from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, fourbar_model, model_grashof,
-                                        travel)
+from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, finite_or_inf, fourbar_model,
+                                        model_grashof, travel)
 from kinelab.synthesis._results import SolutionList
 
 __all__ = ["coupler_curves", "PathSolution", "path_generation"]
@@ -110,9 +110,7 @@ class _Objective:
     def __init__(self, targets: np.ndarray, samples: int, mu_min: float):
         self.T = targets                                   # (n, 2), normalised
         self.q = np.linspace(0.0, 2 * np.pi, samples, endpoint=False)
-        self.m = samples
         self.mu_min = mu_min
-        self.calls = 0
 
     def match(self, designs):
         """Per design: matched sample of each target, distances, penalty (D,)."""
@@ -123,7 +121,7 @@ class _Objective:
         k = np.argmin(d2, axis=-1)                                              # (D, n)
         dist2, frac = self._to_segments(P, ok, k)
         mu = _transmission(A, B, designs[:, 2:4])
-        m = self.m
+        m = self.q.size
         penalty = np.full(designs.shape[0], np.inf)
         idx = np.arange(m)
         for sense in (1, -1):
@@ -147,7 +145,7 @@ class _Objective:
         best = np.sum((T - Pk) ** 2, -1)
         frac = np.zeros(k.shape)
         for step in (1, -1):
-            j = np.mod(k + step, self.m)
+            j = np.mod(k + step, self.q.size)
             Q = P[rows, j]
             e = Q - Pk
             ee = np.sum(e * e, -1)
@@ -160,7 +158,6 @@ class _Objective:
 
     def __call__(self, x):
         designs = np.atleast_2d(np.asarray(x).T)
-        self.calls += designs.shape[0]
         _, dist2, penalty = self.match(designs)
         rms = np.sqrt(np.mean(dist2, axis=1))
         f = rms + np.where(penalty > 0, _INFEASIBLE + penalty, 0.0)
@@ -223,7 +220,7 @@ class PathSolution(CheckedLinkage):
         return float(self.errors.max())
 
     def __repr__(self) -> str:
-        state = self._state()
+        state = self.state
         return (f"PathSolution(rms error={self.rms_error:.3g} m, max error={self.max_error:.3g} m, "
                 f"{self.grashof.kind}, {state})")
 
@@ -303,7 +300,7 @@ def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray) -> PathSol
     t = travel(model, q, reached)
     engine = at_inputs(model, q).position("P")
     errors = np.linalg.norm(engine - targets, axis=-1)
-    errors = np.where(np.isfinite(errors), errors, np.inf)
+    errors = finite_or_inf(errors)
     for arr in (q, errors):
         arr.setflags(write=False)
     return PathSolution(
@@ -392,7 +389,7 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 300, pop
         res = differential_evolution(obj, bounds, maxiter=maxiter, popsize=popsize, seed=seed + r,
                                      vectorized=True, updating="deferred", polish=False, tol=0.0)
         design = res.x
-        k, dist2, penalty = obj.match(design[None, :])
+        k = obj.match(design[None, :])[0]
         q = k[0] * (2 * np.pi / samples)        # crank angles of the matched curve points
         candidates = []
         if refine:
