@@ -91,8 +91,8 @@ def check(model, degrees):
                                       zip(m.input_names, p.q_sketch, scale, unit)))
     if len(m.inputs) == 1:
         with errors_from(mf):
-            ranges = io.reachable(m)
-        full = p.input_kinds[0] == "angle" and ranges and ranges[0][1] - ranges[0][0] >= 2 * math.pi - 1e-12
+            ranges = kinematics.reachable_ranges(m)
+        full = kinematics.turns_fully(m, ranges)
         if full:
             click.echo(f"reachable: {m.input_names[0]} turns fully")
         else:

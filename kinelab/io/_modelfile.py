@@ -280,16 +280,15 @@ class ModelFile:
 
 
 def _reachable_span(m: Mechanism) -> tuple[float, float]:
-    from kinelab.kinematics import reachable_ranges, plan
+    from kinelab.kinematics import plan, reachable_ranges, turns_fully
     q0 = float(plan(m).q_sketch[0])
     ranges = reachable_ranges(m)
     if not ranges:
         raise ModelError("inputs[0].range: the mechanism does not assemble near its sketch; "
                          "check the sketch")
-    kind = plan(m).input_kinds[0]
-    lo, hi = next(((a, b) for a, b in ranges if a <= q0 <= b), ranges[0])
-    if kind == "angle" and hi - lo >= 2 * math.pi - 1e-12:
+    if turns_fully(m, ranges):
         return 0.0, 2 * math.pi
+    lo, hi = next(((a, b) for a, b in ranges if a <= q0 <= b), ranges[0])
     shrink = 1e-9 * (hi - lo)     # stop just short of the limit positions, which are singular
     return lo + shrink, hi - shrink
 

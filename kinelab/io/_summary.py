@@ -129,16 +129,6 @@ def default_outputs(m: Mechanism) -> tuple[str, ...]:
     return tuple(links + slides + points)
 
 
-def reachable(m: Mechanism) -> tuple[tuple[float, float], ...]:
-    """:func:`kinelab.kinematics.reachable_ranges`, with an interval that the one-turn search
-    window cuts in two (at the sketch angle +- pi) joined again."""
-    ranges = list(kinematics.reachable_ranges(m))
-    if (kinematics.plan(m).input_kinds[0] == "angle" and len(ranges) >= 2
-            and abs(ranges[-1][1] - ranges[0][0] - 2 * math.pi) < 1e-9):
-        ranges = [(ranges[-1][0] - 2 * math.pi, ranges[0][1])] + ranges[1:-1]
-    return tuple(ranges)
-
-
 def _rows(sol: KinematicSolution, i: int) -> tuple[float, ...]:
     return tuple(float(v) for v in sol.q[i])
 
@@ -312,12 +302,10 @@ def summary(sol: KinematicSolution, *, report: tuple[str, ...] | None = None,
     """
     m = sol.mechanism
     report = tuple(report) if report else default_outputs(m)
-    kinds = kinematics.plan(m).input_kinds
     spans = full = None
     if len(m.inputs) == 1:
-        spans = reachable(m)
-        full = kinds[0] == "angle" and len(spans) == 1 and (
-            spans[0][1] - spans[0][0] >= 2 * math.pi - 1e-12)
+        spans = tuple(kinematics.reachable_ranges(m))
+        full = kinematics.turns_fully(m, spans)
     lengths = _fourbar_lengths(m)
     pairs = list(transmission) if transmission else _default_pairs(m)
     least = np.where(np.isfinite(sol.singularity), sol.singularity, np.inf)
@@ -325,7 +313,7 @@ def summary(sol: KinematicSolution, *, report: tuple[str, ...] | None = None,
     return Summary(
         mechanism=m.name,
         inputs=tuple(sol.input_names),
-        input_units=tuple("rad" if k == "angle" else "m" for k in kinds),
+        input_units=tuple("rad" if k == "angle" else "m" for k in kinematics.plan(m).input_kinds),
         samples=sol.N,
         input_range=tuple((float(sol.q[:, k].min()), float(sol.q[:, k].max())) for k in range(sol.M)),
         extremes=tuple(_extremes(sol, report)),

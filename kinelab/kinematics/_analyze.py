@@ -19,7 +19,7 @@ from kinelab.kinematics._solution import KinematicSolution
 from kinelab.model import Mechanism
 from kinelab.solvers import bisect, wrap_angle
 
-__all__ = ["analyze", "plan", "reachable_ranges"]
+__all__ = ["analyze", "plan", "reachable_ranges", "turns_fully"]
 
 SINGULAR_TOL = 1e-7   # singularity measure (a sine) below which det J is zero to rounding
 _CONTINUATION_STEP = 0.05  # largest continuation step of a Newton group, rad (or m / scale)
@@ -173,8 +173,10 @@ def reachable_ranges(mechanism: Mechanism, *, samples: int = 1441,
 
     Angle inputs are searched over one turn centred on the sketch, slides over +-10 sizes
     of the mechanism; each bound is refined by bisection to 1e-12.  A full turn is
-    reported as ``[(q0 - pi, q0 + pi)]``.  With closed-form groups every interval of the
-    search is reported; with Newton groups, the one continuation reaches from the sketch.
+    reported as ``[(q0 - pi, q0 + pi)]`` (see :func:`turns_fully`), and an angle interval
+    that the search window cuts at q0 +- pi comes back whole, reaching below q0 - pi.  With
+    closed-form groups every interval of the search is reported; with Newton groups, the
+    one continuation reaches from the sketch.
 
     Examples
     --------
@@ -211,7 +213,17 @@ def reachable_ranges(mechanism: Mechanism, *, samples: int = 1441,
             start = v
     if start is not None:
         ranges.append((start, q0 + half))
+    if p.input_kinds[0] == "angle" and len(ranges) >= 2 and ok[0] and ok[-1]:
+        # the window's two ends are one angle: the first and last pieces are one interval
+        ranges = [(ranges[-1][0] - 2 * math.pi, ranges[0][1])] + ranges[1:-1]
     return [(float(lo), float(hi)) for lo, hi in ranges]
+
+
+def turns_fully(mechanism: Mechanism, ranges: list[tuple[float, float]]) -> bool:
+    """Whether ``ranges`` (from :func:`reachable_ranges`) say that the mechanism's one
+    input is an angle that turns a full turn."""
+    return (plan(mechanism).input_kinds == ("angle",) and len(ranges) == 1
+            and ranges[0][1] - ranges[0][0] >= 2 * math.pi - 1e-12)
 
 
 def _continued_range(p: Plan, q0: float, half: float, samples: int) -> tuple[float, float]:

@@ -162,6 +162,20 @@ def test_sweep_without_range_covers_the_reachable_interval():
     np.testing.assert_allclose(full, np.linspace(0, 2 * np.pi, 5), rtol=0, atol=1e-15)
 
 
+def test_sweep_without_range_covers_an_interval_the_search_window_cuts():
+    """Sketched at q = 1.5 rad, the one-turn search window around the sketch ends at
+    1.5 - pi, inside the reachable interval |q| <= acos(-5/16): both pieces are swept."""
+    fb = kl.mechanisms.fourbar(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)
+    at = kl.analyze(fb, 1.5)
+    data = fb.to_dict()
+    data["points"] = {name: at.position(name).tolist() for name in data["points"]}
+    m = kl.model.Mechanism.from_dict(data)
+    hi = math.acos(-5 / 16)
+    assert kl.kinematics.reachable_ranges(m) == [pytest.approx((-hi, hi), abs=1e-9)]
+    q = ModelFile(m).sample_inputs(11)[0]
+    assert q[0] == pytest.approx(-hi, abs=1e-8) and q[-1] == pytest.approx(hi, abs=1e-8)
+
+
 def test_grid_sweep_takes_every_combination():
     mf = ModelFile.read(ROOT / "examples" / "fivebar.toml")
     q = dataclasses.replace(mf, sweep="grid").sample_inputs(4)[0]
