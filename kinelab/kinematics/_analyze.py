@@ -365,7 +365,9 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
         if not isinstance(start, KinematicSolution) or start.mechanism != mechanism:
             raise ModelError("start: expected an earlier KinematicSolution of this mechanism")
         if p.groups is not None:
-            if start.newton_state is None:
+            # the state must be of this plan's Newton groups (another method solves others)
+            if start.newton_state is None or start.plan.groups is None or not all(
+                    np.array_equal(a, b) for a, b in zip(start.plan.groups, p.groups)):
                 raise ModelError("start: the earlier analysis used another method; analyze "
                                  "with the same method to continue from it")
             resume = start.newton_state

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from kinelab.errors import ModelError
 from kinelab.kinematics._solution import KinematicSolution
 
 __all__ = ["InstantCenter", "instant_center", "instant_centers"]
@@ -46,8 +47,9 @@ def _link_motion(sol: KinematicSolution, link: str, column: int | None):
     ref = m.link(link).points[0]
     i = sol.point_item[ref]
     li = sol.link_item[link]
-    jets, rates = sol.item_jets([i, i + 1, li]), sol.item_rates([i, i + 1, li])
+    jets = sol.item_jets([i, i + 1, li])
     if column is None:
+        rates = sol.item_rates([i, i + 1, li])
         return jets[:, :2, 0], rates[:, :2, 0], rates[:, 2, 0]
     return jets[:, :2, 0], jets[:, :2, 1 + column], jets[:, 2, 1 + column]
 
@@ -57,7 +59,7 @@ def instant_center(sol: KinematicSolution, a: str, b: str) -> InstantCenter:
 
     With one input the centres come from the velocity coefficients K, so they do not depend
     on the input speed; with several inputs they come from the velocities (which depend on
-    the ratio of the input speeds ``qd``).
+    the ratio of the input speeds ``qd``, so ``qd`` must not be zero).
 
     Solving ``v_a + w_a k x (P - A) = v_b + w_b k x (P - B)`` for P gives
     ``P = -k x (v_b - v_a + w_a k x A - w_b k x B) / (w_a - w_b)``.
@@ -72,27 +74,7 @@ def instant_center(sol: KinematicSolution, a: str, b: str) -> InstantCenter:
     >>> kl.kinematics.instant_center(sol, "crank", "coupler").position.round(12).tolist()
     [0.0, 1.0]
     """
-    column = 0 if sol.M == 1 else None
-    pa, va, wa = _link_motion(sol, a, column)
-    pb, vb, wb = _link_motion(sol, b, column)
-
-    def kx(v):
-        return np.stack([-v[..., 1], v[..., 0]], axis=-1)
-    rhs = vb - va + wa[:, None] * kx(pa) - wb[:, None] * kx(pb)
-    dw = wa - wb
-    # angular-velocity scale of the mechanism at each sample: the fastest link
-    items = list(sol.link_item.values())
-    scale = np.max(np.abs(sol.item_jets(items)[:, :, 1 + column] if column is not None
-                          else sol.item_rates(items)[:, :, 0]), axis=1)
-    infinite = np.abs(dw) <= _PARALLEL * np.maximum(scale, 1e-300)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        position = np.where(infinite[:, None], 0.0, -kx(rhs) / np.where(infinite, 1.0, dw)[:, None])
-    rel = vb - va                      # relative translation velocity where dw = 0
-    norm = np.linalg.norm(rel, axis=-1)
-    direction = np.where((infinite & (norm > 0))[:, None], kx(rel) / np.where(norm > 0, norm, 1.0)[:, None], 0.0)
-    if sol.single:
-        position, infinite, direction = position[0], infinite[0], direction[0]
-    return InstantCenter((a, b), position, infinite, direction)
+    return _centers(sol, [(a, b)])[(a, b)]
 
 
 def instant_centers(sol: KinematicSolution) -> dict[tuple[str, str], InstantCenter]:
@@ -101,5 +83,37 @@ def instant_centers(sol: KinematicSolution) -> dict[tuple[str, str], InstantCent
     A mechanism of n links has n (n - 1) / 2 of them; by Kennedy's theorem the three
     centres of any three links lie on one line (tested).
     """
-    return {(a, b): instant_center(sol, a, b)
-            for a, b in itertools.combinations(sol.link_names, 2)}
+    return _centers(sol, list(itertools.combinations(sol.link_names, 2)))
+
+
+def _centers(sol: KinematicSolution, pairs) -> dict[tuple[str, str], InstantCenter]:
+    """The centres of the given pairs, each link's motion gathered once."""
+    column = 0 if sol.M == 1 else None
+    if column is None and not np.any(sol.qd):
+        raise ModelError("qd: with several inputs the instant centres depend on the ratio of "
+                         "the input speeds, and every qd is zero; analyze with the speeds qd")
+    motion = {link: _link_motion(sol, link, column) for link in dict.fromkeys(itertools.chain(*pairs))}
+    # angular-velocity scale of the mechanism at each sample: the fastest link
+    items = list(sol.link_item.values())
+    scale = np.max(np.abs(sol.item_jets(items)[:, :, 1 + column] if column is not None
+                          else sol.item_rates(items)[:, :, 0]), axis=1)
+
+    def kx(v):
+        return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+    centers = {}
+    for a, b in pairs:
+        (pa, va, wa), (pb, vb, wb) = motion[a], motion[b]
+        rhs = vb - va + wa[:, None] * kx(pa) - wb[:, None] * kx(pb)
+        dw = wa - wb
+        infinite = np.abs(dw) <= _PARALLEL * np.maximum(scale, 1e-300)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            position = np.where(infinite[:, None], 0.0,
+                                -kx(rhs) / np.where(infinite, 1.0, dw)[:, None])
+        rel = vb - va                      # relative translation velocity where dw = 0
+        norm = np.linalg.norm(rel, axis=-1)
+        direction = np.where((infinite & (norm > 0))[:, None],
+                             kx(rel) / np.where(norm > 0, norm, 1.0)[:, None], 0.0)
+        if sol.single:
+            position, infinite, direction = position[0], infinite[0], direction[0]
+        centers[(a, b)] = InstantCenter((a, b), position, infinite, direction)
+    return centers

@@ -90,7 +90,8 @@ def time_ratio(mechanism: Mechanism, output: str, *, samples: int = 3601) -> Tim
     positive = sign[changes] > 0        # K > 0 on the left side of each bracket
 
     def inside(x):
-        return np.where(positive, K(x) > 0, K(x) < 0)
+        k = K(x)
+        return np.where(positive, k > 0, k < 0)
     a, b = bisect(inside, q[changes], q[changes + 1])
     dc = 0.5 * (a + b)
     first = float(dc[1] - dc[0])

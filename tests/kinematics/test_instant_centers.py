@@ -76,3 +76,13 @@ def test_slider_centre_at_infinity():
     ic = kl.kinematics.instant_center(sol, "ground", "slider")
     assert ic.at_infinity.all()
     np.testing.assert_allclose(np.abs(ic.direction), [[0.0, 1.0]] * len(Q), atol=1e-12)
+
+
+def test_several_inputs_need_their_speeds():
+    """With two inputs the centres follow from the velocities; at rest there are none."""
+    fivebar = kl.mechanisms.fivebar(1.0, 1.0, 1.5, 1.5, 1.0)
+    with pytest.raises(kl.errors.ModelError, match="qd"):
+        kl.kinematics.instant_centers(kl.analyze(fivebar, q=[0.5, 2.5]))
+    ic = kl.kinematics.instant_center(kl.analyze(fivebar, q=[0.5, 2.5], qd=[1.0, -2.0]),
+                                      "ground", "crank1")
+    np.testing.assert_allclose(ic.position, fivebar.point("O2").xy, atol=1e-12)   # its pivot

@@ -5,6 +5,7 @@ import pytest
 
 import kinelab as kl
 from kinelab.kinematics import KinematicSolution
+from kinelab.kinematics._kernel import BLOCK
 
 Q = np.linspace(0.1, 2 * np.pi + 0.1, 9)
 
@@ -106,7 +107,7 @@ def test_the_first_sample_that_does_not_close_is_reported_from_within_a_block():
     fb = kl.mechanisms.fourbar(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)
     q = np.linspace(0.5, 5.5, 23)
     bad = np.flatnonzero(~kl.analyze(fb, q=q, unreachable="mask").assembled)
-    assert bad.size and bad[0] % 4 != 0                   # inside a block, not at its start
+    assert bad.size and bad[0] % BLOCK != 0               # inside a block, not at its start
     with pytest.raises(kl.errors.AssemblyError) as swept:
         kl.analyze(fb, q=q)
     with pytest.raises(kl.errors.AssemblyError) as alone:
@@ -128,3 +129,13 @@ def test_the_solution_keeps_its_own_inputs():
     np.testing.assert_array_equal(sol.omega("crank"), omega)
     np.testing.assert_array_equal(sol.alpha("crank"), alpha)
     assert sol.q.flags.writeable and sol.qd.flags.writeable
+
+
+@pytest.mark.parametrize("first, then", [("newton", "auto"), ("auto", "newton")])
+def test_a_start_from_another_method_is_refused(first, then):
+    """The two methods solve different Newton groups: one's state cannot start the other."""
+    t6 = kl.mechanisms.triad6()
+    earlier = kl.analyze(t6, q=Q[:3], method=first)
+    with pytest.raises(kl.errors.ModelError, match="another method"):
+        kl.analyze(t6, q=Q[3:], method=then, start=earlier)
+    kl.analyze(t6, q=Q[3:], method=first, start=earlier)          # the same method continues
