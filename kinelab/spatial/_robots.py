@@ -192,6 +192,11 @@ class SerialRobot:
         return 2 if self.planar else 3
 
     @property
+    def revolute(self) -> np.ndarray:
+        """(n,) bool: which joints are revolute (their coordinates are angles)."""
+        return np.array([j.kind == "R" for j in self.joints])
+
+    @property
     def scale(self) -> float:
         """A length for tolerances: the sum of the fixed link lengths (at least 1 m)."""
         size = sum(np.linalg.norm(j.offset) for j in self.joints) + np.linalg.norm(self.tool)
@@ -491,7 +496,7 @@ class SerialRobot:
     def _newton(self, targets: np.ndarray, q0: np.ndarray,
                 max_iter: int = 50) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Batched Newton-Raphson on ``P(q) = target`` (least squares steps at singular J)."""
-        revolute = np.array([j.kind == "R" for j in self.joints])
+        revolute = self.revolute
         size = np.where(revolute, 1.0, self.scale)      # step measure: rad and scale-m
         tol = _NEWTON_TOL * (self.scale + np.linalg.norm(targets, axis=-1))
         q = np.array(q0, dtype=float)
@@ -517,9 +522,11 @@ class SerialRobot:
                   else (-0.5 * self.scale, 0.0, 0.5 * self.scale) for j in self.joints]
         starts = np.array(list(itertools.product(*values)))
         q, ok, _ = self._newton(np.broadcast_to(target, (len(starts), self.dim)), starts)
+        revolute = self.revolute
         found: list[np.ndarray] = []
         for candidate in q[ok]:
-            if not any(np.abs(wrap_angle(candidate - f)).max() < 1e-8 for f in found):
+            differs = [np.where(revolute, wrap_angle(candidate - f), candidate - f) for f in found]
+            if not any(np.abs(d).max() < 1e-8 for d in differs):
                 found.append(candidate)
         if not found:
             raise AssemblyError(f"robot '{self.name}': Newton reached no solution for point "
@@ -572,7 +579,9 @@ def _solve(J: np.ndarray, b: np.ndarray, singular: np.ndarray) -> np.ndarray:
     if regular.any():
         x[regular] = np.linalg.solve(J[regular], b[regular][..., None])[..., 0]
     if singular.any():
-        x[singular] = np.einsum("nij,nj->ni", np.linalg.pinv(J[singular]), b[singular])
+        # the same threshold as the flag: the minimum-norm rates, not a near-singular inverse
+        x[singular] = np.einsum("nij,nj->ni", np.linalg.pinv(J[singular], rcond=_SINGULAR),
+                                b[singular])
     return x
 
 

@@ -174,6 +174,14 @@ def test_singular_pose_is_reported():
     assert np.isfinite(rates.qd).all() and np.isfinite(rates.qdd).all()
     # The regular sample still gets exact rates.
     np.testing.assert_allclose(robot.jacobian(q[1]) @ rates.qd[1], [0, 0, 1], rtol=0, atol=1e-14)
+    # A flagged pose a hair off the singularity gets the same least-squares (minimum-norm)
+    # rates as the singular pose itself, not the huge ones of a near-singular inverse.
+    near = robot.inverse_rates([[0.3, 0.5, 1e-12], stretched], [0.1, 0.2, 0.3], on_singular="flag")
+    assert near.singular.all()
+    np.testing.assert_allclose(near.qd[0], near.qd[1], rtol=0, atol=1e-9)
+    J = robot.jacobian(stretched)
+    np.testing.assert_allclose(near.qd[1], np.linalg.lstsq(J, [0.1, 0.2, 0.3], rcond=1e-10)[0],
+                               atol=1e-12)
 
 
 # -- branches mean what their names say ---------------------------------------------------
