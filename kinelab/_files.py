@@ -17,7 +17,8 @@ def atomic_write(path: str | os.PathLike, write: Callable[[IO], None], *, binary
     try:
         with os.fdopen(fd, "wb" if binary else "w", **({} if binary else {"newline": ""})) as f:
             write(f)
-        os.chmod(tmp, 0o666 & ~_umask())   # mkstemp makes it private; give it a file's usual mode
+        # mkstemp makes it private: give it the mode the file has, or a new file's usual one
+        os.chmod(tmp, path.stat().st_mode & 0o7777 if path.exists() else 0o666 & ~_UMASK)
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
@@ -25,10 +26,15 @@ def atomic_write(path: str | os.PathLike, write: Callable[[IO], None], *, binary
     return path
 
 
-def _umask() -> int:
+def _read_umask() -> int:
+    # the umask can only be read by setting it: done once, at import, before any thread of
+    # kinelab's creates a file (a change while other threads work would leak to them)
     mask = os.umask(0)
     os.umask(mask)
     return mask
+
+
+_UMASK = _read_umask()
 
 
 def write_csv(columns: dict, path: str | os.PathLike) -> Path:
