@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
+from scipy.integrate import cumulative_trapezoid
 
 from kinelab.errors import ModelError
 
@@ -113,7 +114,7 @@ def flywheel(theta: ArrayLike, torque: ArrayLike, *, speed: float, fluctuation: 
     if problems:
         raise ModelError(problems)
     span = th[-1] - th[0]
-    work = np.concatenate([[0.0], np.cumsum(0.5 * (tq[1:] + tq[:-1]) * np.diff(th))])
+    work = cumulative_trapezoid(tq, th, initial=0.0)
     mean = work[-1] / span
     energy = mean * (th - th[0]) - work
     i_max, i_min = int(np.argmax(energy)), int(np.argmin(energy))

@@ -182,9 +182,9 @@ def _as_q(a: np.ndarray, M: int) -> np.ndarray:
 
 
 class _Halt(Exception):
-    def __init__(self, t, q, kind, detail=""):
+    def __init__(self, t, q, kind):
         super().__init__(kind)
-        self.t, self.q, self.kind, self.detail = t, q, kind, detail
+        self.t, self.q, self.kind = t, q, kind
 
 
 def _state(name: str, value, M: int) -> np.ndarray:
@@ -317,11 +317,15 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
     """
     from scipy.integrate import solve_ivp
 
+    if inputs is None and isinstance(model, Mechanism):
+        # the model file's [dynamics] section: actuators, and loads and masses not given
+        from kinelab.dynamics._setup import DynamicsSetup
+        setup = DynamicsSetup.from_model(model)
+        inputs = setup.inputs() or None
+        loads = setup.loads if loads is None else loads
+        masses = setup.masses(model) if masses is None else masses
     system = build_system(model, loads, masses)
     M = system.M
-    if inputs is None:      # the model file's [dynamics.actuators], if any
-        from kinelab.dynamics._setup import DynamicsSetup
-        inputs = DynamicsSetup.from_model(model).inputs() or None
     actuators = actuator_laws(model, inputs)
     try:
         t0, t1 = (float(v) for v in t_span)

@@ -231,7 +231,7 @@ def inverse(model, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayLike = 0.0, *,
     tt = times(t, sol.N)
     terms = evaluate(system, sol, tt)
     tau = terms.inertia - terms.applied
-    ne = newton_euler(system, sol, terms, tau_known=None) if reactions else None
+    ne = newton_euler(system, sol, terms) if reactions else None
     return InverseDynamics(
         kinematics=sol, t=tt, input_forces=tau, inertia_forces=terms.inertia,
         load_forces=terms.applied, kinetic_energy=terms.kinetic,
@@ -251,7 +251,7 @@ def _cross(r: np.ndarray, f: np.ndarray) -> np.ndarray:
     return r[..., 0] * f[..., 1] - r[..., 1] * f[..., 0]
 
 
-def newton_euler(system: System, sol: KinematicSolution, terms: Terms, tau_known=None) -> dict:
+def newton_euler(system: System, sol: KinematicSolution, terms: Terms) -> dict:
     """Solve the free-body equations of every moving link, for all samples at once.
 
     Unknowns: at each revolute joint the force (x, y) on its second link; at each
@@ -369,15 +369,17 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms, tau_known
     # solve every sample at once; singular samples (NaN kinematics) stay NaN
     x = np.full((N, nu), np.nan)
     ok = np.isfinite(b).all(axis=1) & np.isfinite(A).all(axis=(1, 2))
+    if not ok.all():            # copy out the finite samples only when there are others
+        A, b = A[ok], b[ok]
     unique = A.shape[1] == nu
-    if ok.any():
+    if len(A):
         if unique:
             try:
-                x[ok] = np.linalg.solve(A[ok], b[ok][..., None])[..., 0]
+                x[ok] = np.linalg.solve(A, b[..., None])[..., 0]
             except np.linalg.LinAlgError:
                 unique = False
         if not unique:
-            x[ok] = np.einsum("nij,nj->ni", np.linalg.pinv(A[ok]), b[ok])
+            x[ok] = np.einsum("nij,nj->ni", np.linalg.pinv(A), b)
     shaking = np.einsum("nkc,nc->nk", G, x) + g0
     forces = np.zeros((N, J, 2))
     moments = np.zeros((N, J))

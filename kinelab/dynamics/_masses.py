@@ -222,7 +222,7 @@ class MassProperties:
         """
         links = tuple(links)
         by_link = {b.link: b for b in self.links}
-        problems, keep, lumps = [], [], list(self.points)
+        problems, lumps = [], list(self.points)
         xy = {p.name: (p.x, p.y) for p in model.points}
         for name in links:
             if name not in by_link:

@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from kinelab.dynamics._loads import Law, Loads
-from kinelab.dynamics._masses import MassProperties
+from kinelab.dynamics._masses import MassProperties, _positive
 from kinelab.errors import ModelError
 from kinelab.model import Mechanism
 
@@ -105,7 +105,7 @@ class DynamicsSetup:
             problems.append(f"{where}.point_masses: expected a table of point = mass (kg), got {lumps!r}")
             lumps = {}
         for p, mass in lumps.items():
-            if not (isinstance(mass, (int, float)) and not isinstance(mass, bool) and mass > 0):
+            if not _positive(mass):
                 problems.append(f"{where}.point_masses.{p}: expected a positive mass (kg), got {mass!r}")
         if problems:
             raise ModelError(problems)

@@ -49,10 +49,6 @@ class System:
     spring_c: np.ndarray      # (ns,) N s/m (0 for springs)
     spring_names: tuple[str, ...]
 
-    @property
-    def has_loads(self) -> bool:
-        return bool(self.loads.forces or self.loads.torques or len(self.spring_k))
-
 
 def build_system(model: Mechanism, loads: Loads | None, masses: MassProperties | None) -> System:
     """Check loads and masses against the model (every problem at once) and index them."""
@@ -66,9 +62,7 @@ def build_system(model: Mechanism, loads: Loads | None, masses: MassProperties |
         masses = setup.masses(model) if masses is None else masses
     if not isinstance(loads, Loads):
         raise ModelError(f"loads: expected a kinelab.dynamics.Loads, got {type(loads).__name__}")
-    if masses is None:
-        masses = MassProperties.from_model(model)
-    elif not isinstance(masses, MassProperties):
+    if not isinstance(masses, MassProperties):
         raise ModelError(f"masses: expected a kinelab.dynamics.MassProperties, got {type(masses).__name__}")
     problems = masses.problems(model) + loads.problems(model)
     if problems:

@@ -158,3 +158,9 @@ def test_python_callables_cannot_be_written_to_a_file():
     loads = Loads(torques=[Torque("crank", lambda t, q, qd: 0 * t)])
     with pytest.raises(ModelError, match=r"torque on 'crank': a Python callable cannot be written"):
         loads.to_dict()
+
+
+@pytest.mark.parametrize("mass", [float("inf"), float("nan"), 0.0, True])
+def test_setup_refuses_a_point_mass_that_is_not_a_finite_positive_number(mass):
+    with pytest.raises(ModelError, match="dynamics.point_masses.G2: expected a positive mass"):
+        DynamicsSetup.from_dict({"point_masses": {"G2": mass}})
