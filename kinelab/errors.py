@@ -10,6 +10,7 @@ catches ``ValueError`` keeps working.
 from __future__ import annotations
 
 from collections.abc import Iterable
+from difflib import get_close_matches
 
 __all__ = [
     "KinelabError",
@@ -67,3 +68,15 @@ class ConvergenceError(KinelabError, RuntimeError):
 
 class SingularityError(KinelabError, ValueError):
     """A value was asked for exactly at a singular configuration (det J = 0)."""
+
+
+# -- wording shared by the messages -------------------------------------------------------
+def quoted(names: Iterable[str]) -> str:
+    """``'a', 'b', 'c'``: the choices a message lists."""
+    return ", ".join(f"'{n}'" for n in names)
+
+
+def suggest(name: str, choices: Iterable[str]) -> str:
+    """`` (did you mean 'x'?)`` when one of ``choices`` is close to ``name``, else ''."""
+    close = get_close_matches(str(name), [str(c) for c in choices], n=1)
+    return f" (did you mean '{close[0]}'?)" if close else ""

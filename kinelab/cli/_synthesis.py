@@ -21,7 +21,7 @@ import click
 import numpy as np
 
 from kinelab import synthesis
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, quoted
 from kinelab.io import ANGLE_UNITS, LENGTH_UNITS
 
 __all__ = ["synth", "load_task", "Task"]
@@ -43,10 +43,6 @@ class Task:
     targets: np.ndarray | None = None
     function: dict[str, Any] = field(default_factory=dict)
     search: dict[str, Any] = field(default_factory=dict)
-
-
-def _quoted(names) -> str:
-    return ", ".join(f"'{n}'" for n in names)
 
 
 class _Reader:
@@ -89,7 +85,7 @@ class _Reader:
         for key in sec:
             if key not in allowed:
                 self.problems.append(f"{section}.{key}: unknown key; expected one of "
-                                     f"{_quoted(sorted(allowed))}")
+                                     f"{quoted(sorted(allowed))}")
 
 
 def load_task(path: str | Path) -> Task:
@@ -108,17 +104,17 @@ def load_task(path: str | Path) -> Task:
     r = _Reader(data)
     for key in data:
         if key not in _SECTIONS:
-            r.problems.append(f"{key}: unknown key; expected one of {_quoted(sorted(_SECTIONS))}")
+            r.problems.append(f"{key}: unknown key; expected one of {quoted(sorted(_SECTIONS))}")
     kind = data.get("task")
     if kind not in KINDS:
-        r.problems.append(f"task: expected one of {_quoted(KINDS)}, got {kind!r}")
+        r.problems.append(f"task: expected one of {quoted(KINDS)}, got {kind!r}")
     units = data.get("units", {})
     lu = units.get("length", "m") if isinstance(units, dict) else "m"
     au = units.get("angle", "rad") if isinstance(units, dict) else "rad"
     if lu not in LENGTH_UNITS:
-        r.problems.append(f"units.length: expected one of {_quoted(LENGTH_UNITS)}, got {lu!r}")
+        r.problems.append(f"units.length: expected one of {quoted(LENGTH_UNITS)}, got {lu!r}")
     if au not in ANGLE_UNITS:
-        r.problems.append(f"units.angle: expected one of {_quoted(ANGLE_UNITS)}, got {au!r}")
+        r.problems.append(f"units.angle: expected one of {quoted(ANGLE_UNITS)}, got {au!r}")
     r.unknown("units", {"length", "angle"})
     L, A = LENGTH_UNITS.get(lu, 1.0), ANGLE_UNITS.get(au, 1.0)
     task = Task(kind=str(kind), name=str(data.get("name", path.stem)), length_unit=lu,
@@ -169,7 +165,7 @@ def _motion_task(r: _Reader, task: Task, L: float, A: float) -> None:
         return
     for k in sorted(given - allowed[n]):
         r.problems.append(f"pivots.{k}: not used with {n} positions; with {n} give "
-                          f"{_quoted(sorted(allowed[n]))}")
+                          f"{quoted(sorted(allowed[n]))}")
     for k in given & allowed[n]:
         if k in ("A0", "B0", "A1", "B1"):
             task.pivots[k] = r.array(f"pivots.{k}", piv[k], (2,), L)
@@ -179,7 +175,7 @@ def _motion_task(r: _Reader, task: Task, L: float, A: float) -> None:
     for k in need:
         if k not in given:
             r.problems.append(f"pivots.{k}: missing; {n} positions need "
-                              f"{_quoted(need)}")
+                              f"{quoted(need)}")
     if n == 3:
         for side in "AB":
             if (f"{side}0" in given) == (f"{side}1" in given):

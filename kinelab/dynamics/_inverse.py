@@ -11,7 +11,7 @@ from kinelab.dynamics._loads import Loads, default_carrier
 from kinelab.dynamics._masses import MassProperties
 from kinelab.dynamics._results import MotionResult
 from kinelab.dynamics._terms import System, Terms, build_system, evaluate, point_block, times
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, quoted, suggest
 from kinelab.kinematics import KinematicSolution, analyze, plan
 
 __all__ = ["inverse", "InverseDynamics"]
@@ -20,10 +20,7 @@ __all__ = ["inverse", "InverseDynamics"]
 def _pick(names: tuple[str, ...], name: str, kind: str) -> int:
     if name in names:
         return names.index(name)
-    from difflib import get_close_matches
-    close = get_close_matches(str(name), list(names), n=1)
-    hint = f" (did you mean '{close[0]}'?)" if close else ""
-    raise ModelError(f"{kind}: expected one of {', '.join(map(repr, names))}, got '{name}'{hint}")
+    raise ModelError(f"{kind}: expected one of {quoted(names)}, got '{name}'{suggest(name, names)}")
 
 
 @dataclass(frozen=True, eq=False)

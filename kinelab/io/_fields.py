@@ -8,19 +8,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Mapping
-from difflib import get_close_matches
 from typing import Any
 
+from kinelab.errors import quoted, suggest
+
 __all__ = ["Reader", "quoted", "suggest", "describe"]
-
-
-def quoted(names: Iterable[str]) -> str:
-    return ", ".join(f"'{n}'" for n in names)
-
-
-def suggest(name: str, choices: Iterable[str]) -> str:
-    close = get_close_matches(str(name), [str(c) for c in choices], n=1, cutoff=0.6)
-    return f" (did you mean '{close[0]}'?)" if close else ""
 
 
 def describe(value: Any) -> str:

@@ -182,7 +182,6 @@ def from_pyslvs(expression: str, *, inputs: Sequence[tuple[int, int]] | None = N
     points = [Point(f"P{i}", x * scale, y * scale) for i, (_, _, x, y, _) in enumerate(vpoints)]
     carried: dict[str, list[str]] = {}
     joints: list[Joint] = []
-    blocks: list[str] = []
 
     def carry(link: str, point: str) -> None:
         carried.setdefault(link, [])
@@ -191,7 +190,7 @@ def from_pyslvs(expression: str, *, inputs: Sequence[tuple[int, int]] | None = N
 
     def pins(point: str, links: list[str]) -> None:
         links = sorted(links, key=lambda n: n != GROUND)     # the ground first, for inputs
-        for k, other in enumerate(links[1:]):
+        for other in links[1:]:
             jname = f"j{point}" if len(links) == 2 else f"j{point}_{other}"
             joints.append(Joint(jname, "R", (links[0], other), point=point))
 
@@ -214,7 +213,6 @@ def from_pyslvs(expression: str, *, inputs: Sequence[tuple[int, int]] | None = N
             slider = rest[0]
         else:
             slider = f"{p}_block"
-            blocks.append(slider)
             rest = [slider] + rest
         for link in rest:
             carry(link, p)
@@ -304,7 +302,6 @@ def to_pyslvs(model: Mechanism, *, length: str = "mm") -> str:
     if not isinstance(model, Mechanism) or model.space != "planar":
         raise ModelError("model: expected a planar kinelab Mechanism")
     scale = LENGTH_UNITS[length]
-    ground = model.ground.name
     names = {}
     for link in model.links:
         n = GROUND if link.ground else link.name

@@ -62,7 +62,8 @@ def write_results(sol: KinematicSolution, path: str | os.PathLike, *,
     except ImportError:
         raise ModelError("format: Parquet needs the optional dependency pyarrow; install it with "
                          "pip install 'kinelab[parquet]', or choose csv or json") from None
-    frame = sol.to_dataframe(degrees=degrees)
+    import pandas
+    frame = pandas.DataFrame(columns)
     return atomic_write(path, lambda f: frame.to_parquet(f, index=False), binary=True)
 
 

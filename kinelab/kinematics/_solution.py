@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, quoted, suggest
 from kinelab.kinematics._geometry import sketch_angle
 from kinelab.kinematics._plan import Plan
 from kinelab.model import Mechanism
@@ -205,11 +205,8 @@ class KinematicSolution:
                 return items[name], width
         names = [n for kind in kinds for n in tables[kind][0]]
         label = " or ".join(tables[kind][2] for kind in kinds)
-        from difflib import get_close_matches
-        close = get_close_matches(str(name), names, n=1)
-        hint = f" (did you mean '{close[0]}'?)" if close else ""
-        raise ModelError(f"{label}: expected one of {', '.join(repr(n) for n in names)}, "
-                         f"got '{name}'{hint}")
+        raise ModelError(f"{label}: expected one of {quoted(names)}, "
+                         f"got '{name}'{suggest(name, names)}")
 
     def _value(self, name: str, kinds: str, column: int, source: str = "jets") -> np.ndarray:
         i, w = self._find(name, kinds)

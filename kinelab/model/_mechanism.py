@@ -9,25 +9,15 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
-from difflib import get_close_matches
 from typing import Any, Literal
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, quoted, suggest
 from kinelab.model._joints import JOINT_TYPES
 
 __all__ = ["Point", "Link", "Joint", "Input", "Mechanism", "SPACES"]
 
 SPACES = ("planar", "spherical", "spatial")
 _LENGTH_TOL = 1e-12  # two sketch points closer than this (m) are the same place
-
-
-def _quoted(names: Iterable[str]) -> str:
-    return ", ".join(f"'{n}'" for n in names)
-
-
-def _suggest(name: str, choices: Iterable[str]) -> str:
-    close = get_close_matches(name, list(choices), n=1)
-    return f" (did you mean '{close[0]}'?)" if close else ""
 
 
 @dataclass(frozen=True)
@@ -269,8 +259,8 @@ def _lookup(items: Sequence, name: str, kind: str):
         if item.name == name:
             return item
     names = [i.name for i in items]
-    raise ModelError(f"{kind} '{name}' not found{_suggest(name, names)}; "
-                     f"the {kind}s are {_quoted(names)}")
+    raise ModelError(f"{kind} '{name}' not found{suggest(name, names)}; "
+                     f"the {kind}s are {quoted(names)}")
 
 
 def _validate(m: Mechanism) -> list[str]:
@@ -278,7 +268,7 @@ def _validate(m: Mechanism) -> list[str]:
     problems: list[str] = []
     add = problems.append
     if m.space not in SPACES:
-        add(f"space: expected one of {_quoted(SPACES)}, got '{m.space}'")
+        add(f"space: expected one of {quoted(SPACES)}, got '{m.space}'")
     # -- names ---------------------------------------------------------------------------
     seen: dict[str, str] = {}
     for kind, items in (("point", m.points), ("link", m.links), ("joint", m.joints)):
@@ -299,14 +289,14 @@ def _validate(m: Mechanism) -> list[str]:
     grounds = [link.name for link in m.links if link.ground]
     if len(grounds) != 1:
         add(f"links: expected exactly one ground link, got {len(grounds)}"
-            + (f" ({_quoted(grounds)})" if grounds else "") + "; mark one link ground = true")
+            + (f" ({quoted(grounds)})" if grounds else "") + "; mark one link ground = true")
     sliding_links = {n for j in m.joints if j.type == "P" for n in j.links}
     for link in m.links:
         where = f"link '{link.name}'"
         for pn in link.points:
             if pn not in points:
-                add(f"{where}: points: expected a declared point, got '{pn}'{_suggest(pn, points)}; "
-                    f"declared points are {_quoted(points)}")
+                add(f"{where}: points: expected a declared point, got '{pn}'{suggest(pn, points)}; "
+                    f"declared points are {quoted(points)}")
         if len(set(link.points)) != len(link.points):
             add(f"{where}: points: a point is listed twice")
         if len(link.points) == 0:
@@ -325,14 +315,14 @@ def _validate(m: Mechanism) -> list[str]:
                 add(f"{where}: {label}: expected a positive number, got {attr!r}")
         if link.center_of_mass is not None and link.center_of_mass not in link.points:
             add(f"{where}: center_of_mass: expected one of the link's points "
-                f"{_quoted(link.points)}, got '{link.center_of_mass}'")
+                f"{quoted(link.points)}, got '{link.center_of_mass}'")
     # -- joints --------------------------------------------------------------------------
     for j in m.joints:
         where = f"joint '{j.name}'"
         jt = JOINT_TYPES.get(j.type)
         if jt is None:
-            add(f"{where}: type: expected one of {_quoted(JOINT_TYPES)}, got '{j.type}'"
-                f"{_suggest(str(j.type), JOINT_TYPES)}")
+            add(f"{where}: type: expected one of {quoted(JOINT_TYPES)}, got '{j.type}'"
+                f"{suggest(str(j.type), JOINT_TYPES)}")
             continue
         if m.space == "planar" and not jt.planar:
             add(f"{where}: a {j.type} joint ({jt.description}) cannot join links of a planar "
@@ -343,8 +333,8 @@ def _validate(m: Mechanism) -> list[str]:
         a, b = j.links
         bad = [n for n in (a, b) if n not in links]
         for n in bad:
-            add(f"{where}: links: expected a declared link, got '{n}'{_suggest(n, links)}; "
-                f"declared links are {_quoted(links)}")
+            add(f"{where}: links: expected a declared link, got '{n}'{suggest(n, links)}; "
+                f"declared links are {quoted(links)}")
         if a == b:
             add(f"{where}: joins link '{a}' to itself; a joint joins two different links")
         if bad or a == b:
@@ -354,11 +344,11 @@ def _validate(m: Mechanism) -> list[str]:
         if j.point is not None:
             if j.point not in points:
                 add(f"{where}: point: expected a declared point, got '{j.point}'"
-                    f"{_suggest(j.point, points)}")
+                    f"{suggest(j.point, points)}")
             elif j.type in ("R", "S", "U") and not all(j.point in links[n].points for n in (a, b)):
                 missing = [n for n in (a, b) if j.point not in links[n].points]
                 add(f"{where}: point '{j.point}' must be carried by both links it joins; add it "
-                    f"to the points of {_quoted(missing)}")
+                    f"to the points of {quoted(missing)}")
             elif j.type == "P" and j.point not in links[b].points:
                 add(f"{where}: point '{j.point}' must be carried by the slider '{b}' (the second "
                     "link of a prismatic joint)")
@@ -374,7 +364,7 @@ def _validate(m: Mechanism) -> list[str]:
                 add(f"{where}: axis: must not be the zero vector")
         if j.type == "P" and j.origin is not None and j.origin not in links[a].points:
             add(f"{where}: origin: expected a point of the guide '{a}' "
-                f"({_quoted(links[a].points)}), got '{j.origin}'")
+                f"({quoted(links[a].points)}), got '{j.origin}'")
     # -- points shared by links must be hinged together ----------------------------------
     for p in m.points:
         carriers = [link.name for link in m.links if p.name in link.points]
@@ -383,7 +373,7 @@ def _validate(m: Mechanism) -> list[str]:
         hinged = [j.links for j in m.joints
                   if j.point == p.name and j.type in ("R", "S", "U") and all(n in links for n in j.links)]
         if _components(carriers, hinged) > 1:
-            add(f"point '{p.name}': carried by {_quoted(carriers)}, which are not all joined by "
+            add(f"point '{p.name}': carried by {quoted(carriers)}, which are not all joined by "
                 f"revolute joints at '{p.name}'; add the joints or give each link its own point")
     # -- inputs --------------------------------------------------------------------------
     joints = {j.name: j for j in m.joints}
@@ -396,7 +386,7 @@ def _validate(m: Mechanism) -> list[str]:
             j = joints.get(inp.joint)
             if j is None:
                 add(f"{where}: joint: expected a declared joint, got '{inp.joint}'"
-                    f"{_suggest(inp.joint, joints)}; declared joints are {_quoted(joints)}")
+                    f"{suggest(inp.joint, joints)}; declared joints are {quoted(joints)}")
             elif j.type not in ("R", "P"):
                 add(f"{where}: joint '{inp.joint}' is a {j.type} joint; an input drives an R "
                     "(angle) or P (slide) joint")
@@ -405,7 +395,7 @@ def _validate(m: Mechanism) -> list[str]:
                 add(f"{where}: links: expected two different links, got {list(inp.links)}")
             for n in inp.links:
                 if n not in links:
-                    add(f"{where}: links: expected a declared link, got '{n}'{_suggest(n, links)}")
+                    add(f"{where}: links: expected a declared link, got '{n}'{suggest(n, links)}")
         if inp.range is not None:
             r = inp.range
             if len(r) != 2 or not all(isinstance(v, (int, float)) and math.isfinite(v) for v in r):
@@ -425,7 +415,7 @@ def _validate(m: Mechanism) -> list[str]:
         if _components(list(links), pairs) > 1:
             reach = _reachable(m.ground.name, pairs) if len(grounds) == 1 else set()
             loose = [n for n in links if n not in reach]
-            add(f"links {_quoted(loose)} are not connected to the ground by any chain of joints; "
+            add(f"links {quoted(loose)} are not connected to the ground by any chain of joints; "
                 "join them or remove them")
     return problems
 

@@ -256,9 +256,8 @@ def test_dxf_outlines_with_slot_spanning_the_travel(tmp_path):
     assert len(slots) == 1 and slots[0].closed
     xy = np.array([(p[0], p[1]) for p in slots[0].get_points("xy")])
     along = xy @ np.array([2, 1]) / math.sqrt(5)       # the slot's axis
-    s = sol.slide("slot") * 1000
-    # slot ends are the travel's ends (100 mm to 300 mm from O4), grown by the pin radius
-    assert along.min() == pytest.approx(s.min(), abs=1e-6) and along.max() == pytest.approx(s.max(), abs=1e-6)
+    # the slot spans the block's travel along the lever: C - R = 100 mm to C + R = 300 mm
+    assert along.min() == pytest.approx(100.0, abs=1e-6) and along.max() == pytest.approx(300.0, abs=1e-6)
     assert sum(e.dxftype() == "CIRCLE" for e in msp) == 5       # crank 2, block 1, lever 2
     assert all(e.closed for e in msp if e.dxftype() == "LWPOLYLINE")
 
