@@ -514,13 +514,15 @@ def _sketch(chain: KinematicChain, ground: int, name: str | None, seed: int) -> 
                       tuple(pts), links, js)
         system = ConstraintSystem.of(m)
         c = system.matrix()
-        if system.unknowns - rank(c) != chain.mobility:  # a special sketch: draw again
+        r = rank(c)
+        if system.unknowns - r != chain.mobility:  # a special sketch: draw again
             continue
         chosen = []
         for j in sorted(js, key=lambda j: "link1" not in j.links):  # the fixed link's first
             lock = system.relative(*j.links)[:1]  # the joint's relative rotation
-            if rank(np.vstack([c, lock])) > rank(c):
+            if rank(np.vstack([c, lock])) > r:
                 c = np.vstack([c, lock])
+                r += 1
                 chosen.append(j.name)
             if len(chosen) == chain.mobility:
                 return Mechanism(m.name, m.points, m.links, m.joints,

@@ -10,7 +10,7 @@ from kinelab.errors import ModelError
 from kinelab.model import Mechanism
 from kinelab.structure._count import kutzbach_gruebler, pair_counts, space_dimension
 from kinelab.structure._motion import moved
-from kinelab.structure._screws import RTOL, null_basis, rank
+from kinelab.structure._screws import RTOL, _threshold, null_basis, rank
 from kinelab.structure._system import ConstraintSystem
 
 __all__ = ["Mobility", "mobility"]
@@ -194,7 +194,7 @@ def _state(system: ConstraintSystem, rtol: float) -> _State:
     c = system.matrix()
     s = np.linalg.svd(c, compute_uv=False) if c.size else np.zeros(0)
     passive_v, counted_v, passive_txt, counted_txt = _local_motions(system, rtol)
-    return _State(system.unknowns - rank(c, rtol),
+    return _State(system.unknowns - int(np.sum(s > _threshold(s, rtol, None))),
                   rank(np.array(passive_v), rtol) if passive_v else 0,
                   tuple(passive_txt), tuple(counted_txt) if counted_v else (), c.shape[0],
                   tuple(float(x) for x in s))
@@ -287,9 +287,10 @@ def mobility(model: Mechanism, *, rtol: float = RTOL) -> Mobility:
                     "this assembly)")
         else:
             systems = [ConstraintSystem.of(m) for m in moved_models]
-            nearest = min(systems, key=lambda sy: sy.unknowns - rank(sy.matrix(), rtol))
-            if nearest.unknowns - rank(nearest.matrix(), rtol) < here.freedoms:
-                state = _state(nearest, rtol)
+            free = [sy.unknowns - rank(sy.matrix(), rtol) for sy in systems]
+            nearest = int(np.argmin(free))
+            if free[nearest] < here.freedoms:
+                state = _state(systems[nearest], rtol)
                 singular = True
                 note = (f"at the sketch the constraint Jacobian allows "
                         f"{_motions(here.freedoms)}: it is a singular configuration (folded "

@@ -80,8 +80,6 @@ class _Loop:
 
     def __init__(self, system: ConstraintSystem):
         self.system = system
-        self.n = len(system.moving)
-        self.dim = system.dim
         # spatial twist of each unknown block (the plane embeds in space)
         self.embed = np.eye(6)[:, _PLANAR] if system.planar else np.eye(6)
 

@@ -104,10 +104,7 @@ def closed_4r(lengths, twists, theta1=1.0):
                 for x0 in ([2.0, -1.0, -2.0], [-2.0, 1.0, 2.0], [1.0, 1.0, 1.0])),
                key=lambda r: r.cost)
     f = frames([theta1, *best.x])
-    names = ["ground", "l2", "l3", "l4"]
     pts = tuple(Point(f"J{k + 1}", *f[k][:3, 3]) for k in range(4))
-    links = tuple(Link(names[k], (f"J{(k - 1) % 4 + 1}", f"J{k + 1}"), ground=(k == 0))
-                  for k in range(4))
     links = (Link("ground", ("J4", "J1"), ground=True), Link("l2", ("J1", "J2")),
              Link("l3", ("J2", "J3")), Link("l4", ("J3", "J4")))
     pairs = [("ground", "l2"), ("l2", "l3"), ("l3", "l4"), ("l4", "ground")]
