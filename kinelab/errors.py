@@ -80,3 +80,10 @@ def suggest(name: str, choices: Iterable[str]) -> str:
     """`` (did you mean 'x'?)`` when one of ``choices`` is close to ``name``, else ''."""
     close = get_close_matches(str(name), [str(c) for c in choices], n=1)
     return f" (did you mean '{close[0]}'?)" if close else ""
+
+
+def check_choice(name: str, value, choices) -> None:
+    """Raise a :class:`ModelError` unless ``value`` is one of ``choices``."""
+    if value not in choices:
+        raise ModelError(f"{name}: expected one of {', '.join(repr(c) for c in choices)}, "
+                         f"got {value!r}")

@@ -13,7 +13,7 @@ from typing import Literal
 
 import numpy as np
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, check_choice
 from kinelab.model import Input, Joint, Link, Mechanism, Point
 
 __all__ = ["fourbar", "slider_crank", "inverted_slider_crank", "slotted_link", "whitworth",
@@ -34,11 +34,6 @@ def _finite(**values: float) -> None:
                 if not (isinstance(value, (int, float)) and math.isfinite(value))]
     if problems:
         raise ModelError(problems)
-
-
-def _choice(name: str, value: str, choices: tuple[str, ...]) -> None:
-    if value not in choices:
-        raise ModelError(f"{name}: expected one of {', '.join(repr(c) for c in choices)}, got {value!r}")
 
 
 def _best_angle(quality: Callable[[np.ndarray], np.ndarray], what: str) -> float:
@@ -92,7 +87,7 @@ def fourbar(ground: float, crank: float, coupler: float, rocker: float,
     array([ 60., 120.])
     """
     _positive(ground=ground, crank=crank, coupler=coupler, rocker=rocker)
-    _choice("branch", branch, ("open", "crossed"))
+    check_choice("branch", branch, ("open", "crossed"))
     sigma = 1.0 if branch == "open" else -1.0
 
     def quality(q):
@@ -153,7 +148,7 @@ def slider_crank(crank: float, rod: float, offset: float = 0.0,
     """
     _positive(crank=crank, rod=rod)
     _finite(offset=offset)
-    _choice("branch", branch, ("right", "left"))
+    check_choice("branch", branch, ("right", "left"))
     if abs(offset) >= crank + rod:
         raise ModelError(f"offset: |{offset}| m is beyond crank + rod = {crank + rod} m; "
                          "the rod cannot reach the slide line")
@@ -240,7 +235,7 @@ def slotted_link(crank: float, distance: float,
     (2.2360679775, 26.565051177)
     """
     _positive(crank=crank, distance=distance)
-    _choice("branch", branch, ("positive", "negative"))
+    check_choice("branch", branch, ("positive", "negative"))
     return _slotted("slotted_link", (distance, 0.0), crank, 0.0, crank + distance, branch,
                     params=dict(kind="slotted_link", crank=crank, distance=distance, branch=branch))
 
@@ -276,7 +271,7 @@ def inverted_slider_crank(ground: float, crank: float, offset: float = 0.0, rock
     """
     _positive(ground=ground, crank=crank)
     _finite(offset=offset)
-    _choice("branch", branch, ("positive", "negative"))
+    check_choice("branch", branch, ("positive", "negative"))
     rocker = ground + crank if rocker is None else rocker
     _positive(rocker=rocker)
     m = _slotted("inverted_slider_crank", (-ground, 0.0), crank, offset, rocker, branch,
@@ -364,7 +359,7 @@ def fivebar(ground: float, crank1: float, coupler1: float, coupler2: float, cran
     array([0.5       , 2.41421356])
     """
     _positive(ground=ground, crank1=crank1, coupler1=coupler1, coupler2=coupler2, crank2=crank2)
-    _choice("branch", branch, ("up", "down"))
+    check_choice("branch", branch, ("up", "down"))
     sigma = 1.0 if branch == "up" else -1.0
     if q0 is None:
         g = np.radians(np.arange(0.0, 360.0, 5.0)) + 1e-3

@@ -7,8 +7,8 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ModelError
-from kinelab.spatial._common import as_array, check_choice
+from kinelab.errors import ModelError, check_choice
+from kinelab.spatial._common import as_array
 from kinelab.spatial._transforms import rotation
 
 __all__ = ["CardanMotion", "DoubleCardanMotion", "cardan_output", "cardan_velocity_ratio",

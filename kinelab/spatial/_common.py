@@ -51,13 +51,6 @@ def as_length(name: str, value: float, *, positive: bool = False) -> float:
     return number
 
 
-def check_choice(name: str, value, choices) -> None:
-    """Raise a :class:`ModelError` unless ``value`` is one of ``choices``."""
-    if value not in choices:
-        listed = ", ".join(repr(c) for c in choices)
-        raise ModelError(f"{name}: expected one of {listed}, got {value!r}")
-
-
 
 
 def indices(mask: np.ndarray, most: int = 5) -> str:

@@ -19,8 +19,9 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import AssemblyError, ConvergenceError, ModelError, SingularityError
-from kinelab.spatial._common import as_array, as_length, as_vectors, check_choice, indices
+from kinelab.errors import (AssemblyError, ConvergenceError, ModelError, SingularityError,
+                            check_choice)
+from kinelab.spatial._common import as_array, as_length, as_vectors, indices
 from kinelab.solvers import half_angle, wrap_angle
 from kinelab.spatial._transforms import rotation
 

@@ -7,8 +7,8 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import AssemblyError, ModelError, SingularityError
-from kinelab.spatial._common import as_array, as_length, check_choice, indices
+from kinelab.errors import AssemblyError, ModelError, SingularityError, check_choice
+from kinelab.spatial._common import as_array, as_length, indices
 from kinelab.solvers import half_angle
 
 __all__ = ["RSSR", "RSSRPositions", "RSSRSolution"]

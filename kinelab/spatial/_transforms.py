@@ -15,8 +15,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.spatial.transform import Rotation
 
-from kinelab.errors import ModelError
-from kinelab.spatial._common import as_array, as_vectors, check_choice
+from kinelab.errors import ModelError, check_choice
+from kinelab.spatial._common import as_array, as_vectors
 
 __all__ = [
     "AxisAngle", "TransformRates", "PointMotion", "AngularMotion",
@@ -95,7 +95,7 @@ def rotation(axis: str | ArrayLike, angle: ArrayLike, *, degrees: bool = False) 
         raise ModelError("axis: expected a nonzero direction, got (0, 0, 0); give the "
                          "direction of the rotation axis")
     try:
-        rotvec = np.broadcast_arrays(direction / norm * angle[..., None])[0]
+        rotvec = direction / norm * angle[..., None]
     except ValueError:
         raise ModelError(f"axis and angle: shapes {direction.shape} and {angle.shape} do "
                          f"not agree; give N axes with N angles, or one of either") from None
