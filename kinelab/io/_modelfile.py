@@ -401,13 +401,13 @@ class _Parser:
         elif "points" in top:
             point_names = list(raw_points)
         for pname, xy in raw_points.items():
-            v = r.numbers(xy, f"points.{_field_key(pname)}", dim, scale=ls, what="coordinates")
+            v = r.numbers(xy, f"points.{_toml.toml_key(pname)}", dim, scale=ls, what="coordinates")
             if v is not None:
                 points[pname] = v
         raw_links = list(self.items(top.get("links", []), "links", _LINK, ("name", "points")))
         raw_joints = list(self.items(top.get("joints", []), "joints", _JOINT, ("type", "links")))
         # names first, so that one bad field does not make every reference to it fail too
-        taken = {p: f"points.{_field_key(p)}" for p in point_names or ()}
+        taken = {p: f"points.{_toml.toml_key(p)}" for p in point_names or ()}
         link_names = self.declare(raw_links, "links", taken, lambda t: t.get("name"))
         joint_names = self.declare(raw_joints, "joints", taken, _joint_name)
         joint_types: dict[str, Any] = {}
@@ -451,7 +451,7 @@ class _Parser:
         for i, lname, pts, length in lengths:
             self.check_length(mech, i, pts, length, units)
         if "catalogue" in top and not self.r.problems:
-            built, _ = self.catalogue(top["catalogue"], units)
+            built = self.catalogue(top["catalogue"], units)
             if built is not None:
                 self.check_catalogue(mech, built, units)
                 mech = dataclasses.replace(mech, parameters=built.parameters)
@@ -596,15 +596,15 @@ class _Parser:
 
     # -- catalogue ---------------------------------------------------------------------------
     def catalogue(self, value, units: Units):
-        """(mechanism built by the catalogue constructor, its parameter problems)."""
+        """The mechanism the catalogue constructor builds, or None (the problems are recorded)."""
         r = self.r
         if not isinstance(value, Mapping):
             r.fail("catalogue", f"expected a table with kind = \"...\" and parameters, got "
                    f"{describe(value)}")
-            return None, True
+            return None
         kind = r.string(value.get("kind"), "catalogue.kind", choices=CATALOGUE_KINDS)
         if kind is None:
-            return None, True
+            return None
         make = getattr(catalogue, kind)
         params = [p for p in inspect.signature(make).parameters if p != "q0"]
         t = r.table(value, "catalogue", ["kind"] + params)
@@ -622,7 +622,7 @@ class _Parser:
                 if not isinstance(v, Mapping):
                     r.fail(where, f"expected a table of name = [x, y], got {describe(v)}")
                     continue
-                kwargs[key] = {n: r.numbers(xy, f"{where}.{_field_key(n)}", 2,
+                kwargs[key] = {n: r.numbers(xy, f"{where}.{_toml.toml_key(n)}", 2,
                                             scale=units.length_scale, what="coordinates")
                                for n, xy in v.items()}
             else:
@@ -632,9 +632,9 @@ class _Parser:
             if sig.default is inspect.Parameter.empty and p not in kwargs:
                 r.fail(f"catalogue.{p}", f"missing; a {kind} needs it")
         if len(r.problems) > before or t is None:
-            return None, True
+            return None
         try:
-            return make(**kwargs), False
+            return make(**kwargs)
         except ModelError as exc:
             for p in exc.problems:
                 base = re.sub(r"[\[._:].*$", "", p)
@@ -642,11 +642,11 @@ class _Parser:
                     r.fail("", f"catalogue.{p}")
                 else:
                     r.fail("catalogue", p if p.startswith(kind) else f"{kind}: {p}")
-        return None, True
+        return None
 
     def from_catalogue(self, top, units: Units, name):
-        built, bad = self.catalogue(top["catalogue"], units)
-        if bad:
+        built = self.catalogue(top["catalogue"], units)
+        if built is None:
             self.fail()
         joint_types = {j.name: j.type for j in built.joints}
         inputs, samples = (self.inputs(top["inputs"], joint_types, built.link_names, units)
@@ -710,17 +710,13 @@ def _joint_name(t: Mapping[str, Any]) -> Any:
     return f"j{t['point']}" if isinstance(t.get("point"), str) else None
 
 
-def _field_key(name: str) -> str:
-    return name if re.match(r"^[A-Za-z0-9_-]+$", str(name)) else json.dumps(name)
-
-
 def _locate(problem: str, where: Mapping[tuple[str, str], str]) -> str:
     """Turn the model's "link 'coupler': points: ..." into the file's "links[2].points: ..."."""
     m = re.match(r"^(link|joint|point) '([^']*)': (?:(\w+): )?(.*)$", problem, re.S)
     if not m:
         return problem
     kind, name, fld, rest = m.groups()
-    place = (f"points.{_field_key(name)}" if kind == "point"
+    place = (f"points.{_toml.toml_key(name)}" if kind == "point"
              else where.get((kind, name), f"{kind}s['{name}']"))
     return f"{place}{'.' + fld if fld else ''}: {rest}"
 

@@ -180,6 +180,16 @@ def _layout(parts: list[Outline], layout: str, gap: float) -> list[tuple[Outline
     return placed
 
 
+def _placed(model, unit: str, layout: str, options) -> tuple[float, list]:
+    """The drawing's unit scale and its outlines placed as ``layout`` asks (two hole
+    diameters apart when laid out as parts)."""
+    k = _check_unit(unit)
+    if layout not in ("parts", "assembly"):
+        raise ModelError(f"layout: expected one of 'parts', 'assembly', got {layout!r}")
+    parts = outlines(model, **options)
+    return k, _layout(parts, layout, 2.0 * float(np.max(parts[0].holes[:, 2])))
+
+
 def _extent(poly: np.ndarray) -> np.ndarray:
     """Points that bound a bulged polyline (vertices and arc mid-points are enough here)."""
     out = [poly[:, :2]]
@@ -187,10 +197,9 @@ def _extent(poly: np.ndarray) -> np.ndarray:
     for i in range(n):
         if poly[i, 2]:
             a, b = poly[i, :2], poly[(i + 1) % n, :2]
-            theta = 4 * math.atan(poly[i, 2])
             chord = b - a
             normal = np.array([chord[1], -chord[0]])
-            sag = math.tan(theta / 4) * np.linalg.norm(chord) / 2
+            sag = poly[i, 2] * np.linalg.norm(chord) / 2      # bulge = tan(arc angle / 4)
             out.append(((a + b) / 2 + normal / np.linalg.norm(normal) * sag)[None])
     return np.vstack(out)
 
@@ -241,12 +250,7 @@ def to_svg(model: Mechanism, path: str | os.PathLike, *, unit: str = "mm",
     >>> path.read_text().count('class="hole"')          # two holes in each of three links
     6
     """
-    k = _check_unit(unit)
-    if layout not in ("parts", "assembly"):
-        raise ModelError(f"layout: expected one of 'parts', 'assembly', got {layout!r}")
-    parts = outlines(model, **options)
-    gap = 0.5 * float(np.max(parts[0].holes[:, 2])) * 4
-    placed = _layout(parts, layout, gap)
+    k, placed = _placed(model, unit, layout, options)
     body = []
     everything = []
     for part, shift, angle in placed:
@@ -293,11 +297,7 @@ def to_dxf(model: Mechanism, path: str | os.PathLike, *, unit: str = "mm",
     import ezdxf
     from ezdxf import units as dxf_units
 
-    k = _check_unit(unit)
-    if layout not in ("parts", "assembly"):
-        raise ModelError(f"layout: expected one of 'parts', 'assembly', got {layout!r}")
-    parts = outlines(model, **options)
-    placed = _layout(parts, layout, 2.0 * float(np.max(parts[0].holes[:, 2])))
+    k, placed = _placed(model, unit, layout, options)
     doc = ezdxf.new("R2010")
     doc.units = {"m": dxf_units.M, "cm": dxf_units.CM, "mm": dxf_units.MM, "in": dxf_units.IN}[unit]
     for layer in ("OUTLINE", "SLOTS", "HOLES"):

@@ -19,7 +19,9 @@ __all__ = ["dumps"]
 _BARE_KEY = re.compile(r"^[A-Za-z0-9_-]+$")
 
 
-def _key(k: str) -> str:
+def toml_key(k: str) -> str:
+    """A key as TOML writes it: bare when it can be, else quoted."""
+    k = str(k)
     return k if _BARE_KEY.match(k) else json.dumps(k, ensure_ascii=False)
 
 
@@ -37,7 +39,7 @@ def _value(v: Any) -> str:
     if isinstance(v, (list, tuple)):
         return "[" + ", ".join(_value(x) for x in v) + "]"
     if isinstance(v, Mapping):
-        return "{" + ", ".join(f"{_key(k)} = {_value(x)}" for k, x in v.items()) + "}"
+        return "{" + ", ".join(f"{toml_key(k)} = {_value(x)}" for k, x in v.items()) + "}"
     raise TypeError(f"cannot write {type(v).__name__} to TOML")
 
 
@@ -52,9 +54,9 @@ def _body(table: Mapping[str, Any], path: str, out: list[str]) -> None:
         if isinstance(v, Mapping) or _is_table_array(v):
             later.append((k, v))
         else:
-            out.append(f"{_key(k)} = {_value(v)}")
+            out.append(f"{toml_key(k)} = {_value(v)}")
     for k, v in later:
-        name = f"{path}.{_key(k)}" if path else _key(k)
+        name = f"{path}.{toml_key(k)}" if path else toml_key(k)
         if isinstance(v, Mapping):
             out.append("")
             out.append(f"[{name}]")

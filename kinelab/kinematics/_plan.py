@@ -338,12 +338,11 @@ class _Builder:
             if row[0] == k.OP_SLIDE_OUT:
                 row[1] = nl + 2 * npn + int(row[1])
         const_items = [self.L[self.ground]]
-        const_values = [self.theta_s[self.ground]]
+        const_values = [float(wrap_angle(self.theta_s[self.ground]))]
         for idx, xy in zip(self.const_points, self.const_xy):
             const_items += [item(idx), item(idx) + 1]
             const_values += [float(xy[0]), float(xy[1])]
         fixed = {i: v for i, v in zip(const_items, const_values) if i < nl + 2 * npn + ns}
-        fixed[self.L[self.ground]] = wrap_angle(self.theta_s[self.ground])
         driven = {int(row[1]): (int(row[3]), float(f[0])) for row, f in zip(ops_i, self.ops_f)
                   if row[0] == k.OP_DRIVE_ANGLE and row[2] == -1}
         return Plan(
