@@ -200,7 +200,7 @@ def structural_error(sol: FunctionSolution, *, ax=None):
 
 
 def path_solution(sol: PathSolution, *, ax=None):
-    """A path generator: its coupler curve, the targets, and the linkage at each target.
+    """A path generator: its coupler curve, the targets, and the linkage at the first one.
 
     Returns
     -------

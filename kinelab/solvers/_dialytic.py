@@ -365,7 +365,6 @@ def _polish(xs, ys, p: _Bivariate, q: _Bivariate) -> tuple[np.ndarray, np.ndarra
     start = np.column_stack([xs, ys])
     polished = newton(fun, jac, start, max_iter=8, on_failure="mask")
     before = np.max(np.abs(fun(start)), axis=1)
-    after = np.max(np.abs(fun(polished.x)), axis=1)
-    keep = polished.converged & (after <= before)
+    keep = polished.converged & (polished.residual_norm <= before)
     best = np.where(keep[:, None], polished.x, start)
     return best[:, 0], best[:, 1]

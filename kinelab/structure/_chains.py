@@ -34,6 +34,7 @@ import numpy as np
 from kinelab.errors import ModelError
 from kinelab.model import Input, Joint, Link, Mechanism, Point
 from kinelab.structure._canon import canonical_form, orbits
+from kinelab.structure._count import whole
 from kinelab.structure._screws import rank
 from kinelab.structure._system import ConstraintSystem
 
@@ -42,10 +43,7 @@ __all__ = ["Inversion", "KinematicChain", "chain_of", "count_chains", "planar_ch
 
 # -- checks on the counts ---------------------------------------------------------------------
 def _joints_for(links, mobility) -> int:
-    for value, what, low in ((links, "links", 4), (mobility, "mobility", 1)):
-        if not isinstance(value, Integral) or isinstance(value, bool) or value < low:
-            raise ModelError(f"{what}: expected a whole number >= {low}, got {value!r}")
-    n, f = int(links), int(mobility)
+    n, f = whole(links, "links", 4), whole(mobility, "mobility", 1)
     if (3 * n - 3 - f) % 2:
         raise ModelError(f"mobility {f} is impossible with {n} links: J = (3N - 3 - F) / 2 = "
                          f"{(3 * n - 3 - f) / 2} joints is not a whole number; with simple "

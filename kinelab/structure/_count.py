@@ -192,9 +192,13 @@ def pair_counts(model: Mechanism) -> dict[int, int]:
     return dict(sorted(counts.items()))
 
 
-def _check_count(value, what: str, minimum: int) -> int:
-    if not isinstance(value, Integral) or isinstance(value, bool) or value < minimum:
-        raise ModelError(f"{what}: expected a whole number >= {minimum}, got {value!r}")
+def whole(value, what: str, low: int, high: int | None = None, hint: str = "") -> int:
+    """``value`` as an int, or a :class:`ModelError` naming ``what`` unless it is a whole
+    number from ``low`` (to ``high``)."""
+    if (not isinstance(value, Integral) or isinstance(value, bool) or value < low
+            or (high is not None and value > high)):
+        span = f"from {low} to {high}" if high is not None else f">= {low}"
+        raise ModelError(f"{what}: expected a whole number {span}, got {value!r}{hint}")
     return int(value)
 
 
@@ -248,7 +252,7 @@ def kutzbach_gruebler(links: int, pairs: Mapping[int, int], space: str | int) ->
     (2, 0)
     """
     lam = space_dimension(space)
-    ne = _check_count(links, "links", 1)
+    ne = whole(links, "links", 1)
     if not isinstance(pairs, Mapping):
         raise ModelError(f"pairs: expected a mapping {{freedoms of the pair: count}}, got "
                          f"{type(pairs).__name__}; e.g. {{1: 4}} for four R or P pairs")
@@ -258,5 +262,5 @@ def kutzbach_gruebler(links: int, pairs: Mapping[int, int], space: str | int) ->
         if not isinstance(j, Integral) or isinstance(j, bool) or not 1 <= j <= lam:
             raise ModelError(f"pairs: a pair allows 1 to {lam} freedoms when lambda = {lam}, "
                              f"got {key!r}")
-        removed += (lam - int(j)) * _check_count(n, f"pairs[{key!r}]", 0)
+        removed += (lam - int(j)) * whole(n, f"pairs[{key!r}]", 0)
     return lam * (ne - 1) - removed

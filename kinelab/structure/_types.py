@@ -28,12 +28,11 @@ import re
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
-from numbers import Integral
 
 import numpy as np
 
 from kinelab.errors import ModelError
-from kinelab.structure._count import LAMBDAS, pair_freedoms
+from kinelab.structure._count import LAMBDAS, pair_freedoms, whole
 from kinelab.structure._screws import _rot, _trans, rank
 
 __all__ = ["Architecture", "ChainType", "Motion", "TypeSynthesis", "active_chains",
@@ -58,16 +57,8 @@ def _space(space) -> tuple[str, int]:
     return space, LAMBDAS[space]
 
 
-def _whole(value, what: str, low: int, high: int | None = None, hint: str = "") -> int:
-    if (not isinstance(value, Integral) or isinstance(value, bool) or value < low
-            or (high is not None and value > high)):
-        span = f"from {low} to {high}" if high is not None else f">= {low}"
-        raise ModelError(f"{what}: expected a whole number {span}, got {value!r}{hint}")
-    return int(value)
-
-
 def _mobility(mobility, lam: int) -> int:
-    return _whole(mobility, "mobility", 1, lam,
+    return whole(mobility, "mobility", 1, lam,
                   f"; in a space of lambda = {lam} an end link has at most {lam} freedoms")
 
 
@@ -332,11 +323,11 @@ def chain_types(connectivity: int, space: str, *, joints: Sequence[str] | None =
     True
     """
     space, lam = _space(space)
-    c = _whole(connectivity, "connectivity", 1, lam)
+    c = whole(connectivity, "connectivity", 1, lam)
     alphabet = _alphabet(joints or _DEFAULT_JOINTS[space], space)
-    n_max = _whole(max_joints, "max_joints", 1)
+    n_max = whole(max_joints, "max_joints", 1)
     want = Motion.parse(motion, space) if motion is not None else None
-    free = {j: pair_freedoms(j, "spatial" if space == "spherical" else space) for j in alphabet}
+    free = {j: pair_freedoms(j, space) for j in alphabet}
     out = []
 
     def grow(seq: tuple[str, ...], left: int) -> None:
@@ -394,7 +385,7 @@ def number_synthesis(mobility: int, space: str, *, joints: Sequence[str] | None 
     m = _mobility(mobility, lam)
     alphabet = _alphabet(joints or _OPEN_JOINTS[space], space)
     for j in alphabet:
-        if pair_freedoms(j, "spatial" if space == "spherical" else space) != 1:
+        if pair_freedoms(j, space) != 1:
             raise ModelError(f"joints: number synthesis uses P1 pairs (R, P), got {j!r}")
     table = tuple((n, Fraction(m + lam + (lam - 1) * n, lam)) for n in range(1, m + 1))
     chains = chain_types(m, space, joints=alphabet, max_joints=m, active=True, motion=motion)
