@@ -1,7 +1,6 @@
 """Inverse dynamics: actuator efforts (Kane), joint reactions (Newton-Euler), shaking."""
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -304,11 +303,6 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms) -> dict:
     ones = np.ones(N)
     ex, ey = np.tile([1.0, 0.0], (N, 1)), np.tile([0.0, 1.0], (N, 1))
 
-    def axis(j):
-        gi = p.link_item[j.links[0]]
-        th = sol.item_jets([gi])[:, 0, 0] - p.sketch_angles[gi] + math.atan2(j.axis[1], j.axis[0])
-        return np.stack([np.cos(th), np.sin(th)], axis=-1)
-
     for c, j in enumerate(m.joints):
         a, s = j.links
         at = pos(j.point)
@@ -317,7 +311,7 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms) -> dict:
                 on(s, e, at, 2 * c + k)
                 on(a, -e, at, 2 * c + k)
         else:
-            u = axis(j)
+            u = sol.slide_axes(j.name)
             n = np.stack([-u[:, 1], u[:, 0]], axis=-1)
             on(s, n, at, 2 * c)
             on(a, -n, at, 2 * c)
@@ -327,7 +321,7 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms) -> dict:
         col = 2 * J + k
         if inp.joint is not None and m.joint(inp.joint).type == "P":
             j = m.joint(inp.joint)
-            u = axis(j)
+            u = sol.slide_axes(j.name)
             at = pos(j.point)
             on(j.links[1], u, at, col)
             on(j.links[0], -u, at, col)
@@ -384,7 +378,7 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms) -> dict:
         if j.type == "R":
             forces[:, c] = x[:, 2 * c:2 * c + 2]
         else:
-            u = axis(j)
+            u = sol.slide_axes(j.name)
             forces[:, c] = x[:, 2 * c, None] * np.stack([-u[:, 1], u[:, 0]], axis=-1)
             moments[:, c] = x[:, 2 * c + 1]
     return dict(forces=forces, moments=moments, efforts=x[:, 2 * J:], unique=unique,

@@ -9,7 +9,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from kinelab.errors import ModelError, quoted, suggest
-from kinelab.kinematics._geometry import sketch_angle
 from kinelab.kinematics._plan import Plan
 from kinelab.model import Mechanism
 from kinelab.solvers import wrap_angle
@@ -302,12 +301,11 @@ class KinematicSolution:
         gi = self.link_item[guide]
         oi, pi = self.point_item[origin], self.point_item[point]
         si = self.slide_item[j.name]
-        jets, rates = self.item_jets([pi, pi + 1, oi, oi + 1, gi]), self.item_rates([gi, si, oi, oi + 1])
+        jets, rates = self.item_jets([pi, pi + 1, oi, oi + 1]), self.item_rates([gi, si, oi, oi + 1])
         r = jets[:, 0:2, 0] - jets[:, 2:4, 0]
         w = rates[:, 0:1, 0]
         a = rates[:, 0:1, 1]
-        theta_axis = jets[:, 4, 0] + (math.atan2(j.axis[1], j.axis[0]) - sketch_angle(m, guide))
-        u = np.stack([np.cos(theta_axis), np.sin(theta_axis)], axis=-1)
+        u = self.slide_axes(j.name)
 
         def k_cross(v):
             return np.stack([-v[:, 1], v[:, 0]], axis=-1)
@@ -316,6 +314,16 @@ class KinematicSolution:
         parts = dict(origin=rates[:, 2:4, 1], tangential=a * k_cross(r),
                      normal=-(w ** 2) * r, coriolis=2.0 * w * k_cross(sd * u), sliding=sdd * u)
         return AccelerationComponents(**{k: self._out(v) for k, v in parts.items()})
+
+    def slide_axes(self, joint: str) -> np.ndarray:
+        """Unit direction of a prismatic joint's slide at every sample (it turns with the
+        guide, its first link), shape (N, 2) even for a single configuration."""
+        self._find(joint, "s")
+        j = self.mechanism.joint(joint)
+        gi = self.link_item[j.links[0]]
+        theta = self.item_jets([gi])[:, 0, 0] + (math.atan2(j.axis[1], j.axis[0])
+                                                 - self.plan.sketch_angles[gi])
+        return np.stack([np.cos(theta), np.sin(theta)], axis=-1)
 
     # -- export -------------------------------------------------------------------------
     def columns(self, degrees: bool = False) -> dict[str, np.ndarray]:

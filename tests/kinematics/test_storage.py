@@ -139,3 +139,14 @@ def test_a_start_from_another_method_is_refused(first, then):
     with pytest.raises(kl.errors.ModelError, match="another method"):
         kl.analyze(t6, q=Q[3:], method=then, start=earlier)
     kl.analyze(t6, q=Q[3:], method=first, start=earlier)          # the same method continues
+
+
+def test_slide_axis_turns_with_its_guide():
+    """In seed 000's slotted link the slot runs along the lever from O4 through A, and the
+    slide is B = |A - O4|: the axis is (A - O4) / B at every sample."""
+    sol = kl.analyze(kl.mechanisms.slotted_link(1.0, 2.0), q=Q)
+    along = sol.position("A") - sol.position("O4")
+    np.testing.assert_allclose(sol.slide_axes("slot"), along / sol.slide("slot")[:, None],
+                               rtol=0, atol=1e-14)
+    with pytest.raises(kl.errors.ModelError, match="prismatic joint"):
+        sol.slide_axes("jA")
