@@ -228,17 +228,24 @@ def turns_fully(mechanism: Mechanism, ranges: list[tuple[float, float]]) -> bool
 
 def _continued_range(p: Plan, q0: float, half: float, samples: int) -> tuple[float, float]:
     """The input interval around the sketch that continuation reaches (Newton plans): one
-    sweep outwards each way, then bisection between the last sample reached and the next."""
+    sweep outwards each way.  Where a Newton group stops converging, continuation has
+    already halved its step down to 1e-9 of it: the input it reached is the bound.  Where a
+    closed-form group cannot close, it stopped at once: bisect from the input reached."""
     bounds = []
     for sign in (-1.0, 1.0):
         path = q0 + sign * np.linspace(0.0, half, samples // 2 + 1)
         q = path.reshape(-1, 1)
-        ok = _run(p, q, np.zeros_like(q), np.zeros_like(q))["status"] == k.ST_OK
-        if ok.all():
+        out = _run(p, q, np.zeros_like(q), np.zeros_like(q))
+        status = out["status"]
+        if (status == k.ST_OK).all():
             bounds.append(float(path[-1]))
             continue
-        i = int(np.argmin(ok))
-        a, _ = bisect(lambda x: _assembles(p, x), path[i - 1:i], path[i:i + 1])
+        reached = float(out["state"][0][0])
+        if status[np.argmax(status != k.ST_OK)] == k.ST_NO_CONVERGENCE:
+            bounds.append(reached)
+            continue
+        i = int(np.argmax(status != k.ST_OK))
+        a, _ = bisect(lambda x: _assembles(p, x), np.array([reached]), path[i:i + 1])
         bounds.append(float(a[0]))
     return min(bounds), max(bounds)
 

@@ -1,4 +1,6 @@
 """The planar engine against independent checks, on every catalogue mechanism."""
+import math
+
 import numpy as np
 import pytest
 from hypothesis import given
@@ -219,8 +221,28 @@ def test_cylinder_reach_is_the_triangle_inequality():
     """The boom's cylinder reaches |OD| -+ |OC| (Newton plan: continuation and bisection)."""
     lo, hi = kl.kinematics.reachable_ranges(_hydraulic_boom())[0]
     OD, OC = np.hypot(2.0, 1.2), 0.8
-    # at a limit position Newton converges slowly: the bound is good to about 1e-8
-    assert lo == pytest.approx(OD - OC, abs=1e-7) and hi == pytest.approx(OD + OC, abs=1e-7)
+    # the bound is where continuation, halving its step, stops converging: at a limit
+    # position Newton converges slowly, and the bound is good to about 1e-9
+    assert lo == pytest.approx(OD - OC, abs=2e-9) and hi == pytest.approx(OD + OC, abs=2e-9)
+
+
+def test_reach_of_a_newton_plan_limited_by_one_of_its_dyads():
+    """triad6 (a Newton group; the crank turns fully) with a dyad A-F-O8 added on the crank
+    pin: F closes while |A - O8| <= 1.8, i.e. 2.5 - 1.5 sin q <= 1.8^2, so the reach is
+    sin q >= -0.74 / 1.5, bounded by the dyad (closed form) and not by the triad."""
+    d = kl.mechanisms.triad6().to_dict()
+    d.pop("parameters")
+    d["points"].update({"F": [math.sqrt(0.9 ** 2 - 0.5 ** 2), 1.0], "O8": [0.0, 1.5]})
+    d["links"][0]["points"].append("O8")
+    d["links"] += [{"name": "link6", "points": ["A", "F"]}, {"name": "link7", "points": ["F", "O8"]}]
+    d["joints"] += [{"name": "jA6", "type": "R", "links": ["crank", "link6"], "point": "A"},
+                    {"name": "jF", "type": "R", "links": ["link6", "link7"], "point": "F"},
+                    {"name": "jO8", "type": "R", "links": ["ground", "link7"], "point": "O8"}]
+    m = kl.model.Mechanism.from_dict(d)
+    assert [s.kind for s in kl.kinematics.plan(m).steps] == ["driven", "placed", "RRR", "newton"]
+    lo = math.asin((2.5 - 1.8 ** 2) / 1.5)
+    (a, b), = kl.kinematics.reachable_ranges(m)
+    assert a == pytest.approx(lo, abs=1e-10) and b == pytest.approx(math.pi - lo, abs=1e-10)
 
 
 def test_continuing_a_newton_sweep_in_pieces():
