@@ -479,18 +479,23 @@ class SerialRobot:
         """``J̇ q̇`` (N, d): the tool acceleration at zero joint accelerations."""
         tool_velocity = sum(c * qd[:, i, None] for i, c in
                             enumerate(self._columns(axes, centres, tool, self.n)))
-        omega = np.zeros_like(tool)               # of the link carrying joint j
+        # the link carrying joint j moves as v(x) = omega x x + v0 (summed over the joints
+        # before it), so every joint centre's velocity comes in one pass
+        omega = np.zeros_like(tool)
+        v0 = np.zeros_like(tool)
         bias = np.zeros_like(tool)
         for j, joint in enumerate(self.joints):
             a_dot = np.cross(omega, axes[j])
+            rate = axes[j] * qd[:, j, None]
             if joint.kind == "R":
-                centre_velocity = sum((c * qd[:, i, None] for i, c in enumerate(
-                    self._columns(axes, centres, centres[j], j))), np.zeros_like(tool))
+                centre_velocity = np.cross(omega, centres[j]) + v0
                 column_dot = (np.cross(a_dot, tool - centres[j])
                               + np.cross(axes[j], tool_velocity - centre_velocity))
-                omega = omega + axes[j] * qd[:, j, None]
+                omega = omega + rate
+                v0 = v0 - np.cross(rate, centres[j])
             else:
                 column_dot = a_dot
+                v0 = v0 + rate
             bias = bias + column_dot * qd[:, j, None]
         return bias[:, :self.dim]
 
