@@ -80,18 +80,21 @@ class Law:
     def constant(self) -> bool:
         return _number(self.source)
 
-    def __call__(self, t: np.ndarray, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
-        """Values at N samples: ``t`` (N,), ``q`` and ``qd`` (N, M); returns (N,)."""
+    def __call__(self, t: np.ndarray, q: np.ndarray, qd: np.ndarray,
+                 width: int | None = None) -> np.ndarray:
+        """Values at N samples: ``t`` (N,), ``q`` and ``qd`` (N, M); returns (N,), or
+        (N, width) for a law giving a vector."""
         n = t.shape[0]
+        shape = (n,) if width is None else (n, width)
         if self.constant:
-            return np.full(n, float(self.source))
+            return np.full(shape, float(self.source))
         if self._fn is not None:
             with np.errstate(all="ignore"):
                 out = self._fn(t, q, qd)
         else:
             qa, qda = (q[:, 0], qd[:, 0]) if q.shape[1] == 1 else (q, qd)
             out = self.source(t, qa, qda)
-        return _finite(self.where, out, (n,), t, q)
+        return _finite(self.where, out, shape, t, q)
 
     def to_data(self):
         """The number, text or table this law was given as (for model files)."""
@@ -163,9 +166,7 @@ class PointForce:
         """The force at N samples, shape (N, 2)."""
         law = self._law
         if isinstance(law, Law):
-            n = t.shape[0]
-            qa, qda = (q[:, 0], qd[:, 0]) if q.shape[1] == 1 else (q, qd)
-            return _finite(law.where, law.source(t, qa, qda), (n, 2), t, q)
+            return law(t, q, qd, width=2)
         return np.stack([c(t, q, qd) for c in law], axis=-1)
 
 
