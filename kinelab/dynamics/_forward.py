@@ -60,9 +60,6 @@ class Simulation(MotionResult):
     """
 
     t: np.ndarray
-    q: np.ndarray
-    qd: np.ndarray
-    qdd: np.ndarray
     input_forces: np.ndarray
     kinetic_energy: np.ndarray
     potential_energy: np.ndarray
@@ -405,7 +402,7 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
     qdd, tau, terms = accelerations(system, sol, t)
     sol = analyze(model, _as_q(q, M), _as_q(qd, M), _as_q(qdd, M), at_singular="flag")
     return Simulation(
-        t=t, q=q, qd=qd, qdd=qdd, input_forces=tau, kinetic_energy=terms.kinetic,
+        t=t, input_forces=tau, kinetic_energy=terms.kinetic,
         potential_energy=terms.potential, actuator_work=y[:, 2 * M], applied_work=y[:, 2 * M + 1],
         dissipated=y[:, 2 * M + 2], drift=drift(sol), status=status, message=message,
         nfev=int(out.nfev), kinematics=sol)

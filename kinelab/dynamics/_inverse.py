@@ -82,23 +82,7 @@ class InverseDynamics(MotionResult):
     reactions_unique: bool = True
     newton_euler_efforts: np.ndarray | None = None
 
-    # -- the motion ---------------------------------------------------------------------
-    @property
-    def q(self) -> np.ndarray:
-        return self.kinematics.q
-
-    @property
-    def qd(self) -> np.ndarray:
-        return self.kinematics.qd
-
-    @property
-    def qdd(self) -> np.ndarray:
-        return self.kinematics.qdd
-
-    @property
-    def N(self) -> int:
-        return self.q.shape[0]
-
+    # -- the motion (t, q, qd, qdd, N: see MotionResult) -----------------------------------
     @property
     def M(self) -> int:
         return self.q.shape[1]

@@ -19,6 +19,22 @@ class MotionResult:
         return self.kinematics.mechanism
 
     @property
+    def q(self) -> np.ndarray:
+        return self.kinematics.q
+
+    @property
+    def qd(self) -> np.ndarray:
+        return self.kinematics.qd
+
+    @property
+    def qdd(self) -> np.ndarray:
+        return self.kinematics.qdd
+
+    @property
+    def N(self) -> int:
+        return self.q.shape[0]
+
+    @property
     def input_names(self) -> tuple[str, ...]:
         return self.mechanism.input_names
 
