@@ -745,50 +745,28 @@ def _dump(mf: ModelFile) -> dict[str, Any]:
     out["units"] = {"length": u.length, "angle": u.angle}
     out["points"] = {p.name: [_out(c, ls) for c in (p.xy if m.space == "planar" else (p.x, p.y, p.z))]
                      for p in m.points}
-    links = []
-    for link in m.links:
-        d: dict[str, Any] = {"name": link.name, "points": list(link.points)}
-        if link.ground:
-            d["ground"] = True
-        if link.mass is not None:
-            d["mass"] = link.mass
-        if link.center_of_mass is not None:
-            d["center_of_mass"] = link.center_of_mass
-        if link.inertia is not None:
-            d["inertia"] = _out(link.inertia, ls * ls)
-        links.append(d)
-    out["links"] = links
-    joints = []
-    for j in m.joints:
-        d = {"name": j.name, "type": j.type, "links": list(j.links)}
-        for key in ("point", "origin"):
-            if getattr(j, key) is not None:
-                d[key] = getattr(j, key)
+    # the model's own plain data (SI), with the fields that carry units scaled to the file's
+    data = m.to_dict()
+    for d in data["links"]:
+        if "inertia" in d:
+            d["inertia"] = _out(d["inertia"], ls * ls)
+    for d in data["joints"]:
         for key in ("axis", "axis2"):
-            if getattr(j, key) is not None:
-                d[key] = [float(c) for c in getattr(j, key)]
-        if j.pitch is not None:
-            d["pitch"] = _out(j.pitch, ls / a_s)
-        joints.append(d)
-    out["joints"] = joints
-    inputs = []
-    for k, inp in enumerate(m.inputs):
+            if key in d:
+                d[key] = [float(c) for c in d[key]]
+        if "pitch" in d:
+            d["pitch"] = _out(d["pitch"], ls / a_s)
+    out["links"], out["joints"] = data["links"], data["joints"]
+    for k, (inp, d) in enumerate(zip(m.inputs, data["inputs"])):
         slide = inp.joint is not None and m.joint(inp.joint).type == "P"
         s = ls if slide else a_s
-        d = {"joint": inp.joint} if inp.joint is not None else {"links": list(inp.links)}
-        if inp.name:
-            d["name"] = inp.name
-        if inp.range is not None:
-            d["range"] = [_out(v, s) for v in inp.range]
-        if inp.speed:
-            d["speed"] = _out(inp.speed, s)
-        if inp.acceleration:
-            d["acceleration"] = _out(inp.acceleration, s)
+        for key in ("range", "speed", "acceleration"):
+            if key in d:
+                d[key] = [_out(v, s) for v in d[key]] if key == "range" else _out(d[key], s)
         if mf.samples:
             d["samples"] = mf.samples[k]
-        inputs.append(d)
-    if inputs:
-        out["inputs"] = inputs
+    if data["inputs"]:
+        out["inputs"] = data["inputs"]
     params = dict(m.parameters)
     dynamics = params.pop("dynamics", None)
     if params.get("kind") in CATALOGUE_KINDS:
