@@ -27,7 +27,7 @@ from kinelab.io import ANGLE_UNITS, LENGTH_UNITS
 __all__ = ["synth", "load_task", "Task"]
 
 KINDS = ("motion", "function", "path")
-_SECTIONS = {"task", "name", "units", "positions", "pivots", "function", "search", "output"}
+_SECTIONS = {"task", "name", "units", "positions", "pivots", "function", "search"}
 
 
 @dataclass
@@ -122,7 +122,7 @@ def load_task(path: str | Path) -> Task:
     if kind == "motion":
         _motion_task(r, task, L, A)
     elif kind == "function":
-        _function_task(r, task, A)
+        _function_task(r, task, L, A)
     elif kind == "path":
         _path_task(r, task, L, A)
     if r.problems:
@@ -183,7 +183,7 @@ def _motion_task(r: _Reader, task: Task, L: float, A: float) -> None:
                                   f"{side}1 (moving pivot in position 1)")
 
 
-def _function_task(r: _Reader, task: Task, A: float) -> None:
+def _function_task(r: _Reader, task: Task, L: float, A: float) -> None:
     keys = {"expression", "x_range", "input_range", "output_range", "points", "ground",
             "samples"}
     r.unknown("function", keys)
@@ -205,8 +205,7 @@ def _function_task(r: _Reader, task: Task, A: float) -> None:
         task.function["points"] = p if isinstance(p, int) else r.array("function.points", p, (None,))
     if "ground" in f:
         # the ground length is in the file's length unit
-        task.function["ground"] = r.number("function.ground", f["ground"],
-                                           LENGTH_UNITS.get(task.length_unit, 1.0), positive=True)
+        task.function["ground"] = r.number("function.ground", f["ground"], L, positive=True)
     if "samples" in f:
         task.function["samples"] = f["samples"]
 

@@ -155,3 +155,8 @@ output_range = [0, 1]
 """)
     assert res.exit_code == 2
     assert message in res.output, res.output
+
+
+def test_a_section_the_task_does_not_read_is_refused(tmp_path):
+    res = run(tmp_path, NOTES_6_5 + '\n[output]\nanything = "goes"\n')
+    assert res.exit_code != 0 and "output: unknown key" in res.output
