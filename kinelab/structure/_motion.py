@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from kinelab.model import Joint, Mechanism, Point
-from kinelab.structure._screws import annihilator, null_basis
+from kinelab.structure._screws import _perpendicular, annihilator, null_basis, pair_screws
 from kinelab.structure._system import ConstraintSystem
 
 __all__ = ["moved"]
@@ -104,7 +104,7 @@ class _Loop:
             if j.type in _GROUP_PAIRS or j.type == "U":
                 if j.type == "U":  # a spherical joint about its point ...
                     p = frame.point(model, j.point)
-                    w = annihilator(np.array([np.concatenate([e, np.cross(p, e)]) for e in np.eye(3)]))
+                    w = annihilator(np.array(pair_screws("S", p, None)))
                 else:
                     w = self.system.constraints[j.name] @ self.embed.T
                 xi = _log(ra.T @ rb, ra.T @ (tb - ta))
@@ -121,7 +121,7 @@ class _Loop:
                 u = np.asarray(j.axis, float)
                 u = np.append(u, 0.0) if self.system.planar else u
                 normals = ([np.array([-u[1], u[0], 0.0])] if self.system.planar
-                           else list(np.linalg.svd(u[None])[2][1:]))
+                           else list(_perpendicular(u)))
                 xa, xb = ra @ p + ta, rb @ p + tb
                 for n0 in normals:
                     n = ra @ n0

@@ -117,6 +117,28 @@ def _perpendicular(n: np.ndarray) -> np.ndarray:
     return np.linalg.svd(n[None, :])[2][1:]
 
 
+def pair_screws(kind: str, p: np.ndarray | None, u: np.ndarray | None,
+                u2: np.ndarray | None = None, pitch: float = 0.0) -> list[np.ndarray]:
+    """Freedom screws (spatial twists, one per freedom) of a lower pair: at point ``p``,
+    with axis (or, for E, plane normal) ``u``; ``u2`` the second axis of a U, ``pitch``
+    (per rad, in the frame's length unit) that of an H."""
+    if kind == "R":
+        return [_rot(u, p)]
+    if kind == "P":
+        return [_trans(u)]
+    if kind == "H":
+        return [_rot(u, p) + _trans(pitch * u)]
+    if kind == "C":
+        return [_rot(u, p), _trans(u)]
+    if kind == "U":
+        return [_rot(u, p), _rot(u2, p)]
+    if kind == "S":
+        return [_rot(e, p) for e in np.eye(3)]
+    if kind == "E":
+        return [_rot(u, p)] + [_trans(e) for e in _perpendicular(u)]
+    raise ValueError(f"pair_screws: no lower pair {kind!r}")
+
+
 def joint_screws(model: Mechanism, joint: Joint, frame: Frame,
                  planar: bool) -> tuple[np.ndarray, list[str]]:
     """Freedom screws of a joint at the sketch, one per row, in the frame's units.
@@ -172,27 +194,20 @@ def joint_screws(model: Mechanism, joint: Joint, frame: Frame,
             raise ModelError(f"{where}: a {t} joint cannot join links of a planar mechanism")
         # planar twist (w, vx, vy): the z rotation and the x, y velocity of the origin point
         return np.array(rows)[:, [2, 3, 4]], notes
-    if t == "R":
-        rows = [_rot(axis(), point())]
-    elif t == "P":
-        rows = [_trans(axis())]
-    elif t == "H":
+    if t in ("R", "H", "C"):
         u, p = axis(), point()
-        rows = [_rot(u, p) + np.concatenate([np.zeros(3), (joint.pitch or 0.0) / frame.scale * u])]
-        if joint.pitch is None:
+        rows = pair_screws(t, p, u, pitch=(joint.pitch or 0.0) / frame.scale)
+        if t == "H" and joint.pitch is None:
             notes.append(f"{where} gives no pitch; a pitch of zero (a revolute) was assumed")
-    elif t == "C":
-        u, p = axis(), point()
-        rows = [_rot(u, p), _trans(u)]
+    elif t == "P":
+        rows = pair_screws(t, None, axis())
     elif t == "U":
         p, u1, u2 = point(), axis(), axis("axis2")
-        rows = [_rot(u1, p), _rot(u2, p)]
+        rows = pair_screws(t, p, u1, u2)
     elif t in ("S", "rolling"):
-        p = point()
-        rows = [_rot(e, p) for e in np.eye(3)]
-    elif t == "E":
-        n = axis()
-        rows = [_rot(n, np.zeros(3))] + [_trans(e) for e in _perpendicular(n)]
+        rows = pair_screws("S", point(), None)
+    elif t == "E":      # any point of the plane: the two in-plane translations span the rest
+        rows = pair_screws(t, np.zeros(3), axis())
     elif t in ("cam", "gear"):
         p, n = point(), axis()
         rows = [_rot(e, p) for e in np.eye(3)] + [_trans(e) for e in _perpendicular(n)]

@@ -33,7 +33,7 @@ import numpy as np
 
 from kinelab.errors import ModelError
 from kinelab.structure._count import LAMBDAS, pair_freedoms, whole
-from kinelab.structure._screws import _rot, _trans, rank
+from kinelab.structure._screws import _rot, _trans, pair_screws, rank
 
 __all__ = ["Architecture", "ChainType", "Motion", "TypeSynthesis", "active_chains",
            "alternative_method", "chain_types", "number_synthesis", "passive_chain",
@@ -253,22 +253,8 @@ def _generic_screws(joint: str, space: str, rng: np.random.Generator) -> list[np
     if space == "spherical":  # every axis through the centre, the origin
         return [_rot(unit(), np.zeros(3)) for _ in range(pair_freedoms(joint, "spatial"))]
     p, u = rng.standard_normal(3), unit()
-    if joint == "R":
-        return [_rot(u, p)]
-    if joint == "P":
-        return [_trans(u)]
-    if joint == "H":
-        return [_rot(u, p) + _trans(rng.standard_normal() * u)]
-    if joint == "C":
-        return [_rot(u, p), _trans(u)]
-    if joint == "U":
-        return [_rot(u, p), _rot(unit(), p)]
-    if joint == "S":
-        return [_rot(e, p) for e in np.eye(3)]
-    if joint == "E":
-        n = u
-        t = np.linalg.svd(n[None])[2][1:]
-        return [_rot(n, p), _trans(t[0]), _trans(t[1])]
+    if joint in ("R", "P", "H", "C", "U", "S", "E"):
+        return pair_screws(joint, p, u, unit(), pitch=rng.standard_normal())
     raise ModelError(f"joints: a {joint!r} pair has no place in a chain type; use "
                      f"{', '.join(_DEFAULT_JOINTS['spatial'])} (or H, E)")
 
