@@ -291,11 +291,16 @@ def homogeneous(rotation: Rotation | ArrayLike, translation: ArrayLike) -> np.nd
     if p.ndim == 0 or p.shape[-1] != d:
         raise ModelError(f"translation: expected shape (..., {d}) to go with a {d}x{d} "
                          f"rotation, got {p.shape}")
-    lead = np.broadcast_shapes(R.shape[:-2], p.shape[:-1])
-    T = np.zeros(lead + (d + 1, d + 1))
+    return _block(R, p, 1.0)
+
+
+def _block(R: np.ndarray, p: np.ndarray, corner: float) -> np.ndarray:
+    """``[[R, p], [0, corner]]``: a transform (corner 1) or its time derivative (0)."""
+    d = R.shape[-1]
+    T = np.zeros(np.broadcast_shapes(R.shape[:-2], p.shape[:-1]) + (d + 1, d + 1))
     T[..., :d, :d] = R
     T[..., :d, d] = p
-    T[..., d, d] = 1.0
+    T[..., d, d] = corner
     return T
 
 
@@ -511,16 +516,7 @@ def transform_rates(transform: ArrayLike, omega: ArrayLike, velocity: ArrayLike,
         omega, alpha = as_vectors("omega", omega, 3), as_vectors("alpha", alpha, 3)
     W, A = _spin(omega, d), _spin(alpha, d)
     v, a = as_vectors("velocity", velocity, d), as_vectors("acceleration", acceleration, d)
-    return TransformRates(Td=_rate_matrix(W @ R, v), Tdd=_rate_matrix((A + W @ W) @ R, a))
-
-
-def _rate_matrix(Rdot: np.ndarray, pdot: np.ndarray) -> np.ndarray:
-    d = Rdot.shape[-1]
-    lead = np.broadcast_shapes(Rdot.shape[:-2], pdot.shape[:-1])
-    out = np.zeros(lead + (d + 1, d + 1))
-    out[..., :d, :d] = Rdot
-    out[..., :d, d] = pdot
-    return out
+    return TransformRates(Td=_block(W @ R, v, 0.0), Tdd=_block((A + W @ W) @ R, a, 0.0))
 
 
 @dataclass(frozen=True)
