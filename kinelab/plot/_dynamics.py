@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from kinelab.dynamics import InverseDynamics, Simulation
+from kinelab.plot._figures import input_axis
 
 __all__ = ["effort_curves", "reaction_curves", "shaking_curves", "energy_curves"]
 
@@ -19,12 +20,8 @@ def _pyplot():
 
 def _abscissa(res, degrees: bool) -> tuple[np.ndarray, str]:
     """The input for a one-input sweep, else time (or the sample number for a still sweep)."""
-    kinds = res.input_kinds
     if isinstance(res, InverseDynamics) and res.M == 1:
-        name, kind = res.input_names[0], kinds[0]
-        if kind == "angle":
-            return (np.degrees(res.q[:, 0]), f"{name} [deg]") if degrees else (res.q[:, 0], f"{name} [rad]")
-        return res.q[:, 0], f"{name} [m]"
+        return input_axis(res.kinematics, degrees)
     if np.ptp(res.t) > 0:
         return res.t, "t [s]"
     return np.arange(len(res.t)), "sample"
