@@ -42,16 +42,17 @@ def plot(model, out, formats, outputs, samples, degrees):
     from kinelab.io._summary import _default_pairs
     plt = _agg()
     mf = read_model(model)
-    sol = sweep(mf, samples)
     m = mf.mechanism
     chosen = _names(outputs) or list(mf.outputs.report) or list(io.default_outputs(m))
     base = stem(model)
-    known = list(sol.link_item) + list(sol.slide_item) + list(sol.point_item)
+    # checked before the sweep, which can be long
+    known = list(m.link_names) + [j.name for j in m.joints if j.type == "P"] + list(m.point_names)
     unknown = [n for n in chosen if n not in known]
     if unknown:
         raise ModelError(f"--outputs: expected links, slides or points of {m.name}, got "
                          f"{', '.join(repr(n) for n in unknown)}; they are "
                          f"{', '.join(repr(n) for n in known)}")
+    sol = sweep(mf, samples)
     figures = []
     with errors_from(mf, "outputs"):
         curve_names = [n for n in chosen if n in sol.link_item or n in sol.slide_item]
