@@ -96,6 +96,9 @@ def test_shaking_force_and_moment_against_momentum_balance(model):
 
 
 def test_power_balance_at_every_sample(model):
+    """A consistency check of the bookkeeping (both sides come from the same K, L and
+    rates, so they agree by construction); the physics is checked by the finite
+    differences of the energy below."""
     res = solve(model)
     lhs = res.actuator_power + res.applied_power
     rhs = res.energy_rate + res.dissipation
