@@ -1,6 +1,7 @@
 """Forward dynamics: the motion of a mechanism under given actuator laws and loads."""
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -14,13 +15,16 @@ from kinelab.dynamics._masses import MassProperties
 from kinelab.dynamics._results import MotionResult
 from kinelab.dynamics._terms import System, build_system, evaluate
 from kinelab.errors import AssemblyError, ModelError, SingularityError
-from kinelab.kinematics import KinematicSolution, analyze, plan
+from kinelab.kinematics import SINGULAR_TOL, KinematicSolution, analyze, change_points, plan
 from kinelab.model import Mechanism
 from kinelab.solvers import wrap_angle
 
 __all__ = ["simulate", "Simulation"]
 
-SINGULAR_STOP = 1e-4   # singularity measure (a sine) at which the integration stops
+SINGULAR_STOP = 2 * SINGULAR_TOL   # singularity measure (a sine) at which the integration
+                                   # stops: before the kinematics flags the configuration
+_ACROSS = 0.02         # half-width (rad, or sizes for a slide) of the interval across a change
+                       # point over which K and L are interpolated
 
 
 @dataclass(frozen=True, eq=False)
@@ -178,6 +182,40 @@ def _as_q(a: np.ndarray, M: int) -> np.ndarray:
     return a[:, 0] if M == 1 else a
 
 
+def across_change_point(model: Mechanism, sol: KinematicSolution) -> KinematicSolution | None:
+    """One sample next to a change point (flagged singular) with its K and L on the branch
+    it follows, interpolated linearly between two samples a little way either side of it
+    (with the sample's own positions); None when no change point is near.
+
+    Near a change point K and L lose accuracy to rounding (see ``SINGULAR_TOL``) and at it
+    they are not defined, though the motion is smooth there; an integrator that steps
+    across needs finite values, and linear ones are within (0.02 rad)^2 |L'| of the truth.
+    """
+    if sol.M != 1:
+        return None
+    q = float(sol.q[0, 0])
+    width = _ACROSS * (1.0 if plan(model).input_kinds[0] == "angle" else plan(model).scale)
+    near = change_points(model, q - width, q + width)
+    if not near:
+        return None
+    q_star = near[0].q
+    for _ in range(4):            # widen until both sides are clear of the flagged interval
+        sides = analyze(model, np.array([q_star - width, q_star + width]), unreachable="mask",
+                        at_singular="flag")
+        if sides.assembled.all() and not sides.singular.any():
+            break
+        width *= 2
+    else:
+        return None
+    lam = (q - (q_star - width)) / (2 * width)
+    jets = sol.stored_jets.copy()
+    jets[:, :, 1:] = (1 - lam) * sides.stored_jets[0, :, 1:] + lam * sides.stored_jets[1, :, 1:]
+    rates = np.stack([jets[:, :, 1] * sol.qd[:, :1], jets[:, :, 1] * sol.qdd[:, :1]
+                      + jets[:, :, 2] * sol.qd[:, :1] ** 2], axis=-1)
+    return dataclasses.replace(sol, stored_jets=jets, stored_rates=rates,
+                               singular=np.zeros(1, bool))
+
+
 class _Halt(Exception):
     def __init__(self, t, q, kind):
         super().__init__(kind)
@@ -283,7 +321,9 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
         Largest step, s.
     singular_stop : float
         Stop when the distance from a singular configuration (the kinematics'
-        ``singularity``, a sine) falls below this; the result says so.
+        ``singularity``, a sine) falls below this; the result says so.  A change point
+        (two assembly modes meeting, e.g. a parallelogram at 180 degrees) is crossed on
+        the branch that continues smoothly, as :func:`kinelab.kinematics.analyze` does.
 
     Returns
     -------
@@ -347,9 +387,13 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
                       start=cache.get("sol"))
         if not sol.assembled[0]:
             raise _Halt(t, q[0], "assembly")
+        crossing = False
         if sol.singular[0]:
-            raise _Halt(t, q[0], "singular")
-        cache.update(key=key, sol=sol)
+            sol = across_change_point(model, sol)
+            if sol is None:
+                raise _Halt(t, q[0], "singular")
+            crossing = True
+        cache.update(key=key, sol=sol, crossing=crossing)
         return sol
 
     def accelerations(system: System, sol, t):
@@ -371,7 +415,8 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
                                                       terms.dissipation[0]]])
 
     def near_singular(t, y):
-        return kinematics(t, y).singularity[0] - singular_stop
+        sol = kinematics(t, y)      # a change point is crossed, not stopped at
+        return singular_stop if cache["crossing"] else sol.singularity[0] - singular_stop
     near_singular.terminal = True
     near_singular.direction = -1
 

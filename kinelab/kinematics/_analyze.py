@@ -1,31 +1,32 @@
 """Position, velocity and acceleration analysis of any planar mechanism."""
 from __future__ import annotations
 
-import functools
 import math
-import os
-from concurrent.futures import ThreadPoolExecutor
 from typing import Literal
 
-import numba
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab import _memory as memory
-from kinelab.errors import AssemblyError, ModelError, SingularityError
+from kinelab.errors import AssemblyError, ModelError, SingularityError, check_choice
 from kinelab.kinematics import _kernel as k
+from kinelab.kinematics._branches import BranchMap, ChangePoint, branch_map, branched_ops
+from kinelab.kinematics._evaluate import run as _run
 from kinelab.kinematics._plan import Plan, build_plan
 from kinelab.kinematics._solution import KinematicSolution
 from kinelab.model import Mechanism
 from kinelab.solvers import bisect, wrap_angle
 
-__all__ = ["analyze", "plan", "reachable_ranges", "turns_fully"]
+__all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "change_points"]
 
-SINGULAR_TOL = 1e-7   # singularity measure (a sine) below which det J is zero to rounding
-_CONTINUATION_STEP = 0.05  # largest continuation step of a Newton group, rad (or m / scale)
-_PARALLEL_FROM = 4096      # samples per thread below which a sweep runs on the calling thread
-_PIECE = 1 << 16           # samples a thread takes at a time: a thread that the system
-                           # slows down leaves more of the sweep to the others
+SINGULAR_TOL = 5e-3
+"""Singularity measure (a sine, see ``KinematicSolution.singularity``) below which a sample is
+flagged singular.  Rounding in the positions, of relative size eps = 2.2e-16, reaches K with
+a factor of about eps / s**2 and L with about eps / s**3 near a singular configuration of
+measure s (near a limit position s**2 shrinks like the distance to it, so there both are
+about eps / s**2).  At s = 5e-3 that is 1e-11 for K and 1e-8 for L: every K and L that is
+not flagged is accurate to 1e-8 relative (tests/kinematics/test_conditioning.py checks it
+against 60-digit references).  A change point is flagged within about 5e-3 rad of it; a
+limit position within about 1e-5 rad."""
 
 
 def plan(mechanism: Mechanism, *, method: Literal["auto", "newton"] = "auto") -> Plan:
@@ -92,61 +93,52 @@ def _per_sample(rates: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
     return rates if rates.shape == shape else np.broadcast_to(rates, shape)
 
 
-def _threads() -> int:
-    return max(1, min(numba.get_num_threads(), _cpu_count()))
+def change_points(mechanism: Mechanism, lo: float, hi: float, *,
+                  at_change_point: Literal["smooth", "switch"] = "smooth") -> tuple[ChangePoint, ...]:
+    """The change points of a one-input mechanism with input between ``lo`` and ``hi``.
+
+    A change point is a configuration where the two assembly modes of a dyad meet and the
+    input can go on: there det J = 0, and the motion may continue on either branch (see
+    :func:`analyze`'s ``at_change_point``).  Found by following the mechanism from its
+    sketch; for mechanisms solved in closed form.
+
+    Examples
+    --------
+    >>> fb = kl.mechanisms.fourbar(ground=100, crank=60, coupler=100, rocker=60)  # parallelogram
+    >>> cps = kl.kinematics.change_points(fb, 0.0, 2 * np.pi)
+    >>> np.degrees([c.q for c in cps]).round(6) + 0.0, cps[0].links
+    (array([  0., 180., 360.]), ('coupler', 'rocker'))
+    """
+    p = plan(mechanism)
+    check_choice("at_change_point", at_change_point, ("smooth", "switch"))
+    bmap = _branch_map(p, len(mechanism.inputs), at_change_point)
+    return bmap.change_points(float(lo), float(hi)) if bmap is not None else ()
 
 
-@functools.cache
-def _cpu_count() -> int:
-    return os.cpu_count() or 1
+def _branch_map(p: Plan, M: int, followed: str) -> BranchMap | None:
+    """The change points to follow, for a one-input plan in closed form that has any."""
+    if M != 1 or p.groups is not None or not branched_ops(p):
+        return None
+    bmap = branch_map(p, followed)
+    return None if bmap.trivial else bmap
 
 
-@functools.cache
-def _pool(workers: int) -> ThreadPoolExecutor:
-    return ThreadPoolExecutor(max_workers=workers, thread_name_prefix="kinelab")
-
-
-def _run(p: Plan, q, qd, qdd, start=None):
-    """Run the kernel; ``start`` = (q, group state) to continue from instead of the sketch."""
-    N, M = q.shape
-    n = len(p.stored_items)
-    out = dict(jets=memory.empty((N, n, 1 + M + M * M)), rates=memory.empty((N, n, 2)),
-               diag=memory.empty((N, 2)), status=memory.empty((N,), np.int8),
-               fail=memory.empty((N, 2)))
-    tail = (out["jets"], out["rates"], out["diag"], out["status"], out["fail"])
-    if p.groups is None:
-        plan_args = (p.ops_i, p.ops_f, p.const_items, p.const_values, p.n_items, p.n_angles,
-                     p.stored_items, *tail)
-        if M == 1:
-            def run(lo, hi):
-                k.run_closed_form_one_input(q, qd, qdd, lo, hi, *plan_args)
-        else:
-            def run(lo, hi):
-                k.run_closed_form(q, qd, qdd, lo, hi, *plan_args, M)
-        workers = min(_threads(), N // _PARALLEL_FROM)
-        if workers <= 1:
-            run(0, N)
-        else:   # the kernel releases the GIL: threads take pieces of the sweep in turn
-            pieces = max(workers, N // _PIECE)
-            bounds = np.linspace(0, N, pieces + 1).astype(int)
-            list(_pool(workers).map(run, bounds[:-1], bounds[1:]))
-    else:
-        groups_i, con_i, con_f, x0 = p.groups
-        q0 = p.q_sketch
-        if start is not None:
-            q0, x0 = start
-        # continuation steps of at most 0.05 rad (or 0.05 sizes of the mechanism for slides)
-        max_step = _CONTINUATION_STEP * (1.0 if all(kd == "angle" for kd in p.input_kinds)
-                                         else min(1.0, p.scale))
-        state = np.empty(len(x0) + M)
-        args = (q, qd, qdd, np.array(q0, float), max_step, p.ops_i, p.ops_f, p.const_items,
-                p.const_values, p.n_items, p.n_angles, p.stored_items, groups_i, con_i, con_f,
-                np.array(x0, float), p.scale, *tail, state)
-        if M == 1:
-            k.run_continuation_one_input(*args)
-        else:
-            k.run_continuation(*args, M)
-        out["state"] = (state[len(x0):].copy(), state[:len(x0)].copy())
+def _run_branches(p: Plan, bmap: BranchMap, q, qd, qdd):
+    """Run the kernel with each sample on its own branch: the samples that share the signs
+    of their dyads in one call each."""
+    index, tables = bmap.variants(q[:, 0])
+    used = np.unique(index)
+    if len(used) == 1:
+        return _run(p, q, qd, qdd, ops_f=tables[int(used[0])])
+    out = None
+    for v in used.tolist():
+        rows = np.flatnonzero(index == v)
+        part = _run(p, q[rows], qd if len(qd) == 1 else qd[rows],
+                    qdd if len(qdd) == 1 else qdd[rows], ops_f=tables[v])
+        if out is None:
+            out = {key: np.empty((len(q),) + a.shape[1:], a.dtype) for key, a in part.items()}
+        for key, a in part.items():
+            out[key][rows] = a
     return out
 
 
@@ -312,7 +304,8 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
             unreachable: Literal["raise", "mask"] = "raise",
             at_singular: Literal["auto", "raise", "flag"] = "auto",
             method: Literal["auto", "newton"] = "auto",
-            start: KinematicSolution | None = None) -> KinematicSolution:
+            start: KinematicSolution | None = None,
+            at_change_point: Literal["smooth", "switch"] = "smooth") -> KinematicSolution:
     """Position, velocity and acceleration of every link, point and slide.
 
     The position equations Phi(q, S) = 0 are solved group by group (see
@@ -339,6 +332,13 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
     method : {"auto", "newton"}
         "auto" solves dyads in closed form and the rest by Newton-Raphson; "newton" uses the
         general Newton engine for every group (to cross-check).
+    at_change_point : {"smooth", "switch"}
+        Where two assembly modes of a dyad meet and the input can go on (a change point: a
+        parallelogram four-bar at 0 and 180 degrees), go on along the branch whose K and L
+        continue ("smooth": the parallelogram stays a parallelogram) or along the other one
+        ("switch": it becomes an antiparallelogram).  Followed for one-input mechanisms
+        solved in closed form, from the sketch to each input value; the change points within
+        the sweep are in ``sol.change_points``.
     start : KinematicSolution, optional
         An earlier analysis of the same mechanism: Newton groups continue from where it
         ended (its last assembled sample) instead of from the sketch, so a sweep can be run
@@ -364,6 +364,7 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
     M = len(mechanism.inputs)
     if unreachable not in ("raise", "mask"):
         raise ModelError(f"unreachable: expected one of 'raise', 'mask', got '{unreachable}'")
+    check_choice("at_change_point", at_change_point, ("smooth", "switch"))
     if at_singular not in ("auto", "raise", "flag"):
         raise ModelError(f"at_singular: expected one of 'auto', 'raise', 'flag', got '{at_singular}'")
     q2, qd2, qdd2, single = _normalise_q(q, qd, qdd, M)
@@ -378,7 +379,8 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
                 raise ModelError("start: the earlier analysis used another method; analyze "
                                  "with the same method to continue from it")
             resume = start.newton_state
-    out = _run(p, q2, qd2, qdd2, resume)
+    bmap = _branch_map(p, M, at_change_point)
+    out = _run_branches(p, bmap, q2, qd2, qdd2) if bmap is not None else _run(p, q2, qd2, qdd2, resume)
     jets, rates, diag = out["jets"], out["rates"], out["diag"]
     ok = out["status"] == k.ST_OK
     if not ok.all():
@@ -416,7 +418,8 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
         plan=p, q=q2, qd=_per_sample(qd2, q2.shape), qdd=_per_sample(qdd2, q2.shape),
         stored_jets=jets, stored_rates=rates,
         det_J=diag[:, 0], singularity=diag[:, 1], singular=singular, assembled=ok,
-        single=single, newton_state=out.get("state"))
+        single=single, newton_state=out.get("state"),
+        change_points=bmap.change_points(float(q2.min()), float(q2.max())) if bmap else ())
     if p.redundant:
         _check_redundant(p, sol)
     return sol

@@ -60,6 +60,10 @@ ST_NO_ASSEMBLY = 1     # a closed-form group cannot close (gap > 0)
 ST_NO_CONVERGENCE = 2  # a Newton group failed even with the smallest continuation step
 
 _DISC_TOL = 1e-12  # relative: a discriminant this far below zero is rounding at a limit position
+_DISC_ZERO = 1e-15  # relative: a discriminant this close to zero is zero (its rounding is a
+                    # few eps): a dyad at its straight position comes out straight, exactly
+_FOLDED = 1e-16    # an RRR dyad whose ends are closer than 1e-8 of its arm has folded: the
+                   # direction of d = Z - X is rounding, the direction it moves along is not
 
 
 # --------------------------------------------------------------------------------------
@@ -169,12 +173,15 @@ def _rrr(jet, lane, b, c, X, Y, Z, lb, lc, sigma, offb, offc, M):
     dx = jet[lane, Z, 0] - jet[lane, X, 0]
     dy = jet[lane, Z + 1, 0] - jet[lane, X + 1, 0]
     D2 = dx * dx + dy * dy
-    if D2 == 0.0:
-        return 0.0, 0.0, abs(lb - lc)
+    if D2 <= _FOLDED * lb * lb:      # X and Z coincide to rounding: d has no direction
+        if abs(lb - lc) > 1e-12 * lb:
+            return 0.0, 0.0, abs(lb - lc) - math.sqrt(D2)
+        _rrr_folded(jet, lane, b, c, X, Y, Z, lb, sigma, offb, offc, M)
+        return 0.0, 0.0, 0.0
     inv_D2 = 1.0 / D2
     alpha = 0.5 * (lb * lb - lc * lc + D2) * inv_D2
     beta2 = lb * lb * inv_D2 - alpha * alpha
-    if beta2 < 0.0:
+    if beta2 < _DISC_ZERO * lb * lb * inv_D2:
         if beta2 < -_DISC_TOL * lb * lb * inv_D2:
             D = math.sqrt(D2)
             return 0.0, 0.0, max(D - (lb + lc), abs(lb - lc) - D)
@@ -209,6 +216,26 @@ def _rrr(jet, lane, b, c, X, Y, Z, lb, lc, sigma, offb, offc, M):
 
 
 @_jit()
+def _rrr_folded(jet, lane, b, c, X, Y, Z, lb, sigma, offb, offc, M):
+    """An RRR dyad with equal arms whose end joints coincide (a kite four-bar whose crank
+    pin reaches the rocker pivot): the arms fold onto each other, and Y, anywhere on their
+    common circle, is where the motion takes it, the limit of Y = X + sigma lb k x d/|d| as
+    d = Z - X shrinks along its rate (of the first input).  A singular configuration: K and
+    L are not defined (NaN)."""
+    ex = jet[lane, Z, 1] - jet[lane, X, 1]
+    ey = jet[lane, Z + 1, 1] - jet[lane, X + 1, 1]
+    n = math.hypot(ex, ey)
+    rbx = -sigma * lb * ey / n if n > 0.0 else math.nan
+    rby = sigma * lb * ex / n if n > 0.0 else math.nan
+    jet[lane, b, 0] = math.atan2(rby, rbx) + offb
+    jet[lane, c, 0] = math.atan2(rby, rbx) + offc
+    for col in range(1, 1 + M + M * M):
+        jet[lane, b, col] = math.nan
+        jet[lane, c, col] = math.nan
+    _carried(jet, lane, Y, X, b, rbx, rby, M)
+
+
+@_jit()
 def _rrp(jet, lane, b, X, Y, o, g, lb, beta, sigma, offb, M, Ks):
     """Circle-line dyad: Y on the line o + s u (u fixed in link g), |Y - X| = lb."""
     ux, uy = _direction(jet, lane, g, beta)
@@ -219,7 +246,7 @@ def _rrp(jet, lane, b, X, Y, o, g, lb, beta, sigma, offb, M, Ks):
     uw = ux * w0x + uy * w0y
     hh = nx * w0x + ny * w0y            # signed distance of X from the line
     t2 = lb * lb - hh * hh
-    if t2 < 0.0:
+    if t2 < _DISC_ZERO * lb * lb:
         if t2 < -_DISC_TOL * lb * lb:
             return 0.0, 0.0, abs(hh) - lb
         t2 = 0.0
@@ -253,13 +280,22 @@ def _rrp(jet, lane, b, X, Y, o, g, lb, beta, sigma, offb, M, Ks):
 
 @_jit()
 def _rpr(jet, lane, G, X, Z, rho_x, rho_y, u_x, u_y, sigma, M, Ks):
-    """Turning-line dyad: X - Z = R(theta_G) (rho + s u), rho and u in G's frame."""
+    """Turning-line dyad: X - Z = R(theta_G) (rho + s u), rho and u in G's frame.
+
+    Its measure is the slide from the foot of Z over |rho| (X - Z at the sketch): zero where
+    the line stands perpendicular to X - Z, a limit position or, with no offset, the point
+    X passing through the pivot Z.
+    """
     wx = jet[lane, X, 0] - jet[lane, Z, 0]
     wy = jet[lane, X + 1, 0] - jet[lane, Z + 1, 0]
     D2 = wx * wx + wy * wy
     h = u_x * rho_y - u_y * rho_x           # distance of Z from the line, in G's frame
+    rho2 = rho_x * rho_x + rho_y * rho_y
+    if D2 <= _FOLDED * rho2 and h * h <= _FOLDED * rho2:
+        _rpr_through_pivot(jet, lane, G, X, Z, u_x, u_y, sigma, M)
+        return 0.0, 0.0, 0.0
     t2 = D2 - h * h
-    if t2 < 0.0:
+    if t2 < _DISC_ZERO * max(D2, h * h):
         if t2 < -_DISC_TOL * max(D2, h * h):
             return 0.0, 0.0, abs(h) - math.sqrt(D2)
         t2 = 0.0
@@ -291,8 +327,21 @@ def _rpr(jet, lane, G, X, Z, rho_x, rho_y, u_x, u_y, sigma, M, Ks):
             r2x = jet[lane, X, c2] - jet[lane, Z, c2] + kk * wx - cor * nx
             r2y = jet[lane, X + 1, c2] - jet[lane, Z + 1, c2] + kk * wy - cor * ny
             jet[lane, G, c2] = (r2x * nx + r2y * ny) / wu
-    D = math.sqrt(D2)
-    return -wu, abs(wu) / D if D > 0.0 else 0.0, 0.0
+    return -wu, abs(wu) / math.sqrt(rho2), 0.0
+
+
+@_jit()
+def _rpr_through_pivot(jet, lane, G, X, Z, u_x, u_y, sigma, M):
+    """A turning line with no offset whose point X passes through its pivot Z (a slotted
+    link whose crank pin crosses the lever pivot): the line's direction is where the
+    motion takes it, sigma times the direction of X - Z's rate (of the first input).  A
+    singular configuration: K and L are not defined (NaN)."""
+    ex = jet[lane, X, 1] - jet[lane, Z, 1]
+    ey = jet[lane, X + 1, 1] - jet[lane, Z + 1, 1]
+    th = math.atan2(sigma * ey, sigma * ex) - math.atan2(u_y, u_x)
+    jet[lane, G, 0] = th if ex != 0.0 or ey != 0.0 else math.nan
+    for col in range(1, 1 + M + M * M):
+        jet[lane, G, col] = math.nan
 
 
 @_jit()

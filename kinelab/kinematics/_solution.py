@@ -80,6 +80,9 @@ class KinematicSolution:
     assembled : ndarray of bool, shape (N,)
         False where the loops cannot close (only with ``unreachable="mask"``; every value
         of such a sample is NaN).
+    change_points : tuple of ChangePoint
+        The change points between the smallest and the largest input of the sweep, where
+        two assembly modes of a dyad meet (see ``analyze(at_change_point=...)``).
     """
 
     plan: Plan
@@ -95,6 +98,7 @@ class KinematicSolution:
     single: bool = False
     newton_state: tuple[np.ndarray, np.ndarray] | None = None   # (q, groups' unknowns) at
                                                                 # the end, for analyze(start=)
+    change_points: tuple = ()
 
     # -- what was solved -----------------------------------------------------------------
     @property
@@ -192,7 +196,9 @@ class KinematicSolution:
         join = {name: np.concatenate([getattr(s, name) for s in parts])
                 for name in ("q", "qd", "qdd", "stored_jets", "stored_rates", "det_J",
                              "singularity", "singular", "assembled")}
-        return cls(plan=parts[0].plan, single=False, newton_state=parts[-1].newton_state, **join)
+        seen = {c.q: c for s in parts for c in s.change_points}
+        return cls(plan=parts[0].plan, single=False, newton_state=parts[-1].newton_state,
+                   change_points=tuple(seen[q] for q in sorted(seen)), **join)
 
     def _find(self, name: str, kinds: str) -> tuple[int, int]:
         """(first item, number of items) of a link ("l"), point ("p") or slide ("s")."""

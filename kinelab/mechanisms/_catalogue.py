@@ -37,12 +37,14 @@ def _finite(**values: float) -> None:
 
 
 def _best_angle(quality: Callable[[np.ndarray], np.ndarray], what: str) -> float:
-    """The input angle, on a 1-degree grid, where a closure quality (> 0: assembles) is best."""
+    """The input angle, on a 1-degree grid, where a closure quality (> 0: assembles) is best;
+    of equally good angles (to rounding), the first from 0: the branch a sketch shows at a
+    change point depends on where the sketch is."""
     q = np.radians(np.arange(0.0, 360.0, 1.0)) + 1e-3   # off the axes: no accidental symmetry
     v = quality(q)
     if not np.any(v > 0):
         raise ModelError(f"{what}: these lengths cannot be assembled at any input angle; check them")
-    return float(q[np.argmax(v)])
+    return float(q[np.argmax(np.round(v, 12))])
 
 
 def _circle_intersection(X, Z, lb, lc, sigma):

@@ -198,8 +198,8 @@ def travel(model: Mechanism, q: np.ndarray,
     reachable = reach[1] | reach[-1]
     # the order is judged on the positions that can be reached at all (a branch defect is
     # reported once, as such)
-    works = [d for d in (1, -1)
-             if np.all(np.diff(deltas[d][reachable]) > 0) and reach[d][reachable].all()]
+    works = [d for d in (1, -1) if reachable.any()
+             and np.all(np.diff(deltas[d][reachable]) > 0) and reach[d][reachable].all()]
     branch_defect = not reachable.all()
     if branch_defect:
         lost = ", ".join(str(j + 1) for j in np.flatnonzero(~reachable))

@@ -84,17 +84,33 @@ def test_engine_spins_up_under_a_constant_torque():
     assert {"t [s]", "jO2.torque [N m]", "energy_balance [J]"} <= set(frame.columns)
 
 
-def test_singular_configuration_stops_the_integration():
-    """Crank = rod: at q = 90 deg the rod stands upright over the slide (det J = 0)."""
-    sc = kl.mechanisms.slider_crank(crank=1.0, rod=1.0)
+def _with_masses(m):
     links = tuple(link if link.ground else Link(link.name, link.points, mass=1.0,
                                                 center_of_mass=link.points[-1], inertia=0.1)
-                  for link in sc.links)
-    m = Mechanism("sc", sc.points, links, sc.joints, sc.inputs)
-    sim = simulate(m, (0.0, 5.0), q0=0.5, qd0=1.0, inputs={"jO2": 3.0})
+                  for link in m.links)
+    return Mechanism(m.name, m.points, links, m.joints, m.inputs)
+
+
+def test_singular_configuration_stops_the_integration():
+    """Crank longer than the rod: at sin q = rod / crank the rod stands upright over the
+    slide, a limit position (det J = 0) the motion cannot pass."""
+    m = _with_masses(kl.mechanisms.slider_crank(crank=1.0, rod=0.8))
+    sim = simulate(m, (0.0, 5.0), q0=0.3, qd0=1.0, inputs={"jO2": 3.0})
     assert sim.status == "singular" and "singular configuration" in sim.message
-    assert sim.q[-1, 0] == pytest.approx(np.pi / 2, abs=1e-3)
+    assert np.sin(sim.q[-1, 0]) == pytest.approx(0.8, abs=1e-3)
     assert sim.t[-1] < 5.0
+
+
+def test_a_change_point_is_crossed_on_the_smooth_branch():
+    """A parallelogram coasting through 180 degrees stays a parallelogram (its rocker turns
+    with its crank), and its energy is kept across the change point."""
+    m = _with_masses(kl.mechanisms.fourbar(ground=1.0, crank=0.4, coupler=1.0, rocker=0.4))
+    sim = simulate(m, (0.0, 1.0), q0=2.5, qd0=3.0, t_eval=np.linspace(0.0, 1.0, 21))
+    assert sim.status == "finished"
+    assert sim.q[-1, 0] > np.pi + 0.2
+    rocker = sim.kinematics.angle("rocker")
+    assert np.max(np.abs(np.angle(np.exp(1j * (rocker - sim.q[:, 0]))))) < 1e-9
+    assert sim.energy_error < 1e-6
 
 
 def test_actuator_on_a_joint_that_is_not_an_input():

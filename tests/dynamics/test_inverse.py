@@ -69,7 +69,7 @@ def solve(m, **kw):
 def test_kane_against_newton_euler(model):
     res = solve(model)
     scale = np.max(np.abs(res.input_forces))
-    assert res.reactions_unique and scale > 0.1
+    assert res.reactions_unique and scale > 0.01       # efforts well above the tolerance
     np.testing.assert_allclose(res.newton_euler_efforts, res.input_forces, rtol=0, atol=1e-10 * scale)
 
 
