@@ -5,11 +5,12 @@ J = dPhi/dS and Q = dPhi/dq, velocity coefficients K = -J^-1 Q and acceleration
 coefficients L = dK/dq, singular configurations where det J = 0.
 """
 from kinelab.kinematics._analyze import SINGULAR_TOL, analyze, plan, reachable_ranges, turns_fully
-from kinelab.kinematics._instant_centers import InstantCenter, instant_center, instant_centers
+from kinelab.kinematics._instant_centers import (InstantCenter, InstantCenters, instant_center,
+                                                 instant_centers)
 from kinelab.kinematics._measures import TimeRatio, time_ratio, transmission_angle
 from kinelab.kinematics._plan import Plan, Step
 from kinelab.kinematics._solution import AccelerationComponents, KinematicSolution
 
 __all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "KinematicSolution", "AccelerationComponents",
            "Plan", "Step", "SINGULAR_TOL", "transmission_angle", "time_ratio", "TimeRatio",
-           "instant_center", "instant_centers", "InstantCenter"]
+           "instant_center", "instant_centers", "InstantCenter", "InstantCenters"]
