@@ -1,7 +1,9 @@
-"""Sketch geometry shared by the plan builder and the results."""
+"""Planar geometry shared by the plan builder and the results."""
 from __future__ import annotations
 
 import math
+
+import numpy as np
 
 from kinelab.model import Mechanism
 
@@ -18,3 +20,8 @@ def sketch_angle(m: Mechanism, link: str) -> float:
             return math.atan2(j.axis[1], j.axis[0])
     return 0.0
 
+
+
+def k_cross(v: np.ndarray) -> np.ndarray:
+    """``k x v`` for planar vectors along the last axis: v turned by +90 degrees."""
+    return np.stack([-v[..., 1], v[..., 0]], axis=-1)

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from kinelab.errors import ModelError, quoted, suggest
+from kinelab.kinematics._geometry import k_cross
 from kinelab.kinematics._solution import KinematicSolution
 
 __all__ = ["InstantCenter", "InstantCenters", "instant_center", "instant_centers"]
@@ -165,22 +166,19 @@ def _centers(sol: KinematicSolution, pairs) -> dict[tuple[str, str], InstantCent
     items = list(sol.link_item.values())
     scale = np.max(np.abs(sol.item_jets(items)[:, :, 1 + column] if column is not None
                           else sol.item_rates(items)[:, :, 0]), axis=1)
-
-    def kx(v):
-        return np.stack([-v[..., 1], v[..., 0]], axis=-1)
     centers = {}
     for a, b in pairs:
         (pa, va, wa), (pb, vb, wb) = motion[a], motion[b]
-        rhs = vb - va + wa[:, None] * kx(pa) - wb[:, None] * kx(pb)
+        rhs = vb - va + wa[:, None] * k_cross(pa) - wb[:, None] * k_cross(pb)
         dw = wa - wb
         infinite = np.abs(dw) <= _PARALLEL * np.maximum(scale, 1e-300)
         with np.errstate(divide="ignore", invalid="ignore"):
             position = np.where(infinite[:, None], 0.0,
-                                -kx(rhs) / np.where(infinite, 1.0, dw)[:, None])
+                                -k_cross(rhs) / np.where(infinite, 1.0, dw)[:, None])
         rel = vb - va                      # relative translation velocity where dw = 0
         norm = np.linalg.norm(rel, axis=-1)
         direction = np.where((infinite & (norm > 0))[:, None],
-                             kx(rel) / np.where(norm > 0, norm, 1.0)[:, None], 0.0)
+                             k_cross(rel) / np.where(norm > 0, norm, 1.0)[:, None], 0.0)
         if sol.single:
             position, infinite, direction = position[0], infinite[0], direction[0]
         centers[(a, b)] = InstantCenter((a, b), position, infinite, direction)

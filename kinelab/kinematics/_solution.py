@@ -5,10 +5,12 @@ import functools
 import math
 import os
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
 from kinelab.errors import ModelError, quoted, suggest
+from kinelab.kinematics._geometry import k_cross
 from kinelab.kinematics._plan import Plan
 from kinelab.model import Mechanism
 from kinelab.solvers import wrap_angle
@@ -36,6 +38,22 @@ class AccelerationComponents:
     @property
     def total(self) -> np.ndarray:
         return self.origin + self.tangential + self.normal + self.coriolis + self.sliding
+
+
+class _SlideMotion(NamedTuple):
+    """A prismatic joint's point P seen from its guide, per sample: r = P - O (O the slide's
+    origin, a point of the guide), O's velocity and acceleration, the guide's omega and alpha
+    (N, 1), the unit axis u and the slide's rates s', s'' (N, 1)."""
+
+    point: np.ndarray
+    r: np.ndarray
+    v_origin: np.ndarray
+    a_origin: np.ndarray
+    omega: np.ndarray
+    alpha: np.ndarray
+    u: np.ndarray
+    sd: np.ndarray
+    sdd: np.ndarray
 
 
 @dataclass(frozen=True, eq=False)
@@ -295,35 +313,43 @@ class KinematicSolution:
                              + (f" '{joint}'" if joint else "") + f"; prismatic joints are {names}")
         if len(joints) > 1:
             raise ModelError(f"point '{point}' slides in {len(joints)} joints; name one with joint=")
-        j = joints[0]
-        guide = j.links[0]
-        origin = j.origin or m.link(guide).points[0]
-        gi = self.link_item[guide]
-        oi, pi = self.point_item[origin], self.point_item[point]
-        si = self.slide_item[j.name]
-        jets, rates = self.item_jets([pi, pi + 1, oi, oi + 1]), self.item_rates([gi, si, oi, oi + 1])
-        r = jets[:, 0:2, 0] - jets[:, 2:4, 0]
-        w = rates[:, 0:1, 0]
-        a = rates[:, 0:1, 1]
-        u = self.slide_axes(j.name)
-
-        def k_cross(v):
-            return np.stack([-v[:, 1], v[:, 0]], axis=-1)
-        sd = rates[:, 1:2, 0]
-        sdd = rates[:, 1:2, 1]
-        parts = dict(origin=rates[:, 2:4, 1], tangential=a * k_cross(r),
-                     normal=-(w ** 2) * r, coriolis=2.0 * w * k_cross(sd * u), sliding=sdd * u)
+        s = self._slide_motion(joints[0].name)
+        parts = dict(origin=s.a_origin, tangential=s.alpha * k_cross(s.r),
+                     normal=-(s.omega ** 2) * s.r, coriolis=2.0 * s.omega * k_cross(s.sd * s.u),
+                     sliding=s.sdd * s.u)
         return AccelerationComponents(**{k: self._out(v) for k, v in parts.items()})
 
     def slide_axes(self, joint: str) -> np.ndarray:
-        """Unit direction of a prismatic joint's slide at every sample (it turns with the
-        guide, its first link), shape (N, 2) even for a single configuration."""
+        """Unit direction of a prismatic joint's slide, which turns with the guide (the
+        joint's first link); shape (2,) or (N, 2).
+
+        Examples
+        --------
+        >>> sl = kl.mechanisms.slotted_link(crank=1.0, distance=2.0)
+        >>> kl.analyze(sl, q=np.pi / 2).slide_axes("slot").round(12)   # from O4 towards A = (2, 1)
+        array([0.89442719, 0.4472136 ])
+        >>> kl.analyze(sl, q=[0.0, np.pi / 2]).slide_axes("slot").shape
+        (2, 2)
+        """
+        return self._out(self._slide_motion(joint).u)
+
+    def _slide_motion(self, joint: str) -> _SlideMotion:
+        """The motion of a prismatic joint's point relative to its guide, (N, ...) arrays."""
         self._find(joint, "s")
         j = self.mechanism.joint(joint)
-        gi = self.link_item[j.links[0]]
-        theta = self.item_jets([gi])[:, 0, 0] + (math.atan2(j.axis[1], j.axis[0])
-                                                 - self.plan.sketch_angles[gi])
-        return np.stack([np.cos(theta), np.sin(theta)], axis=-1)
+        guide = j.links[0]
+        origin = j.origin or self.mechanism.link(guide).points[0]
+        gi = self.link_item[guide]
+        oi, pi = self.point_item[origin], self.point_item[j.point]
+        jets = self.item_jets([pi, pi + 1, oi, oi + 1, gi])
+        rates = self.item_rates([gi, self.slide_item[joint], oi, oi + 1])
+        theta = jets[:, 4, 0] + (math.atan2(j.axis[1], j.axis[0]) - self.plan.sketch_angles[gi])
+        return _SlideMotion(
+            point=jets[:, 0:2, 0], r=jets[:, 0:2, 0] - jets[:, 2:4, 0],
+            v_origin=rates[:, 2:4, 0], a_origin=rates[:, 2:4, 1],
+            omega=rates[:, 0:1, 0], alpha=rates[:, 0:1, 1],
+            u=np.stack([np.cos(theta), np.sin(theta)], axis=-1),
+            sd=rates[:, 1:2, 0], sdd=rates[:, 1:2, 1])
 
     # -- export -------------------------------------------------------------------------
     def columns(self, degrees: bool = False) -> dict[str, np.ndarray]:
