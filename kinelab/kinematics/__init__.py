@@ -9,8 +9,9 @@ from kinelab.kinematics._instant_centers import (InstantCenter, InstantCenters, 
                                                  instant_centers)
 from kinelab.kinematics._measures import TimeRatio, time_ratio, transmission_angle
 from kinelab.kinematics._plan import Plan, Step
-from kinelab.kinematics._solution import AccelerationComponents, KinematicSolution
+from kinelab.kinematics._solution import AccelerationComponents, GuidePoint, KinematicSolution
 
 __all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "KinematicSolution", "AccelerationComponents",
+           "GuidePoint",
            "Plan", "Step", "SINGULAR_TOL", "transmission_angle", "time_ratio", "TimeRatio",
            "instant_center", "instant_centers", "InstantCenter", "InstantCenters"]

@@ -40,6 +40,46 @@ class AccelerationComponents:
         return self.origin + self.tangential + self.normal + self.coriolis + self.sliding
 
 
+@dataclass(frozen=True)
+class GuidePoint:
+    """The point of a prismatic joint's guide under the slider's point, at every sample.
+
+    At each instant the guide (the joint's first link) has a point G in the same place as
+    the joint's point P, which the slider carries: in the slotted link, the point of the
+    lever under the crank pin.  G moves with the guide as a rigid body; P moves along the
+    slide on top of it.  With u the slide's direction, s its slide and omega the guide's
+    angular velocity::
+
+        v_P = v_G + s' u
+        a_P = a_G + 2 omega k x (s' u) + s'' u          (Coriolis, then sliding)
+
+    and, with O the slide's origin (a point of the guide) and r = P - O,
+    ``v_G = v_O + omega k x r`` and ``a_G = a_O + alpha k x r - omega^2 r``.
+
+    Attributes
+    ----------
+    joint : str
+        The prismatic joint.
+    guide : str
+        The link G belongs to (the joint's first link).
+    point : str
+        The joint's point P, which G lies under.
+    position : ndarray, shape (2,) or (N, 2)
+        m; the position of P.
+    velocity : ndarray, shape (2,) or (N, 2)
+        m/s.
+    acceleration : ndarray, shape (2,) or (N, 2)
+        m/s^2.
+    """
+
+    joint: str
+    guide: str
+    point: str
+    position: np.ndarray
+    velocity: np.ndarray
+    acceleration: np.ndarray
+
+
 class _SlideMotion(NamedTuple):
     """A prismatic joint's point P seen from its guide, per sample: r = P - O (O the slide's
     origin, a point of the guide), O's velocity and acceleration, the guide's omega and alpha
@@ -54,6 +94,16 @@ class _SlideMotion(NamedTuple):
     u: np.ndarray
     sd: np.ndarray
     sdd: np.ndarray
+
+    @property
+    def tangential(self) -> np.ndarray:
+        """alpha k x r: the guide's angular acceleration at P."""
+        return self.alpha * k_cross(self.r)
+
+    @property
+    def normal(self) -> np.ndarray:
+        """-omega^2 r: towards the origin, as the guide turns."""
+        return -(self.omega ** 2) * self.r
 
 
 @dataclass(frozen=True, eq=False)
@@ -314,10 +364,43 @@ class KinematicSolution:
         if len(joints) > 1:
             raise ModelError(f"point '{point}' slides in {len(joints)} joints; name one with joint=")
         s = self._slide_motion(joints[0].name)
-        parts = dict(origin=s.a_origin, tangential=s.alpha * k_cross(s.r),
-                     normal=-(s.omega ** 2) * s.r, coriolis=2.0 * s.omega * k_cross(s.sd * s.u),
-                     sliding=s.sdd * s.u)
+        parts = dict(origin=s.a_origin, tangential=s.tangential, normal=s.normal,
+                     coriolis=2.0 * s.omega * k_cross(s.sd * s.u), sliding=s.sdd * s.u)
         return AccelerationComponents(**{k: self._out(v) for k, v in parts.items()})
+
+    def guide_point(self, joint: str) -> GuidePoint:
+        """Position, velocity and acceleration of the guide's point under the slider's point
+        (see :class:`GuidePoint`), at every sample.
+
+        Parameters
+        ----------
+        joint : str
+            A prismatic joint.
+
+        Returns
+        -------
+        GuidePoint
+            Its arrays have shape (2,) for one configuration, (N, 2) for N.
+
+        Examples
+        --------
+        In the slotted link at q = 0 the pin A is at (3, 0) and the lever lies along +x; at
+        qd = 3 rad/s the lever turns at omega = qd R / B = 1 rad/s, alpha = 0:
+
+        >>> sl = kl.mechanisms.slotted_link(crank=1.0, distance=2.0)
+        >>> sol = kl.analyze(sl, q=0.0, qd=3.0)
+        >>> g = sol.guide_point("slot")
+        >>> g.velocity, g.acceleration.round(12)         # omega k x r, -omega^2 r
+        (array([0., 3.]), array([-3.,  0.]))
+        >>> sol.acceleration("A")             # -R qd^2: the rest is s'' u, s'' = -6 m/s^2
+        array([-9.,  0.])
+        """
+        s = self._slide_motion(joint)
+        j = self.mechanism.joint(joint)
+        velocity = s.v_origin + s.omega * k_cross(s.r)
+        acceleration = s.a_origin + s.tangential + s.normal
+        return GuidePoint(joint, j.links[0], j.point, *(self._out(a) for a in
+                                                        (s.point, velocity, acceleration)))
 
     def slide_axes(self, joint: str) -> np.ndarray:
         """Unit direction of a prismatic joint's slide, which turns with the guide (the
