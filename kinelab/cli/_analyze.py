@@ -1,6 +1,7 @@
 """``kinelab analyze`` and ``kinelab check``."""
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import click
@@ -40,12 +41,18 @@ def summarise(mf, sol):
               help="Print one configuration in full instead of sweeping: the input value in "
                    "the file's unit, or with a unit (30deg, 0.5rad, 12mm); comma-separated for "
                    "several inputs.")
+@click.option("--speed", "speed", default=None, metavar="VALUE",
+              help="Input speed for this run, instead of the file's: in the file's unit per "
+                   "second, or with a unit (60deg, 1rad, 12mm: per second); comma-separated "
+                   "for several inputs.")
 @click.option("--quiet", "-q", is_flag=True, help="Do not print the summary.")
-def analyze(model, out, fmt, samples, degrees, at, quiet):
+def analyze(model, out, fmt, samples, degrees, at, speed, quiet):
     """Sweep MODEL's input range and write one row per sample: inputs; every link's angle,
     omega, alpha; every slide and its rates; every point's x, y, vx, vy, ax, ay; K and L of
     each; det J and the singular flag.  Prints a summary."""
     mf = read_model(model)
+    if speed is not None:
+        mf = with_speeds(mf, parse_inputs(speed, mf, "--speed"))
     m = mf.mechanism
     if at is not None:
         q = parse_inputs(at, mf)
@@ -64,6 +71,14 @@ def analyze(model, out, fmt, samples, degrees, at, quiet):
     if s is not None:
         click.echo(summary_text(s, degrees=degrees))
     click.echo(f"wrote {written} ({sol.N} rows, {len(sol.columns())} columns)")
+
+
+def with_speeds(mf, qd) -> io.ModelFile:
+    """The model file with its inputs' speeds replaced by ``qd`` (SI, one per input)."""
+    m = mf.mechanism
+    inputs = tuple(dataclasses.replace(i, speed=float(v))
+                   for i, v in zip(m.inputs, np.atleast_1d(qd)))
+    return dataclasses.replace(mf, mechanism=dataclasses.replace(m, inputs=inputs))
 
 
 @click.command()
