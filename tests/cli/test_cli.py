@@ -260,3 +260,22 @@ def test_imported_pyslvs_model_has_a_speed(tmp_path):
     K = float(kl.analyze(m, math.radians(30)).K("sP2"))
     assert float(values["sP2.slide_velocity [m/s]"]) == pytest.approx(K * 2 * math.pi * 100 / 60, rel=1e-9)
     assert K != 0.0
+
+
+def test_summary_of_a_crank_that_cannot_turn(tmp_path):
+    """No time ratio, and why; limit positions written near the swept range (the window
+    around the catalogue's sketch put them a turn away, at -6.62 rad)."""
+    model = tmp_path / "long_crank.toml"
+    model.write_text('schema = 1\nname = "long crank"\n[units]\nlength = "m"\nangle = "deg"\n'
+                     '[catalogue]\nkind = "slider_crank"\ncrank = 3.0\nrod = 1.0\n'
+                     '[[inputs]]\njoint = "jO2"\nrange = [-15, 15]\nspeed = 60\n'
+                     '[outputs]\ntime_ratio = "slide"\n')
+    result = run("analyze", model, "--out", tmp_path)
+    assert result.exit_code == 0, result.output
+    # |sin q| <= 1/3: asin(1/3) = 0.339837 rad
+    assert ("limit positions of jO2 (it cannot go past them): -3.48143 rad and -2.80176 rad; "
+            "-0.339837 rad and 0.339837 rad") in result.stdout
+    assert ("time ratio of slide: none; jO2 cannot turn a full turn (it reaches only "
+            "[-3.48143, -2.80176] and [-0.339837, 0.339837] rad)") in result.stdout
+    result = run("analyze", model, "--out", tmp_path, "--degrees")
+    assert "(it reaches only [-199.471, -160.529] and [-19.4712, 19.4712] deg)" in result.stdout
