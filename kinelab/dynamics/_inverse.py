@@ -146,7 +146,7 @@ def inverse(model, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayLike = 0.0, *,
             t: ArrayLike = 0.0, reactions: bool = True) -> InverseDynamics:
     """Actuator efforts that produce a motion, with the joint reactions and shaking force.
 
-    Kane's equations (the notes' ``C^T D f = 0``, seed 003 eq. 58-66) in the independent
+    Kane's equations (the notes' ``C^T D f = 0``, *Mecanismos*, eq. 58-66) in the independent
     coordinates q: with K and L from the kinematics engine, the generalised inertia force
     is ``F* = sum K_G^T m a_G + K_theta^T I alpha`` and the loads give ``Q``; the
     actuators supply the rest, ``tau = F* - Q``.  The reactions come from the free-body
@@ -185,12 +185,12 @@ def inverse(model, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayLike = 0.0, *,
 
     References
     ----------
-    Seed 003 §5 (Gibbs-Appell / Kane); Kane and Levinson, *Dynamics: Theory and
+    *Mecanismos*, §5 (Gibbs-Appell / Kane); Kane and Levinson, *Dynamics: Theory and
     Applications* (1985), ch. 6.
 
     Examples
     --------
-    A pendulum held still at angle theta needs ``tau = m g L cos(theta)`` (seed 003 §5):
+    A pendulum held still at angle theta needs ``tau = m g L cos(theta)`` (*Mecanismos*, §5):
 
     >>> from kinelab.model import Mechanism, Point, Link, Joint, Input
     >>> from kinelab.dynamics import Loads, inverse

@@ -1,6 +1,7 @@
 """Position, velocity and acceleration analysis of any planar mechanism.
 
-The notes' method (seed 000; seed 003 §4.4-4.8): position equations Phi(q, S) = 0, Jacobian
+The notes' method (Erthal, *Mecanismos com 1 GL: análise geral de velocidade e aceleração*;
+*Mecanismos*, §4.4-4.8): position equations Phi(q, S) = 0, Jacobian
 J = dPhi/dS and Q = dPhi/dq, velocity coefficients K = -J^-1 Q and acceleration
 coefficients L = dK/dq, singular configurations where det J = 0.
 """

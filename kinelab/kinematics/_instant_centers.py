@@ -1,4 +1,8 @@
-"""Instant centres of velocity of every pair of links (seed 002, §4.5)."""
+"""Instant centres of velocity of every pair of links.
+
+Flores & Claro, *Cinemática de Mecanismos — 4. Análise de Velocidades*
+(Universidade do Minho, 2007), §4.5.
+"""
 from __future__ import annotations
 
 import itertools

@@ -345,7 +345,7 @@ class KinematicSolution:
 
     def acceleration_components(self, point: str, joint: str | None = None) -> AccelerationComponents:
         """Normal, tangential, Coriolis and sliding parts of the acceleration of a point that
-        slides along a turning link (seed 001).
+        slides along a turning link (Badan (IFG), *Análise de aceleração* (after Norton, ch. 7)).
 
         Parameters
         ----------

@@ -163,7 +163,7 @@ def test_linkage2d_slider_crank_is_assembled_and_matches_the_catalogue():
 
 
 def test_linkage2d_pin_in_slot_and_weld():
-    # slotted link of seed 000 (R = 100, C = 200 mm); the lever is two welded parts
+    # Erthal's slotted link (R = 100, C = 200 mm); the lever is two welded parts
     data = _doc(
         [_link("G", "ground", (0, 0, 0), {"O4": (0, 0), "O2": (200, 0)}, True),
          _link("K", "crank", (200, 0, 90), {"O2k": (0, 0), "A": (100, 0)}),

@@ -1,5 +1,6 @@
 """Instant centres: the four-bar's known centres, Kennedy's theorem, the angular-velocity
-ratio theorem (seed 002, §4.5-4.6)."""
+ratio theorem (Flores & Claro, *Cinemática de Mecanismos — 4. Análise de Velocidades*
+(Universidade do Minho, 2007), §4.5-4.6)."""
 import itertools
 
 import numpy as np
@@ -61,7 +62,8 @@ def test_kennedy_theorem(make):
 
 
 def test_angular_velocity_ratio_theorem():
-    """omega4 / omega2 = I12I24 / I14I24, signed along the line of centres (seed 002 eq. 4.121)."""
+    """omega4 / omega2 = I12I24 / I14I24, signed along the line of centres (Flores & Claro,
+    eq. 4.121)."""
     sol = kl.analyze(kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5), q=Q, qd=1.0)
     ic = kl.kinematics.instant_centers(sol)
     I12, I14 = ic["ground", "crank"].position, ic["ground", "rocker"].position

@@ -142,7 +142,7 @@ def test_a_start_from_another_method_is_refused(first, then):
 
 
 def test_slide_axis_turns_with_its_guide():
-    """In seed 000's slotted link the slot runs along the lever from O4 through A, and the
+    """In Erthal's slotted link the slot runs along the lever from O4 through A, and the
     slide is B = |A - O4|: the axis is (A - O4) / B at every sample."""
     sol = kl.analyze(kl.mechanisms.slotted_link(1.0, 2.0), q=Q)
     along = sol.position("A") - sol.position("O4")
