@@ -41,71 +41,21 @@ def test_slotted_link_block_turns_with_the_lever():
 MODEL = """
 schema = 1
 name = "inclined slider-crank and a swivel block"
-[units]
-length = "mm"
-angle = "deg"
-[points]
-O2 = [0, 0]
-A = [0, 100]
-B = [259.807621135, 150]     # on the slide line through O2 at 30 deg, 300 mm from A
-O4 = [200, 0]
-C = [-200, 200]              # the rod's end: O4C passes through A
-[[links]]
-name = "ground"
-points = ["O2", "O4"]
-ground = true
-[[links]]
-name = "crank"
-points = ["O2", "A"]
-[[links]]
-name = "rod"
-points = ["A", "B"]
-[[links]]
-name = "piston"
-points = ["B"]
-[[links]]
-name = "swivel"
-points = ["A"]
-[[links]]
-name = "arm"
-points = ["O4", "C"]
-[[joints]]
-type = "R"
-links = ["ground", "crank"]
-point = "O2"
-[[joints]]
-type = "R"
-links = ["crank", "rod"]
-point = "A"
-[[joints]]
-type = "R"
-links = ["rod", "piston"]
-point = "B"
-[[joints]]
-name = "bore"
-type = "P"
-links = ["ground", "piston"]
-point = "B"
-axis = 30
-origin = "O2"
-[[joints]]
-name = "jS"
-type = "R"
-links = ["crank", "swivel"]
-point = "A"
-[[joints]]
-type = "R"
-links = ["ground", "arm"]
-point = "O4"
-[[joints]]
-name = "sleeve"
-type = "P"
-links = ["arm", "swivel"]
-point = "A"
-axis = [-1, 0.5]
-origin = "O4"
-[[inputs]]
-joint = "jO2"
+units = {length = "mm", angle = "deg"}
+# B on the slide line through O2 at 30 deg, 300 mm from A; the arm O4C passes through A
+points = {O2 = [0, 0], A = [0, 100], B = [259.807621135, 150], O4 = [200, 0], C = [-200, 200]}
+links = [{name = "ground", points = ["O2", "O4"], ground = true},
+         {name = "crank", points = ["O2", "A"]}, {name = "rod", points = ["A", "B"]},
+         {name = "piston", points = ["B"]}, {name = "swivel", points = ["A"]},
+         {name = "arm", points = ["O4", "C"]}]
+joints = [{type = "R", links = ["ground", "crank"], point = "O2"},
+          {type = "R", links = ["crank", "rod"], point = "A"},
+          {type = "R", links = ["rod", "piston"], point = "B"},
+          {name = "bore", type = "P", links = ["ground", "piston"], point = "B", axis = 30, origin = "O2"},
+          {name = "jS", type = "R", links = ["crank", "swivel"], point = "A"},
+          {type = "R", links = ["ground", "arm"], point = "O4"},
+          {name = "sleeve", type = "P", links = ["arm", "swivel"], point = "A", axis = [-2, 1]}]
+inputs = [{joint = "jO2"}]
 """
 
 
