@@ -1,15 +1,16 @@
 """``kinelab analyze`` and ``kinelab check``."""
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import click
 import numpy as np
 
-from kinelab import io, kinematics
+from kinelab import io, kinematics, solvers
 from kinelab.cli._format import configuration_text, summary_text
 from kinelab.cli._main import errors_from, output_path, parse_inputs, read_model, stem, sweep
-from kinelab.errors import KinelabError, ModelError
+from kinelab.errors import AssemblyError, KinelabError, ModelError
 
 __all__ = ["analyze", "check"]
 
@@ -23,8 +24,30 @@ DEGREES = click.option("--degrees", is_flag=True,
 def summarise(mf, sol):
     o = mf.outputs
     with errors_from(mf):
-        return io.summary(sol, report=o.report or None, transmission=o.transmission or None,
-                          time_ratio=o.time_ratio)
+        s = io.summary(sol, report=o.report or None, transmission=o.transmission or None,
+                       time_ratio=o.time_ratio)
+    if s.reachable and not s.full_turn and kinematics.plan(mf.mechanism).input_kinds == ("angle",):
+        # limit positions by the swept range, not a whole turn away from it
+        middle = 0.5 * sum(s.input_range[0])
+        s = dataclasses.replace(s, reachable=tuple(solvers.turn_intervals(s.reachable, middle)))
+    return s
+
+
+def missing_time_ratio(mf, s, degrees: bool) -> str | None:
+    """Why the time ratio the file asks for is not in the summary, in one line."""
+    output = mf.outputs.time_ratio
+    if s is None or not output or s.quick_return is not None:
+        return None
+    try:
+        kinematics.time_ratio(mf.mechanism, output)
+    except AssemblyError as exc:
+        unit, f = ("deg", 180.0 / math.pi) if degrees else ("rad", 1.0)
+        spans = " and ".join(f"[{a * f:.6g}, {b * f:.6g}]" for a, b in s.reachable or exc.reachable)
+        return (f"time ratio of {output}: none; {mf.mechanism.input_names[0]} cannot turn a full "
+                f"turn (it reaches only {spans} {unit})")
+    except KinelabError as exc:
+        return f"time ratio of {output}: none; " + str(exc).removeprefix("time_ratio: ")
+    return None
 
 
 @click.command()
@@ -40,12 +63,18 @@ def summarise(mf, sol):
               help="Print one configuration in full instead of sweeping: the input value in "
                    "the file's unit, or with a unit (30deg, 0.5rad, 12mm); comma-separated for "
                    "several inputs.")
+@click.option("--speed", "speed", default=None, metavar="VALUE",
+              help="Input speed for this run, instead of the file's: in the file's unit per "
+                   "second, or with a unit (60deg, 1rad, 12mm: per second); comma-separated "
+                   "for several inputs.")
 @click.option("--quiet", "-q", is_flag=True, help="Do not print the summary.")
-def analyze(model, out, fmt, samples, degrees, at, quiet):
+def analyze(model, out, fmt, samples, degrees, at, speed, quiet):
     """Sweep MODEL's input range and write one row per sample: inputs; every link's angle,
     omega, alpha; every slide and its rates; every point's x, y, vx, vy, ax, ay; K and L of
     each; det J and the singular flag.  Prints a summary."""
     mf = read_model(model)
+    if speed is not None:
+        mf = with_speeds(mf, parse_inputs(speed, mf, "--speed"))
     m = mf.mechanism
     if at is not None:
         q = parse_inputs(at, mf)
@@ -63,7 +92,18 @@ def analyze(model, out, fmt, samples, degrees, at, quiet):
     written = io.write_results(sol, path, format=fmt, degrees=degrees)
     if s is not None:
         click.echo(summary_text(s, degrees=degrees))
+        note = missing_time_ratio(mf, s, degrees)
+        if note:
+            click.echo(note)
     click.echo(f"wrote {written} ({sol.N} rows, {len(sol.columns())} columns)")
+
+
+def with_speeds(mf, qd) -> io.ModelFile:
+    """The model file with its inputs' speeds replaced by ``qd`` (SI, one per input)."""
+    m = mf.mechanism
+    inputs = tuple(dataclasses.replace(i, speed=float(v))
+                   for i, v in zip(m.inputs, np.atleast_1d(qd)))
+    return dataclasses.replace(mf, mechanism=dataclasses.replace(m, inputs=inputs))
 
 
 @click.command()

@@ -1,6 +1,7 @@
 """``kinelab export`` and ``kinelab import``: drawings and other tools' formats."""
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import click
@@ -73,8 +74,11 @@ def export(model, target, out, unit, layout, width, hole, ground):
               help="linkage2d: the joint (name or id) that drives it.")
 def import_(source, out, fmt, unit, inputs, input_joint):
     """Convert SOURCE, a Pyslvs mechanism expression or a linkage2d JSON file, into a kinelab
-    model file (the assembly of the drawing is kept)."""
+    model file (the assembly of the drawing is kept).  A Pyslvs expression has no speeds: its
+    inputs get 600 deg/s (100 rpm) for an angle and 100 mm/s for a slide, as the written
+    file's description says."""
     path = Path(source)
+    description = ""
     if fmt == "auto":
         fmt = "linkage2d" if path.suffix.lower() == ".json" else "pyslvs"
     if fmt == "linkage2d":
@@ -95,6 +99,18 @@ def import_(source, out, fmt, unit, inputs, input_joint):
             m = io.from_pyslvs(text, inputs=pairs, length=unit, name=path.stem)
         except ModelError as exc:
             raise ModelError(exc.problems, source=path.name) from None
-    written = io.save(io.ModelFile(mechanism=m, units=io.Units(unit, "deg")), out)
+        description = _speed_note(path.name, unit)
+    written = io.save(io.ModelFile(mechanism=m, units=io.Units(unit, "deg"),
+                                   description=description), out)
     click.echo(f"wrote {written}: {len(m.links)} links, {len(m.joints)} joints, inputs "
                f"{', '.join(m.input_names) or 'none (add one under [[inputs]])'}")
+
+
+def _speed_note(source: str, unit: str) -> str:
+    """What an imported Pyslvs model's file says about the input speeds it was given."""
+    turn = io.IMPORT_SPEEDS["angle"]
+    slide = io.IMPORT_SPEEDS["slide"] / io.LENGTH_UNITS[unit]
+    return (f"Imported from the Pyslvs expression {source}, which has no speeds: each input "
+            f"was given kinelab's default, {math.degrees(turn):.6g} deg/s "
+            f"({turn * 60 / (2 * math.pi):.6g} rpm) for an angle, {slide:.6g} {unit}/s for a "
+            "slide; set your own with speed under [[inputs]] (or kinelab analyze --speed).")

@@ -123,13 +123,14 @@ def output_path(out: str | None, stem: str, suffix: str) -> Path:
 _VALUE = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([a-z]*)\s*$")
 
 
-def parse_inputs(text: str, mf: ModelFile) -> np.ndarray:
+def parse_inputs(text: str, mf: ModelFile, option: str = "--at") -> np.ndarray:
     """Input values typed by a person, ``30``, ``30deg``, ``0.5rad``, ``12mm`` or ``30,60``,
-    in SI; a bare number is in the file's unit."""
+    in SI; a bare number is in the file's unit.  The same for rates (``--speed 60deg`` is
+    60 deg/s): errors name ``option``."""
     kinds = kinematics.plan(mf.mechanism).input_kinds
     parts = text.split(",")
     if len(parts) != len(kinds):
-        raise ModelError(f"--at: expected {len(kinds)} value(s) separated by commas (one per "
+        raise ModelError(f"{option}: expected {len(kinds)} value(s) separated by commas (one per "
                          f"input: {', '.join(mf.mechanism.input_names)}), got {text!r}")
     out = []
     for part, kind in zip(parts, kinds):
@@ -138,7 +139,7 @@ def parse_inputs(text: str, mf: ModelFile) -> np.ndarray:
         units = {"deg": math.pi / 180, "rad": 1.0} if kind == "angle" else LENGTH_UNITS
         default = mf.units.angle_scale if kind == "angle" else mf.units.length_scale
         if not match or (unit and unit not in units):
-            raise ModelError(f"--at: expected a number, optionally followed by one of "
+            raise ModelError(f"{option}: expected a number, optionally followed by one of "
                              f"{', '.join(units)}, got {part.strip()!r}")
         out.append(float(match.group(1)) * (units[unit] if unit else default))
     return np.array(out) if len(out) > 1 else np.array(out[0])

@@ -1,6 +1,6 @@
 """Dynamics by Gibbs-Appell / Kane: inverse and forward dynamics of planar mechanisms.
 
-The notes' equations ``C^T D f = 0`` (seed 003 §5) in the independent coordinates q:
+The notes' equations ``C^T D f = 0`` (*Mecanismos*, §5) in the independent coordinates q:
 C is the engine's velocity-coefficient matrix K (with the identity rows of the inputs)
 and its time derivative comes from the acceleration coefficients L, so every term is a
 vectorised product of K, L and the mass data over the samples.

@@ -146,7 +146,7 @@ def inverse(model, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayLike = 0.0, *,
             t: ArrayLike = 0.0, reactions: bool = True) -> InverseDynamics:
     """Actuator efforts that produce a motion, with the joint reactions and shaking force.
 
-    Kane's equations (the notes' ``C^T D f = 0``, seed 003 eq. 58-66) in the independent
+    Kane's equations (the notes' ``C^T D f = 0``, *Mecanismos*, eq. 58-66) in the independent
     coordinates q: with K and L from the kinematics engine, the generalised inertia force
     is ``F* = sum K_G^T m a_G + K_theta^T I alpha`` and the loads give ``Q``; the
     actuators supply the rest, ``tau = F* - Q``.  The reactions come from the free-body
@@ -185,12 +185,12 @@ def inverse(model, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayLike = 0.0, *,
 
     References
     ----------
-    Seed 003 §5 (Gibbs-Appell / Kane); Kane and Levinson, *Dynamics: Theory and
+    *Mecanismos*, §5 (Gibbs-Appell / Kane); Kane and Levinson, *Dynamics: Theory and
     Applications* (1985), ch. 6.
 
     Examples
     --------
-    A pendulum held still at angle theta needs ``tau = m g L cos(theta)`` (seed 003 §5):
+    A pendulum held still at angle theta needs ``tau = m g L cos(theta)`` (*Mecanismos*, §5):
 
     >>> from kinelab.model import Mechanism, Point, Link, Joint, Input
     >>> from kinelab.dynamics import Loads, inverse
@@ -287,6 +287,10 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms) -> dict:
     ones = np.ones(N)
     ex, ey = np.tile([1.0, 0.0], (N, 1)), np.tile([0.0, 1.0], (N, 1))
 
+    def axis(j):
+        """A prismatic joint's slide direction, (N, 2) also for a single configuration."""
+        return np.reshape(sol.slide_axes(j.name), (N, 2))
+
     for c, j in enumerate(m.joints):
         a, s = j.links
         at = pos(j.point)
@@ -295,7 +299,7 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms) -> dict:
                 on(s, e, at, 2 * c + k)
                 on(a, -e, at, 2 * c + k)
         else:
-            u = sol.slide_axes(j.name)
+            u = axis(j)
             n = np.stack([-u[:, 1], u[:, 0]], axis=-1)
             on(s, n, at, 2 * c)
             on(a, -n, at, 2 * c)
@@ -305,7 +309,7 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms) -> dict:
         col = 2 * J + k
         if inp.joint is not None and m.joint(inp.joint).type == "P":
             j = m.joint(inp.joint)
-            u = sol.slide_axes(j.name)
+            u = axis(j)
             at = pos(j.point)
             on(j.links[1], u, at, col)
             on(j.links[0], -u, at, col)
@@ -362,7 +366,7 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms) -> dict:
         if j.type == "R":
             forces[:, c] = x[:, 2 * c:2 * c + 2]
         else:
-            u = sol.slide_axes(j.name)
+            u = axis(j)
             forces[:, c] = x[:, 2 * c, None] * np.stack([-u[:, 1], u[:, 0]], axis=-1)
             moments[:, c] = x[:, 2 * c + 1]
     return dict(forces=forces, moments=moments, efforts=x[:, 2 * J:], unique=unique,

@@ -206,7 +206,7 @@ class MassProperties:
         same centre of mass); each lump rides the neighbouring link at that joint when it
         is not lumped too.  The two-point model's moment of inertia about G is
         ``m |AG| |GB|``, which replaces the link's own: the approximation of the notes
-        (seed 003 §5.7).
+        (*Mecanismos*, §5.7).
 
         Examples
         --------

@@ -5,7 +5,7 @@ centres of mass and the link angles, the identity rows being the inputs themselv
 the accelerations a_G = K q'' + q'^T L q' that the kinematics engine returns, the
 generalised inertia force of the independent coordinates is::
 
-    F* = sum over bodies of  K_G^T m a_G + K_theta^T I alpha        (seed 003, eq. 58-66)
+    F* = sum over bodies of  K_G^T m a_G + K_theta^T I alpha        (*Mecanismos*, eq. 58-66)
 
 and each applied load contributes ``K_P^T F`` (a force at point P), ``K_theta^T T`` (a
 torque), ``-T dl/dq`` (a spring or damper of tension T and length l).  Kane's equations

@@ -13,7 +13,7 @@ from kinelab.io._modelfile import (ANGLE_UNITS, LENGTH_UNITS, SCHEMA, ModelFile,
                                    from_json, from_toml, load, save, to_json, to_toml)
 from kinelab.io._linkage2d import from_linkage2d_json
 from kinelab.io._outline import Outline, outlines, to_dxf, to_svg
-from kinelab.io._pyslvs import from_pyslvs, to_pyslvs
+from kinelab.io._pyslvs import IMPORT_SPEEDS, from_pyslvs, to_pyslvs
 from kinelab.io._results import RESULT_FORMATS, write_results
 from kinelab.io._summary import (Extreme, QuickReturn, Summary, Transmission, default_outputs,
                                  summary)
@@ -21,5 +21,5 @@ from kinelab.io._summary import (Extreme, QuickReturn, Summary, Transmission, de
 __all__ = ["load", "save", "ModelFile", "Units", "Outputs", "SCHEMA", "LENGTH_UNITS",
            "ANGLE_UNITS", "from_toml", "to_toml", "from_json", "to_json", "write_results",
            "RESULT_FORMATS", "summary", "Summary", "Extreme", "Transmission", "QuickReturn",
-           "default_outputs", "from_pyslvs", "to_pyslvs", "from_linkage2d_json",
+           "default_outputs", "from_pyslvs", "to_pyslvs", "IMPORT_SPEEDS", "from_linkage2d_json",
            "to_svg", "to_dxf", "outlines", "Outline"]

@@ -27,7 +27,12 @@ from kinelab.io._fields import quoted
 from kinelab.io._modelfile import LENGTH_UNITS
 from kinelab.model import Input, Joint, Link, Mechanism, Point
 
-__all__ = ["from_pyslvs", "to_pyslvs"]
+__all__ = ["from_pyslvs", "to_pyslvs", "IMPORT_SPEEDS"]
+
+# Pyslvs' expression has no speeds; an imported input gets these (rad/s for a crank, m/s for
+# a slide), so that its velocities and accelerations are not all zero.  100 rpm is the crank
+# speed of the examples (600 deg/s).
+IMPORT_SPEEDS = {"angle": 2.0 * math.pi * 100.0 / 60.0, "slide": 0.1}
 
 _TOKEN = re.compile(r"""
     (?P<space>\s+|\#\[[\s\S]*?\#\][^\n]*|\#[^\n]*)
@@ -147,6 +152,10 @@ def from_pyslvs(expression: str, *, inputs: Sequence[tuple[int, int]] | None = N
     point gets one, ``P{i}_on_{link}``, on its slot line.  A link's points start with its
     ground pivot, so that a crank's or rocker's angle is measured from its pivot.
 
+    The expression has no speeds: each input gets ``IMPORT_SPEEDS``, 100 rpm (10 pi / 3
+    rad/s, the 600 deg/s of the examples) for an angle, 0.1 m/s for a slide; change
+    ``Input.speed`` (or ``speed`` in the model file) to your own.
+
     Parameters
     ----------
     expression : str
@@ -170,6 +179,8 @@ def from_pyslvs(expression: str, *, inputs: Sequence[tuple[int, int]] | None = N
     ... ]''')
     >>> m.point_names, m.inputs[0].joint, m.point("P1").xy
     (('P0', 'P1', 'P2', 'P3'), 'jP0', (0.0, 0.01))
+    >>> round(float(np.degrees(m.inputs[0].speed)), 9)          # deg/s: 100 rpm
+    600.0
     """
     if length not in LENGTH_UNITS:
         raise ModelError(f"length: expected one of {quoted(LENGTH_UNITS)}, got {length!r}")
@@ -251,10 +262,11 @@ def _commented_inputs(expression: str):
 
 
 def _inputs(vpoints, joints: list[Joint], carried, pairs) -> list[Input]:
+    turn = IMPORT_SPEEDS["angle"]
     if pairs is None:
         for j in joints:
             if j.type == "R" and j.links[0] == GROUND:
-                return [Input(joint=j.name)]
+                return [Input(joint=j.name, speed=turn)]
         return []
     out = []
     for k, pair in enumerate(pairs):
@@ -267,7 +279,7 @@ def _inputs(vpoints, joints: list[Joint], carried, pairs) -> list[Input]:
             slide = next((j for j in joints if j.type == "P" and j.point == f"P{b}"), None)
             if slide is None:
                 raise ModelError(f"inputs[{k}]: ({b}, {b}) drives a slide, but joint {b} is no slider")
-            out.append(Input(joint=slide.name))
+            out.append(Input(joint=slide.name, speed=IMPORT_SPEEDS["slide"]))
             continue
         common = [n for n, pts in carried.items() if n != GROUND and f"P{b}" in pts and f"P{d}" in pts]
         if not common:
@@ -275,7 +287,8 @@ def _inputs(vpoints, joints: list[Joint], carried, pairs) -> list[Input]:
         link = common[0]
         pivot = next((j for j in joints if j.type == "R" and j.point == f"P{b}"
                       and set(j.links) == {GROUND, link}), None)
-        out.append(Input(joint=pivot.name) if pivot else Input(links=(GROUND, link)))
+        out.append(Input(joint=pivot.name, speed=turn) if pivot else
+                   Input(links=(GROUND, link), speed=turn))
     return out
 
 

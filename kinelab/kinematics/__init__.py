@@ -1,17 +1,21 @@
 """Position, velocity and acceleration analysis of any planar mechanism.
 
-The notes' method (seed 000; seed 003 §4.4-4.8): position equations Phi(q, S) = 0, Jacobian
+The notes' method (Erthal, *Mecanismos com 1 GL: análise geral de velocidade e aceleração*;
+*Mecanismos*, §4.4-4.8): position equations Phi(q, S) = 0, Jacobian
 J = dPhi/dS and Q = dPhi/dq, velocity coefficients K = -J^-1 Q and acceleration
 coefficients L = dK/dq, singular configurations where det J = 0.
 """
 from kinelab.kinematics._analyze import (SINGULAR_TOL, analyze, change_points, plan, reachable_ranges,
                                          turns_fully)
 from kinelab.kinematics._branches import ChangePoint
-from kinelab.kinematics._instant_centers import InstantCenter, instant_center, instant_centers
+from kinelab.kinematics._instant_centers import (InstantCenter, InstantCenters, instant_center,
+                                                 instant_centers)
 from kinelab.kinematics._measures import TimeRatio, time_ratio, transmission_angle
 from kinelab.kinematics._plan import Plan, Step
-from kinelab.kinematics._solution import AccelerationComponents, KinematicSolution
+from kinelab.kinematics._solution import AccelerationComponents, GuidePoint, KinematicSolution
 
 __all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "KinematicSolution", "AccelerationComponents",
+           "GuidePoint",
            "Plan", "Step", "SINGULAR_TOL", "transmission_angle", "time_ratio", "TimeRatio",
-           "instant_center", "instant_centers", "InstantCenter", "change_points", "ChangePoint"]
+           "instant_center", "instant_centers", "InstantCenter", "InstantCenters", "change_points",
+           "ChangePoint"]

@@ -6,10 +6,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinelab.errors import ModelError
+from kinelab.errors import AssemblyError, ModelError, SingularityError
 from kinelab.kinematics._solution import KinematicSolution
 from kinelab.model import Mechanism
-from kinelab.solvers import bisect, wrap_angle
+from kinelab.solvers import bisect, turn_intervals, wrap_angle
 
 __all__ = ["transmission_angle", "time_ratio", "TimeRatio"]
 
@@ -60,13 +60,41 @@ def time_ratio(mechanism: Mechanism, output: str, *, samples: int = 3601) -> Tim
     The output (a link angle or a slide) reverses where its velocity coefficient K
     vanishes; the crank angles between the two reversals give the two strokes.
 
+    Parameters
+    ----------
+    mechanism : Mechanism
+        Driven by one crank angle, which must turn a full turn.
+    output : str
+        A link or a prismatic joint.
+    samples : int
+        Samples over the turn where K's sign changes are looked for (then bisected).
+
+    Returns
+    -------
+    TimeRatio
+
+    Raises
+    ------
+    AssemblyError
+        The crank cannot turn a full turn (its ``reachable`` attribute lists the input
+        intervals it reaches): the output has no time ratio.
+    SingularityError
+        The turn passes a singular configuration, where K of the output is undefined.
+    ModelError
+        Not one crank input, or the output does not reverse exactly twice per turn.
+
     Examples
     --------
     >>> w = kl.mechanisms.whitworth(crank=1.0, distance=0.5, lever=1.0, rod=2.0)
     >>> round(kl.kinematics.time_ratio(w, "ram_slide").ratio, 12)   # (pi + 2 asin 1/2) / (pi - 2 asin 1/2)
     2.0
+    >>> rocker = kl.mechanisms.fourbar(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)
+    >>> kl.kinematics.time_ratio(rocker, "rocker")       # non-Grashof: |q| <= acos(-0.3125)
+    Traceback (most recent call last):
+    ...
+    kinelab.errors.AssemblyError: time_ratio: 'rocker' has no time ratio: its input 'jO2' cannot turn a full turn; it reaches only [-1.88862, 1.88862] rad (its limit positions); ...
     """
-    from kinelab.kinematics._analyze import analyze, plan
+    from kinelab.kinematics._analyze import analyze, plan, reachable_ranges
 
     p = plan(mechanism)
     if p.input_kinds != ("angle",):
@@ -78,10 +106,24 @@ def time_ratio(mechanism: Mechanism, output: str, *, samples: int = 3601) -> Tim
     def K(x):
         return analyze(mechanism, q=x, unreachable="mask", at_singular="flag").K(output)
 
-    k = K(q)
-    if not np.all(np.isfinite(k)):
-        raise ModelError(f"time_ratio: the crank does not turn fully (or passes a singular "
-                         f"position); the time ratio of '{output}' is not defined")
+    sweep = analyze(mechanism, q=q, unreachable="mask", at_singular="flag")
+    k = sweep.K(output)
+    name = mechanism.input_names[0]
+    if not sweep.assembled.all():
+        reach = turn_intervals(reachable_ranges(mechanism))
+        spans = " and ".join(f"[{a:.6g}, {b:.6g}]" for a, b in reach)
+        raise AssemblyError(
+            f"time_ratio: '{output}' has no time ratio: its input '{name}' cannot turn a full "
+            f"turn; it reaches only {spans} rad (its limit positions); a time ratio needs a "
+            "crank that turns fully: change the link lengths (Grashof's condition for a "
+            "four-bar, crank + |offset| < rod for a slider-crank)",
+            loop=name, reachable=reach)
+    if sweep.singular.any():
+        at = float(np.mod(q[np.argmax(sweep.singular)], 2.0 * math.pi))
+        raise SingularityError(
+            f"time_ratio: the turn of '{name}' passes a singular configuration near q = "
+            f"{at:.6g} rad (det J = 0), where the velocity coefficient K of '{output}' is not "
+            "defined; its time ratio is not defined either")
     sign = np.sign(k)
     changes = np.flatnonzero(sign[:-1] * sign[1:] < 0)
     if len(changes) != 2:
@@ -98,3 +140,4 @@ def time_ratio(mechanism: Mechanism, output: str, *, samples: int = 3601) -> Tim
     second = 2.0 * math.pi - first
     slow, fast = max(first, second), min(first, second)
     return TimeRatio(ratio=slow / fast, dead_centres=np.mod(dc, 2.0 * math.pi), slow=slow, fast=fast)
+

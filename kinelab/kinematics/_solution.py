@@ -5,10 +5,12 @@ import functools
 import math
 import os
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
 from kinelab.errors import ModelError, quoted, suggest
+from kinelab.kinematics._geometry import k_cross
 from kinelab.kinematics._plan import Plan
 from kinelab.model import Mechanism
 from kinelab.solvers import wrap_angle
@@ -36,6 +38,72 @@ class AccelerationComponents:
     @property
     def total(self) -> np.ndarray:
         return self.origin + self.tangential + self.normal + self.coriolis + self.sliding
+
+
+@dataclass(frozen=True)
+class GuidePoint:
+    """The point of a prismatic joint's guide under the slider's point, at every sample.
+
+    At each instant the guide (the joint's first link) has a point G in the same place as
+    the joint's point P, which the slider carries: in the slotted link, the point of the
+    lever under the crank pin.  G moves with the guide as a rigid body; P moves along the
+    slide on top of it.  With u the slide's direction, s its slide and omega the guide's
+    angular velocity::
+
+        v_P = v_G + s' u
+        a_P = a_G + 2 omega k x (s' u) + s'' u          (Coriolis, then sliding)
+
+    and, with O the slide's origin (a point of the guide) and r = P - O,
+    ``v_G = v_O + omega k x r`` and ``a_G = a_O + alpha k x r - omega^2 r``.
+
+    Attributes
+    ----------
+    joint : str
+        The prismatic joint.
+    guide : str
+        The link G belongs to (the joint's first link).
+    point : str
+        The joint's point P, which G lies under.
+    position : ndarray, shape (2,) or (N, 2)
+        m; the position of P.
+    velocity : ndarray, shape (2,) or (N, 2)
+        m/s.
+    acceleration : ndarray, shape (2,) or (N, 2)
+        m/s^2.
+    """
+
+    joint: str
+    guide: str
+    point: str
+    position: np.ndarray
+    velocity: np.ndarray
+    acceleration: np.ndarray
+
+
+class _SlideMotion(NamedTuple):
+    """A prismatic joint's point P seen from its guide, per sample: r = P - O (O the slide's
+    origin, a point of the guide), O's velocity and acceleration, the guide's omega and alpha
+    (N, 1), the unit axis u and the slide's rates s', s'' (N, 1)."""
+
+    point: np.ndarray
+    r: np.ndarray
+    v_origin: np.ndarray
+    a_origin: np.ndarray
+    omega: np.ndarray
+    alpha: np.ndarray
+    u: np.ndarray
+    sd: np.ndarray
+    sdd: np.ndarray
+
+    @property
+    def tangential(self) -> np.ndarray:
+        """alpha k x r: the guide's angular acceleration at P."""
+        return self.alpha * k_cross(self.r)
+
+    @property
+    def normal(self) -> np.ndarray:
+        """-omega^2 r: towards the origin, as the guide turns."""
+        return -(self.omega ** 2) * self.r
 
 
 @dataclass(frozen=True, eq=False)
@@ -283,7 +351,7 @@ class KinematicSolution:
 
     def acceleration_components(self, point: str, joint: str | None = None) -> AccelerationComponents:
         """Normal, tangential, Coriolis and sliding parts of the acceleration of a point that
-        slides along a turning link (seed 001).
+        slides along a turning link (Badan (IFG), *Análise de aceleração* (after Norton, ch. 7)).
 
         Parameters
         ----------
@@ -291,6 +359,24 @@ class KinematicSolution:
             The point of a prismatic joint (carried by the slider).
         joint : str, optional
             The prismatic joint, when the point belongs to more than one.
+
+        Returns
+        -------
+        AccelerationComponents
+            Each part has shape (2,) for one configuration, (N, 2) for N.
+
+        Examples
+        --------
+        The slotted link at q = 0 (pin A at (3, 0), lever along +x) and qd = 3 rad/s: the
+        pin does not slide yet (s' = 0, no Coriolis part) but accelerates along the slot,
+        s'' = -6 m/s^2:
+
+        >>> sl = kl.mechanisms.slotted_link(crank=1.0, distance=2.0)
+        >>> parts = kl.analyze(sl, q=0.0, qd=3.0).acceleration_components("A")
+        >>> bool(np.allclose(parts.coriolis, 0.0)), bool(np.allclose(parts.sliding, [-6.0, 0.0]))
+        (True, True)
+        >>> bool(np.allclose(parts.total, kl.analyze(sl, q=0.0, qd=3.0).acceleration("A")))
+        True
         """
         m = self.mechanism
         joints = [j for j in m.joints if j.type == "P" and j.point == point
@@ -301,35 +387,76 @@ class KinematicSolution:
                              + (f" '{joint}'" if joint else "") + f"; prismatic joints are {names}")
         if len(joints) > 1:
             raise ModelError(f"point '{point}' slides in {len(joints)} joints; name one with joint=")
-        j = joints[0]
-        guide = j.links[0]
-        origin = j.origin or m.link(guide).points[0]
-        gi = self.link_item[guide]
-        oi, pi = self.point_item[origin], self.point_item[point]
-        si = self.slide_item[j.name]
-        jets, rates = self.item_jets([pi, pi + 1, oi, oi + 1]), self.item_rates([gi, si, oi, oi + 1])
-        r = jets[:, 0:2, 0] - jets[:, 2:4, 0]
-        w = rates[:, 0:1, 0]
-        a = rates[:, 0:1, 1]
-        u = self.slide_axes(j.name)
-
-        def k_cross(v):
-            return np.stack([-v[:, 1], v[:, 0]], axis=-1)
-        sd = rates[:, 1:2, 0]
-        sdd = rates[:, 1:2, 1]
-        parts = dict(origin=rates[:, 2:4, 1], tangential=a * k_cross(r),
-                     normal=-(w ** 2) * r, coriolis=2.0 * w * k_cross(sd * u), sliding=sdd * u)
+        s = self._slide_motion(joints[0].name)
+        parts = dict(origin=s.a_origin, tangential=s.tangential, normal=s.normal,
+                     coriolis=2.0 * s.omega * k_cross(s.sd * s.u), sliding=s.sdd * s.u)
         return AccelerationComponents(**{k: self._out(v) for k, v in parts.items()})
 
+    def guide_point(self, joint: str) -> GuidePoint:
+        """Position, velocity and acceleration of the guide's point under the slider's point
+        (see :class:`GuidePoint`), at every sample.
+
+        Parameters
+        ----------
+        joint : str
+            A prismatic joint.
+
+        Returns
+        -------
+        GuidePoint
+            Its arrays have shape (2,) for one configuration, (N, 2) for N.
+
+        Examples
+        --------
+        In the slotted link at q = 0 the pin A is at (3, 0) and the lever lies along +x; at
+        qd = 3 rad/s the lever turns at omega = qd R / B = 1 rad/s, alpha = 0:
+
+        >>> sl = kl.mechanisms.slotted_link(crank=1.0, distance=2.0)
+        >>> sol = kl.analyze(sl, q=0.0, qd=3.0)
+        >>> g = sol.guide_point("slot")
+        >>> g.velocity, g.acceleration.round(12)         # omega k x r, -omega^2 r
+        (array([0., 3.]), array([-3.,  0.]))
+        >>> sol.acceleration("A")             # -R qd^2: the rest is s'' u, s'' = -6 m/s^2
+        array([-9.,  0.])
+        """
+        s = self._slide_motion(joint)
+        j = self.mechanism.joint(joint)
+        velocity = s.v_origin + s.omega * k_cross(s.r)
+        acceleration = s.a_origin + s.tangential + s.normal
+        return GuidePoint(joint, j.links[0], j.point, *(self._out(a) for a in
+                                                        (s.point, velocity, acceleration)))
+
     def slide_axes(self, joint: str) -> np.ndarray:
-        """Unit direction of a prismatic joint's slide at every sample (it turns with the
-        guide, its first link), shape (N, 2) even for a single configuration."""
+        """Unit direction of a prismatic joint's slide, which turns with the guide (the
+        joint's first link); shape (2,) or (N, 2).
+
+        Examples
+        --------
+        >>> sl = kl.mechanisms.slotted_link(crank=1.0, distance=2.0)
+        >>> kl.analyze(sl, q=np.pi / 2).slide_axes("slot").round(12)   # from O4 towards A = (2, 1)
+        array([0.89442719, 0.4472136 ])
+        >>> kl.analyze(sl, q=[0.0, np.pi / 2]).slide_axes("slot").shape
+        (2, 2)
+        """
+        return self._out(self._slide_motion(joint).u)
+
+    def _slide_motion(self, joint: str) -> _SlideMotion:
+        """The motion of a prismatic joint's point relative to its guide, (N, ...) arrays."""
         self._find(joint, "s")
         j = self.mechanism.joint(joint)
-        gi = self.link_item[j.links[0]]
-        theta = self.item_jets([gi])[:, 0, 0] + (math.atan2(j.axis[1], j.axis[0])
-                                                 - self.plan.sketch_angles[gi])
-        return np.stack([np.cos(theta), np.sin(theta)], axis=-1)
+        guide = j.links[0]
+        origin = j.origin or self.mechanism.link(guide).points[0]
+        gi = self.link_item[guide]
+        oi, pi = self.point_item[origin], self.point_item[j.point]
+        jets = self.item_jets([pi, pi + 1, oi, oi + 1, gi])
+        rates = self.item_rates([gi, self.slide_item[joint], oi, oi + 1])
+        theta = jets[:, 4, 0] + (math.atan2(j.axis[1], j.axis[0]) - self.plan.sketch_angles[gi])
+        return _SlideMotion(
+            point=jets[:, 0:2, 0], r=jets[:, 0:2, 0] - jets[:, 2:4, 0],
+            v_origin=rates[:, 2:4, 0], a_origin=rates[:, 2:4, 1],
+            omega=rates[:, 0:1, 0], alpha=rates[:, 0:1, 1],
+            u=np.stack([np.cos(theta), np.sin(theta)], axis=-1),
+            sd=rates[:, 1:2, 0], sdd=rates[:, 1:2, 1])
 
     # -- export -------------------------------------------------------------------------
     def columns(self, degrees: bool = False) -> dict[str, np.ndarray]:

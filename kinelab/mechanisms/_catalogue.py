@@ -84,7 +84,7 @@ def fourbar(ground: float, crank: float, coupler: float, rocker: float,
     Examples
     --------
     >>> fb = kl.mechanisms.fourbar(ground=2.0, crank=1.0, coupler=1.0, rocker=1.0)
-    >>> sol = kl.analyze(fb, q=0.0)                          # notes 003, Ex. 4.2
+    >>> sol = kl.analyze(fb, q=0.0)                          # *Mecanismos*, Ex. 4.2
     >>> np.degrees([sol.angle("coupler"), sol.angle("rocker")]).round(9)
     array([ 60., 120.])
     """
@@ -212,12 +212,13 @@ def _slotted(name: str, ground_xy: tuple[float, float], crank: float, offset: fl
 
 def slotted_link(crank: float, distance: float,
                  branch: Literal["positive", "negative"] = "positive") -> Mechanism:
-    """Slotted-link (crank and slotted lever, quick-return) mechanism of seed 000.
+    """Slotted-link (crank and slotted lever, quick-return) mechanism of
+    Erthal, *Mecanismos com 1 GL: análise geral de velocidade e aceleração*.
 
     The position equations of the notes are ``B cos A - R cos q - C = 0`` and
     ``B sin A - R sin q = 0`` with R = crank and C = distance: the lever pivot ``O4`` is at
     the origin, the crank pivot ``O2`` at ``(C, 0)``, the crank pin ``A`` slides in the
-    lever's slot.  The seed's A is ``sol.angle("lever")``, its B is ``sol.slide("slot")``
+    lever's slot.  Erthal's A is ``sol.angle("lever")``, its B is ``sol.slide("slot")``
     (the distance O4A).  Links ``ground, crank, block, lever``; points ``O4, O2, A`` and
     ``C`` (the lever's end, at distance crank + distance from O4); joints ``jO2, jA, jO4``
     and the prismatic ``slot`` (guide lever, slider block).  Input ``jO2``.
@@ -244,8 +245,10 @@ def slotted_link(crank: float, distance: float,
 
 def inverted_slider_crank(ground: float, crank: float, offset: float = 0.0, rocker: float | None = None,
                           branch: Literal["positive", "negative"] = "positive") -> Mechanism:
-    """Inverted slider-crank (seed 001; seed 002 §4.7.4): the block on the crank pin slides
-    along the rocker.
+    """Inverted slider-crank: the block on the crank pin slides along the rocker
+    (Badan (IFG), *Análise de aceleração* (after Norton, ch. 7);
+    Flores & Claro, *Cinemática de Mecanismos — 4. Análise de Velocidades*
+    (Universidade do Minho, 2007), §4.7.4).
 
     Links ``ground, crank, block, rocker``; points ``O2`` (origin), ``A`` (crank pin, on
     the block), ``O4`` at ``(ground, 0)`` and ``C`` (the rocker's end, which sets its

@@ -1,6 +1,6 @@
 """The kinematic pairs kinelab knows, with the freedoms each allows.
 
-A pair that allows ``j`` relative freedoms is of class ``P{j}`` in the notes (seed 003
+A pair that allows ``j`` relative freedoms is of class ``P{j}`` in the notes (*Mecanismos*,
 §1): the revolute pair is P1, the cylindrical pair P2, the spherical pair P3.  In the
 plane (lambda = 3) a pair removes ``3 - j`` freedoms; in space (lambda = 6) ``6 - j``.
 """

@@ -46,9 +46,11 @@ class Link:
     name : str
     points : tuple of str
         The points the link carries.  The angle of the link is the direction from its
-        first point to its second (CCW from +x, rad); a link with a single point must
-        belong to a prismatic joint, and then its angle is the direction of that joint's
-        axis.
+        first point to its second (CCW from +x, rad).  A moving link with a single point
+        (a slider block) must belong to a prismatic joint; its angle is the direction of
+        the axis of the joint it slides in (the one where it is the second link; else the
+        one it guides), which turns with that joint's guide.  A ground with a single point
+        is the frame: angle 0.
     ground : bool
         The fixed link (exactly one per mechanism).
     mass : float, optional

@@ -5,9 +5,10 @@
 - :func:`newton` — batched Newton-Raphson with an analytic Jacobian and its iteration table;
 - :func:`continuation` — predictor-corrector along a parameter, with step halving;
 - :func:`bisect` — vectorised bisection on a boolean predicate;
-- :func:`wrap_angle` — angles into (-π, π].
+- :func:`wrap_angle` — angles into (-π, π]; :func:`turn_intervals` — angle intervals
+  shifted by whole turns near a given angle.
 """
-from kinelab.solvers._angles import wrap_angle
+from kinelab.solvers._angles import turn_intervals, wrap_angle
 from kinelab.solvers._bisect import bisect
 from kinelab.solvers._continuation import ContinuationResult, continuation
 from kinelab.solvers._dialytic import DialyticSolution, dialytic
@@ -16,4 +17,5 @@ from kinelab.solvers._newton import NewtonHistory, NewtonResult, iteration_table
 
 __all__ = ["bisect", "ContinuationResult", "continuation", "DialyticSolution", "dialytic",
            "HalfAngleSolution", "half_angle",
-           "NewtonHistory", "NewtonResult", "iteration_table", "newton", "wrap_angle"]
+           "NewtonHistory", "NewtonResult", "iteration_table", "newton", "wrap_angle",
+           "turn_intervals"]

@@ -23,3 +23,25 @@ def wrap_angle(angle: ArrayLike) -> np.ndarray | float:
         wrapped = np.where(wrapped == -np.pi, np.pi, wrapped)
         wrapped = np.where(inside, a, wrapped)
     return float(wrapped) if wrapped.ndim == 0 else wrapped
+
+
+def turn_intervals(intervals, around: float = 0.0) -> list[tuple[float, float]]:
+    """Angle intervals (rad) shifted by whole turns so that each one's middle is within half
+    a turn of ``around``, in increasing order: the same crank positions, written where a
+    person looks for them (near a sweep's range, or near zero).
+
+    Examples
+    --------
+    >>> turn = 2 * np.pi
+    >>> spans = kl.solvers.turn_intervals([(0.3 - turn, 0.5 - turn), (2.5 - turn, 3.0 - turn)])
+    >>> [(round(a, 9), round(b, 9)) for a, b in spans]
+    [(0.3, 0.5), (2.5, 3.0)]
+    >>> [(round(a, 9), round(b, 9)) for a, b in kl.solvers.turn_intervals([(0.3, 0.5)], around=turn)]
+    [(6.583185307, 6.783185307)]
+    """
+    turn = 2.0 * np.pi
+    out = []
+    for a, b in intervals:
+        k = np.floor((0.5 * (a + b) - around) / turn + 0.5)
+        out.append((float(a - k * turn), float(b - k * turn)))
+    return sorted(out)

@@ -90,7 +90,7 @@ def continuation(fun: Callable, jac: Callable, x0: ArrayLike, params: ArrayLike,
 
     Examples
     --------
-    The slider-crank of notes 003, Ex. 4.4 (L2 = L3 = 1) followed as θ2 turns from 45° to
+    The slider-crank of *Mecanismos*, Ex. 4.4 (L2 = L3 = 1) followed as θ2 turns from 45° to
     80°; the rod angle stays θ3 = -θ2:
 
     >>> def fun(x, th2):

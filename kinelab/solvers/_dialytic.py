@@ -41,7 +41,7 @@ class DialyticSolution:
         large residual marks a root of the eliminant with no finite y (both leading
         coefficients in y vanish there: a solution at infinity).
     matrix : sympy.Matrix, shape (m + n, m + n)
-        The dialytic matrix ``M`` (notes 003, eq. 35): the rows are p, q, y·p, y·q, …
+        The dialytic matrix ``M`` (*Mecanismos*, eq. 35): the rows are p, q, y·p, y·q, …
         (p times y⁰ … yⁿ⁻¹ and q times y⁰ … yᵐ⁻¹, m and n their degrees in y), the columns
         the powers ``y^(m+n-1) … y, 1``, so that ``M v = 0`` with ``v = (y^(m+n-1), …, y, 1)``.
     eliminant : sympy.Poly
@@ -78,7 +78,7 @@ def dialytic(p: Polynomial, q: Polynomial, variables: tuple | None = None, *,
              imag_tol: float = 1e-8) -> DialyticSolution:
     """Solve ``p(x, y) = 0``, ``q(x, y) = 0`` by dialytic elimination of y.
 
-    The method of notes 003, §4.6:
+    The method of *Mecanismos*, §4.6:
 
     1. write p and q as polynomials in y whose coefficients depend on x,
        ``p = Σ a_j(x) yʲ`` (degree m) and ``q = Σ b_j(x) yʲ`` (degree n);
@@ -118,11 +118,11 @@ def dialytic(p: Polynomial, q: Polynomial, variables: tuple | None = None, *,
 
     References
     ----------
-    Notes 003 ("Mecanismos"), §4.6, eqs. 27-37 and Ex. 4.3.
+    *Mecanismos*, §4.6, eqs. 27-37 and Ex. 4.3.
 
     Examples
     --------
-    Notes 003, Ex. 4.3: where the ellipse ``5x² + 5y² - 6xy - 8 = 0`` meets the circle
+    *Mecanismos*, Ex. 4.3: where the ellipse ``5x² + 5y² - 6xy - 8 = 0`` meets the circle
     ``x² + y² - 2x = 0``.
 
     >>> import sympy as sp

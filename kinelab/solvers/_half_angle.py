@@ -64,7 +64,7 @@ def half_angle(E: ArrayLike, F: ArrayLike, G: ArrayLike, *, strict: bool = False
 
     The substitution ``u = tan(θ/2)`` (``cos θ = (1 - u²)/(1 + u²)``,
     ``sin θ = 2u/(1 + u²)``) turns the equation into the quadratic
-    ``(G - E) u² + 2F u + (G + E) = 0`` (notes 003, eq. 24), with roots
+    ``(G - E) u² + 2F u + (G + E) = 0`` (*Mecanismos*, eq. 24), with roots
     ``u = (-F ± s)/(G - E)``, ``s = sqrt(E² + F² - G²)``.  Two refinements make this
     exact in floating point:
 
@@ -100,11 +100,11 @@ def half_angle(E: ArrayLike, F: ArrayLike, G: ArrayLike, *, strict: bool = False
 
     References
     ----------
-    Notes 003 ("Mecanismos"), §4.5, eqs. 23-24 and Ex. 4.2.
+    *Mecanismos*, §4.5, eqs. 23-24 and Ex. 4.2.
 
     Examples
     --------
-    Notes 003, Ex. 4.2 (four-bar L1 = 2, L2 = L3 = L4 = 1, θ2 = 0): E = 2, F = 0, G = 1,
+    *Mecanismos*, Ex. 4.2 (four-bar L1 = 2, L2 = L3 = L4 = 1, θ2 = 0): E = 2, F = 0, G = 1,
     so ``2 cos θ4 + 1 = 0`` and θ4 = ±120°:
 
     >>> sol = kl.solvers.half_angle(2.0, 0.0, 1.0)

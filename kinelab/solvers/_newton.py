@@ -171,11 +171,11 @@ def newton(fun: Callable[[np.ndarray], ArrayLike], jac: Callable[[np.ndarray], A
 
     References
     ----------
-    Notes 003 ("Mecanismos"), §4.7, eqs. 38-46 and Ex. 4.4.
+    *Mecanismos*, §4.7, eqs. 38-46 and Ex. 4.4.
 
     Examples
     --------
-    Notes 003, Ex. 4.4: slider-crank with L2 = L3 = 1 and θ2 = 45°; unknowns θ3 and the
+    *Mecanismos*, Ex. 4.4: slider-crank with L2 = L3 = 1 and θ2 = 45°; unknowns θ3 and the
     slider position l, ``Φ1 = cos θ2 + cos θ3 - l``, ``Φ2 = sin θ2 + sin θ3``:
 
     >>> th2 = np.radians(45.0)

@@ -1,6 +1,6 @@
 """Spatial kinematics: 3-D transforms, spatial mechanisms and serial/parallel robots.
 
-Notes 003 §4.2, §4.8 and §7.  Everything takes one configuration or a batch of N along
+*Mecanismos*, §4.2, §4.8 and §7.  Everything takes one configuration or a batch of N along
 axis 0, in SI units and radians.
 """
 from kinelab.spatial._transforms import (

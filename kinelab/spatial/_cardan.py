@@ -1,4 +1,4 @@
-"""The RUR (Cardan, Hooke) joint of notes 003 §7.4, single and double."""
+"""The RUR (Cardan, Hooke) joint of *Mecanismos*, §7.4, single and double."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -61,7 +61,7 @@ class CardanMotion:
     phi2, phi2_dot, phi2_ddot : ndarray
         Output shaft angle, speed and acceleration.
     ratio : ndarray
-        ``φ̇2 / φ̇1 = cos β / (1 - sin² β sin² φ1)`` (notes 003 eq. 76).
+        ``φ̇2 / φ̇1 = cos β / (1 - sin² β sin² φ1)`` (*Mecanismos*, eq. 76).
     """
 
     phi1: np.ndarray
@@ -74,7 +74,7 @@ class CardanMotion:
 
 
 def cardan_output(phi1: ArrayLike, beta: ArrayLike) -> np.ndarray:
-    """Output shaft angle of a Cardan joint: ``tan φ2 = tan φ1 cos β`` (notes 003 eq. 75).
+    """Output shaft angle of a Cardan joint: ``tan φ2 = tan φ1 cos β`` (*Mecanismos*, eq. 75).
 
     The geometry is the notes' (Fig. 59): the input shaft lies along x0, the output shaft
     along ``Rot(z0, β) x0``; the input yoke pin is ``Rot(x0, φ1) z0`` and the output's
@@ -109,7 +109,7 @@ def cardan_output(phi1: ArrayLike, beta: ArrayLike) -> np.ndarray:
 
 
 def cardan_velocity_ratio(phi1: ArrayLike, beta: ArrayLike) -> np.ndarray:
-    """``φ̇2 / φ̇1 = cos β / (1 - sin² β sin² φ1)`` (notes 003 eq. 76).
+    """``φ̇2 / φ̇1 = cos β / (1 - sin² β sin² φ1)`` (*Mecanismos*, eq. 76).
 
     It swings between ``cos β`` (at φ1 = 0, π) and ``1 / cos β`` (at φ1 = ±π/2) twice a
     turn: the output speed fluctuates even at constant input speed.
@@ -185,7 +185,7 @@ def double_cardan(phi1: ArrayLike, beta1: float, beta2: float, *,
                   arrangement: Literal["Z", "W"] = "Z", phase: float = 0.0,
                   plane_angle: float = 0.0, phi1_dot: ArrayLike = 0.0,
                   phi1_ddot: ArrayLike = 0.0) -> DoubleCardanMotion:
-    """Two Cardan joints in series (notes 003 §7.4, Fig. 60).
+    """Two Cardan joints in series (*Mecanismos*, §7.4, Fig. 60).
 
     Input shaft 1 along x0; joint A bends the drive by ``beta1`` in the x0 y0 plane onto
     the intermediate shaft 2; joint B bends it by ``beta2`` onto the output shaft 3, in a

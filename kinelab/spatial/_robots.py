@@ -2,10 +2,10 @@
 
 A robot is a chain of revolute (R) and prismatic (P) joints.  Link ``j`` carries the
 frame of joint ``j + 1``: ``(j-1)_T_j = Trans(offset_j) · Motion_j(q_j)``, where the motion is
-``Rot(axis_j, q_j)`` for R and ``Trans(q_j axis_j)`` for P (notes 003 §4.3 and §7.5 build
+``Rot(axis_j, q_j)`` for R and ``Trans(q_j axis_j)`` for P (*Mecanismos*, §4.3 and §7.5 build
 their robots this way), and the tool point is fixed in the last link.
 
-Closed forms (half-angle method, notes 003 §4.5) give every inverse solution of the
+Closed forms (half-angle method, *Mecanismos*, §4.5) give every inverse solution of the
 catalogue robots (:func:`rr`, :func:`rp`, :func:`pr`, :func:`rrr`, :func:`prr`); any other
 chain is inverted by batched Newton-Raphson.
 """
@@ -88,7 +88,7 @@ class ToolMotion:
 
 @dataclass(frozen=True)
 class JointRates:
-    """Joint rates that give a tool velocity and acceleration (notes 003 eq. 51).
+    """Joint rates that give a tool velocity and acceleration (*Mecanismos*, eq. 51).
 
     Attributes
     ----------
@@ -289,7 +289,7 @@ class SerialRobot:
         result = (chain[2][:, :self.dim], velocity, acceleration)
         return ToolMotion(*(r[0] if single else r for r in result))
 
-    # -- inverse rates (notes 003 eq. 51) ---------------------------------------------------
+    # -- inverse rates (*Mecanismos*, eq. 51) ---------------------------------------------------
     def inverse_rates(self, q: ArrayLike, velocity: ArrayLike, acceleration: ArrayLike = 0.0,
                       *, on_singular: Literal["raise", "flag"] = "raise") -> JointRates:
         """Joint rates ``q̇ = J⁻¹ v`` and ``q̈ = J⁻¹ (a - J̇ q̇)`` for a tool velocity and
@@ -597,7 +597,7 @@ def _two_link(u: np.ndarray, v: np.ndarray, a: float, b: float):
     """Planar 2R: angles that put the end of links a, b at (u, v) from the first axis.
 
     The first angle solves ``E cos θa + F sin θa + G = 0`` with ``E = -2ua``, ``F = -2va``,
-    ``G = u² + v² + a² - b²`` (notes 003 eq. 79, there for the RRR robot); then
+    ``G = u² + v² + a² - b²`` (*Mecanismos*, eq. 79, there for the RRR robot); then
     ``θa + θb = atan2(v - a sin θa, u - a cos θa)``.  Column 0 (``∂Φ/∂θa > 0``) has the
     elbow on the left of the line from the first axis to the point (counter-clockwise
     side), column 1 on the right.
@@ -622,7 +622,7 @@ def _two_link_workspace(a: float, b: float, where: str) -> str:
 
 
 def rr(l1: float, l2: float) -> SerialRobot:
-    """The planar RR robot of notes 003 Ex. 4.1: links ``l1``, ``l2`` (m).
+    """The planar RR robot of *Mecanismos*, Ex. 4.1: links ``l1``, ``l2`` (m).
 
     ``P = (l1 cos θ1 + l2 cos(θ1 + θ2), l1 sin θ1 + l2 sin(θ1 + θ2))`` (eq. 21): joint 1 at
     the origin, joint 2 at the end of link 1, θ1 from +x, θ2 from link 1, both
@@ -653,7 +653,7 @@ def rr(l1: float, l2: float) -> SerialRobot:
 
 
 def rp() -> SerialRobot:
-    """The planar RP robot of notes 003 §5.5: an arm turning by θ1 about the origin, with
+    """The planar RP robot of *Mecanismos*, §5.5: an arm turning by θ1 about the origin, with
     the tool sliding along it by q2: ``P = q2 (cos θ1, sin θ1)``.
 
     Branches: ``"positive"`` (q2 >= 0, the arm points at P) and ``"negative"`` (q2 <= 0,
@@ -678,7 +678,7 @@ def rp() -> SerialRobot:
 
 
 def pr(L: float) -> SerialRobot:
-    """The planar PR robot of notes 003 §5.6: a block sliding by q1 along x carries an arm
+    """The planar PR robot of *Mecanismos*, §5.6: a block sliding by q1 along x carries an arm
     of length ``L`` (m) turning by θ2: ``P = (q1 + L cos θ2, L sin θ2)``.
 
     Branches: ``"forward"`` (cos θ2 >= 0, the arm points along +x) and ``"backward"``.
@@ -706,7 +706,7 @@ def pr(L: float) -> SerialRobot:
 
 
 def rrr(L2: float, L3: float) -> SerialRobot:
-    """The spatial RRR (articulated) robot of notes 003 §7.5, with H = 0.
+    """The spatial RRR (articulated) robot of *Mecanismos*, §7.5, with H = 0.
 
     ``0_T_1 = Rot(z, θ1)``, ``1_T_2 = Rot(x, θ2)``, ``2_T_3 = Trans(0, L2, 0) Rot(x, θ3)``
     and ``3_r_P = (0, L3, 0)`` (eq. 77), so, with ``ρ = L2 cos θ2 + L3 cos(θ2 + θ3)``::
@@ -732,7 +732,7 @@ def rrr(L2: float, L3: float) -> SerialRobot:
 
     Examples
     --------
-    Notes 003 eq. 78: θ = (-45°, 60°, 30°) puts P at (√2/4, √2/4, 1 + √3/2):
+    *Mecanismos*, eq. 78: θ = (-45°, 60°, 30°) puts P at (√2/4, √2/4, 1 + √3/2):
 
     >>> robot = kl.spatial.rrr(1.0, 1.0)
     >>> robot.forward(np.radians([-45.0, 60.0, 30.0]))
@@ -775,7 +775,7 @@ def rrr(L2: float, L3: float) -> SerialRobot:
 
 
 def prr(L1: float, L2: float, D: float = 0.0, H: float = 0.0, V: float = 0.0) -> SerialRobot:
-    """A PRR robot (notes 003 Ex. 6.1): a vertical slide d1 carrying a horizontal
+    """A PRR robot (*Mecanismos*, Ex. 6.1): a vertical slide d1 carrying a horizontal
     two-link arm (θ2, θ3 about vertical axes).
 
     The exercise's figure is not in the notes' text, so kinelab fixes the geometry:

@@ -1,4 +1,5 @@
-"""The RSSR spatial four-bar of notes 003 §7.3: input-output equation, velocity, acceleration."""
+"""The RSSR spatial four-bar (*Mecanismos*, §7.3): input-output equation, velocity,
+acceleration."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -22,7 +23,7 @@ class RSSRPositions:
     ----------
     theta1 : ndarray, shape () or (N,), rad
     E, F, G : ndarray, shape () or (N,)
-        The coefficients of ``E cos θ3 + F sin θ3 + G = 0`` (notes 003 eq. 74), m².
+        The coefficients of ``E cos θ3 + F sin θ3 + G = 0`` (*Mecanismos*, eq. 74), m².
     theta3 : ndarray, shape (2,) or (N, 2), rad in (-π, π]
         Column 0 branch ``+1``, column 1 branch ``-1`` (see :class:`RSSR`).  Both hold
         the single solution where the branches meet, and the closest approach where
@@ -79,7 +80,7 @@ class RSSRSolution:
 
 @dataclass(frozen=True, kw_only=True)
 class RSSR:
-    """The RSSR mechanism of notes 003 §7.3 (Fig. 58).
+    """The RSSR mechanism of *Mecanismos*, §7.3 (Fig. 58).
 
     Geometry (all in the ground frame ``O x0 y0 z0``, m):
 
@@ -118,7 +119,7 @@ class RSSR:
 
     Examples
     --------
-    Notes 003 §7.3: θ1 = 0, H1 = H3 = 1, L1 = L3 = 0, L0 = L2 = 1 gives E = F = -2, G = 2,
+    *Mecanismos*, §7.3: θ1 = 0, H1 = H3 = 1, L1 = L3 = 0, L0 = L2 = 1 gives E = F = -2, G = 2,
     so θ3 = 0° or 90°:
 
     >>> m = kl.spatial.RSSR(H1=1.0, L1=0.0, L0=1.0, L2=1.0, H3=1.0, L3=0.0)

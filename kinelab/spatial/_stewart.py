@@ -1,4 +1,4 @@
-"""The 6-SPS (Stewart-Gough) platform of notes 003 Ex. 6.2: leg lengths, inverse Jacobian,
+"""The 6-SPS (Stewart-Gough) platform of *Mecanismos*, Ex. 6.2: leg lengths, inverse Jacobian,
 forward kinematics by Newton-Raphson."""
 from __future__ import annotations
 

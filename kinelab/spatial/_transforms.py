@@ -1,6 +1,6 @@
 """Homogeneous transforms in 2-D and 3-D, rotations, and the motion of a point in a moving frame.
 
-Notes 003 §4.2 (2-D) and §7.2 (3-D) write the location of a point P of frame B in frame A
+*Mecanismos*, §4.2 (2-D) and §7.2 (3-D) write the location of a point P of frame B in frame A
 as ``[A_r_P; 1] = [A_T_B] [B_r_P; 1]`` with ``A_T_B = [[A_R_B, A_r_OB], [0, 1]]``.  Rotations
 are :class:`scipy.spatial.transform.Rotation` objects (no quaternion code is written
 here); transforms are plain arrays of shape ``(..., 3, 3)`` (2-D) or ``(..., 4, 4)`` (3-D),
@@ -48,7 +48,7 @@ class AxisAngle:
 
 def rotation(axis: str | ArrayLike, angle: ArrayLike, *, degrees: bool = False) -> Rotation:
     """The rotation by ``angle`` about ``axis``: ``Rot(x, α)``, ``Rot(y, β)``, ``Rot(z, γ)``
-    or ``Rot(u, θ)`` of notes 003 §7.2.
+    or ``Rot(u, θ)`` of *Mecanismos*, §7.2.
 
     Parameters
     ----------
@@ -133,7 +133,7 @@ def euler_rotation(sequence: str, angles: ArrayLike, *,
                    degrees: bool = False) -> Rotation:
     """A composition of rotations about coordinate axes (Euler / Cardan angles).
 
-    Notes 003 §7.2 gives the two readings of a product of elementary rotations:
+    *Mecanismos*, §7.2 gives the two readings of a product of elementary rotations:
 
     - ``axes="fixed"``: the k-th rotation turns about the k-th axis of the **fixed**
       frame A; each new rotation multiplies on the left, so ``sequence="zyx"`` with
@@ -208,7 +208,7 @@ def euler_angles(rotation: Rotation, sequence: str, *,
 
 
 def euler_parameters(rotation: Rotation) -> np.ndarray:
-    """The Euler parameters ``(q0, q1, q2, q3)`` of ``rotation`` (notes 003 §7.2).
+    """The Euler parameters ``(q0, q1, q2, q3)`` of ``rotation`` (*Mecanismos*, §7.2).
 
     ``q0 = cos(θ/2)``, ``(q1, q2, q3) = sin(θ/2) u`` for a rotation θ about the unit
     axis u; scalar first, as in the notes.  Of the two sets ``±q`` that give the same
@@ -263,7 +263,7 @@ def _matrix(rotation: Rotation | ArrayLike) -> np.ndarray:
 
 
 def homogeneous(rotation: Rotation | ArrayLike, translation: ArrayLike) -> np.ndarray:
-    """The homogeneous transform ``[[R, p], [0, 1]]`` (notes 003 eqs. 13 and 72).
+    """The homogeneous transform ``[[R, p], [0, 1]]`` (*Mecanismos*, eqs. 13 and 72).
 
     Parameters
     ----------
@@ -305,7 +305,7 @@ def _block(R: np.ndarray, p: np.ndarray, corner: float) -> np.ndarray:
 
 
 def planar_transform(angle: ArrayLike, translation: ArrayLike = (0.0, 0.0)) -> np.ndarray:
-    """The 2-D homogeneous transform of notes 003 eq. 13: frame B turned by ``angle``
+    """The 2-D homogeneous transform of *Mecanismos*, eq. 13: frame B turned by ``angle``
     about A's origin and moved to ``translation``.
 
     Parameters
@@ -321,7 +321,7 @@ def planar_transform(angle: ArrayLike, translation: ArrayLike = (0.0, 0.0)) -> n
 
     Examples
     --------
-    The RR robot of notes 003 Ex. 4.1 (l1 = l2 = 1, θ1 = 30°, θ2 = 60°):
+    The RR robot of *Mecanismos*, Ex. 4.1 (l1 = l2 = 1, θ1 = 30°, θ2 = 60°):
     ``0_r_P = 0_T_1 1_T_2 2_r_P``.
 
     >>> T01 = kl.spatial.planar_transform(np.radians(30))
@@ -378,7 +378,7 @@ def _dimension(T: np.ndarray, name: str = "transform") -> int:
 
 
 def invert(transform: ArrayLike) -> np.ndarray:
-    """``B_T_A = (A_T_B)⁻¹`` by the transpose form of notes 003 eq. 20.
+    """``B_T_A = (A_T_B)⁻¹`` by the transpose form of *Mecanismos*, eq. 20.
 
     ``[[R, p], [0, 1]]⁻¹ = [[Rᵀ, -Rᵀ p], [0, 1]]``: no matrix inversion, exact for a
     rigid transform (R orthonormal), which every transform built here is.
@@ -396,7 +396,7 @@ def invert(transform: ArrayLike) -> np.ndarray:
 
 
 def transform_points(transform: ArrayLike, points: ArrayLike) -> np.ndarray:
-    """``R r + p`` for each point: ``A_r_P`` from ``B_r_P`` (notes 003 eq. 17).
+    """``R r + p`` for each point: ``A_r_P`` from ``B_r_P`` (*Mecanismos*, eq. 17).
 
     Parameters
     ----------
@@ -523,7 +523,7 @@ def transform_rates(transform: ArrayLike, omega: ArrayLike, velocity: ArrayLike,
 class PointMotion:
     """Position, velocity and acceleration of a point given in a moving frame B, in A.
 
-    From notes 003 eqs. 47-48 (differentiating ``[r; 1] = T [B_r; 1]``):
+    From *Mecanismos*, eqs. 47-48 (differentiating ``[r; 1] = T [B_r; 1]``):
     ``v = Ṫ [B_r; 1] + T [B_ṙ; 0]`` (drag + relative) and
     ``a = T̈ [B_r; 1] + 2 Ṫ [B_ṙ; 0] + T [B_r̈; 0]`` (drag + Coriolis + relative).
 
@@ -551,7 +551,7 @@ class PointMotion:
 def point_motion(transform: ArrayLike, Td: ArrayLike, Tdd: ArrayLike, point: ArrayLike,
                  point_velocity: ArrayLike = 0.0,
                  point_acceleration: ArrayLike = 0.0) -> PointMotion:
-    """Motion in frame A of a point P that moves in a moving frame B (notes 003 eqs. 47-48).
+    """Motion in frame A of a point P that moves in a moving frame B (*Mecanismos*, eqs. 47-48).
 
     Parameters
     ----------

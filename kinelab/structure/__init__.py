@@ -12,7 +12,7 @@ from kinelab.structure._types import (Architecture, ChainType, Motion, TypeSynth
                                       number_synthesis, passive_chain, type_synthesis)
 
 __all__ = [
-    # counting (seed 003 §2.1)
+    # counting (*Mecanismos*, §2.1)
     "LAMBDAS", "PairClass", "joint_catalogue", "kutzbach_gruebler", "pair_counts",
     "pair_freedoms", "space_dimension",
     # exact mobility

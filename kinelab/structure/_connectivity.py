@@ -1,6 +1,6 @@
 """Connectivity of one link relative to another, chain by chain, and the Lie group method.
 
-The connectivity of link ``b`` relative to link ``a`` along a chain (seed 003, §1.3) is
+The connectivity of link ``b`` relative to link ``a`` along a chain (*Mecanismos*, §1.3) is
 the number of independent coordinates that place ``b`` relative to ``a`` when only that
 chain joins them: often the sum of the freedoms of its pairs, but never more than the
 rank of their freedom screws (three parallel R joints and a P along their axes give 3,
@@ -82,7 +82,7 @@ class Connectivity:
 
 @dataclass(frozen=True)
 class LieMobility:
-    """Mobility of a parallel mechanism by the Lie group method (seed 003, §2.2).
+    """Mobility of a parallel mechanism by the Lie group method (*Mecanismos*, §2.2).
 
     Attributes
     ----------
@@ -199,7 +199,7 @@ def lie_mobility(model: Mechanism, end: str, *, base: str | None = None) -> LieM
 
     Each leg (chain from ``base`` to ``end``) generates a group of displacements; when
     every leg moves its end over the whole of that group and the legs share only the
-    base and the end, the end link moves over their intersection (seed 003, §2.2), and
+    base and the end, the end link moves over their intersection (*Mecanismos*, §2.2), and
     the mobility is the dimension of the intersection plus the motions internal to the
     legs.  The method fails where a leg's motions are not a group (Bennett's linkage);
     :func:`mobility` is exact in every case.

@@ -1,6 +1,6 @@
 """Counting: the motion space lambda, the freedoms of each pair, Kutzbach-Gruebler.
 
-The criterion of Kutzbach-Gruebler (seed 003, §2.1, Eq. 1) counts freedoms and
+The criterion of Kutzbach-Gruebler (*Mecanismos*, §2.1, Eq. 1) counts freedoms and
 constraints without looking at the geometry::
 
     M = lambda (Ne - 1) - sum_{j=1}^{lambda-1} (lambda - j) nPj
@@ -205,7 +205,7 @@ def whole(value, what: str, low: int, high: int | None = None, hint: str = "") -
 def kutzbach_gruebler(links: int, pairs: Mapping[int, int], space: str | int) -> int:
     """Mobility by the criterion of Kutzbach-Gruebler, from counts alone.
 
-    ``M = lambda (Ne - 1) - sum_j (lambda - j) nPj`` (seed 003, Eq. 1): each moving link
+    ``M = lambda (Ne - 1) - sum_j (lambda - j) nPj`` (*Mecanismos*, Eq. 1): each moving link
     brings lambda freedoms and each pair of class ``Pj`` takes away ``lambda - j``.  The
     count ignores the geometry, so it is wrong wherever constraints repeat one another
     (parallel or intersecting axes, equal lengths); see :func:`mobility` for the exact
@@ -235,7 +235,7 @@ def kutzbach_gruebler(links: int, pairs: Mapping[int, int], space: str | int) ->
 
     Examples
     --------
-    Slider-crank (seed 003, Ex. 2.1): four links, four pairs of class P1.
+    Slider-crank (*Mecanismos*, Ex. 2.1): four links, four pairs of class P1.
 
     >>> from kinelab.structure import kutzbach_gruebler
     >>> kutzbach_gruebler(4, {1: 4}, "planar")

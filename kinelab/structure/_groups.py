@@ -1,4 +1,4 @@
-"""Lie groups of rigid displacements (seed 003, §2.2), held by their Lie algebras.
+"""Lie groups of rigid displacements (*Mecanismos*, §2.2), held by their Lie algebras.
 
 A subgroup of the displacements of a rigid body (Hervé's classification: translations
 T, rotations R, screw motions H, cylindrical C, planar translations T2, planar gliding G,

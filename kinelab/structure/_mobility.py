@@ -207,7 +207,7 @@ def _motions(n: int) -> str:
 def mobility(model: Mechanism, *, rtol: float = RTOL) -> Mobility:
     """Mobility of a mechanism: Kutzbach-Gruebler's count and the exact value.
 
-    The count ``M = lambda (Ne - 1) - sum (lambda - j) nPj`` (seed 003, Eq. 1) assumes
+    The count ``M = lambda (Ne - 1) - sum (lambda - j) nPj`` (*Mecanismos*, Eq. 1) assumes
     that every constraint a pair imposes is independent of the others.  The exact value
     is the dimension of the space of motions the mechanism allows at its sketch: each
     moving link gets a twist (3 unknowns in the plane, 6 in space), each joint requires

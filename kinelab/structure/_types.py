@@ -1,4 +1,4 @@
-"""Type synthesis (seed 003, §3): candidate architectures for a mobility and a space.
+"""Type synthesis (*Mecanismos*, §3): candidate architectures for a mobility and a space.
 
 Four methods of the notes, each a function returning a :class:`TypeSynthesis`:
 
@@ -339,7 +339,7 @@ def chain_types(connectivity: int, space: str, *, joints: Sequence[str] | None =
 # -- the four methods -------------------------------------------------------------------------------
 def number_synthesis(mobility: int, space: str, *, joints: Sequence[str] | None = None,
                      motion: str | Sequence[str] | None = None) -> TypeSynthesis:
-    """Number synthesis of an open chain of P1 pairs (seed 003, §3.4, Example 3.1).
+    """Number synthesis of an open chain of P1 pairs (*Mecanismos*, §3.4, Example 3.1).
 
     With only P1 pairs (R, P), Eq. (1) reads ``M = lambda (Ne - 1) - (lambda - 1) nP1``,
     so ``Ne = (M + lambda + (lambda - 1) nP1) / lambda``.  The table lists ``Ne`` for
@@ -402,7 +402,7 @@ def _families(sets, chains) -> tuple:
 
 def active_chains(mobility: int, space: str, *, joints: Sequence[str] | None = None,
                   max_joints: int = 3) -> TypeSynthesis:
-    """Type synthesis by enumeration of active chains (seed 003, §3.5).
+    """Type synthesis by enumeration of active chains (*Mecanismos*, §3.5).
 
     M active chains join base and end link; their connectivities add up to
     ``C_T = (lambda + 1) M - lambda`` (Eq. 5), each between M and lambda (Eq. 6).
@@ -456,7 +456,7 @@ def _with_passive(method: str, motion, space: str, joints, max_joints: int, drop
 
 def passive_chain(motion: str | Sequence[str], space: str, *,
                   joints: Sequence[str] | None = None, max_joints: int = 3) -> TypeSynthesis:
-    """Type synthesis by addition of a passive chain (seed 003, §3.6).
+    """Type synthesis by addition of a passive chain (*Mecanismos*, §3.6).
 
     A passive chain (no actuator) of connectivity ``M`` whose freedoms are the wanted
     motion (Eq. 7) joins base and end link, beside M active chains of connectivity
@@ -485,7 +485,7 @@ def passive_chain(motion: str | Sequence[str], space: str, *,
 def alternative_method(motion: str | Sequence[str], space: str, *,
                        joints: Sequence[str] | None = None, max_joints: int = 3
                        ) -> TypeSynthesis:
-    """Type synthesis by the alternative method (seed 003, §3.7).
+    """Type synthesis by the alternative method (*Mecanismos*, §3.7).
 
     Start from the passive-chain architecture, remove one active chain, and put an
     actuator on the passive chain's R or P pair nearest the base: M - 1 chains of

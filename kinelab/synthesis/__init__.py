@@ -1,4 +1,4 @@
-"""Dimensional synthesis of four-bars (seed 003, §3.2 and §6).
+"""Dimensional synthesis of four-bars (*Mecanismos*, §3.2 and §6).
 
 Motion generation (the coupler passes through prescribed positions), function generation
 (the rocker angle is a prescribed function of the crank angle) and path generation (a

@@ -1,4 +1,5 @@
-"""Four prescribed positions: centre points, circle points and every four-bar (seed 003, §6.3, §6.6).
+"""Four prescribed positions: centre points, circle points and every four-bar
+(*Mecanismos*, §6.3, §6.6).
 
 With four positions the three equations |A_j - A0| = |A_1 - A0| (j = 2, 3, 4) in the two
 unknowns of A_1 are compatible only if the determinant of the augmented matrix vanishes
@@ -54,7 +55,7 @@ def _normalised(pos: Positions) -> tuple[Positions, np.ndarray, float]:
 
 def center_point_cubic(points, angles=None, a0x: ArrayLike = 0.0, *,
                        degrees: bool = False) -> np.ndarray:
-    """Coefficients of the compatibility determinant (seed 003, eq. 71) as a cubic in a0y.
+    """Coefficients of the compatibility determinant (*Mecanismos*, eq. 71) as a cubic in a0y.
 
     Parameters
     ----------
@@ -136,7 +137,7 @@ def center_points(points, angles=None, a0x: float = 0.0, *, degrees: bool = Fals
 
     Examples
     --------
-    Seed 003 §6.7 (cm): three real roots, the middle one is Table 7's 25.566:
+    *Mecanismos*, §6.7 (cm): three real roots, the middle one is Table 7's 25.566:
 
     >>> P, alpha = [(0, 0), (5, 8), (10, 15), (18, 20)], np.radians([10, 20, 30])
     >>> kl.synthesis.center_points(P, alpha, a0x=-20.195)[:, 1].round(3)
@@ -269,7 +270,7 @@ def four_positions(points, angles=None, a0x: float = None, b0x: float = None, *,
                    degrees: bool = False) -> SolutionList:
     """Four positions: every four-bar whose fixed pivots have the given abscissae.
 
-    For each real root a0y of the compatibility condition (seed 003, eq. 71) at a0x, and
+    For each real root a0y of the compatibility condition (*Mecanismos*, eq. 71) at a0x, and
     each real root b0y at b0x, the moving pivots follow from the (then compatible)
     Suh-Radcliffe system (eq. 70); every pair (A0, B0) of distinct centre points gives
     one linkage, checked with the kinematics engine.
@@ -294,7 +295,7 @@ def four_positions(points, angles=None, a0x: float = None, b0x: float = None, *,
 
     Examples
     --------
-    Seed 003 §6.7 in metres (the notes' cm times 0.01); Table 7 is one of the nine:
+    *Mecanismos*, §6.7 in metres (the notes' cm times 0.01); Table 7 is one of the nine:
 
     >>> P = np.array([(0, 0), (5, 8), (10, 15), (18, 20)]) * 0.01
     >>> sols = kl.synthesis.four_positions(P, [10, 20, 30], -0.20195, -0.29167, degrees=True)

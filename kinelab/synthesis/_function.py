@@ -1,4 +1,4 @@
-"""Function generation with a four-bar: Freudenstein's equation (seed 003, §3.2, fig. 25).
+"""Function generation with a four-bar: Freudenstein's equation (*Mecanismos*, §3.2, fig. 25).
 
 The rocker angle theta4 is to follow a prescribed function of the crank angle theta2:
 x in [x0, xf] is mapped linearly to the crank's travel and y = f(x) to the rocker's.  With

@@ -67,7 +67,7 @@ def fourbar_model(A0: ArrayLike, B0: ArrayLike, A1: ArrayLike, B1: ArrayLike,
     Examples
     --------
     >>> m = kl.synthesis.fourbar_model(A0=(0, 0), B0=(2, 0), A1=(1, 0), B1=(1.5, 0.8660254037844386))
-    >>> sol = kl.analyze(m, q=0.0)                       # notes 003, Ex. 4.2 (open branch)
+    >>> sol = kl.analyze(m, q=0.0)                       # *Mecanismos*, Ex. 4.2 (open branch)
     >>> np.degrees(sol.angle("rocker")).round(9), m.parameters["branch"]
     (np.float64(120.0), 'open')
     """

@@ -1,4 +1,4 @@
-"""Motion generation with a four-bar: two and three prescribed positions (seed 003, §6.1-6.5).
+"""Motion generation with a four-bar: two and three prescribed positions (*Mecanismos*, §6.1-6.5).
 
 Every synthesized linkage comes back as a :class:`MotionSolution`: its pivots, a kinelab
 model sketched in position 1, and the checks made with the kinematics engine.
@@ -126,7 +126,7 @@ class TwoPositions:
     """Two positions with the moving pivots chosen: the fixed pivots form a family.
 
     A fixed pivot A0 keeps |A1 - A0| = |A2 - A0|, so it can be any point of the
-    perpendicular bisector of A1A2 (seed 003, §6.1, fig. 52); likewise B0.  Both
+    perpendicular bisector of A1A2 (*Mecanismos*, §6.1, fig. 52); likewise B0.  Both
     bisectors pass through the pole P12.
 
     Attributes
@@ -239,7 +239,7 @@ def three_positions(points, angles=None, A0: ArrayLike | None = None, B0: ArrayL
     """Three positions: the four-bar through them, from two chosen pivots.
 
     For each dyad give either its fixed pivot (``A0``, ``B0``: the moving pivot follows
-    from the Suh-Radcliffe linear system, seed 003 eq. 67-68, or from Burmester's pole
+    from the Suh-Radcliffe linear system, *Mecanismos*, eq. 67-68, or from Burmester's pole
     construction, §6.2) or its moving pivot in position 1 (``A1``, ``B1``: the fixed
     pivot is the centre of the circle through its three positions).
 
@@ -271,7 +271,7 @@ def three_positions(points, angles=None, A0: ArrayLike | None = None, B0: ArrayL
 
     Examples
     --------
-    Seed 003 §6.5: A0 = (5, 0), B0 = (0, 0) m, P = (1, 1), (2, 0.5), (3, 1.5) m,
+    *Mecanismos*, §6.5: A0 = (5, 0), B0 = (0, 0) m, P = (1, 1), (2, 0.5), (3, 1.5) m,
     alpha_2 = 0, alpha_3 = 45 deg -> Table 4:
 
     >>> sol = kl.synthesis.three_positions([(1, 1), (2, 0.5), (3, 1.5)], [0, 45], (5, 0), (0, 0),

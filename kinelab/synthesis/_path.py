@@ -1,5 +1,5 @@
-"""Path generation: a four-bar whose coupler point passes near prescribed points (seed 003 §3.2,
-fig. 26), by global optimisation.
+"""Path generation: a four-bar whose coupler point passes near prescribed points
+(*Mecanismos*, §3.2, fig. 26), by global optimisation.
 
 The timing is free (the crank angle at each point is not prescribed).  A design is the
 fixed pivots A0, B0, the crank, coupler and rocker lengths, the coupler point (u along AB,

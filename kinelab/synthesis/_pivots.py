@@ -1,7 +1,7 @@
 """Pivots of a crank (or rocker) that guides a point of the moving plane on a circle.
 
 A crank with fixed pivot A0 and moving pivot A (a point of the moving plane) keeps its
-length, so every position A_j of A lies on one circle about A0 (seed 003, eq. 67):
+length, so every position A_j of A lies on one circle about A0 (*Mecanismos*, eq. 67):
 
     |A_j - A0|^2 = |A_1 - A0|^2,        j = 2 .. n.
 
@@ -67,8 +67,8 @@ def solve_rows(rows: np.ndarray, scale: float, what: str, why_singular: str) -> 
         res = np.abs(M @ x - c) / max(norms.max() * (np.linalg.norm(x) + scale), 1e-300)
         if res.max() > _CONSISTENT:
             raise ModelError(f"{what}: with {rows.shape[0] + 1} positions the pivot must satisfy "
-                             f"the compatibility condition (seed 003, eq. 71), and this one misses "
-                             f"it by {res.max():.3g} (relative); choose it on the centre-point "
+                             "the compatibility condition (*Mecanismos*, eq. 71), and this one "
+                             f"misses it by {res.max():.3g} (relative); choose it on the centre-point "
                              "curve (see four_positions / center_points)")
     return x
 
@@ -85,7 +85,7 @@ def moving_pivot(points, angles=None, fixed: ArrayLike = None, *,
     fixed : array_like, shape (2,)
         The fixed pivot A0, m.
     method : {"suh-radcliffe", "poles"}
-        "suh-radcliffe": the linear system of seed 003 eq. 68 (least squares over all
+        "suh-radcliffe": the linear system of *Mecanismos*, eq. 68 (least squares over all
         positions when there are more than three, which must then be compatible).
         "poles": Burmester's construction (§6.2, fig. 53) for three positions: the
         line P12-A0 turned about P12 by -alpha_12/2 meets the line P13-A0 turned about
@@ -107,7 +107,7 @@ def moving_pivot(points, angles=None, fixed: ArrayLike = None, *,
 
     Examples
     --------
-    Seed 003 §6.5 (Table 4):
+    *Mecanismos*, §6.5 (Table 4):
 
     >>> P, alpha = [(1, 1), (2, 0.5), (3, 1.5)], np.radians([0, 45])
     >>> kl.synthesis.moving_pivot(P, alpha, fixed=(5, 0)).round(3)
@@ -137,7 +137,7 @@ def fixed_pivot(points, angles=None, moving: ArrayLike = None, *, degrees: bool 
     """The fixed pivot of a crank whose moving pivot (in position 1) is given.
 
     The centre of the circle through the positions A_1 .. A_n of the moving pivot: the
-    intersection of the perpendicular bisectors of A1A2 and A2A3 (seed 003, §6.2).
+    intersection of the perpendicular bisectors of A1A2 and A2A3 (*Mecanismos*, §6.2).
 
     Parameters
     ----------
@@ -162,7 +162,7 @@ def fixed_pivot(points, angles=None, moving: ArrayLike = None, *, degrees: bool 
 
     Examples
     --------
-    The inverse of the seed 003 §6.5 example:
+    The inverse of the *Mecanismos*, §6.5 example:
 
     >>> P, alpha = [(1, 1), (2, 0.5), (3, 1.5)], np.radians([0, 45])
     >>> A1 = kl.synthesis.moving_pivot(P, alpha, fixed=(5, 0))

@@ -1,4 +1,4 @@
-"""Positions of a moving plane, their poles and rotation angles (seed 003, §6.1-6.3).
+"""Positions of a moving plane, their poles and rotation angles (*Mecanismos*, §6.1-6.3).
 
 A position of the moving plane (the coupler) is a point P_j of the plane and the plane's
 orientation theta_j.  Everything that follows uses only the displacements from position 1:
@@ -236,7 +236,7 @@ class Poles:
     The pole P_ij is the one point of the moving plane that is in the same place in
     positions i and j: the plane turns about it by alpha_ij = theta_j - theta_i from i
     to j.  It lies on the perpendicular bisector of A_i A_j for every point A of the
-    plane, and sees A_i A_j under the angle alpha_ij (seed 003, fig. 52).
+    plane, and sees A_i A_j under the angle alpha_ij (*Mecanismos*, fig. 52).
 
     Attributes
     ----------

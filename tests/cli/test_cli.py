@@ -193,3 +193,89 @@ def test_progress_sweep_gives_the_same_results():
     shown = sweep(mf, 20001, progress=True)          # in pieces, behind a bar on stderr
     np.testing.assert_allclose(shown.jets, quiet.jets, rtol=0, atol=1e-12)
     np.testing.assert_array_equal(shown.q, quiet.q)
+
+
+def test_speed_sets_the_input_speed_for_the_run(tmp_path):
+    """--speed in the file's unit (deg/s here) or with its own; velocities scale with the speed
+    and accelerations with its square (qdd = 0): K and L do not change."""
+    base = run("analyze", EX / "crank_rocker.toml", "--out", tmp_path / "a.csv", "--samples", "13", "-q")
+    fast = run("analyze", EX / "crank_rocker.toml", "--out", tmp_path / "b.csv", "--samples", "13", "-q",
+               "--speed", "1800")
+    assert base.exit_code == 0 and fast.exit_code == 0, fast.output
+    a = list(csv.DictReader((tmp_path / "a.csv").open()))
+    b = list(csv.DictReader((tmp_path / "b.csv").open()))
+    for ra, rb in zip(a, b):
+        assert float(rb["crank angle.qd [rad/s]"]) == pytest.approx(math.radians(1800), rel=1e-15)
+        assert float(rb["rocker.omega [rad/s]"]) == pytest.approx(3 * float(ra["rocker.omega [rad/s]"]),
+                                                                 rel=1e-12, abs=1e-12)
+        assert float(rb["P.ay [m/s^2]"]) == pytest.approx(9 * float(ra["P.ay [m/s^2]"]), rel=1e-12, abs=1e-12)
+        assert rb["rocker.K [rad/rad]"] == ra["rocker.K [rad/rad]"]
+    one = run("analyze", EX / "crank_rocker.toml", "--at", "90", "--speed", "2rad")
+    values = dict(re.split(r"\s{2,}", line.strip()) for line in one.stdout.splitlines()[1:]
+                  if line.strip())
+    assert float(values["crank angle.qd [rad/s]"]) == 2.0
+    ref = kl.analyze(kl.load(EX / "crank_rocker.toml"), math.pi / 2, 2.0)
+    assert float(values["rocker.omega [rad/s]"]) == pytest.approx(float(ref.omega("rocker")), rel=1e-9)
+
+
+def test_speed_of_several_inputs(tmp_path):
+    result = run("analyze", EX / "fivebar.toml", "--out", tmp_path / "f.csv", "--samples", "5", "-q",
+                 "--speed", "60deg,-1rad")
+    assert result.exit_code == 0, result.output
+    rows = list(csv.DictReader((tmp_path / "f.csv").open()))
+    assert [float(r["jO2.qd [rad/s]"]) for r in rows] == pytest.approx([math.pi / 3] * 5, rel=1e-15)
+    assert [float(r["jO4.qd [rad/s]"]) for r in rows] == [-1.0] * 5
+
+
+@pytest.mark.parametrize("speed, message", [
+    ("fast", "--speed: expected a number, optionally followed by one of deg, rad, got 'fast'"),
+    ("60mm", "--speed: expected a number, optionally followed by one of deg, rad, got '60mm'"),
+    ("inf", "--speed: expected a number, optionally followed by one of deg, rad, got 'inf'"),
+    ("60,30", "--speed: expected 1 value(s) separated by commas (one per input: crank angle), "
+              "got '60,30'"),
+])
+def test_bad_speed_value(speed, message, tmp_path):
+    result = run("analyze", EX / "crank_rocker.toml", "--speed", speed, "--out", tmp_path / "out")
+    assert result.exit_code == 2
+    assert result.stderr == f"kinelab: error: {message}\n"
+    assert not (tmp_path / "out").exists()
+
+
+def test_imported_pyslvs_model_has_a_speed(tmp_path):
+    """Pyslvs gives no speeds: the imported file says which it was given, and its velocities
+    are not zero (velocities = K times 100 rpm)."""
+    source = tmp_path / "sc.pyslvs"
+    source.write_text("M[J[R, P[0, 0], L[ground, crank]], J[R, P[0, 5], L[crank, rod]], "
+                      "J[RP, A[0], P[19.7737199, 2], L[ground, rod]]]")
+    result = run("import", source, "--out", tmp_path / "sc.toml")
+    assert result.exit_code == 0, result.output
+    text = (tmp_path / "sc.toml").read_text()
+    assert "600 deg/s (100 rpm) for an angle, 100 mm/s for a slide" in text
+    assert "speed = 600.0" in text
+    m = kl.load(tmp_path / "sc.toml")
+    assert m.inputs[0].speed == pytest.approx(2 * math.pi * 100 / 60, rel=1e-15)
+    result = run("analyze", tmp_path / "sc.toml", "--at", "30")
+    values = dict(re.split(r"\s{2,}", line.strip()) for line in result.stdout.splitlines()[1:]
+                  if line.strip())
+    K = float(kl.analyze(m, math.radians(30)).K("sP2"))
+    assert float(values["sP2.slide_velocity [m/s]"]) == pytest.approx(K * 2 * math.pi * 100 / 60, rel=1e-9)
+    assert K != 0.0
+
+
+def test_summary_of_a_crank_that_cannot_turn(tmp_path):
+    """No time ratio, and why; limit positions written near the swept range (the window
+    around the catalogue's sketch put them a turn away, at -6.62 rad)."""
+    model = tmp_path / "long_crank.toml"
+    model.write_text('schema = 1\nname = "long crank"\n[units]\nlength = "m"\nangle = "deg"\n'
+                     '[catalogue]\nkind = "slider_crank"\ncrank = 3.0\nrod = 1.0\n'
+                     '[[inputs]]\njoint = "jO2"\nrange = [-15, 15]\nspeed = 60\n'
+                     '[outputs]\ntime_ratio = "slide"\n')
+    result = run("analyze", model, "--out", tmp_path)
+    assert result.exit_code == 0, result.output
+    # |sin q| <= 1/3: asin(1/3) = 0.339837 rad
+    assert ("limit positions of jO2 (it cannot go past them): -3.48143 rad and -2.80176 rad; "
+            "-0.339837 rad and 0.339837 rad") in result.stdout
+    assert ("time ratio of slide: none; jO2 cannot turn a full turn (it reaches only "
+            "[-3.48143, -2.80176] and [-0.339837, 0.339837] rad)") in result.stdout
+    result = run("analyze", model, "--out", tmp_path, "--degrees")
+    assert "(it reaches only [-199.471, -160.529] and [-19.4712, 19.4712] deg)" in result.stdout

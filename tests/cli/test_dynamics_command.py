@@ -90,7 +90,7 @@ def test_library_calls_use_the_files_dynamics_section(tmp_path):
                     '[dynamics]\ngravity = [0.0, -10.0]\n[dynamics.actuators]\npivot = 10.0\n')
     m = kl.load(path)
     res = kl.dynamics.inverse(m, q=[0.0, 1.0])
-    # tau = m g L cos(theta) (seed 003 §5), with gravity from the file
+    # tau = m g L cos(theta) (*Mecanismos*, §5), with gravity from the file
     assert res.input_forces[:, 0] == pytest.approx([10.0, 10.0 * np.cos(1.0)], abs=1e-12)
     # held by the file's constant 10 N m at theta = 0, the pendulum stays put
     sim = kl.dynamics.simulate(m, (0.0, 0.5), q0=0.0, qd0=0.0, t_eval=[0.5])

@@ -15,7 +15,7 @@ def pendulum(length=0.5, mass=2.0, inertia=0.01, arm=1.0):
 
 
 def rp_robot(arm_mass=None, gripper_inertia=None, q=(0.3, 0.6)):
-    """Seed 003 §5.5: arm 1 turns about O (q1, ``shoulder``), gripper 2 slides along it
+    """*Mecanismos*, §5.5: arm 1 turns about O (q1, ``shoulder``), gripper 2 slides along it
     (q2 = O G2, ``reach``).  Massless by default, as in the notes (add their mass data
     with the arguments; the arm's centre of mass is G1 at 0.4 m)."""
     c, s = np.cos(q[0]), np.sin(q[0])
@@ -33,7 +33,7 @@ def rp_robot(arm_mass=None, gripper_inertia=None, q=(0.3, 0.6)):
 
 
 def pr_robot(m1=3.0, m2=2.0, length=0.6, inertia=0.08):
-    """Seed 003 §5.6: block 1 slides along x (q1 = x of S, ``rail``), arm 2 turns about
+    """*Mecanismos*, §5.6: block 1 slides along x (q1 = x of S, ``rail``), arm 2 turns about
     S (q2, ``wrist``) with its centre of mass G at ``length`` from S."""
     return Mechanism(
         "pr", (Point("O", 0.0, 0.0), Point("X", 1.0, 0.0), Point("S", 0.2, 0.0),
@@ -50,7 +50,7 @@ PRRRR = dict(L0=1.0, L2=0.4, L3=0.8, L4=0.9, l2=0.15, m1=2.0, m2=1.5, m3=0.8, m4
 
 
 def prrrr(q=(0.2, 1.2), **kw):
-    """Seed 003 §5.7: slider 1 on the y axis (q1 = y of G1, ``rail``), crank 2 about
+    """*Mecanismos*, §5.7: slider 1 on the y axis (q1 = y of G1, ``rail``), crank 2 about
     O2 = (L0, 0) (q2, ``jO2``), bars 3 (G1-P) and 4 (A-P) meeting at P; every link with
     its own (distributed) mass, the bars' centres of mass at their middles."""
     p = {**PRRRR, **kw}

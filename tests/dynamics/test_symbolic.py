@@ -11,7 +11,7 @@ from tests.dynamics.models import engine, pendulum, pr_robot, rp_robot
 
 
 def test_rp_robot_symbols_are_the_notes_formulas():
-    """Seed 003 §5.5, with kinelab's symbols: m_G2 the gripper, g gravity, q2 the reach."""
+    """*Mecanismos*, §5.5, with kinelab's symbols: m_G2 the gripper, g gravity, q2 the reach."""
     m = rp_robot()
     masses = MassProperties.from_model(m, massless=("arm", "gripper"), point_masses={"G2": 2.0})
     eom = equations_of_motion(m, masses=masses, loads=Loads(gravity=(0.0, -9.81)))
@@ -23,7 +23,7 @@ def test_rp_robot_symbols_are_the_notes_formulas():
 
 
 def test_pr_robot_symbols_are_the_notes_formulas():
-    """Seed 003 §5.6 with symbolic lengths: l_SG is the notes' L."""
+    """*Mecanismos*, §5.6 with symbolic lengths: l_SG is the notes' L."""
     eom = equations_of_motion(pr_robot(), lengths="symbols")
     (q1, q2), (u1, u2), (du1, du2) = eom.q, eom.qd, eom.qdd
     P = eom.parameters

@@ -163,7 +163,7 @@ def test_linkage2d_slider_crank_is_assembled_and_matches_the_catalogue():
 
 
 def test_linkage2d_pin_in_slot_and_weld():
-    # slotted link of seed 000 (R = 100, C = 200 mm); the lever is two welded parts
+    # Erthal's slotted link (R = 100, C = 200 mm); the lever is two welded parts
     data = _doc(
         [_link("G", "ground", (0, 0, 0), {"O4": (0, 0), "O2": (200, 0)}, True),
          _link("K", "crank", (200, 0, 90), {"O2k": (0, 0), "A": (100, 0)}),
@@ -318,3 +318,14 @@ def test_corrupted_linkage2d_data_raises_only_model_error(section, index, key, v
         kl.io.from_linkage2d_json(data)
     except ModelError:
         pass
+
+
+def test_pyslvs_inputs_get_the_import_speeds():
+    """100 rpm for a crank, 0.1 m/s for a slide: Pyslvs gives none, and zero would leave
+    every velocity and acceleration of the imported model at zero."""
+    crank = kl.io.from_pyslvs(CRANK_ROCKER)
+    assert crank.inputs[0].speed == kl.io.IMPORT_SPEEDS["angle"] == pytest.approx(10 * math.pi / 3)
+    slide = kl.io.from_pyslvs(SLIDER_CRANK_RP, inputs=[(2, 2)])
+    assert slide.inputs[0].speed == kl.io.IMPORT_SPEEDS["slide"] == 0.1
+    both = kl.io.from_pyslvs(CRANK_ROCKER, inputs=[(4, 2)])
+    assert both.inputs[0].speed == kl.io.IMPORT_SPEEDS["angle"]

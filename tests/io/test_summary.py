@@ -99,7 +99,8 @@ def test_non_grashof_limits_and_singular_ends():
 
 
 def test_quick_return_of_the_slotted_link_is_two():
-    # seed 000 with R = 100, C = 200 mm: the lever reverses where the crank is perpendicular to
+    # Erthal's slotted link, R = 100, C = 200 mm: the lever reverses where the crank is
+    # perpendicular to
     # it, cos q = -R / C: strokes 240 and 120 deg
     mf = ModelFile.read("examples/slotted_link.toml")
     s = summary(kl.analyze(mf.mechanism, *mf.sample_inputs(181)), time_ratio="lever")

@@ -56,7 +56,11 @@ def _sketch_link_angle(m, link):
     if len(pts) >= 2:
         a, b = m.point(pts[0]), m.point(pts[1])
         return np.arctan2(b.y - a.y, b.x - a.x)
-    j = next(j for j in m.joints_of(link) if j.type == "P")
+    if m.link(link).ground:
+        return 0.0
+    # a block: the axis of the joint it slides in, else of the one it guides
+    slides = [j for j in m.joints_of(link) if j.type == "P"]
+    j = next((j for j in slides if j.links[1] == link), slides[0])
     return np.arctan2(j.axis[1], j.axis[0])
 
 

@@ -7,6 +7,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import kinelab as kl
+from kinelab.model import Point
 from tests.kinematics.checks import closure_residual, engine_difference, finite_difference_errors
 
 CRANK = np.radians(np.arange(0.0, 360.0, 2.0)) + 0.01   # off the axes
@@ -161,6 +162,37 @@ def test_time_ratio_slotted_link_closed_form():
     phi = np.arccos(R / C)
     assert tr.ratio == pytest.approx((2 * np.pi - 2 * phi) / (2 * phi), rel=1e-11)
     assert tr.fast == pytest.approx(2 * phi, rel=1e-11)
+
+
+def test_no_time_ratio_when_the_crank_cannot_turn():
+    """Non-Grashof four-bar (ground 1, crank 2, coupler 1, rocker 1.5): A reaches O4 only
+    while |A - O4|^2 = 5 - 4 cos q <= (1 + 1.5)^2, so |q| <= acos(-0.3125)."""
+    fb = kl.mechanisms.fourbar(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)
+    with pytest.raises(kl.errors.AssemblyError,
+                       match=r"^time_ratio: 'rocker' has no time ratio: its input 'jO2' cannot turn "
+                             r"a full turn; it reaches only \[-1.88862, 1.88862\] rad") as info:
+        kl.kinematics.time_ratio(fb, "rocker")
+    assert isinstance(info.value, ValueError)
+    limit = np.arccos(-0.3125)
+    np.testing.assert_allclose(info.value.reachable, [(-limit, limit)], rtol=0, atol=1e-9)
+    # a slider-crank whose crank (3) outreaches its rod (1): |sin q| <= 1/3 near 0 and near pi
+    with pytest.raises(kl.errors.AssemblyError, match="it reaches only") as info:
+        kl.kinematics.time_ratio(kl.mechanisms.slider_crank(3.0, 1.0), "slide")
+    a = np.arcsin(1 / 3)
+    np.testing.assert_allclose(info.value.reachable, [(-np.pi - a, -np.pi + a), (-a, a)],
+                               rtol=0, atol=1e-9)
+
+
+def test_no_time_ratio_through_a_singular_configuration():
+    """Crank = rod: at q = 90 deg the rod stands across the slide (det J = 0); the sketch at
+    45 deg puts that configuration on the sweep's grid."""
+    sc = kl.mechanisms.slider_crank(1.0, 1.0)
+    c = np.sqrt(0.5)
+    m = kl.Mechanism("equal arms", (Point("O2", 0, 0), Point("A", c, c), Point("B", 2 * c, 0)),
+                     sc.links, sc.joints, sc.inputs)
+    with pytest.raises(kl.errors.SingularityError,
+                       match=r"passes a singular configuration near q = 1.5708 rad"):
+        kl.kinematics.time_ratio(m, "slide")
 
 
 def test_transmission_angle_against_law_of_cosines():

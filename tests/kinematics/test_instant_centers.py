@@ -1,5 +1,6 @@
 """Instant centres: the four-bar's known centres, Kennedy's theorem, the angular-velocity
-ratio theorem (seed 002, §4.5-4.6)."""
+ratio theorem (Flores & Claro, *Cinemática de Mecanismos — 4. Análise de Velocidades*
+(Universidade do Minho, 2007), §4.5-4.6)."""
 import itertools
 
 import numpy as np
@@ -61,7 +62,8 @@ def test_kennedy_theorem(make):
 
 
 def test_angular_velocity_ratio_theorem():
-    """omega4 / omega2 = I12I24 / I14I24, signed along the line of centres (seed 002 eq. 4.121)."""
+    """omega4 / omega2 = I12I24 / I14I24, signed along the line of centres (Flores & Claro,
+    eq. 4.121)."""
     sol = kl.analyze(kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5), q=Q, qd=1.0)
     ic = kl.kinematics.instant_centers(sol)
     I12, I14 = ic["ground", "crank"].position, ic["ground", "rocker"].position
@@ -86,3 +88,54 @@ def test_several_inputs_need_their_speeds():
     ic = kl.kinematics.instant_center(kl.analyze(fivebar, q=[0.5, 2.5], qd=[1.0, -2.0]),
                                       "ground", "crank1")
     np.testing.assert_allclose(ic.position, fivebar.point("O2").xy, atol=1e-12)   # its pivot
+
+
+def velocity_on(sol, link, point_xy):
+    """Velocity (N, 2) of the point of ``link`` at ``point_xy`` (N, 2), from the solution's
+    own point velocities and the link's omega (rigid-body motion)."""
+    ref = sol.mechanism.link(link).points[0]
+    r = point_xy - sol.position(ref)
+    w = sol.omega(link)[:, None]
+    return sol.velocity(ref) + w * np.stack([-r[:, 1], r[:, 0]], axis=-1)
+
+
+@pytest.mark.parametrize("make", [lambda: kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5),
+                                  lambda: kl.mechanisms.slider_crank(1.0, 3.0, offset=0.4),
+                                  lambda: kl.mechanisms.slotted_link(1.0, 2.0)])
+def test_a_pair_in_either_order_is_one_centre(make):
+    sol = kl.analyze(make(), q=Q, qd=1.5)
+    ic = kl.kinematics.instant_centers(sol)
+    assert len(ic) == len(list(itertools.combinations(sol.link_names, 2)))
+    for b, a in itertools.combinations(sol.link_names, 2):       # (a, b) against model order
+        assert ic[a, b] is ic[b, a] and (a, b) in ic
+        one = kl.kinematics.instant_center(sol, a, b)
+        assert one.links == (b, a)
+        for field in ("position", "at_infinity", "direction"):
+            np.testing.assert_array_equal(getattr(one, field), getattr(ic[b, a], field))
+        # the centre has the same velocity on both links (rigid-body velocities, not the
+        # formula the centre came from); 1e-9: positions far out where w_a ~ w_b
+        finite = ~one.at_infinity
+        va, vb = velocity_on(sol, a, one.position), velocity_on(sol, b, one.position)
+        np.testing.assert_allclose(va[finite], vb[finite], rtol=0, atol=1e-9)
+
+
+def test_a_centre_at_infinity_has_one_direction():
+    """The slider and the ground translate: the direction of I14 does not flip with the
+    order of the names (it did: it followed the sign of the relative velocity)."""
+    sol = kl.analyze(kl.mechanisms.slider_crank(1.0, 3.0), q=Q)
+    forward = kl.kinematics.instant_center(sol, "ground", "slider")
+    backward = kl.kinematics.instant_center(sol, "slider", "ground")
+    assert backward.at_infinity.all()
+    np.testing.assert_array_equal(backward.direction, forward.direction)
+
+
+def test_pairs_that_name_no_centre():
+    sol = kl.analyze(kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5), q=0.3)
+    with pytest.raises(kl.errors.ModelError, match="expected two different links, got 'crank' twice"):
+        kl.kinematics.instant_center(sol, "crank", "crank")
+    with pytest.raises(kl.errors.ModelError, match=r"got 'cranc' \(did you mean 'crank'\?\)"):
+        kl.kinematics.instant_center(sol, "ground", "cranc")
+    ic = kl.kinematics.instant_centers(sol)
+    assert ("crank", "crank") not in ic and "crank" not in ic
+    with pytest.raises(KeyError, match="a pair of two different links"):
+        ic["crank", "crank"]

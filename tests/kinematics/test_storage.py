@@ -142,7 +142,7 @@ def test_a_start_from_another_method_is_refused(first, then):
 
 
 def test_slide_axis_turns_with_its_guide():
-    """In seed 000's slotted link the slot runs along the lever from O4 through A, and the
+    """In Erthal's slotted link the slot runs along the lever from O4 through A, and the
     slide is B = |A - O4|: the axis is (A - O4) / B at every sample."""
     sol = kl.analyze(kl.mechanisms.slotted_link(1.0, 2.0), q=Q)
     along = sol.position("A") - sol.position("O4")
@@ -150,3 +150,18 @@ def test_slide_axis_turns_with_its_guide():
                                rtol=0, atol=1e-14)
     with pytest.raises(kl.errors.ModelError, match="prismatic joint"):
         sol.slide_axes("jA")
+
+
+def test_slide_axes_follow_the_shape_rule():
+    """One configuration: no sample axis, like every other accessor; the value is the
+    sweep's row at that input."""
+    sl = kl.mechanisms.slotted_link(1.0, 2.0)
+    sweep = kl.analyze(sl, q=Q, qd=2.0, qdd=-1.0)
+    one = kl.analyze(sl, q=Q[7], qd=2.0, qdd=-1.0)
+    assert one.slide_axes("slot").shape == (2,) and sweep.slide_axes("slot").shape == (len(Q), 2)
+    np.testing.assert_array_equal(one.slide_axes("slot"), sweep.slide_axes("slot")[7])
+    # a caller inside the package: the parts of the pin's acceleration
+    parts, parts_n = one.acceleration_components("A"), sweep.acceleration_components("A")
+    for name in ("origin", "tangential", "normal", "coriolis", "sliding"):
+        assert getattr(parts, name).shape == (2,)
+        np.testing.assert_array_equal(getattr(parts, name), getattr(parts_n, name)[7])

@@ -1,5 +1,5 @@
-"""Seed 000 (Erthal, "Mecanismos com 1 GL"): the slotted link B cos A - R cos q - C = 0,
-B sin A - R sin q = 0.
+"""Erthal, *Mecanismos com 1 GL: análise geral de velocidade e aceleração*:
+the slotted link B cos A - R cos q - C = 0, B sin A - R sin q = 0.
 
 The notes give K_a = R cos(A - q) / B, K_b = R sin(A - q) and det J = -B.  Differentiating
 K by q once more (checked by hand, and against finite differences in the engine tests):
@@ -57,7 +57,8 @@ def test_notes_acceleration_equations(sol):
 
 
 def test_coriolis_component(sol):
-    """Seed 001: the Coriolis part of the pin's acceleration is 2 omega B' along the normal."""
+    """Badan (after Norton, ch. 7): the Coriolis part of the pin's acceleration is
+    2 omega B' along the normal."""
     parts = sol.acceleration_components("A")
     np.testing.assert_allclose(parts.total, sol.acceleration("A"), rtol=0, atol=1e-12)
     A, w, Bd = sol.angle("lever"), sol.omega("lever"), sol.slide_velocity("slot")

@@ -1,4 +1,4 @@
-"""Seed 003 §5 (Gibbs-Appell / Kane): the notes' examples, derived by kinelab from the model.
+"""*Mecanismos*, §5 (Gibbs-Appell / Kane): the notes' examples, derived by kinelab from the model.
 
 Each printed formula was re-derived by hand before use (see the comments); kinelab never
 sees the formulas: it builds the equations from the mechanism, its masses and its loads.
@@ -73,7 +73,7 @@ def test_rp_robot_direct_dynamics_notes_5_5():
     sim = simulate(m, (0.0, 2.0), q0=[0.1, 0.8], qd0=[0.5, -0.2], inputs={"shoulder": tau1, "reach": tau2},
                    loads=Loads(gravity=(0.0, -g)), masses=rp_masses(m), t_eval=t_eval, rtol=1e-12, atol=1e-12)
 
-    def notes(t, y):                     # seed 003 §5.5, "Dinâmica Direta"
+    def notes(t, y):                     # *Mecanismos*, §5.5, "Dinâmica Direta"
         q1, q2, u1, u2 = y
         t1 = 2 * 0.6 * 9.81 * np.cos(q1) + 4 * (0.5 - q1) - 1.5 * u1
         t2 = 2 * 9.81 * np.sin(q1) + 30 * (0.6 - q2) - 4 * u2

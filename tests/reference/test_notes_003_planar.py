@@ -1,11 +1,11 @@
-"""Seed 003 worked examples for planar position analysis."""
+"""*Mecanismos* worked examples for planar position analysis."""
 import numpy as np
 import pytest
 
 import kinelab as kl
 
 
-# Notes 003, Ex. 4.2: theta3 = ±60°, theta4 = ±120° (checked by hand: B = (1.5, ±sqrt(3)/2))
+# *Mecanismos*, Ex. 4.2: theta3 = ±60°, theta4 = ±120° (checked by hand: B = (1.5, ±sqrt(3)/2))
 @pytest.mark.parametrize("branch", ["open", "crossed"])
 def test_fourbar_notes_003_ex_4_2(branch):
     fb = kl.mechanisms.fourbar(ground=2.0, crank=1.0, coupler=1.0, rocker=1.0, branch=branch)

@@ -1,4 +1,4 @@
-"""Worked examples of notes 003 ("Mecanismos"), §4.5-4.7: the solvers.
+"""Worked examples of *Mecanismos*, §4.5-4.7: the solvers.
 
 Every printed number was recomputed before being used here; where the notes slip, the test
 holds the verified value and says what the notes print.

@@ -1,4 +1,4 @@
-"""Worked numbers of notes 003 (§4.3, §7.3-§7.6), each checked by hand before use.
+"""Worked numbers of *Mecanismos* (§4.3, §7.3-§7.6), each checked by hand before use.
 
 Where the notes leave the geometry to a figure that is not in the text (Ex. 6.1, Ex. 6.2),
 the geometry kinelab chose is stated here and in docs/spatial.md, and the expected numbers

@@ -1,4 +1,4 @@
-"""Seed 003 §6: the notes' worked examples of dimensional synthesis, checked.
+"""*Mecanismos*, §6: the notes' worked examples of dimensional synthesis, checked.
 
 The notes work in m (§6.5) and cm (§6.7, §6.8); the synthesis is scale-free, so the cm
 examples are run in metres (every length times 0.01) and compared in metres.

@@ -1,4 +1,4 @@
-"""The in-line slider-crank as a test system for the solvers (notes 003, eqs. 38-39).
+"""The in-line slider-crank as a test system for the solvers (*Mecanismos*, eqs. 38-39).
 
 Unknowns x = (θ3, l), parameter θ2; L2 crank, L3 rod.
 """

@@ -57,7 +57,7 @@ def test_tangent_gives_one_root_in_both_columns(R, phi, sign):
 
 def test_root_at_pi_lost_by_the_tangent_substitution():
     # G = E: the quadratic (G - E)u² + 2Fu + (G + E) = 0 is linear, u = -(G + E)/(2F)
-    # gives one root (notes 003, §4.5 case 1); the other is θ = π (u = ∞).
+    # gives one root (*Mecanismos*, §4.5 case 1); the other is θ = π (u = ∞).
     sol = half_angle(1.0, 2.0, 1.0)
     assert sol.count == 2
     assert sol.theta[1] == pytest.approx(np.pi, abs=1e-15)

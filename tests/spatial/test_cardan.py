@@ -1,4 +1,4 @@
-"""Cardan joints against the yoke-pin geometry they come from (notes 003 §7.4, Fig. 59),
+"""Cardan joints against the yoke-pin geometry they come from (*Mecanismos*, §7.4, Fig. 59),
 typed out here with plain matrices, and against finite differences."""
 import numpy as np
 import pytest

@@ -126,7 +126,7 @@ def test_tool_acceleration_against_finite_differences(name, data):
 
 
 def test_rr_velocity_and_acceleration_match_notes_ex_4_5():
-    # Notes 003 Ex. 4.5, the components of 0_ṙ_P and 0_r̈_P written out.
+    # *Mecanismos*, Ex. 4.5, the components of 0_ṙ_P and 0_r̈_P written out.
     l1, l2 = 1.0, 0.7
     t1, t2, w1, w2, a1, a2 = 0.4, 1.1, 2.0, -1.5, 0.3, 0.8
     m = ROBOTS["RR"].motion([t1, t2], [w1, w2], [a1, a2])

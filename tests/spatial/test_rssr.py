@@ -13,7 +13,7 @@ angle = st.floats(-np.pi, np.pi, allow_nan=False)
 
 
 def joint_centres(H1, L1, L0, H3, L3, theta1, theta3, D3=0.37):
-    """A and B straight from the frames of notes 003 §7.3 (D3 arbitrary: it cancels)."""
+    """A and B straight from the frames of *Mecanismos*, §7.3 (D3 arbitrary: it cancels)."""
     T1 = sp.homogeneous(sp.rotation("y", theta1), [0.0, 0.0, 0.0])
     T3 = sp.compose(sp.translation([-D3, L0, 0.0]),
                     sp.homogeneous(sp.rotation("x", theta3), [0.0, 0.0, 0.0]))

@@ -1,4 +1,4 @@
-"""Transforms and rotations against the matrices of notes 003 §4.2 and §7.2, typed out
+"""Transforms and rotations against the matrices of *Mecanismos*, §4.2 and §7.2, typed out
 here independently, and against finite differences for the time derivatives."""
 import numpy as np
 import pytest
@@ -34,7 +34,7 @@ def rot_z(g):
 
 
 def euler_parameter_matrix(q0, q1, q2, q3):
-    """Notes 003 §7.2, Rot(u, θ) from Euler parameters (Δ⁻¹ times the printed matrix)."""
+    """*Mecanismos*, §7.2, Rot(u, θ) from Euler parameters (Δ⁻¹ times the printed matrix)."""
     delta = q0**2 + q1**2 + q2**2 + q3**2
     return np.array([
         [q0**2 + q1**2 - q2**2 - q3**2, 2 * (-q0 * q3 + q1 * q2), 2 * (q0 * q2 + q1 * q3)],
@@ -138,13 +138,13 @@ def test_planar_transform_and_inverse(theta, p):
     T = sp.planar_transform(theta, p)
     c, s = np.cos(theta), np.sin(theta)
     np.testing.assert_allclose(T, [[c, -s, p[0]], [s, c, p[1]], [0, 0, 1]], rtol=0, atol=0)
-    # notes 003 eq. 20: B_T_A = [[Rᵀ, -Rᵀ p], [0, 1]]
+    # *Mecanismos*, eq. 20: B_T_A = [[Rᵀ, -Rᵀ p], [0, 1]]
     Rt = np.array([[c, s], [-s, c]])
     np.testing.assert_allclose(sp.invert(T)[:2, 2], -Rt @ p, rtol=0, atol=1e-14)
 
 
 def test_rr_robot_by_chained_planar_transforms():
-    # Notes 003 Ex. 4.1 (eq. 21): l1 = l2 = 1, θ1 = 30°, θ2 = 60° -> P = (√3/2, 1.5).
+    # *Mecanismos*, Ex. 4.1 (eq. 21): l1 = l2 = 1, θ1 = 30°, θ2 = 60° -> P = (√3/2, 1.5).
     T = sp.compose(sp.planar_transform(np.radians(30)),
                    sp.planar_transform(np.radians(60), [1.0, 0.0]))
     np.testing.assert_allclose(sp.transform_points(T, [1.0, 0.0]), [np.sqrt(3) / 2, 1.5],
@@ -226,7 +226,7 @@ def test_point_in_moving_frame_against_finite_differences():
 
 
 def test_planar_point_motion_matches_notes_rp_robot():
-    # Notes 003 §5.5: a point sliding along a turning arm, r = q2 i1:
+    # *Mecanismos*, §5.5: a point sliding along a turning arm, r = q2 i1:
     # a = (q̈2 - q2 q̇1²) i1 + (2 q̇1 q̇2 + q2 q̈1) j1.
     q1, q1d, q1dd, q2, q2d, q2dd = 0.6, 1.5, -0.7, 0.8, 0.3, 0.2
     T = sp.planar_transform(q1)

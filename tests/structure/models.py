@@ -55,7 +55,7 @@ def slider_crank():
 
 
 def disk_cam_flat_follower():
-    """Seed 003, Ex. 2.2: a disk cam turning about O2 lifts a flat-faced follower that
+    """*Mecanismos*, Ex. 2.2: a disk cam turning about O2 lifts a flat-faced follower that
     slides vertically; the cam touches the face at C, whose normal is vertical."""
     pts = (Point("O2", 0, 0), Point("K", 0.3, 0.2), Point("F", 0.1, 1.5),
            Point("G", 0.1, 2.5), Point("C", 0.25, 1.0))
@@ -68,7 +68,7 @@ def disk_cam_flat_follower():
 
 
 def sarrus(elbows=((1.6, 0.3, 0.4), (0.2, 1.7, 0.6))):
-    """Seed 003 §2.2, Fig. 12: plate 4 on two legs of three parallel R joints, axes along
+    """*Mecanismos*, §2.2, Fig. 12: plate 4 on two legs of three parallel R joints, axes along
     y (links 1-2-3-4) and along x (links 1-5-6-4)."""
     (ax, ay, az), (bx, by, bz) = elbows
     pts = (Point("A1", 1.0, 0.0, 0.0), Point("A2", ax, ay, az), Point("A3", 1.1, -0.2, 1.0),
@@ -135,7 +135,7 @@ def rssr(with_extra_coupler_point=False):
 
 
 def double_wishbone(wheel_centre=True):
-    """Seed 003, Ex. 2.3: chassis 1, upper arm 2, knuckle 3, lower arm 4; R pairs 12 and
+    """*Mecanismos*, Ex. 2.3: chassis 1, upper arm 2, knuckle 3, lower arm 4; R pairs 12 and
     14 along the car, S pairs 23 and 34 (the ball joints)."""
     pts = [Point("U1", 0.0, 0.30, 0.0), Point("U2", 0.0, 0.30, 0.50), Point("L1", 0.0, 0.0, -0.10),
            Point("L2", 0.0, 0.0, 0.40), Point("BU", 0.35, 0.33, 0.20),

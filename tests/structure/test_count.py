@@ -10,7 +10,7 @@ from kinelab.structure import (joint_catalogue, kutzbach_gruebler, mobility, pai
 from .models import disk_cam_flat_follower, double_wishbone, sarrus, slider_crank
 
 
-# Seed 003 §2.1-2.2, each checked by hand with Eq. (2) or (3):
+# *Mecanismos*, §2.1-2.2, each checked by hand with Eq. (2) or (3):
 #   slider-crank   3(4-1) - 2*4          = 1
 #   disk cam       3(3-1) - 2*2 - 1*1    = 1
 #   suspension     6(4-1) - 5*2 - 3*2    = 2

@@ -22,7 +22,7 @@ def test_herve_kinds(label, kind, dim):
 
 
 def test_notes_intersection_gives_tz():
-    # Seed 003 §2.2: legs 1-2-3-4 allow {Tx, Tz, Ry}, legs 1-5-6-4 {Ty, Tz, Rx}
+    # *Mecanismos*, §2.2: legs 1-2-3-4 allow {Tx, Tz, Ry}, legs 1-5-6-4 {Ty, Tz, Rx}
     g = displacement_group("{Tx, Tz, Ry}") & displacement_group("{Ty, Tz, Rx}")
     assert g.label == "{Tz}" and g.kind == "T"
 

@@ -88,7 +88,7 @@ def test_a_point_off_the_spin_axis_makes_the_spin_count():
 
 
 def test_suspension_steering_freedom():
-    # Seed 003, Ex. 2.3: M = 2, wheel up and down and the knuckle's turn (steering)
+    # *Mecanismos*, Ex. 2.3: M = 2, wheel up and down and the knuckle's turn (steering)
     with_wheel = mobility(double_wishbone(wheel_centre=True))
     assert (with_wheel.kutzbach_gruebler, with_wheel.exact) == (2, 2)
     bare = mobility(double_wishbone(wheel_centre=False))
@@ -219,7 +219,7 @@ def test_dead_centre_is_not_singular_for_the_whole_jacobian():
 
 def test_sarrus_plate_moves_along_z_only():
     # a finite move of the RRRRRR mechanism keeps the plate parallel to itself above the
-    # same place: its displacement is a pure Tz (seed 003 §2.2), to the closing tolerance
+    # same place: its displacement is a pure Tz (*Mecanismos*, §2.2), to the closing tolerance
     from kinelab.structure._motion import moved
     from kinelab.structure._system import ConstraintSystem
     model = sarrus()

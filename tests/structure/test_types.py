@@ -1,4 +1,4 @@
-"""Type synthesis (seed 003 §3), its exercises, and the mobility of what it proposes."""
+"""Type synthesis (*Mecanismos*, §3), its exercises, and the mobility of what it proposes."""
 from fractions import Fraction
 
 import pytest

@@ -11,7 +11,7 @@ from kinelab.cli import main
 
 NOTES_6_7 = """
 task = "motion"
-name = "notes 003, 6.7"
+name = "Mecanismos, §6.7"
 units = { length = "cm", angle = "deg" }
 
 [positions]
@@ -43,7 +43,7 @@ def run(tmp_path, text, *args):
 def test_four_positions_from_a_task_file(tmp_path):
     res = run(tmp_path, NOTES_6_7)
     assert res.exit_code == 0, res.output
-    assert "notes 003, 6.7: motion generation, 9 linkage(s)" in res.output
+    assert "Mecanismos, §6.7: motion generation, 9 linkage(s)" in res.output
     # Table 7 of the notes is among them, printed in the file's unit (cm)
     number = r"(-?[\d.]+)"
     pivots = re.findall(rf"A0 \({number}, {number}\) B0 \({number}, {number}\) "

@@ -1,4 +1,5 @@
-"""Four positions: the compatibility cubic, Burmester's curves, every linkage (seed 003, §6.3, §6.6)."""
+"""Four positions: the compatibility cubic, Burmester's curves, every linkage
+(*Mecanismos*, §6.3, §6.6)."""
 import numpy as np
 import pytest
 
@@ -49,7 +50,7 @@ def test_traced_curves_against_the_determinant_and_the_linear_system():
 
 
 def test_center_points_see_opposite_pole_sides_under_equal_angles():
-    """Burmester (seed 003 §6.3, fig. 54): a centre point sees the opposite sides P13P23 and
+    """Burmester (*Mecanismos*, §6.3, fig. 54): a centre point sees the opposite sides P13P23 and
     P14P24 of the pole quadrilateral under the same angle (mod pi)."""
     p = poles(POS)
     M = burmester_curves(POS, samples=181)

@@ -1,4 +1,4 @@
-"""Motion generation through two and three positions (seed 003, §6.1, 6.2, 6.4)."""
+"""Motion generation through two and three positions (*Mecanismos*, §6.1, 6.2, 6.4)."""
 import numpy as np
 import pytest
 from hypothesis import assume, given

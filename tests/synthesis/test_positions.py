@@ -1,4 +1,4 @@
-"""Positions of a moving plane and their poles (seed 003, §6.1)."""
+"""Positions of a moving plane and their poles (*Mecanismos*, §6.1)."""
 import numpy as np
 import pytest
 from hypothesis import assume, given
