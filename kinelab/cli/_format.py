@@ -18,9 +18,14 @@ def _num(v: float, digits: int = 6) -> str:
 
 
 def _q(u: Units, values, si_units) -> str:
-    """Input values (SI, one per input) with their units: ``30 deg`` or ``(30 deg, 12 mm)``."""
-    parts = [f"{_num(u.convert(v, si))} {u.unit(si)}" for v, si in zip(values, si_units)]
+    """Input values (SI, one per input) with their units: ``30 deg`` or ``(30 deg, 12 mm)``;
+    rounding noise about zero (a dead centre found at 1e-13 rad) shows as 0."""
+    parts = [f"{_num(_snap(u.convert(v, si)))} {u.unit(si)}" for v, si in zip(values, si_units)]
     return parts[0] if len(parts) == 1 else "(" + ", ".join(parts) + ")"
+
+
+def _snap(v: float) -> float:
+    return 0.0 if abs(v) < 1e-9 else v
 
 
 def _angle(u: Units, v: float) -> str:

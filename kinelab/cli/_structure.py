@@ -60,7 +60,7 @@ def _print_chains(links: int, mobility_: int, limit: int | None, as_json: bool) 
 @click.option("--method", type=click.Choice(["open", "active", "passive", "alternative"]),
               default="active", show_default=True,
               help="Number synthesis of an open chain, active-chain enumeration, passive-"
-                   "chain addition, or the alternative method (seed 003, §3).")
+                   "chain addition, or the alternative method (course notes \"Mecanismos\", §3).")
 @click.option("--motion", default=None,
               help="Wanted motion of the end link, e.g. 'Tx Ty' or 'Rx Ry Tr'.")
 @click.option("--joints", default=None, help="Pair types to use, e.g. RPUS.")
