@@ -1,17 +1,16 @@
 """What the results of inverse and forward dynamics share: names, kinds, export."""
 from __future__ import annotations
 
-import os
 from collections.abc import Mapping
 
 import numpy as np
 
 from kinelab.kinematics import plan
-from kinelab.kinematics._columns import Columns
+from kinelab.kinematics._columns import Columns, TableExport
 from kinelab.model import Mechanism, Units
 
 
-class MotionResult:
+class MotionResult(TableExport):
     """Base of the dynamics results: a motion (``t``, ``q``, ``qd``, ``qdd``, (N, M)) with
     the actuators' ``input_forces`` and its ``kinematics``; subclasses add their columns."""
 
@@ -64,15 +63,3 @@ class MotionResult:
         results, which stay in SI: forces in N, torques and moments in N*m, energies in J,
         powers in W."""
         return dict(self._columns(Units.resolve(units, degrees=degrees)))
-
-    def to_dataframe(self, degrees: bool = False, *,
-                     units: Units | Mapping[str, str] | None = None):
-        """A pandas DataFrame of :meth:`columns`, one row per sample."""
-        import pandas as pd
-        return pd.DataFrame(self.columns(degrees=degrees, units=units))
-
-    def to_csv(self, path: str | os.PathLike, degrees: bool = False, *,
-               units: Units | Mapping[str, str] | None = None) -> None:
-        """Write :meth:`columns` as CSV (to a temporary file, then renamed)."""
-        from kinelab._files import write_csv
-        write_csv(self.columns(degrees=degrees, units=units), path)

@@ -25,7 +25,7 @@ from kinelab import mechanisms as catalogue
 from kinelab._files import atomic_write
 from kinelab.errors import ModelError
 from kinelab.io import _toml
-from kinelab.io._fields import Reader, describe, quoted, suggest
+from kinelab.io._fields import Reader, describe, quoted
 from kinelab.model import (ANGLE_UNITS, JOINT_TYPES, LENGTH_UNITS, SPACES, Input, Joint, Link,
                            Mechanism, Point, Units)
 

@@ -6,14 +6,16 @@ configuration of ``kinelab analyze --at`` all say the same thing.
 """
 from __future__ import annotations
 
+import os
 import re
+from collections.abc import Mapping
 
 import numpy as np
 
 from kinelab.errors import ModelError
 from kinelab.model import Units
 
-__all__ = ["column_name", "Columns", "solution_columns", "INPUT_SI_UNITS"]
+__all__ = ["column_name", "Columns", "TableExport", "solution_columns", "INPUT_SI_UNITS"]
 
 INPUT_SI_UNITS = {"angle": "rad", "slide": "m"}      # by kind of input
 _SPACE = re.compile(r"\s")
@@ -62,6 +64,27 @@ class Columns(dict):
             self.add(name, "q", u, q[:, k])
             self.add(name, "qd", f"{u}/s", qd[:, k])
             self.add(name, "qdd", f"{u}/s^2", qdd[:, k])
+
+
+class TableExport:
+    """``to_dataframe`` and ``to_csv`` of a result whose ``columns(degrees=, units=)`` gives
+    its named (N,) columns."""
+
+    def columns(self, degrees: bool = False, *,
+                units: Units | Mapping[str, str] | None = None) -> dict[str, np.ndarray]:
+        raise NotImplementedError    # pragma: no cover
+
+    def to_dataframe(self, degrees: bool = False, *,
+                     units: Units | Mapping[str, str] | None = None):
+        """A pandas DataFrame with one row per sample and the columns of :meth:`columns`."""
+        import pandas as pd
+        return pd.DataFrame(self.columns(degrees=degrees, units=units))
+
+    def to_csv(self, path: str | os.PathLike, degrees: bool = False, *,
+               units: Units | Mapping[str, str] | None = None) -> None:
+        """Write :meth:`columns` as CSV (to a temporary file, then renamed)."""
+        from kinelab._files import write_csv
+        write_csv(self.columns(degrees=degrees, units=units), path)
 
 
 def solution_columns(sol, units: Units) -> Columns:

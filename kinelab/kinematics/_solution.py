@@ -3,13 +3,13 @@ from __future__ import annotations
 
 import functools
 import math
-import os
 from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
 
 from kinelab.errors import ModelError, quoted, suggest
+from kinelab.kinematics._columns import TableExport, solution_columns
 from kinelab.kinematics._plan import Plan
 from kinelab.model import Mechanism, Units
 from kinelab.solvers import wrap_angle
@@ -40,7 +40,7 @@ class AccelerationComponents:
 
 
 @dataclass(frozen=True, eq=False)
-class KinematicSolution:
+class KinematicSolution(TableExport):
     """Positions, velocities, accelerations, K and L of every link, point and slide.
 
     Use the accessors, which take names and follow the shape rule of the input: a single
@@ -365,20 +365,9 @@ class KinematicSolution:
         >>> round(float(cols["slide.K[mm/deg]"][1]), 6)  # dx/dq = -r = -100 mm/rad at 90 deg
         -1.745329
         """
-        from kinelab.kinematics._columns import solution_columns
         return dict(solution_columns(self, Units.resolve(units, degrees=degrees)))
 
-    def to_dataframe(self, degrees: bool = False, *,
-                     units: Units | Mapping[str, str] | None = None):
-        """A pandas DataFrame with one row per sample and the columns of :meth:`columns`."""
-        import pandas as pd
-        return pd.DataFrame(self.columns(degrees=degrees, units=units))
-
-    def to_csv(self, path: str | os.PathLike, degrees: bool = False, *,
-               units: Units | Mapping[str, str] | None = None) -> None:
-        """Write :meth:`columns` as CSV (written to a temporary file, then renamed)."""
-        from kinelab._files import write_csv
-        write_csv(self.columns(degrees=degrees, units=units), path)
+    # to_dataframe(degrees=, units=) and to_csv(path, degrees=, units=): see TableExport
 
     def __repr__(self) -> str:
         sing = int(self.singular.sum())
