@@ -22,7 +22,7 @@ from kinelab.kinematics._columns import INPUT_SI_UNITS
 from kinelab.model import Units
 
 __all__ = ["curves", "coefficients", "coupler_curve", "transmission", "mechanism", "save",
-           "input_axis", "mark_singular"]
+           "input_axis"]
 
 _QUANTITIES = {     # (accessor, label, SI unit) of each row
     "link": (("angle", "angle", "rad"), ("omega", "angular velocity", "rad/s"),
@@ -76,7 +76,7 @@ def _x_axis(ax, sol: KinematicSolution, u: Units) -> np.ndarray:
     if np.ptp(x) > 0:
         ax.set_xlim(np.min(x), np.max(x))      # the sweep, edge to edge
     _turn_ticks(ax.xaxis, x, unit)
-    mark_singular(ax, sol, x)
+    _mark_singular(ax, sol, x)
     return x
 
 
@@ -100,7 +100,7 @@ def _singular_samples(sol: KinematicSolution) -> list[int]:
     return _runs(np.asarray(sol.singular)) if not sol.single else []
 
 
-def mark_singular(ax, sol: KinematicSolution, x) -> None:
+def _mark_singular(ax, sol: KinematicSolution, x) -> None:
     """Thin vertical lines at the singular positions of a sweep plotted against ``x``,
     labelled once in the legend."""
     for k, i in enumerate(_singular_samples(sol)):
