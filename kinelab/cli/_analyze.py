@@ -9,16 +9,16 @@ import numpy as np
 
 from kinelab import io, kinematics, solvers
 from kinelab.cli._format import configuration_text, summary_text
-from kinelab.cli._main import errors_from, output_path, parse_inputs, read_model, stem, sweep
+from kinelab.cli._main import (DEGREES, SI, errors_from, output_path, output_units, parse_inputs,
+                               read_model, stem, sweep)
 from kinelab.errors import AssemblyError, KinelabError, ModelError
+from kinelab.kinematics._columns import INPUT_SI_UNITS
 
 __all__ = ["analyze", "check"]
 
 MODEL = click.argument("model", type=click.Path(dir_okay=False))
 SAMPLES = click.option("--samples", type=click.IntRange(2, 10_000_000), default=None,
                        help="Samples per input, instead of the file's.")
-DEGREES = click.option("--degrees", is_flag=True,
-                       help="Angles in degrees (default: radians, as all results are SI).")
 
 
 def summarise(mf, sol):
@@ -33,18 +33,19 @@ def summarise(mf, sol):
     return s
 
 
-def missing_time_ratio(mf, s, degrees: bool) -> str | None:
-    """Why the time ratio the file asks for is not in the summary, in one line."""
+def missing_time_ratio(mf, s, units) -> str | None:
+    """Why the time ratio the file asks for is not in the summary, in one line (input
+    values in ``units``)."""
     output = mf.outputs.time_ratio
     if s is None or not output or s.quick_return is not None:
         return None
     try:
         kinematics.time_ratio(mf.mechanism, output)
     except AssemblyError as exc:
-        unit, f = ("deg", 180.0 / math.pi) if degrees else ("rad", 1.0)
-        spans = " and ".join(f"[{a * f:.6g}, {b * f:.6g}]" for a, b in s.reachable or exc.reachable)
+        spans = " and ".join(f"[{units.convert(a, 'rad'):.6g}, {units.convert(b, 'rad'):.6g}]"
+                             for a, b in s.reachable or exc.reachable)
         return (f"time ratio of {output}: none; {mf.mechanism.input_names[0]} cannot turn a full "
-                f"turn (it reaches only {spans} {unit})")
+                f"turn (it reaches only {spans} {units.unit('rad')})")
     except KinelabError as exc:
         return f"time ratio of {output}: none; " + str(exc).removeprefix("time_ratio: ")
     return None
@@ -58,6 +59,7 @@ def missing_time_ratio(mf, s, degrees: bool) -> str | None:
 @click.option("--format", "fmt", type=click.Choice(io.RESULT_FORMATS), default=None,
               help="Table format (default: from the file name, else csv).")
 @SAMPLES
+@SI
 @DEGREES
 @click.option("--at", "at", default=None, metavar="VALUE",
               help="Print one configuration in full instead of sweeping: the input value in "
@@ -68,14 +70,16 @@ def missing_time_ratio(mf, s, degrees: bool) -> str | None:
                    "second, or with a unit (60deg, 1rad, 12mm: per second); comma-separated "
                    "for several inputs.")
 @click.option("--quiet", "-q", is_flag=True, help="Do not print the summary.")
-def analyze(model, out, fmt, samples, degrees, at, speed, quiet):
+def analyze(model, out, fmt, samples, si, degrees, at, speed, quiet):
     """Sweep MODEL's input range and write one row per sample: inputs; every link's angle,
     omega, alpha; every slide and its rates; every point's x, y, vx, vy, ax, ay; K and L of
-    each; det J and the singular flag.  Prints a summary."""
+    each; det J and the singular flag.  Prints a summary.  Results are in the file's units
+    (--si for m and rad), each column named item.quantity[unit]."""
     mf = read_model(model)
     if speed is not None:
         mf = with_speeds(mf, parse_inputs(speed, mf, "--speed"))
     m = mf.mechanism
+    units = output_units(mf.units, si, degrees)
     if at is not None:
         q = parse_inputs(at, mf)
         M = len(m.inputs)
@@ -83,16 +87,16 @@ def analyze(model, out, fmt, samples, degrees, at, speed, quiet):
         qdd = np.array([i.acceleration for i in m.inputs]) if M > 1 else m.inputs[0].acceleration
         with errors_from(mf, "--at"):
             sol = kinematics.analyze(m, q, qd, qdd, at_singular="flag")
-        click.echo(configuration_text(sol, degrees=degrees))
+        click.echo(configuration_text(sol, units))
         return
     sol = sweep(mf, samples)
     s = None if quiet else summarise(mf, sol)
     name = stem(model)
     path = output_path(out, name, fmt or "csv")
-    written = io.write_results(sol, path, format=fmt, degrees=degrees)
+    written = io.write_results(sol, path, format=fmt, units=units)
     if s is not None:
-        click.echo(summary_text(s, degrees=degrees))
-        note = missing_time_ratio(mf, s, degrees)
+        click.echo(summary_text(s, units))
+        note = missing_time_ratio(mf, s, units)
         if note:
             click.echo(note)
     click.echo(f"wrote {written} ({sol.N} rows, {len(sol.columns())} columns)")
@@ -108,12 +112,15 @@ def with_speeds(mf, qd) -> io.ModelFile:
 
 @click.command()
 @MODEL
+@SI
 @DEGREES
-def check(model, degrees):
+def check(model, si, degrees):
     """Validate MODEL, assemble it at its sketch, and report its mobility and the reachable
-    input range.  Exit status 2 when something is wrong."""
+    input range (in the file's units, or SI with --si).  Exit status 2 when something is
+    wrong."""
     mf = read_model(model)
     m = mf.mechanism
+    units = output_units(mf.units, si, degrees)
     with errors_from(mf):
         p = kinematics.plan(m)
     click.echo(f"{model}: {m.name}: {len(m.points)} points, {len(m.links)} links, "
@@ -124,22 +131,21 @@ def check(model, degrees):
                + (f"; {mobility}" if mobility else ""))
     click.echo("assembles at the sketch, solved as: " + "; ".join(
         s.label for s in p.steps if s.kind not in ("locked", "placed")))
-    angle = mf.units.angle_scale
-    unit = [mf.units.angle if k == "angle" else mf.units.length for k in p.input_kinds]
-    scale = [angle if k == "angle" else mf.units.length_scale for k in p.input_kinds]
-    click.echo("sketch: " + ", ".join(f"{n} = {q / s:.6g} {u}" for n, q, s, u in
-                                      zip(m.input_names, p.q_sketch, scale, unit)))
+    si_unit = [INPUT_SI_UNITS[k] for k in p.input_kinds]
+    click.echo("sketch: " + ", ".join(f"{n} = {units.convert(q, u):.6g} {units.unit(u)}"
+                                      for n, q, u in zip(m.input_names, p.q_sketch, si_unit)))
     if len(m.inputs) == 1:
         with errors_from(mf):
             ranges = kinematics.reachable_ranges(m)
         full = kinematics.turns_fully(m, ranges)
+        u = si_unit[0]
         if full:
             click.echo(f"reachable: {m.input_names[0]} turns fully")
         else:
             click.echo(f"reachable: {m.input_names[0]} in " + ", ".join(
-                f"[{lo / scale[0]:.6g}, {hi / scale[0]:.6g}] {unit[0]}" for lo, hi in ranges)
-                + " (its limit positions)")
-        _check_range(mf, ranges, full, scale[0], unit[0])
+                f"[{units.convert(lo, u):.6g}, {units.convert(hi, u):.6g}] {units.unit(u)}"
+                for lo, hi in ranges) + " (its limit positions)")
+        _check_range(mf, ranges, full, u)
     with errors_from(mf, "inputs"):
         q, qd, qdd = mf.sample_inputs(min(mf.samples or (361,)))
         sol = kinematics.analyze(m, q, qd, qdd, at_singular="flag")
@@ -149,17 +155,23 @@ def check(model, degrees):
     click.echo("ok")
 
 
-def _check_range(mf, ranges, full, scale, unit):
+def _check_range(mf, ranges, full, si_unit):
+    """Refuse an input range that leaves the reachable ranges (said in the file's units:
+    the error is about what the file says)."""
     inp = mf.mechanism.inputs[0]
     if inp.range is None or full:
         return
     lo, hi = sorted(inp.range)
     turns = [2 * math.pi * k for k in range(-3, 4)]
     if not any(a + t - 1e-9 <= lo and hi <= b + t + 1e-9 for a, b in ranges for t in turns):
-        spans = ", ".join(f"[{a / scale:.6g}, {b / scale:.6g}]" for a, b in ranges)
-        raise ModelError(f"{mf.source}: inputs[0].range: [{inp.range[0] / scale:.6g}, "
-                         f"{inp.range[1] / scale:.6g}] {unit} goes where the mechanism does not "
-                         f"assemble; it reaches {spans} {unit}; narrow the range")
+        u = mf.units
+
+        def num(v):
+            return f"{u.convert(v, si_unit):.6g}"
+        spans = ", ".join(f"[{num(a)}, {num(b)}]" for a, b in ranges)
+        raise ModelError(f"{mf.source}: inputs[0].range: [{num(inp.range[0])}, "
+                         f"{num(inp.range[1])}] {u.unit(si_unit)} goes where the mechanism does "
+                         f"not assemble; it reaches {spans} {u.unit(si_unit)}; narrow the range")
 
 
 def _mobility(m) -> str:

@@ -4,8 +4,9 @@ from __future__ import annotations
 import click
 
 from kinelab import io
-from kinelab.cli._analyze import DEGREES, MODEL, SAMPLES
-from kinelab.cli._main import errors_from, output_path, read_model, stem, sweep
+from kinelab.cli._analyze import MODEL, SAMPLES
+from kinelab.cli._main import (DEGREES, SI, errors_from, output_path, output_units, read_model,
+                               stem, sweep)
 from kinelab.errors import ModelError
 
 __all__ = ["plot", "animate"]
@@ -34,15 +35,18 @@ def _names(text: str | None) -> list[str] | None:
               help="Comma-separated links, slides and points to plot (default: the file's "
                    "[outputs], else the moving links, slides and coupler points).")
 @SAMPLES
+@SI
 @DEGREES
-def plot(model, out, formats, outputs, samples, degrees):
+def plot(model, out, formats, outputs, samples, si, degrees):
     """Write MODEL's figures: outputs' position, velocity and acceleration against the input;
-    K and L; coupler curves; transmission angle."""
+    K and L; coupler curves; transmission angle.  Axes are in the file's units (--si for m
+    and rad); singular positions are marked and left out of the curves."""
     from kinelab import plot as kplot
     from kinelab.io._summary import _default_pairs
     plt = _agg()
     mf = read_model(model)
     m = mf.mechanism
+    units = output_units(mf.units, si, degrees)
     chosen = _names(outputs) or list(mf.outputs.report) or list(io.default_outputs(m))
     base = stem(model)
     # checked before the sweep, which can be long
@@ -57,13 +61,13 @@ def plot(model, out, formats, outputs, samples, degrees):
     with errors_from(mf, "outputs"):
         curve_names = [n for n in chosen if n in sol.link_item or n in sol.slide_item]
         if curve_names:
-            figures.append(("motion", kplot.curves(sol, curve_names, degrees=degrees)))
-            figures.append(("coefficients", kplot.coefficients(sol, curve_names, degrees=degrees)))
+            figures.append(("motion", kplot.curves(sol, curve_names, units=units)))
+            figures.append(("coefficients", kplot.coefficients(sol, curve_names, units=units)))
         for p in (n for n in chosen if n in sol.point_item):
-            figures.append((f"path_{p}", kplot.coupler_curve(sol, p).figure))
+            figures.append((f"path_{p}", kplot.coupler_curve(sol, p, units=units).figure))
         pairs = list(mf.outputs.transmission) or _default_pairs(m)
         if pairs:
-            figures.append(("transmission", kplot.transmission(sol, pairs, degrees=degrees).figure))
+            figures.append(("transmission", kplot.transmission(sol, pairs, units=units).figure))
     if not figures:
         raise click.UsageError("nothing to plot: name links, slides or points with --outputs")
     written = []
@@ -86,15 +90,19 @@ def plot(model, out, formats, outputs, samples, degrees):
 @click.option("--frames", type=click.IntRange(2, 2000), default=120, show_default=True)
 @click.option("--fps", type=click.IntRange(1, 120), default=30, show_default=True)
 @SAMPLES
-def animate(model, out, fmt, trace, frames, fps, samples):
-    """Write an animation of MODEL moving through its sweep, with its coupler curves traced."""
+@SI
+def animate(model, out, fmt, trace, frames, fps, samples, si):
+    """Write an animation of MODEL moving through its sweep, with its coupler curves traced;
+    axes in the file's length unit (--si for m)."""
     from kinelab import plot as kplot
     _agg()
     mf = read_model(model)
+    units = output_units(mf.units, si, False)
     if fmt == "auto":
         fmt = "mp4" if kplot.can_write_mp4() else "gif"
     sol = sweep(mf, samples)
     path = output_path(out, stem(model), fmt)
     with errors_from(mf, "--trace" if trace else ""):
-        written = kplot.animate(sol, path, trace=_names(trace), frames=frames, fps=fps)
+        written = kplot.animate(sol, path, trace=_names(trace), frames=frames, fps=fps,
+                                units=units)
     click.echo(f"wrote {written}")

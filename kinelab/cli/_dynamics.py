@@ -12,8 +12,9 @@ import click
 import numpy as np
 
 from kinelab import dynamics
-from kinelab.cli._main import errors_from, read_model
+from kinelab.cli._main import DEGREES, SI, errors_from, output_units, read_model
 from kinelab.io import ModelFile
+from kinelab.model import Units
 
 __all__ = ["dynamics_command", "run"]
 
@@ -26,9 +27,12 @@ def _times(q: np.ndarray, speed: float, acceleration: float) -> np.ndarray:
 
 
 def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
-        degrees: bool = False, gravity: tuple[float, float] | None = None, plots: bool = True):
-    """Sweep, solve and write ``<name>_dynamics.csv`` and the figures; returns the result and
-    the paths written."""
+        units: Units | None = None, gravity: tuple[float, float] | None = None,
+        plots: bool = True):
+    """Sweep, solve and write ``<name>_dynamics.csv`` and the figures (the inputs in
+    ``units``, default the file's; forces and energies in SI); returns the result and the
+    paths written."""
+    units = mf.units if units is None else units
     m = mf.mechanism
     setup = dynamics.DynamicsSetup.from_model(m)
     loads = setup.loads
@@ -41,7 +45,7 @@ def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
                            t=_times(q, inp.speed, inp.acceleration))
     out = Path(out)
     written = [out / f"{m.name}_dynamics.csv"]
-    res.to_csv(written[0], degrees=degrees)
+    res.to_csv(written[0], units=units)
     if plots:
         from kinelab.cli._draw import _agg
         from kinelab.plot import _dynamics as figs
@@ -49,7 +53,7 @@ def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
         plt = _agg()
         for suffix, draw in (("efforts", figs.effort_curves), ("reactions", figs.reaction_curves),
                              ("shaking", figs.shaking_curves)):
-            fig = draw(res, degrees=degrees)
+            fig = draw(res, units=units)
             path = out / f"{m.name}_{suffix}.png"
             save(fig, path)
             plt.close(fig)
@@ -75,21 +79,25 @@ def _gravity(text: str | None):
               help="Directory for the table and the figures.")
 @click.option("--samples", type=click.IntRange(2, 10_000_000), default=None,
               help="Samples per input, instead of the file's.")
-@click.option("--degrees", is_flag=True, help="Angles in degrees in the table and the figures.")
+@SI
+@DEGREES
 @click.option("--gravity", default=None, metavar="GX,GY",
               help="Gravity in m/s^2, instead of the file's (e.g. 0,-9.81).")
 @click.option("--no-plots", is_flag=True, help="Write the table only.")
-def dynamics_command(model, out, samples, degrees, gravity, no_plots):
+def dynamics_command(model, out, samples, si, degrees, gravity, no_plots):
     """Actuator efforts, joint reactions and shaking force of MODEL over its inputs' sweep.
 
     Writes <name>_dynamics.csv (efforts, energies, reactions, shaking force and moment)
     and, unless --no-plots, <name>_efforts.png, <name>_reactions.png, <name>_shaking.png.
-    The links need mass data; loads come from the file's [dynamics] section.
+    The links need mass data; loads come from the file's [dynamics] section.  The inputs'
+    positions and rates are in the file's units (--si for m and rad); forces are in N,
+    torques in N m, energies in J and powers in W.
     """
     g = _gravity(gravity)
     mf = read_model(model)
+    units = output_units(mf.units, si, degrees)
     with errors_from(mf):
-        res, written = run(mf, out, samples=samples, degrees=degrees, gravity=g, plots=not no_plots)
+        res, written = run(mf, out, samples=samples, units=units, gravity=g, plots=not no_plots)
     for name, kind, col in zip(res.input_names, res.input_kinds, res.input_forces.T):
         unit = "N m" if kind == "angle" else "N"
         ok = np.isfinite(col)

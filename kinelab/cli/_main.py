@@ -2,7 +2,6 @@
 outputs, sweeping with a progress bar, and turning kinelab errors into exit status 2."""
 from __future__ import annotations
 
-import math
 import os
 import re
 import sys
@@ -14,10 +13,12 @@ import numpy as np
 
 from kinelab import kinematics
 from kinelab.errors import KinelabError, ModelError
-from kinelab.io import LENGTH_UNITS, ModelFile
+from kinelab.io import ModelFile
 from kinelab.kinematics import KinematicSolution
+from kinelab.model import ANGLE_UNITS, LENGTH_UNITS, Units
 
-__all__ = ["main", "read_model", "errors_from", "sweep", "output_path", "parse_inputs", "stem"]
+__all__ = ["main", "read_model", "errors_from", "sweep", "output_path", "parse_inputs", "stem",
+           "SI", "DEGREES", "output_units"]
 
 BAD_INPUT = 2      # exit status for a bad file, option or input value
 
@@ -55,6 +56,20 @@ def main() -> None:
 
 def read_model(path: str) -> ModelFile:
     return ModelFile.read(path)
+
+
+SI = click.option("--si", is_flag=True,
+                  help="Results in SI (m, rad) instead of the file's units.")
+DEGREES = click.option("--degrees", is_flag=True,
+                       help="Angles in degrees, whatever the file's unit (with --si: metres "
+                            "and degrees).")
+
+
+def output_units(file_units: Units, si: bool, degrees: bool) -> Units:
+    """The units results are shown in: the file's, SI with ``--si``, and degrees for angles
+    with ``--degrees``."""
+    u = Units() if si else file_units
+    return Units(u.length, "deg") if degrees else u
 
 
 @contextmanager
@@ -136,7 +151,7 @@ def parse_inputs(text: str, mf: ModelFile, option: str = "--at") -> np.ndarray:
     for part, kind in zip(parts, kinds):
         match = _VALUE.match(part)
         unit = match.group(2) if match else ""
-        units = {"deg": math.pi / 180, "rad": 1.0} if kind == "angle" else LENGTH_UNITS
+        units = ANGLE_UNITS if kind == "angle" else LENGTH_UNITS
         default = mf.units.angle_scale if kind == "angle" else mf.units.length_scale
         if not match or (unit and unit not in units):
             raise ModelError(f"{option}: expected a number, optionally followed by one of "

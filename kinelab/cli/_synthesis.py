@@ -2,8 +2,8 @@
 
 A click command of the main ``kinelab`` group.  It reads a TOML task file (the format is in
 ``docs/synthesis.md``), converts its units to SI once, calls :mod:`kinelab.synthesis`,
-prints a table of the linkages found and writes each as a model file (``kinelab.io``, in
-the task's units) with a figure.  Everything is computed before anything is written, and
+prints a table of the linkages found and writes each as a model file (``kinelab.io``) with
+a figure, all in the task's units (SI with ``--si``).  Everything is computed before anything is written, and
 every file is written to a temporary name first, so a failure never leaves a half-written
 output behind; the group turns kinelab errors into one-line messages with exit status 2.
 """
@@ -21,8 +21,9 @@ import click
 import numpy as np
 
 from kinelab import synthesis
+from kinelab.cli._main import DEGREES, SI, output_units
 from kinelab.errors import ModelError, quoted
-from kinelab.io import ANGLE_UNITS, LENGTH_UNITS
+from kinelab.model import ANGLE_UNITS, LENGTH_UNITS, Units
 
 __all__ = ["synth", "load_task", "Task"]
 
@@ -43,6 +44,11 @@ class Task:
     targets: np.ndarray | None = None
     function: dict[str, Any] = field(default_factory=dict)
     search: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def units(self) -> Units:
+        """The units the task file is written in."""
+        return Units(self.length_unit, self.angle_unit)
 
 
 class _Reader:
@@ -248,26 +254,26 @@ def solve(task: Task) -> tuple[list, dict[str, Any]]:
     return list(sols), {"curves": curves, "reason": sols.reason}
 
 
-def _summary(task: Task, sols: list) -> list[dict[str, Any]]:
-    L = LENGTH_UNITS[task.length_unit]
+def _summary(sols: list, u: Units) -> list[dict[str, Any]]:
+    """Each solution as plain data, lengths and angles in ``u``."""
     rows = []
     for i, s in enumerate(sols, 1):
         row: dict[str, Any] = {"solution": i, "valid": s.valid, "defects": list(s.defects),
                                "grashof": s.grashof.kind,
-                               "lengths": {k: v / L for k, v in s.lengths.items()}}
+                               "lengths": {k: u.convert(v, "m") for k, v in s.lengths.items()}}
         if hasattr(s, "A0"):
-            row.update({k: (getattr(s, k) / L).tolist() for k in ("A0", "B0", "A1", "B1")})
+            row.update({k: u.convert(getattr(s, k), "m").tolist() for k in ("A0", "B0", "A1", "B1")})
         if not math.isnan(s.min_transmission_angle):
-            row["min_transmission_angle"] = s.min_transmission_angle / ANGLE_UNITS[task.angle_unit]
+            row["min_transmission_angle"] = u.convert(s.min_transmission_angle, "rad")
         if hasattr(s, "rms_error"):
-            row["rms_error"] = s.rms_error / L
+            row["rms_error"] = u.convert(s.rms_error, "m")
         if hasattr(s, "max_structural_error"):
             row["max_structural_error"] = s.max_structural_error
         rows.append(row)
     return rows
 
 
-def _figures(task: Task, sols: list, extra: dict) -> dict[str, bytes]:
+def _figures(task: Task, sols: list, extra: dict, u: Units) -> dict[str, bytes]:
     from kinelab import plot
     from kinelab.cli._draw import _agg
     plt = _agg()
@@ -281,22 +287,22 @@ def _figures(task: Task, sols: list, extra: dict) -> dict[str, bytes]:
         out[name] = buf.getvalue()
 
     if task.positions is not None:
-        grab("positions.png", plot.prescribed_positions(task.positions))
+        grab("positions.png", plot.prescribed_positions(task.positions, units=u))
     if "curves" in extra:
         grab("curves.png", plot.burmester_curves(extra["curves"], positions=task.positions,
-                                                 solutions=sols))
+                                                 solutions=sols, units=u))
     for i, s in enumerate(sols, 1):
         if task.kind == "function":
             grab(f"solution_{i}.png", plot.structural_error(s))
         elif task.kind == "path":
-            grab(f"solution_{i}.png", plot.path_solution(s))
+            grab(f"solution_{i}.png", plot.path_solution(s, units=u))
         else:
-            grab(f"solution_{i}.png", plot.motion_solution(s))
+            grab(f"solution_{i}.png", plot.motion_solution(s, units=u))
     return out
 
 
-def _fmt_xy(v, L):
-    return "(" + ", ".join(f"{c / L:.4f}" for c in v) + ")"
+def _fmt_xy(v, u: Units):
+    return "(" + ", ".join(f"{c:.4f}" for c in u.convert(np.asarray(v), "m")) + ")"
 
 
 @click.command("synth")
@@ -307,28 +313,32 @@ def _fmt_xy(v, L):
 @click.option("--figures/--no-figures", default=True, show_default=True,
               help="Write a figure of each solution (and of the positions and curves).")
 @click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
-def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool) -> None:
+@SI
+@DEGREES
+def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si: bool,
+          degrees: bool) -> None:
     """Dimensional synthesis of a four-bar from the TOML task file TASK.
 
-    Writes each linkage found as a model file solution_<i>.toml (in the task's units)
-    and, unless --no-figures, a figure solution_<i>.png, with summary.json.
+    Writes each linkage found as a model file solution_<i>.toml and, unless --no-figures,
+    a figure solution_<i>.png, with summary.json: all in the task's units (--si for m and
+    rad), as the printed table.
     """
     from kinelab._files import atomic_write
     from kinelab.io import to_toml
 
     task = load_task(task_file)
+    u = output_units(task.units, si, degrees)
     sols, extra = solve(task)
-    rows = _summary(task, sols)
+    rows = _summary(sols, u)
     files: dict[str, bytes | str] = {}
-    units = {"length": task.length_unit, "angle": task.angle_unit}
     for i, s in enumerate(sols, 1):
-        files[f"solution_{i}.toml"] = to_toml(s.model, units=units)
+        files[f"solution_{i}.toml"] = to_toml(s.model, units=u)
     summary = {"task": task.kind, "name": task.name,
-               "units": {"length": task.length_unit, "angle": task.angle_unit},
+               "units": {"length": u.length, "angle": u.angle},
                "reason": extra.get("reason", ""), "solutions": rows}
     files["summary.json"] = json.dumps(summary, indent=2)
     if figures and sols:
-        files.update(_figures(task, sols, extra))
+        files.update(_figures(task, sols, extra, u))
     out = Path(out_dir) if out_dir else Path(task_file).with_name(Path(task_file).stem + "_solutions")
     for name, content in files.items():
         binary = isinstance(content, bytes)
@@ -336,21 +346,20 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool) -> 
     if as_json:
         click.echo(json.dumps(summary, indent=2))
         return
-    L = LENGTH_UNITS[task.length_unit]
     click.echo(f"{task.name}: {task.kind} generation, {len(sols)} linkage(s)"
                + (f" ({summary['reason']})" if summary["reason"] else ""))
     for s, row in zip(sols, rows):
         head = f"  {row['solution']}: "
         if hasattr(s, "A0"):
-            head += (f"A0 {_fmt_xy(s.A0, L)} B0 {_fmt_xy(s.B0, L)} A1 {_fmt_xy(s.A1, L)} "
-                     f"B1 {_fmt_xy(s.B1, L)} {task.length_unit}, ")
+            head += (f"A0 {_fmt_xy(s.A0, u)} B0 {_fmt_xy(s.B0, u)} A1 {_fmt_xy(s.A1, u)} "
+                     f"B1 {_fmt_xy(s.B1, u)} {u.length}, ")
         else:
             head += ", ".join(f"{k} {v:.4f}" for k, v in row["lengths"].items()) + \
-                f" {task.length_unit}, "
+                f" {u.length}, "
         if "min_transmission_angle" in row:
-            head += f"min transmission {row['min_transmission_angle']:.3g} {task.angle_unit}, "
+            head += f"min transmission {row['min_transmission_angle']:.3g} {u.angle}, "
         if "rms_error" in row:
-            head += f"rms error {row['rms_error']:.3g} {task.length_unit}, "
+            head += f"rms error {row['rms_error']:.3g} {u.length}, "
         if "max_structural_error" in row:
             head += f"max structural error {row['max_structural_error']:.3g}, "
         head += f"{s.grashof.kind}, {s.state}"

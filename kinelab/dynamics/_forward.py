@@ -16,7 +16,8 @@ from kinelab.dynamics._results import MotionResult
 from kinelab.dynamics._terms import System, build_system, evaluate
 from kinelab.errors import AssemblyError, ModelError, SingularityError
 from kinelab.kinematics import SINGULAR_TOL, KinematicSolution, analyze, change_points, plan
-from kinelab.model import Mechanism
+from kinelab.kinematics._columns import Columns
+from kinelab.model import Mechanism, Units
 from kinelab.solvers import wrap_angle
 
 __all__ = ["simulate", "Simulation"]
@@ -93,13 +94,13 @@ class Simulation(MotionResult):
             self.dissipated, [1e-300]))
         return float(np.max(np.abs(self.energy_balance))) / scale
 
-    def columns(self, degrees: bool = False) -> dict[str, np.ndarray]:
-        """Named (N,) columns with units, for export."""
-        cols = self._motion_columns(degrees)
+    def _columns(self, units: Units) -> Columns:
+        """Time, inputs, efforts and the energy balance (see :meth:`MotionResult.columns`)."""
+        cols = self._motion_columns(units)
         for label in ("kinetic_energy", "potential_energy", "energy", "actuator_work",
                       "applied_work", "dissipated", "energy_balance"):
-            cols[f"{label} [J]"] = getattr(self, label)
-        cols["drift"] = self.drift
+            cols.add(label, "", "J", getattr(self, label), convert=False)
+        cols.add("drift", "", None, self.drift)
         return cols
 
     def __repr__(self) -> str:

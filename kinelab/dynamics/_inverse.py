@@ -12,6 +12,8 @@ from kinelab.dynamics._results import MotionResult
 from kinelab.dynamics._terms import System, Terms, build_system, evaluate, point_block, times
 from kinelab.errors import ModelError, quoted, suggest
 from kinelab.kinematics import KinematicSolution, analyze, plan
+from kinelab.kinematics._columns import Columns
+from kinelab.model import Units
 
 __all__ = ["inverse", "InverseDynamics"]
 
@@ -115,24 +117,25 @@ class InverseDynamics(MotionResult):
         return self.reaction_moments[:, _pick(self.joint_names, joint, "joint")]
 
     # -- export -------------------------------------------------------------------------
-    def columns(self, degrees: bool = False) -> dict[str, np.ndarray]:
-        """Named (N,) columns with units: time, inputs, efforts, energies, powers, shaking
-        force and moment, and each joint's reaction.  ``degrees=True`` shows angle inputs
-        in degrees."""
-        cols = self._motion_columns(degrees)
-        cols["kinetic_energy [J]"] = self.kinetic_energy
-        cols["potential_energy [J]"] = self.potential_energy
-        cols["actuator_power [W]"] = self.actuator_power
+    def _columns(self, units: Units) -> Columns:
+        """Time, inputs, efforts, energies, power, shaking force and moment, and each
+        joint's reaction (see :meth:`MotionResult.columns`)."""
+        cols = self._motion_columns(units)
+        for name, unit, values in (("kinetic_energy", "J", self.kinetic_energy),
+                                   ("potential_energy", "J", self.potential_energy),
+                                   ("actuator_power", "W", self.actuator_power)):
+            cols.add(name, "", unit, values, convert=False)
         if self.shaking_force is not None:
-            cols["shaking_force.x [N]"] = self.shaking_force[:, 0]
-            cols["shaking_force.y [N]"] = self.shaking_force[:, 1]
-            cols["shaking_moment [N m]"] = self.shaking_moment
+            cols.add("shaking_force", "x", "N", self.shaking_force[:, 0], convert=False)
+            cols.add("shaking_force", "y", "N", self.shaking_force[:, 1], convert=False)
+            cols.add("shaking_moment", "", "N*m", self.shaking_moment, convert=False)
         if self.reaction_forces is not None:
             for j, name in enumerate(self.joint_names):
-                cols[f"{name}.reaction.x [N]"] = self.reaction_forces[:, j, 0]
-                cols[f"{name}.reaction.y [N]"] = self.reaction_forces[:, j, 1]
+                cols.add(name, "reaction.x", "N", self.reaction_forces[:, j, 0], convert=False)
+                cols.add(name, "reaction.y", "N", self.reaction_forces[:, j, 1], convert=False)
                 if self.mechanism.joint(name).type == "P":
-                    cols[f"{name}.reaction_moment [N m]"] = self.reaction_moments[:, j]
+                    cols.add(name, "reaction_moment", "N*m", self.reaction_moments[:, j],
+                             convert=False)
         return cols
 
     def __repr__(self) -> str:

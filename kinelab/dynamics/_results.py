@@ -1,16 +1,16 @@
 """What the results of inverse and forward dynamics share: names, kinds, export."""
 from __future__ import annotations
 
-import math
-import os
+from collections.abc import Mapping
 
 import numpy as np
 
 from kinelab.kinematics import plan
-from kinelab.model import Mechanism
+from kinelab.kinematics._columns import Columns, TableExport
+from kinelab.model import Mechanism, Units
 
 
-class MotionResult:
+class MotionResult(TableExport):
     """Base of the dynamics results: a motion (``t``, ``q``, ``qd``, ``qdd``, (N, M)) with
     the actuators' ``input_forces`` and its ``kinematics``; subclasses add their columns."""
 
@@ -43,26 +43,23 @@ class MotionResult:
         """"angle" (effort a torque, N m) or "slide" (a force, N) for each input."""
         return plan(self.mechanism).input_kinds
 
-    def _motion_columns(self, degrees: bool) -> dict[str, np.ndarray]:
-        """Time, each input's q, qd, qdd and its actuator's effort, with units."""
-        cols: dict[str, np.ndarray] = {"t [s]": self.t}
+    def _motion_columns(self, units: Units) -> Columns:
+        """Time, each input's q, qd, qdd (in ``units``) and its actuator's effort (SI)."""
+        cols = Columns(units)
+        cols.add("t", "", "s", self.t)
+        cols.add_inputs(self.input_names, self.input_kinds, self.q, self.qd, self.qdd)
         for i, (name, kind) in enumerate(zip(self.input_names, self.input_kinds)):
-            u, s = (("deg", 180.0 / math.pi) if degrees else ("rad", 1.0)) if kind == "angle" else ("m", 1.0)
-            cols[f"{name}.q [{u}]"] = self.q[:, i] * s
-            cols[f"{name}.qd [{u}/s]"] = self.qd[:, i] * s
-            cols[f"{name}.qdd [{u}/s^2]"] = self.qdd[:, i] * s
-            cols[f"{name}.{'torque [N m]' if kind == 'angle' else 'force [N]'}"] = self.input_forces[:, i]
+            effort = ("torque", "N*m") if kind == "angle" else ("force", "N")
+            cols.add(name, *effort, self.input_forces[:, i], convert=False)
         return cols
 
-    def columns(self, degrees: bool = False) -> dict[str, np.ndarray]:   # pragma: no cover
+    def _columns(self, units: Units) -> Columns:   # pragma: no cover
         raise NotImplementedError
 
-    def to_dataframe(self, degrees: bool = False):
-        """A pandas DataFrame of :meth:`columns`, one row per sample."""
-        import pandas as pd
-        return pd.DataFrame(self.columns(degrees=degrees))
-
-    def to_csv(self, path: str | os.PathLike, degrees: bool = False) -> None:
-        """Write :meth:`columns` as CSV (to a temporary file, then renamed)."""
-        from kinelab._files import write_csv
-        write_csv(self.columns(degrees=degrees), path)
+    def columns(self, degrees: bool = False, *,
+                units: Units | Mapping[str, str] | None = None) -> dict[str, np.ndarray]:
+        """Named (N,) columns ``item.quantity[unit]``: time, the inputs' q, qd, qdd in
+        ``units`` (default SI; ``degrees=True`` for angles in degrees), and the dynamic
+        results, which stay in SI: forces in N, torques and moments in N*m, energies in J,
+        powers in W."""
+        return dict(self._columns(Units.resolve(units, degrees=degrees)))

@@ -25,8 +25,9 @@ from kinelab import mechanisms as catalogue
 from kinelab._files import atomic_write
 from kinelab.errors import ModelError
 from kinelab.io import _toml
-from kinelab.io._fields import Reader, describe, quoted, suggest
-from kinelab.model import JOINT_TYPES, SPACES, Input, Joint, Link, Mechanism, Point
+from kinelab.io._fields import Reader, describe, quoted
+from kinelab.model import (ANGLE_UNITS, JOINT_TYPES, LENGTH_UNITS, SPACES, Input, Joint, Link,
+                           Mechanism, Point, Units)
 
 __all__ = ["SCHEMA", "LENGTH_UNITS", "ANGLE_UNITS", "Units", "Outputs", "ModelFile", "load",
            "save", "from_toml", "to_toml", "from_json", "to_json"]
@@ -34,8 +35,6 @@ __all__ = ["SCHEMA", "LENGTH_UNITS", "ANGLE_UNITS", "Units", "Outputs", "ModelFi
 SCHEMA = 1
 """The newest schema version this kinelab reads and the one it writes."""
 
-LENGTH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254}
-ANGLE_UNITS = {"rad": 1.0, "deg": math.pi / 180.0}
 DEFAULT_SAMPLES = 361
 MAX_SAMPLES = 10_000_000
 LENGTH_RTOL = 1e-6    # a declared link length agrees with the sketch to this relative error
@@ -52,40 +51,6 @@ _INPUT = ("joint", "links", "name", "range", "speed", "acceleration", "samples")
 _OUTPUTS = ("report", "transmission", "time_ratio")
 _SWEEPS = ("together", "grid")
 _SIGNED_PARAMETERS = ("offset", "ram_height")   # catalogue lengths that may be zero or negative
-
-
-@dataclass(frozen=True)
-class Units:
-    """The units a model file is written in: lengths and angles.
-
-    Examples
-    --------
-    >>> Units("mm", "deg").length_scale          # metres per file unit
-    0.001
-    """
-
-    length: Literal["m", "cm", "mm", "in"] = "m"
-    angle: Literal["rad", "deg"] = "rad"
-
-    def __post_init__(self):
-        problems = []
-        for attr, table in (("length", LENGTH_UNITS), ("angle", ANGLE_UNITS)):
-            v = getattr(self, attr)
-            if v not in table:
-                problems.append(f"units.{attr}: expected one of {quoted(table)}, got {describe(v)}"
-                                f"{suggest(str(v), table)}")
-        if problems:
-            raise ModelError(problems)
-
-    @property
-    def length_scale(self) -> float:
-        """Metres per length unit."""
-        return LENGTH_UNITS[self.length]
-
-    @property
-    def angle_scale(self) -> float:
-        """Radians per angle unit."""
-        return ANGLE_UNITS[self.angle]
 
 
 @dataclass(frozen=True)
@@ -853,14 +818,8 @@ def save(model: Mechanism | ModelFile, path: str | os.PathLike, *,
     """
     mf = model if isinstance(model, ModelFile) else ModelFile(mechanism=_as_mechanism(model))
     if units is not None:
-        mf = dataclasses.replace(mf, units=units if isinstance(units, Units) else _units(units))
+        mf = dataclasses.replace(mf, units=Units.resolve(units))
     return mf.write(path)
-
-
-def _units(mapping: Mapping[str, str]) -> Units:
-    if not isinstance(mapping, Mapping) or set(mapping) - {"length", "angle"}:
-        raise ModelError(f"units: expected a mapping with 'length' and 'angle', got {mapping!r}")
-    return Units(**mapping)
 
 
 def _as_mechanism(model: Any) -> Mechanism:
@@ -884,8 +843,7 @@ def to_toml(model: Mechanism, *, units: Units | Mapping[str, str] | None = None)
     >>> kl.io.from_toml(kl.io.to_toml(sc)) == sc
     True
     """
-    u = units if isinstance(units, Units) or units is None else _units(units)
-    return ModelFile(mechanism=_as_mechanism(model), units=u or Units()).to_toml()
+    return ModelFile(mechanism=_as_mechanism(model), units=Units.resolve(units)).to_toml()
 
 
 def from_json(text: str) -> Mechanism:
@@ -895,5 +853,4 @@ def from_json(text: str) -> Mechanism:
 
 def to_json(model: Mechanism, *, units: Units | Mapping[str, str] | None = None) -> str:
     """Model-file text in JSON."""
-    u = units if isinstance(units, Units) or units is None else _units(units)
-    return ModelFile(mechanism=_as_mechanism(model), units=u or Units()).to_json()
+    return ModelFile(mechanism=_as_mechanism(model), units=Units.resolve(units)).to_json()

@@ -4,6 +4,7 @@ from __future__ import annotations
 import json
 import math
 import os
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Literal
 
@@ -12,6 +13,7 @@ import numpy as np
 from kinelab._files import atomic_write, write_csv
 from kinelab.errors import ModelError
 from kinelab.kinematics import KinematicSolution
+from kinelab.model import Units
 
 __all__ = ["RESULT_FORMATS", "write_results"]
 
@@ -20,12 +22,13 @@ RESULT_FORMATS = ("csv", "json", "parquet")
 
 def write_results(sol: KinematicSolution, path: str | os.PathLike, *,
                   format: Literal["csv", "json", "parquet"] | None = None,
-                  degrees: bool = False) -> Path:
+                  degrees: bool = False, units: Units | Mapping[str, str] | None = None) -> Path:
     """Write a sweep with one row per sample, every column of ``sol.columns()``.
 
     The columns are the inputs; every link's angle, omega, alpha, K and L; every slide with
     its rates, K and L; every point's x, y, vx, vy, ax, ay, K and L; det J and the singular
-    flag.  Each column name carries its unit (``rocker.angle [rad]``).
+    flag.  Each column is named ``item.quantity[unit]`` (``rocker.angle[deg]``,
+    ``P.vx[mm/s]``), without spaces; see :meth:`KinematicSolution.columns`.
 
     Parameters
     ----------
@@ -36,23 +39,32 @@ def write_results(sol: KinematicSolution, path: str | os.PathLike, *,
         Default: from the suffix of ``path``, else CSV.  JSON is a list of row objects
         (``null`` where a value is undefined); Parquet needs the optional ``pyarrow``.
     degrees : bool
-        Angles (and angular rates, K and L) in degrees instead of radians.
+        Angles (and angular rates, K and L) in degrees: shorthand for
+        ``units={"angle": "deg"}``.
+    units : Units or mapping, optional
+        ``{"length": "mm", "angle": "deg"}``: the units of lengths and angles; default SI.
+
+    Raises
+    ------
+    ModelError
+        An unknown format, or an unknown unit or key in ``units`` (nothing is written).
 
     Examples
     --------
     >>> import tempfile, pathlib, csv
     >>> sol = kl.analyze(kl.mechanisms.slider_crank(1.0, 3.0), q=[0.0, 0.5, 1.0], qd=1.0)
-    >>> path = kl.io.write_results(sol, pathlib.Path(tempfile.mkdtemp()) / "sc.csv", degrees=True)
+    >>> path = kl.io.write_results(sol, pathlib.Path(tempfile.mkdtemp()) / "sc.csv",
+    ...                            units={"length": "mm", "angle": "deg"})
     >>> rows = list(csv.DictReader(path.open()))
-    >>> len(rows), rows[1]["jO2.q [deg]"]
-    (3, '28.64788975654116')
+    >>> len(rows), rows[1]["jO2.q[deg]"], rows[0]["B.x[mm]"]       # 0.5 rad; 1 + 3 m
+    (3, '28.64788975654116', '4000.0')
     """
     path = Path(path)
     fmt = format or {".json": "json", ".parquet": "parquet"}.get(path.suffix.lower(), "csv")
     if fmt not in RESULT_FORMATS:
         raise ModelError(f"format: expected one of {', '.join(repr(f) for f in RESULT_FORMATS)}, "
                          f"got {fmt!r}")
-    columns = sol.columns(degrees=degrees)
+    columns = sol.columns(degrees=degrees, units=units)
     if fmt == "csv":
         return write_csv(columns, path)
     if fmt == "json":

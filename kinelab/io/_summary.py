@@ -23,11 +23,12 @@ __all__ = ["Summary", "Extreme", "Transmission", "QuickReturn", "summary", "defa
 
 @dataclass(frozen=True)
 class Extreme:
-    """Range of one quantity over the sweep.
+    """Range of one quantity over the sweep, over its assembled, non-singular samples.
 
-    ``at_min`` and ``at_max`` are the input values (one per input, rad or m) where the minimum
-    and maximum occur.  ``full_turn`` marks a link angle that turns through a whole turn (its
-    minimum and maximum then mean nothing).
+    ``unit`` is the SI unit of ``min`` and ``max`` (``"rad/s"``, ``"m/s^2"``: see
+    :class:`kinelab.model.Units` to convert).  ``at_min`` and ``at_max`` are the input values
+    (one per input, rad or m) where the minimum and maximum occur.  ``full_turn`` marks a
+    link angle that turns through a whole turn (its minimum and maximum then mean nothing).
     """
 
     name: str
@@ -42,7 +43,8 @@ class Extreme:
 
 @dataclass(frozen=True)
 class Transmission:
-    """Extreme transmission angles (rad, in [0, pi/2]; 90 deg is ideal) of a pair of links."""
+    """Extreme transmission angles (rad, in [0, pi/2]; 90 deg is ideal) of a pair of links,
+    over the assembled, non-singular samples."""
 
     links: tuple[str, str]
     min: float
@@ -134,21 +136,21 @@ def _rows(sol: KinematicSolution, i: int) -> tuple[float, ...]:
 
 
 def _extreme(sol, name, unit, values, *, angle=False) -> Extreme | None:
+    # singular samples are left out: there the values are undefined or meaningless spikes
     v = np.asarray(values, float)
-    ok = np.isfinite(v)
+    ok = np.isfinite(v) & sol.assembled & ~sol.singular
     if not ok.any():
         return None
+    v = np.where(ok, v, np.nan)
     full = False
     if angle:
         # angles come wrapped to (-pi, pi]: follow them continuously along the sweep
-        v = v.copy()
         v[ok] = np.unwrap(v[ok])
         span = np.ptp(v[ok])
         full = span >= 2 * math.pi - 1e-9
         shift = 2 * math.pi * np.round((0.5 * (np.nanmax(v) + np.nanmin(v))) / (2 * math.pi))
         v = v - shift
-    i_min = int(np.nanargmin(np.where(ok, v, np.nan)))
-    i_max = int(np.nanargmax(np.where(ok, v, np.nan)))
+    i_min, i_max = int(np.nanargmin(v)), int(np.nanargmax(v))
     return Extreme(name, unit, float(v[i_min]), _rows(sol, i_min), float(v[i_max]),
                    _rows(sol, i_max), full, angle)
 
@@ -278,6 +280,10 @@ def summary(sol: KinematicSolution, *, report: tuple[str, ...] | None = None,
             time_ratio: str | None = None) -> Summary:
     """Summarise a sweep for people: ranges, extremes, singular and limit positions, Grashof
     class, transmission angles and time ratio.
+
+    Extremes and transmission angles are taken over the samples that assemble and are not
+    singular (``sol.singular``: there rates are undefined); the singular positions are listed
+    apart.  Values are SI; ``kinelab analyze`` prints them in the model file's units.
 
     Parameters
     ----------

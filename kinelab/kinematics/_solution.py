@@ -3,16 +3,17 @@ from __future__ import annotations
 
 import functools
 import math
-import os
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
 
 from kinelab.errors import ModelError, quoted, suggest
+from kinelab.kinematics._columns import TableExport, solution_columns
 from kinelab.kinematics._geometry import k_cross
 from kinelab.kinematics._plan import Plan
-from kinelab.model import Mechanism
+from kinelab.model import Mechanism, Units
 from kinelab.solvers import wrap_angle
 
 
@@ -107,7 +108,7 @@ class _SlideMotion(NamedTuple):
 
 
 @dataclass(frozen=True, eq=False)
-class KinematicSolution:
+class KinematicSolution(TableExport):
     """Positions, velocities, accelerations, K and L of every link, point and slide.
 
     Use the accessors, which take names and follow the shape rule of the input: a single
@@ -459,91 +460,50 @@ class KinematicSolution:
             sd=rates[:, 1:2, 0], sdd=rates[:, 1:2, 1])
 
     # -- export -------------------------------------------------------------------------
-    def columns(self, degrees: bool = False) -> dict[str, np.ndarray]:
-        """Every result as a named (N,) column, with its unit in the name.
+    def columns(self, degrees: bool = False, *,
+                units: Units | Mapping[str, str] | None = None) -> dict[str, np.ndarray]:
+        """Every result as a named (N,) column ``item.quantity[unit]``, in chosen units.
 
         Inputs ``<input>.q``, ``.qd``, ``.qdd``; links ``<link>.angle``, ``.omega``,
-        ``.alpha``, ``.K``, ``.L``; slides ``<joint>.slide`` and rates; points ``<P>.x``,
-        ``.y``, ``.vx``, ``.vy``, ``.ax``, ``.ay`` and K, L of x and y; then ``det_J``,
-        ``singularity``, ``singular``.  ``degrees=True`` converts every angle (and rad in
-        a unit) to degrees.
+        ``.alpha``, ``.K``, ``.L``; slides ``<joint>.slide``, ``.slide_velocity``,
+        ``.slide_acceleration``, ``.K``, ``.L``; points ``<P>.x``, ``.y``, ``.vx``, ``.vy``,
+        ``.ax``, ``.ay`` and ``<P>.x.K``, ``.x.L``, ``.y.K``, ``.y.L``; then ``det_J``,
+        ``singularity``, ``singular`` (and ``assembled`` when some samples do not close),
+        which have no unit.  With several inputs K and L name them: ``.K.<input>``,
+        ``.L.<input>.<input>``.  Whitespace in a name becomes ``_``.  K and L carry the
+        ratio of their units (``rocker.K[deg/deg]``, ``P.x.L[mm/deg^2]``).
+
+        Parameters
+        ----------
+        degrees : bool
+            Angles in degrees: shorthand for ``units={"angle": "deg"}``.
+        units : Units or mapping, optional
+            ``{"length": "mm", "angle": "deg"}``: lengths and angles in these units (rates
+            per second, K and L in the ratios of these units); default SI (m, rad).
+
+        Raises
+        ------
+        ModelError
+            An unknown unit or key in ``units``, naming the allowed ones.
+
+        Examples
+        --------
+        >>> sc = kl.mechanisms.slider_crank(crank=0.1, rod=0.3)
+        >>> cols = kl.analyze(sc, q=np.radians([0.0, 90.0]), qd=1.0).columns(
+        ...     units={"length": "mm", "angle": "deg"})
+        >>> list(cols)[:4]
+        ['jO2.q[deg]', 'jO2.qd[deg/s]', 'jO2.qdd[deg/s^2]', 'ground.angle[deg]']
+        >>> cols["B.x[mm]"].round(6)                     # r + l; sqrt(l^2 - r^2)
+        array([400.      , 282.842712])
+        >>> round(float(cols["slide.K[mm/deg]"][1]), 6)  # dx/dq = -r = -100 mm/rad at 90 deg
+        -1.745329
         """
-        kinds = _input_kinds(self.mechanism)
-        deg = 180.0 / math.pi
-        M = self.M
-        in_unit = [("deg" if degrees else "rad") if k == "angle" else "m" for k in kinds]
-        in_angle = [k == "angle" for k in kinds]
-        cols: dict[str, np.ndarray] = {}
+        return dict(solution_columns(self, Units.resolve(units, degrees=degrees)))
 
-        def jet(item):
-            return self.item_jets([item])[:, 0]
-
-        def rate(item):
-            return self.item_rates([item])[:, 0]
-
-        for mi, name in enumerate(self.input_names):
-            f = deg if (degrees and in_angle[mi]) else 1.0
-            u = in_unit[mi]
-            cols[f"{name}.q [{u}]"] = self.q[:, mi] * f
-            cols[f"{name}.qd [{u}/s]"] = self.qd[:, mi] * f
-            cols[f"{name}.qdd [{u}/s^2]"] = self.qdd[:, mi] * f
-
-        def coefficient_columns(label, item, unit, is_angle):
-            for mi, a in enumerate(self.input_names):
-                power = int(is_angle) - int(in_angle[mi])
-                tag = f"[{a}]" if M > 1 else ""
-                cols[f"{label}.K{tag} [{unit}/{in_unit[mi]}]"] = (
-                    jet(item)[:, 1 + mi] * (deg ** power if degrees else 1.0))
-                for ni, b in enumerate(self.input_names):
-                    power2 = power - int(in_angle[ni])
-                    tag2 = f"[{a},{b}]" if M > 1 else ""
-                    cols[f"{label}.L{tag2} [{unit}/({in_unit[mi]}*{in_unit[ni]})]"] = (
-                        jet(item)[:, 1 + M + mi * M + ni] * (deg ** power2 if degrees else 1.0))
-
-        au = "deg" if degrees else "rad"
-        fa = deg if degrees else 1.0
-        for link, i in self.link_item.items():
-            cols[f"{link}.angle [{au}]"] = jet(i)[:, 0] * fa
-            cols[f"{link}.omega [{au}/s]"] = rate(i)[:, 0] * fa
-            cols[f"{link}.alpha [{au}/s^2]"] = rate(i)[:, 1] * fa
-            coefficient_columns(link, i, au, True)
-        for joint, i in self.slide_item.items():
-            cols[f"{joint}.slide [m]"] = jet(i)[:, 0]
-            cols[f"{joint}.slide_velocity [m/s]"] = rate(i)[:, 0]
-            cols[f"{joint}.slide_acceleration [m/s^2]"] = rate(i)[:, 1]
-            coefficient_columns(joint, i, "m", False)
-        for point, i in self.point_item.items():
-            for d, ax in enumerate("xy"):
-                cols[f"{point}.{ax} [m]"] = jet(i + d)[:, 0]
-            for d, ax in enumerate("xy"):
-                cols[f"{point}.v{ax} [m/s]"] = rate(i + d)[:, 0]
-            for d, ax in enumerate("xy"):
-                cols[f"{point}.a{ax} [m/s^2]"] = rate(i + d)[:, 1]
-            for d, ax in enumerate("xy"):
-                coefficient_columns(f"{point}.{ax}", i + d, "m", False)
-        cols["det_J"] = self.det_J
-        cols["singularity"] = self.singularity
-        cols["singular"] = self.singular
-        if not self.assembled.all():
-            cols["assembled"] = self.assembled
-        return cols
-
-    def to_dataframe(self, degrees: bool = False):
-        """A pandas DataFrame with one row per sample and the columns of :meth:`columns`."""
-        import pandas as pd
-        return pd.DataFrame(self.columns(degrees=degrees))
-
-    def to_csv(self, path: str | os.PathLike, degrees: bool = False) -> None:
-        """Write :meth:`to_dataframe` as CSV (written to a temporary file, then renamed)."""
-        from kinelab._files import write_csv
-        write_csv(self.columns(degrees=degrees), path)
+    # to_dataframe(degrees=, units=) and to_csv(path, degrees=, units=): see TableExport
 
     def __repr__(self) -> str:
         sing = int(self.singular.sum())
         return (f"KinematicSolution('{self.mechanism.name}', N={self.N}, inputs="
                 f"{list(self.input_names)}, singular samples={sing})")
 
-
-def _input_kinds(m: Mechanism) -> tuple[str, ...]:
-    return tuple("slide" if (i.joint is not None and m.joint(i.joint).type == "P") else "angle"
-                 for i in m.inputs)

@@ -2,13 +2,15 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
 
 from kinelab.errors import ModelError
 from kinelab.kinematics import KinematicSolution
-from kinelab.plot._figures import mechanism
+from kinelab.model import Units
+from kinelab.plot._figures import SINGULAR_LABEL, _regular, _singular_samples, mechanism
 
 __all__ = ["animate", "can_write_mp4"]
 
@@ -20,7 +22,7 @@ def can_write_mp4() -> bool:
 
 
 def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, frames: int = 120,
-            fps: int = 30) -> Path:
+            fps: int = 30, units: Units | Mapping[str, str] | None = None) -> Path:
     """Write an animation of the mechanism moving through the sweep, the paths of the
     ``trace`` points drawn as they go.
 
@@ -34,6 +36,9 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
         Points whose paths are traced (default: the points carried by one moving link only,
         such as coupler points; else every moving point).
     frames, fps : int
+    units : Units or mapping, optional
+        ``{"length": "mm"}``: the unit of the axes (default SI).  Traced paths leave out the
+        singular samples, which are marked.
 
     Returns
     -------
@@ -66,8 +71,12 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
         if not trace:
             ground = set(m.ground.points)
             trace = [p for p in sol.point_names if p not in ground][-1:]
+    u = Units.resolve(units)
     idx = np.unique(np.linspace(0, sol.N - 1, min(frames, sol.N)).round().astype(int))
-    all_xy = np.concatenate([sol.position(p) for p in sol.point_names])
+
+    def position(p):
+        return u.convert(sol.position(p), "m")
+    all_xy = np.concatenate([position(p) for p in sol.point_names])
     all_xy = all_xy[np.isfinite(all_xy).all(axis=1)]
     lo, hi = all_xy.min(axis=0), all_xy.max(axis=0)
     pad = 0.08 * max(hi - lo) + 1e-9
@@ -76,18 +85,22 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
     ax.set_xlim(lo[0] - pad, hi[0] + pad)
     ax.set_ylim(lo[1] - pad, hi[1] + pad)
     ax.set_aspect("equal")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
+    ax.set_xlabel(f"x [{u.length}]")
+    ax.set_ylabel(f"y [{u.length}]")
     ax.grid(True, alpha=0.3)
     ax.set_title(sol.mechanism.name)
-    paths = {p: sol.position(p) for p in trace}
+    paths = {p: _regular(sol, position(p)) for p in trace}
     for p, xy in paths.items():
         ax.plot(xy[:, 0], xy[:, 1], lw=0.8, color="0.75", zorder=1)
     traced = {p: ax.plot([], [], lw=1.6, color="black", zorder=1, label=f"path of {p}")[0]
               for p in paths}
+    singular = _singular_samples(sol)
+    for k, p in enumerate(trace if singular else ()):
+        ax.plot(*position(p)[singular].T, "x", color="tab:red", ms=7, zorder=2,
+                label=SINGULAR_LABEL if k == 0 else None)
     artists: dict = {}
-    mechanism(sol, int(idx[0]), ax=ax, artists=artists)
-    if traced:
+    mechanism(sol, int(idx[0]), ax=ax, artists=artists, units=u)
+    if traced or singular:
         ax.legend(fontsize="small", loc="upper right")
     ax.set_aspect("equal", adjustable="box")
     ax.set_xlim(lo[0] - pad, hi[0] + pad)
@@ -95,7 +108,7 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
 
     def draw(k):
         i = int(idx[k])
-        mechanism(sol, i, ax=ax, artists=artists)
+        mechanism(sol, i, ax=ax, artists=artists, units=u)
         for p, line in traced.items():
             line.set_data(paths[p][:i + 1, 0], paths[p][:i + 1, 1])
         return list(artists.values()) + list(traced.values())

@@ -5,10 +5,13 @@ function draws on a new figure (or the one given) and returns the figure.
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import numpy as np
 
 from kinelab.dynamics import InverseDynamics, Simulation
-from kinelab.plot._figures import input_axis
+from kinelab.model import Units
+from kinelab.plot._figures import _legend, _x_axis
 
 __all__ = ["effort_curves", "reaction_curves", "shaking_curves", "energy_curves"]
 
@@ -18,13 +21,20 @@ def _pyplot():
     return plt
 
 
-def _abscissa(res, degrees: bool) -> tuple[np.ndarray, str]:
-    """The input for a one-input sweep, else time (or the sample number for a still sweep)."""
+def _abscissa(axes, res, degrees: bool, units) -> np.ndarray:
+    """Label the x axis (shared by ``axes``) and return its values: the input of a one-input
+    sweep in ``units`` (its singular positions marked on every axes), else time (or the
+    sample number for a still sweep)."""
     if isinstance(res, InverseDynamics) and res.M == 1:
-        return input_axis(res.kinematics, degrees)
-    if np.ptp(res.t) > 0:
-        return res.t, "t [s]"
-    return np.arange(len(res.t)), "sample"
+        u = Units.resolve(units, degrees=degrees)
+        for ax in axes:
+            x = _x_axis(ax, res.kinematics, u)
+            if ax is not axes[-1]:
+                ax.set_xlabel("")
+        return x
+    x, label = (res.t, "t [s]") if np.ptp(res.t) > 0 else (np.arange(len(res.t)), "sample")
+    axes[-1].set_xlabel(label)
+    return x
 
 
 def _figure(figure, rows: int):
@@ -33,8 +43,10 @@ def _figure(figure, rows: int):
     return fig, fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
 
 
-def effort_curves(res: InverseDynamics | Simulation, *, degrees: bool = False, figure=None):
-    """Each actuator's effort (torque or force) against the input or time.
+def effort_curves(res: InverseDynamics | Simulation, *, degrees: bool = False,
+                  units: Units | Mapping[str, str] | None = None, figure=None):
+    """Each actuator's effort (torque or force, SI) against the input (in ``units``, default
+    SI) or time.
 
     Examples
     --------
@@ -52,40 +64,43 @@ def effort_curves(res: InverseDynamics | Simulation, *, degrees: bool = False, f
     """
     kinds = res.input_kinds
     fig, axes = _figure(figure, len(kinds))
-    x, label = _abscissa(res, degrees)
+    x = _abscissa(axes, res, degrees, units)
     for ax, name, kind, y in zip(axes, res.input_names, kinds, res.input_forces.T):
         ax.plot(x, y)
         ax.set_ylabel(f"{name} [{'N m' if kind == 'angle' else 'N'}]")
         ax.grid(True, alpha=0.3)
+    _legend(axes[0], always=False)
     axes[0].set_title(f"{res.mechanism.name}: actuator efforts")
-    axes[-1].set_xlabel(label)
     return fig
 
 
-def reaction_curves(res: InverseDynamics, joints=None, *, degrees: bool = False, figure=None):
-    """The magnitude of each joint's reaction force (and a prismatic joint's moment)."""
+def reaction_curves(res: InverseDynamics, joints=None, *, degrees: bool = False,
+                    units: Units | Mapping[str, str] | None = None, figure=None):
+    """The magnitude of each joint's reaction force (and a prismatic joint's moment), SI,
+    against the input in ``units`` (default SI)."""
     joints = list(res.joint_names if joints is None else joints)
     fig, axes = _figure(figure, 2 if any(res.mechanism.joint(j).type == "P" for j in joints) else 1)
-    x, label = _abscissa(res, degrees)
+    x = _abscissa(axes, res, degrees, units)
     for j in joints:
         axes[0].plot(x, np.hypot(*res.reactions(j).T), label=j)
     axes[0].set_ylabel("|reaction| [N]")
-    axes[0].legend(loc="best", fontsize="small")
+    _legend(axes[0], loc="best")
     axes[0].set_title(f"{res.mechanism.name}: joint reactions")
     if len(axes) > 1:
         for j in joints:
             if res.mechanism.joint(j).type == "P":
                 axes[1].plot(x, res.reaction_moment(j), label=j)
         axes[1].set_ylabel("slide moment [N m]")
-        axes[1].legend(loc="best", fontsize="small")
+        _legend(axes[1], loc="best")
     for ax in axes:
         ax.grid(True, alpha=0.3)
-    axes[-1].set_xlabel(label)
     return fig
 
 
-def shaking_curves(res: InverseDynamics, *, degrees: bool = False, figure=None):
-    """The shaking force as a polar trace (its tip over the cycle) and the shaking moment."""
+def shaking_curves(res: InverseDynamics, *, degrees: bool = False,
+                   units: Units | Mapping[str, str] | None = None, figure=None):
+    """The shaking force as a polar trace (its tip over the cycle) and the shaking moment
+    (SI) against the input in ``units`` (default SI)."""
     plt = _pyplot()
     fig = figure if figure is not None else plt.figure(figsize=(10, 4.2))
     left, right = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1, 1.6]})
@@ -96,10 +111,10 @@ def shaking_curves(res: InverseDynamics, *, degrees: bool = False, figure=None):
     left.set_xlabel("Fx [N]")
     left.set_ylabel("Fy [N]")
     left.set_title("shaking force on the ground")
-    x, label = _abscissa(res, degrees)
+    x = _abscissa([right], res, degrees, units)
     right.plot(x, res.shaking_moment)
-    right.set_xlabel(label)
     right.set_ylabel("shaking moment about O [N m]")
+    _legend(right, always=False)
     for ax in (left, right):
         ax.grid(True, alpha=0.3)
     fig.suptitle(res.mechanism.name)

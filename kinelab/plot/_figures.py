@@ -1,9 +1,16 @@
 """Figures of a sweep: outputs against the input, K and L, coupler curves, transmission
-angle, and the mechanism itself.  matplotlib is imported inside each function."""
+angle, and the mechanism itself.  matplotlib is imported inside each function.
+
+Every function draws in the units it is given (``units=``, default SI; ``degrees=True`` for
+angles in degrees), converted by :class:`kinelab.model.Units`, and names them on its axes.
+Values at singular samples (``sol.singular``: det J = 0) are left out, leaving gaps, and
+the singular positions are marked.
+"""
 from __future__ import annotations
 
 import math
 import os
+from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
@@ -11,16 +18,19 @@ import numpy as np
 from kinelab._files import atomic_write
 from kinelab.errors import ModelError
 from kinelab.kinematics import KinematicSolution
+from kinelab.kinematics._columns import INPUT_SI_UNITS
+from kinelab.model import Units
 
 __all__ = ["curves", "coefficients", "coupler_curve", "transmission", "mechanism", "save",
            "input_axis"]
 
-_QUANTITIES = {
+_QUANTITIES = {     # (accessor, label, SI unit) of each row
     "link": (("angle", "angle", "rad"), ("omega", "angular velocity", "rad/s"),
-             ("alpha", "angular acceleration", "rad/s²")),
+             ("alpha", "angular acceleration", "rad/s^2")),
     "slide": (("slide", "", "m"), ("slide_velocity", "velocity", "m/s"),
-              ("slide_acceleration", "acceleration", "m/s²")),
+              ("slide_acceleration", "acceleration", "m/s^2")),
 }
+SINGULAR_LABEL = "singular (det J = 0)"
 
 
 def _pyplot():
@@ -28,20 +38,74 @@ def _pyplot():
     return plt
 
 
-def input_axis(sol: KinematicSolution, degrees: bool = False) -> tuple[np.ndarray, str]:
-    """The values to plot against and their label: the (first varying) input, else the
-    sample number."""
-    m = sol.mechanism
-    from kinelab.kinematics import plan
-    kinds = plan(m).input_kinds
-    for k in range(sol.M):
+def _label(units: Units, si_unit: str) -> str:
+    """An axis label's unit: ``deg/s²``."""
+    return units.unit(si_unit).replace("^2", "²")
+
+
+def input_axis(sol: KinematicSolution, degrees: bool = False, *,
+               units: Units | Mapping[str, str] | None = None) -> tuple[np.ndarray, str]:
+    """The values to plot against and their label: the (first varying) input in ``units``
+    (default SI), else the sample number.
+
+    Examples
+    --------
+    >>> sol = kl.analyze(kl.mechanisms.slider_crank(1.0, 3.0), q=[0.0, np.pi])
+    >>> x, label = kl.plot.input_axis(sol, units={"angle": "deg"})
+    >>> x, label
+    (array([  0., 180.]), 'jO2 [deg]')
+    """
+    x, label, _ = _input(sol, Units.resolve(units, degrees=degrees))
+    return x, label
+
+
+def _input(sol: KinematicSolution, u: Units) -> tuple[np.ndarray, str, str]:
+    """:func:`input_axis` and the unit of its values ('' for the sample number)."""
+    for k, kind in enumerate(sol.plan.input_kinds):
         q = sol.q[:, k]
         if np.ptp(q) > 0:
-            if kinds[k] == "angle":
-                unit = "deg" if degrees else "rad"
-                return (np.degrees(q) if degrees else q), f"{sol.input_names[k]} [{unit}]"
-            return q, f"{sol.input_names[k]} [m]"
-    return np.arange(sol.N), "sample"
+            unit = u.unit(INPUT_SI_UNITS[kind])
+            return u.convert(q, INPUT_SI_UNITS[kind]), f"{sol.input_names[k]} [{unit}]", unit
+    return np.arange(sol.N), "sample", ""
+
+
+def _x_axis(ax, sol: KinematicSolution, u: Units) -> np.ndarray:
+    """Label ``ax``'s x axis with the input, mark the singular positions; the x values."""
+    x, label, unit = _input(sol, u)
+    ax.set_xlabel(label)
+    if np.ptp(x) > 0:
+        ax.set_xlim(np.min(x), np.max(x))      # the sweep, edge to edge
+    _turn_ticks(ax.xaxis, x, unit)
+    _mark_singular(ax, sol, x)
+    return x
+
+
+def _turn_ticks(axis, values, unit: str) -> None:
+    """Degrees over a full turn or more: ticks on multiples of 90 (0, 90, ..., 360)."""
+    v = np.asarray(values)[np.isfinite(values)]
+    if unit == "deg" and v.size and np.ptp(v) >= 360.0 - 1e-6:
+        from matplotlib.ticker import MultipleLocator
+        axis.set_major_locator(MultipleLocator(90.0 * math.ceil(np.ptp(v) / 720.0)))
+
+
+def _regular(sol: KinematicSolution, values) -> np.ndarray:
+    """``values`` (N, ...) with NaN at the singular samples: no line is drawn through them."""
+    mask = np.asarray(sol.singular).reshape((-1,) + (1,) * (np.ndim(values) - 1))
+    return np.where(mask, np.nan, values)
+
+
+def _singular_samples(sol: KinematicSolution) -> list[int]:
+    """One sample (the middle one) of each run of singular samples."""
+    from kinelab.io._summary import _runs
+    return _runs(np.asarray(sol.singular)) if not sol.single else []
+
+
+def _mark_singular(ax, sol: KinematicSolution, x) -> None:
+    """Thin vertical lines at the singular positions of a sweep plotted against ``x``,
+    labelled once in the legend."""
+    for k, i in enumerate(_singular_samples(sol)):
+        ax.axvline(x[i], color="tab:red", lw=0.7, ls=":", zorder=1,
+                   label=SINGULAR_LABEL if k == 0 else None)
 
 
 def _split(sol: KinematicSolution, outputs):
@@ -67,24 +131,26 @@ def _outputs(sol, outputs):
     return list(default_outputs(sol.mechanism))
 
 
-def _unit(unit: str, degrees: bool) -> str:
-    return unit.replace("rad", "deg") if degrees else unit
-
-
-def _angle(values, degrees):
-    return np.degrees(values) if degrees else values
-
-
-def _series(sol, name, attr, degrees, is_angle):
-    v = getattr(sol, attr)(name)
+def _series(sol, name, attr, si_unit, units: Units):
+    v = _regular(sol, getattr(sol, attr)(name))
     if attr == "angle":
         ok = np.isfinite(v)
-        v = v.copy()
         v[ok] = np.unwrap(v[ok])       # no jumps at +-pi
-    return _angle(v, degrees) if is_angle else v
+    return units.convert(v, si_unit)
 
 
-def curves(sol: KinematicSolution, outputs=None, *, degrees: bool = False, figure=None):
+def _legend(ax, always: bool = True, **kwargs) -> None:
+    """The legend of ``ax``, the singular positions last; with ``always=False`` only when
+    there are singular positions to name."""
+    handles, labels = ax.get_legend_handles_labels()
+    if not (always and labels) and SINGULAR_LABEL not in labels:
+        return
+    order = sorted(range(len(labels)), key=lambda i: labels[i] == SINGULAR_LABEL)
+    ax.legend([handles[i] for i in order], [labels[i] for i in order], fontsize="small", **kwargs)
+
+
+def curves(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
+           units: Units | Mapping[str, str] | None = None, figure=None):
     """Position, velocity and acceleration of chosen outputs against the input.
 
     One column per kind of output (link angles, slides), three rows: position, velocity,
@@ -97,7 +163,9 @@ def curves(sol: KinematicSolution, outputs=None, *, degrees: bool = False, figur
     outputs : list of str, optional
         Links and slides (default: those :func:`kinelab.io.default_outputs` picks).
     degrees : bool
-        Angles in degrees.
+        Angles in degrees: shorthand for ``units={"angle": "deg"}``.
+    units : Units or mapping, optional
+        ``{"length": "mm", "angle": "deg"}``; default SI.
 
     Returns
     -------
@@ -110,69 +178,94 @@ def curves(sol: KinematicSolution, outputs=None, *, degrees: bool = False, figur
     >>> fig = kl.plot.curves(kl.analyze(sc, q=np.linspace(0, 2 * np.pi, 73), qd=1.0), ["rod", "slide"])
     >>> [ax.get_ylabel() for ax in fig.axes][:2]
     ['rod angle [rad]', 'slide [m]']
+    >>> fig = kl.plot.curves(kl.analyze(sc, q=np.linspace(0, 2 * np.pi, 73), qd=1.0), ["slide"],
+    ...                      units={"length": "mm", "angle": "deg"})
+    >>> ax = fig.axes[-1]
+    >>> fig.axes[0].get_ylabel(), ax.get_xlabel(), float(ax.get_xlim()[1])   # a full turn, edge to edge
+    ('slide [mm]', 'jO2 [deg]', 360.0)
+    >>> [float(t) for t in ax.get_xticks() if 0 <= t <= 360]
+    [0.0, 90.0, 180.0, 270.0, 360.0]
     """
     plt = _pyplot()
+    u = Units.resolve(units, degrees=degrees)
     links, slides, _ = _split(sol, _outputs(sol, outputs))
     groups = [(g, kind) for g, kind in ((links, "link"), (slides, "slide")) if g]
     if not groups:
         raise ModelError("outputs: curves need at least one link or slide")
     fig = figure or plt.figure(figsize=(5.5 * len(groups), 8), layout="constrained")
     axes = fig.subplots(3, len(groups), sharex=True, squeeze=False)
-    x, xlabel = input_axis(sol, degrees)
     for col, (names, kind) in enumerate(groups):
-        for row, (attr, label, unit) in enumerate(_QUANTITIES[kind]):
+        for row, (attr, label, si) in enumerate(_QUANTITIES[kind]):
             ax = axes[row, col]
+            x = _x_axis(ax, sol, u)
             for name in names:
-                ax.plot(x, _series(sol, name, attr, degrees, kind == "link"), label=name)
+                y = _series(sol, name, attr, si, u)
+                ax.plot(x, y, label=name)
+                if row == 0:
+                    _turn_ticks(ax.yaxis, y, u.unit(si))
             what = f"{names[0]} {label}".strip() if len(names) == 1 else (
                 label or "slide") if kind == "link" else f"slide {label}".strip()
-            ax.set_ylabel(f"{what} [{_unit(unit, degrees and kind == 'link')}]")
+            ax.set_ylabel(f"{what} [{_label(u, si)}]")
             ax.grid(True, alpha=0.3)
-            if row == 0 and len(names) > 1:
-                ax.legend(fontsize="small")
-        axes[-1, col].set_xlabel(xlabel)
+            if row == 0:            # names the curves and the singular positions for the column
+                _legend(ax, always=len(names) > 1)
+        for ax in axes[:-1, col]:
+            ax.set_xlabel("")       # shared: the bottom row names it
     fig.suptitle(f"{sol.mechanism.name}: position, velocity and acceleration")
     return fig
 
 
-def coefficients(sol: KinematicSolution, outputs=None, *, degrees: bool = False, figure=None):
+def coefficients(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
+                 units: Units | Mapping[str, str] | None = None, figure=None):
     """Velocity and acceleration coefficients K = dS/dq and L = dK/dq of chosen outputs
-    against the input (one input: for several inputs, those of the first)."""
+    against the input (one input: for several inputs, those of the first), in ``units``
+    (default SI): K in output unit per input unit, L per input unit squared.
+
+    Examples
+    --------
+    >>> import matplotlib; matplotlib.use("Agg")
+    >>> sc = kl.mechanisms.slider_crank(crank=1.0, rod=3.0)
+    >>> fig = kl.plot.coefficients(kl.analyze(sc, q=np.linspace(0, 2 * np.pi, 73)), ["slide"],
+    ...                            units={"length": "mm", "angle": "deg"})
+    >>> [ax.get_ylabel() for ax in fig.axes]
+    ['K = dS/dq [mm/deg]', 'L = dK/dq [mm/deg²]']
+    """
     plt = _pyplot()
+    u = Units.resolve(units, degrees=degrees)
     links, slides, _ = _split(sol, _outputs(sol, outputs))
     names = links + slides
     if not names:
         raise ModelError("outputs: K and L plots need at least one link or slide")
     fig = figure or plt.figure(figsize=(7, 6), layout="constrained")
     ax_k, ax_l = fig.subplots(2, 1, sharex=True)
-    x, xlabel = input_axis(sol, degrees)
-    in_angle = "rad" in xlabel or "deg" in xlabel
+    qu = INPUT_SI_UNITS[sol.plan.input_kinds[0]]
+    k_units, l_units = [], []
+    for ax in (ax_k, ax_l):
+        x = _x_axis(ax, sol, u)
     for name in names:
         K, L = sol.K(name), sol.L(name)
         if sol.M > 1:
             K, L = K[:, 0], L[:, 0, 0]
-        is_angle = name in links
-        # K of an angle per input angle is dimensionless; degrees change only mixed units
-        fk = (180 / math.pi) ** (int(is_angle) - int(in_angle)) if degrees else 1.0
-        fl = (180 / math.pi) ** (int(is_angle) - 2 * int(in_angle)) if degrees else 1.0
-        ax_k.plot(x, K * fk, label=name)
-        ax_l.plot(x, L * fl, label=name)
-    qu = ("deg" if degrees else "rad") if in_angle else "m"
-    su = {n: (("deg" if degrees else "rad") if n in links else "m") for n in names}
-    units = sorted(set(su.values()))
-    ax_k.set_ylabel(f"K = dS/dq [{'|'.join(units)}/{qu}]")
-    ax_l.set_ylabel(f"L = dK/dq [{'|'.join(units)}/{qu}²]")
+        su = "rad" if name in links else "m"
+        k_units.append(f"{su}/{qu}")
+        l_units.append(f"{su}/{qu}^2")
+        ax_k.plot(x, u.convert(_regular(sol, K), k_units[-1]), label=name)
+        ax_l.plot(x, u.convert(_regular(sol, L), l_units[-1]), label=name)
+    ax_k.set_ylabel(f"K = dS/dq [{' | '.join(sorted({_label(u, k) for k in k_units}))}]")
+    ax_l.set_ylabel(f"L = dK/dq [{' | '.join(sorted({_label(u, k) for k in l_units}))}]")
     for ax in (ax_k, ax_l):
         ax.grid(True, alpha=0.3)
         ax.axhline(0.0, color="0.5", lw=0.6)
-    ax_k.legend(fontsize="small")
-    ax_l.set_xlabel(xlabel)
+    _legend(ax_k)
+    ax_k.set_xlabel("")
     fig.suptitle(f"{sol.mechanism.name}: velocity and acceleration coefficients")
     return fig
 
 
-def coupler_curve(sol: KinematicSolution, point: str = "P", *, ax=None, sample: int | None = 0):
-    """The path of a point over the sweep, with the mechanism drawn at ``sample``.
+def coupler_curve(sol: KinematicSolution, point: str = "P", *, ax=None, sample: int | None = 0,
+                  units: Units | Mapping[str, str] | None = None):
+    """The path of a point over the sweep, with the mechanism drawn at ``sample``, lengths
+    in ``units`` (default SI).  The path leaves out the singular samples, which are marked.
 
     Returns
     -------
@@ -187,56 +280,76 @@ def coupler_curve(sol: KinematicSolution, point: str = "P", *, ax=None, sample: 
     ('x [m]', 'y [m]')
     """
     plt = _pyplot()
+    u = Units.resolve(units)
     ax = ax or plt.figure(figsize=(6, 6), layout="constrained").add_subplot()
     if sample is not None:
-        mechanism(sol, sample, ax=ax)
-    xy = sol.position(point)
-    ax.plot(xy[:, 0], xy[:, 1], lw=1.3, color="black", label=f"path of {point}")
+        mechanism(sol, sample, ax=ax, units=u)
+    xy = u.convert(sol.position(point), "m")
+    ax.plot(*_regular(sol, xy).T, lw=1.3, color="black", label=f"path of {point}")
+    singular = _singular_samples(sol)
+    if singular:
+        ax.plot(*xy[singular].T, "x", color="tab:red", ms=8, mew=1.5, label=SINGULAR_LABEL)
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
+    ax.set_xlabel(f"x [{u.length}]")
+    ax.set_ylabel(f"y [{u.length}]")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize="small", loc="best")
+    _legend(ax, loc="best")
     ax.set_title(f"{sol.mechanism.name}: path of {point}")
     return ax
 
 
-def transmission(sol: KinematicSolution, pairs=None, *, degrees: bool = True, ax=None):
+def transmission(sol: KinematicSolution, pairs=None, *, degrees: bool | None = None,
+                 units: Units | Mapping[str, str] | None = None, ax=None):
     """Transmission angle of link pairs against the input, folded to [0, 90] deg.
 
     ``pairs`` defaults to the pin-jointed dyads (and slider dyads, measured from the slide's
-    normal) that :func:`kinelab.io.summary` reports.
+    normal) that :func:`kinelab.io.summary` reports.  Angles are in degrees unless ``units``
+    (or ``degrees=False``) say otherwise.
+
+    Examples
+    --------
+    >>> import matplotlib; matplotlib.use("Agg")
+    >>> fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5)
+    >>> ax = kl.plot.transmission(kl.analyze(fb, q=np.linspace(0, 2 * np.pi, 37)))
+    >>> ax.get_ylabel(), [float(v) for v in ax.get_ylim()]
+    ('transmission angle [deg]', [0.0, 90.0])
     """
     from kinelab.io._summary import _default_pairs, _transmission_values
     plt = _pyplot()
+    u = Units.resolve(units, degrees=units is None if degrees is None else degrees)
     pairs = list(pairs) if pairs else _default_pairs(sol.mechanism)
     if not pairs:
         raise ModelError("transmission: the mechanism has no pin-jointed dyad; name the links "
                          "with pairs=[('coupler', 'rocker')]")
     ax = ax or plt.figure(figsize=(7, 4), layout="constrained").add_subplot()
-    x, xlabel = input_axis(sol, degrees)
+    x = _x_axis(ax, sol, u)
     for a, b in pairs:
-        mu = _transmission_values(sol, (a, b))
-        ax.plot(x, np.degrees(mu) if degrees else mu, label=f"{a}-{b}")
-    ax.set_ylim(0, 90 if degrees else math.pi / 2)
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel(f"transmission angle [{'deg' if degrees else 'rad'}]")
+        mu = _regular(sol, _transmission_values(sol, (a, b)))
+        ax.plot(x, u.convert(mu, "rad"), label=f"{a}-{b}")
+    ax.set_ylim(0, u.convert(math.pi / 2, "rad"))
+    ax.set_ylabel(f"transmission angle [{u.angle}]")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize="small")
+    _legend(ax)
     ax.set_title(f"{sol.mechanism.name}: transmission angle")
     return ax
 
 
-def mechanism(sol: KinematicSolution, i: int = 0, *, ax=None, artists: dict | None = None):
-    """Draw the mechanism at sample ``i``: links as bars or plates, pivots, sliders.
+def mechanism(sol: KinematicSolution, i: int = 0, *, ax=None, artists: dict | None = None,
+              units: Units | Mapping[str, str] | None = None):
+    """Draw the mechanism at sample ``i``: links as bars or plates, pivots, sliders, with
+    lengths in ``units`` (default SI).
 
     With ``artists`` (a dict filled on the first call) the same artists are moved instead of
     drawn again, for animations.
     """
     plt = _pyplot()
+    u = Units.resolve(units)
     ax = ax or plt.figure(figsize=(6, 6), layout="constrained").add_subplot()
     m = sol.mechanism
-    pos = {p: sol.position(p)[i] if not sol.single else sol.position(p) for p in sol.point_names}
+
+    def position(p):
+        return u.convert(sol.position(p), "m")
+    pos = {p: position(p)[i] if not sol.single else position(p) for p in sol.point_names}
     first = artists is None or not artists
     store = artists if artists is not None else {}
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
@@ -268,7 +381,7 @@ def mechanism(sol: KinematicSolution, i: int = 0, *, ax=None, artists: dict | No
         guide = m.link(j.links[0])
         if guide.ground:      # a rail: the slider's whole travel, drawn once
             if first:
-                travel = sol.position(j.point).reshape(-1, 2)
+                travel = position(j.point).reshape(-1, 2)
                 travel = travel[np.isfinite(travel).all(axis=1)]
                 ends = travel[[np.argmin(travel @ np.asarray(j.axis)), np.argmax(travel @ np.asarray(j.axis))]]
                 ax.plot(ends[:, 0], ends[:, 1], lw=1.2, color="0.55", zorder=1)

@@ -4,13 +4,16 @@ function generator, the coupler curve of a path generator.
 
 matplotlib is imported inside each function (``import kinelab`` must not need it).  Each
 function draws on ``ax`` (a new figure's axes when omitted) and returns the axes; lengths
-are plotted in metres, as the results hold them.
+are plotted in ``units`` (default SI: metres, as the results hold them).
 """
 from __future__ import annotations
+
+from collections.abc import Mapping
 
 import numpy as np
 
 from kinelab.kinematics import analyze
+from kinelab.model import Units
 from kinelab.synthesis import (BurmesterCurves, FunctionSolution, MotionSolution, PathSolution,
                                Positions, poles)
 
@@ -29,10 +32,10 @@ def _axes(ax):
     return ax
 
 
-def _finish(ax, title):
+def _finish(ax, title, u: Units):
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
+    ax.set_xlabel(f"x [{u.length}]")
+    ax.set_ylabel(f"y [{u.length}]")
     ax.set_title(title)
     ax.grid(True, alpha=0.3)
     return ax
@@ -43,7 +46,7 @@ def _colour(j):
 
 
 def prescribed_positions(points, angles=None, *, ax=None, show_poles: bool = True,
-                         degrees: bool = False):
+                         degrees: bool = False, units: Units | Mapping[str, str] | None = None):
     """The positions of the moving plane (a point and a direction each) and their poles.
 
     Parameters
@@ -54,36 +57,46 @@ def prescribed_positions(points, angles=None, *, ax=None, show_poles: bool = Tru
     show_poles : bool
         Mark the finite poles P_ij.
     degrees : bool
-        Angles in degrees.
+        The given angles are in degrees.
+    units : Units or mapping, optional
+        ``{"length": "mm"}``: the unit of the axes (default SI).
 
     Returns
     -------
     matplotlib Axes
     """
     pos = points if isinstance(points, Positions) else Positions(points, angles, degrees=degrees)
+    u = Units.resolve(units)
     ax = _axes(ax)
-    arrow = 0.15 * pos.size
-    for j, (P, a) in enumerate(zip(pos.points, pos.alpha)):
+    arrow = 0.15 * u.convert(pos.size, "m")
+    for j, (P, a) in enumerate(zip(u.convert(pos.points, "m"), pos.alpha)):
         c = _colour(j)
         ax.plot(*P, "o", color=c)
         ax.annotate("", xy=P + arrow * np.array([np.cos(a), np.sin(a)]), xytext=P,
                     arrowprops=dict(arrowstyle="->", color=c, lw=1.5))
         ax.annotate(f"{j + 1}", P, textcoords="offset points", xytext=(-10, -12), color=c)
     if show_poles:
-        p = poles(pos)
-        for (i, j), X, finite in zip(p.pairs, p.P, p.finite):
-            if finite:
-                ax.plot(*X, "kx")
-                ax.annotate(f"P{i}{j}", X, textcoords="offset points", xytext=(4, 4), fontsize=8)
-    return _finish(ax, f"{pos.n} prescribed positions" + (" and their poles" if show_poles else ""))
+        _poles(ax, pos, u)
+    return _finish(ax, f"{pos.n} prescribed positions" + (" and their poles" if show_poles else ""),
+                   u)
 
 
-def _linkage(ax, sol, q, colours):
+def _poles(ax, pos: Positions, u: Units) -> np.ndarray:
+    """Mark the finite poles P_ij of ``pos``; their positions, in ``u``."""
+    p = poles(pos)
+    finite = u.convert(p.P[p.finite], "m")
+    for (i, j), X in zip([pair for pair, f in zip(p.pairs, p.finite) if f], finite):
+        ax.plot(*X, "kx")
+        ax.annotate(f"P{i}{j}", X, textcoords="offset points", xytext=(4, 4), fontsize=8)
+    return finite
+
+
+def _linkage(ax, sol, q, colours, u: Units):
     """Draw the four-bar of a synthesized model at crank angles q (engine positions)."""
     s = analyze(sol.model, q=np.asarray(q, float), unreachable="mask", at_singular="flag")
-    O2, O4 = sol.model.point("O2").xy, sol.model.point("O4").xy
+    O2, O4 = (u.convert(np.array(sol.model.point(n).xy), "m") for n in ("O2", "O4"))
     names = [n for n in ("A", "B", "P") if n in s.point_names]
-    xy = {n: s.position(n) for n in names}
+    xy = {n: u.convert(s.position(n), "m") for n in names}
     for k in range(len(q)):
         if not s.assembled[k]:
             continue
@@ -102,34 +115,43 @@ def _linkage(ax, sol, q, colours):
     return s
 
 
-def _travel_curve(ax, sol, q_from, q_to, direction):
+def _coupler_path(sol, q, u: Units) -> np.ndarray:
+    """The coupler point P at crank angles q, in ``u``; NaN where the linkage does not
+    assemble or is singular, which breaks the drawn line."""
+    s = analyze(sol.model, q=q, unreachable="mask", at_singular="flag")
+    ok = s.assembled & ~s.singular
+    return u.convert(np.where(ok[:, None], s.position("P"), np.nan), "m")
+
+
+def _travel_curve(ax, sol, q_from, q_to, direction, u: Units):
     span = np.mod(direction * (q_to - q_from), 2 * np.pi) if direction else 2 * np.pi
     d = direction or 1
     q = q_from + d * np.linspace(0.0, span, 361)
-    s = analyze(sol.model, q=q, unreachable="mask", at_singular="flag")
-    P = np.where(s.assembled[:, None], s.position("P"), np.nan)   # NaN breaks the drawn line
-    ax.plot(*P.T, "k--", lw=0.8, label="coupler curve on the way")
+    ax.plot(*_coupler_path(sol, q, u).T, "k--", lw=0.8, label="coupler curve on the way")
 
 
-def motion_solution(sol: MotionSolution, *, ax=None):
+def motion_solution(sol: MotionSolution, *, ax=None, units: Units | Mapping[str, str] | None = None):
     """A motion-generation four-bar drawn by the engine in each prescribed position, with
-    the prescribed points and the coupler curve between the first and the last.
+    the prescribed points and the coupler curve between the first and the last, lengths in
+    ``units`` (default SI).
 
     Returns
     -------
     matplotlib Axes
     """
+    u = Units.resolve(units)
     ax = _axes(ax)
     n = len(sol.q)
-    _linkage(ax, sol, sol.q, [_colour(j) for j in range(n)])
-    for j, P in enumerate(sol.points):
+    _linkage(ax, sol, sol.q, [_colour(j) for j in range(n)], u)
+    for j, P in enumerate(u.convert(sol.points, "m")):
         ax.plot(*P, "s", mfc="none", color=_colour(j), ms=9)
         ax.annotate(f"P{j + 1}", P, textcoords="offset points", xytext=(6, 4), color=_colour(j))
-    _travel_curve(ax, sol, sol.q[0], sol.q[-1], sol.direction)
-    return _finish(ax, f"four-bar through {n} positions ({sol.grashof.kind}, {sol.state})")
+    _travel_curve(ax, sol, sol.q[0], sol.q[-1], sol.direction, u)
+    return _finish(ax, f"four-bar through {n} positions ({sol.grashof.kind}, {sol.state})", u)
 
 
-def burmester_curves(curves: BurmesterCurves, *, ax=None, positions=None, solutions=()):
+def burmester_curves(curves: BurmesterCurves, *, ax=None, positions=None, solutions=(),
+                     units: Units | Mapping[str, str] | None = None):
     """Burmester's centre-point curve (fixed pivots) and circle-point curve (moving pivots
     in position 1), with the poles and chosen solutions when given.
 
@@ -140,43 +162,42 @@ def burmester_curves(curves: BurmesterCurves, *, ax=None, positions=None, soluti
         The four positions, to mark the poles (they lie on the centre-point curve).
     solutions : sequence of MotionSolution
         Linkages whose pivots are marked (fixed: triangles, moving: circles).
+    units : Units or mapping, optional
+        ``{"length": "mm"}``: the unit of the axes (default SI).
 
     Returns
     -------
     matplotlib Axes
     """
+    u = Units.resolve(units)
     ax = _axes(ax)
+    center, circle = u.convert(curves.center, "m"), u.convert(curves.circle, "m")
     for k in range(2):
-        c = np.where(curves.valid[k][:, None], curves.center[k], np.nan)
-        m = np.where(curves.valid[k][:, None], curves.circle[k], np.nan)
+        c = np.where(curves.valid[k][:, None], center[k], np.nan)
+        m = np.where(curves.valid[k][:, None], circle[k], np.nan)
         ax.plot(*c.T, "-", color="tab:blue", lw=1.2, label="centre points (A0)" if k == 0 else None)
         ax.plot(*m.T, "-", color="tab:red", lw=1.2, label="circle points (A1)" if k == 0 else None)
-    if positions is not None:
-        p = poles(positions)
-        for (i, j), X, finite in zip(p.pairs, p.P, p.finite):
-            if finite:
-                ax.plot(*X, "kx")
-                ax.annotate(f"P{i}{j}", X, textcoords="offset points", xytext=(4, 4), fontsize=8)
-        ax.plot(*positions.points.T, "ks", mfc="none", label="prescribed P")
-    for s in solutions:
-        ax.plot(*np.array([s.A0, s.B0]).T, "^", color="tab:blue", ms=8)
-        ax.plot(*np.array([s.A1, s.B1]).T, "o", color="tab:red", ms=6)
     # the curves run off to infinity: frame the poles, the points and the pivots shown
     # (or, without them, the middle of the curves)
-    keep = [np.array([x for s in solutions for x in (s.A0, s.B0, s.A1, s.B1)]).reshape(-1, 2)]
+    keep = [u.convert(np.array([x for s in solutions for x in (s.A0, s.B0, s.A1, s.B1)]), "m")
+            .reshape(-1, 2)]
     if positions is not None:
-        p = poles(positions)
-        keep += [positions.points, p.P[p.finite]]
+        points = u.convert(positions.points, "m")
+        keep += [points, _poles(ax, positions, u)]
+        ax.plot(*points.T, "ks", mfc="none", label="prescribed P")
+    for s in solutions:
+        ax.plot(*u.convert(np.array([s.A0, s.B0]), "m").T, "^", color="tab:blue", ms=8)
+        ax.plot(*u.convert(np.array([s.A1, s.B1]), "m").T, "o", color="tab:red", ms=6)
     allp = np.vstack(keep)
     if len(allp) < 2:
-        allp = np.percentile(np.vstack([curves.center[curves.valid], curves.circle[curves.valid]]),
+        allp = np.percentile(np.vstack([center[curves.valid], circle[curves.valid]]),
                              [10, 90], axis=0)
     lo, hi = allp.min(axis=0), allp.max(axis=0)
     pad = 0.25 * (hi - lo).max()
     ax.set_xlim(lo[0] - pad, hi[0] + pad)
     ax.set_ylim(lo[1] - pad, hi[1] + pad)
     ax.legend(loc="best", fontsize=8)
-    return _finish(ax, "centre-point and circle-point curves")
+    return _finish(ax, "centre-point and circle-point curves", u)
 
 
 def structural_error(sol: FunctionSolution, *, ax=None):
@@ -199,23 +220,26 @@ def structural_error(sol: FunctionSolution, *, ax=None):
     return ax
 
 
-def path_solution(sol: PathSolution, *, ax=None):
-    """A path generator: its coupler curve, the targets, and the linkage at the first one.
+def path_solution(sol: PathSolution, *, ax=None, units: Units | Mapping[str, str] | None = None):
+    """A path generator: its coupler curve, the targets, and the linkage at the first one,
+    lengths in ``units`` (default SI).
 
     Returns
     -------
     matplotlib Axes
     """
+    u = Units.resolve(units)
     ax = _axes(ax)
     n = len(sol.q)
-    _linkage(ax, sol, sol.q[:1], [_colour(0)])
+    _linkage(ax, sol, sol.q[:1], [_colour(0)], u)
     q = sol.q[0] + np.linspace(0.0, 2 * np.pi, 721)
-    s = analyze(sol.model, q=q, unreachable="mask", at_singular="flag")
-    P = np.where(s.assembled[:, None], s.position("P"), np.nan)
-    ax.plot(*P.T, "-", color="tab:gray", lw=1.0, label="coupler curve (this branch)")
-    _travel_curve(ax, sol, sol.q[0], sol.q[-1], sol.direction)
-    ax.plot(*sol.points.T, "s", mfc="none", color="tab:red", ms=8, label="targets")
-    for j, T in enumerate(sol.points):
+    ax.plot(*_coupler_path(sol, q, u).T, "-", color="tab:gray", lw=1.0,
+            label="coupler curve (this branch)")
+    _travel_curve(ax, sol, sol.q[0], sol.q[-1], sol.direction, u)
+    targets = u.convert(sol.points, "m")
+    ax.plot(*targets.T, "s", mfc="none", color="tab:red", ms=8, label="targets")
+    for j, T in enumerate(targets):
         ax.annotate(f"{j + 1}", T, textcoords="offset points", xytext=(6, 4), color="tab:red")
     ax.legend(loc="best", fontsize=8)
-    return _finish(ax, f"path generator through {n} points (rms error {sol.rms_error:.3g} m)")
+    return _finish(ax, f"path generator through {n} points (rms error "
+                       f"{u.convert(sol.rms_error, 'm'):.3g} {u.length})", u)

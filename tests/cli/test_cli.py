@@ -28,39 +28,94 @@ def test_commands_are_registered():
     assert result.exit_code == 0 and "analyze" in result.output
 
 
-def test_analyze_writes_csv_and_prints_summary(tmp_path):
+MM, DEG = 1e-3, math.pi / 180           # SI value of one mm, one degree
+
+
+def read_csv(path):
+    rows = list(csv.DictReader(Path(path).open()))
+    return {name: np.array([float(r[name]) if r[name] not in ("True", "False")
+                            else r[name] == "True" for r in rows]) for name in rows[0]}
+
+
+@pytest.fixture(scope="module")
+def crank_rocker_si():
+    """The example's sweep worked in Python: 361 samples, 0 to 360 deg, 600 deg/s."""
+    m = kl.load(EX / "crank_rocker.toml")
+    return kl.analyze(m, np.radians(np.linspace(0.0, 360.0, 361)), np.radians(600.0))
+
+
+def test_analyze_writes_csv_and_prints_summary_in_the_files_units(tmp_path, crank_rocker_si):
     result = run("analyze", EX / "crank_rocker.toml", "--out", tmp_path)
     assert result.exit_code == 0, result.output
     out = result.stdout
-    assert "Grashof: crank-rocker (GCRR)" in out
+    assert "crank-rocker: 361 samples, crank angle from 0 to 360 deg" in out
+    assert "Grashof: crank-rocker (GCRR); s + l <= p + q by 150 mm; lengths ground, crank, " \
+           "coupler, rocker = 300, 100, 300, 250 mm" in out
     assert "time ratio of rocker: 1.211" in out          # (180 + 17.15) / (180 - 17.15) deg
-    assert "transmission angle coupler-rocker: min 0.72" in out
+    # at q = 0, |A O4| = 200 mm: cos mu = (300^2 + 250^2 - 200^2) / (2 300 250) = 0.75
+    assert "transmission angle coupler-rocker: min 41.4096 deg at crank angle = 0 deg" in out \
+        or "transmission angle coupler-rocker: min 41.4096 deg at crank angle = 360 deg" in out
+    assert f"{math.degrees(math.acos(0.75)):.6g}" == "41.4096"
     assert "limit positions: none; crank angle turns fully" in out
-    rows = list(csv.DictReader((tmp_path / "crank_rocker.csv").open()))
-    assert len(rows) == 361
-    header = rows[0].keys()
-    for column in ("crank angle.q [rad]", "rocker.angle [rad]", "rocker.omega [rad/s]",
-                   "rocker.alpha [rad/s^2]", "rocker.K [rad/rad]", "rocker.L [rad/(rad*rad)]",
-                   "P.x [m]", "P.vy [m/s]", "P.ay [m/s^2]", "det_J", "singular"):
-        assert column in header, column
-    # mm in the file, SI out
-    assert float(rows[0]["O4.x [m]"]) == 0.3
-    assert float(rows[90]["crank angle.q [rad]"]) == pytest.approx(math.pi / 2, abs=1e-15)
-    assert float(rows[0]["crank angle.qd [rad/s]"]) == pytest.approx(600 * math.pi / 180, rel=1e-14)
+    assert "rocker.angle[deg]" in out and "P.speed[mm/s]" in out and "[m]" not in out
+    col = read_csv(tmp_path / "crank_rocker.csv")
+    assert len(col["det_J"]) == 361
+    for column in ("crank_angle.q[deg]", "rocker.angle[deg]", "rocker.omega[deg/s]",
+                   "rocker.alpha[deg/s^2]", "rocker.K[deg/deg]", "rocker.L[deg/deg^2]",
+                   "P.x[mm]", "P.vy[mm/s]", "P.ay[mm/s^2]", "P.x.K[mm/deg]", "P.x.L[mm/deg^2]",
+                   "det_J", "singular"):
+        assert column in col, column
+    # mm and deg out, as the file is written; checked against the SI results times the
+    # exact factors
+    ref = crank_rocker_si
+    assert col["O4.x[mm]"][0] == 300.0
+    np.testing.assert_allclose(col["crank_angle.q[deg]"], np.linspace(0, 360, 361), rtol=1e-15)
+    np.testing.assert_allclose(col["crank_angle.qd[deg/s]"], 600.0, rtol=1e-14)
+    np.testing.assert_allclose(col["rocker.omega[deg/s]"], ref.omega("rocker") / DEG,
+                               rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(col["P.vy[mm/s]"], ref.velocity("P")[:, 1] / MM, rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(col["P.x.L[mm/deg^2]"], ref.L("P")[:, 0] * DEG ** 2 / MM,
+                               rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(col["rocker.K[deg/deg]"], ref.K("rocker"), rtol=1e-12, atol=1e-12)
 
 
-def test_analyze_in_degrees_and_json(tmp_path):
-    result = run("analyze", EX / "crank_rocker.toml", "--out", tmp_path / "r.json", "--degrees",
-                 "--samples", "5", "--quiet")
+def test_analyze_si_and_degrees_flags(tmp_path, crank_rocker_si):
+    ref = crank_rocker_si
+    result = run("analyze", EX / "crank_rocker.toml", "--out", tmp_path / "si.csv", "--si")
+    assert result.exit_code == 0, result.output
+    assert "crank angle from 0 to 6.28319 rad" in result.stdout
+    assert "lengths ground, crank, coupler, rocker = 0.3, 0.1, 0.3, 0.25 m" in result.stdout
+    col = read_csv(tmp_path / "si.csv")
+    assert col["O4.x[m]"][0] == 0.3
+    np.testing.assert_allclose(col["crank_angle.q[rad]"], ref.q[:, 0], rtol=1e-15)
+    np.testing.assert_allclose(col["P.vy[m/s]"], ref.velocity("P")[:, 1], rtol=1e-12, atol=1e-12)
+    result = run("analyze", EX / "crank_rocker.toml", "--out", tmp_path / "r.json", "--si",
+                 "--degrees", "--samples", "5", "--quiet")
     assert result.exit_code == 0, result.output
     assert "Grashof" not in result.stdout
     rows = json.loads((tmp_path / "r.json").read_text())
-    assert [r["crank angle.q [deg]"] for r in rows] == pytest.approx([0, 90, 180, 270, 360], abs=1e-12)
-    assert rows[0]["crank angle.qd [deg/s]"] == pytest.approx(600.0, rel=1e-14)
+    assert [r["crank_angle.q[deg]"] for r in rows] == pytest.approx([0, 90, 180, 270, 360], abs=1e-12)
+    assert rows[0]["crank_angle.qd[deg/s]"] == pytest.approx(600.0, rel=1e-14)
+    # metres: the crank's 100 mm along +x at 0 deg, along +y at 90 deg
+    assert rows[0]["A.x[m]"] == pytest.approx(0.1, rel=1e-15)
+    assert rows[1]["A.x[m]"] == pytest.approx(0.0, abs=1e-16) and rows[1]["A.y[m]"] == pytest.approx(0.1, rel=1e-15)
     m = kl.load(EX / "crank_rocker.toml")
-    ref = kl.analyze(m, np.radians([0.0, 90, 180, 270, 360]))
-    assert [r["rocker.angle [deg]"] for r in rows] == pytest.approx(
-        np.degrees(ref.angle("rocker")), abs=1e-10)
+    five = kl.analyze(m, np.radians([0.0, 90, 180, 270, 360]))
+    assert [r["rocker.angle[deg]"] for r in rows] == pytest.approx(
+        np.degrees(five.angle("rocker")), abs=1e-10)
+
+
+def test_an_inch_file_answers_in_inches(tmp_path):
+    mf = kl.io.ModelFile.read(EX / "crank_rocker.toml")
+    path = kl.io.save(mf, tmp_path / "inch.toml", units={"length": "in", "angle": "rad"})
+    result = run("analyze", path, "--out", tmp_path, "--samples", "9")
+    assert result.exit_code == 0, result.output
+    assert "A.x[m]" not in result.stdout and "P.x[in]" in result.stdout
+    col = read_csv(tmp_path / "inch.csv")
+    assert col["O4.x[in]"][0] == pytest.approx(0.3 / 0.0254, rel=1e-11)   # 12 digits in the file
+    np.testing.assert_allclose(col["crank_angle.q[rad]"], np.linspace(0, 2 * np.pi, 9), rtol=1e-11)
+    result = run("analyze", path, "--at", "0.5")
+    assert "  A.x[in]" in result.stdout and "  crank_angle.q[rad]" in result.stdout
 
 
 def test_analyze_parquet(tmp_path):
@@ -70,7 +125,8 @@ def test_analyze_parquet(tmp_path):
                  "parquet", "--samples", "7", "-q")
     assert result.exit_code == 0, result.output
     frame = pd.read_parquet(tmp_path / "offset_slider_crank.parquet")
-    assert frame.shape[0] == 7 and "slide.slide [m]" in frame.columns
+    assert frame.shape[0] == 7 and "slide.slide[mm]" in frame.columns
+    assert not any(" " in name for name in frame.columns)
 
 
 @pytest.mark.parametrize("path", sorted(EX.glob("*.toml")), ids=lambda p: p.stem)
@@ -103,25 +159,37 @@ def test_check_reports_mobility_and_reachable_range():
     assert "dyad 'coupler'-'rocker' (RRR A-B-O4)" in result.stdout
 
 
-def test_at_prints_one_configuration():
+def at_values(text):
+    return dict(re.split(r"\s{2,}", line.strip()) for line in text.splitlines()[1:] if line.strip())
+
+
+def test_at_prints_one_configuration_in_the_files_units():
     result = run("analyze", EX / "crank_rocker.toml", "--at", "90")      # the file's degrees
     assert result.exit_code == 0, result.output
     again = run("analyze", EX / "crank_rocker.toml", "--at", f"{math.pi / 2}rad")
     assert again.stdout == result.stdout
-    values = dict(re.split(r"\s{2,}", line.strip()) for line in result.stdout.splitlines()[1:]
-                  if line.strip())
-    ref = kl.analyze(kl.load(EX / "crank_rocker.toml"), math.pi / 2, 600 * math.pi / 180)
-    # printed to 10 significant digits
-    assert float(values["rocker.angle [rad]"]) == pytest.approx(float(ref.angle("rocker")), rel=1e-9)
-    assert float(values["rocker.omega [rad/s]"]) == pytest.approx(float(ref.omega("rocker")), rel=1e-9)
-    assert float(values["A.y [m]"]) == pytest.approx(0.1, abs=1e-12)
+    values = at_values(result.stdout)
+    ref = kl.analyze(kl.load(EX / "crank_rocker.toml"), math.pi / 2, 600 * DEG)
+    # printed to 10 significant digits, converted here by hand from the SI results
+    assert float(values["crank_angle.q[deg]"]) == 90.0
+    assert float(values["rocker.angle[deg]"]) == pytest.approx(float(ref.angle("rocker")) / DEG, rel=1e-9)
+    assert float(values["rocker.omega[deg/s]"]) == pytest.approx(float(ref.omega("rocker")) / DEG, rel=1e-9)
+    assert float(values["rocker.alpha[deg/s^2]"]) == pytest.approx(float(ref.alpha("rocker")) / DEG,
+                                                                   rel=1e-9)
+    assert float(values["B.vx[mm/s]"]) == pytest.approx(float(ref.velocity("B")[0]) / MM, rel=1e-9)
+    assert float(values["B.y.L[mm/deg^2]"]) == pytest.approx(float(ref.L("B")[1]) * DEG ** 2 / MM,
+                                                             rel=1e-9)
+    assert float(values["A.y[mm]"]) == pytest.approx(100.0, abs=1e-9)     # the crank straight up
     assert values["singular"] == "false"
-    assert "O2.x [m]" not in values            # the frame's points are not repeated
+    assert "O2.x[mm]" not in values            # the frame's points are not repeated
+    si = at_values(run("analyze", EX / "crank_rocker.toml", "--at", "90", "--si").stdout)
+    assert float(si["rocker.angle[rad]"]) == pytest.approx(float(ref.angle("rocker")), rel=1e-9)
+    assert float(si["A.y[m]"]) == pytest.approx(0.1, abs=1e-12)
 
 
 @pytest.mark.parametrize("at, message", [
-    ("abc", "kinelab: error: --at: expected a number, optionally followed by one of deg, rad, got 'abc'"),
-    ("30mm", "kinelab: error: --at: expected a number, optionally followed by one of deg, rad, got '30mm'"),
+    ("abc", "kinelab: error: --at: expected a number, optionally followed by one of rad, deg, got 'abc'"),
+    ("30mm", "kinelab: error: --at: expected a number, optionally followed by one of rad, deg, got '30mm'"),
     ("30,40", "kinelab: error: --at: expected 1 value(s) separated by commas (one per input: crank "
               "angle), got '30,40'"),
 ])
@@ -205,17 +273,18 @@ def test_speed_sets_the_input_speed_for_the_run(tmp_path):
     a = list(csv.DictReader((tmp_path / "a.csv").open()))
     b = list(csv.DictReader((tmp_path / "b.csv").open()))
     for ra, rb in zip(a, b):
-        assert float(rb["crank angle.qd [rad/s]"]) == pytest.approx(math.radians(1800), rel=1e-15)
-        assert float(rb["rocker.omega [rad/s]"]) == pytest.approx(3 * float(ra["rocker.omega [rad/s]"]),
-                                                                 rel=1e-12, abs=1e-12)
-        assert float(rb["P.ay [m/s^2]"]) == pytest.approx(9 * float(ra["P.ay [m/s^2]"]), rel=1e-12, abs=1e-12)
-        assert rb["rocker.K [rad/rad]"] == ra["rocker.K [rad/rad]"]
-    one = run("analyze", EX / "crank_rocker.toml", "--at", "90", "--speed", "2rad")
+        assert float(rb["crank_angle.qd[deg/s]"]) == pytest.approx(1800.0, rel=1e-15)
+        assert float(rb["rocker.omega[deg/s]"]) == pytest.approx(3 * float(ra["rocker.omega[deg/s]"]),
+                                                                rel=1e-12, abs=1e-12)
+        assert float(rb["P.ay[mm/s^2]"]) == pytest.approx(9 * float(ra["P.ay[mm/s^2]"]), rel=1e-12,
+                                                          abs=1e-12)
+        assert rb["rocker.K[deg/deg]"] == ra["rocker.K[deg/deg]"]
+    one = run("analyze", EX / "crank_rocker.toml", "--at", "90", "--speed", "2rad", "--si")
     values = dict(re.split(r"\s{2,}", line.strip()) for line in one.stdout.splitlines()[1:]
                   if line.strip())
-    assert float(values["crank angle.qd [rad/s]"]) == 2.0
+    assert float(values["crank_angle.qd[rad/s]"]) == 2.0
     ref = kl.analyze(kl.load(EX / "crank_rocker.toml"), math.pi / 2, 2.0)
-    assert float(values["rocker.omega [rad/s]"]) == pytest.approx(float(ref.omega("rocker")), rel=1e-9)
+    assert float(values["rocker.omega[rad/s]"]) == pytest.approx(float(ref.omega("rocker")), rel=1e-9)
 
 
 def test_speed_of_several_inputs(tmp_path):
@@ -223,14 +292,14 @@ def test_speed_of_several_inputs(tmp_path):
                  "--speed", "60deg,-1rad")
     assert result.exit_code == 0, result.output
     rows = list(csv.DictReader((tmp_path / "f.csv").open()))
-    assert [float(r["jO2.qd [rad/s]"]) for r in rows] == pytest.approx([math.pi / 3] * 5, rel=1e-15)
-    assert [float(r["jO4.qd [rad/s]"]) for r in rows] == [-1.0] * 5
+    assert [float(r["jO2.qd[deg/s]"]) for r in rows] == pytest.approx([60.0] * 5, rel=1e-15)
+    assert [float(r["jO4.qd[deg/s]"]) for r in rows] == pytest.approx([-math.degrees(1.0)] * 5, rel=1e-15)
 
 
 @pytest.mark.parametrize("speed, message", [
-    ("fast", "--speed: expected a number, optionally followed by one of deg, rad, got 'fast'"),
-    ("60mm", "--speed: expected a number, optionally followed by one of deg, rad, got '60mm'"),
-    ("inf", "--speed: expected a number, optionally followed by one of deg, rad, got 'inf'"),
+    ("fast", "--speed: expected a number, optionally followed by one of rad, deg, got 'fast'"),
+    ("60mm", "--speed: expected a number, optionally followed by one of rad, deg, got '60mm'"),
+    ("inf", "--speed: expected a number, optionally followed by one of rad, deg, got 'inf'"),
     ("60,30", "--speed: expected 1 value(s) separated by commas (one per input: crank angle), "
               "got '60,30'"),
 ])
@@ -254,11 +323,11 @@ def test_imported_pyslvs_model_has_a_speed(tmp_path):
     assert "speed = 600.0" in text
     m = kl.load(tmp_path / "sc.toml")
     assert m.inputs[0].speed == pytest.approx(2 * math.pi * 100 / 60, rel=1e-15)
-    result = run("analyze", tmp_path / "sc.toml", "--at", "30")
+    result = run("analyze", tmp_path / "sc.toml", "--at", "30", "--si")
     values = dict(re.split(r"\s{2,}", line.strip()) for line in result.stdout.splitlines()[1:]
                   if line.strip())
     K = float(kl.analyze(m, math.radians(30)).K("sP2"))
-    assert float(values["sP2.slide_velocity [m/s]"]) == pytest.approx(K * 2 * math.pi * 100 / 60, rel=1e-9)
+    assert float(values["sP2.slide_velocity[m/s]"]) == pytest.approx(K * 2 * math.pi * 100 / 60, rel=1e-9)
     assert K != 0.0
 
 
@@ -270,12 +339,32 @@ def test_summary_of_a_crank_that_cannot_turn(tmp_path):
                      '[catalogue]\nkind = "slider_crank"\ncrank = 3.0\nrod = 1.0\n'
                      '[[inputs]]\njoint = "jO2"\nrange = [-15, 15]\nspeed = 60\n'
                      '[outputs]\ntime_ratio = "slide"\n')
-    result = run("analyze", model, "--out", tmp_path)
+    result = run("analyze", model, "--out", tmp_path, "--si")
     assert result.exit_code == 0, result.output
     # |sin q| <= 1/3: asin(1/3) = 0.339837 rad
     assert ("limit positions of jO2 (it cannot go past them): -3.48143 rad and -2.80176 rad; "
             "-0.339837 rad and 0.339837 rad") in result.stdout
     assert ("time ratio of slide: none; jO2 cannot turn a full turn (it reaches only "
             "[-3.48143, -2.80176] and [-0.339837, 0.339837] rad)") in result.stdout
-    result = run("analyze", model, "--out", tmp_path, "--degrees")
+    result = run("analyze", model, "--out", tmp_path)            # the file's degrees
     assert "(it reaches only [-199.471, -160.529] and [-19.4712, 19.4712] deg)" in result.stdout
+
+
+@pytest.mark.parametrize("field, bad, message", [
+    ("length", "furlong", "units.length: expected one of 'm', 'cm', 'mm', 'in', got 'furlong'"),
+    ("angle", "grad", "units.angle: expected one of 'rad', 'deg', got 'grad' (did you mean 'rad'?)"),
+])
+def test_a_unit_the_file_cannot_declare_is_one_line_status_2_nothing_written(tmp_path, field, bad,
+                                                                            message):
+    model = tmp_path / "fb.toml"
+    model.write_text(BASE.replace(f'{field} = "{"mm" if field == "length" else "deg"}"',
+                                  f'{field} = "{bad}"'))
+    out = tmp_path / "out"
+    for command in (["analyze", model, "--out", out], ["analyze", model, "--at", "30"],
+                    ["analyze", model, "--si", "--out", out], ["check", model],
+                    ["plot", model, "--out", out], ["animate", model, "--out", out],
+                    ["dynamics", model, "--out", out]):
+        result = run(*command)
+        assert result.exit_code == 2, (command, result.output)
+        assert result.stderr == f"kinelab: error: fb.toml: {message}\n", command
+    assert not out.exists()

@@ -12,9 +12,9 @@ from kinelab.model import Mechanism
 from tests.dynamics.models import engine, prrrr
 
 
-def write(m, tmp_path):
+def write(m, tmp_path, units=None):
     path = tmp_path / f"{m.name}.toml"
-    kl.io.save(m, path)
+    kl.io.save(m, path, units=units)
     return str(path)
 
 
@@ -36,9 +36,37 @@ def test_writes_table_and_figures(tmp_path):
         assert (out / f"engine_{suffix}").stat().st_size > 0
     with open(out / "engine_dynamics.csv") as f:
         rows = list(csv.DictReader(f))
-    assert len(rows) == 73 and float(rows[-1]["jO2.q [deg]"]) == pytest.approx(360.0)
-    assert {"jO2.torque [N m]", "shaking_force.x [N]", "jA.reaction.y [N]",
-            "slide.reaction_moment [N m]"} <= set(rows[0])
+    assert len(rows) == 73 and float(rows[-1]["jO2.q[deg]"]) == pytest.approx(360.0, rel=1e-15)
+    assert {"jO2.torque[N*m]", "shaking_force.x[N]", "jA.reaction.y[N]",
+            "slide.reaction_moment[N*m]", "kinetic_energy[J]", "actuator_power[W]"} <= set(rows[0])
+    assert not any(" " in name for name in rows[0])
+
+
+def test_kinematic_columns_in_file_units_forces_in_si(tmp_path):
+    m = engine()
+    m = Mechanism(m.name, m.points, m.links, m.joints,
+                  (type(m.inputs[0])(joint="jO2", speed=100.0),),
+                  parameters={"dynamics": {"gravity": [0.0, -9.81]}})
+    path = write(m, tmp_path, units={"length": "mm", "angle": "deg"})
+    mf = kl.io.ModelFile.read(path)
+    ref = kl.dynamics.inverse(mf.mechanism, *mf.sample_inputs(37))
+    for flags, factor, unit in (([], 180 / np.pi, "deg"), (["--si"], 1.0, "rad")):
+        out = tmp_path / f"out{len(flags)}"
+        result = CliRunner().invoke(main, ["dynamics", path, "--out", str(out), "--samples", "37",
+                                           "--no-plots", *flags])
+        assert result.exit_code == 0, result.output
+        with open(out / "engine_dynamics.csv") as f:
+            rows = list(csv.DictReader(f))
+        col = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+        # positions and rates: the file's degrees, or rad with --si
+        np.testing.assert_allclose(col[f"jO2.q[{unit}]"], ref.q[:, 0] * factor, rtol=1e-15)
+        np.testing.assert_allclose(col[f"jO2.qd[{unit}/s]"], ref.qd[:, 0] * factor, rtol=1e-15)
+        # efforts, forces, energies: SI whatever the file's units
+        np.testing.assert_allclose(col["jO2.torque[N*m]"], ref.input_forces[:, 0], rtol=1e-15)
+        np.testing.assert_allclose(col["kinetic_energy[J]"], ref.kinetic_energy, rtol=1e-15)
+        assert "t[s]" in col
+    # the speed, 100 rad/s, went through the file in deg/s rounded to 12 digits
+    assert float(rows[0]["jO2.qd[rad/s]"]) == pytest.approx(100.0, rel=1e-11)
 
 
 def test_two_inputs_need_ranges(tmp_path):

@@ -167,8 +167,8 @@ def test_shapes_and_single_configuration():
     assert res.shaking_force.shape == (1, 2)
     assert res.input_force("wrist").shape == (1,)
     frame = res.to_dataframe()
-    assert "wrist.torque [N m]" in frame and "rail.force [N]" in frame
-    assert "rail.reaction_moment [N m]" in frame and len(frame) == 1
+    assert "wrist.torque[N*m]" in frame and "rail.force[N]" in frame
+    assert "rail.reaction_moment[N*m]" in frame and len(frame) == 1
 
 
 def test_singular_samples_give_nan_forces_flagged():

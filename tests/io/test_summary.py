@@ -115,3 +115,31 @@ def test_five_bar_summary_names_both_inputs():
     assert s.inputs == ("jO2", "jO4") and s.reachable is None and s.quick_return is None
     assert len(s.extremes[0].at_min) == 2
     assert [e.name for e in s.extremes] == ["P.x", "P.y", "P.speed", "P.acceleration"]
+
+
+def test_extremes_leave_the_singular_samples_out():
+    # crank = rod: at q = 90 and 270 deg the rod stands upright over O2 and B meets O2
+    # (det J = 0); there the rod's angle is -90 / +90 deg, the slide 0 and the
+    # transmission angle 0, none of which a working range should report
+    sc = kl.mechanisms.slider_crank(crank=1.0, rod=1.0)
+    q = np.radians(np.arange(0.0, 361.0, 5.0))
+    sol = kl.analyze(sc, q, 1.0, at_singular="flag")
+    assert np.flatnonzero(sol.singular).tolist() == [18, 54]
+    s = summary(sol)
+    e = {x.name: x for x in s.extremes}
+    ok = ~sol.singular
+    # by hand: the rod angle is -q for q in [0, 90], q - 180 beyond: -85 deg at q = 85 deg
+    assert e["rod.angle"].min == pytest.approx(math.radians(-85.0), abs=1e-12)
+    assert e["rod.angle"].at_min[0] == pytest.approx(math.radians(85.0), abs=1e-12)
+    assert e["rod.angle"].max == pytest.approx(math.radians(85.0), abs=1e-12)
+    # past the toggle the rod folds back onto the crank (B stays at O2): every extreme is
+    # that of the non-singular samples, and never found at a singular one
+    slide = sol.slide("slide")
+    assert e["slide.slide"].min == np.min(slide[ok]) and e["slide.slide"].max == 2.0
+    for x in s.extremes:
+        assert x.at_min[0] not in q[~ok] and x.at_max[0] not in q[~ok], x.name
+    t = s.transmission[0]
+    assert t.min == pytest.approx(math.radians(5.0), abs=1e-12)    # 90 - 85 deg, not 0
+    # the singular positions are still listed
+    assert s.singular == (pytest.approx((math.pi / 2,), abs=1e-12),
+                          pytest.approx((3 * math.pi / 2,), abs=1e-12))

@@ -45,8 +45,8 @@ def test_jets_built_on_demand_agree_with_every_accessor():
         np.testing.assert_array_equal(sol.jets[:, i:i + 2, 1], sol.K(point))
         np.testing.assert_array_equal(sol.rates[:, i:i + 2, 1], sol.acceleration(point))
     cols = sol.columns()
-    np.testing.assert_array_equal(cols["O4.x [m]"], np.full(9, 3.0))
-    np.testing.assert_array_equal(cols["ground.alpha [rad/s^2]"], np.zeros(9))
+    np.testing.assert_array_equal(cols["O4.x[m]"], np.full(9, 3.0))
+    np.testing.assert_array_equal(cols["ground.alpha[rad/s^2]"], np.zeros(9))
 
 
 def test_ground_coordinates_follow_the_nan_rules():

@@ -95,6 +95,75 @@ def test_animate_refuses_what_it_cannot_write(fb, tmp_path):
         kl.plot.curves(fb, ["nope"])
 
 
+MM_DEG = {"length": "mm", "angle": "deg"}
+
+
+def visible_ticks(axis):
+    lo, hi = sorted(axis.get_view_interval())
+    return [float(t) for t in axis.get_ticklocs() if lo - 1e-9 <= t <= hi + 1e-9]
+
+
+def test_curves_in_mm_and_degrees():
+    sc = kl.mechanisms.slider_crank(0.1, 0.3)
+    sol = kl.analyze(sc, q=np.linspace(0, 2 * np.pi, 37), qd=2.0)
+    fig = kl.plot.curves(sol, ["rod", "slide"], units=MM_DEG)
+    labels = [ax.get_ylabel() for ax in fig.axes]
+    assert labels == ["rod angle [deg]", "slide [mm]", "rod angular velocity [deg/s]",
+                      "slide velocity [mm/s]", "rod angular acceleration [deg/s²]",
+                      "slide acceleration [mm/s²]"]
+    assert [ax.get_xlabel() for ax in fig.axes[-2:]] == ["jO2 [deg]", "jO2 [deg]"]
+    # the data themselves are in mm and deg: the SI values times the exact factors
+    np.testing.assert_allclose(fig.axes[0].lines[0].get_xdata(), np.linspace(0, 360, 37), rtol=1e-15)
+    np.testing.assert_allclose(fig.axes[1].lines[0].get_ydata(), sol.slide("slide") * 1000, rtol=1e-15)
+    np.testing.assert_allclose(fig.axes[3].lines[0].get_ydata(),
+                               sol.slide_velocity("slide") * 1000, rtol=1e-15)
+    np.testing.assert_allclose(fig.axes[4].lines[0].get_ydata(), np.degrees(sol.alpha("rod")),
+                               rtol=1e-15)
+    # a full turn in degrees: ticks at 0, 90, 180, 270, 360
+    assert visible_ticks(fig.axes[-1].xaxis) == [0.0, 90.0, 180.0, 270.0, 360.0]
+    fig = kl.plot.coefficients(sol, ["rod", "slide"], units=MM_DEG)
+    assert [ax.get_ylabel() for ax in fig.axes] == ["K = dS/dq [deg/deg | mm/deg]",
+                                                    "L = dK/dq [deg/deg² | mm/deg²]"]
+    K_slide = [ln for ln in fig.axes[0].lines if ln.get_label() == "slide"][0].get_ydata()
+    np.testing.assert_allclose(K_slide, sol.K("slide") * 1000 * np.pi / 180, rtol=1e-15)
+    ax = kl.plot.coupler_curve(sol, "B", units=MM_DEG)
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("x [mm]", "y [mm]")
+    path = [ln for ln in ax.lines if ln.get_label() == "path of B"][0]
+    np.testing.assert_allclose(path.get_xydata(), sol.position("B") * 1000, rtol=1e-15)
+
+
+def test_singular_samples_are_gaps_and_marked():
+    # crank = rod: det J = 0 at q = 90 and 270 deg (samples 18 and 54)
+    sol = kl.analyze(kl.mechanisms.slider_crank(1.0, 1.0), q=np.linspace(0, 2 * np.pi, 73),
+                     qd=1.0, at_singular="flag")
+    singular = np.flatnonzero(sol.singular)
+    assert singular.tolist() == [18, 54]
+    fig = kl.plot.curves(sol, ["rod"], degrees=True)
+    def curve(ax, label):
+        return np.asarray([ln for ln in ax.lines if ln.get_label() == label][0].get_ydata())
+
+    for ax in fig.axes:
+        y = curve(ax, "rod")
+        assert np.isnan(y[singular]).all() and np.isfinite(y[[17, 19, 53, 55]]).all()
+        vertical = [ln for ln in ax.lines if ln.get_label() != "rod"]
+        assert sorted(float(ln.get_xdata()[0]) for ln in vertical) == pytest.approx([90.0, 270.0],
+                                                                                    abs=1e-12)
+        assert all(np.ptp(ln.get_xdata()) == 0 for ln in vertical)
+    legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert legend == ["rod", "singular (det J = 0)"]
+    # positions too: the angle is defined there, but a figure shows no value at a singular sample
+    assert np.isfinite(sol.angle("rod")[singular]).all()
+    fig = kl.plot.coefficients(sol, ["rod"])
+    assert np.isnan(curve(fig.axes[0], "rod")[singular]).all()
+    ax = kl.plot.transmission(sol)
+    assert np.isnan(curve(ax, "rod-slider")[singular]).all()
+    ax = kl.plot.coupler_curve(sol, "B")
+    path = [ln for ln in ax.lines if ln.get_label() == "path of B"][0]
+    assert np.isnan(path.get_xydata()[singular]).all()
+    marked = [ln for ln in ax.lines if ln.get_label() == "singular (det J = 0)"][0]
+    np.testing.assert_array_equal(marked.get_xydata(), sol.position("B")[singular])
+
+
 def test_plot_and_animate_commands(tmp_path):
     from click.testing import CliRunner
     from kinelab.cli import main

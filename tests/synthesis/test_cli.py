@@ -160,3 +160,26 @@ output_range = [0, 1]
 def test_a_section_the_task_does_not_read_is_refused(tmp_path):
     res = run(tmp_path, NOTES_6_5 + '\n[output]\nanything = "goes"\n')
     assert res.exit_code != 0 and "output: unknown key" in res.output
+
+
+def test_answers_in_the_tasks_units_or_si(tmp_path):
+    cm = run(tmp_path, NOTES_6_7, "--no-figures", "--json")
+    assert cm.exit_code == 0, cm.output
+    si = CliRunner().invoke(main, ["synth", str(tmp_path / "task.toml"), "--out",
+                                   str(tmp_path / "si"), "--no-figures", "--json", "--si"])
+    assert si.exit_code == 0, si.output
+    a, b = json.loads(cm.output), json.loads(si.output)
+    assert a["units"] == {"length": "cm", "angle": "deg"}
+    assert b["units"] == {"length": "m", "angle": "rad"}
+    for row_cm, row_m in zip(a["solutions"], b["solutions"]):
+        np.testing.assert_allclose(row_cm["A0"], np.array(row_m["A0"]) * 100, rtol=1e-14)
+        for k, v in row_m["lengths"].items():
+            assert row_cm["lengths"][k] == pytest.approx(v * 100, rel=1e-14)
+        if "min_transmission_angle" in row_m:
+            assert row_cm["min_transmission_angle"] == pytest.approx(
+                np.degrees(row_m["min_transmission_angle"]), rel=1e-14)
+    # the model files too: cm, or m with --si; the same linkage once read
+    assert 'length = "cm"' in (tmp_path / "out" / "solution_1.toml").read_text()
+    assert 'length = "m"' in (tmp_path / "si" / "solution_1.toml").read_text()
+    one, two = (kl.load(tmp_path / d / "solution_1.toml") for d in ("out", "si"))
+    np.testing.assert_allclose(one.point("A").xy, two.point("A").xy, rtol=1e-11)

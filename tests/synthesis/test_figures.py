@@ -69,3 +69,20 @@ def test_import_kinelab_does_not_need_matplotlib():
             "print('matplotlib' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_figures_in_the_units_asked_for():
+    cm = {"length": "cm"}
+    ax = plot.prescribed_positions(POS7, units=cm)
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("x [cm]", "y [cm]")
+    points = [line.get_xydata()[0] for line in ax.lines if line.get_marker() == "o"]
+    np.testing.assert_allclose(points, P7 * 100, rtol=1e-15, atol=1e-15)   # the task's cm
+    sols = kl.synthesis.four_positions(POS7, None, -0.20195, -0.29167)
+    cur = kl.synthesis.burmester_curves(POS7, samples=181)
+    ax = plot.burmester_curves(cur, positions=POS7, solutions=sols, units=cm)
+    fixed = [line for line in ax.lines if line.get_marker() == "^"][0].get_xydata()
+    np.testing.assert_allclose(fixed, np.array([sols[0].A0, sols[0].B0]) * 100, rtol=1e-15)
+    assert ax.get_xlabel() == "x [cm]"
+    ax = plot.motion_solution(next(s for s in sols if s.valid), units=cm)
+    squares = [line.get_xydata()[0] for line in ax.lines if line.get_marker() == "s"]
+    np.testing.assert_allclose(squares, P7 * 100, rtol=1e-15, atol=1e-15)
