@@ -119,7 +119,8 @@ def time_ratio(mechanism: Mechanism, output: str, *, samples: int = 3601) -> Tim
             "four-bar, crank + |offset| < rod for a slider-crank)",
             loop=name, reachable=reach)
     if sweep.singular.any():
-        at = float(np.mod(q[np.argmax(sweep.singular)], 2.0 * math.pi))
+        closest = np.where(sweep.singular, sweep.singularity, np.inf)
+        at = float(np.mod(q[np.argmin(closest)], 2.0 * math.pi))
         raise SingularityError(
             f"time_ratio: the turn of '{name}' passes a singular configuration near q = "
             f"{at:.6g} rad (det J = 0), where the velocity coefficient K of '{output}' is not "

@@ -118,9 +118,10 @@ def test_five_bar_summary_names_both_inputs():
 
 
 def test_extremes_leave_the_singular_samples_out():
-    # crank = rod: at q = 90 and 270 deg the rod stands upright over O2 and B meets O2
-    # (det J = 0); there the rod's angle is -90 / +90 deg, the slide 0 and the
-    # transmission angle 0, none of which a working range should report
+    # crank = rod: at q = 90 and 270 deg the rod stands upright over O2 and B passes O2, a
+    # change point (det J = 0); on the branch the sweep follows B = (2 cos q, 0), so the
+    # slide's rate -2 sin q reaches -2 m/s exactly there, which a working range must not
+    # report
     sc = kl.mechanisms.slider_crank(crank=1.0, rod=1.0)
     q = np.radians(np.arange(0.0, 361.0, 5.0))
     sol = kl.analyze(sc, q, 1.0, at_singular="flag")
@@ -128,14 +129,13 @@ def test_extremes_leave_the_singular_samples_out():
     s = summary(sol)
     e = {x.name: x for x in s.extremes}
     ok = ~sol.singular
-    # by hand: the rod angle is -q for q in [0, 90], q - 180 beyond: -85 deg at q = 85 deg
-    assert e["rod.angle"].min == pytest.approx(math.radians(-85.0), abs=1e-12)
-    assert e["rod.angle"].at_min[0] == pytest.approx(math.radians(85.0), abs=1e-12)
-    assert e["rod.angle"].max == pytest.approx(math.radians(85.0), abs=1e-12)
-    # past the toggle the rod folds back onto the crank (B stays at O2): every extreme is
-    # that of the non-singular samples, and never found at a singular one
-    slide = sol.slide("slide")
-    assert e["slide.slide"].min == np.min(slide[ok]) and e["slide.slide"].max == 2.0
+    assert e["rod.angle"].full_turn                         # the rod angle is -q
+    assert (e["slide.slide"].min, e["slide.slide"].max) == (pytest.approx(-2.0, abs=1e-12),
+                                                             pytest.approx(2.0, abs=1e-12))
+    # by hand: -2 sin(85 deg) at q = 85 deg, next to the singular sample at 90 deg
+    v = e["slide.slide_velocity"]
+    assert v.min == pytest.approx(-2 * math.sin(math.radians(85.0)), abs=1e-12)
+    assert v.at_min[0] in (pytest.approx(math.radians(85.0)), pytest.approx(math.radians(95.0)))
     for x in s.extremes:
         assert x.at_min[0] not in q[~ok] and x.at_max[0] not in q[~ok], x.name
     t = s.transmission[0]
