@@ -52,14 +52,17 @@ class AssemblyError(KinelabError, ValueError):
         By how much it fails to close, in metres.
     reachable : list of (float, float)
         Input intervals where the mechanism does assemble, when they are known.
+    link : str
+        The link whose length is most likely wrong, when one can be named.
     """
 
     def __init__(self, message: str, *, loop: str = "", gap: float = float("nan"),
-                 reachable: list[tuple[float, float]] | None = None):
+                 reachable: list[tuple[float, float]] | None = None, link: str = ""):
         super().__init__(message)
         self.loop = loop
         self.gap = gap
         self.reachable = reachable
+        self.link = link
 
 
 class ConvergenceError(KinelabError, RuntimeError):

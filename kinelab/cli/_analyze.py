@@ -9,7 +9,7 @@ import numpy as np
 
 from kinelab import io, kinematics, solvers
 from kinelab.cli._format import configuration_text, summary_text
-from kinelab.cli._main import (DEGREES, SI, errors_from, output_path, output_units, parse_inputs,
+from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, errors_from, output_path, output_units, parse_inputs,
                                read_model, stem, sweep)
 from kinelab.errors import AssemblyError, KinelabError, ModelError
 from kinelab.kinematics._columns import INPUT_SI_UNITS
@@ -69,8 +69,9 @@ def missing_time_ratio(mf, s, units) -> str | None:
               help="Input speed for this run, instead of the file's: in the file's unit per "
                    "second, or with a unit (60deg, 1rad, 12mm: per second); comma-separated "
                    "for several inputs.")
+@CHANGE_POINTS
 @click.option("--quiet", "-q", is_flag=True, help="Do not print the summary.")
-def analyze(model, out, fmt, samples, si, degrees, at, speed, quiet):
+def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, quiet):
     """Sweep MODEL's input range and write one row per sample: inputs; every link's angle,
     omega, alpha; every slide and its rates; every point's x, y, vx, vy, ax, ay; K and L of
     each; det J and the singular flag.  Prints a summary.  Results are in the file's units
@@ -86,10 +87,11 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, quiet):
         qd = np.array([i.speed for i in m.inputs]) if M > 1 else m.inputs[0].speed
         qdd = np.array([i.acceleration for i in m.inputs]) if M > 1 else m.inputs[0].acceleration
         with errors_from(mf, "--at"):
-            sol = kinematics.analyze(m, q, qd, qdd, at_singular="flag")
+            sol = kinematics.analyze(m, q, qd, qdd, at_singular="flag",
+                                     at_change_point=change_points)
         click.echo(configuration_text(sol, units))
         return
-    sol = sweep(mf, samples)
+    sol = sweep(mf, samples, change_points=change_points)
     s = None if quiet else summarise(mf, sol)
     name = stem(model)
     path = output_path(out, name, fmt or "csv")
@@ -129,6 +131,11 @@ def check(model, si, degrees):
     mobility = _mobility(m)
     click.echo(f"mobility: {len(m.inputs)} degree(s) of freedom at the sketch, one per input"
                + (f"; {mobility}" if mobility else ""))
+    if mf.assembly is not None:
+        moved = mf.assembly.moved
+        click.echo("assembled from the sketch with the links' lengths: " + (", ".join(
+            f"{n} moved {units.convert(d, 'm'):.4g} {units.unit('m')}" for n, d in moved.items())
+            if moved else "no point moved"))
     click.echo("assembles at the sketch, solved as: " + "; ".join(
         s.label for s in p.steps if s.kind not in ("locked", "placed")))
     si_unit = [INPUT_SI_UNITS[k] for k in p.input_kinds]

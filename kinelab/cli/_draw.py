@@ -5,7 +5,7 @@ import click
 
 from kinelab import io
 from kinelab.cli._analyze import MODEL, SAMPLES
-from kinelab.cli._main import (DEGREES, SI, errors_from, output_path, output_units, read_model,
+from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, errors_from, output_path, output_units, read_model,
                                stem, sweep)
 from kinelab.errors import ModelError
 
@@ -37,7 +37,8 @@ def _names(text: str | None) -> list[str] | None:
 @SAMPLES
 @SI
 @DEGREES
-def plot(model, out, formats, outputs, samples, si, degrees):
+@CHANGE_POINTS
+def plot(model, out, formats, outputs, samples, si, degrees, change_points):
     """Write MODEL's figures: outputs' position, velocity and acceleration against the input;
     K and L; coupler curves; transmission angle.  Axes are in the file's units (--si for m
     and rad); singular positions are marked and left out of the curves."""
@@ -56,7 +57,7 @@ def plot(model, out, formats, outputs, samples, si, degrees):
         raise ModelError(f"--outputs: expected links, slides or points of {m.name}, got "
                          f"{', '.join(repr(n) for n in unknown)}; they are "
                          f"{', '.join(repr(n) for n in known)}")
-    sol = sweep(mf, samples)
+    sol = sweep(mf, samples, change_points=change_points)
     figures = []
     with errors_from(mf, "outputs"):
         curve_names = [n for n in chosen if n in sol.link_item or n in sol.slide_item]
@@ -91,7 +92,8 @@ def plot(model, out, formats, outputs, samples, si, degrees):
 @click.option("--fps", type=click.IntRange(1, 120), default=30, show_default=True)
 @SAMPLES
 @SI
-def animate(model, out, fmt, trace, frames, fps, samples, si):
+@CHANGE_POINTS
+def animate(model, out, fmt, trace, frames, fps, samples, si, change_points):
     """Write an animation of MODEL moving through its sweep, with its coupler curves traced;
     axes in the file's length unit (--si for m)."""
     from kinelab import plot as kplot
@@ -100,7 +102,7 @@ def animate(model, out, fmt, trace, frames, fps, samples, si):
     units = output_units(mf.units, si, False)
     if fmt == "auto":
         fmt = "mp4" if kplot.can_write_mp4() else "gif"
-    sol = sweep(mf, samples)
+    sol = sweep(mf, samples, change_points=change_points)
     path = output_path(out, stem(model), fmt)
     with errors_from(mf, "--trace" if trace else ""):
         written = kplot.animate(sol, path, trace=_names(trace), frames=frames, fps=fps,

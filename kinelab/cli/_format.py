@@ -71,10 +71,19 @@ def summary_text(s: Summary, units: Units = Units()) -> str:
         lines.append(f"time ratio of {r.output}: {r.ratio:.4g} (slow stroke "
                      f"{_angle(u, r.slow)}, fast stroke {_angle(u, r.fast)} of input; reverses "
                      f"at {qname} = " + ", ".join(_q(u, (v,), qu) for v in r.dead_centres) + ")")
+    steps = dict.fromkeys(c.step for c in s.change_points)
+    for step in steps:
+        here = [c for c in s.change_points if c.step == step]
+        how = ("the branch whose K and L continue" if here[0].followed == "smooth"
+               else "the other branch")
+        lines.append(f"change points of {step}, where its two assembly modes meet (the sweep "
+                     f"goes on along {how}): {qname} = " + ", ".join(
+                         _q(u, (c.q,), qu) for c in here[:8])
+                     + (f" and {len(here) - 8} more" if len(here) > 8 else ""))
     if s.singular:
-        lines.append("singular positions (det J = 0): at " + "; ".join(
-            f"{qname} = {_q(u, v, qu)}" for v in s.singular[:8])
-            + (f" and {len(s.singular) - 8} more" if len(s.singular) > 8 else ""))
+        lines.append("singular positions (det J = 0; their samples are left out above): at "
+                     + "; ".join(f"{qname} = {_q(u, v, qu)}" for v in s.singular[:8])
+                     + (f" and {len(s.singular) - 8} more" if len(s.singular) > 8 else ""))
     else:
         least, at = s.least_singularity
         lines.append(f"singular positions: none met (closest: distance {_num(least)} at {qname} = "

@@ -65,6 +65,13 @@ DEGREES = click.option("--degrees", is_flag=True,
                             "and degrees).")
 
 
+CHANGE_POINTS = click.option(
+    "--change-points", "change_points", type=click.Choice(("smooth", "switch")), default="smooth",
+    show_default=True,
+    help="Where two assembly modes meet and the input goes on (a parallelogram at 180 deg): go "
+         "on along the branch whose K and L continue, or switch to the other one.")
+
+
 def output_units(file_units: Units, si: bool, degrees: bool) -> Units:
     """The units results are shown in: the file's, SI with ``--si``, and degrees for angles
     with ``--degrees``."""
@@ -84,9 +91,10 @@ def errors_from(mf: ModelFile, field: str = ""):
         raise type(exc)("\n".join(prefix + line for line in str(exc).splitlines())) from None
 
 
-def sweep(mf: ModelFile, samples: int | None = None, *, progress: bool | None = None
-          ) -> KinematicSolution:
-    """Analyse the file's sweep; on a terminal, in chunks with a progress bar."""
+def sweep(mf: ModelFile, samples: int | None = None, *, progress: bool | None = None,
+          change_points: str = "smooth") -> KinematicSolution:
+    """Analyse the file's sweep; on a terminal, in chunks with a progress bar; through
+    change points as ``change_points`` says (see ``analyze(at_change_point=...)``)."""
     m = mf.mechanism
     q, qd, qdd = mf.sample_inputs(samples)
     if progress is None:
@@ -95,11 +103,14 @@ def sweep(mf: ModelFile, samples: int | None = None, *, progress: bool | None = 
     big = len(q) >= (200 if p.uses_newton else 20000)
     with errors_from(mf, "inputs"):
         if not (progress and big):
-            return kinematics.analyze(m, q, qd, qdd, at_singular="flag")
-        return analyze_in_chunks(m, q, qd, qdd, chunks=50, label=f"analysing {m.name}")
+            return kinematics.analyze(m, q, qd, qdd, at_singular="flag",
+                                      at_change_point=change_points)
+        return analyze_in_chunks(m, q, qd, qdd, chunks=50, label=f"analysing {m.name}",
+                                 at_change_point=change_points)
 
 
-def analyze_in_chunks(m, q, qd, qdd, *, chunks: int, label: str = "") -> KinematicSolution:
+def analyze_in_chunks(m, q, qd, qdd, *, chunks: int, label: str = "",
+                      at_change_point: str = "smooth") -> KinematicSolution:
     """``analyze`` over ``q`` in ``chunks`` pieces (a progress bar on stderr when a label is
     given), each continuing where the last ended, joined into one solution."""
     parts = []
@@ -111,7 +122,8 @@ def analyze_in_chunks(m, q, qd, qdd, *, chunks: int, label: str = "") -> Kinemat
             bar.__enter__()
         for a, b in pieces:
             parts.append(kinematics.analyze(m, q[a:b], qd[a:b], qdd[a:b], at_singular="flag",
-                                            start=parts[-1] if parts else None))
+                                            start=parts[-1] if parts else None,
+                                            at_change_point=at_change_point))
             if bar is not None:
                 bar.update(b - a)
     finally:

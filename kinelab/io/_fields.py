@@ -132,8 +132,9 @@ class Reader:
     def numbers(self, value: Any, field: str, count: int | tuple[int, ...], *, scale: float = 1.0,
                 what: str = "numbers") -> tuple[float, ...] | None:
         counts = (count,) if isinstance(count, int) else count
-        shape = " or ".join(f"[{', '.join(['x', 'y', 'z'][:n])}]" if what == "coordinates"
-                            else f"{n} numbers" for n in counts)
+        shape = what if what not in ("numbers", "coordinates") else " or ".join(
+            f"[{', '.join(['x', 'y', 'z'][:n])}]" if what == "coordinates" else f"{n} numbers"
+            for n in counts)
         if (not isinstance(value, (list, tuple)) or len(value) not in counts
                 or not all(_is_number(v) for v in value)):
             self.fail(field, f"expected {shape}, got {describe(value)}")

@@ -23,9 +23,11 @@ import numpy as np
 
 from kinelab import mechanisms as catalogue
 from kinelab._files import atomic_write
-from kinelab.errors import ModelError
+from kinelab.errors import AssemblyError, ModelError
 from kinelab.io import _toml
 from kinelab.io._fields import Reader, describe, quoted
+from kinelab.kinematics import Assembly, assemble
+from kinelab.kinematics._assemble import assembly_miss, needs_assembly
 from kinelab.model import (ANGLE_UNITS, JOINT_TYPES, LENGTH_UNITS, SPACES, Input, Joint, Link,
                            Mechanism, Point, Units)
 
@@ -37,7 +39,9 @@ SCHEMA = 1
 
 DEFAULT_SAMPLES = 361
 MAX_SAMPLES = 10_000_000
-LENGTH_RTOL = 1e-6    # a declared link length agrees with the sketch to this relative error
+LENGTH_RTOL = 1e-6    # a catalogue's lengths agree with the file's sketch to this relative error
+_ASSEMBLED = 1e-10    # relative: a sketch that misses its lengths by less is assembled (the
+                      # 12 digits a file is written with)
 CATALOGUE_KINDS = ("fourbar", "slider_crank", "inverted_slider_crank", "slotted_link",
                    "whitworth", "fivebar", "watt6", "stephenson6", "triad6")
 
@@ -45,8 +49,8 @@ _TOP = ("schema", "name", "description", "space", "units", "points", "links", "j
         "inputs", "sweep", "catalogue", "outputs", "dynamics")
 _RESERVED = {key: "loads belong in the [dynamics] section (see docs/dynamics.md); move it there"
              for key in ("forces", "gravity", "loads")}
-_LINK = ("name", "points", "ground", "length", "mass", "center_of_mass", "inertia")
-_JOINT = ("name", "type", "links", "point", "axis", "origin", "axis2", "pitch")
+_LINK = ("name", "points", "ground", "length", "local", "mass", "center_of_mass", "inertia")
+_JOINT = ("name", "type", "links", "point", "axis", "origin", "offset", "axis2", "pitch")
 _INPUT = ("joint", "links", "name", "range", "speed", "acceleration", "samples")
 _OUTPUTS = ("report", "transmission", "time_ratio")
 _SWEEPS = ("together", "grid")
@@ -96,6 +100,9 @@ class ModelFile:
     description : str
     source : str, optional
         Where the file came from (for messages); not part of equality.
+    assembly : Assembly, optional
+        When the file gives lengths, places or offsets: how its sketch was moved to the
+        nearest assembly (which points moved, by how much); not part of equality.
     """
 
     mechanism: Mechanism
@@ -105,6 +112,7 @@ class ModelFile:
     outputs: Outputs = Outputs()
     description: str = ""
     source: str | None = field(default=None, compare=False)
+    assembly: Assembly | None = field(default=None, compare=False, repr=False)
 
     # -- reading ---------------------------------------------------------------------------
     @classmethod
@@ -278,6 +286,7 @@ class _Parser:
         self.stem = stem
         self.r = Reader()
         self.where: dict[tuple[str, str], str] = {}   # (kind, name) -> "links[2]"
+        self.assembly: Assembly | None = None
 
     def fail(self, problems=None):
         raise ModelError(problems or self.r.problems, source=self.source)
@@ -326,7 +335,8 @@ class _Parser:
         if r.problems:
             self.fail()
         return ModelFile(mechanism=mech, units=units, samples=samples, sweep=sweep,
-                         outputs=outputs, description=description, source=self.source)
+                         outputs=outputs, description=description, source=self.source,
+                         assembly=self.assembly)
 
     # -- sections ----------------------------------------------------------------------------
     def dynamics(self, value, mech: Mechanism) -> Mechanism:
@@ -379,7 +389,7 @@ class _Parser:
         for t in raw_joints:
             if t is not None and _joint_name(t) in joint_names:
                 joint_types.setdefault(_joint_name(t), t.get("type"))
-        links, lengths = [], []
+        links = []
         for i, t in enumerate(raw_links):
             where = f"links[{i}]"
             if t is None:
@@ -395,12 +405,14 @@ class _Parser:
                              "the link's points")
             length = self.optional_number(t, "length", where, scale=ls, positive=True,
                                           unit=units.length)
-            if None in (lname, pts, ground):
+            local = self.local(t["local"], f"{where}.local", pts or (), ls) if "local" in t else None
+            if None in (lname, pts, ground) or ("local" in t and local is None):
+                continue
+            if length is not None and len(pts) < 2:
+                r.fail(f"{where}.length", "a link with one point has no length; remove it")
                 continue
             links.append(Link(lname, pts, ground=ground, mass=mass, center_of_mass=com,
-                              inertia=inertia))
-            if length is not None:
-                lengths.append((i, lname, pts, length))
+                              inertia=inertia, length=length, local=local))
         joints = []
         for i, t in enumerate(raw_joints):
             if t is not None:
@@ -413,8 +425,8 @@ class _Parser:
         mech = self.build(lambda: Mechanism(
             name=name, points=tuple(Point(n, *xy) for n, xy in points.items()), links=tuple(links),
             joints=tuple(joints), inputs=tuple(inputs), space=space))
-        for i, lname, pts, length in lengths:
-            self.check_length(mech, i, pts, length, units)
+        if needs_assembly(mech):
+            mech = self.assemble(mech, units)
         if "catalogue" in top and not self.r.problems:
             built = self.catalogue(top["catalogue"], units)
             if built is not None:
@@ -472,11 +484,12 @@ class _Parser:
         axis = self.axis(t.get("axis"), f"{where}.axis", units, dim) if "axis" in t else None
         axis2 = self.axis(t.get("axis2"), f"{where}.axis2", units, dim) if "axis2" in t else None
         pitch = self.optional_number(t, "pitch", where, scale=units.length_scale / units.angle_scale)
+        offset = self.optional_number(t, "offset", where, scale=units.length_scale, unit=units.length)
         if None in (jtype, jlinks, jname) or ("point" in t and point is None) or (
                 "origin" in t and origin is None) or ("axis" in t and axis is None):
             return None
         return Joint(jname, jtype, jlinks, point=point, axis=axis, origin=origin, axis2=axis2,
-                     pitch=pitch)
+                     pitch=pitch, offset=offset)
 
     def axis(self, value, where, units: Units, dim: int):
         if isinstance(value, (int, float)) and not isinstance(value, bool) and dim == 2:
@@ -654,18 +667,44 @@ class _Parser:
         except ModelError as exc:
             self.fail([_locate(p, self.where) for p in exc.problems])
 
-    def check_length(self, m: Mechanism, i: int, pts, length: float, units: Units) -> None:
-        where = f"links[{i}].length"
-        if len(pts) < 2:
-            self.r.fail(where, "a link with one point has no length; remove it")
-            return
-        a, b = m.point(pts[0]), m.point(pts[1])
-        d = math.dist((a.x, a.y, a.z), (b.x, b.y, b.z))
-        if abs(d - length) > LENGTH_RTOL * length:
-            s = units.length_scale
-            self.r.fail(where, f"the sketch puts {a.name} and {b.name} {d / s:.6g} {units.length} "
-                        f"apart, but the length says {length / s:.6g} {units.length}; move a point "
-                        "or correct the length")
+    def assemble(self, m: Mechanism, units: Units) -> Mechanism:
+        """The model moved from its sketch to the nearest assembly with its links' lengths
+        and places and its slides' offsets; what moved is kept in ``self.assembly``.
+
+        The assembled coordinates are kept to the digits a model file is written with
+        (:func:`_out`), so that a file written from the model reads back as the same
+        model; a sketch already assembled to those digits is taken as it is."""
+        if assembly_miss(m) <= _ASSEMBLED:
+            return m
+        try:
+            self.assembly = assemble(m, units=units)
+        except AssemblyError as exc:
+            where = self.where.get(("link", exc.link))
+            self.fail([f"{where}.length: {exc}" if where else f"points: {exc}"])
+        except ModelError as exc:
+            self.fail([_locate(p, self.where) for p in exc.problems])
+        ls = units.length_scale
+        done = self.assembly.mechanism
+        return dataclasses.replace(done, points=tuple(
+            dataclasses.replace(p, x=_out(p.x, ls) * ls if ls != 1.0 else p.x,
+                                y=_out(p.y, ls) * ls if ls != 1.0 else p.y) for p in done.points))
+
+    def local(self, value, where: str, pts, scale: float):
+        """A link's ``local`` table: point = [along, left], in the file's length unit."""
+        if not isinstance(value, Mapping):
+            self.r.fail(where, f"expected a table of point = [along, left], got {describe(value)}")
+            return None
+        out = {}
+        for name, v in value.items():
+            if name not in pts[2:]:
+                self.r.fail(f"{where}.{_toml.toml_key(name)}", f"expected one of the link's points "
+                            f"after its first two ({quoted(pts[2:]) or 'none'}), got '{name}'")
+                continue
+            xy = self.r.numbers(v, f"{where}.{_toml.toml_key(name)}", 2, scale=scale,
+                                what="a place [along, left]")
+            if xy is not None:
+                out[name] = xy
+        return out if len(out) == len(value) else None
 
 
 def _joint_name(t: Mapping[str, Any]) -> Any:
@@ -715,12 +754,18 @@ def _dump(mf: ModelFile) -> dict[str, Any]:
     for d in data["links"]:
         if "inertia" in d:
             d["inertia"] = _out(d["inertia"], ls * ls)
+        if "length" in d:
+            d["length"] = _out(d["length"], ls)
+        if "local" in d:
+            d["local"] = {k: [_out(c, ls) for c in v] for k, v in d["local"].items()}
     for d in data["joints"]:
         for key in ("axis", "axis2"):
             if key in d:
                 d[key] = [float(c) for c in d[key]]
         if "pitch" in d:
             d["pitch"] = _out(d["pitch"], ls / a_s)
+        if "offset" in d:
+            d["offset"] = _out(d["offset"], ls)
     out["links"], out["joints"] = data["links"], data["joints"]
     for k, (inp, d) in enumerate(zip(m.inputs, data["inputs"])):
         slide = inp.joint is not None and m.joint(inp.joint).type == "P"

@@ -94,6 +94,9 @@ class Summary:
     grashof_lengths : tuple of float
     transmission : tuple of Transmission
     quick_return : QuickReturn, optional
+    change_points : tuple of ChangePoint
+        Where two assembly modes of a dyad meet within the sweep, and which way it went on
+        (see :func:`kinelab.kinematics.analyze`).
     """
 
     mechanism: str
@@ -111,6 +114,7 @@ class Summary:
     grashof_lengths: tuple[float, ...]
     transmission: tuple[Transmission, ...]
     quick_return: QuickReturn | None
+    change_points: tuple = ()
 
 
 def default_outputs(m: Mechanism) -> tuple[str, ...]:
@@ -135,23 +139,41 @@ def _rows(sol: KinematicSolution, i: int) -> tuple[float, ...]:
     return tuple(float(v) for v in sol.q[i])
 
 
+def _noise(sol: KinematicSolution, unit: str) -> float:
+    """Below this an extreme of a quantity in ``unit`` (SI) is rounding, not a value: 1e-9
+    of the quantity's natural size (the mechanism's size for lengths, the inputs' rates for
+    derivatives), so that a parallelogram's coupler angle reads 0, not 4e-13."""
+    rate = float(np.max(np.abs(sol.qd))) if sol.N else 0.0
+    accel = rate * rate + (float(np.max(np.abs(sol.qdd))) if sol.N else 0.0)
+    size = kinematics.plan(sol.mechanism).scale if unit.startswith("m") else 1.0
+    per = {"": 1.0, "s": rate, "s^2": accel}.get(unit.partition("/")[2], 1.0)
+    return 1e-9 * size * per
+
+
 def _extreme(sol, name, unit, values, *, angle=False) -> Extreme | None:
     # singular samples are left out: there the values are undefined or meaningless spikes
+    # (but an angle there still says whether the link turns fully)
     v = np.asarray(values, float)
-    ok = np.isfinite(v) & sol.assembled & ~sol.singular
+    placed = np.isfinite(v) & sol.assembled
+    ok = placed & ~sol.singular
     if not ok.any():
         return None
-    v = np.where(ok, v, np.nan)
     full = False
     if angle:
         # angles come wrapped to (-pi, pi]: follow them continuously along the sweep
-        v[ok] = np.unwrap(v[ok])
-        span = np.ptp(v[ok])
-        full = span >= 2 * math.pi - 1e-9
+        v = v.copy()
+        v[placed] = np.unwrap(v[placed])
+        full = np.ptp(v[placed]) >= 2 * math.pi - 1e-9
+    v = np.where(ok, v, np.nan)
+    if angle:
         shift = 2 * math.pi * np.round((0.5 * (np.nanmax(v) + np.nanmin(v))) / (2 * math.pi))
         v = v - shift
     i_min, i_max = int(np.nanargmin(v)), int(np.nanargmax(v))
-    return Extreme(name, unit, float(v[i_min]), _rows(sol, i_min), float(v[i_max]),
+    noise = _noise(sol, unit)
+
+    def clean(x):
+        return 0.0 if abs(x) < noise else float(x)
+    return Extreme(name, unit, clean(v[i_min]), _rows(sol, i_min), clean(v[i_max]),
                    _rows(sol, i_max), full, angle)
 
 
@@ -324,6 +346,7 @@ def summary(sol: KinematicSolution, *, report: tuple[str, ...] | None = None,
         input_range=tuple((float(sol.q[:, k].min()), float(sol.q[:, k].max())) for k in range(sol.M)),
         extremes=tuple(_extremes(sol, report)),
         singular=tuple(_rows(sol, i) for i in _runs(sol.singular)),
+        change_points=sol.change_points,
         least_singularity=(float(least[i_least]), _rows(sol, i_least)),
         unassembled=int((~sol.assembled).sum()),
         reachable=spans,

@@ -9,6 +9,7 @@ from numpy.typing import ArrayLike
 
 from kinelab.errors import AssemblyError, ModelError, SingularityError, check_choice
 from kinelab.kinematics import _kernel as k
+from kinelab.kinematics._assemble import check_assembled
 from kinelab.kinematics._branches import BranchMap, ChangePoint, branch_map, branched_ops
 from kinelab.kinematics._evaluate import run as _run
 from kinelab.kinematics._plan import Plan, build_plan
@@ -40,6 +41,7 @@ def plan(mechanism: Mechanism, *, method: Literal["auto", "newton"] = "auto") ->
                          "build one with kinelab.mechanisms or kinelab.load")
     cache = mechanism.__dict__.setdefault("_plans", {})
     if method not in cache:
+        check_assembled(mechanism)
         cache[method] = build_plan(mechanism, method=method)
     return cache[method]
 

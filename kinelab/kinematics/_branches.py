@@ -27,12 +27,10 @@ import numpy as np
 
 from kinelab.kinematics import _kernel as k
 from kinelab.kinematics._evaluate import run
-from kinelab.kinematics._plan import Plan
+from kinelab.kinematics._plan import SIGN_FIELDS, Plan
 
 __all__ = ["ChangePoint", "BranchMap", "branch_map"]
 
-# where the sign of each branched operation sits in its row of ops_f
-_SIGN_FIELD = {k.OP_RRR: 2, k.OP_RRP: 2, k.OP_RPR: 4}
 
 _GRID_STEP = math.pi / 360        # rad (angle inputs); slides: this times the mechanism's size
 _MEETS = 1e-6                     # a signed measure this small where it touches zero: the
@@ -133,7 +131,7 @@ class BranchMap:
 
 def branched_ops(p: Plan) -> list[int]:
     """The operations of a plan that carry an assembly-mode sign."""
-    return [i for i, row in enumerate(p.ops_i) if int(row[0]) in _SIGN_FIELD]
+    return [i for i, row in enumerate(p.ops_i) if int(row[0]) in SIGN_FIELDS]
 
 
 def branch_map(p: Plan, followed: Literal["smooth", "switch"] = "smooth") -> BranchMap:
@@ -307,7 +305,7 @@ class _Walker:
         continue those on the near side ("smooth"), or the other one ("switch")."""
         op = self.ops[c]
         flipped = ops_f.copy()
-        flipped[op, _SIGN_FIELD[int(self.p.ops_i[op, 0])]] *= -1.0
+        flipped[op, SIGN_FIELDS[int(self.p.ops_i[op, 0])]] *= -1.0
         slope = slope if math.isfinite(slope) and slope > 0.0 else 1.0
         delta = min(2e-2 / slope, self.h / 4)
         before, after = q_star - sign * delta, q_star + sign * delta

@@ -33,6 +33,8 @@ from kinelab.model import Joint, Mechanism
 from kinelab.solvers import wrap_angle
 
 _SKETCH_SINGULAR = 1e-9   # a dyad this close to straight at the sketch cannot fix its branch
+SIGN_FIELDS = {k.OP_RRR: 2, k.OP_RRP: 2, k.OP_RPR: 4}   # where a dyad's assembly-mode sign
+                                                        # sits in its row of ops_f
 
 
 @dataclass(frozen=True)

@@ -59,6 +59,15 @@ class Link:
         A point of this link at its centre of mass.
     inertia : float, optional
         Moment of inertia about the centre of mass, kg m^2.
+    length : float, optional
+        The exact distance between its first two points, m.  With it, the sketch may be
+        rough: :func:`kinelab.kinematics.assemble` moves the points to the assembled
+        configuration nearest to it (``kinelab.load`` does so for model files).
+    local : mapping of str to (float, float), optional
+        The exact place of some of its other points in its own frame, m: along the
+        direction from its first point to its second, and to the left of it, from the
+        first point (as ``fourbar``'s ``coupler_point``).  Points the link carries that are
+        in neither keep their place relative to the first two as the sketch draws it.
     """
 
     name: str
@@ -67,6 +76,13 @@ class Link:
     mass: float | None = None
     center_of_mass: str | None = None
     inertia: float | None = None
+    length: float | None = None
+    local: Mapping[str, tuple[float, float]] | None = field(default=None, hash=False)
+
+    def __post_init__(self):
+        if self.local is not None and isinstance(self.local, Mapping):
+            object.__setattr__(self, "local", {k: tuple(v) if isinstance(v, (list, tuple)) else v
+                                               for k, v in self.local.items()})
 
 
 @dataclass(frozen=True)
@@ -95,6 +111,11 @@ class Joint:
         Second axis of a U joint.
     pitch : float, optional
         Helical joints: advance per radian (m/rad).
+    offset : float, optional
+        Prismatic joints: the exact distance of the slide line from ``origin``, m, to the
+        left of the axis (0: the line passes through the origin).  Without it the line
+        passes through ``point`` as the sketch draws it; with it the sketch may be rough
+        (see :func:`kinelab.kinematics.assemble`).
     """
 
     name: str
@@ -105,6 +126,7 @@ class Joint:
     origin: str | None = None
     axis2: tuple[float, ...] | None = None
     pitch: float | None = None
+    offset: float | None = None
 
 
 @dataclass(frozen=True)
@@ -216,6 +238,15 @@ class Mechanism:
         """The joints that touch ``link``."""
         return tuple(j for j in self.joints if link in j.links)
 
+    # -- poses --------------------------------------------------------------------------
+    def at(self, q) -> Mechanism:
+        """The same mechanism sketched at input ``q`` (rad or m; shape () or (M,)), on the
+        branch its analysis follows there: :func:`kinelab.kinematics.pose`."""
+        # the one method of the model that needs the engine: imported when called, so that
+        # kinelab.model itself depends on nothing above it
+        from kinelab.kinematics import pose
+        return pose(self, q)
+
     # -- plain data ---------------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:
         """Plain data (SI units), the inverse of :meth:`from_dict`."""
@@ -225,7 +256,10 @@ class Mechanism:
         out: dict[str, Any] = {"name": self.name, "space": self.space}
         out["points"] = {p.name: ([p.x, p.y] if self.space == "planar" else [p.x, p.y, p.z])
                          for p in self.points}
-        out["links"] = [clean(vars(link) | {"points": list(link.points)}) for link in self.links]
+        out["links"] = [clean(vars(link) | {"points": list(link.points)}
+                              | ({"local": {k: list(v) for k, v in link.local.items()}}
+                                 if link.local else {}))
+                        for link in self.links]
         out["joints"] = [clean(dict(vars(j))) for j in self.joints]
         out["inputs"] = [clean({k: v for k, v in vars(i).items()
                                 if not (k in ("speed", "acceleration") and v == 0.0)})
@@ -311,10 +345,23 @@ def _validate(m: Mechanism) -> list[str]:
             if math.dist((a.x, a.y, a.z), (b.x, b.y, b.z)) <= _LENGTH_TOL:
                 add(f"{where}: its first two points '{a.name}' and '{b.name}' coincide, so the link "
                     "has no length and no direction; move one of them")
-        for attr, label in ((link.mass, "mass"), (link.inertia, "inertia")):
-            if attr is not None and not (isinstance(attr, (int, float)) and attr > 0
-                                         and math.isfinite(attr)):
+        for attr, label in ((link.mass, "mass"), (link.inertia, "inertia"), (link.length, "length")):
+            if attr is not None and not (_is_number(attr) and attr > 0 and math.isfinite(attr)):
                 add(f"{where}: {label}: expected a positive number, got {attr!r}")
+        if link.length is not None and len(link.points) < 2:
+            add(f"{where}: length: a link with one point has no length; remove it")
+        if link.local is not None:
+            if not isinstance(link.local, Mapping):
+                add(f"{where}: local: expected a mapping of point = (along, left), got "
+                    f"{type(link.local).__name__}")
+            else:
+                for pn, v in link.local.items():
+                    if pn not in link.points[2:]:
+                        add(f"{where}: local: expected one of the link's points after its first two "
+                            f"({quoted(link.points[2:]) or 'none'}), got {pn!r}")
+                    elif not (isinstance(v, tuple) and len(v) == 2 and all(
+                            _is_number(c) and math.isfinite(c) for c in v)):
+                        add(f"{where}: local.{pn}: expected two finite numbers (along, left), got {v!r}")
         if link.center_of_mass is not None and link.center_of_mass not in link.points:
             add(f"{where}: center_of_mass: expected one of the link's points "
                 f"{quoted(link.points)}, got '{link.center_of_mass}'")
@@ -367,6 +414,12 @@ def _validate(m: Mechanism) -> list[str]:
         if j.type == "P" and j.origin is not None and j.origin not in links[a].points:
             add(f"{where}: origin: expected a point of the guide '{a}' "
                 f"({quoted(links[a].points)}), got '{j.origin}'")
+        if j.offset is not None:
+            if j.type != "P":
+                add(f"{where}: offset: only a prismatic joint has one (the distance of its slide "
+                    "line from its origin); remove it")
+            elif not (_is_number(j.offset) and math.isfinite(j.offset)):
+                add(f"{where}: offset: expected a finite number, got {j.offset!r}")
     # -- points shared by links must be hinged together ----------------------------------
     for p in m.points:
         carriers = [link.name for link in m.links if p.name in link.points]
@@ -420,6 +473,10 @@ def _validate(m: Mechanism) -> list[str]:
             add(f"links {quoted(loose)} are not connected to the ground by any chain of joints; "
                 "join them or remove them")
     return problems
+
+
+def _is_number(v) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool)
 
 
 def _components(nodes: list[str], edges: Iterable[tuple[str, str]]) -> int:

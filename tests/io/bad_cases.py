@@ -84,7 +84,7 @@ CASES = [
      "'catalogue', 'outputs', 'dynamics'"),
     ("unknown link field", _replace('ground = true', 'groud = true'),
      "fb.toml: links[0].groud: unknown field (did you mean 'ground'?); valid fields are 'name', "
-     "'points', 'ground', 'length', 'mass', 'center_of_mass', 'inertia'"),
+     "'points', 'ground', 'length', 'local', 'mass', 'center_of_mass', 'inertia'"),
     ("unknown units field", _replace('angle = "deg"', 'angle = "deg"\ntime = "s"'),
      "fb.toml: units.time: unknown field; valid fields are 'length', 'angle'"),
     ("gravity outside [dynamics]", 'gravity = [0, -9.81]\n' + BASE,
@@ -119,9 +119,22 @@ CASES = [
      "fb.toml: links[0].ground: expected true or false, got 'yes'"),
     ("non-positive length", _replace('length = 100', 'length = -100'),
      "fb.toml: links[1].length: expected a positive length, got -100 mm"),
-    ("sketch disagrees with a length", _replace('length = 100', 'length = 110'),
-     "fb.toml: links[1].length: the sketch puts O2 and A 100 mm apart, but the length says "
-     "110 mm; move a point or correct the length"),
+    # by hand: 1000 > 300 + 250 + 300, the sketch's other bars
+    ("lengths that cannot close", _replace('length = 100', 'length = 1000'),
+     "fb.toml: links[1].length: no assembly near the sketch: the loop A-O2-O4-B cannot close; it "
+     "misses by 214.243 mm at link 'coupler'; its longest bar is longer than the others together: "
+     "crank 1000 mm > ground 300 + rocker 250 + coupler 300 = 850 mm; check the lengths, or draw "
+     "the sketch closer to an assembly"),
+    ("a place for the link's first point", _replace('length = 100', 'length = 100\nlocal = { O2 = [1, 2] }'),
+     "fb.toml: links[1].local.O2: expected one of the link's points after its first two (none), "
+     "got 'O2'"),
+    ("a place that is not two numbers", _replace('name = "coupler"\npoints = ["A", "B"]',
+                                                  'name = "coupler"\npoints = ["A", "B", "O4"]\n'
+                                                  'local = { O4 = [1] }'),
+     "fb.toml: links[2].local.O4: expected a place [along, left], got [1]"),
+    ("an offset on a pin", _replace('point = "O2"', 'point = "O2"\noffset = 3'),
+     "fb.toml: joints[0].offset: only a prismatic joint has one (the distance of its slide line "
+     "from its origin); remove it"),
     ("non-positive mass", _replace('length = 100', 'length = 100\nmass = 0'),
      "fb.toml: links[1].mass: expected a positive number, got 0"),
     ("centre of mass off the link", _replace('length = 100', 'length = 100\ncenter_of_mass = "B"'),

@@ -53,7 +53,11 @@ def test_crank_rocker_is_read_in_si():
     m = mf.mechanism
     assert mf.units == Units("mm", "deg")
     assert m.point("O4").xy == (0.3, 0.0)          # 300 mm
-    assert m.point("A").xy == (0.0, 0.1)
+    # drawn by eye, with exact lengths: assembled to them, near the sketch
+    for a, b, length in (("O2", "A", 0.1), ("A", "B", 0.3), ("O4", "B", 0.25)):
+        assert math.dist(m.point(a).xy, m.point(b).xy) == pytest.approx(length, rel=1e-12)
+    assert math.dist(m.point("A").xy, (0.0, 0.1)) < 1e-3
+    assert set(mf.assembly.moved) == {"A", "B", "P"}
     inp = m.inputs[0]
     assert inp.range == (0.0, pytest.approx(2 * math.pi, abs=1e-15))
     assert inp.speed == pytest.approx(600 * math.pi / 180, rel=1e-15)      # 600 deg/s
