@@ -144,6 +144,30 @@ def _run_branches(p: Plan, bmap: BranchMap, q, qd, qdd):
     return out
 
 
+def _a_turn_away(p: Plan, out, q, qd, qdd) -> None:
+    """Newton plans: samples that continuation from the sketch did not reach, solved at the
+    same crank angle a whole number of turns away, inside the interval it does reach (an
+    arc of a crank that cannot turn fully may straddle the end of the swept window, as the
+    closed forms see at once: they depend on the angle modulo a turn)."""
+    bad = np.flatnonzero(out["status"] != k.ST_OK)
+    if not bad.size:
+        return
+    lo, hi = _continued_range(p, float(p.q_sketch[0]), math.pi, 721)
+    turn = 2 * math.pi
+    shifted = q[bad, 0] + turn * np.ceil((lo - q[bad, 0]) / turn)
+    inside = shifted <= hi
+    if not inside.any():
+        return
+    rows, shifted = bad[inside], shifted[inside]
+    order = np.argsort(shifted)
+    rows, shifted = rows[order], shifted[order]
+    again = _run(p, shifted[:, None], qd if len(qd) == 1 else qd[rows],
+                 qdd if len(qdd) == 1 else qdd[rows])
+    good = again["status"] == k.ST_OK
+    for key in ("jets", "rates", "diag", "status", "fail"):
+        out[key][rows[good]] = again[key][good]
+
+
 def _describe_failure(p: Plan, out, q, bad: np.ndarray) -> str:
     i = int(bad[0])
     op = int(out["fail"][i, 1])
@@ -383,6 +407,8 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
             resume = start.newton_state
     bmap = _branch_map(p, M, at_change_point)
     out = _run_branches(p, bmap, q2, qd2, qdd2) if bmap is not None else _run(p, q2, qd2, qdd2, resume)
+    if p.groups is not None and p.input_kinds == ("angle",) and resume is None:
+        _a_turn_away(p, out, q2, qd2, qdd2)
     jets, rates, diag = out["jets"], out["rates"], out["diag"]
     ok = out["status"] == k.ST_OK
     if not ok.all():

@@ -696,6 +696,11 @@ def _group_rhs(c0, c1, con_i, con_f, x, cs, gK, jet, m, n, second, M, rhs):
 _NEWTON_MAX_ITER = 12
 _NEWTON_TOL = 1e-13     # step, relative to the mechanism's size, at which Newton has converged
 _JUMP_RATIO = 0.2       # a correction this large against the predicted step means a jump
+_BASE_MIN = 1e-6        # a group solved where its measure (|det| over its rows' norms) is
+                        # below this is written but not kept to predict from: next to a
+                        # singular configuration K and L are rounding
+_NODE_STEP = 1e-3       # a sample on a singular configuration the motion passes (a change
+                        # point) is placed from this fraction of a continuation step either side
 
 
 @_jit()
@@ -765,9 +770,6 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
         corr += (x[i] - xp[i]) ** 2
     if math.sqrt(corr) > _JUMP_RATIO * step + 1e-9 * scale:
         return ST_NO_CONVERGENCE, 0.0, 0.0
-    if gdet[g] != 0.0 and det * gdet[g] < 0.0 and step > 0.0:
-        # the determinant changed sign: the step crossed a singular configuration
-        return ST_NO_CONVERGENCE, 0.0, 0.0
     # K and L: linear solves with the last factorisation, whose Jacobian differs from the
     # one at the solution by the last Newton step (below 1e-13 of the mechanism's size)
     _link_trig(x, nlk, cs)
@@ -783,16 +785,18 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
             for i in range(n):
                 Lw[i, m, k] = phi[i]
                 Lw[i, k, m] = phi[i]
-    # accept: store the state and write the links' angles and anchor points
-    for i in range(n):
-        gx[o + i] = x[i]
+    # accept: store the state (unless too near a singular configuration to predict from)
+    # and write the links' angles and anchor points
+    if abs(det) >= _BASE_MIN * hada:
+        for i in range(n):
+            gx[o + i] = x[i]
+            for m in range(M):
+                gK[o + i, m] = Kw[i, m]
+                for k in range(M):
+                    gL[o + i, m, k] = Lw[i, m, k]
         for m in range(M):
-            gK[o + i, m] = Kw[i, m]
-            for k in range(M):
-                gL[o + i, m, k] = Lw[i, m, k]
-    for m in range(M):
-        gq[g, m] = q[m]
-    gdet[g] = det
+            gq[g, m] = q[m]
+        gdet[g] = det
     for j in range(nlk):
         link = groups_i[g, 4 + j]
         a = groups_i[g, 4 + nlk + j]
@@ -1122,6 +1126,12 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
     bdet = gdet.copy()
     work = np.zeros(nmax * nmax + 3 * nmax + nmax * M + nmax * M * M + nmax)
     piv = np.zeros(nmax, np.int64)
+    jet_b = np.empty_like(jet)
+    sx = gx.copy()              # the groups' state on the current sample's path, well clear of it
+    sK = gK.copy()
+    sL = gL.copy()
+    sq = gq.copy()
+    sdet = gdet.copy()
     for g in range(ng):
         for m in range(M):
             gq[g, m] = q_start[m]
@@ -1148,6 +1158,11 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
             h = max_step / dist
         t = 0.0
         st = ST_OK
+        sx[:] = gx
+        sK[:] = gK
+        sL[:] = gL
+        sq[:] = gq
+        sdet[:] = gdet
         while t < 1.0:
             tt = min(1.0, t + h)
             for m in range(M):
@@ -1163,6 +1178,12 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
             if st == ST_OK:
                 t = tt
                 h = min(2.0 * h, max_step / dist) if dist > 0.0 else 1.0
+                if (1.0 - t) * dist >= 10.0 * _NODE_STEP * max_step:
+                    sx[:] = gx          # still well clear of the sample: a state to place it
+                    sK[:] = gK          # from, should it sit on a singular configuration
+                    sL[:] = gL
+                    sq[:] = gq
+                    sdet[:] = gdet
             else:
                 gx[:] = bx
                 gK[:] = bK
@@ -1172,6 +1193,24 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
                 if st == ST_NO_ASSEMBLY or h < 1e-9:
                     break
                 h *= 0.5
+        if st != ST_OK and dist > 0.0 and (1.0 - t) * dist <= 0.1 * _NODE_STEP * max_step:
+            # stopped right at the sample: a singular configuration the motion passes.  Its
+            # place comes from either side, predicted from a state well clear of it (those
+            # next to it are too near the singularity to predict from)
+            gx[:] = sx
+            gK[:] = sK
+            gL[:] = sL
+            gq[:] = sq
+            gdet[:] = sdet
+            eps = _NODE_STEP * max_step / dist
+            if _place_between(q, i, qprev, eps, qt, jet, jet_b, qd, qdd, ops_i, ops_f, M, Kt,
+                              Kt2, Lt, groups_i, con_i, con_f, scale, gx, gK, gL, gq, gdet,
+                              work, piv, res, lane_f, lane_i, n_angles, stored, o_jet, o_rate,
+                              o_diag, o_status, o_fail):
+                st = ST_OK
+                t = 1.0
+                res[0] = 0.0
+                res[1] = 0.0
         _write_status(i, st, res[0], res[1], o_diag, o_status)
         if st == ST_OK:
             _write_sample(i, qd, qdd, M, n_angles, stored, jet, 0, o_jet, o_rate)
@@ -1182,6 +1221,42 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
             qprev[m] = qprev[m] + t * (q[i, m] - qprev[m])
     o_state[:nx] = gx
     o_state[nx:] = qprev
+
+
+@_jit()
+def _place_between(q, i, qprev, eps, qt, jet, jet_b, qd, qdd, ops_i, ops_f, M, Kt, Kt2, Lt,
+                   groups_i, con_i, con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, lane_f,
+                   lane_i, n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail):
+    """Place sample i, on a singular configuration that the motion passes (where Newton's
+    method cannot converge), from the motion a little before and after it: the mean of the
+    second-order predictions S + K dq + 1/2 dq L dq from both sides (their errors in dq**3
+    cancel), angles averaged across their wrap.  Returns whether both sides were solved;
+    then jet (lane 0) holds the sample's values (its K and L mean nothing: it is singular)."""
+    ni = jet.shape[1]
+    for side in range(2):
+        sgn = -1.0 if side == 0 else 1.0
+        for m in range(M):
+            qt[0, m] = q[i, m] + sgn * eps * (q[i, m] - qprev[m])
+        st = _evaluate(qt, qd, qdd, 0, 1, False, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i,
+                       con_i, con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, lane_f, lane_i,
+                       n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail)
+        if st != ST_OK:
+            return False
+        for it in range(ni):            # predict to the sample from this side
+            v = jet[0, it, 0]
+            for m in range(M):
+                dm = q[i, m] - qt[0, m]
+                v += jet[0, it, 1 + m] * dm
+                for k in range(M):
+                    v += 0.5 * jet[0, it, 1 + M + m * M + k] * dm * (q[i, k] - qt[0, k])
+            if side == 0:
+                jet_b[0, it, 0] = v
+            else:
+                before = jet_b[0, it, 0]
+                if it < n_angles:
+                    v = before + _wrapped(v - before)
+                jet[0, it, 0] = 0.5 * (before + v)
+    return True
 
 
 @_jit(nogil=True)

@@ -171,3 +171,36 @@ def test_no_change_point_no_cost():
     sol = kl.analyze(fb, q=TURN)
     assert sol.change_points == ()
     assert not sol.singular.any()
+
+
+@pytest.mark.parametrize("lengths, branch", [((100, 60, 100, 60), "open"), ((100, 60, 100, 60), "crossed"),
+                                             ((4.0, 2.0, 3.0, 5.0), "open")])
+def test_newton_engine_follows_the_same_branch_through_change_points(lengths, branch):
+    """The general Newton engine, continuing along the samples, goes through the change
+    points on the same branch as the closed forms.  The samples exactly at them, where
+    Newton's method cannot converge, are placed from predictions either side (whose K and
+    L are near-singular): to about 1e-8 there, against rounding elsewhere."""
+    fb = kl.mechanisms.fourbar(*lengths, branch=branch)
+    q = np.linspace(0.0, 4 * math.pi, 721)
+    a = kl.analyze(fb, q)
+    b = kl.analyze(fb, q, method="newton")
+    assert b.assembled.all()
+    ok = ~a.singular & ~b.singular
+    for link in ("coupler", "rocker"):
+        d = np.abs(wrap(a.angle(link) - b.angle(link)))
+        assert np.max(d[ok]) < 1e-9 and np.max(d) < 1e-7
+    assert np.max(np.abs(a.K("rocker")[ok] - b.K("rocker")[ok])) < 1e-8
+    assert closure_residual(b) < 1e-9 * max(lengths)
+
+
+def test_newton_engine_covers_an_arc_that_straddles_the_window():
+    """A triple-rocker whose crank reaches [-5.097, -1.186] rad: swept over [-pi, pi] its arc
+    shows as two pieces; continuation from the sketch reaches one directly and the other a
+    turn away, as the closed forms do."""
+    fb = kl.mechanisms.fourbar(2.0, 1.5, 1.0, 3.0)
+    q = np.linspace(-math.pi, math.pi, 721)
+    a = kl.analyze(fb, q, unreachable="mask")
+    b = kl.analyze(fb, q, unreachable="mask", method="newton")
+    assert np.array_equal(a.assembled, b.assembled) and a.assembled.sum() == 450
+    ok = a.assembled
+    assert np.max(np.abs(wrap(a.angle("rocker")[ok] - b.angle("rocker")[ok]))) < 1e-10
