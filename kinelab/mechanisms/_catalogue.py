@@ -681,30 +681,19 @@ def stephenson6(points: Mapping[str, tuple[float, float]] | None = None, *,
 
     Parameters
     ----------
-    points : mapping of str to (float, float), optional
-        Sketch positions (m) that replace the defaults.  Alone, every length and both
-        assembly modes come from the sketch.
+    points, branch
+        As for :func:`watt6`: the sketch (m), and the modes of the dyads A-B-O4 and C-D-O6
+        ("open": B left of the line A -> O4, D left of C -> O6).
     lengths : mapping of str to float, optional
-        Link lengths (m) by pair of points of one link, ``"A-B"`` in either order:
-        ``"O2-A"`` (crank), ``"A-B"``, ``"A-C"``, ``"B-C"`` (the coupler's three sides),
-        ``"O4-B"`` (rocker), ``"C-D"`` (link5), ``"O6-D"`` (output).  A pair not given keeps
-        its sketch distance.  The ground pivots O2, O4, O6 stay where the sketch has them;
-        the crank keeps the sketch's angle (or takes the best angle near it where both dyads
-        close), and C keeps the sketch's side of the line A -> B.
-    branch : (str, str), optional
-        Assembly mode of each dyad, in the order above, as in :func:`fourbar`: "open" puts B
-        left of the line A -> O4 (D left of C -> O6), "crossed" right of it.  Default: the
-        modes the sketch shows.
-
-    With ``lengths`` or ``branch`` the sketch is assembled in closed form (circle
-    intersections), and ``parameters`` record every length and both modes.
+        Link lengths (m) by pair of points of one link, in either order: ``"O2-A"``
+        (crank), ``"A-B"``, ``"A-C"``, ``"B-C"`` (the coupler's three sides), ``"O4-B"``
+        (rocker), ``"C-D"`` (link5), ``"O6-D"`` (output).  Assembled as :func:`watt6` is,
+        with C on the sketch's side of the line A -> B.
 
     Raises
     ------
     ModelError
-        An unknown pair, a pair not on one link or on the ground, a length that is not
-        positive, a coupler triangle that cannot close, or lengths with which the dyads close
-        at no crank angle (the message says which inequality fails).
+        As for :func:`watt6`; the triangle is the coupler's.
 
     Examples
     --------
