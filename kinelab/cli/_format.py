@@ -43,7 +43,8 @@ def summary_text(s: Summary, units: Units = Units()) -> str:
     lines.append(f"{s.mechanism}: {s.samples} samples, {spans}")
     if s.grashof is not None:
         g = s.grashof
-        lines.append(f"Grashof: {g.kind} ({g.barker}); s + l {'<=' if g.grashof else '>'} p + q "
+        code = f"{g.barker}, {g.form}" if g.form else g.barker
+        lines.append(f"Grashof: {g.kind} ({code}); s + l {'<=' if g.grashof else '>'} p + q "
                      f"by {_num(u.convert(abs(g.margin), 'm'))} {u.length}; lengths ground, "
                      "crank, coupler, rocker = "
                      + ", ".join(_num(u.convert(v, "m")) for v in s.grashof_lengths)

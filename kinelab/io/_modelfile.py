@@ -592,7 +592,9 @@ class _Parser:
             if key == "kind":
                 continue
             where = f"catalogue.{key}"
-            if key == "branch":
+            if key == "branch" and isinstance(v, list):      # one mode per dyad (six-bars)
+                kwargs[key] = [r.string(b, f"{where}[{i}]") for i, b in enumerate(v)]
+            elif key == "branch":
                 kwargs[key] = r.string(v, where)
             elif key == "coupler_point":
                 kwargs[key] = r.numbers(v, where, 2, scale=units.length_scale)
@@ -603,6 +605,13 @@ class _Parser:
                 kwargs[key] = {n: r.numbers(xy, f"{where}.{_toml.toml_key(n)}", 2,
                                             scale=units.length_scale, what="coordinates")
                                for n, xy in v.items()}
+            elif key == "lengths":
+                if not isinstance(v, Mapping):
+                    r.fail(where, f"expected a table of \"X-Y\" = length, got {describe(v)}")
+                    continue
+                kwargs[key] = {n: r.number(x, f"{where}.{_toml.toml_key(n)}", positive=True,
+                                           scale=units.length_scale, unit=units.length)
+                               for n, x in v.items()}
             else:
                 kwargs[key] = r.number(v, where, scale=units.length_scale, unit=units.length,
                                        positive=key not in _SIGNED_PARAMETERS)
@@ -615,6 +624,7 @@ class _Parser:
             return make(**kwargs)
         except ModelError as exc:
             for p in exc.problems:
+                p = _file_lengths(p, units)
                 base = re.sub(r"[\[._:].*$", "", p)
                 if base in params:
                     r.fail("", f"catalogue.{p}")
@@ -707,6 +717,14 @@ class _Parser:
         return out if len(out) == len(value) else None
 
 
+def _file_lengths(problem: str, units: Units) -> str:
+    """A catalogue constructor's message (lengths in m) with its lengths in the file's unit."""
+    if units.length == "m":
+        return problem
+    return re.sub(r"(?<![\w.])(-?\d+(?:\.\d*)?(?:e[-+]?\d+)?) m\b",
+                  lambda g: f"{float(g.group(1)) / units.length_scale:.6g} {units.length}", problem)
+
+
 def _joint_name(t: Mapping[str, Any]) -> Any:
     """A joint's name: its ``name``, else ``j`` + its point."""
     if "name" in t:
@@ -780,18 +798,17 @@ def _dump(mf: ModelFile) -> dict[str, Any]:
     params = dict(m.parameters)
     dynamics = params.pop("dynamics", None)
     if params.get("kind") in CATALOGUE_KINDS:
-        cat: dict[str, Any] = {"kind": params.pop("kind")}
-        for key, v in params.items():
-            if v is None:
-                continue
+        def file_value(v):
+            """A catalogue parameter in the file's units: lengths scaled, names kept."""
             if isinstance(v, str):
-                cat[key] = v
-            elif isinstance(v, Mapping):
-                cat[key] = {n: [_out(float(c), ls) for c in xy] for n, xy in v.items()}
-            elif isinstance(v, (list, tuple)):
-                cat[key] = [_out(float(c), ls) for c in v]
-            else:
-                cat[key] = _out(float(v), ls)
+                return v
+            if isinstance(v, Mapping):
+                return {n: file_value(x) for n, x in v.items()}
+            if isinstance(v, (list, tuple)):
+                return [file_value(x) for x in v]
+            return _out(float(v), ls)
+        cat: dict[str, Any] = {"kind": params.pop("kind")}
+        cat.update((key, file_value(v)) for key, v in params.items() if v is not None)
         out["catalogue"] = cat
     if mf.outputs:
         o: dict[str, Any] = {}

@@ -36,24 +36,51 @@ def _finite(**values: float) -> None:
         raise ModelError(problems)
 
 
-def _best_angle(quality: Callable[[np.ndarray], np.ndarray], what: str) -> float:
+def _best_angle(quality: Callable[[np.ndarray], np.ndarray], what: str,
+                near: float | None = None) -> float:
     """The input angle, on a 1-degree grid, where a closure quality (> 0: assembles) is best;
     of equally good angles (to rounding), the first from 0: the branch a sketch shows at a
-    change point depends on where the sketch is."""
-    q = np.radians(np.arange(0.0, 360.0, 1.0)) + 1e-3   # off the axes: no accidental symmetry
+    change point depends on where the sketch is.
+
+    With ``near`` (a sketch's input angle): that angle itself when it assembles, else the
+    best angle of the grid's run of assembling angles nearest to it.
+    """
+    if near is not None and quality(np.array([near]))[0] > 0:
+        return float(near)
+    start = 0.0 if near is None else near - math.pi
+    q = start + np.radians(np.arange(0.0, 360.0, 1.0)) + 1e-3   # off the axes: no accidental symmetry
     v = quality(q)
-    if not np.any(v > 0):
+    closes = v > 0
+    if not np.any(closes):
         raise ModelError(f"{what}: these lengths cannot be assembled at any input angle; check them")
+    if near is not None:
+        i = np.flatnonzero(closes)[np.argmin(np.abs(q[closes] - near))]
+        lo, hi = i, i
+        while lo > 0 and closes[lo - 1]:
+            lo -= 1
+        while hi < len(q) - 1 and closes[hi + 1]:
+            hi += 1
+        q, v = q[lo:hi + 1], v[lo:hi + 1]
     return float(q[np.argmax(np.round(v, 12))])
 
 
+def _closure(D, lb, lc):
+    """How well two links lb, lc close across a distance D: 1 - |cos mu| with mu the angle
+    between them, > 0 where they close, best (1) at mu = 90 degrees."""
+    cos_mu = (lb * lb + lc * lc - np.square(D)) / (2 * lb * lc)
+    return 1.0 - np.abs(cos_mu)
+
+
 def _circle_intersection(X, Z, lb, lc, sigma):
-    d = np.subtract(Z, X)
-    D = math.hypot(*d)
+    """The point at lb from X and lc from Z, left of the line X -> Z for sigma = +1 and right
+    for -1; X and Z of shape (2,) or (2, N), and so the result."""
+    X, Z = np.asarray(X, float), np.asarray(Z, float)
+    d = Z - X
+    D = np.hypot(d[0], d[1])
     a = (lb * lb - lc * lc + D * D) / (2 * D)
-    h = math.sqrt(max(lb * lb - a * a, 0.0))
+    h = np.sqrt(np.maximum(lb * lb - a * a, 0.0))
     e = d / D
-    return (X[0] + a * e[0] - sigma * h * e[1], X[1] + a * e[1] + sigma * h * e[0])
+    return X + a * e + sigma * h * np.stack([-e[1], e[0]])
 
 
 def _pins(*names: tuple[str, str, str]) -> tuple[Joint, ...]:
@@ -94,13 +121,11 @@ def fourbar(ground: float, crank: float, coupler: float, rocker: float,
 
     def quality(q):
         ax, ay = crank * np.cos(q), crank * np.sin(q)
-        D = np.hypot(ground - ax, -ay)
-        cos_mu = (coupler ** 2 + rocker ** 2 - D ** 2) / (2 * coupler * rocker)
-        return 1.0 - np.abs(cos_mu)     # > 0 where it closes; best at mu = 90 deg
+        return _closure(np.hypot(ground - ax, -ay), coupler, rocker)
     q0 = _best_angle(quality, "fourbar")
     A = (crank * math.cos(q0), crank * math.sin(q0))
     O4 = (float(ground), 0.0)
-    B = _circle_intersection(A, O4, coupler, rocker, sigma)
+    B = _circle_intersection(A, O4, coupler, rocker, sigma).tolist()
     points = [Point("O2", 0.0, 0.0), Point("A", *A), Point("B", *B), Point("O4", *O4)]
     coupler_pts = ("A", "B")
     if coupler_point is not None:
@@ -371,8 +396,7 @@ def fivebar(ground: float, crank1: float, coupler1: float, coupler2: float, cran
         t1, t2 = np.meshgrid(g, g, indexing="ij")
         D = np.hypot(ground + crank2 * np.cos(t2) - crank1 * np.cos(t1),
                      crank2 * np.sin(t2) - crank1 * np.sin(t1))
-        cos_mu = (coupler1 ** 2 + coupler2 ** 2 - D ** 2) / (2 * coupler1 * coupler2)
-        quality = 1.0 - np.abs(cos_mu)
+        quality = _closure(D, coupler1, coupler2)
         if not np.any(quality > 0):
             raise ModelError("fivebar: these lengths cannot be assembled at any crank angles")
         i, j = np.unravel_index(np.argmax(quality), quality.shape)
@@ -381,7 +405,7 @@ def fivebar(ground: float, crank1: float, coupler1: float, coupler2: float, cran
     B = (ground + crank2 * math.cos(q0[1]), crank2 * math.sin(q0[1]))
     if not abs(coupler1 - coupler2) < math.dist(A, B) < coupler1 + coupler2:
         raise ModelError(f"q0: the couplers cannot meet at crank angles {q0}; choose others")
-    P = _circle_intersection(A, B, coupler1, coupler2, sigma)
+    P = _circle_intersection(A, B, coupler1, coupler2, sigma).tolist()
     return Mechanism(
         name="fivebar",
         points=(Point("O2", 0.0, 0.0), Point("A", *A), Point("P", *P), Point("B", *B),
@@ -396,9 +420,9 @@ def fivebar(ground: float, crank1: float, coupler1: float, coupler2: float, cran
     )
 
 
-def _from_points(name: str, defaults: Mapping[str, tuple[float, float]],
-                 points: Mapping[str, tuple[float, float]] | None, links, input_joint: str,
-                 kind: str) -> Mechanism:
+def _sketch(defaults: Mapping[str, tuple[float, float]],
+            points: Mapping[str, tuple[float, float]] | None) -> dict[str, tuple[float, float]]:
+    """The sketch: the defaults with the given ``points`` (m) in their place."""
     pts = dict(defaults)
     for key, xy in (points or {}).items():
         if key not in pts:
@@ -407,6 +431,11 @@ def _from_points(name: str, defaults: Mapping[str, tuple[float, float]],
             raise ModelError(f"points['{key}']: expected (x, y), got {xy!r}")
         _finite(**{f"points['{key}'].x": xy[0], f"points['{key}'].y": xy[1]})
         pts[key] = (float(xy[0]), float(xy[1]))
+    return pts
+
+
+def _from_points(name: str, pts: Mapping[str, tuple[float, float]], links, input_joint: str,
+                 parameters: dict) -> Mechanism:
     joints = []
     for p in pts:
         carriers = [ln for ln, lp in links if p in lp]
@@ -418,38 +447,253 @@ def _from_points(name: str, defaults: Mapping[str, tuple[float, float]],
         points=tuple(Point(n, *xy) for n, xy in pts.items()),
         links=tuple(Link(ln, lp, ground=(ln == "ground")) for ln, lp in links),
         joints=tuple(joints), inputs=(Input(joint=input_joint),),
-        parameters=dict(kind=kind, points=pts))
+        parameters=parameters)
 
 
-def watt6(points: Mapping[str, tuple[float, float]] | None = None) -> Mechanism:
+# The two dyads of a six-bar in series, in the order its plan solves them: (middle joint,
+# first end, second end).  The crank places A; a ternary link's third point C lies on the
+# sketch's side of its base.
+_SIX_BAR_DYADS = (("B", "A", "O4"), ("D", "C", "O6"))
+
+
+def _left(X, Z, P) -> float:
+    """> 0 when P is left of the line X -> Z, < 0 right of it (twice the signed area)."""
+    return (Z[0] - X[0]) * (P[1] - X[1]) - (Z[1] - X[1]) * (P[0] - X[0])
+
+
+def _pair_lengths(pts, links, lengths) -> dict[str, float]:
+    """The length of every pair of points of one moving link, ``"A-B"`` in the link's order:
+    from ``lengths`` (either order) where given, else from the sketch."""
+    pairs = {f"{a}-{b}": (a, b) for ln, lp in links if ln != "ground"
+             for i, a in enumerate(lp) for b in lp[i + 1:]}
+    ground = next(lp for ln, lp in links if ln == "ground")
+    out = {key: math.dist(pts[a], pts[b]) for key, (a, b) in pairs.items()}
+    if lengths is None:
+        return out
+    if not isinstance(lengths, Mapping):
+        raise ModelError(f"lengths: expected a mapping of point pairs such as 'O2-A' to lengths (m), "
+                         f"got {lengths!r}")
+    valid = ", ".join(repr(k) for k in pairs)
+    problems, seen = [], {}
+    for key, value in lengths.items():
+        where = f"lengths[{key!r}]"
+        a, _, b = str(key).partition("-")
+        pair = f"{a}-{b}" if f"{a}-{b}" in pairs else f"{b}-{a}"
+        if pair in pairs:
+            if pair in seen:
+                problems.append(f"{where}: the pair {pair} is given twice (as {seen[pair]!r} too); keep one")
+                continue
+            seen[pair] = key
+            if not (isinstance(value, (int, float)) and not isinstance(value, bool)
+                    and math.isfinite(value) and value > 0):
+                problems.append(f"{where}: expected a positive length (m), got {value!r}")
+                continue
+            out[pair] = float(value)
+        elif a != b and a in ground and b in ground:
+            problems.append(f"{where}: the ground pivots {', '.join(ground)} come from the sketch; "
+                            "move them with points= instead")
+        elif a in pts and b in pts and a != b:
+            problems.append(f"{where}: {a} and {b} are not on one link; expected one of {valid}")
+        else:
+            problems.append(f"{where}: expected a pair 'X-Y' of points of one link, one of {valid}, "
+                            f"got {key!r}")
+    if problems:
+        raise ModelError(problems)
+    for ln, lp in links:
+        if ln == "ground" or len(lp) != 3:
+            continue
+        sides = {f"{a}-{b}": out[f"{a}-{b}"] for a, b in ((lp[0], lp[1]), (lp[0], lp[2]), (lp[1], lp[2]))}
+        for side, value in sides.items():
+            rest = [k for k in sides if k != side]
+            total = sides[rest[0]] + sides[rest[1]]
+            if value > total:
+                raise ModelError(
+                    f"lengths[{side!r}]: the triangle {'-'.join(lp)} of link '{ln}' cannot close: "
+                    f"expected {side} <= {rest[0]} + {rest[1]} = {total:.6g} m, got {value:.6g} m; "
+                    f"shorten {side} or lengthen {rest[0]} or {rest[1]}")
+    return out
+
+
+def _modes(pts, branch) -> tuple[str, str]:
+    """The assembly mode of each dyad: ``branch`` checked, or the sketch's."""
+    if branch is None:
+        modes = []
+        for P, X, Z in _SIX_BAR_DYADS:
+            side = _left(pts[X], pts[Z], pts[P])
+            if abs(side) <= 1e-9 * math.dist(pts[X], pts[Z]) * math.dist(pts[X], pts[P]):
+                raise ModelError(f"branch: the sketch puts dyad {X}-{P}-{Z} straight, so its assembly "
+                                 "mode is undefined; give branch=(..., ...) or move a point of the sketch")
+            modes.append("open" if side > 0 else "crossed")
+        return modes[0], modes[1]
+    if isinstance(branch, str) or not isinstance(branch, (list, tuple)) or len(branch) != 2:
+        raise ModelError(f"branch: expected a pair of 'open'/'crossed', one per dyad "
+                         f"({', '.join(f'{X}-{P}-{Z}' for P, X, Z in _SIX_BAR_DYADS)}), got {branch!r}")
+    for i, mode in enumerate(branch):
+        check_choice(f"branch[{i}]", mode, ("open", "crossed"))
+    return branch[0], branch[1]
+
+
+def _six_bar(name: str, defaults, points, links, third: tuple[str, str, str], lengths,
+             branch) -> Mechanism:
+    """A six-bar of two dyads in series (Watt II, Stephenson III) from its sketch, or, with
+    ``lengths`` or ``branch``, assembled in closed form from its lengths: the crank at the
+    sketch's input angle (or the best angle near it where everything closes), then each
+    dyad on its mode and the ternary link's third point ``third[0]`` on the sketch's side of
+    its base ``third[1:]``."""
+    pts = _sketch(defaults, points)
+    if lengths is None and branch is None:
+        return _from_points(name, pts, links, "jO2", dict(kind=name, points=pts))
+    size = _pair_lengths(pts, links, lengths)
+    modes = _modes(pts, branch)
+
+    def pair(a, b):
+        return f"{a}-{b}" if f"{a}-{b}" in size else f"{b}-{a}"
+
+    def length(a, b):
+        return size[pair(a, b)]
+    # (point, circle centres, side, whether it is a dyad's middle joint), in the plan's order
+    side = {"open": 1.0, "crossed": -1.0}
+    P, X, Z = third
+    steps = ((*_SIX_BAR_DYADS[0], side[modes[0]], True),
+             (P, X, Z, 1.0 if _left(pts[X], pts[Z], pts[P]) >= 0 else -1.0, False),
+             (*_SIX_BAR_DYADS[1], side[modes[1]], True))
+    (_, A, O4), (_, _, O6) = _SIX_BAR_DYADS
+    crank = length("O2", A)
+
+    def place(q):
+        """Every point at crank angles q (N,), shape (2, N), and each dyad's closure."""
+        xy = {p: np.array(pts[p], float)[:, None] for p in ("O2", O4, O6)}
+        xy[A] = xy["O2"] + crank * np.stack([np.cos(q), np.sin(q)])
+        closure = []
+        with np.errstate(divide="ignore", invalid="ignore"):    # A on O4: no closure there
+            for P, X, Z, sigma, dyad in steps:
+                lb, lc = length(X, P), length(Z, P)
+                if dyad:
+                    closure.append(_closure(np.hypot(*(xy[Z] - xy[X])), lb, lc))
+                xy[P] = _circle_intersection(xy[X], xy[Z], lb, lc, sigma)
+        return xy, closure
+
+    q_sketch = math.atan2(pts[A][1] - pts["O2"][1], pts[A][0] - pts["O2"][0])
+    try:
+        q0 = _best_angle(lambda q: np.minimum(*place(q)[1]), name, near=q_sketch)
+    except ModelError:
+        raise ModelError(_why_not_closed(place, size, pair, pts)) from None
+    xy = place(np.array([q0]))[0]
+    built = {p: tuple(xy[p][:, 0].tolist()) for p in pts}
+    return _from_points(name, built, links, "jO2",
+                        dict(kind=name, points=pts, lengths=size, branch=modes))
+
+
+def _why_not_closed(place, size, pair, pts) -> str:
+    """Which inequality keeps a six-bar from closing at every crank angle."""
+    (_, A, O4), _ = _SIX_BAR_DYADS
+    toward = math.atan2(pts[O4][1] - pts["O2"][1], pts[O4][0] - pts["O2"][0])
+    # a fine grid, with the two angles where A is nearest to and farthest from O4
+    q = np.concatenate([np.radians(np.arange(0.0, 360.0, 0.1)), [toward, toward + math.pi]])
+    xy, closure = place(q)
+    before, where = np.ones(q.shape, bool), "over a turn of the crank"
+    for (P, X, Z), c in zip(_SIX_BAR_DYADS, closure):
+        D = np.hypot(*(xy[Z] - xy[X]))[before]
+        a, b = pair(X, P), pair(Z, P)
+        if size[a] + size[b] < D.min():
+            return (f"lengths: dyad {X}-{P}-{Z} closes at no crank angle: expected {a} + {b} >= "
+                    f"{D.min():.6g} m, the closest {X} comes to {Z} {where}, got "
+                    f"{size[a] + size[b]:.6g} m; lengthen {a} or {b}")
+        if abs(size[a] - size[b]) > D.max():
+            return (f"lengths: dyad {X}-{P}-{Z} closes at no crank angle: expected |{a} - {b}| <= "
+                    f"{D.max():.6g} m, the farthest {X} gets from {Z} {where}, got "
+                    f"{abs(size[a] - size[b]):.6g} m; make {a} and {b} closer in length")
+        before &= c > 0
+        where = f"where dyad {X}-{P}-{Z} closes"
+    return ("lengths: the two dyads close at no common crank angle (each closes somewhere, never "
+            "both at once); change the lengths")
+
+
+def watt6(points: Mapping[str, tuple[float, float]] | None = None, *,
+          lengths: Mapping[str, float] | None = None,
+          branch: tuple[Literal["open", "crossed"], Literal["open", "crossed"]] | None = None
+          ) -> Mechanism:
     """Watt six-bar (Watt II): a crank-rocker four-bar whose ternary rocker drives a second
     four-bar.  The two ternary links, ground and rocker, are joined directly at O4.
 
     Links ``ground (O2, O4, O6), crank (O2, A), coupler (A, B), rocker (O4, B, C),
-    link5 (C, D), output (O6, D)``; joints ``jO2, jA, jB, jO4, jC, jD, jO6``; input ``jO2``.
-    Every link length and the assembly mode come from the sketch ``points`` (m): pass any
-    of them to change the default geometry.
+    link5 (C, D), output (O6, D)``; joints ``jO2, jA, jB, jO4, jC, jD, jO6``; input ``jO2``
+    (q = the crank's angle).  The plan solves the dyad ``A-B-O4`` (coupler, rocker), then
+    ``C-D-O6`` (link5, output).
+
+    Parameters
+    ----------
+    points : mapping of str to (float, float), optional
+        Sketch positions (m) that replace the defaults.  Alone, every length and both
+        assembly modes come from the sketch.
+    lengths : mapping of str to float, optional
+        Link lengths (m) by pair of points of one link, ``"A-B"`` in either order:
+        ``"O2-A"`` (crank), ``"A-B"`` (coupler), ``"O4-B"``, ``"O4-C"``, ``"B-C"`` (the
+        rocker's three sides), ``"C-D"`` (link5), ``"O6-D"`` (output).  A pair not given
+        keeps its sketch distance.  The ground pivots O2, O4, O6 stay where the sketch has
+        them; the crank keeps the sketch's angle (or takes the best angle near it where both
+        dyads close), and C keeps the sketch's side of the line O4 -> B.
+    branch : (str, str), optional
+        Assembly mode of each dyad, in the order above, as in :func:`fourbar`: "open" puts B
+        left of the line A -> O4 (D left of C -> O6), "crossed" right of it.  Default: the
+        modes the sketch shows.
+
+    With ``lengths`` or ``branch`` the sketch is assembled in closed form (circle
+    intersections), and ``parameters`` record every length and both modes.
+
+    Raises
+    ------
+    ModelError
+        An unknown pair, a pair not on one link or on the ground, a length that is not
+        positive, a rocker triangle that cannot close, or lengths with which the dyads close
+        at no crank angle (the message says which inequality fails).
 
     Examples
     --------
     >>> w6 = kl.mechanisms.watt6()
     >>> [s.kind for s in kl.kinematics.plan(w6).steps if s.kind in ("RRR", "newton")]
     ['RRR', 'RRR']
+    >>> w6 = kl.mechanisms.watt6(lengths={"O2-A": 1.0, "D-C": 2.5}, branch=("open", "crossed"))
+    >>> A, D, C = (np.array(w6.point(p).xy) for p in ("A", "D", "C"))
+    >>> round(float(np.hypot(*A)), 12), round(float(np.hypot(*(D - C))), 12)   # O2 at the origin
+    (1.0, 2.5)
+    >>> w6.parameters["branch"]
+    ('open', 'crossed')
     """
     defaults = {"O2": (0.0, 0.0), "A": (0.5, 0.866), "B": (3.52, 3.1), "O4": (5.63, -0.76),
                 "C": (4.51, 1.21), "O6": (7.07, 0.04), "D": (6.32, 2.53)}
     links = (("ground", ("O2", "O4", "O6")), ("crank", ("O2", "A")), ("coupler", ("A", "B")),
              ("rocker", ("O4", "B", "C")), ("link5", ("C", "D")), ("output", ("O6", "D")))
-    return _from_points("watt6", defaults, points, links, "jO2", "watt6")
+    return _six_bar("watt6", defaults, points, links, ("C", "O4", "B"), lengths, branch)
 
 
-def stephenson6(points: Mapping[str, tuple[float, float]] | None = None) -> Mechanism:
+def stephenson6(points: Mapping[str, tuple[float, float]] | None = None, *,
+                lengths: Mapping[str, float] | None = None,
+                branch: tuple[Literal["open", "crossed"], Literal["open", "crossed"]] | None = None
+                ) -> Mechanism:
     """Stephenson six-bar (Stephenson III): a four-bar whose ternary coupler drives a dyad
     to a third ground pivot.  The ternary links, ground and coupler, are not adjacent.
 
     Links ``ground (O2, O4, O6), crank (O2, A), coupler (A, B, C), rocker (O4, B),
-    link5 (C, D), output (O6, D)``; joints ``jO2, jA, jB, jO4, jC, jD, jO6``; input ``jO2``.
-    Geometry and assembly mode come from the sketch ``points`` (m).
+    link5 (C, D), output (O6, D)``; joints ``jO2, jA, jB, jO4, jC, jD, jO6``; input ``jO2``
+    (q = the crank's angle).  The plan solves the dyad ``A-B-O4`` (coupler, rocker), then
+    ``C-D-O6`` (link5, output).
+
+    Parameters
+    ----------
+    points, branch
+        As for :func:`watt6`: the sketch (m), and the modes of the dyads A-B-O4 and C-D-O6
+        ("open": B left of the line A -> O4, D left of C -> O6).
+    lengths : mapping of str to float, optional
+        Link lengths (m) by pair of points of one link, in either order: ``"O2-A"``
+        (crank), ``"A-B"``, ``"A-C"``, ``"B-C"`` (the coupler's three sides), ``"O4-B"``
+        (rocker), ``"C-D"`` (link5), ``"O6-D"`` (output).  Assembled as :func:`watt6` is,
+        with C on the sketch's side of the line A -> B.
+
+    Raises
+    ------
+    ModelError
+        As for :func:`watt6`; the triangle is the coupler's.
 
     Examples
     --------
@@ -457,12 +701,16 @@ def stephenson6(points: Mapping[str, tuple[float, float]] | None = None) -> Mech
     >>> sol = kl.analyze(s6, q=np.radians(np.arange(0, 360, 10)))
     >>> sol.position("D").shape
     (36, 2)
+    >>> s6 = kl.mechanisms.stephenson6(lengths={"A-B": 4.0, "B-C": 1.5, "A-C": 3.0})
+    >>> B, C = (np.array(s6.point(p).xy) for p in ("B", "C"))
+    >>> round(float(np.hypot(*(C - B))), 12)
+    1.5
     """
     defaults = {"O2": (0.0, 0.0), "A": (0.0, 1.0), "B": (3.68, 2.75), "O4": (5.69, -1.03),
                 "C": (2.18, 3.47), "O6": (5.92, 2.14), "D": (4.34, 5.26)}
     links = (("ground", ("O2", "O4", "O6")), ("crank", ("O2", "A")), ("coupler", ("A", "B", "C")),
              ("rocker", ("O4", "B")), ("link5", ("C", "D")), ("output", ("O6", "D")))
-    return _from_points("stephenson6", defaults, points, links, "jO2", "stephenson6")
+    return _six_bar("stephenson6", defaults, points, links, ("C", "A", "B"), lengths, branch)
 
 
 def triad6(points: Mapping[str, tuple[float, float]] | None = None) -> Mechanism:
@@ -484,4 +732,5 @@ def triad6(points: Mapping[str, tuple[float, float]] | None = None) -> Mechanism
                 "E": (2.81, 2.76), "O4": (2.65, -1.65), "O6": (5.58, 2.74)}
     links = (("ground", ("O2", "O4", "O6")), ("crank", ("O2", "A")), ("link3", ("A", "C")),
              ("triad", ("C", "D", "E")), ("link4", ("D", "O4")), ("link5", ("E", "O6")))
-    return _from_points("triad6", defaults, points, links, "jO2", "triad6")
+    pts = _sketch(defaults, points)
+    return _from_points("triad6", pts, links, "jO2", dict(kind="triad6", points=pts))

@@ -21,14 +21,21 @@ class Grashof:
         ``"rocker-crank"`` (shortest the rocker), ``"change-point"`` (s + l = p + q) or
         ``"triple-rocker"`` (non-Grashof, s + l > p + q).
     barker : str
-        Barker's code: GCRR, GCCC, GRCR, GRRC; RRR1 ... RRR4 (the longest link is 1 ground,
-        2 crank, 3 coupler, 4 rocker); CP for change-point linkages.
+        Barker's code: GCCC, GCRR, GRCR, GRRC (Grashof, the shortest link 1 ground, 2 crank,
+        3 coupler, 4 rocker); RRR1 ... RRR4 (non-Grashof, the longest link 1 ... 4); CCC,
+        CRR, RCR, RRC (change-point, the shortest link 1 ... 4), S2X (change-point with two
+        pairs of equal links) and S3X (all four equal).
     grashof : bool
         s + l <= p + q: some link turns fully relative to the others.
     crank_rotates, rocker_rotates : bool
-        Whether the input and the output turn full circle relative to the ground.
+        Whether the input and the output can turn full circle relative to the ground (on
+        at least one assembly mode: see :func:`grashof`).
     margin : float
         (p + q) - (s + l), m: positive Grashof, zero change-point, negative non-Grashof.
+    form : str or None
+        ``"parallelogram"`` (opposite sides equal in pairs: ground = coupler and crank =
+        rocker), ``"kite"`` (adjacent sides equal in pairs), ``"rhombus"`` (all four equal),
+        else None.
     """
 
     kind: str
@@ -37,11 +44,57 @@ class Grashof:
     crank_rotates: bool
     rocker_rotates: bool
     margin: float
+    form: str | None = None
 
 
 def grashof(ground: float, crank: float, coupler: float, rocker: float, *,
             rtol: float = 1e-12) -> Grashof:
     """Classify a four-bar by Grashof's criterion (s + l vs p + q) and Barker's classes.
+
+    With s and l the shortest and longest links and p, q the others, a Grashof linkage
+    (s + l < p + q) has a link that turns fully relative to the others, the shortest; the
+    crank turns fully relative to the ground when it or the ground is the shortest, and so
+    does the rocker.  A non-Grashof linkage (s + l > p + q) has none.
+
+    In a change-point linkage (s + l = p + q) the four pivots come into line once or twice a
+    turn, where the two assembly modes meet; kinelab's analysis goes on along the mode whose
+    motion continues smoothly (:func:`kinelab.kinematics.change_points`).  Followed so, a
+    link turns fully relative to the ground when it, or the ground, is among the shortest
+    links.
+
+    Lengths with two equal pairs (Barker's S2X and S3X) make different linkages on the two
+    assembly modes, as :func:`fourbar` builds them:
+
+    - a parallelogram (ground = coupler, crank = rocker) is the parallelogram on "open":
+      the rocker turns with the crank, at its angle, and the coupler keeps its direction.
+      On "crossed" it is the antiparallelogram: crank and rocker both turn fully, in
+      opposite senses when the ground and coupler are the longer pair (the coupler rocks),
+      in the same sense when they are the shorter pair (the coupler turns fully too, twice
+      per turn of the crank);
+    - a rhombus (all four equal) is the parallelogram on "open"; on "crossed" it folds: B
+      stays on O2, the rocker stands still and the coupler turns with the crank;
+    - a kite with ground = crank turns its crank fully when that pair is the shorter one;
+      then the rocker turns fully too, once per two turns of the crank, on either mode;
+    - a kite with ground = rocker folds as the rhombus does on "crossed" (B on O2, the
+      rocker still); on "open" the rocker rocks when that pair is the longer one, and turns
+      fully, twice per turn of the crank, when it is the shorter one.
+
+    Parameters
+    ----------
+    ground, crank, coupler, rocker : float
+        Link lengths O2O4, O2A, AB, O4B, m.
+    rtol : float
+        Lengths, and s + l against p + q, are taken as equal within ``rtol`` times the sum
+        of the four lengths.
+
+    Returns
+    -------
+    Grashof
+
+    References
+    ----------
+    C. R. Barker, "A complete classification of planar four-bar linkages", *Mechanism and
+    Machine Theory* 20 (6), 1985, pp. 535-554; R. L. Norton, *Design of Machinery*, ch. 2.
 
     Examples
     --------
@@ -49,6 +102,9 @@ def grashof(ground: float, crank: float, coupler: float, rocker: float, *,
     'crank-rocker'
     >>> kl.mechanisms.grashof(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5).barker
     'RRR2'
+    >>> g = kl.mechanisms.grashof(ground=100, crank=60, coupler=100, rocker=60)
+    >>> g.kind, g.barker, g.form, g.crank_rotates, g.rocker_rotates
+    ('change-point', 'S2X', 'parallelogram', True, True)
     """
     lengths = {"ground": ground, "crank": crank, "coupler": coupler, "rocker": rocker}
     bad = [f"{k}: expected a positive length (m), got {v!r}" for k, v in lengths.items()
@@ -59,16 +115,28 @@ def grashof(ground: float, crank: float, coupler: float, rocker: float, *,
     s, l_ = min(values), max(values)
     margin = (sum(values) - s - l_) - (s + l_)
     tol = rtol * sum(values)
-    shortest = min(lengths, key=lengths.get)
-    if abs(margin) <= tol:
-        crank_ok = shortest in ("crank", "ground")
-        rocker_ok = shortest in ("rocker", "ground")
-        return Grashof("change-point", "CP", True, crank_ok, rocker_ok, 0.0)
+    shortest = {k for k, v in lengths.items() if v - s <= tol}     # ties only with two equal pairs
+    only = min(lengths, key=lengths.get)
+
+    def equal(a, b):
+        return abs(lengths[a] - lengths[b]) <= tol
+    opposite = equal("ground", "coupler") and equal("crank", "rocker")
+    adjacent = ((equal("ground", "crank") and equal("coupler", "rocker"))
+                or (equal("ground", "rocker") and equal("crank", "coupler")))
+    form = ("rhombus" if opposite and adjacent else "parallelogram" if opposite
+            else "kite" if adjacent else None)
+    if form is not None or abs(margin) <= tol:
+        if form is not None:
+            code = "S3X" if form == "rhombus" else "S2X"
+        else:
+            code = {"ground": "CCC", "crank": "CRR", "coupler": "RCR", "rocker": "RRC"}[only]
+        return Grashof("change-point", code, True, bool(shortest & {"crank", "ground"}),
+                       bool(shortest & {"rocker", "ground"}), 0.0, form)
     if margin > 0:
         kind, code = {"ground": ("double-crank", "GCCC"), "crank": ("crank-rocker", "GCRR"),
-                      "coupler": ("double-rocker", "GRCR"), "rocker": ("rocker-crank", "GRRC")}[shortest]
-        return Grashof(kind, code, True, shortest in ("ground", "crank"),
-                       shortest in ("ground", "rocker"), margin)
+                      "coupler": ("double-rocker", "GRCR"), "rocker": ("rocker-crank", "GRRC")}[only]
+        return Grashof(kind, code, True, only in ("ground", "crank"),
+                       only in ("ground", "rocker"), margin)
     longest = max(lengths, key=lengths.get)
     code = "RRR" + str(list(lengths).index(longest) + 1)
     return Grashof("triple-rocker", code, False, False, False, margin)

@@ -212,6 +212,16 @@ def test_bad_file_exit_status_2_one_line_and_no_output(name, text, message, tmp_
     assert not out.exists()
 
 
+def test_analyze_names_a_parallelogram_and_its_change_point_class(tmp_path):
+    model = tmp_path / "parallelogram.toml"
+    kl.io.save(kl.mechanisms.fourbar(0.1, 0.06, 0.1, 0.06), model, units={"length": "mm", "angle": "deg"})
+    result = run("analyze", model, "--out", tmp_path / "out")
+    assert result.exit_code == 0, result.output
+    # s + l = 60 + 100 = p + q: a change point, with ground = coupler and crank = rocker
+    assert "Grashof: change-point (S2X, parallelogram); s + l <= p + q by 0 mm; lengths ground, " \
+           "crank, coupler, rocker = 100, 60, 100, 60 mm" in result.stdout
+
+
 def test_unreachable_input_range_names_file_and_field(tmp_path):
     model = tmp_path / "nongrashof.toml"
     # non-Grashof: crank 200, coupler 100, rocker 150, ground 100; reaches |q| <= 108.21 deg

@@ -225,6 +225,28 @@ CASES = [
      "fb.toml: catalogue: fourbar: these lengths cannot be assembled at any input angle; check them"),
     ("catalogue: unknown branch", _HEAD + '[catalogue]\n' + _FOURBAR + 'rocker = 250\nbranch = "cross"\n',
      "fb.toml: catalogue.branch: expected one of 'open', 'crossed', got 'cross'"),
+    ("catalogue: six-bar length on no link", _HEAD + '[catalogue]\nkind = "watt6"\n'
+     'lengths = { "A-C" = 1000 }\n',
+     "fb.toml: catalogue.lengths['A-C']: A and C are not on one link; expected one of 'O2-A', "
+     "'A-B', 'O4-B', 'O4-C', 'B-C', 'C-D', 'O6-D'"),
+    ("catalogue: six-bar length not positive", _HEAD + '[catalogue]\nkind = "watt6"\n'
+     'lengths = { "O2-A" = 0 }\n',
+     "fb.toml: catalogue.lengths.O2-A: expected a positive length, got 0 mm"),
+    ("catalogue: six-bar lengths not a table", _HEAD + '[catalogue]\nkind = "stephenson6"\n'
+     'lengths = [1000, 2000]\n',
+     'fb.toml: catalogue.lengths: expected a table of "X-Y" = length, got [1000, 2000]'),
+    # in the file's unit: |O2 O4| - |O2 A| = 5681.065 - 999.978 mm (checked by hand)
+    ("catalogue: six-bar dyad that never closes", _HEAD + '[catalogue]\nkind = "watt6"\n'
+     'lengths = { "A-B" = 500, "O4-B" = 4000 }\n',
+     "fb.toml: catalogue.lengths: dyad A-B-O4 closes at no crank angle: expected A-B + O4-B >= "
+     "4681.09 mm, the closest A comes to O4 over a turn of the crank, got 4500 mm; lengthen A-B "
+     "or O4-B"),
+    ("catalogue: six-bar branch not a pair", _HEAD + '[catalogue]\nkind = "watt6"\nbranch = "open"\n',
+     "fb.toml: catalogue.branch: expected a pair of 'open'/'crossed', one per dyad (A-B-O4, "
+     "C-D-O6), got 'open'"),
+    ("catalogue: six-bar branch misspelt", _HEAD + '[catalogue]\nkind = "stephenson6"\n'
+     'branch = ["open", "crossd"]\n',
+     "fb.toml: catalogue.branch[1]: expected one of 'open', 'crossed', got 'crossd'"),
     ("catalogue disagrees with the sketch", BASE + '\n[catalogue]\n'
      + _FOURBAR.replace("coupler = 300", "coupler = 310") + 'rocker = 250\n',
      "fb.toml: catalogue: the sketch does not match fourbar: link 'coupler' has A-B = 300 mm in "

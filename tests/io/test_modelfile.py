@@ -27,6 +27,10 @@ CATALOGUE = {
     "fivebar": lambda: kl.mechanisms.fivebar(1.0, 1.0, 1.5, 1.5, 1.0, branch="down"),
     "watt6": kl.mechanisms.watt6,
     "stephenson6": kl.mechanisms.stephenson6,
+    "watt6_lengths": lambda: kl.mechanisms.watt6(
+        lengths={"O2-A": 0.8, "A-B": 4.0, "O4-B": 4.2, "C-D": 2.0}, branch=("crossed", "open")),
+    "stephenson6_lengths": lambda: kl.mechanisms.stephenson6(
+        points={"A": (0.0, 2.0)}, lengths={"B-C": 2.0, "D-O6": 3.5}, branch=("open", "crossed")),
     "triad6": kl.mechanisms.triad6,
 }
 
@@ -141,6 +145,20 @@ def test_catalogue_short_form_builds_the_catalogue_mechanism():
     assert m.points == ref.points and m.links == ref.links and m.joints == ref.joints
     assert m.name == "fb" and m.inputs[0].speed == pytest.approx(2 * math.pi, rel=1e-15)
     assert m.parameters == ref.parameters
+
+
+def test_catalogue_short_form_builds_a_six_bar_from_its_lengths():
+    text = ('schema = 1\nname = "w6"\n\n[units]\nlength = "mm"\nangle = "deg"\n\n[catalogue]\n'
+            'kind = "watt6"\nlengths = { "O2-A" = 800, "B-A" = 4000, "O4-B" = 4200 }\n'
+            'branch = ["crossed", "open"]\n')
+    m = kl.io.from_toml(text)
+    ref = kl.mechanisms.watt6(lengths={"O2-A": 0.8, "B-A": 4.0, "O4-B": 4.2}, branch=("crossed", "open"))
+    assert m.points == ref.points and m.links == ref.links and m.joints == ref.joints
+    assert m.parameters == ref.parameters
+    assert m.parameters["lengths"]["A-B"] == 4.0 and m.parameters["branch"] == ("crossed", "open")
+    # written back: the lengths in mm under their link's spelling, the modes as a list
+    text = kl.io.to_toml(m, units={"length": "mm", "angle": "deg"})
+    assert 'branch = ["crossed", "open"]' in text and "A-B = 4000.0" in text
 
 
 def test_a_length_within_the_tolerance_is_accepted():
