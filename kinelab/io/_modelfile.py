@@ -40,8 +40,8 @@ SCHEMA = 1
 DEFAULT_SAMPLES = 361
 MAX_SAMPLES = 10_000_000
 LENGTH_RTOL = 1e-6    # a catalogue's lengths agree with the file's sketch to this relative error
-_ASSEMBLED = 1e-10    # relative: a sketch that misses its lengths by less is assembled (the
-                      # 12 digits a file is written with)
+_ASSEMBLED = 1e-12    # relative: a sketch that misses its lengths by less is assembled (the
+                      # 14 digits a file is written with)
 CATALOGUE_KINDS = ("fourbar", "slider_crank", "inverted_slider_crank", "slotted_link",
                    "whitworth", "fivebar", "watt6", "stephenson6", "triad6")
 
@@ -747,11 +747,13 @@ def _locate(problem: str, where: Mapping[tuple[str, str], str]) -> str:
 # writing
 # ------------------------------------------------------------------------------------------
 def _out(v: float, scale: float) -> float | int:
-    """A value in file units; rounded to 12 digits when converted, to stay readable."""
+    """A value in file units, rounded to 14 significant digits when converted: as many as
+    read back to the same value after the conversion's rounding (a 15th digit could change),
+    so that a file written from a model reads back as the same model, and enough that a
+    change-point geometry (a parallelogram) stays one."""
     if scale == 1.0:
         return v
-    x = float(f"{v / scale:.12g}")
-    return x
+    return float(f"{v / scale:.14g}")
 
 
 def _dump(mf: ModelFile) -> dict[str, Any]:

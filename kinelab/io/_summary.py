@@ -168,7 +168,10 @@ def _extreme(sol, name, unit, values, *, angle=False) -> Extreme | None:
     if angle:
         shift = 2 * math.pi * np.round((0.5 * (np.nanmax(v) + np.nanmin(v))) / (2 * math.pi))
         v = v - shift
-    i_min, i_max = int(np.nanargmin(v)), int(np.nanargmax(v))
+    # of values equal to rounding (a symmetric motion's twin extremes), the first
+    tie = 1e-12 * float(np.nanmax(np.abs(v)))
+    i_min = int(np.argmax(v <= np.nanmin(v) + tie))
+    i_max = int(np.argmax(v >= np.nanmax(v) - tie))
     noise = _noise(sol, unit)
 
     def clean(x):
