@@ -713,7 +713,8 @@ def stephenson6(points: Mapping[str, tuple[float, float]] | None = None, *,
     return _six_bar("stephenson6", defaults, points, links, ("C", "A", "B"), lengths, branch)
 
 
-def triad6(points: Mapping[str, tuple[float, float]] | None = None) -> Mechanism:
+def triad6(points: Mapping[str, tuple[float, float]] | None = None, *,
+           lengths: Mapping[str, float] | None = None) -> Mechanism:
     """A six-bar whose links beyond the crank form a triad (a class-III Assur group), which
     no sequence of dyads solves: kinelab places it by Newton-Raphson with continuation.
 
@@ -722,15 +723,90 @@ def triad6(points: Mapping[str, tuple[float, float]] | None = None) -> Mechanism
     ``ground (O2, O4, O6), crank (O2, A), link3, triad, link4, link5``; joints ``jO2, jA,
     jC, jD, jE, jO4, jO6``; input ``jO2``.
 
+    Parameters
+    ----------
+    points : mapping of str to (float, float), optional
+        Sketch positions (m) that replace the defaults.
+    lengths : mapping of str to float, optional
+        Link lengths (m) by pair of points of one link, ``"A-B"`` in either order:
+        ``"O2-A"``, ``"A-C"``, ``"C-D"``, ``"C-E"``, ``"D-E"``, ``"D-O4"``, ``"E-O6"``; a
+        pair not given keeps its sketch distance.  The crank keeps the sketch's angle, and
+        the triad is assembled by Newton-Raphson from the sketch: a triad has up to six
+        assembly modes and no sign picks one, so the sketch, drawn roughly on the mode
+        wanted, chooses it (the ternary link keeps its orientation).
+
+    Raises
+    ------
+    ModelError
+        A bad pair or length (as for :func:`watt6`), or lengths with which the triad does not
+        close near the sketch.
+
     Examples
     --------
     >>> t6 = kl.mechanisms.triad6()
     >>> [s.kind for s in kl.kinematics.plan(t6).steps if s.kind == "newton"]
     ['newton']
+    >>> t6 = kl.mechanisms.triad6(lengths={"A-C": 2.9, "E-O6": 2.8})
+    >>> C, E = (np.array(t6.point(p).xy) for p in "CE")
+    >>> round(float(np.hypot(*(C - t6.point("A").xy))), 12), round(float(np.hypot(*(E - (5.58, 2.74)))), 12)
+    (2.9, 2.8)
     """
     defaults = {"O2": (0.0, 0.0), "A": (0.0, 0.5), "C": (2.79, 0.25), "D": (2.66, 0.61),
                 "E": (2.81, 2.76), "O4": (2.65, -1.65), "O6": (5.58, 2.74)}
     links = (("ground", ("O2", "O4", "O6")), ("crank", ("O2", "A")), ("link3", ("A", "C")),
              ("triad", ("C", "D", "E")), ("link4", ("D", "O4")), ("link5", ("E", "O6")))
     pts = _sketch(defaults, points)
-    return _from_points("triad6", pts, links, "jO2", dict(kind="triad6", points=pts))
+    if lengths is None:
+        return _from_points("triad6", pts, links, "jO2", dict(kind="triad6", points=pts))
+    size = _pair_lengths(pts, links, lengths)
+    built = _assembled_triad(pts, size)
+    return _from_points("triad6", built, links, "jO2",
+                        dict(kind="triad6", points=pts, lengths=size))
+
+
+# the triad's distance constraints: (point, point, pair), unknowns C, D, E in that order
+_TRIAD = (("A", "C", "A-C"), ("C", "D", "C-D"), ("C", "E", "C-E"), ("D", "E", "D-E"),
+          ("D", "O4", "D-O4"), ("E", "O6", "E-O6"))
+
+
+def _assembled_triad(pts, size) -> dict[str, tuple[float, float]]:
+    """The triad6 sketch with the crank's length and the triad's lengths: A on the sketch's
+    crank angle, then C, D, E by Newton-Raphson from the sketch (its assembly mode)."""
+    from kinelab.solvers import newton
+
+    O2, A0 = np.array(pts["O2"]), np.array(pts["A"])
+    direction = (A0 - O2) / np.hypot(*(A0 - O2))
+    fixed = {"O2": O2, "A": O2 + size["O2-A"] * direction, "O4": np.array(pts["O4"]),
+             "O6": np.array(pts["O6"])}
+    unknown = ("C", "D", "E")
+
+    def xy(x, p):
+        if p in unknown:
+            k = 2 * unknown.index(p)
+            return x[:, k:k + 2]
+        return np.broadcast_to(fixed[p], (len(x), 2))
+
+    def fun(x):
+        return np.stack([np.sum((xy(x, a) - xy(x, b)) ** 2, axis=1) - size[k] ** 2
+                         for a, b, k in _TRIAD], axis=1)
+
+    def jac(x):
+        J = np.zeros((len(x), len(_TRIAD), 6))
+        for r, (a, b, _) in enumerate(_TRIAD):
+            d = 2 * (xy(x, a) - xy(x, b))
+            for p, sign in ((a, 1.0), (b, -1.0)):
+                if p in unknown:
+                    k = 2 * unknown.index(p)
+                    J[:, r, k:k + 2] = sign * d
+        return J
+    x0 = np.concatenate([pts[p] for p in unknown])[None, :]
+    result = newton(fun, jac, x0, on_failure="mask")
+    x = result.x[0]
+    C, D, E = x[0:2], x[2:4], x[4:6]
+    turned = _left(C, D, E) * _left(*(np.array(pts[p]) for p in unknown)) < 0
+    if not result.converged[0] or not np.all(np.isfinite(x)) or turned:
+        raise ModelError("lengths: the triad C-D-E does not close with these lengths near the sketch "
+                         "(or only with its ternary link turned over); check the lengths, or draw "
+                         "the sketch closer to the assembly wanted with points=")
+    return {**{p: tuple(float(v) for v in fixed[p]) for p in fixed},
+            **{p: tuple(float(v) for v in xy(x[None, :], p)[0]) for p in unknown}}

@@ -249,3 +249,30 @@ def test_stephenson_names_its_own_pairs_and_triangle():
     with pytest.raises(ModelError, match=r"^lengths\['A-B'\]: the triangle A-B-C of link 'coupler' "
                        r"cannot close: expected A-B <= A-C \+ B-C = 3 m, got 4 m"):
         kl.mechanisms.stephenson6(lengths={"A-B": 4.0, "A-C": 1.0, "B-C": 2.0})
+
+
+def test_triad6_from_its_lengths_keeps_the_sketched_assembly():
+    """The default triad six-bar's own distances, each changed a little, as lengths: the
+    triad is assembled by Newton-Raphson near the sketch, the distances are the lengths,
+    and the analysis from it closes."""
+    base = kl.mechanisms.triad6()
+    xy = {p.name: np.array(p.xy) for p in base.points}
+    want = {"O2-A": 0.55, "A-C": 2.85, "C-D": 0.4, "C-E": 2.5, "D-E": 2.2, "D-O4": 2.2,
+            "E-O6": 2.8}
+    t6 = kl.mechanisms.triad6(lengths=want)
+    for pair, length in want.items():
+        a, b = pair.split("-")
+        assert math.dist(t6.point(a).xy, t6.point(b).xy) == pytest.approx(length, rel=1e-12)
+    # the ternary link keeps its orientation, and every point stays near its sketch
+    def left(P, Q, R):
+        return (Q[0] - P[0]) * (R[1] - P[1]) - (Q[1] - P[1]) * (R[0] - P[0])
+    new = {p.name: np.array(p.xy) for p in t6.points}
+    assert left(new["C"], new["D"], new["E"]) * left(xy["C"], xy["D"], xy["E"]) > 0
+    assert max(np.hypot(*(new[p] - xy[p])) for p in xy) < 0.3
+    sol = kl.analyze(t6, np.linspace(0.0, 2 * math.pi, 73))
+    assert closure_residual(sol) < 1e-10
+
+
+def test_triad6_lengths_that_do_not_close_near_the_sketch():
+    with pytest.raises(kl.errors.ModelError, match="the triad C-D-E does not close with these lengths"):
+        kl.mechanisms.triad6(lengths={"D-O4": 9.0})
