@@ -8,7 +8,7 @@
 """
 from kinelab import (dynamics, errors, io, kinematics, mechanisms, model, plot, solvers, spatial,
                      structure, synthesis)
-from kinelab._memory import reuse_result_memory
+from kinelab._memory import memory_budget, reuse_result_memory
 from kinelab.io import load
 from kinelab.kinematics import KinematicSolution, analyze
 from kinelab.model import Mechanism
@@ -16,4 +16,4 @@ from kinelab.model import Mechanism
 __all__ = ["errors", "model", "solvers", "mechanisms", "kinematics", "spatial", "structure",
            "synthesis", "dynamics", "io",
            "plot", "analyze", "load",
-           "Mechanism", "KinematicSolution", "reuse_result_memory"]
+           "Mechanism", "KinematicSolution", "reuse_result_memory", "memory_budget"]

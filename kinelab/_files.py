@@ -49,5 +49,6 @@ def write_csv(columns: dict, path: str | os.PathLike) -> Path:
     def write(f):
         w = csv.writer(f)
         w.writerow(names)
-        w.writerows(data.tolist())
+        for start in range(0, len(data), 10_000):      # Python floats a block at a time
+            w.writerows(data[start:start + 10_000].tolist())
     return atomic_write(path, write)

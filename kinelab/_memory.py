@@ -1,4 +1,10 @@
-"""Large result arrays, taken from memory that earlier results no longer use.
+"""Large result arrays: a memory budget for them, and memory that earlier results no
+longer use.
+
+Before a large allocation kinelab estimates the bytes it needs and refuses, with the
+estimate and how to change the budget, when they exceed :func:`memory_budget` (2 GiB by
+default, or the environment variable ``KINELAB_MEMORY_BUDGET``, e.g. ``8G``).
+
 
 The operating system hands out fresh memory as pages it zeroes on first touch.  For a
 sweep of a million configurations, writing a few hundred megabytes of results, that zeroing
@@ -18,7 +24,7 @@ import threading
 
 import numpy as np
 
-from kinelab.errors import ModelError
+from kinelab.errors import MemoryBudgetError, ModelError
 
 _SMALLEST = 1 << 20                 # smaller arrays come from the allocator's own free lists
 _DEFAULT_LIMIT = 1 << 30
@@ -105,3 +111,73 @@ def reuse_result_memory(max_bytes: int) -> int:
     old = _pool.limit
     _pool.set_limit(int(max_bytes))
     return old
+
+
+_UNITS = {"": 1, "K": 1 << 10, "M": 1 << 20, "G": 1 << 30, "T": 1 << 40}
+DEFAULT_BUDGET = 2 << 30
+
+
+def parse_size(text: str, where: str) -> int:
+    """``"8G"``, ``"512M"``, ``"1.5G"``, ``"2000000000"`` (bytes; K, M, G, T are powers of 1024)."""
+    t = str(text).strip().upper().removesuffix("B").removesuffix("I")
+    number, unit = (t[:-1], t[-1]) if t and t[-1] in _UNITS else (t, "")
+    try:
+        value = float(number)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value > 0):
+        raise ModelError(f"{where}: expected a size such as 8G, 512M or a number of bytes, got "
+                         f"{str(text)[:40]!r}")
+    return int(value * _UNITS[unit])
+
+
+def _budget_from_environment() -> int:
+    import os
+    text = os.environ.get("KINELAB_MEMORY_BUDGET")
+    return parse_size(text, "KINELAB_MEMORY_BUDGET") if text else DEFAULT_BUDGET
+
+
+_budget: int | None = None
+
+
+def memory_budget(max_bytes: int | str | None = None) -> int:
+    """The memory budget of one large result, bytes; with ``max_bytes``, set it and return
+    the old one.
+
+    A sweep's results, a grid of inputs, an export's columns: before allocating them kinelab
+    estimates their size and refuses, saying the estimate and the budget, when it is larger.
+    The default is 2 GiB (or ``KINELAB_MEMORY_BUDGET``, e.g. ``8G``); the command line takes
+    ``kinelab --memory-budget 8G ...``.
+
+    >>> old = kl.memory_budget("8G")
+    >>> kl.memory_budget(old) == 8 * 2**30
+    True
+    """
+    global _budget
+    if _budget is None:
+        _budget = _budget_from_environment()
+    old = _budget
+    if max_bytes is not None:
+        if isinstance(max_bytes, bool) or not isinstance(max_bytes, (int, np.integer, str)):
+            raise ModelError(f"max_bytes: expected a number of bytes or a size such as '8G', got "
+                             f"{max_bytes!r}")
+        _budget = parse_size(max_bytes, "max_bytes")
+    return old
+
+
+def _size(n: float) -> str:
+    for unit, scale in (("TiB", 1 << 40), ("GiB", 1 << 30), ("MiB", 1 << 20), ("KiB", 1 << 10)):
+        if n >= scale:
+            return f"{n / scale:.3g} {unit}"
+    return f"{int(n)} bytes"
+
+
+def require(nbytes: float, what: str, instead: str) -> None:
+    """Refuse (MemoryBudgetError) an allocation of ``nbytes`` beyond the budget, saying
+    ``what`` needs it and what to do ``instead``."""
+    budget = memory_budget()
+    if nbytes > budget:
+        raise MemoryBudgetError(
+            f"{what} would take about {_size(nbytes)}, more than the memory budget of "
+            f"{_size(budget)}; {instead}, or raise the budget (kinelab.memory_budget('8G'), the "
+            "environment variable KINELAB_MEMORY_BUDGET, or kinelab --memory-budget 8G)")

@@ -18,6 +18,7 @@ __all__ = [
     "AssemblyError",
     "ConvergenceError",
     "SingularityError",
+    "MemoryBudgetError",
 ]
 
 
@@ -63,6 +64,11 @@ class AssemblyError(KinelabError, ValueError):
         self.gap = gap
         self.reachable = reachable
         self.link = link
+
+
+class MemoryBudgetError(ModelError):
+    """A request whose results would not fit in the memory budget
+    (:func:`kinelab.memory_budget`); the message gives the estimate and the budget."""
 
 
 class ConvergenceError(KinelabError, RuntimeError):

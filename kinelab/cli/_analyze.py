@@ -11,13 +11,14 @@ from kinelab import io, kinematics, solvers
 from kinelab.cli._format import configuration_text, summary_text
 from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, errors_from, output_path, output_units, parse_inputs,
                                read_model, stem, sweep)
+from kinelab.io._modelfile import MAX_SAMPLES
 from kinelab.errors import AssemblyError, KinelabError, ModelError
 from kinelab.kinematics._columns import INPUT_SI_UNITS
 
 __all__ = ["analyze", "check"]
 
 MODEL = click.argument("model", type=click.Path(dir_okay=False))
-SAMPLES = click.option("--samples", type=click.IntRange(2, 10_000_000), default=None,
+SAMPLES = click.option("--samples", type=click.IntRange(2, MAX_SAMPLES), default=None,
                        help="Samples per input, instead of the file's.")
 
 

@@ -14,6 +14,7 @@ import numpy as np
 from kinelab import dynamics
 from kinelab.cli._main import DEGREES, SI, errors_from, output_units, read_model
 from kinelab.io import ModelFile
+from kinelab.io._modelfile import MAX_SAMPLES
 from kinelab.model import Units
 
 __all__ = ["dynamics_command", "run"]
@@ -77,7 +78,7 @@ def _gravity(text: str | None):
 @click.argument("model", type=click.Path(exists=True, dir_okay=False))
 @click.option("--out", "-o", default=".", metavar="DIR", show_default=True,
               help="Directory for the table and the figures.")
-@click.option("--samples", type=click.IntRange(2, 10_000_000), default=None,
+@click.option("--samples", type=click.IntRange(2, MAX_SAMPLES), default=None,
               help="Samples per input, instead of the file's.")
 @SI
 @DEGREES

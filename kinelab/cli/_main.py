@@ -44,8 +44,23 @@ class _Group(click.Group):
             ctx.exit(1)
 
 
+def _set_budget(ctx, param, value):
+    if value is not None:
+        from kinelab._memory import memory_budget
+        try:
+            memory_budget(value)
+        except KinelabError as exc:
+            raise click.BadParameter(str(exc).removeprefix("max_bytes: ")) from None
+    return value
+
+
 @click.group(cls=_Group, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="kinelab")
+@click.option("--memory-budget", metavar="SIZE", default=None, expose_value=False, is_eager=True,
+              callback=_set_budget,
+              help="Largest result kinelab builds, e.g. 8G (default 2G, or the environment "
+                   "variable KINELAB_MEMORY_BUDGET); larger requests are refused, with the "
+                   "estimate.")
 def main() -> None:
     """kinelab: analysis of planar mechanisms described in model files.
 

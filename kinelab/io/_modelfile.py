@@ -22,6 +22,7 @@ from typing import Any, Literal
 import numpy as np
 
 from kinelab import mechanisms as catalogue
+from kinelab import _memory as memory
 from kinelab._files import atomic_write
 from kinelab.errors import AssemblyError, ModelError
 from kinelab.io import _toml
@@ -38,7 +39,9 @@ SCHEMA = 1
 """The newest schema version this kinelab reads and the one it writes."""
 
 DEFAULT_SAMPLES = 361
-MAX_SAMPLES = 10_000_000
+MAX_SAMPLES = 1_000_000
+"""The most samples per input a file or ``--samples`` may ask for: a sweep this long, with
+its table, fits the default memory budget (see :func:`kinelab.memory_budget`)."""
 LENGTH_RTOL = 1e-6    # a catalogue's lengths agree with the file's sketch to this relative error
 _ASSEMBLED = 1e-12    # relative: a sketch that misses its lengths by less is assembled (the
                       # 14 digits a file is written with)
@@ -229,6 +232,11 @@ class ModelFile:
             list(self.samples) if self.samples else [DEFAULT_SAMPLES] * M)
         if samples is not None and not (isinstance(samples, int) and 2 <= samples <= MAX_SAMPLES):
             raise ModelError(f"samples: expected a whole number from 2 to {MAX_SAMPLES:,}, got {samples!r}")
+        total = math.prod(counts) if (M > 1 and self.sweep == "grid") else max(counts)
+        memory.require(total * M * 8 * 3, f"the inputs of {total:,} samples"
+                       + (f" (a grid of {' x '.join(f'{c:,}' for c in counts)})" if M > 1 and
+                          self.sweep == "grid" else ""),
+                       "ask for fewer samples")
         axes = []
         for k, inp in enumerate(m.inputs):
             if inp.range is not None:

@@ -7,6 +7,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from kinelab import _memory as memory
 from kinelab.errors import AssemblyError, ModelError, SingularityError, check_choice
 from kinelab.kinematics import _kernel as k
 from kinelab.kinematics._assemble import check_assembled
@@ -18,6 +19,8 @@ from kinelab.model import Mechanism
 from kinelab.solvers import bisect, wrap_angle
 
 __all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "change_points"]
+
+_NOTHING = np.empty(0, np.int64)   # items written out where only the status matters
 
 SINGULAR_TOL = 5e-3
 """Singularity measure (a sine, see ``KinematicSolution.singularity``) below which a sample is
@@ -253,7 +256,7 @@ def _continued_range(p: Plan, q0: float, half: float, samples: int) -> tuple[flo
     for sign in (-1.0, 1.0):
         path = q0 + sign * np.linspace(0.0, half, samples // 2 + 1)
         q = path.reshape(-1, 1)
-        out = _run(p, q, np.zeros_like(q), np.zeros_like(q))
+        out = _run(p, q, np.zeros_like(q), np.zeros_like(q), stored=_NOTHING)
         status = out["status"]
         if (status == k.ST_OK).all():
             bounds.append(float(path[-1]))
@@ -272,13 +275,13 @@ def _assembles(p: Plan, qs: np.ndarray) -> np.ndarray:
     """Whether each input value assembles (on its own: no continuation between them)."""
     if p.groups is None:
         q = np.ascontiguousarray(qs.reshape(-1, 1))
-        out = _run(p, q, np.zeros_like(q), np.zeros_like(q))
+        out = _run(p, q, np.zeros_like(q), np.zeros_like(q), stored=_NOTHING)
         return out["status"] == k.ST_OK
     # Newton groups: continuation from the sketch to each value separately
     res = np.empty(qs.shape, bool)
     for i, v in enumerate(qs):
         q = np.array([[v]])
-        out = _run(p, q, np.zeros_like(q), np.zeros_like(q))
+        out = _run(p, q, np.zeros_like(q), np.zeros_like(q), stored=_NOTHING)
         res[i] = out["status"][0] == k.ST_OK
     return res
 
@@ -405,6 +408,10 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
                 raise ModelError("start: the earlier analysis used another method; analyze "
                                  "with the same method to continue from it")
             resume = start.newton_state
+    n = len(p.stored_items)
+    memory.require(len(q2) * (8 * n * (3 + M + M * M) + 41),
+                   f"the results of {len(q2):,} samples ({n} coordinates each, with K, L and rates)",
+                   "analyse fewer samples at a time (a sweep in pieces continues with start=)")
     bmap = _branch_map(p, M, at_change_point)
     out = _run_branches(p, bmap, q2, qd2, qdd2) if bmap is not None else _run(p, q2, qd2, qdd2, resume)
     if p.groups is not None and p.input_kinds == ("angle",) and resume is None:

@@ -28,6 +28,7 @@ import numpy as np
 from kinelab.kinematics import _kernel as k
 from kinelab.kinematics._evaluate import run
 from kinelab.kinematics._plan import SIGN_FIELDS, Plan
+from kinelab.solvers import wrap_angle
 
 __all__ = ["ChangePoint", "BranchMap", "branch_map"]
 
@@ -148,6 +149,10 @@ class _Walker:
         self.p = p
         self.followed = followed
         self.ops = branched_ops(p)
+        self.items = np.array(sorted({i for op in self.ops for i in _measured_items(p, op)}),
+                              np.int64)
+        self.column = {int(item): j for j, item in enumerate(self.items)}
+        self.is_angle = self.items < p.n_angles
         self.q0 = float(p.q_sketch[0])
         self.angle = p.input_kinds[0] == "angle"
         self.h = _GRID_STEP * (1.0 if self.angle else p.scale)
@@ -155,27 +160,20 @@ class _Walker:
     # -- evaluation ------------------------------------------------------------------------
     def evaluate(self, ops_f: np.ndarray, q: np.ndarray):
         """(assembled, measures, slopes, jets) at the input values q: for each branched
-        operation its signed measure and the measure's derivative with respect to q."""
-        from kinelab.kinematics._solution import KinematicSolution
-
+        operation its signed measure and the measure's derivative with respect to q, and the
+        jets (value, K, L) of the coordinates they are read from (only those are written)."""
         q2 = np.ascontiguousarray(np.reshape(q, (-1, 1)), float)
         zero = np.zeros((1, 1))
-        out = run(self.p, q2, zero, zero, ops_f=ops_f)
+        out = run(self.p, q2, zero, zero, ops_f=ops_f, stored=self.items)
         ok = out["status"] == k.ST_OK
-        out["jets"][~ok] = np.nan            # what the kernel left there means nothing
-        sol = KinematicSolution(plan=self.p, q=q2, qd=np.broadcast_to(zero, q2.shape),
-                                qdd=np.broadcast_to(zero, q2.shape), stored_jets=out["jets"],
-                                stored_rates=out["rates"], det_J=out["diag"][:, 0],
-                                singularity=out["diag"][:, 1], singular=np.zeros(len(q2), bool),
-                                assembled=ok)
+        J = out["jets"]
+        J[~ok] = np.nan                       # what the kernel left there means nothing
         m = np.full((len(q2), len(self.ops)), np.nan)
         dm = np.full_like(m, np.nan)
         with np.errstate(invalid="ignore", divide="ignore"):   # K is not finite at a
             for c, op in enumerate(self.ops):                   # singular configuration
-                m[:, c], dm[:, c] = _measure(self.p, op, ops_f, sol)
-        jets = out["jets"][:, :, 1:3].copy()          # K and L of every stored item
-        jets[~ok] = np.nan
-        return ok, m, dm, jets
+                m[:, c], dm[:, c] = _measure(self.p, op, ops_f, J, self.column)
+        return ok, m, dm, J
 
     # -- the walk ---------------------------------------------------------------------------
     def map(self) -> BranchMap:
@@ -301,8 +299,10 @@ class _Walker:
         return q - d + 2 * d * left / (left - right)
 
     def choose(self, ops_f, q_star, c, sign, slope):
-        """At a change point, the parameters on the far side: the branch whose K and L
-        continue those on the near side ("smooth"), or the other one ("switch")."""
+        """At a change point, the parameters on the far side: the branch whose coordinates,
+        K and L continue those on the near side ("smooth"), or the other one ("switch").
+        (Positions count too: a lever whose pin crosses its pivot has the same K on both
+        branches, which differ by a half turn.)"""
         op = self.ops[c]
         flipped = ops_f.copy()
         flipped[op, SIGN_FIELDS[int(self.p.ops_i[op, 0])]] *= -1.0
@@ -319,9 +319,13 @@ class _Walker:
                 scores.append(math.inf)
                 continue
             with np.errstate(invalid="ignore", over="ignore"):
-                K_pred = jb[0, :, 0] + jb[0, :, 1] * (after - before)
-                miss = (np.abs(ja[0, :, 0] - K_pred)
-                        + abs(after - before) * np.abs(ja[0, :, 1] - jb[0, :, 1]))
+                dq = after - before
+                S_pred = jb[0, :, 0] + jb[0, :, 1] * dq + 0.5 * jb[0, :, 2] * dq * dq
+                K_pred = jb[0, :, 1] + jb[0, :, 2] * dq
+                gap = ja[0, :, 0] - S_pred
+                gap = np.where(self.is_angle, wrap_angle(gap), gap / self.p.scale)
+                miss = (np.abs(gap) / abs(dq) + np.abs(ja[0, :, 1] - K_pred)
+                        + abs(dq) * np.abs(ja[0, :, 2] - jb[0, :, 2]))
             scores.append(float(np.sum(miss[np.isfinite(miss)])))
         if not any(math.isfinite(s) for s in scores):
             return None
@@ -332,34 +336,47 @@ class _Walker:
         return _Event(float(q_star), op, (ops_f, flipped)[pick], float(after))
 
 
-def _measure(p: Plan, op: int, ops_f: np.ndarray, sol) -> tuple[np.ndarray, np.ndarray]:
+def _measured_items(p: Plan, op: int) -> tuple[int, ...]:
+    """The coordinates (kernel items) the signed measure of a branched operation is read from."""
+    row = p.ops_i[op]
+    kind = int(row[0])
+    if kind == k.OP_RRR:
+        return int(row[1]), int(row[2])
+    if kind == k.OP_RRP:
+        return int(row[1]), int(row[5])
+    return int(row[1]), int(row[2]), int(row[2]) + 1, int(row[3]), int(row[3]) + 1
+
+
+def _measure(p: Plan, op: int, ops_f: np.ndarray, J: np.ndarray,
+             column: dict[int, int]) -> tuple[np.ndarray, np.ndarray]:
     """Signed measure of a branched operation (positive on its sign's side, zero where its
-    dyad is straight) and its derivative with respect to the input, per sample."""
+    dyad is straight) and its derivative with respect to the input, per sample, from the
+    jets J (N, items, 3) of the coordinates ``column`` maps."""
     row, f = p.ops_i[op], ops_f[op]
     kind = int(row[0])
 
-    def angle(item):
-        j = sol.item_jets([int(item)])[:, 0]
+    def value(item):
+        j = J[:, column[int(item)]]
         return j[:, 0], j[:, 1]
 
     if kind == k.OP_RRR:                    # sin of the angle from r_b to r_c
-        tb, kb = angle(row[1])
-        tc, kc = angle(row[2])
+        tb, kb = value(row[1])
+        tc, kc = value(row[2])
         d = (tc - f[4]) - (tb - f[3])
         return np.sin(d), np.cos(d) * (kc - kb)
     if kind == k.OP_RRP:                    # cos of the angle from the slide to the arm
-        tb, kb = angle(row[1])
-        tg, kg = angle(row[5])
+        tb, kb = value(row[1])
+        tg, kg = value(row[5])
         d = (tb - f[3]) - (tg + f[1])
         return np.cos(d), -np.sin(d) * (kb - kg)
     # RPR: the slide of X along the turning line from the foot of Z, over |X - Z| at the sketch
-    tG, kG = angle(row[1])
-    X = sol.item_jets([int(row[2]), int(row[2]) + 1])
-    Z = sol.item_jets([int(row[3]), int(row[3]) + 1])
-    w, dw = X[:, :, 0] - Z[:, :, 0], X[:, :, 1] - Z[:, :, 1]
+    tG, kG = value(row[1])
+    (xx, kxx), (xy, kxy) = value(row[2]), value(int(row[2]) + 1)
+    (zx, kzx), (zy, kzy) = value(row[3]), value(int(row[3]) + 1)
+    wx, wy, dwx, dwy = xx - zx, xy - zy, kxx - kzx, kxy - kzy
     tu = tG + math.atan2(f[3], f[2])
     ux, uy = np.cos(tu), np.sin(tu)
     rho = math.hypot(f[0], f[1])
-    t = w[:, 0] * ux + w[:, 1] * uy
-    dt = dw[:, 0] * ux + dw[:, 1] * uy + kG * (-w[:, 0] * uy + w[:, 1] * ux)
+    t = wx * ux + wy * uy
+    dt = dwx * ux + dwy * uy + kG * (-wx * uy + wy * ux)
     return t / rho, dt / rho

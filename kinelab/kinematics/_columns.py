@@ -12,6 +12,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from kinelab import _memory as memory
 from kinelab.errors import ModelError
 from kinelab.model import Units
 
@@ -89,6 +90,12 @@ class TableExport:
 
 def solution_columns(sol, units: Units) -> Columns:
     """Every result of a :class:`KinematicSolution` as columns (see its ``columns``)."""
+    M = sol.M
+    per_item = 3 + M + M * M            # value, rates, K and L
+    width = 3 * M + len(sol.link_item) * per_item + len(sol.slide_item) * per_item \
+        + 2 * len(sol.point_item) * per_item + 4
+    memory.require(8 * width * sol.N, f"a table of {sol.N:,} rows and {width:,} columns",
+                   "export fewer samples, or a part of the sweep at a time")
     cols = Columns(units)
     names, M = sol.input_names, sol.M
     in_si = [INPUT_SI_UNITS[k] for k in sol.plan.input_kinds]

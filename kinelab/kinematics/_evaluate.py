@@ -34,24 +34,30 @@ def _pool(workers: int) -> ThreadPoolExecutor:
     return ThreadPoolExecutor(max_workers=workers, thread_name_prefix="kinelab")
 
 
-def run(p: Plan, q, qd, qdd, start=None, ops_f=None):
+def run(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None):
     """Run the kernel over the rows of ``q`` (N, M) with rates ``qd``, ``qdd`` (N, M) or (1, M).
 
     ``start`` = (q, group state) to continue Newton groups from instead of the sketch;
-    ``ops_f`` replaces the plan's operation parameters (another assembly mode of its dyads).
-    Returns the kernel's outputs: jets, rates (of the stored items), diag (det J and the
-    singularity measure), status and fail per sample, and the Newton state at the end.
+    ``ops_f`` replaces the plan's operation parameters (another assembly mode of its dyads);
+    ``stored`` the items written out (default the plan's ``stored_items``; an empty array
+    when only the status is wanted).  Returns the kernel's outputs: jets, rates (of the
+    stored items), diag (det J and the singularity measure), status and fail per sample, and
+    the Newton state at the end.  Refuses results beyond the memory budget.
     """
     ops_f = p.ops_f if ops_f is None else ops_f
+    stored = p.stored_items if stored is None else np.asarray(stored, np.int64)
     N, M = q.shape
-    n = len(p.stored_items)
+    n = len(stored)
+    memory.require(N * (8 * n * (3 + M + M * M) + 41),
+                   f"the results of {N:,} samples ({n} coordinates each, with K, L and rates)",
+                   "analyse fewer samples at a time (a sweep in pieces continues with start=)")
     out = dict(jets=memory.empty((N, n, 1 + M + M * M)), rates=memory.empty((N, n, 2)),
                diag=memory.empty((N, 2)), status=memory.empty((N,), np.int8),
                fail=memory.empty((N, 2)))
     tail = (out["jets"], out["rates"], out["diag"], out["status"], out["fail"])
     if p.groups is None:
         plan_args = (p.ops_i, ops_f, p.const_items, p.const_values, p.n_items, p.n_angles,
-                     p.stored_items, *tail)
+                     stored, *tail)
         if M == 1:
             def piece(lo, hi):
                 k.run_closed_form_one_input(q, qd, qdd, lo, hi, *plan_args)
@@ -75,7 +81,7 @@ def run(p: Plan, q, qd, qdd, start=None, ops_f=None):
                                          else min(1.0, p.scale))
         state = np.empty(len(x0) + M)
         args = (q, qd, qdd, np.array(q0, float), max_step, p.ops_i, ops_f, p.const_items,
-                p.const_values, p.n_items, p.n_angles, p.stored_items, groups_i, con_i, con_f,
+                p.const_values, p.n_items, p.n_angles, stored, groups_i, con_i, con_f,
                 np.array(x0, float), p.scale, *tail, state)
         if M == 1:
             k.run_continuation_one_input(*args)

@@ -181,6 +181,7 @@ class _Builder:
         self.L = {name: i for i, name in enumerate(m.link_names)}
         self.P = {name: i for i, name in enumerate(m.point_names)}
         self.xy = {p.name: np.array([p.x, p.y], float) for p in m.points}
+        self.point_xy = [self.xy[p.name] for p in m.points]       # by index
         self.n_all = len(self.P)
         self.ground = m.ground.name
         span = np.array(list(self.xy.values()))
@@ -256,9 +257,8 @@ class _Builder:
         return self._xy_of(idx)
 
     def _xy_of(self, idx: int) -> np.ndarray:
-        for name, i in self.P.items():
-            if i == idx:
-                return self.xy[name]
+        if idx < len(self.point_xy):
+            return self.point_xy[idx]
         for (link, x, y), i in self.virtual.items():
             if i == idx:
                 return np.array([x, y])
@@ -281,18 +281,25 @@ class _Builder:
                 self._emit_rigid(idx, link, xy)
         return self.virtual[key]
 
-    def _emit_rigid(self, idx: int, link: str, xy) -> None:
-        """Emit the operation placing point idx (at sketch xy) rigid with a placed link.
-
-        Through the anchor a and the known point b of the link farthest from it, p = a +
-        lam (b - a) + mu k x (b - a) needs no sine or cosine; a link with one known point
-        (a crank on its pivot) turns r by its angle instead.
-        """
+    def _farthest_known(self, link: str, exclude: int) -> tuple[float, int]:
+        """(distance, index) of the computed point of a link farthest from its anchor."""
         a = self.anchor[link]
         a_xy = self._xy_of(a)
         known = [(float(np.hypot(*(self.xy[pn] - a_xy))), self.P[pn]) for pn in self.m.link(link).points
-                 if self.P[pn] in self.computed and self.P[pn] not in (a, idx)]
-        far = max(known, default=(0.0, -1))
+                 if self.P[pn] in self.computed and self.P[pn] not in (a, exclude)]
+        return max(known, default=(0.0, -1))
+
+    def _emit_rigid(self, idx: int, link: str, xy, far: tuple[float, int] | None = None) -> None:
+        """Emit the operation placing point idx (at sketch xy) rigid with a placed link.
+
+        Through the anchor a and the known point b of the link farthest from it (``far``, if
+        the caller keeps it), p = a + lam (b - a) + mu k x (b - a) needs no sine or cosine;
+        a link with one known point (a crank on its pivot) turns r by its angle instead.
+        """
+        a = self.anchor[link]
+        a_xy = self._xy_of(a)
+        if far is None:
+            far = self._farthest_known(link, idx)
         if far[0] > 1e-6 * self.scale:
             d = self._xy_of(far[1]) - a_xy
             r = np.asarray(xy, float) - a_xy
@@ -308,11 +315,14 @@ class _Builder:
         self.pos_known.add(link)
         self.anchor[link] = anchor
         self.computed.add(anchor)
+        far = self._farthest_known(link, -1)     # kept up to date: linear in the points
+        a_xy = self._xy_of(anchor)
         for pn in self.m.link(link).points:
             idx = self.P[pn]
             if idx not in self.computed:
-                self._emit_rigid(idx, link, self.xy[pn])
+                self._emit_rigid(idx, link, self.xy[pn], far)
                 self.computed.add(idx)
+                far = max(far, (float(np.hypot(*(self.xy[pn] - a_xy))), idx))
 
     # -- the decomposition -----------------------------------------------------------------
     def build(self) -> Plan:

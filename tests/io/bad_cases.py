@@ -169,7 +169,7 @@ CASES = [
     ("empty input range", _replace('range = [0, 360]', 'range = [10, 10]'),
      "fb.toml: inputs[0].range: start and stop are equal (10 deg); give an interval"),
     ("too few samples", _replace('speed = 600', 'speed = 600\nsamples = 1'),
-     "fb.toml: inputs[0].samples: expected a whole number from 2 to 10,000,000, got 1"),
+     "fb.toml: inputs[0].samples: expected a whole number from 2 to 1,000,000, got 1"),
     ("speed as text", _replace('speed = 600', 'speed = "fast"'),
      "fb.toml: inputs[0].speed: expected a number, got 'fast'"),
     ("speed not a number", _replace('speed = 600', 'speed = nan'),
