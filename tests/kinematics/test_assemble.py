@@ -12,6 +12,7 @@ import pytest
 import kinelab as kl
 from kinelab.errors import AssemblyError, ModelError, SingularityError
 from kinelab.model import Input, Joint, Link, Mechanism, Point
+from tests.io.bad_cases import BASE
 from tests.kinematics.checks import closure_residual, wrap
 
 
@@ -169,51 +170,12 @@ def test_a_watt_sixbar_from_its_lengths():
 
 def test_a_model_file_drawn_by_eye(tmp_path):
     path = tmp_path / "rough.toml"
-    path.write_text('''schema = 1
-name = "rough"
-[units]
-length = "mm"
-angle = "deg"
-[points]
-O2 = [0, 0]
-A = [5, 98]
-B = [255, 250]
-O4 = [300, 0]
-[[links]]
-name = "ground"
-points = ["O2", "O4"]
-ground = true
-[[links]]
-name = "crank"
-points = ["O2", "A"]
-length = 100
-[[links]]
-name = "coupler"
-points = ["A", "B"]
-length = 300
-[[links]]
-name = "rocker"
-points = ["O4", "B"]
-length = 250
-[[joints]]
-type = "R"
-links = ["ground", "crank"]
-point = "O2"
-[[joints]]
-type = "R"
-links = ["crank", "coupler"]
-point = "A"
-[[joints]]
-type = "R"
-links = ["coupler", "rocker"]
-point = "B"
-[[joints]]
-type = "R"
-links = ["ground", "rocker"]
-point = "O4"
-[[inputs]]
-joint = "jO2"
-''')
+    text = (BASE.replace("A = [0, 100]", "A = [5, 98]")
+            .replace("B = [261.506227, 247.018682]", "B = [255, 250]")
+            .replace('points = ["A", "B"]', 'points = ["A", "B"]\nlength = 300')
+            .replace('points = ["O4", "B"]', 'points = ["O4", "B"]\nlength = 250'))
+    assert text.count("length = ") == 4              # units.length and the three moving links
+    path.write_text(text)
     m = kl.load(path)
     for a, b, length in (("O2", "A", 0.1), ("A", "B", 0.3), ("O4", "B", 0.25)):
         assert dist(m, a, b) == pytest.approx(length, rel=1e-12)
