@@ -224,7 +224,8 @@ CASES = [
      'crank = 100\ncoupler = 100\nrocker = 100\n',
      "fb.toml: catalogue: fourbar: these lengths cannot be assembled at any input angle; check them"),
     ("catalogue: unknown branch", _HEAD + '[catalogue]\n' + _FOURBAR + 'rocker = 250\nbranch = "cross"\n',
-     "fb.toml: catalogue.branch: expected one of 'open', 'crossed', got 'cross'"),
+     "fb.toml: catalogue.branch: expected one of 'open', 'crossed', got 'cross' (did you mean "
+     "'crossed'?)"),
     ("catalogue disagrees with the sketch", BASE + '\n[catalogue]\n'
      + _FOURBAR.replace("coupler = 300", "coupler = 310") + 'rocker = 250\n',
      "fb.toml: catalogue: the sketch does not match fourbar: link 'coupler' has A-B = 300 mm in "
