@@ -143,7 +143,9 @@ def describe(value: object, _depth: int = 0) -> str:
         return "a table"
     if isinstance(value, int) and abs(value).bit_length() > 128:
         # too long to show (and to turn into text at all, past Python's 4300 digits)
-        return f"a whole number of about {int(math.log10(abs(value))) + 1} digits"
+        digits = int(math.log10(abs(value))) + 1
+        digits -= 10 ** (digits - 1) > abs(value)     # log10 rounds up just below a power of 10
+        return f"a whole number of {digits} digits"
     if isinstance(value, (list, tuple)):
         if _depth >= 2:
             return "[...]"

@@ -269,7 +269,7 @@ class _Parser:
         if "schema" in top:
             schema = top["schema"]
             if isinstance(schema, int) and not isinstance(schema, bool) and schema > SCHEMA:
-                self.fail([f"schema: this file is written for schema {schema}, but this kinelab "
+                self.fail([f"schema: this file is written for schema {describe(schema)}, but this kinelab "
                            f"reads schema {SCHEMA} and older; upgrade kinelab"])
             r.integer(schema, "schema", low=1, high=SCHEMA)
         name = r.string(top.get("name", self.stem or "mechanism"), "name")

@@ -156,6 +156,9 @@ CASES = [
     ("schema from the future", _replace('schema = 1', 'schema = 2'),
      "fb.toml: schema: this file is written for schema 2, but this kinelab reads schema 1 and "
      "older; upgrade kinelab"),
+    ("schema of a hundred digits", _replace('schema = 1', 'schema = ' + '9' * 100),
+     "fb.toml: schema: this file is written for schema a whole number of 100 digits, but "
+     "this kinelab reads schema 1 and older; upgrade kinelab"),
     ("schema not a number", _replace('schema = 1', 'schema = "1"'),
      "fb.toml: schema: expected a whole number from 1 to 1, got '1'"),
     ("unknown joint type", _replace('type = "R"\nlinks = ["ground", "rocker"]',
