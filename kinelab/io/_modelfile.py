@@ -204,7 +204,7 @@ class ModelFile:
         counts = [samples] * M if samples is not None else (
             list(self.samples) if self.samples else [DEFAULT_SAMPLES] * M)
         if samples is not None and not (isinstance(samples, int) and 2 <= samples <= MAX_SAMPLES):
-            raise ModelError(f"samples: expected a whole number from 2 to {MAX_SAMPLES:,}, got {samples!r}")
+            raise ModelError(f"samples: expected a whole number from 2 to {MAX_SAMPLES:,}, got {describe(samples)}")
         axes = []
         for k, inp in enumerate(m.inputs):
             if inp.range is not None:
