@@ -49,7 +49,7 @@ def plan(mechanism: Mechanism, *, method: Literal["auto", "newton"] = "auto") ->
 def _as_inputs(name: str, value: ArrayLike, M: int, shape: tuple[int, ...] | None):
     a = real_array(value)
     if a is None:
-        raise ModelError(f"{name}: expected real numbers, got {describe(value)}")
+        raise ModelError(f"{name}: expected numbers, got {describe(value)}")
     if not np.all(np.isfinite(a)):
         bad = np.argwhere(~np.isfinite(a))[0].tolist()
         raise ModelError(f"{name}: expected finite numbers, got {a[tuple(bad)]}"
