@@ -2,28 +2,50 @@
 so that a failure never leaves a half-written output behind."""
 from __future__ import annotations
 
+import errno
 import os
 import tempfile
 from collections.abc import Callable
 from pathlib import Path
 from typing import IO
 
+from kinelab.errors import ModelError
+
 
 def atomic_write(path: str | os.PathLike, write: Callable[[IO], None], *, binary: bool = False) -> Path:
-    """Call ``write(file)`` on a temporary file and rename it to ``path`` when it succeeds."""
+    """Call ``write(file)`` on a temporary file and rename it to ``path`` when it succeeds.
+
+    Raises
+    ------
+    ModelError
+        When ``path`` cannot be written (a directory, a place that does not exist or is not
+        writable, a full disk): the message names ``path``, not the temporary file.
+    """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    tmp = None
     try:
+        if path.is_dir():
+            raise IsADirectoryError(errno.EISDIR, "it is a directory", str(path))
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
         with os.fdopen(fd, "wb" if binary else "w", **({} if binary else {"newline": ""})) as f:
             write(f)
         # mkstemp makes it private: give it the mode the file has, or a new file's usual one
         os.chmod(tmp, path.stat().st_mode & 0o7777 if path.exists() else 0o666 & ~_UMASK)
         os.replace(tmp, path)
+    except OSError as exc:
+        _remove(tmp)
+        raise ModelError(f"cannot write it: {exc.strerror or exc}; choose another file or "
+                         "directory", source=str(path)) from None
     except BaseException:
-        Path(tmp).unlink(missing_ok=True)
+        _remove(tmp)
         raise
     return path
+
+
+def _remove(tmp: str | None) -> None:
+    if tmp is not None:
+        Path(tmp).unlink(missing_ok=True)
 
 
 def _read_umask() -> int:

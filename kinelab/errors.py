@@ -9,8 +9,11 @@ catches ``ValueError`` keeps working.
 """
 from __future__ import annotations
 
-from collections.abc import Iterable
+import math
+import re
+from collections.abc import Collection, Iterable, Mapping
 from difflib import get_close_matches
+from itertools import islice
 
 __all__ = [
     "KinelabError",
@@ -39,7 +42,11 @@ class ModelError(KinelabError, ValueError):
         self.problems = tuple(problems)
         self.source = source
         prefix = f"{source}: " if source else ""
-        super().__init__("\n".join(prefix + p for p in self.problems))
+        lines = [prefix + p for p in self.problems[:PROBLEMS_SHOWN]]
+        if len(self.problems) > PROBLEMS_SHOWN:
+            lines.append(f"{prefix}and {len(self.problems) - PROBLEMS_SHOWN:,} more problems; "
+                         "fix these first")
+        super().__init__("\n".join(lines))
 
 
 class AssemblyError(KinelabError, ValueError):
@@ -80,19 +87,123 @@ class SingularityError(KinelabError, ValueError):
 
 
 # -- wording shared by the messages -------------------------------------------------------
-def quoted(names: Iterable[str]) -> str:
-    """``'a', 'b', 'c'``: the choices a message lists."""
-    return ", ".join(f"'{n}'" for n in names)
+# Names and values come from files and callers: a message shows them escaped (no newline,
+# control or escape character, no lone surrogate reaches a terminal) and cut, so that it
+# stays one line of bounded length whatever it quotes.
+NAME_SHOWN = 60       # characters of a name (or value) a message shows, quotes included
+NAMES_SHOWN = 20      # names a list of choices shows before "... and N more"
+PROBLEMS_SHOWN = 20   # problems a ModelError's message shows before "... and N more problems"
+SUGGEST_AMONG = 1000  # "did you mean" looks for a close name among at most this many: it
+                      # compares the name with each choice, and a message must stay cheap
+_ESCAPES = {"\n": "\\n", "\t": "\\t", "\r": "\\r"}
+_QUOTED = {**_ESCAPES, "\\": "\\\\", "'": "\\'"}
+
+
+def _escaped(text: str, limit: int, escapes: Mapping[str, str] = _ESCAPES) -> str:
+    """``text`` with every unprintable character escaped as ``repr`` does, cut to ``limit``
+    characters with an ellipsis; reads only the characters it shows."""
+    out, size = [], 0
+    for k, c in enumerate(text):
+        e = escapes.get(c) or (c if c.isprintable() else ascii(c)[1:-1])
+        if size + len(e) > limit - 1 and (size + len(e) > limit or k < len(text) - 1):
+            out.append("\u2026")
+            break
+        out.append(e)
+        size += len(e)
+    return "".join(out)
+
+
+def shown(name: object) -> str:
+    """``'name'``: a name as a message shows it, quoted, escaped and cut.
+
+    Examples
+    --------
+    >>> shown("coupler"), shown("a\\nb\\x1b[31m")
+    ("'coupler'", "'a\\\\nb\\\\x1b[31m'")
+    >>> len(shown("x" * 10_000)) <= NAME_SHOWN
+    True
+    """
+    if not isinstance(name, str):
+        return describe(name)
+    return f"'{_escaped(name, NAME_SHOWN - 2, _QUOTED)}'"
+
+
+_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
+
+
+def shown_key(key: object) -> str:
+    """A key of a file as a field name shows it (``points.A``): bare when it is a short
+    word, else as :func:`shown` shows a name (``points.'my point'``)."""
+    if isinstance(key, str) and len(key) <= NAME_SHOWN and _BARE_KEY.fullmatch(key):
+        return key
+    return shown(key)
+
+
+def describe(value: object, _depth: int = 0) -> str:
+    """A short, one-line rendering of a value found in a file or given by a caller."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return shown(value)
+    if isinstance(value, Mapping):
+        return "a table"
+    if isinstance(value, int) and abs(value).bit_length() > 128:
+        # too long to show (and to turn into text at all, past Python's 4300 digits)
+        digits = int(math.log10(abs(value))) + 1
+        digits -= 10 ** (digits - 1) > abs(value)     # log10 rounds up just below a power of 10
+        return f"a whole number of {digits} digits"
+    if isinstance(value, (list, tuple)):
+        if _depth >= 2:
+            return "[...]"
+        inner = ", ".join(describe(v, _depth + 1) for v in value[:4])
+        left, right = "()" if isinstance(value, tuple) else "[]"
+        return f"{left}{inner}{', ...' if len(value) > 4 else ''}{right}"
+    try:
+        text = repr(value)
+    except Exception:       # a caller's object whose repr fails: name its type
+        text = f"a {type(value).__name__}"
+    return _escaped(text, NAME_SHOWN)
+
+
+def quoted(names: Iterable[str], *, limit: int = NAMES_SHOWN) -> str:
+    """``'a', 'b', 'c'``: the choices a message lists, at most ``limit`` of them
+    (``..., and 7 more``); ``none`` when there are none."""
+    if not isinstance(names, Collection):
+        names = list(names)
+    first = [shown(n) for n in islice(names, limit)]
+    if not first:
+        return "none"
+    more = len(names) - len(first)
+    return ", ".join(first) + (f" and {more:,} more" if more > 0 else "")
 
 
 def suggest(name: str, choices: Iterable[str]) -> str:
-    """`` (did you mean 'x'?)`` when one of ``choices`` is close to ``name``, else ''."""
-    close = get_close_matches(str(name), [str(c) for c in choices], n=1)
-    return f" (did you mean '{close[0]}'?)" if close else ""
+    """`` (did you mean 'x'?)`` when one of ``choices`` is close to ``name``, else ''
+    (also when there are more than ``SUGGEST_AMONG`` choices or ``name`` is long)."""
+    if not isinstance(choices, Collection):
+        choices = list(choices)
+    if len(choices) > SUGGEST_AMONG or len(str(name)) > NAME_SHOWN:
+        return ""
+    close = get_close_matches(str(name), [c for c in map(str, choices) if len(c) <= NAME_SHOWN], n=1)
+    return f" (did you mean {shown(close[0])}?)" if close else ""
+
+
+def expected_one_of(value: object, choices: Iterable[str]) -> str:
+    """``expected one of 'a', 'b', got 'x' (did you mean 'a'?)``, or, with no choices,
+    ``got 'x', but there is nothing to choose from``."""
+    if not isinstance(choices, Collection):
+        choices = list(choices)
+    if not choices:
+        return f"got {describe(value)}, but there is nothing to choose from"
+    hint = suggest(value, choices) if isinstance(value, str) else ""
+    return f"expected one of {quoted(choices)}, got {describe(value)}{hint}"
 
 
 def check_choice(name: str, value, choices) -> None:
     """Raise a :class:`ModelError` unless ``value`` is one of ``choices``."""
-    if value not in choices:
-        raise ModelError(f"{name}: expected one of {', '.join(repr(c) for c in choices)}, "
-                         f"got {value!r}")
+    try:
+        ok = value in choices
+    except TypeError:         # an unhashable value is none of them
+        ok = False
+    if not ok:
+        raise ModelError(f"{name}: {expected_one_of(value, choices)}")

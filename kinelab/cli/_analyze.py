@@ -79,7 +79,7 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
     (--si for m and rad), each column named item.quantity[unit]."""
     mf = read_model(model)
     if speed is not None:
-        mf = with_speeds(mf, parse_inputs(speed, mf, "--speed"))
+        mf = with_speeds(mf, parse_inputs(speed, mf, "--speed", rate=True))
     m = mf.mechanism
     units = output_units(mf.units, si, degrees)
     if at is not None:
@@ -92,17 +92,19 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
                                      at_change_point=change_points)
         click.echo(configuration_text(sol, units))
         return
+    path = output_path(out, stem(model), fmt or "csv")
+    kind = io.result_format(path, fmt)       # before the sweep, which can be long
     sol = sweep(mf, samples, change_points=change_points)
     s = None if quiet else summarise(mf, sol)
-    name = stem(model)
-    path = output_path(out, name, fmt or "csv")
-    written = io.write_results(sol, path, format=fmt, units=units)
+    written = io.write_results(sol, path, format=kind, units=units)
     if s is not None:
         click.echo(summary_text(s, units))
         note = missing_time_ratio(mf, s, units)
         if note:
             click.echo(note)
-    click.echo(f"wrote {written} ({sol.N} rows, {len(sol.columns())} columns)")
+    told = f"{kind.upper()} as --format says, whatever the name; " if (
+        written.suffix.lower() != f".{kind}") else ""
+    click.echo(f"wrote {written} ({told}{sol.N} rows, {len(sol.columns())} columns)")
 
 
 def with_speeds(mf, qd) -> io.ModelFile:

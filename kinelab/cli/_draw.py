@@ -1,13 +1,15 @@
 """``kinelab plot`` and ``kinelab animate``."""
 from __future__ import annotations
 
+from pathlib import Path
+
 import click
 
 from kinelab import io
 from kinelab.cli._analyze import MODEL, SAMPLES
 from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, errors_from, output_path, output_units, read_model,
                                stem, sweep)
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, quoted, shown, suggest
 
 __all__ = ["plot", "animate"]
 
@@ -23,6 +25,16 @@ def _agg():
 
 def _names(text: str | None) -> list[str] | None:
     return [n.strip() for n in text.split(",") if n.strip()] if text else None
+
+
+def _check_names(option: str, names: list[str] | None, known, what: str) -> None:
+    """Refuse names typed in ``option`` that are not ``known`` (checked before the sweep,
+    which can be long)."""
+    known = dict.fromkeys(known)
+    unknown = [n for n in names or () if n not in known]
+    if unknown:
+        raise ModelError(f"{option}: expected {what}, got {quoted(unknown)}"
+                         f"{suggest(unknown[0], known)}; they are {quoted(known)}")
 
 
 @click.command()
@@ -51,12 +63,8 @@ def plot(model, out, formats, outputs, samples, si, degrees, change_points):
     chosen = _names(outputs) or list(mf.outputs.report) or list(io.default_outputs(m))
     base = stem(model)
     # checked before the sweep, which can be long
-    known = list(m.link_names) + [j.name for j in m.joints if j.type == "P"] + list(m.point_names)
-    unknown = [n for n in chosen if n not in known]
-    if unknown:
-        raise ModelError(f"--outputs: expected links, slides or points of {m.name}, got "
-                         f"{', '.join(repr(n) for n in unknown)}; they are "
-                         f"{', '.join(repr(n) for n in known)}")
+    _check_names("--outputs", chosen, [*m.link_names, *(j.name for j in m.joints if j.type == "P"),
+                                       *m.point_names], f"links, slides or points of {shown(m.name)}")
     sol = sweep(mf, samples, change_points=change_points)
     figures = []
     with errors_from(mf, "outputs"):
@@ -74,7 +82,8 @@ def plot(model, out, formats, outputs, samples, si, degrees, change_points):
     written = []
     for kind, fig in figures:
         for fmt in formats:
-            written.append(kplot.save(fig, output_path(out, f"{base}_{kind}", fmt)))
+            # --out is a directory: several figures, each in several formats, go in it
+            written.append(kplot.save(fig, Path(out) / f"{base}_{kind}.{fmt}"))
         plt.close(fig)
     for path in written:
         click.echo(f"wrote {path}")
@@ -102,6 +111,8 @@ def animate(model, out, fmt, trace, frames, fps, samples, si, change_points):
     units = output_units(mf.units, si, False)
     if fmt == "auto":
         fmt = "mp4" if kplot.can_write_mp4() else "gif"
+    _check_names("--trace", _names(trace), mf.mechanism.point_names,
+                 f"points of {shown(mf.mechanism.name)}")
     sol = sweep(mf, samples, change_points=change_points)
     path = output_path(out, stem(model), fmt)
     with errors_from(mf, "--trace" if trace else ""):

@@ -9,7 +9,8 @@ import click
 from kinelab import io
 from kinelab.cli._analyze import MODEL
 from kinelab.cli._main import errors_from, output_path, read_model, stem, sweep
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, shown
+from kinelab.io._text import read_text
 
 __all__ = ["export", "import_"]
 
@@ -84,17 +85,14 @@ def import_(source, out, fmt, unit, inputs, input_joint):
     if fmt == "linkage2d":
         m = io.from_linkage2d_json(path, input=input_joint)
     else:
-        try:
-            text = path.read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError) as exc:
-            raise ModelError(f"{path.name}: cannot read it as text: {exc}") from None
+        text = read_text(path)
         pairs = None
         if inputs:
             try:
                 pairs = [tuple(int(v) for v in p.split(",")) for p in inputs.split(";")]
             except ValueError:
                 raise ModelError(f"--inputs: expected pairs of joint numbers like '0,1;4,3', got "
-                                 f"{inputs!r}") from None
+                                 f"{shown(inputs)}") from None
         try:
             m = io.from_pyslvs(text, inputs=pairs, length=unit, name=path.stem)
         except ModelError as exc:

@@ -2,6 +2,7 @@
 outputs, sweeping with a progress bar, and turning kinelab errors into exit status 2."""
 from __future__ import annotations
 
+import math
 import os
 import re
 import sys
@@ -12,10 +13,10 @@ import click
 import numpy as np
 
 from kinelab import kinematics
-from kinelab.errors import KinelabError, ModelError
+from kinelab.errors import KinelabError, ModelError, quoted, shown
 from kinelab.io import ModelFile
 from kinelab.kinematics import KinematicSolution
-from kinelab.model import ANGLE_UNITS, LENGTH_UNITS, Units
+from kinelab.model import ANGLE_UNITS, LENGTH_UNITS, Units, range_problem, rate_problem
 
 __all__ = ["main", "read_model", "errors_from", "sweep", "output_path", "parse_inputs", "stem",
            "SI", "DEGREES", "output_units"]
@@ -25,7 +26,8 @@ BAD_INPUT = 2      # exit status for a bad file, option or input value
 
 class _Group(click.Group):
     """A click group whose commands report kinelab errors in one line each, no traceback:
-    exit status 2 for bad input (the errors that are also ValueErrors), 1 otherwise."""
+    exit status 2 for bad input (the errors that are also ValueErrors, and outputs that
+    cannot be written), 1 otherwise."""
 
     def invoke(self, ctx: click.Context):
         try:
@@ -41,7 +43,7 @@ class _Group(click.Group):
         except OSError as exc:      # an output that cannot be written: say where, no traceback
             where = f" {exc.filename}" if exc.filename else ""
             click.echo(f"kinelab: error: cannot write{where}: {exc.strerror or exc}", err=True)
-            ctx.exit(1)
+            ctx.exit(BAD_INPUT)
 
 
 def _set_budget(ctx, param, value):
@@ -165,15 +167,16 @@ def output_path(out: str | None, stem: str, suffix: str) -> Path:
 _VALUE = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([a-z]*)\s*$")
 
 
-def parse_inputs(text: str, mf: ModelFile, option: str = "--at") -> np.ndarray:
+def parse_inputs(text: str, mf: ModelFile, option: str = "--at", *, rate: bool = False) -> np.ndarray:
     """Input values typed by a person, ``30``, ``30deg``, ``0.5rad``, ``12mm`` or ``30,60``,
-    in SI; a bare number is in the file's unit.  The same for rates (``--speed 60deg`` is
-    60 deg/s): errors name ``option``."""
+    in SI; a bare number is in the file's unit.  The same for rates (``rate``: ``--speed
+    60deg`` is 60 deg/s): errors name ``option``.  Values are refused past the sizes a model
+    takes (an angle within MAX_TURNS turns of 0, a rate of at most MAX_RATE)."""
     kinds = kinematics.plan(mf.mechanism).input_kinds
     parts = text.split(",")
     if len(parts) != len(kinds):
         raise ModelError(f"{option}: expected {len(kinds)} value(s) separated by commas (one per "
-                         f"input: {', '.join(mf.mechanism.input_names)}), got {text!r}")
+                         f"input: {quoted(mf.mechanism.input_names)}), got {shown(text)}")
     out = []
     for part, kind in zip(parts, kinds):
         match = _VALUE.match(part)
@@ -182,6 +185,13 @@ def parse_inputs(text: str, mf: ModelFile, option: str = "--at") -> np.ndarray:
         default = mf.units.angle_scale if kind == "angle" else mf.units.length_scale
         if not match or (unit and unit not in units):
             raise ModelError(f"{option}: expected a number, optionally followed by one of "
-                             f"{', '.join(units)}, got {part.strip()!r}")
-        out.append(float(match.group(1)) * (units[unit] if unit else default))
+                             f"{', '.join(units)}, got {shown(part.strip())}")
+        v = float(match.group(1)) * (units[unit] if unit else default)
+        si = "rad" if kind == "angle" else "m"
+        why = ("expected a finite number" if not math.isfinite(v) else
+               rate_problem(v, f"{si}/s") if rate else
+               range_problem(v, v, angle=kind == "angle"))
+        if why:
+            raise ModelError(f"{option}: {why}, got {shown(part.strip())}")
+        out.append(v)
     return np.array(out) if len(out) > 1 else np.array(out[0])

@@ -12,7 +12,6 @@ from __future__ import annotations
 import io
 import json
 import math
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -22,12 +21,20 @@ import numpy as np
 
 from kinelab import synthesis
 from kinelab.cli._main import DEGREES, SI, output_units
-from kinelab.errors import ModelError, quoted
-from kinelab.model import ANGLE_UNITS, LENGTH_UNITS, Units
+from kinelab.errors import ModelError, describe, expected_one_of, quoted, shown_key
+from kinelab.io._text import loads, read_text
+from kinelab.model import (ANGLE_UNITS, LENGTH_UNITS, Units, is_real, length_problem, name_problem,
+                           real_array)
 
 __all__ = ["synth", "load_task", "Task"]
 
 KINDS = ("motion", "function", "path")
+# Bounds on a task's whole numbers, so that a typo cannot ask for days of search or more
+# memory than a machine has; each is far above what a synthesis needs.
+MAX_SAMPLES = 1_000_000
+MAX_PRECISION_POINTS = 100
+_SEARCH_BOUNDS = {"runs": (1, 1000), "maxiter": (1, 1_000_000), "popsize": (1, 10_000),
+                  "samples": (2, MAX_SAMPLES), "seed": (0, 2 ** 32 - 1)}
 _SECTIONS = {"task", "name", "units", "positions", "pivots", "function", "search"}
 
 
@@ -63,25 +70,42 @@ class _Reader:
         return sec.get(key, default) if isinstance(sec, dict) else default
 
     def array(self, where: str, value, shape: tuple, scale: float = 1.0):
-        try:
-            a = np.asarray(value, dtype=float)
-        except (TypeError, ValueError):
-            self.problems.append(f"{where}: expected numbers, got {value!r}")
-            return None
-        ok = a.ndim == len(shape) and all(s is None or s == n for s, n in zip(shape, a.shape))
+        """Real numbers of ``shape`` (None: any length) times ``scale``; with a length
+        ``scale`` (the default is not), coordinates of at most MAX_LENGTH m."""
+        a = real_array(value)
+        ok = a is not None and a.ndim == len(shape) and all(
+            s is None or s == n for s, n in zip(shape, a.shape))
         if not ok or not np.all(np.isfinite(a)):
             want = "(" + ", ".join("n" if s is None else str(s) for s in shape) + ")"
-            self.problems.append(f"{where}: expected finite numbers of shape {want}, got {value!r}")
+            self.problems.append(f"{where}: expected finite numbers of shape {want}, got "
+                                 f"{describe(value)}")
             return None
         return a * scale
 
+    def lengths(self, where: str, value, shape: tuple, scale: float):
+        """Coordinates (file units to m), each at most MAX_LENGTH m in size."""
+        a = self.array(where, value, shape, scale)
+        if a is not None and a.size and (why := length_problem(float(np.abs(a).max()),
+                                                               positive=False)):
+            self.problems.append(f"{where}: {why}, got {describe(value)}")
+            return None
+        return a
+
     def number(self, where: str, value, scale: float = 1.0, positive: bool = False):
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
-                or (positive and value <= 0):
+        if not is_real(value) or (positive and value <= 0):
             kind = "a positive number" if positive else "a finite number"
-            self.problems.append(f"{where}: expected {kind}, got {value!r}")
+            self.problems.append(f"{where}: expected {kind}, got {describe(value)}")
             return None
         return float(value) * scale
+
+    def integer(self, where: str, value, low: int, high: int):
+        """A whole number from ``low`` to ``high``: bounds that keep a search's time and
+        memory within reason."""
+        if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+            self.problems.append(f"{where}: expected a whole number from {low:,} to {high:,}, "
+                                 f"got {describe(value)}")
+            return None
+        return value
 
     def unknown(self, section: str, allowed: set[str]):
         sec = self.data.get(section, {})
@@ -90,7 +114,7 @@ class _Reader:
             return
         for key in sec:
             if key not in allowed:
-                self.problems.append(f"{section}.{key}: unknown key; expected one of "
+                self.problems.append(f"{section}.{shown_key(key)}: unknown key; expected one of "
                                      f"{quoted(sorted(allowed))}")
 
 
@@ -103,28 +127,30 @@ def load_task(path: str | Path) -> Task:
         Every problem of the file at once, each naming its field.
     """
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as exc:
-        raise ModelError(f"not valid TOML: {exc}", source=str(path)) from None
+    data = loads(read_text(path), "TOML", source=str(path))
     r = _Reader(data)
     for key in data:
         if key not in _SECTIONS:
-            r.problems.append(f"{key}: unknown key; expected one of {quoted(sorted(_SECTIONS))}")
+            r.problems.append(f"{shown_key(key)}: unknown key; expected one of "
+                              f"{quoted(sorted(_SECTIONS))}")
     kind = data.get("task")
     if kind not in KINDS:
-        r.problems.append(f"task: expected one of {quoted(KINDS)}, got {kind!r}")
+        r.problems.append(f"task: {expected_one_of(kind, KINDS)}")
     units = data.get("units", {})
     lu = units.get("length", "m") if isinstance(units, dict) else "m"
     au = units.get("angle", "rad") if isinstance(units, dict) else "rad"
-    if lu not in LENGTH_UNITS:
-        r.problems.append(f"units.length: expected one of {quoted(LENGTH_UNITS)}, got {lu!r}")
-    if au not in ANGLE_UNITS:
-        r.problems.append(f"units.angle: expected one of {quoted(ANGLE_UNITS)}, got {au!r}")
+    if not isinstance(lu, str) or lu not in LENGTH_UNITS:
+        r.problems.append(f"units.length: {expected_one_of(lu, LENGTH_UNITS)}")
+        lu = "m"
+    if not isinstance(au, str) or au not in ANGLE_UNITS:
+        r.problems.append(f"units.angle: {expected_one_of(au, ANGLE_UNITS)}")
+        au = "rad"
     r.unknown("units", {"length", "angle"})
-    L, A = LENGTH_UNITS.get(lu, 1.0), ANGLE_UNITS.get(au, 1.0)
-    task = Task(kind=str(kind), name=str(data.get("name", path.stem)), length_unit=lu,
-                angle_unit=au)
+    name = data.get("name", path.stem)
+    if (why := name_problem(name)) is not None:
+        r.problems.append(f"name: {why}, got {describe(name)}")
+    L, A = LENGTH_UNITS[lu], ANGLE_UNITS[au]
+    task = Task(kind=str(kind), name=str(name), length_unit=lu, angle_unit=au)
     if kind == "motion":
         _motion_task(r, task, L, A)
     elif kind == "function":
@@ -139,7 +165,7 @@ def load_task(path: str | Path) -> Task:
 def _motion_task(r: _Reader, task: Task, L: float, A: float) -> None:
     r.unknown("positions", {"points", "angles", "second_points"})
     r.unknown("pivots", {"A0", "B0", "A1", "B1", "a0x", "b0x", "s", "t"})
-    pts = r.array("positions.points", r.get("positions", "points"), (None, 2), L)
+    pts = r.lengths("positions.points", r.get("positions", "points"), (None, 2), L)
     angles, second = r.get("positions", "angles"), r.get("positions", "second_points")
     if (angles is None) == (second is None):
         r.problems.append("positions: give either angles (orientations, or rotations from "
@@ -155,7 +181,7 @@ def _motion_task(r: _Reader, task: Task, L: float, A: float) -> None:
                 return
             task.positions = synthesis.Positions(pts, ang)
         else:
-            sec = r.array("positions.second_points", second, (None, 2), L)
+            sec = r.lengths("positions.second_points", second, (None, 2), L)
             if sec is None:
                 return
             task.positions = synthesis.Positions.from_two_points(pts, sec)
@@ -174,7 +200,7 @@ def _motion_task(r: _Reader, task: Task, L: float, A: float) -> None:
                           f"{quoted(sorted(allowed[n]))}")
     for k in given & allowed[n]:
         if k in ("A0", "B0", "A1", "B1"):
-            task.pivots[k] = r.array(f"pivots.{k}", piv[k], (2,), L)
+            task.pivots[k] = r.lengths(f"pivots.{k}", piv[k], (2,), L)
         else:
             task.pivots[k] = r.number(f"pivots.{k}", piv[k], L)
     need = {2: ("A1", "B1"), 4: ("a0x", "b0x")}.get(n, ())
@@ -197,7 +223,7 @@ def _function_task(r: _Reader, task: Task, L: float, A: float) -> None:
     expr = f.get("expression")
     if not isinstance(expr, str):
         r.problems.append(f"function.expression: expected a formula in x such as 'log10(x)', "
-                          f"got {expr!r}")
+                          f"got {describe(expr)}")
     else:
         try:
             task.function["f"] = _formula(expr)
@@ -208,12 +234,16 @@ def _function_task(r: _Reader, task: Task, L: float, A: float) -> None:
     task.function["output_range"] = r.array("function.output_range", f.get("output_range"), (2,), A)
     if "points" in f:
         p = f["points"]
-        task.function["points"] = p if isinstance(p, int) else r.array("function.points", p, (None,))
+        task.function["points"] = (r.integer("function.points", p, 2, MAX_PRECISION_POINTS)
+                                   if isinstance(p, int) else r.array("function.points", p, (None,)))
     if "ground" in f:
         # the ground length is in the file's length unit
-        task.function["ground"] = r.number("function.ground", f["ground"], L, positive=True)
+        ground = r.number("function.ground", f["ground"], L, positive=True)
+        if ground is not None and (why := length_problem(ground)):
+            r.problems.append(f"function.ground: {why}, got {describe(f['ground'])}")
+        task.function["ground"] = ground
     if "samples" in f:
-        task.function["samples"] = f["samples"]
+        task.function["samples"] = r.integer("function.samples", f["samples"], 2, MAX_SAMPLES)
 
 
 def _formula(expr: str):
@@ -227,11 +257,16 @@ def _path_task(r: _Reader, task: Task, L: float, A: float) -> None:
     r.unknown("positions", {"points"})
     r.unknown("search", {"runs", "maxiter", "popsize", "samples", "seed",
                          "min_transmission_angle", "refine"})
-    task.targets = r.array("positions.points", r.get("positions", "points"), (None, 2), L)
+    task.targets = r.lengths("positions.points", r.get("positions", "points"), (None, 2), L)
     s = dict(r.data.get("search", {})) if isinstance(r.data.get("search"), dict) else {}
     if "min_transmission_angle" in s:
         s["min_transmission_angle"] = r.number("search.min_transmission_angle",
                                                s["min_transmission_angle"], A)
+    for key, (low, high) in _SEARCH_BOUNDS.items():
+        if key in s:
+            s[key] = r.integer(f"search.{key}", s[key], low, high)
+    if "refine" in s and not isinstance(s["refine"], bool):
+        r.problems.append(f"search.refine: expected true or false, got {describe(s['refine'])}")
     task.search = s
 
 

@@ -14,12 +14,12 @@ from kinelab.io._modelfile import (ANGLE_UNITS, LENGTH_UNITS, SCHEMA, ModelFile,
 from kinelab.io._linkage2d import from_linkage2d_json
 from kinelab.io._outline import Outline, outlines, to_dxf, to_svg
 from kinelab.io._pyslvs import IMPORT_SPEEDS, from_pyslvs, to_pyslvs
-from kinelab.io._results import RESULT_FORMATS, write_results
+from kinelab.io._results import RESULT_FORMATS, result_format, write_results
 from kinelab.io._summary import (Extreme, QuickReturn, Summary, Transmission, default_outputs,
                                  summary)
 
 __all__ = ["load", "save", "ModelFile", "Units", "Outputs", "SCHEMA", "LENGTH_UNITS",
-           "ANGLE_UNITS", "from_toml", "to_toml", "from_json", "to_json", "write_results",
+           "ANGLE_UNITS", "from_toml", "to_toml", "from_json", "to_json", "write_results", "result_format",
            "RESULT_FORMATS", "summary", "Summary", "Extreme", "Transmission", "QuickReturn",
            "default_outputs", "from_pyslvs", "to_pyslvs", "IMPORT_SPEEDS", "from_linkage2d_json",
            "to_svg", "to_dxf", "outlines", "Outline"]

@@ -7,28 +7,13 @@ says what was expected and what was found.  Nothing but :class:`ModelError` leav
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Collection, Iterable, Mapping, Set
 from typing import Any
 
-from kinelab.errors import quoted, suggest
+from kinelab.errors import PROBLEMS_SHOWN, describe, quoted, shown, shown_key, suggest
+from kinelab.model import name_problem
 
-__all__ = ["Reader", "quoted", "suggest", "describe"]
-
-
-def describe(value: Any) -> str:
-    """A short, one-line rendering of a value found in a file."""
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, Mapping):
-        return "a table"
-    if isinstance(value, str):
-        text = value if len(value) <= 40 else value[:37] + "..."
-        return repr(text).replace("\n", "\\n")
-    if isinstance(value, (list, tuple)):
-        inner = ", ".join(describe(v) for v in list(value)[:4])
-        return f"[{inner}{', ...' if len(value) > 4 else ''}]"
-    text = repr(value)
-    return text if len(text) <= 40 else text[:37] + "..."
+__all__ = ["Reader", "quoted", "suggest", "describe", "shown", "shown_key"]
 
 
 def _is_number(value: Any) -> bool:
@@ -43,14 +28,30 @@ def _scaled(value: int | float, scale: float) -> float:
         return math.inf
 
 
+def _lookup(options: Iterable[str]) -> Collection[str]:
+    """``options`` as a collection with a fast ``in``: a dict or set as it is, else a dict."""
+    return options if isinstance(options, (Set, Mapping)) else dict.fromkeys(options)
+
+
+Check = Callable[[float], "str | None"]     # why a value (SI) is refused, or None
+
+
 class Reader:
-    """Collects problems while converting fields; see the module docstring."""
+    """Collects problems while converting fields; see the module docstring.
+
+    Each check takes time bounded by the size of what it reads: names are looked up in
+    dictionaries, and "did you mean" is worked out only for the problems a message shows.
+    """
 
     def __init__(self) -> None:
         self.problems: list[str] = []
 
     def fail(self, field: str, message: str) -> None:
         self.problems.append(f"{field}: {message}" if field else message)
+
+    def suggest(self, name: str, choices: Iterable[str]) -> str:
+        """:func:`~kinelab.errors.suggest`, for the problems a message shows only."""
+        return suggest(name, choices) if len(self.problems) < PROBLEMS_SHOWN else ""
 
     # -- structure ------------------------------------------------------------------------
     def table(self, value: Any, field: str, allowed: Iterable[str], *,
@@ -60,16 +61,16 @@ class Reader:
         if not isinstance(value, Mapping):
             self.fail(field, f"expected a table, got {describe(value)}")
             return None
-        allowed = list(allowed)
+        allowed = _lookup(allowed)
         reserved = reserved or {}
         prefix = f"{field}." if field else ""
         for key in value:
             if key in allowed:
                 continue
             if key in reserved:
-                self.fail(prefix + str(key), reserved[key])
+                self.fail(prefix + shown_key(key), reserved[key])
             else:
-                self.fail(prefix + str(key), f"unknown field{suggest(key, allowed)}; "
+                self.fail(prefix + shown_key(key), f"unknown field{self.suggest(key, allowed)}; "
                           f"valid fields are {quoted(allowed)}")
         for key in required:
             if key not in value:
@@ -85,13 +86,16 @@ class Reader:
     # -- scalars --------------------------------------------------------------------------
     def _text(self, value: Any, field: str, what: str, options: Iterable[str] | None,
               complaint) -> str | None:
-        """Non-empty text, one of ``options`` when given (else ``complaint(value, options)``)."""
-        if not isinstance(value, str) or not value.strip():
-            self.fail(field, f"expected {what}, got {describe(value)}")
+        """Non-empty printable text, one of ``options`` when given (else
+        ``complaint(value, options)``)."""
+        if name_problem(value) is not None:
+            printable = isinstance(value, str) and value.strip()
+            self.fail(field, f"expected {what}{' of printable characters' if printable else ''}, "
+                      f"got {describe(value)}")
             return None
         if options is None:
             return value
-        options = list(options)
+        options = _lookup(options)
         if value in options:
             return value
         self.fail(field, complaint(value, options))
@@ -99,7 +103,7 @@ class Reader:
 
     def string(self, value: Any, field: str, *, choices: Iterable[str] | None = None) -> str | None:
         return self._text(value, field, "a non-empty text", choices, lambda v, c: (
-            f"expected one of {quoted(c)}, got '{v}'{suggest(v, c)}"))
+            f"expected one of {quoted(c)}, got {shown(v)}{self.suggest(v, c)}"))
 
     def boolean(self, value: Any, field: str) -> bool | None:
         if not isinstance(value, bool):
@@ -114,8 +118,9 @@ class Reader:
         return int(value)
 
     def number(self, value: Any, field: str, *, scale: float = 1.0, positive: bool = False,
-               unit: str = "") -> float | None:
-        """A finite number times ``scale`` (the unit's factor to SI)."""
+               unit: str = "", check: Check | None = None) -> float | None:
+        """A finite number times ``scale`` (the unit's factor to SI), refused when
+        ``check`` says why (it is given the SI value)."""
         if not _is_number(value):
             self.fail(field, f"expected a number, got {describe(value)}")
             return None
@@ -127,10 +132,14 @@ class Reader:
             self.fail(field, f"expected a positive {'length' if unit else 'number'}, got "
                       f"{describe(value)}{' ' + unit if unit else ''}")
             return None
+        if check is not None and (why := check(v)):
+            self.fail(field, f"{why}, got {describe(value)}{' ' + unit if unit else ''}")
+            return None
         return v
 
     def numbers(self, value: Any, field: str, count: int | tuple[int, ...], *, scale: float = 1.0,
-                what: str = "numbers") -> tuple[float, ...] | None:
+                what: str = "numbers", unit: str = "", check: Check | None = None
+                ) -> tuple[float, ...] | None:
         counts = (count,) if isinstance(count, int) else count
         shape = what if what not in ("numbers", "coordinates") else " or ".join(
             f"[{', '.join(['x', 'y', 'z'][:n])}]" if what == "coordinates" else f"{n} numbers"
@@ -143,14 +152,17 @@ class Reader:
         if not all(math.isfinite(x) for x in out):
             self.fail(field, f"expected finite numbers, got {describe(value)}")
             return None
+        if check is not None and (why := next(filter(None, map(check, out)), None)):
+            self.fail(field, f"{why}, got {describe(value)}{' ' + unit if unit else ''}")
+            return None
         return out
 
     def name(self, value: Any, field: str, known: Iterable[str] | None = None,
              kind: str = "", plural: str | None = None) -> str | None:
         """A name, optionally one of ``known`` (then the message lists them as ``plural``)."""
         return self._text(value, field, "a name", known, lambda v, k: (
-            f"expected a declared {kind}, got '{v}'{suggest(v, k)}; "
-            f"{plural or 'declared ' + kind + 's'} are {quoted(k) or 'none'}"))
+            f"expected a declared {kind}, got {shown(v)}{self.suggest(v, k)}; "
+            f"{plural or 'declared ' + kind + 's'} are {quoted(k)}"))
 
     def names(self, value: Any, field: str, known: Iterable[str] | None = None, kind: str = "",
               count: int | None = None, plural: str | None = None) -> tuple[str, ...] | None:
@@ -160,6 +172,7 @@ class Reader:
         if count is not None and len(items) != count:
             self.fail(field, f"expected {count} {kind}s, got {describe(items)}")
             return None
+        known = None if known is None else _lookup(known)    # once, not once per name
         before = len(self.problems)
         out = tuple(self.name(v, f"{field}[{i}]", known, kind, plural) for i, v in enumerate(items))
         return None if len(self.problems) > before else out

@@ -8,7 +8,6 @@ assembly nearest the drawing), and the assembled positions become kinelab's sket
 """
 from __future__ import annotations
 
-import json
 import math
 import os
 from collections.abc import Mapping
@@ -18,7 +17,8 @@ from typing import Any
 import numpy as np
 
 from kinelab.errors import ModelError
-from kinelab.io._fields import Reader, describe
+from kinelab.io._fields import Reader, describe, quoted, shown
+from kinelab.io._text import loads, read_text
 from kinelab.model import Input, Joint, Link, Mechanism, Point
 
 __all__ = ["from_linkage2d_json"]
@@ -44,18 +44,7 @@ def _read(source) -> tuple[dict, str]:
     if isinstance(source, Mapping):
         return dict(source), "linkage2d data"
     path = Path(source)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ModelError("no such file; check the path", source=str(path)) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ModelError(f"cannot read it as UTF-8 text: {exc}", source=path.name) from None
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise ModelError(f"line {exc.lineno}, column {exc.colno}: JSON syntax error: {exc.msg}",
-                         source=path.name) from None
-    return data, path.name
+    return loads(read_text(path), "JSON", source=path.name), path.name
 
 
 def from_linkage2d_json(source: str | os.PathLike | Mapping[str, Any], *,
@@ -156,7 +145,7 @@ def _links(r: Reader, value, ls: float, deg: float) -> dict[str, dict]:
         for k, ln in enumerate(r.array(t.get("lines", []), f"{w}.lines", "lines") or []):
             ln = r.table(ln, f"{w}.lines[{k}]", ("id", "name", "point_ids"), required=("id", "point_ids"))
             if ln is not None and "id" in ln and "point_ids" in ln:
-                ids = r.names(ln["point_ids"], f"{w}.lines[{k}].point_ids", list(points), "point", count=2)
+                ids = r.names(ln["point_ids"], f"{w}.lines[{k}].point_ids", points, "point", count=2)
                 if ids is not None and isinstance(ln["id"], str):
                     lines[ln["id"]] = ids
         grounded = r.boolean(t.get("isGrounded", False), f"{w}.isGrounded")
@@ -164,7 +153,7 @@ def _links(r: Reader, value, ls: float, deg: float) -> dict[str, dict]:
         if lid is None or position is None or angle is None:
             continue
         if lid in out:
-            r.fail(f"{w}.id", f"'{lid}' is already the id of another link")
+            r.fail(f"{w}.id", f"{shown(lid)} is already the id of another link")
             continue
         out[lid] = dict(name=name if isinstance(name, str) and name.strip() else lid,
                         grounded=bool(grounded), position=np.array(position), angle=angle,
@@ -197,28 +186,28 @@ def _joints(r: Reader, value, links: dict[str, dict]) -> list[dict]:
         if kind == "gear":
             r.fail(w, "gear joints are not supported yet; remove the gear or replace it")
             continue
-        parent = r.name(t["parent"], f"{w}.parent", list(links), "link")
-        child = r.name(t["child"], f"{w}.child", list(links), "link")
+        parent = r.name(t["parent"], f"{w}.parent", links, "link")
+        child = r.name(t["child"], f"{w}.child", links, "link")
         if parent is None or child is None:
             continue
         j = dict(kind=kind, id=t["id"], name=t.get("name") or t["id"], parent=parent,
                  child=child, where=w)
         P, C = links[parent], links[child]
         if kind == "revolute":
-            j["p"] = r.name(t["point_id_parent"], f"{w}.point_id_parent", list(P["points"]), "point")
-            j["c"] = r.name(t["point_id_child"], f"{w}.point_id_child", list(C["points"]), "point")
+            j["p"] = r.name(t["point_id_parent"], f"{w}.point_id_parent", P["points"], "point")
+            j["c"] = r.name(t["point_id_child"], f"{w}.point_id_child", C["points"], "point")
         elif kind == "prismatic":
             for side, L in (("parent", P), ("child", C)):
                 ax = r.table(t[f"axis_{side}"], f"{w}.axis_{side}", ("point_id", "direction_id"),
                              required=("point_id", "direction_id"))
                 if ax is not None and "point_id" in ax and "direction_id" in ax:
                     j[side[0]] = r.name(ax["point_id"], f"{w}.axis_{side}.point_id",
-                                        list(L["points"]), "point")
+                                        L["points"], "point")
                     j[side[0] + "d"] = r.name(ax["direction_id"], f"{w}.axis_{side}.direction_id",
-                                              list(L["directions"]), "direction")
+                                              L["directions"], "direction")
         elif kind == "pin-in-slot":
-            j["line"] = r.name(t["line_id_parent"], f"{w}.line_id_parent", list(P["lines"]), "line")
-            j["c"] = r.name(t["point_id_child"], f"{w}.point_id_child", list(C["points"]), "point")
+            j["line"] = r.name(t["line_id_parent"], f"{w}.line_id_parent", P["lines"], "line")
+            j["c"] = r.name(t["point_id_child"], f"{w}.point_id_child", C["points"], "point")
         else:
             j["rel"] = r.numbers(t["relative_pos"], f"{w}.relative_pos", 2)
             j["rel_angle"] = r.number(t["relative_angle"], f"{w}.relative_angle")
@@ -231,7 +220,11 @@ def _bodies(links: dict[str, dict], joints: list[dict], ls: float,
             deg: float) -> dict[str, tuple[str, np.ndarray, float]]:
     """Each link's body (its root link) and the link's frame in the body's: (root, offset, angle)."""
     frame = {}
-    welds = [j for j in joints if j["kind"] == "weld"]
+    welds: dict[str, list[tuple[dict, str, int]]] = {}    # link -> (weld, other link, sign)
+    for j in joints:
+        if j["kind"] == "weld":
+            welds.setdefault(j["parent"], []).append((j, j["child"], 1))
+            welds.setdefault(j["child"], []).append((j, j["parent"], -1))
     for root in links:
         if root in frame:
             continue
@@ -239,19 +232,18 @@ def _bodies(links: dict[str, dict], joints: list[dict], ls: float,
         todo = [root]
         while todo:
             a = todo.pop()
-            for j in welds:
-                for x, y, sign in ((j["parent"], j["child"], 1), (j["child"], j["parent"], -1)):
-                    if x == a and y not in frame:
-                        _, off, ang = frame[a]
-                        rel = np.array(j["rel"]) * ls
-                        rel_angle = j["rel_angle"] * deg
-                        if sign > 0:     # child frame = parent frame + (rel, rel_angle)
-                            o, t = off + _rot(ang) @ rel, ang + rel_angle
-                        else:
-                            t = ang - rel_angle
-                            o = off - _rot(t) @ rel
-                        frame[y] = (root, o, t)
-                        todo.append(y)
+            for j, y, sign in welds.get(a, ()):
+                if y not in frame:
+                    _, off, ang = frame[a]
+                    rel = np.array(j["rel"]) * ls
+                    rel_angle = j["rel_angle"] * deg
+                    if sign > 0:     # child frame = parent frame + (rel, rel_angle)
+                        o, t = off + _rot(ang) @ rel, ang + rel_angle
+                    else:
+                        t = ang - rel_angle
+                        o = off - _rot(t) @ rel
+                    frame[y] = (root, o, t)
+                    todo.append(y)
     return frame
 
 
@@ -265,6 +257,7 @@ def _build(top, links, joints, ls, deg, input_name) -> Mechanism:
         raise ModelError(f"links: expected one grounded body, got {len(grounded)}")
     ground = grounded.pop()
     moving = [b for b in roots if b != ground]
+    slot = {b: k for k, b in enumerate(moving)}     # where a body's pose is in x
 
     def local(link, pid):                 # point in its body's frame
         _, off, ang = frame[link]
@@ -276,7 +269,7 @@ def _build(top, links, joints, ls, deg, input_name) -> Mechanism:
     def pose(x, body):
         if body == ground:
             return links[body]["position"], links[body]["angle"]
-        k = moving.index(body)
+        k = slot[body]
         return x[3 * k:3 * k + 2], x[3 * k + 2]
 
     def world(x, link, pid):
@@ -331,7 +324,7 @@ def _build(top, links, joints, ls, deg, input_name) -> Mechanism:
     body_name = {b: unique(links[b]["name"]) for b in roots}
     point_of: dict[tuple[str, str], str] = {}
     positions: dict[str, np.ndarray] = {}
-    carried: dict[str, list[str]] = {b: [] for b in roots}
+    carried: dict[str, dict[str, None]] = {b: {} for b in roots}   # body -> its points, in order
 
     def point(link, pid):
         if (link, pid) not in point_of:
@@ -340,8 +333,7 @@ def _build(top, links, joints, ls, deg, input_name) -> Mechanism:
             positions[name] = world(x, link, pid)
         n = point_of[(link, pid)]
         body = frame[link][0]
-        if n not in carried[body]:
-            carried[body].append(n)
+        carried[body][n] = None
         return n
 
     for j in joints:                          # pins first: the parent's point names both
@@ -395,6 +387,6 @@ def _input(kl_joints: list[Joint], joints: list[dict], ground: str, wanted: str 
     by_id = {str(j["id"]): j["name"] for j in joints}
     name = wanted if wanted in names else by_id.get(wanted)
     if name not in names:
-        raise ModelError(f"input: expected the name or id of a joint, got {wanted!r}; the joints "
-                         f"are {', '.join(repr(n) for n in sorted(names))}")
+        raise ModelError(f"input: expected the name or id of a joint, got {shown(wanted)}; the "
+                         f"joints are {quoted(sorted(names))}")
     return (Input(joint=name),)

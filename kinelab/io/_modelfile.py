@@ -13,7 +13,6 @@ import json
 import math
 import os
 import re
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -26,11 +25,13 @@ from kinelab import _memory as memory
 from kinelab._files import atomic_write
 from kinelab.errors import AssemblyError, ModelError
 from kinelab.io import _toml
-from kinelab.io._fields import Reader, describe, quoted
+from kinelab.io._fields import Reader, describe, quoted, shown, shown_key
+from kinelab.io._text import loads, read_text
 from kinelab.kinematics import Assembly, assemble
 from kinelab.kinematics._assemble import assembly_miss, needs_assembly
 from kinelab.model import (ANGLE_UNITS, JOINT_TYPES, LENGTH_UNITS, SPACES, Input, Joint, Link,
-                           Mechanism, Point, Units)
+                           Mechanism, Point, Units, length_problem, name_problem, range_problem,
+                           rate_problem)
 
 __all__ = ["SCHEMA", "LENGTH_UNITS", "ANGLE_UNITS", "Units", "Outputs", "ModelFile", "load",
            "save", "from_toml", "to_toml", "from_json", "to_json"]
@@ -132,47 +133,22 @@ class ModelFile:
         source = path.name
         suffix = path.suffix.lower()
         if suffix not in (".toml", ".json"):
-            raise ModelError(f"expected a .toml or .json model file, got '{path.suffix or path.name}'; "
+            raise ModelError(f"expected a .toml or .json model file, got {shown(path.suffix or path.name)}; "
                              "rename it or convert it (kinelab import reads Pyslvs and "
                              "linkage2d files)", source=source)
-        try:
-            raw = path.read_bytes()
-        except FileNotFoundError:
-            raise ModelError("no such file; check the path", source=str(path)) from None
-        except OSError as exc:
-            raise ModelError(f"cannot read it: {exc.strerror or exc}", source=str(path)) from None
-        try:
-            text = raw.decode("utf-8-sig")
-        except UnicodeDecodeError as exc:
-            line = raw[:exc.start].count(b"\n") + 1
-            raise ModelError(f"line {line}: not UTF-8 text; save the file as UTF-8",
-                             source=source) from None
+        text = read_text(path)
         parse = cls.from_toml if suffix == ".toml" else cls.from_json
-        mf = parse(text, source=source, _stem=path.stem)
-        return mf
+        return parse(text, source=source, _stem=path.stem)
 
     @classmethod
     def from_toml(cls, text: str, *, source: str | None = None, _stem: str | None = None) -> ModelFile:
         """Parse model-file text in TOML."""
-        try:
-            data = tomllib.loads(text)
-        except tomllib.TOMLDecodeError as exc:
-            raise ModelError(_syntax_message(str(exc), text, "TOML"), source=source) from None
-        except RecursionError:
-            raise ModelError("nested too deeply to be a model file", source=source) from None
-        return cls.from_dict(data, source=source, _stem=_stem)
+        return cls.from_dict(loads(text, "TOML", source=source), source=source, _stem=_stem)
 
     @classmethod
     def from_json(cls, text: str, *, source: str | None = None, _stem: str | None = None) -> ModelFile:
         """Parse model-file text in JSON (the same fields as TOML)."""
-        try:
-            data = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise ModelError(f"line {exc.lineno}, column {exc.colno}: JSON syntax error: "
-                             f"{exc.msg}; fix the syntax there", source=source) from None
-        except RecursionError:
-            raise ModelError("nested too deeply to be a model file", source=source) from None
-        return cls.from_dict(data, source=source, _stem=_stem)
+        return cls.from_dict(loads(text, "JSON", source=source), source=source, _stem=_stem)
 
     @classmethod
     def from_dict(cls, data: Any, *, source: str | None = None, _stem: str | None = None) -> ModelFile:
@@ -231,7 +207,7 @@ class ModelFile:
         counts = [samples] * M if samples is not None else (
             list(self.samples) if self.samples else [DEFAULT_SAMPLES] * M)
         if samples is not None and not (isinstance(samples, int) and 2 <= samples <= MAX_SAMPLES):
-            raise ModelError(f"samples: expected a whole number from 2 to {MAX_SAMPLES:,}, got {samples!r}")
+            raise ModelError(f"samples: expected a whole number from 2 to {MAX_SAMPLES:,}, got {describe(samples)}")
         total = math.prod(counts) if (M > 1 and self.sweep == "grid") else max(counts)
         memory.require(total * M * 8 * 3, f"the inputs of {total:,} samples"
                        + (f" (a grid of {' x '.join(f'{c:,}' for c in counts)})" if M > 1 and
@@ -274,17 +250,6 @@ def _reachable_span(m: Mechanism) -> tuple[float, float]:
     return lo + shrink, hi - shrink
 
 
-def _syntax_message(text: str, source_text: str, language: str) -> str:
-    match = re.match(r"^(.*) \(at (?:line (\d+), column (\d+)|end of document)\)$", text, re.S)
-    what = match.group(1) if match else text
-    if match and match.group(2):
-        where = f"line {match.group(2)}, column {match.group(3)}"
-    else:
-        where = f"line {source_text.count(chr(10)) + 1} (end of file)"
-    what = what[:1].lower() + what[1:]
-    return f"{where}: {language} syntax error: {what}; fix the syntax there"
-
-
 # ------------------------------------------------------------------------------------------
 # reading
 # ------------------------------------------------------------------------------------------
@@ -312,7 +277,7 @@ class _Parser:
         if "schema" in top:
             schema = top["schema"]
             if isinstance(schema, int) and not isinstance(schema, bool) and schema > SCHEMA:
-                self.fail([f"schema: this file is written for schema {schema}, but this kinelab "
+                self.fail([f"schema: this file is written for schema {describe(schema)}, but this kinelab "
                            f"reads schema {SCHEMA} and older; upgrade kinelab"])
             r.integer(schema, "schema", low=1, high=SCHEMA)
         name = r.string(top.get("name", self.stem or "mechanism"), "name")
@@ -382,20 +347,21 @@ class _Parser:
             r.fail("points", f"expected a table of name = [x, y], got {describe(raw_points)}")
             raw_points = {}
         elif "points" in top:
-            point_names = list(raw_points)
+            point_names = dict.fromkeys(raw_points)
         for pname, xy in raw_points.items():
-            v = r.numbers(xy, f"points.{_toml.toml_key(pname)}", dim, scale=ls, what="coordinates")
+            v = r.numbers(xy, f"points.{shown_key(pname)}", dim, scale=ls, what="coordinates",
+                          unit=units.length, check=_coordinate)
             if v is not None:
                 points[pname] = v
         raw_links = list(self.items(top.get("links", []), "links", _LINK, ("name", "points")))
         raw_joints = list(self.items(top.get("joints", []), "joints", _JOINT, ("type", "links")))
         # names first, so that one bad field does not make every reference to it fail too
-        taken = {p: f"points.{_toml.toml_key(p)}" for p in point_names or ()}
+        taken = {p: f"points.{shown_key(p)}" for p in point_names or ()}
         link_names = self.declare(raw_links, "links", taken, lambda t: t.get("name"))
         joint_names = self.declare(raw_joints, "joints", taken, _joint_name)
         joint_types: dict[str, Any] = {}
         for t in raw_joints:
-            if t is not None and _joint_name(t) in joint_names:
+            if t is not None and isinstance(_joint_name(t), str) and _joint_name(t) in joint_names:
                 joint_types.setdefault(_joint_name(t), t.get("type"))
         links = []
         for i, t in enumerate(raw_links):
@@ -412,7 +378,7 @@ class _Parser:
                 com = r.name(com, f"{where}.center_of_mass", pts or (), "point",
                              "the link's points")
             length = self.optional_number(t, "length", where, scale=ls, positive=True,
-                                          unit=units.length)
+                                          unit=units.length, check=length_problem)
             local = self.local(t["local"], f"{where}.local", pts or (), ls) if "local" in t else None
             if None in (lname, pts, ground) or ("local" in t and local is None):
                 continue
@@ -447,28 +413,30 @@ class _Parser:
         for i, t in enumerate(rows or []):
             yield self.r.table(t, f"{section}[{i}]", allowed, required=required)
 
-    def declare(self, tables, section: str, taken: dict[str, str], name_of) -> list[str]:
-        """The names of a section's entries, each checked to be unique across the file."""
-        names = []
+    def declare(self, tables, section: str, taken: dict[str, str], name_of) -> dict[str, None]:
+        """The names of a section's entries (a dict, for its fast ``in``), each checked to
+        be unique across the file."""
+        names: dict[str, None] = {}
         for i, t in enumerate(tables):
             n = name_of(t) if t is not None else None
-            if not isinstance(n, str) or not n.strip():
+            if name_problem(n) is not None:       # refused where the name is read
                 continue
             if n in taken:
-                self.r.fail(f"{section}[{i}].name", f"'{n}' is already the name of {taken[n]}; "
+                self.r.fail(f"{section}[{i}].name", f"{shown(n)} is already the name of {taken[n]}; "
                             "names must be unique across points, links and joints")
             else:
                 taken[n] = f"{section}[{i}]"
             if n in names:
                 continue
             self.where[(section[:-1], n)] = f"{section}[{i}]"
-            names.append(n)
+            names[n] = None
         return names
 
-    def optional_number(self, t, key, where, *, scale=1.0, positive=False, unit=""):
+    def optional_number(self, t, key, where, *, scale=1.0, positive=False, unit="", check=None):
         if t.get(key) is None:
             return None
-        return self.r.number(t[key], f"{where}.{key}", scale=scale, positive=positive, unit=unit)
+        return self.r.number(t[key], f"{where}.{key}", scale=scale, positive=positive, unit=unit,
+                             check=check)
 
     def joint(self, t, where, point_names, link_names, units: Units, dim: int) -> Joint | None:
         r = self.r
@@ -524,7 +492,7 @@ class _Parser:
                 continue
             joint = links = None
             if "joint" in t:
-                joint = r.name(t["joint"], f"{where}.joint", list(joint_types), "joint")
+                joint = r.name(t["joint"], f"{where}.joint", joint_types, "joint")
             else:
                 links = r.names(t["links"], f"{where}.links", link_names, "link", count=2)
             slide = joint is not None and joint_types[joint] == "P"
@@ -536,8 +504,14 @@ class _Parser:
                 if rng is not None and rng[0] == rng[1]:
                     r.fail(f"{where}.range", f"start and stop are equal ({describe(t['range'][0])} "
                            f"{unit}); give an interval")
-            speed = self.optional_number(t, "speed", where, scale=scale)
-            accel = self.optional_number(t, "acceleration", where, scale=scale)
+                elif rng is not None and (why := range_problem(*rng, angle=not slide)):
+                    r.fail(f"{where}.range", f"{why}, got {describe(t['range'])} {unit}")
+                    rng = None
+            si = "m" if slide else "rad"
+            speed = self.optional_number(t, "speed", where, scale=scale, unit=f"{unit}/s",
+                                         check=lambda v: rate_problem(v, f"{si}/s"))
+            accel = self.optional_number(t, "acceleration", where, scale=scale, unit=f"{unit}/s^2",
+                                         check=lambda v: rate_problem(v, f"{si}/s^2"))
             name = t.get("name")
             if name is not None:
                 name = r.name(name, f"{where}.name")
@@ -560,7 +534,7 @@ class _Parser:
         if t is None:
             return Outputs()
         slides = [j.name for j in m.joints if j.type == "P"]
-        reportable = list(m.link_names) + list(m.point_names) + slides
+        reportable = dict.fromkeys([*m.link_names, *m.point_names, *slides])
         report = ()
         if "report" in t:
             report = r.names(t["report"], "outputs.report", reportable, "link, point or slide",
@@ -571,14 +545,23 @@ class _Parser:
             if isinstance(v, (list, tuple)) and v and all(isinstance(x, str) for x in v):
                 v = [v]
             rows = r.array(v, "outputs.transmission", "pairs of links") or []
+            links = dict.fromkeys(m.link_names)
             pairs = tuple(p for k, x in enumerate(rows)
-                          if (p := r.names(x, f"outputs.transmission[{k}]", m.link_names, "link",
-                                           count=2)) is not None)
+                          if (p := self.pair(x, f"outputs.transmission[{k}]", links)) is not None)
         ratio = None
         if "time_ratio" in t:
-            ratio = r.name(t["time_ratio"], "outputs.time_ratio", list(m.link_names) + slides,
+            ratio = r.name(t["time_ratio"], "outputs.time_ratio", dict.fromkeys([*m.link_names, *slides]),
                            "link or slide", "its links and slides")
         return Outputs(tuple(report), pairs, ratio)
+
+    def pair(self, value, where: str, links) -> tuple[str, str] | None:
+        """Two different links: a transmission angle is between a coupler and an output."""
+        pair = self.r.names(value, where, links, "link", count=2)
+        if pair is not None and pair[0] == pair[1]:
+            self.r.fail(where, f"expected two different links (a coupler and an output), got "
+                        f"{shown(pair[0])} twice")
+            return None
+        return pair
 
     # -- catalogue ---------------------------------------------------------------------------
     def catalogue(self, value, units: Units):
@@ -610,7 +593,7 @@ class _Parser:
                 if not isinstance(v, Mapping):
                     r.fail(where, f"expected a table of name = [x, y], got {describe(v)}")
                     continue
-                kwargs[key] = {n: r.numbers(xy, f"{where}.{_toml.toml_key(n)}", 2,
+                kwargs[key] = {n: r.numbers(xy, f"{where}.{shown_key(n)}", 2,
                                             scale=units.length_scale, what="coordinates")
                                for n, xy in v.items()}
             elif key == "lengths":
@@ -712,14 +695,14 @@ class _Parser:
         if not isinstance(value, Mapping):
             self.r.fail(where, f"expected a table of point = [along, left], got {describe(value)}")
             return None
-        out = {}
+        out, rest = {}, set(pts[2:])
         for name, v in value.items():
-            if name not in pts[2:]:
-                self.r.fail(f"{where}.{_toml.toml_key(name)}", f"expected one of the link's points "
-                            f"after its first two ({quoted(pts[2:]) or 'none'}), got '{name}'")
+            if name not in rest:
+                self.r.fail(f"{where}.{shown_key(name)}", f"expected one of the link's points "
+                            f"after its first two ({quoted(pts[2:])}), got {shown(name)}")
                 continue
-            xy = self.r.numbers(v, f"{where}.{_toml.toml_key(name)}", 2, scale=scale,
-                                what="a place [along, left]")
+            xy = self.r.numbers(v, f"{where}.{shown_key(name)}", 2, scale=scale,
+                                what="a place [along, left]", check=_coordinate)
             if xy is not None:
                 out[name] = xy
         return out if len(out) == len(value) else None
@@ -731,6 +714,10 @@ def _file_lengths(problem: str, units: Units) -> str:
         return problem
     return re.sub(r"(?<![\w.])(-?\d+(?:\.\d*)?(?:e[-+]?\d+)?) m\b",
                   lambda g: f"{float(g.group(1)) / units.length_scale:.6g} {units.length}", problem)
+
+
+def _coordinate(v: float) -> str | None:
+    return length_problem(v, positive=False)
 
 
 def _joint_name(t: Mapping[str, Any]) -> Any:
@@ -746,7 +733,7 @@ def _locate(problem: str, where: Mapping[tuple[str, str], str]) -> str:
     if not m:
         return problem
     kind, name, fld, rest = m.groups()
-    place = (f"points.{_toml.toml_key(name)}" if kind == "point"
+    place = (f"points.{shown_key(name)}" if kind == "point"
              else where.get((kind, name), f"{kind}s['{name}']"))
     return f"{place}{'.' + fld if fld else ''}: {rest}"
 

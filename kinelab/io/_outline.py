@@ -17,9 +17,9 @@ from typing import Literal
 import numpy as np
 
 from kinelab._files import atomic_write
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, check_choice, describe
 from kinelab.io._modelfile import LENGTH_UNITS
-from kinelab.model import Mechanism
+from kinelab.model import Mechanism, is_real
 
 __all__ = ["Outline", "outlines", "to_svg", "to_dxf"]
 
@@ -125,9 +125,10 @@ def outlines(model: Mechanism, *, width: float | None = None, hole: float | None
     if not isinstance(model, Mechanism) or model.space != "planar":
         raise ModelError("model: expected a planar kinelab Mechanism")
     w = width if width is not None else 0.15 * _size(model)
-    d = hole if hole is not None else 0.4 * w
-    if not (w > 0 and d > 0 and d < w and math.isfinite(w)):
-        raise ModelError(f"width, hole: expected 0 < hole < width, got width {w!r} m and hole {d!r} m")
+    d = hole if hole is not None else (0.4 * w if is_real(w) else None)
+    if not (is_real(w) and is_real(d) and 0 < d < w):
+        raise ModelError(f"width, hole: expected 0 < hole < width, got width {describe(w)} m and "
+                         f"hole {describe(d)} m")
     xy = {p.name: np.array(p.xy) for p in model.points}
     parts = []
     for link in model.links:
@@ -184,8 +185,7 @@ def _placed(model, unit: str, layout: str, options) -> tuple[float, list]:
     """The drawing's unit scale and its outlines placed as ``layout`` asks (two hole
     diameters apart when laid out as parts)."""
     k = _check_unit(unit)
-    if layout not in ("parts", "assembly"):
-        raise ModelError(f"layout: expected one of 'parts', 'assembly', got {layout!r}")
+    check_choice("layout", layout, ("parts", "assembly"))
     parts = outlines(model, **options)
     return k, _layout(parts, layout, 2.0 * float(np.max(parts[0].holes[:, 2])))
 
@@ -211,8 +211,7 @@ def _transform(poly: np.ndarray, shift: np.ndarray, angle: float) -> np.ndarray:
 
 
 def _check_unit(unit: str) -> float:
-    if unit not in LENGTH_UNITS:
-        raise ModelError(f"unit: expected one of {', '.join(repr(u) for u in LENGTH_UNITS)}, got {unit!r}")
+    check_choice("unit", unit, LENGTH_UNITS)
     return LENGTH_UNITS[unit]
 
 

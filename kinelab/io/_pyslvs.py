@@ -22,8 +22,7 @@ import math
 import re
 from collections.abc import Sequence
 
-from kinelab.errors import ModelError
-from kinelab.io._fields import quoted
+from kinelab.errors import ModelError, describe, expected_one_of, shown
 from kinelab.io._modelfile import LENGTH_UNITS
 from kinelab.model import Input, Joint, Link, Mechanism, Point
 
@@ -72,7 +71,7 @@ class _Tokens:
                 "comma": "','", "close": "']'", "number": "a number", "name": "a name",
                 "paren": "a parenthesis"}.get(kind, kind)
             raise ModelError(f"expression: {where}: expected {expected}{' (' + what + ')' if what else ''}"
-                             f", got {v!r}")
+                             f", got {shown(v)}")
         self.i += 1
         return v
 
@@ -93,8 +92,8 @@ def _parse(text: str) -> list[tuple[str, float, float, float, tuple[str, ...]]]:
         t.take("open", "J[", "a joint")
         kind = t.take("name", what="the joint type R, P or RP")
         if kind not in ("R", "P", "RP"):
-            raise ModelError(f"expression: joint {len(joints)}: type: expected one of 'R', 'P', "
-                             f"'RP', got {kind!r}")
+            raise ModelError(f"expression: joint {len(joints)}: type: "
+                             f"{expected_one_of(kind, ('R', 'P', 'RP'))}")
         t.take("comma")
         angle = 0.0
         if t.accept("open", "A["):
@@ -137,8 +136,8 @@ def _parse(text: str) -> list[tuple[str, float, float, float, tuple[str, ...]]]:
             t.take("close", what="the end of the mechanism")
             break
     if t.peek()[0] != "end":
-        raise ModelError(f"expression: character {t.peek()[2]}: unexpected {t.peek()[1]!r} after "
-                         "the mechanism")
+        raise ModelError(f"expression: character {t.peek()[2]}: unexpected {shown(t.peek()[1])} "
+                         "after the mechanism")
     return joints
 
 
@@ -183,7 +182,7 @@ def from_pyslvs(expression: str, *, inputs: Sequence[tuple[int, int]] | None = N
     600.0
     """
     if length not in LENGTH_UNITS:
-        raise ModelError(f"length: expected one of {quoted(LENGTH_UNITS)}, got {length!r}")
+        raise ModelError(f"length: {expected_one_of(length, LENGTH_UNITS)}")
     if not isinstance(expression, str):
         raise ModelError(f"expression: expected text, got {type(expression).__name__}")
     scale = LENGTH_UNITS[length]
@@ -191,13 +190,11 @@ def from_pyslvs(expression: str, *, inputs: Sequence[tuple[int, int]] | None = N
     if inputs is None:
         inputs = _commented_inputs(expression)
     points = [Point(f"P{i}", x * scale, y * scale) for i, (_, _, x, y, _) in enumerate(vpoints)]
-    carried: dict[str, list[str]] = {}
+    carried: dict[str, dict[str, None]] = {}    # link -> its points, in order (a dict: fast in)
     joints: list[Joint] = []
 
     def carry(link: str, point: str) -> None:
-        carried.setdefault(link, [])
-        if point not in carried[link]:
-            carried[link].append(point)
+        carried.setdefault(link, {})[point] = None
 
     def pins(point: str, links: list[str]) -> None:
         links = sorted(links, key=lambda n: n != GROUND)     # the ground first, for inputs
@@ -257,8 +254,8 @@ def _commented_inputs(expression: str):
     try:
         return [tuple(p) for p in ast.literal_eval(match.group(1))]
     except (ValueError, SyntaxError, TypeError):
-        raise ModelError(f"expression: the inputs comment {match.group(1)!r} is not a list of "
-                         "pairs like [(0, 1)]") from None
+        raise ModelError(f"expression: the inputs comment {shown(match.group(1))} is not a list "
+                         "of pairs like [(0, 1)]") from None
 
 
 def _inputs(vpoints, joints: list[Joint], carried, pairs) -> list[Input]:
@@ -269,24 +266,29 @@ def _inputs(vpoints, joints: list[Joint], carried, pairs) -> list[Input]:
                 return [Input(joint=j.name, speed=turn)]
         return []
     out = []
+    slides = {j.point: j for j in reversed(joints) if j.type == "P"}
+    pivots = {(j.point, frozenset(j.links)): j for j in reversed(joints) if j.type == "R"}
+    links_at: dict[str, list[str]] = {}
+    for n, pts in carried.items():
+        for p in pts:
+            links_at.setdefault(p, []).append(n)
     for k, pair in enumerate(pairs):
         if (not isinstance(pair, (tuple, list)) or len(pair) != 2
                 or not all(isinstance(v, int) and 0 <= v < len(vpoints) for v in pair)):
             raise ModelError(f"inputs[{k}]: expected a pair of joint numbers from 0 to "
-                             f"{len(vpoints) - 1}, got {pair!r}")
+                             f"{len(vpoints) - 1}, got {describe(pair)}")
         b, d = pair
         if b == d:
-            slide = next((j for j in joints if j.type == "P" and j.point == f"P{b}"), None)
+            slide = slides.get(f"P{b}")
             if slide is None:
                 raise ModelError(f"inputs[{k}]: ({b}, {b}) drives a slide, but joint {b} is no slider")
             out.append(Input(joint=slide.name, speed=IMPORT_SPEEDS["slide"]))
             continue
-        common = [n for n, pts in carried.items() if n != GROUND and f"P{b}" in pts and f"P{d}" in pts]
+        common = [n for n in links_at.get(f"P{b}", ()) if n != GROUND and f"P{d}" in carried[n]]
         if not common:
             raise ModelError(f"inputs[{k}]: no link carries both joint {b} and joint {d}")
         link = common[0]
-        pivot = next((j for j in joints if j.type == "R" and j.point == f"P{b}"
-                      and set(j.links) == {GROUND, link}), None)
+        pivot = pivots.get((f"P{b}", frozenset((GROUND, link))))
         out.append(Input(joint=pivot.name, speed=turn) if pivot else
                    Input(links=(GROUND, link), speed=turn))
     return out
@@ -311,7 +313,7 @@ def to_pyslvs(model: Mechanism, *, length: str = "mm") -> str:
       J[RP, A[0.0], color[Green], P[249.99996875, 0.0], L[ground, rod]],
     """
     if length not in LENGTH_UNITS:
-        raise ModelError(f"length: expected one of {quoted(LENGTH_UNITS)}, got {length!r}")
+        raise ModelError(f"length: {expected_one_of(length, LENGTH_UNITS)}")
     if not isinstance(model, Mechanism) or model.space != "planar":
         raise ModelError("model: expected a planar kinelab Mechanism")
     scale = LENGTH_UNITS[length]

@@ -11,11 +11,11 @@ from typing import Literal
 import numpy as np
 
 from kinelab._files import atomic_write, write_csv
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, check_choice, shown
 from kinelab.kinematics import KinematicSolution
 from kinelab.model import Units
 
-__all__ = ["RESULT_FORMATS", "write_results"]
+__all__ = ["RESULT_FORMATS", "write_results", "result_format"]
 
 RESULT_FORMATS = ("csv", "json", "parquet")
 
@@ -36,7 +36,8 @@ def write_results(sol: KinematicSolution, path: str | os.PathLike, *,
     path : str or path-like
         Written to a temporary file beside it, then renamed: no half-written output.
     format : {"csv", "json", "parquet"}, optional
-        Default: from the suffix of ``path``, else CSV.  JSON is a list of row objects
+        Default: from the suffix of ``path`` (``.csv``, ``.json``, ``.parquet``), CSV when
+        it has none; see :func:`result_format`.  JSON is a list of row objects
         (``null`` where a value is undefined); Parquet needs the optional ``pyarrow``.
     degrees : bool
         Angles (and angular rates, K and L) in degrees: shorthand for
@@ -47,7 +48,8 @@ def write_results(sol: KinematicSolution, path: str | os.PathLike, *,
     Raises
     ------
     ModelError
-        An unknown format, or an unknown unit or key in ``units`` (nothing is written).
+        An unknown format, a suffix of ``path`` that names another format (or none, without
+        ``format``), or an unknown unit or key in ``units`` (nothing is written).
 
     Examples
     --------
@@ -60,10 +62,7 @@ def write_results(sol: KinematicSolution, path: str | os.PathLike, *,
     (3, '28.64788975654116', '4000.0')
     """
     path = Path(path)
-    fmt = format or {".json": "json", ".parquet": "parquet"}.get(path.suffix.lower(), "csv")
-    if fmt not in RESULT_FORMATS:
-        raise ModelError(f"format: expected one of {', '.join(repr(f) for f in RESULT_FORMATS)}, "
-                         f"got {fmt!r}")
+    fmt = result_format(path, format)
     columns = sol.columns(degrees=degrees, units=units)
     if fmt == "csv":
         return write_csv(columns, path)
@@ -77,6 +76,25 @@ def write_results(sol: KinematicSolution, path: str | os.PathLike, *,
     import pandas
     frame = pandas.DataFrame(columns)
     return atomic_write(path, lambda f: frame.to_parquet(f, index=False), binary=True)
+
+
+def result_format(path: str | os.PathLike, format: str | None = None) -> str:
+    """The format a table is written in: ``format`` when given, else the one ``path``'s
+    suffix names (CSV when it has none).  A suffix that names another format, or none of
+    them, is refused: a file called ``x.xlsx`` or ``x.json`` must not hold CSV."""
+    suffix = Path(path).suffix.lower()
+    named = {f".{f}": f for f in RESULT_FORMATS}.get(suffix)
+    if format is not None:
+        check_choice("format", format, RESULT_FORMATS)
+        if named is not None and named != format:
+            raise ModelError(f"format: {format!r} was asked for, but the file name "
+                             f"{shown(Path(path).name)} says {named!r}; make them agree")
+        return format
+    if named is None and suffix:
+        raise ModelError(f"path: expected a file name ending in "
+                         f"{', '.join('.' + f for f in RESULT_FORMATS)}, got "
+                         f"{shown(Path(path).name)}; rename it or give the format")
+    return named or "csv"
 
 
 def _write_json(columns: dict[str, np.ndarray], f) -> None:

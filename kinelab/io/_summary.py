@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from kinelab import kinematics
-from kinelab.errors import KinelabError
+from kinelab.errors import KinelabError, ModelError, describe
 from kinelab.kinematics import KinematicSolution
 from kinelab.mechanisms import Grashof, grashof
 from kinelab.model import Mechanism
@@ -339,6 +339,10 @@ def summary(sol: KinematicSolution, *, report: tuple[str, ...] | None = None,
         full = kinematics.turns_fully(m, spans)
     lengths = _fourbar_lengths(m)
     pairs = list(transmission) if transmission else _default_pairs(m)
+    for k, pair in enumerate(pairs):
+        if not (isinstance(pair, (tuple, list)) and len(pair) == 2 and pair[0] != pair[1]):
+            raise ModelError(f"transmission[{k}]: expected two different links (a coupler and "
+                             f"an output), got {describe(pair)}")
     least = np.where(np.isfinite(sol.singularity), sol.singularity, np.inf)
     i_least = int(np.argmin(least))
     return Summary(

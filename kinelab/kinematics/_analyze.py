@@ -8,14 +8,14 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab import _memory as memory
-from kinelab.errors import AssemblyError, ModelError, SingularityError, check_choice
+from kinelab.errors import AssemblyError, ModelError, SingularityError, check_choice, describe
 from kinelab.kinematics import _kernel as k
 from kinelab.kinematics._assemble import check_assembled
 from kinelab.kinematics._branches import BranchMap, ChangePoint, branch_map, branched_ops
 from kinelab.kinematics._evaluate import run as _run
 from kinelab.kinematics._plan import Plan, build_plan
 from kinelab.kinematics._solution import KinematicSolution
-from kinelab.model import Mechanism
+from kinelab.model import Mechanism, real_array
 from kinelab.solvers import bisect, wrap_angle
 
 __all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "change_points"]
@@ -50,13 +50,13 @@ def plan(mechanism: Mechanism, *, method: Literal["auto", "newton"] = "auto") ->
 
 
 def _as_inputs(name: str, value: ArrayLike, M: int, shape: tuple[int, ...] | None):
-    try:
-        a = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ModelError(f"{name}: expected numbers, got {value!r}") from None
+    a = real_array(value)
+    if a is None:
+        raise ModelError(f"{name}: expected numbers, got {describe(value)}")
     if not np.all(np.isfinite(a)):
         bad = np.argwhere(~np.isfinite(a))[0].tolist()
-        raise ModelError(f"{name}: expected finite numbers, got {a[tuple(bad)]} at index {bad}")
+        raise ModelError(f"{name}: expected finite numbers, got {a[tuple(bad)]}"
+                         + (f" at index {bad}" if bad else ""))
     if shape is not None:
         if M == 1:
             target = shape[:1] if len(shape) else ()

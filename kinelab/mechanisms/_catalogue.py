@@ -13,25 +13,32 @@ from typing import Literal
 
 import numpy as np
 
-from kinelab.errors import ModelError, check_choice
-from kinelab.model import Input, Joint, Link, Mechanism, Point
+from kinelab.errors import ModelError, check_choice, describe, quoted
+from kinelab.model import Input, Joint, Link, Mechanism, Point, is_real, length_problem
 
 __all__ = ["fourbar", "slider_crank", "inverted_slider_crank", "slotted_link", "whitworth",
            "fivebar", "watt6", "stephenson6", "triad6"]
 
 
 def _positive(**lengths: float) -> None:
-    problems = [f"{name}: expected a positive length (m), got {value!r}"
+    """Refuse anything but lengths kinelab computes with (:data:`~kinelab.model.MIN_LENGTH`
+    to :data:`~kinelab.model.MAX_LENGTH` m): not a boolean, not text, not a complex number."""
+    problems = [f"{name}: expected a positive length (m), got {describe(value)}"
+                if not (is_real(value) and value > 0) else
+                f"{name}: {why}, got {float(value):g} m"
                 for name, value in lengths.items()
-                if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0)]
+                if not (is_real(value) and value > 0) or (why := length_problem(float(value)))]
     if problems:
         raise ModelError(problems)
 
 
 def _finite(**values: float) -> None:
-    problems = [f"{name}: expected a finite number, got {value!r}"
+    """Refuse anything but a real number at most :data:`~kinelab.model.MAX_LENGTH` in size
+    (an offset, a coordinate)."""
+    problems = [f"{name}: expected a finite number, got {describe(value)}" if not is_real(value)
+                else f"{name}: {why}, got {float(value):g} m"
                 for name, value in values.items()
-                if not (isinstance(value, (int, float)) and math.isfinite(value))]
+                if not is_real(value) or (why := length_problem(float(value), positive=False))]
     if problems:
         raise ModelError(problems)
 
@@ -129,8 +136,9 @@ def fourbar(ground: float, crank: float, coupler: float, rocker: float,
     points = [Point("O2", 0.0, 0.0), Point("A", *A), Point("B", *B), Point("O4", *O4)]
     coupler_pts = ("A", "B")
     if coupler_point is not None:
-        if len(coupler_point) != 2:
-            raise ModelError(f"coupler_point: expected (along, perpendicular), got {coupler_point!r}")
+        if not isinstance(coupler_point, (tuple, list, np.ndarray)) or len(coupler_point) != 2:
+            raise ModelError(f"coupler_point: expected (along, perpendicular), got "
+                             f"{describe(coupler_point)}")
         _finite(coupler_point_along=coupler_point[0], coupler_point_perpendicular=coupler_point[1])
         e = np.subtract(B, A) / coupler
         n = np.array([-e[1], e[0]])
@@ -391,6 +399,9 @@ def fivebar(ground: float, crank1: float, coupler1: float, coupler2: float, cran
     _positive(ground=ground, crank1=crank1, coupler1=coupler1, coupler2=coupler2, crank2=crank2)
     check_choice("branch", branch, ("up", "down"))
     sigma = 1.0 if branch == "up" else -1.0
+    if q0 is not None and not (isinstance(q0, (tuple, list, np.ndarray)) and len(q0) == 2
+                               and all(is_real(v) and abs(v) <= 2 * math.pi for v in q0)):
+        raise ModelError(f"q0: expected two crank angles from -2 pi to 2 pi rad, got {describe(q0)}")
     if q0 is None:
         g = np.radians(np.arange(0.0, 360.0, 5.0)) + 1e-3
         t1, t2 = np.meshgrid(g, g, indexing="ij")
@@ -424,11 +435,13 @@ def _sketch(defaults: Mapping[str, tuple[float, float]],
             points: Mapping[str, tuple[float, float]] | None) -> dict[str, tuple[float, float]]:
     """The sketch: the defaults with the given ``points`` (m) in their place."""
     pts = dict(defaults)
+    if points is not None and not isinstance(points, Mapping):
+        raise ModelError(f"points: expected a mapping of name to (x, y), got {describe(points)}")
     for key, xy in (points or {}).items():
         if key not in pts:
-            raise ModelError(f"points: expected some of {', '.join(repr(k) for k in pts)}, got '{key}'")
-        if len(xy) != 2:
-            raise ModelError(f"points['{key}']: expected (x, y), got {xy!r}")
+            raise ModelError(f"points: expected some of {quoted(pts)}, got {describe(key)}")
+        if not isinstance(xy, (tuple, list, np.ndarray)) or len(xy) != 2:
+            raise ModelError(f"points['{key}']: expected (x, y), got {describe(xy)}")
         _finite(**{f"points['{key}'].x": xy[0], f"points['{key}'].y": xy[1]})
         pts[key] = (float(xy[0]), float(xy[1]))
     return pts

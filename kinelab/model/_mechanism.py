@@ -7,12 +7,15 @@ every link's geometry and the assembly mode (branch) the analysis follows.
 from __future__ import annotations
 
 import math
+from collections import Counter
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any, Literal
 
-from kinelab.errors import ModelError, quoted, suggest
+from kinelab.errors import PROBLEMS_SHOWN, ModelError, describe, quoted, shown, suggest
 from kinelab.model._joints import JOINT_TYPES
+from kinelab.model._values import is_real, length_problem, name_problem, range_problem, rate_problem
 
 __all__ = ["Point", "Link", "Joint", "Input", "Mechanism", "SPACES"]
 
@@ -197,17 +200,24 @@ class Mechanism:
         object.__setattr__(self, "parameters", dict(self.parameters))
         problems = _validate(self)
         if problems:
-            raise ModelError(problems, source=f"mechanism '{self.name}'")
+            raise ModelError(problems, source=f"mechanism {shown(self.name)}")
 
     # -- lookup by name ---------------------------------------------------------------
+    # by dictionaries built once: a model of many points looks each up in constant time
+    @cached_property
+    def _by_name(self) -> dict[str, dict[str, Any]]:
+        return {kind: {item.name: item for item in reversed(items)}
+                for kind, items in (("point", self.points), ("link", self.links),
+                                    ("joint", self.joints))}
+
     def point(self, name: str) -> Point:
-        return _lookup(self.points, name, "point")
+        return _lookup(self._by_name["point"], name, "point")
 
     def link(self, name: str) -> Link:
-        return _lookup(self.links, name, "link")
+        return _lookup(self._by_name["link"], name, "link")
 
     def joint(self, name: str) -> Joint:
-        return _lookup(self.joints, name, "joint")
+        return _lookup(self._by_name["joint"], name, "joint")
 
     @property
     def ground(self) -> Link:
@@ -232,11 +242,25 @@ class Mechanism:
 
     def links_carrying(self, point: str) -> tuple[str, ...]:
         """Names of the links that carry ``point``."""
-        return tuple(link.name for link in self.links if point in link.points)
+        return self._around[0].get(point, ())
 
     def joints_of(self, link: str) -> tuple[Joint, ...]:
         """The joints that touch ``link``."""
-        return tuple(j for j in self.joints if link in j.links)
+        return self._around[1].get(link, ())
+
+    @cached_property
+    def _around(self) -> tuple[dict[str, tuple[str, ...]], dict[str, tuple[Joint, ...]]]:
+        """(point -> links carrying it, link -> joints touching it), built once."""
+        carriers: dict[str, list[str]] = {}
+        for link in self.links:
+            for p in dict.fromkeys(link.points):
+                carriers.setdefault(p, []).append(link.name)
+        touching: dict[str, list[Joint]] = {}
+        for j in self.joints:
+            for n in dict.fromkeys(j.links):
+                touching.setdefault(n, []).append(j)
+        return ({k: tuple(v) for k, v in carriers.items()},
+                {k: tuple(v) for k, v in touching.items()})
 
     # -- poses --------------------------------------------------------------------------
     def at(self, q) -> Mechanism:
@@ -274,13 +298,13 @@ class Mechanism:
         def tup(v):
             return tuple(v) if isinstance(v, (list, tuple)) else v
         try:
-            points = tuple(Point(name, *map(float, xyz)) for name, xyz in data["points"].items())
+            points = tuple(Point(name, *xyz) for name, xyz in data["points"].items())
             links = tuple(Link(**{k: tup(v) for k, v in d.items()}) for d in data["links"])
             joints = tuple(Joint(**{k: tup(v) for k, v in d.items()}) for d in data["joints"])
             inputs = tuple(Input(**{k: tup(v) for k, v in d.items()})
                            for d in data.get("inputs", ()))
         except (KeyError, TypeError, AttributeError) as exc:
-            raise ModelError(f"malformed mechanism data: {exc}") from None
+            raise ModelError(f"malformed mechanism data: {describe(str(exc))}") from None
         return cls(name=data.get("name", "mechanism"), points=points, links=links,
                    joints=joints, inputs=inputs, space=data.get("space", "planar"),
                    parameters=data.get("parameters", {}))
@@ -290,49 +314,83 @@ class Mechanism:
                 f"inputs={list(self.input_names)})")
 
 
-def _lookup(items: Sequence, name: str, kind: str):
-    for item in items:
-        if item.name == name:
-            return item
-    names = [i.name for i in items]
-    raise ModelError(f"{kind} '{name}' not found{suggest(name, names)}; "
-                     f"the {kind}s are {quoted(names)}")
+def _lookup(items: Mapping[str, Any], name: str, kind: str):
+    try:
+        return items[name]
+    except (KeyError, TypeError):
+        pass
+    raise ModelError(f"{kind} {shown(name)} not found{suggest(name, items)}; "
+                     f"the {kind}s are {quoted(items)}")
 
 
 def _validate(m: Mechanism) -> list[str]:
-    """Every problem of the model, each as a one-line message naming the item."""
+    """Every problem of the model, each as a one-line message naming the item.
+
+    Linear in the size of the model: every lookup goes through a dictionary or a set."""
     problems: list[str] = []
     add = problems.append
-    if m.space not in SPACES:
-        add(f"space: expected one of {quoted(SPACES)}, got '{m.space}'")
-    # -- names ---------------------------------------------------------------------------
+
+    def hint(name, choices) -> str:
+        # "did you mean" compares a name with every choice: only for the problems shown
+        return suggest(name, choices) if len(problems) < PROBLEMS_SHOWN else ""
+
+    if not isinstance(m.space, str) or m.space not in SPACES:
+        add(f"space: expected one of {quoted(SPACES)}, got {describe(m.space)}")
+    if not isinstance(m.name, str) or not m.name.isprintable():
+        add(f"name: expected a text of printable characters, got {describe(m.name)}")
+    # -- types and names -----------------------------------------------------------------
     seen: dict[str, str] = {}
-    for kind, items in (("point", m.points), ("link", m.links), ("joint", m.joints)):
+    for kind, items, cls in (("point", m.points, Point), ("link", m.links, Link),
+                             ("joint", m.joints, Joint), ("input", m.inputs, Input)):
         for item in items:
-            if not isinstance(item.name, str) or not item.name:
-                add(f"{kind}s: every {kind} needs a non-empty name, got {item.name!r}")
+            if not isinstance(item, cls):
+                add(f"{kind}s: expected {cls.__name__} objects, got {describe(item)}")
+            elif kind == "input":
+                continue
+            elif (why := name_problem(item.name)) is not None:
+                add(f"{kind}s: {why}, got {describe(item.name)}")
             elif item.name in seen:
-                add(f"{kind} '{item.name}': name already used by a {seen[item.name]}; "
+                add(f"{kind} {shown(item.name)}: name already used by a {seen[item.name]}; "
                     "names must be unique across points, links and joints")
             else:
                 seen[item.name] = kind
+    if problems:
+        return problems      # what follows reads names and fields of well-formed items
     points = {p.name: p for p in m.points}
     links = {link.name: link for link in m.links}
+    placed = set()                           # points whose coordinates are usable
     for p in m.points:
-        if not all(isinstance(c, (int, float)) and math.isfinite(c) for c in (p.x, p.y, p.z)):
-            add(f"point '{p.name}': coordinates must be finite numbers, got ({p.x}, {p.y}, {p.z})")
+        xyz = (p.x, p.y, p.z)
+        if not all(is_real(c) for c in xyz):
+            add(f"point {shown(p.name)}: coordinates must be finite numbers, got "
+                f"({', '.join(describe(c) for c in xyz)})")
+        elif (why := next(filter(None, (length_problem(c, positive=False) for c in xyz)), None)):
+            add(f"point {shown(p.name)}: coordinates: {why}, got ({p.x:g}, {p.y:g}, {p.z:g}) m")
+        else:
+            placed.add(p.name)
     # -- links ---------------------------------------------------------------------------
-    grounds = [link.name for link in m.links if link.ground]
+    grounds = [link.name for link in m.links if link.ground is True]
     if len(grounds) != 1:
         add(f"links: expected exactly one ground link, got {len(grounds)}"
             + (f" ({quoted(grounds)})" if grounds else "") + "; mark one link ground = true")
     sliding_links = {n for j in m.joints if j.type == "P" for n in j.links}
+    carriers: dict[str, list[str]] = {}      # point -> the links that carry it
+    carried: set[tuple[str, str]] = set()     # (point, link) for each point a link carries
     for link in m.links:
-        where = f"link '{link.name}'"
+        where = f"link {shown(link.name)}"
+        if not isinstance(link.ground, bool):
+            add(f"{where}: ground: expected true or false, got {describe(link.ground)}")
+        if not isinstance(link.points, (tuple, list)) or not all(isinstance(pn, str)
+                                                                   for pn in link.points):
+            add(f"{where}: points: expected a tuple of point names, got {describe(link.points)}")
+            continue
         for pn in link.points:
             if pn not in points:
-                add(f"{where}: points: expected a declared point, got '{pn}'{suggest(pn, points)}; "
-                    f"declared points are {quoted(points)}")
+                add(f"{where}: points: expected a declared point, got {shown(pn)}"
+                    f"{hint(pn, points)}; declared points are {quoted(points)}")
+            else:
+                carriers.setdefault(pn, []).append(link.name)
+                carried.add((pn, link.name))
         if len(set(link.points)) != len(link.points):
             add(f"{where}: points: a point is listed twice")
         if len(link.points) == 0:
@@ -340,96 +398,105 @@ def _validate(m: Mechanism) -> list[str]:
         elif len(link.points) < 2 and not link.ground and link.name not in sliding_links:
             add(f"{where}: points: a moving link needs at least two points (one is enough for a "
                 "link of a prismatic joint, whose axis gives its direction); add a second point")
-        elif len(link.points) >= 2 and all(p in points for p in link.points[:2]):
+        elif len(link.points) >= 2 and all(p in placed for p in link.points[:2]):
             a, b = points[link.points[0]], points[link.points[1]]
             if math.dist((a.x, a.y, a.z), (b.x, b.y, b.z)) <= _LENGTH_TOL:
-                add(f"{where}: its first two points '{a.name}' and '{b.name}' coincide, so the link "
-                    "has no length and no direction; move one of them")
+                add(f"{where}: its first two points {shown(a.name)} and {shown(b.name)} coincide, "
+                    "so the link has no length and no direction; move one of them")
         for attr, label in ((link.mass, "mass"), (link.inertia, "inertia"), (link.length, "length")):
-            if attr is not None and not (_is_number(attr) and attr > 0 and math.isfinite(attr)):
-                add(f"{where}: {label}: expected a positive number, got {attr!r}")
+            if attr is not None and not (is_real(attr) and attr > 0):
+                add(f"{where}: {label}: expected a positive number, got {describe(attr)}")
+            elif label == "length" and attr is not None and (why := length_problem(float(attr))):
+                add(f"{where}: length: {why}, got {float(attr):g} m")
         if link.length is not None and len(link.points) < 2:
             add(f"{where}: length: a link with one point has no length; remove it")
         if link.local is not None:
             if not isinstance(link.local, Mapping):
                 add(f"{where}: local: expected a mapping of point = (along, left), got "
-                    f"{type(link.local).__name__}")
+                    f"{describe(link.local)}")
             else:
+                rest = set(link.points[2:])
                 for pn, v in link.local.items():
-                    if pn not in link.points[2:]:
+                    if pn not in rest:
                         add(f"{where}: local: expected one of the link's points after its first two "
-                            f"({quoted(link.points[2:]) or 'none'}), got {pn!r}")
-                    elif not (isinstance(v, tuple) and len(v) == 2 and all(
-                            _is_number(c) and math.isfinite(c) for c in v)):
-                        add(f"{where}: local.{pn}: expected two finite numbers (along, left), got {v!r}")
+                            f"({quoted(link.points[2:])}), got {describe(pn)}")
+                    elif not (isinstance(v, tuple) and len(v) == 2 and all(map(is_real, v))):
+                        add(f"{where}: local.{pn}: expected two finite numbers (along, left), got "
+                            f"{describe(v)}")
+                    elif (why := next(filter(None, (length_problem(float(c), positive=False)
+                                                    for c in v)), None)):
+                        add(f"{where}: local.{pn}: {why}, got {describe(v)}")
         if link.center_of_mass is not None and link.center_of_mass not in link.points:
             add(f"{where}: center_of_mass: expected one of the link's points "
-                f"{quoted(link.points)}, got '{link.center_of_mass}'")
+                f"{quoted(link.points)}, got {describe(link.center_of_mass)}")
     # -- joints --------------------------------------------------------------------------
+    hinged: dict[str, list[tuple[str, str]]] = {}    # point -> pairs of links pinned there
     for j in m.joints:
-        where = f"joint '{j.name}'"
-        jt = JOINT_TYPES.get(j.type)
+        where = f"joint {shown(j.name)}"
+        jt = JOINT_TYPES.get(j.type) if isinstance(j.type, str) else None
         if jt is None:
-            add(f"{where}: type: expected one of {quoted(JOINT_TYPES)}, got '{j.type}'"
-                f"{suggest(str(j.type), JOINT_TYPES)}")
+            add(f"{where}: type: expected one of {quoted(JOINT_TYPES)}, got {describe(j.type)}"
+                f"{hint(str(j.type), JOINT_TYPES)}")
             continue
         if m.space == "planar" and not jt.planar:
             add(f"{where}: a {j.type} joint ({jt.description}) cannot join links of a planar "
                 "mechanism; use space = 'spatial'")
-        if len(j.links) != 2:
-            add(f"{where}: links: expected two links, got {len(j.links)}")
+        if not isinstance(j.links, (tuple, list)) or len(j.links) != 2:
+            add(f"{where}: links: expected two links, got {describe(j.links)}")
             continue
         a, b = j.links
-        bad = [n for n in (a, b) if n not in links]
+        bad = [n for n in (a, b) if not isinstance(n, str) or n not in links]
         for n in bad:
-            add(f"{where}: links: expected a declared link, got '{n}'{suggest(n, links)}; "
+            add(f"{where}: links: expected a declared link, got {describe(n)}{hint(n, links)}; "
                 f"declared links are {quoted(links)}")
         if a == b:
-            add(f"{where}: joins link '{a}' to itself; a joint joins two different links")
+            add(f"{where}: joins link {shown(a)} to itself; a joint joins two different links")
         if bad or a == b:
             continue
         if jt.needs_point and j.point is None:
             add(f"{where}: point: a {j.type} joint needs the point where it acts")
         if j.point is not None:
-            if j.point not in points:
-                add(f"{where}: point: expected a declared point, got '{j.point}'"
-                    f"{suggest(j.point, points)}")
-            elif j.type in ("R", "S", "U") and not all(j.point in links[n].points for n in (a, b)):
-                missing = [n for n in (a, b) if j.point not in links[n].points]
-                add(f"{where}: point '{j.point}' must be carried by both links it joins; add it "
-                    f"to the points of {quoted(missing)}")
-            elif j.type == "P" and j.point not in links[b].points:
-                add(f"{where}: point '{j.point}' must be carried by the slider '{b}' (the second "
-                    "link of a prismatic joint)")
+            if not isinstance(j.point, str) or j.point not in points:
+                add(f"{where}: point: expected a declared point, got {describe(j.point)}"
+                    f"{hint(j.point, points)}")
+            elif j.type in ("R", "S", "U") and not all((j.point, n) in carried for n in (a, b)):
+                missing = [n for n in (a, b) if (j.point, n) not in carried]
+                add(f"{where}: point {shown(j.point)} must be carried by both links it joins; add "
+                    f"it to the points of {quoted(missing)}")
+            elif j.type == "P" and (j.point, b) not in carried:
+                add(f"{where}: point {shown(j.point)} must be carried by the slider {shown(b)} "
+                    "(the second link of a prismatic joint)")
+            elif j.type in ("R", "S", "U"):
+                hinged.setdefault(j.point, []).append((a, b))
         if jt.needs_axis:
             axis = j.axis
             dim = 2 if m.space == "planar" else 3
             if axis is None:
                 add(f"{where}: axis: a {j.type} joint needs an axis")
-            elif (len(axis) != dim or not all(isinstance(c, (int, float)) and math.isfinite(c)
-                                              for c in axis)):
-                add(f"{where}: axis: expected {dim} finite numbers, got {list(axis)}")
+            elif (not isinstance(axis, (tuple, list)) or len(axis) != dim
+                  or not all(map(is_real, axis))):
+                add(f"{where}: axis: expected {dim} finite numbers, got {describe(axis)}")
             elif math.hypot(*axis) <= 1e-12:
                 add(f"{where}: axis: must not be the zero vector")
-        if j.type == "P" and j.origin is not None and j.origin not in links[a].points:
-            add(f"{where}: origin: expected a point of the guide '{a}' "
-                f"({quoted(links[a].points)}), got '{j.origin}'")
+        if j.type == "P" and j.origin is not None and (not isinstance(j.origin, str)
+                                                       or (j.origin, a) not in carried):
+            add(f"{where}: origin: expected a point of the guide {shown(a)} "
+                f"({quoted(links[a].points)}), got {describe(j.origin)}")
+        if j.pitch is not None and not is_real(j.pitch):
+            add(f"{where}: pitch: expected a finite number, got {describe(j.pitch)}")
         if j.offset is not None:
             if j.type != "P":
                 add(f"{where}: offset: only a prismatic joint has one (the distance of its slide "
                     "line from its origin); remove it")
-            elif not (_is_number(j.offset) and math.isfinite(j.offset)):
-                add(f"{where}: offset: expected a finite number, got {j.offset!r}")
+            elif not is_real(j.offset):
+                add(f"{where}: offset: expected a finite number, got {describe(j.offset)}")
+            elif why := length_problem(float(j.offset), positive=False):
+                add(f"{where}: offset: {why}, got {float(j.offset):g} m")
     # -- points shared by links must be hinged together ----------------------------------
-    for p in m.points:
-        carriers = [link.name for link in m.links if p.name in link.points]
-        if len(carriers) < 2:
-            continue
-        hinged = [j.links for j in m.joints
-                  if j.point == p.name and j.type in ("R", "S", "U") and all(n in links for n in j.links)]
-        if _components(carriers, hinged) > 1:
-            add(f"point '{p.name}': carried by {quoted(carriers)}, which are not all joined by "
-                f"revolute joints at '{p.name}'; add the joints or give each link its own point")
+    for pn, on in carriers.items():
+        if len(on) >= 2 and _components(on, hinged.get(pn, ())) > 1:
+            add(f"point {shown(pn)}: carried by {quoted(on)}, which are not all joined by "
+                f"revolute joints at {shown(pn)}; add the joints or give each link its own point")
     # -- inputs --------------------------------------------------------------------------
     joints = {j.name: j for j in m.joints}
     for k, inp in enumerate(m.inputs):
@@ -437,33 +504,46 @@ def _validate(m: Mechanism) -> list[str]:
         if (inp.joint is None) == (inp.links is None):
             add(f"{where}: give either a joint or a pair of links")
             continue
+        slide = False
         if inp.joint is not None:
-            j = joints.get(inp.joint)
+            j = joints.get(inp.joint) if isinstance(inp.joint, str) else None
             if j is None:
-                add(f"{where}: joint: expected a declared joint, got '{inp.joint}'"
-                    f"{suggest(inp.joint, joints)}; declared joints are {quoted(joints)}")
+                add(f"{where}: joint: expected a declared joint, got {describe(inp.joint)}"
+                    f"{hint(inp.joint, joints)}; declared joints are {quoted(joints)}")
             elif j.type not in ("R", "P"):
-                add(f"{where}: joint '{inp.joint}' is a {j.type} joint; an input drives an R "
+                add(f"{where}: joint {shown(inp.joint)} is a {j.type} joint; an input drives an R "
                     "(angle) or P (slide) joint")
+            slide = j is not None and j.type == "P"
+        elif (not isinstance(inp.links, (tuple, list)) or len(inp.links) != 2
+              or inp.links[0] == inp.links[1]):
+            add(f"{where}: links: expected two different links, got {describe(inp.links)}")
         else:
-            if len(inp.links) != 2 or inp.links[0] == inp.links[1]:
-                add(f"{where}: links: expected two different links, got {list(inp.links)}")
             for n in inp.links:
-                if n not in links:
-                    add(f"{where}: links: expected a declared link, got '{n}'{suggest(n, links)}")
+                if not isinstance(n, str) or n not in links:
+                    add(f"{where}: links: expected a declared link, got {describe(n)}"
+                        f"{hint(n, links)}")
+        if inp.name is not None and (why := name_problem(inp.name)):
+            add(f"{where}: name: {why}, got {describe(inp.name)}")
         if inp.range is not None:
             r = inp.range
-            if len(r) != 2 or not all(isinstance(v, (int, float)) and math.isfinite(v) for v in r):
-                add(f"{where}: range: expected two finite numbers (start, stop), got {r!r}")
+            if not isinstance(r, (tuple, list)) or len(r) != 2 or not all(map(is_real, r)):
+                add(f"{where}: range: expected two finite numbers (start, stop), got {describe(r)}")
             elif r[0] == r[1]:
-                add(f"{where}: range: start and stop are equal ({r[0]}); give an interval")
-        for label in ("speed", "acceleration"):
+                add(f"{where}: range: start and stop are equal ({float(r[0]):g}); give an interval")
+            elif why := range_problem(float(r[0]), float(r[1]), angle=not slide):
+                add(f"{where}: range: {why}, got ({float(r[0]):g}, {float(r[1]):g}) "
+                    f"{'m' if slide else 'rad'}")
+        for label, unit in (("speed", "/s"), ("acceleration", "/s^2")):
             v = getattr(inp, label)
-            if not (isinstance(v, (int, float)) and math.isfinite(v)):
-                add(f"{where}: {label}: expected a finite number, got {v!r}")
-    labels = [i.label for i in m.inputs]
-    for name in {n for n in labels if labels.count(n) > 1}:
-        add(f"inputs: two inputs are both named '{name}'; give them distinct names")
+            unit = ("m" if slide else "rad") + unit
+            if not is_real(v):
+                add(f"{where}: {label}: expected a finite number, got {describe(v)}")
+            elif why := rate_problem(float(v), unit):
+                add(f"{where}: {label}: {why}, got {float(v):g} {unit}")
+    if not problems:
+        for name, n in Counter(i.label for i in m.inputs).items():
+            if n > 1:
+                add(f"inputs: two inputs are both named {shown(name)}; give them distinct names")
     # -- connectivity --------------------------------------------------------------------
     if not problems and m.links:
         pairs = [j.links for j in m.joints]
@@ -473,10 +553,6 @@ def _validate(m: Mechanism) -> list[str]:
             add(f"links {quoted(loose)} are not connected to the ground by any chain of joints; "
                 "join them or remove them")
     return problems
-
-
-def _is_number(v) -> bool:
-    return isinstance(v, (int, float)) and not isinstance(v, bool)
 
 
 def _components(nodes: list[str], edges: Iterable[tuple[str, str]]) -> int:
@@ -494,12 +570,14 @@ def _components(nodes: list[str], edges: Iterable[tuple[str, str]]) -> int:
 
 
 def _reachable(start: str, edges: Sequence[tuple[str, str]]) -> set[str]:
+    around: dict[str, list[str]] = {}
+    for a, b in edges:
+        around.setdefault(a, []).append(b)
+        around.setdefault(b, []).append(a)
     seen, todo = {start}, [start]
     while todo:
-        n = todo.pop()
-        for a, b in edges:
-            for x, y in ((a, b), (b, a)):
-                if x == n and y not in seen:
-                    seen.add(y)
-                    todo.append(y)
+        for y in around.get(todo.pop(), ()):
+            if y not in seen:
+                seen.add(y)
+                todo.append(y)
     return seen

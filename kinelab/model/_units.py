@@ -19,7 +19,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Literal
 
-from kinelab.errors import ModelError, quoted, suggest
+from kinelab.errors import ModelError, expected_one_of, quoted, suggest
 
 __all__ = ["LENGTH_UNITS", "ANGLE_UNITS", "Units"]
 
@@ -58,8 +58,7 @@ class Units:
         for attr, table in (("length", LENGTH_UNITS), ("angle", ANGLE_UNITS)):
             v = getattr(self, attr)
             if not isinstance(v, str) or v not in table:
-                problems.append(f"units.{attr}: expected one of {quoted(table)}, got {v!r}"
-                                f"{suggest(str(v), table)}")
+                problems.append(f"units.{attr}: {expected_one_of(v, table)}")
         if problems:
             raise ModelError(problems)
 

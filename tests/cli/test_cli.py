@@ -12,6 +12,7 @@ from click.testing import CliRunner
 import kinelab as kl
 from kinelab.cli import main
 from kinelab.cli._main import analyze_in_chunks
+from kinelab.errors import ModelError
 from tests.io.bad_cases import BASE, CASES
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -139,12 +140,25 @@ def test_every_example_checks_and_analyses(path, tmp_path):
     assert (tmp_path / f"{path.stem}.csv").exists()
 
 
-def test_unwritable_output_is_a_one_line_error(tmp_path):
+@pytest.mark.parametrize("where", ["under a file", "a directory", "a directory with a suffix"])
+def test_unwritable_output_is_a_one_line_error_naming_the_target(where, tmp_path):
     (tmp_path / "file").write_text("")
-    result = run("analyze", EX / "whitworth.toml", "--out", tmp_path / "file" / "x.csv",
-                 "--samples", "3", "-q")
-    assert result.exit_code == 1
-    assert result.stderr.startswith("kinelab: error: cannot write ") and result.stderr.count("\n") == 1
+    (tmp_path / "dir.csv").mkdir()
+    target = {"under a file": tmp_path / "file" / "x.csv", "a directory": tmp_path / "dir.csv",
+              "a directory with a suffix": tmp_path / "dir.csv"}[where]
+    if where == "a directory with a suffix":     # not taken as a directory to write into
+        from kinelab._files import write_csv
+        with pytest.raises(ModelError, match=rf"^{re.escape(str(target))}: cannot write it: "):
+            write_csv({"a": [1.0]}, target)
+        return
+    result = run("analyze", EX / "whitworth.toml", "--out", target, "--samples", "3", "-q")
+    if where == "a directory":                   # the table goes inside it
+        assert result.exit_code == 0 and (target / "whitworth.csv").exists()
+        return
+    assert result.exit_code == 2
+    assert result.stderr.startswith(f"kinelab: error: {target}: cannot write it: ")
+    assert result.stderr.count("\n") == 1 and ".x.csv." not in result.stderr
+    assert sorted(tmp_path.iterdir()) == [tmp_path / "dir.csv", tmp_path / "file"]   # no leftovers
 
 
 def test_whitworth_time_ratio_is_two(tmp_path):
@@ -190,8 +204,12 @@ def test_at_prints_one_configuration_in_the_files_units():
 @pytest.mark.parametrize("at, message", [
     ("abc", "kinelab: error: --at: expected a number, optionally followed by one of rad, deg, got 'abc'"),
     ("30mm", "kinelab: error: --at: expected a number, optionally followed by one of rad, deg, got '30mm'"),
-    ("30,40", "kinelab: error: --at: expected 1 value(s) separated by commas (one per input: crank "
-              "angle), got '30,40'"),
+    ("30,40", "kinelab: error: --at: expected 1 value(s) separated by commas (one per input: 'crank "
+              "angle'), got '30,40'"),
+    # 1e400 is inf; 1e300 deg is finite but no angle a sweep or a sine means anything at
+    ("1e400", "kinelab: error: --at: expected a finite number, got '1e400'"),
+    ("1e300deg", "kinelab: error: --at: expected angles within 1000 turns of 0 either way, got "
+                 "'1e300deg'"),
 ])
 def test_bad_at_value(at, message):
     result = run("analyze", EX / "crank_rocker.toml", "--at", at)
@@ -310,7 +328,7 @@ def test_speed_of_several_inputs(tmp_path):
     ("fast", "--speed: expected a number, optionally followed by one of rad, deg, got 'fast'"),
     ("60mm", "--speed: expected a number, optionally followed by one of rad, deg, got '60mm'"),
     ("inf", "--speed: expected a number, optionally followed by one of rad, deg, got 'inf'"),
-    ("60,30", "--speed: expected 1 value(s) separated by commas (one per input: crank angle), "
+    ("60,30", "--speed: expected 1 value(s) separated by commas (one per input: 'crank angle'), "
               "got '60,30'"),
 ])
 def test_bad_speed_value(speed, message, tmp_path):
@@ -378,3 +396,73 @@ def test_a_unit_the_file_cannot_declare_is_one_line_status_2_nothing_written(tmp
         assert result.exit_code == 2, (command, result.output)
         assert result.stderr == f"kinelab: error: fb.toml: {message}\n", command
     assert not out.exists()
+
+
+# -- options and outputs: one line, exit status 2, nothing written -------------------------
+@pytest.mark.parametrize("args, message", [
+    (["--out", "x.xlsx"], "path: expected a file name ending in .csv, .json, .parquet, got "
+                          "'x.xlsx'; rename it or give the format"),
+    (["--out", "x.json", "--format", "csv"], "format: 'csv' was asked for, but the file name "
+                                             "'x.json' says 'json'; make them agree"),
+])
+def test_a_table_is_not_written_under_another_formats_name(args, message, tmp_path):
+    args = [str(tmp_path / a) if a.startswith("x.") else a for a in args]
+    result = run("analyze", EX / "crank_rocker.toml", "--samples", "5", "-q", *args)
+    assert result.exit_code == 2 and result.stderr == f"kinelab: error: {message}\n"
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_explicit_format_under_another_name_says_so(tmp_path):
+    out = tmp_path / "table.txt"
+    result = run("analyze", EX / "crank_rocker.toml", "--samples", "5", "-q", "--out", out,
+                 "--format", "json")
+    assert result.exit_code == 0, result.output
+    assert "(JSON as --format says, whatever the name;" in result.stdout
+    assert len(json.loads(out.read_text())) == 5
+
+
+def test_plot_writes_every_figure_in_its_directory(tmp_path):
+    out = tmp_path / "figures.png"        # a directory, whatever its name looks like
+    result = run("plot", EX / "crank_rocker.toml", "--samples", "9", "--out", out,
+                 "--format", "png", "--format", "svg")
+    assert result.exit_code == 0, result.output
+    written = sorted(p.name for p in out.iterdir())
+    assert "crank_rocker_motion.png" in written and "crank_rocker_motion.svg" in written
+    assert len(written) == len(set(result.stdout.split())) - 1 == result.stdout.count("wrote ")
+
+
+@pytest.mark.parametrize("command, option, value, message", [
+    ("plot", "--outputs", "rocker,a\x1b[2Jb," + ",".join(f"q{i}" for i in range(100)),
+     "--outputs: expected links, slides or points of 'crank-rocker', got 'a\\x1b[2Jb', 'q0', "
+     + ", ".join(f"'q{i}'" for i in range(1, 19)) + " and 81 more; they are 'ground', 'crank', "
+     "'coupler', 'rocker', 'O2', 'A', 'B', 'O4', 'P'"),
+    ("animate", "--trace", "P,\ud800",
+     "--trace: expected points of 'crank-rocker', got '\\ud800'; they are 'O2', 'A', 'B', 'O4', 'P'"),
+])
+def test_names_in_options_are_escaped_and_bounded(command, option, value, message, tmp_path):
+    result = run(command, EX / "crank_rocker.toml", option, value, "--out", tmp_path)
+    assert result.exit_code == 2
+    assert result.stderr == f"kinelab: error: {message}\n"
+
+
+@pytest.mark.parametrize("name, text, message", [
+    ("long.pyslvs", "M[J[R, P[0, " + "9" * 5000 + "], L[ground, a]]]",
+     "long.pyslvs: expression: joint 0: expected finite numbers"),
+    ("big.pyslvs", "M[J[R, P[0, 0], L[ground, a]], J[R, P[0, 1e300], L[a]]]",
+     "big.pyslvs: point 'P1': coordinates: expected at most 1e+09 m in size, got (0, 1e+297, 0) m"),
+    ("bad.pyslvs", "M[J[Q" + "x" * 1000 + ", P[0, 0], L[ground, a]]]",
+     "bad.pyslvs: expression: joint 0: type: expected one of 'R', 'P', 'RP', got 'Q"
+     + "x" * 56 + "\u2026'"),
+    ("twice.json", '{"links": [], "joints": [], "links": []}',
+     "twice.json: links: given twice in the same table; keep one"),
+    ("deep.json", '{"links": ' + "[" * 400 + "]" * 400 + ', "joints": []}',
+     "deep.json: links" + "[0]" * 31 + ": nested more than 32 deep; no file kinelab reads needs "
+     "that many levels"),
+])
+def test_imported_files_are_refused_in_one_line(name, text, message, tmp_path):
+    source = tmp_path / name
+    source.write_text(text)
+    result = run("import", source, "--out", tmp_path / "m.toml")
+    assert result.exit_code == 2, result.output
+    assert result.stderr == f"kinelab: error: {message}\n"
+    assert not (tmp_path / "m.toml").exists()

@@ -1,3 +1,7 @@
+"""Malformed model files and the one-line message each gives."""
+import json
+import tomllib
+
 BASE = '''schema = 1
 name = "fb"
 
@@ -152,6 +156,9 @@ CASES = [
     ("schema from the future", _replace('schema = 1', 'schema = 2'),
      "fb.toml: schema: this file is written for schema 2, but this kinelab reads schema 1 and "
      "older; upgrade kinelab"),
+    ("schema of a hundred digits", _replace('schema = 1', 'schema = ' + '9' * 100),
+     "fb.toml: schema: this file is written for schema a whole number of 100 digits, but "
+     "this kinelab reads schema 1 and older; upgrade kinelab"),
     ("schema not a number", _replace('schema = 1', 'schema = "1"'),
      "fb.toml: schema: expected a whole number from 1 to 1, got '1'"),
     ("unknown joint type", _replace('type = "R"\nlinks = ["ground", "rocker"]',
@@ -224,7 +231,8 @@ CASES = [
      'crank = 100\ncoupler = 100\nrocker = 100\n',
      "fb.toml: catalogue: fourbar: these lengths cannot be assembled at any input angle; check them"),
     ("catalogue: unknown branch", _HEAD + '[catalogue]\n' + _FOURBAR + 'rocker = 250\nbranch = "cross"\n',
-     "fb.toml: catalogue.branch: expected one of 'open', 'crossed', got 'cross'"),
+     "fb.toml: catalogue.branch: expected one of 'open', 'crossed', got 'cross' (did you mean "
+     "'crossed'?)"),
     ("catalogue: six-bar length on no link", _HEAD + '[catalogue]\nkind = "watt6"\n'
      'lengths = { "A-C" = 1000 }\n',
      "fb.toml: catalogue.lengths['A-C']: A and C are not on one link; expected one of 'O2-A', "
@@ -246,10 +254,81 @@ CASES = [
      "C-D-O6), got 'open'"),
     ("catalogue: six-bar branch misspelt", _HEAD + '[catalogue]\nkind = "stephenson6"\n'
      'branch = ["open", "crossd"]\n',
-     "fb.toml: catalogue.branch[1]: expected one of 'open', 'crossed', got 'crossd'"),
+     "fb.toml: catalogue.branch[1]: expected one of 'open', 'crossed', got 'crossd' (did you mean "
+     "'crossed'?)"),
+    ("catalogue: a length of 3e300", _HEAD + '[catalogue]\nkind = "fourbar"\nground = 3e300\ncrank = 100\n'
+     'coupler = 300\nrocker = 250\n',
+     # 3e300 mm squared overflows a float: lengths are refused outside 1e-9 ... 1e9 m
+     "fb.toml: catalogue.ground: expected a length from 1e-06 mm to 1e+12 mm, got 3e+300 mm"),
+    ("catalogue: a length of 1e-300", _HEAD + '[catalogue]\nkind = "fourbar"\nground = 300\ncrank = 1e-300\n'
+     'coupler = 300\nrocker = 250\n',
+     "fb.toml: catalogue.crank: expected a length from 1e-06 mm to 1e+12 mm, got 1e-300 mm"),
+    ("a 5000-digit coordinate", _replace('A = [0, 100]', 'A = [0, ' + '9' * 5000 + ']'),
+     "fb.toml: line 10, column 9: a number of more than 4300 digits; no value needs so many, write "
+     "it with an exponent (1.5e3) or fix it"),
+    ("a coordinate out of scale", _replace('A = [0, 100]', 'A = [0, 1e300]'),
+     "fb.toml: points.A: expected at most 1e+09 m in size, got [0, 1e+300] mm"),
+    ("a link length out of scale", _replace('length = 100', 'length = 1e300'),
+     "fb.toml: links[1].length: expected a length from 1e-09 m to 1e+09 m, got 1e+300 mm"),
+    ("a speed whose square overflows", _replace('speed = 600', 'speed = 1e300'),
+     "fb.toml: inputs[0].speed: expected at most 1e+100 rad/s in size (accelerations take its "
+     "square), got 1e+300 deg/s"),
+    ("a range of more than 1000 turns", _replace('range = [0, 360]', 'range = [0, 360001]'),
+     "fb.toml: inputs[0].range: expected angles within 1000 turns of 0 either way, got [0, 360001] deg"),
+    ("a transmission angle of one link", BASE + '\n[outputs]\ntransmission = ["coupler", "coupler"]\n',
+     "fb.toml: outputs.transmission[0]: expected two different links (a coupler and an output), "
+     "got 'coupler' twice"),
+    ("a name with a newline", _replace('points = ["A", "B"]', 'points = ["A", "B\\nC"]'),
+     "fb.toml: links[2].points[1]: expected a name of printable characters, got 'B\\nC'"),
+    ("a name with an escape sequence", _replace('point = "O4"', 'point = "\\u001b[2JO4"\nname = "jO4"'),
+     "fb.toml: joints[3].point: expected a name of printable characters, got '\\x1b[2JO4'"),
+    ("a name with a tab and NUL", _replace('name = "fb"', 'name = "f\\tb\\u0000"'),
+     "fb.toml: name: expected a non-empty text of printable characters, got 'f\\tb\\x00'"),
+    ("a long unknown name", _replace('points = ["A", "B"]', 'points = ["A", "' + 'Q' * 1000 + '"]'),
+     "fb.toml: links[2].points[1]: expected a declared point, got '" + "Q" * 57 + "\u2026'; "
+     "declared points are 'O2', 'A', 'B', 'O4'"),
+    ("an unknown name among many", _replace('O4 = [300, 0]', 'O4 = [300, 0]\n'
+                                            + "".join(f"X{i} = [{i}, 500]\n" for i in range(100)))
+     .replace('points = ["A", "B"]', 'points = ["A", "Q"]'),
+     "fb.toml: links[2].points[1]: expected a declared point, got 'Q'; declared points are 'O2', "
+     "'A', 'B', 'O4', " + ", ".join(f"'X{i}'" for i in range(16)) + " and 84 more"),
     ("catalogue disagrees with the sketch", BASE + '\n[catalogue]\n'
      + _FOURBAR.replace("coupler = 300", "coupler = 310") + 'rocker = 250\n',
      "fb.toml: catalogue: the sketch does not match fourbar: link 'coupler' has A-B = 300 mm in "
      "the sketch but 310 mm from the parameters; fix the points or the parameters, or delete "
      "[catalogue]"),
+]
+
+
+# The same model in JSON, and what only a JSON file can hold (TOML refuses a key given twice,
+# a lone surrogate and a 400-deep nesting itself).
+_BASE_JSON = json.dumps(tomllib.loads(BASE))
+
+
+def _json(old: str, new: str) -> str:
+    assert old in _BASE_JSON, old
+    return _BASE_JSON.replace(old, new, 1)
+
+
+JSON_CASES = [
+    ("a 5000-digit coordinate", _json('"A": [0, 100]', '"A": [0, ' + "9" * 5000 + "]"),
+     "fb.json: line 1, column 106: a number of more than 4300 digits; no value needs so many, "
+     "write it with an exponent (1.5e3) or fix it"),
+    # 400 levels of lists are read by json, but no message may recurse through them
+    ("a name nested 400 deep", _json('"name": "fb"', '"name": ' + "[" * 400 + "]" * 400),
+     "fb.json: name" + "[0]" * 31 + ": nested more than 32 deep; no file kinelab reads needs that "
+     "many levels"),
+    ("a lone surrogate in a name", _json('["A", "B"]', '["A", "\\ud800"]'),
+     "fb.json: links[2].points[1]: a lone UTF-16 surrogate in '\\ud800', which is not text; fix "
+     "the escape (\\ud800 ... \\udfff) there"),
+    ("a lone surrogate as the model's name", _json('"name": "fb"', '"name": "\\udfff"'),
+     "fb.json: name: a lone UTF-16 surrogate in '\\udfff', which is not text; fix the escape "
+     "(\\ud800 ... \\udfff) there"),
+    ("a name with control characters", _json('["A", "B"]', '["A", "B\\n\\t\\u001b[31m\\u0000"]'),
+     "fb.json: links[2].points[1]: expected a name of printable characters, got "
+     "'B\\n\\t\\x1b[31m\\x00'"),
+    ("a key twice", _json('"name": "crank"', '"name": "crank", "name": "arm"'),
+     "fb.json: links[1].name: given twice in the same table; keep one"),
+    ("a top-level key twice", _json('"schema": 1', '"schema": 1, "schema": 1'),
+     "fb.json: schema: given twice in the same table; keep one"),
 ]

@@ -329,3 +329,16 @@ def test_pyslvs_inputs_get_the_import_speeds():
     assert slide.inputs[0].speed == kl.io.IMPORT_SPEEDS["slide"] == 0.1
     both = kl.io.from_pyslvs(CRANK_ROCKER, inputs=[(4, 2)])
     assert both.inputs[0].speed == kl.io.IMPORT_SPEEDS["angle"]
+
+
+@pytest.mark.parametrize("options, message", [
+    ({"width": 1j}, r"^width, hole: expected 0 < hole < width, got width 1j m and hole "),
+    ({"width": "5"}, r"^width, hole: expected 0 < hole < width, got width '5' m"),
+    ({"unit": ["mm"]}, r"^unit: expected one of 'm', 'cm', 'mm', 'in', got \['mm'\]$"),
+    ({"layout": {}}, r"^layout: expected one of 'parts', 'assembly', got a table$"),
+])
+def test_outline_options_of_the_wrong_kind_are_refused(options, message, tmp_path):
+    fb = kl.mechanisms.fourbar(ground=0.3, crank=0.1, coupler=0.3, rocker=0.25)
+    with pytest.raises(ModelError, match=message):
+        kl.io.to_svg(fb, tmp_path / "fb.svg", **options)
+    assert not (tmp_path / "fb.svg").exists()

@@ -2,6 +2,7 @@
 import dataclasses
 import json
 import math
+import time
 from pathlib import Path
 
 import numpy as np
@@ -12,7 +13,7 @@ from hypothesis import strategies as st
 import kinelab as kl
 from kinelab.errors import ModelError
 from kinelab.io import ModelFile, Units
-from tests.io.bad_cases import BASE, CASES
+from tests.io.bad_cases import BASE, CASES, JSON_CASES
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = sorted((ROOT / "examples").glob("*.toml"))
@@ -222,9 +223,11 @@ def test_there_are_at_least_thirty_distinct_bad_files():
     assert len({text for _, text, _ in CASES}) == len(CASES)
 
 
-@pytest.mark.parametrize("text, message", [c[1:] for c in CASES], ids=[c[0] for c in CASES])
-def test_bad_file_gives_one_line_naming_file_and_field(text, message, tmp_path):
-    path = tmp_path / "fb.toml"
+@pytest.mark.parametrize("name, text, message", [("fb.toml", *c[1:]) for c in CASES]
+                         + [("fb.json", *c[1:]) for c in JSON_CASES],
+                         ids=[c[0] for c in CASES] + [f"json: {c[0]}" for c in JSON_CASES])
+def test_bad_file_gives_one_line_naming_file_and_field(name, text, message, tmp_path):
+    path = tmp_path / name
     path.write_text(text)
     with pytest.raises(ModelError) as info:
         kl.load(path)
@@ -255,6 +258,25 @@ def test_bad_file_names_and_encodings(name, content, message, tmp_path):
     with pytest.raises(ModelError) as info:
         kl.load(path)
     assert str(info.value) == message
+
+
+def test_reading_and_checking_is_linear_in_the_size_of_the_file():
+    # 20,000 links carrying 100,000 points, each pinned to the ground, which carries 20,001:
+    # a walk through a list of names for each name read is 1e9 steps (minutes, hours on a
+    # slow machine); with dictionaries it is seconds.  60 s leaves room for a slow machine.
+    points, links, joints = {"g": [-1.0, 0.0]}, [], []
+    for k in range(20_000):
+        names = [f"p{k}_{i}" for i in range(5)]
+        points.update({n: [float(k), float(i)] for i, n in enumerate(names)})
+        links.append({"name": f"l{k}", "points": names})
+        joints.append({"type": "R", "links": ["ground", f"l{k}"], "point": names[0]})
+    links.insert(0, {"name": "ground", "points": ["g"] + [j["point"] for j in joints], "ground": True})
+    text = json.dumps({"schema": 1, "units": {"length": "m", "angle": "rad"}, "points": points,
+                       "links": links, "joints": joints})
+    start = time.perf_counter()
+    mf = ModelFile.from_json(text, source="big.json")
+    assert len(mf.mechanism.points) == 100_001
+    assert time.perf_counter() - start < 60.0
 
 
 def test_missing_file(tmp_path):

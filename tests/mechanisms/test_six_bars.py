@@ -214,7 +214,7 @@ WATT_PAIRS = "'O2-A', 'A-B', 'O4-B', 'O4-C', 'B-C', 'C-D', 'O6-D'"
      r"C comes to O6 where dyad A-B-O4 closes, got 1 m; lengthen C-D or O6-D$"),
     ({"branch": "open"},
      r"^branch: expected a pair of 'open'/'crossed', one per dyad \(A-B-O4, C-D-O6\), got 'open'$"),
-    ({"branch": ("open", "cross")}, r"^branch\[1\]: expected one of 'open', 'crossed', got 'cross'$"),
+    ({"branch": ("open", "cross")}, r"^branch\[1\]: expected one of 'open', 'crossed', got 'cross' \(did you mean 'crossed'\?\)$"),
 ])
 def test_bad_input_says_what_and_where(kwargs, message):
     with pytest.raises(ModelError, match=message):

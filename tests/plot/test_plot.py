@@ -187,5 +187,5 @@ def test_plot_command_refuses_unknown_outputs(tmp_path):
                                   "--samples", "9", "--outputs", "rocker,nope"])
     assert r.exit_code == 2
     assert r.stderr.startswith("kinelab: error: --outputs: expected links, slides or points of "
-                               "crank-rocker, got 'nope'; they are 'ground', 'crank'")
+                               "'crank-rocker', got 'nope'; they are 'ground', 'crank'")
     assert list(tmp_path.iterdir()) == []

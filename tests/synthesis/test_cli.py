@@ -183,3 +183,40 @@ def test_answers_in_the_tasks_units_or_si(tmp_path):
     assert 'length = "m"' in (tmp_path / "si" / "solution_1.toml").read_text()
     one, two = (kl.load(tmp_path / d / "solution_1.toml") for d in ("out", "si"))
     np.testing.assert_allclose(one.point("A").xy, two.point("A").xy, rtol=1e-11)
+
+
+@pytest.mark.parametrize("text, problem", [
+    ('task = "path"\nname = "a\\u001b[31mb"\n', "name: expected a name of printable characters "
+     "(no newline, tab, control character), got 'a\\x1b[31mb'"),
+    ('task = "path"\nunits = { length = ["mm"] }\n',
+     "units.length: expected one of 'm', 'cm', 'mm', 'in', got ['mm']"),
+    ('task = "path"\n[positions]\npoints = [[0, 0], [1, true], [2, "0"]]\n',
+     "positions.points: expected finite numbers of shape (n, 2), got [[0, 0], [1, true], [2, '0']]"),
+    ('task = "path"\n[positions]\npoints = [[0, 0], [1, 1e300], [2, 0]]\n',
+     "positions.points: expected at most 1e+09 m in size, got [[0, 0], [1, 1e+300], [2, 0]]"),
+    # bounds that keep a search's time and memory within reason
+    ('task = "path"\n[search]\nruns = 1000000000\n',
+     "search.runs: expected a whole number from 1 to 1,000, got 1000000000"),
+    ('task = "path"\n[search]\nsamples = "x"\nrefine = 1\n',
+     "search.samples: expected a whole number from 2 to 1,000,000, got 'x'"),
+    ('task = "path"\n[search]\nrefine = 1\n', "search.refine: expected true or false, got 1"),
+    ('task = "function"\n[function]\nexpression = "x"\nx_range = [1, 2]\ninput_range = [1, 2]\n'
+     'output_range = [0, 1]\npoints = 1000000000000\n',
+     "function.points: expected a whole number from 2 to 100, got 1000000000000"),
+    ('task = "path"\n[positions]\npoints = [[0, ' + "9" * 5000 + ']]\n',
+     "line 3, column 15: a number of more than 4300 digits; no value needs so many, write it "
+     "with an exponent (1.5e3) or fix it"),
+])
+def test_bad_values_in_a_task_file_are_refused_in_one_line_each(tmp_path, text, problem):
+    res = run(tmp_path, text)
+    assert res.exit_code == 2, res.output
+    assert f"task.toml: {problem}\n" in res.stderr, res.stderr
+    assert "Traceback" not in res.output and not (tmp_path / "out").exists()
+
+
+def test_a_task_file_that_is_not_utf8(tmp_path):
+    task = tmp_path / "task.toml"
+    task.write_bytes(b'task = "path"\nname = "\xff"\n')
+    res = CliRunner().invoke(main, ["synth", str(task)])
+    assert res.exit_code == 2 and res.stderr.endswith("task.toml: line 2: not UTF-8 text; save the "
+                                                      "file as UTF-8\n")

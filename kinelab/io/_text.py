@@ -1,0 +1,133 @@
+"""Untrusted files to plain data: reading the text, parsing TOML or JSON, and refusing what
+no model, task or drawing file holds, each as one :class:`ModelError` that names the place.
+
+Every file kinelab reads (model files, synthesis tasks, linkage2d drawings, Pyslvs
+expressions) comes through here, so that they all refuse the same things the same way:
+text that is not UTF-8, syntax errors (with line and column), whole numbers longer than
+Python turns into numbers (``sys.get_int_max_str_digits()``), nesting deeper than
+``MAX_DEPTH``, a key given twice in a JSON object, and lone UTF-16 surrogates (a JSON
+``"\\ud800"``), which are not text and cannot be written back.
+"""
+from __future__ import annotations
+
+import json
+import os
+import re
+import sys
+import tomllib
+from pathlib import Path
+from typing import Any
+
+from kinelab.errors import ModelError, shown, shown_key
+
+__all__ = ["MAX_DEPTH", "read_text", "loads"]
+
+MAX_DEPTH = 32     # tables and lists inside each other; a model file needs about 6
+_SURROGATE = re.compile("[\ud800-\udfff]")
+
+
+def read_text(path: str | os.PathLike) -> str:
+    """The UTF-8 text of a file (a byte-order mark is allowed)."""
+    path = Path(path)
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError:
+        raise ModelError("no such file; check the path", source=str(path)) from None
+    except IsADirectoryError:
+        raise ModelError("a directory, not a file; name a file", source=str(path)) from None
+    except OSError as exc:
+        raise ModelError(f"cannot read it: {exc.strerror or exc}", source=str(path)) from None
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        line = raw[:exc.start].count(b"\n") + 1
+        raise ModelError(f"line {line}: not UTF-8 text; save the file as UTF-8",
+                         source=path.name) from None
+
+
+class _Twice(dict):
+    """A JSON object that had a key more than once (the first such key kept)."""
+    twice: str
+
+
+def _object(pairs: list[tuple[str, Any]]) -> dict:
+    out = dict(pairs)
+    if len(out) == len(pairs):
+        return out
+    seen: set[str] = set()
+    out = _Twice(pairs)
+    out.twice = next(k for k, _ in pairs if k in seen or seen.add(k))
+    return out
+
+
+def loads(text: str, language: str, *, source: str | None = None) -> Any:
+    """Plain data from ``text`` in ``language`` ("TOML" or "JSON"); see the module."""
+    try:
+        if language == "TOML":
+            data = tomllib.loads(text)
+        else:
+            data = json.loads(text, object_pairs_hook=_object)
+    except tomllib.TOMLDecodeError as exc:
+        raise ModelError(_toml_syntax(str(exc), text), source=source) from None
+    except json.JSONDecodeError as exc:
+        raise ModelError(f"line {exc.lineno}, column {exc.colno}: JSON syntax error: {exc.msg}; "
+                         "fix the syntax there", source=source) from None
+    except RecursionError:
+        raise ModelError(f"nested more than {MAX_DEPTH} deep; no file kinelab reads needs "
+                         "that many levels", source=source) from None
+    except ValueError:         # a whole number too long for int(): the only other failure
+        raise ModelError(_long_number(text), source=source) from None
+    _check(data, source)
+    return data
+
+
+def _long_number(text: str) -> str:
+    limit = sys.get_int_max_str_digits()
+    match = re.search(r"\d[\d_]{%d,}" % limit, text)
+    where = ""
+    if match:
+        line = text.count("\n", 0, match.start()) + 1
+        where = f"line {line}, column {match.start() - text.rfind(chr(10), 0, match.start())}: "
+    return (f"{where}a number of more than {limit} digits; no value needs so many, "
+            "write it with an exponent (1.5e3) or fix it")
+
+
+def _toml_syntax(message: str, text: str) -> str:
+    match = re.match(r"^(.*) \(at (?:line (\d+), column (\d+)|end of document)\)$", message, re.S)
+    what = match.group(1) if match else message
+    if match and match.group(2):
+        where = f"line {match.group(2)}, column {match.group(3)}"
+    else:
+        where = f"line {text.count(chr(10)) + 1} (end of file)"
+    what = what[:1].lower() + what[1:]
+    return f"{where}: TOML syntax error: {what}; fix the syntax there"
+
+
+def _check(data: Any, source: str | None) -> None:
+    """Refuse deep nesting, repeated keys and surrogates: one pass, without recursion."""
+    todo: list[tuple[Any, str, int]] = [(data, "", 0)]
+    while todo:
+        value, where, depth = todo.pop()
+        if isinstance(value, str):
+            if _SURROGATE.search(value):
+                raise ModelError(f"{where or 'the file'}: a lone UTF-16 surrogate in "
+                                 f"{shown(value)}, which is not text; fix the escape "
+                                 "(\\ud800 ... \\udfff) there", source=source)
+            continue
+        if not isinstance(value, (dict, list)):
+            continue
+        if depth >= MAX_DEPTH:
+            raise ModelError(f"{where or 'the file'}: nested more than {MAX_DEPTH} deep; no "
+                             "file kinelab reads needs that many levels", source=source)
+        if isinstance(value, _Twice):
+            at = f"{where}." if where else ""
+            raise ModelError(f"{at}{shown_key(value.twice)}: given twice in the same table; keep "
+                             "one", source=source)
+        if isinstance(value, dict):
+            for k, v in value.items():
+                if _SURROGATE.search(k):
+                    raise ModelError(f"{where or 'the file'}: a lone UTF-16 surrogate in the "
+                                     f"key {shown(k)}, which is not text; fix it", source=source)
+                todo.append((v, f"{where}.{shown_key(k)}" if where else shown_key(k), depth + 1))
+        else:
+            todo.extend((v, f"{where}[{i}]", depth + 1) for i, v in enumerate(value))

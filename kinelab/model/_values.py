@@ -1,0 +1,92 @@
+"""What a value of a model may be: the numbers and names kinelab computes with.
+
+One place for the limits, so that a model file, a catalogue constructor and a model built in
+Python refuse the same things: booleans, complex numbers, text and dates where a number is
+expected; numbers whose squares overflow in the accelerations; names that would break a
+message, a table header or a terminal.
+"""
+from __future__ import annotations
+
+import math
+import numbers
+from typing import Any
+
+import numpy as np
+
+__all__ = ["MIN_LENGTH", "MAX_LENGTH", "MAX_RATE", "MAX_TURNS", "is_real", "real", "real_array",
+           "length_problem", "rate_problem", "range_problem", "name_problem"]
+
+# Sizes kinelab computes with, in SI.  Lengths: a nanometre to a million kilometres; with
+# them, squared lengths and products of lengths stay far from overflow (1e308) and underflow
+# (1e-308), and a length is well above the 1e-12 m under which two points coincide.
+MIN_LENGTH = 1e-9     # m
+MAX_LENGTH = 1e9      # m, also the largest coordinate of a point
+# Input rates: accelerations take the square of a speed times a length, so a speed of at
+# most 1e100 (rad/s or m/s) keeps them finite (1e9 m x 1e200 = 1e209).
+MAX_RATE = 1e100
+# An angle input's range: at most this many turns from 0 at either end.  Beyond it the
+# samples of an angle are too far apart, or the angle too large for its sine to mean anything.
+MAX_TURNS = 1000
+
+
+def is_real(value: Any) -> bool:
+    """A real number (int, float, numpy's), not a boolean, that is finite as a float."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        return False
+    try:
+        return math.isfinite(float(value))
+    except (OverflowError, TypeError, ValueError):
+        return False
+
+
+def real(value: Any) -> float | None:
+    """``float(value)`` when :func:`is_real`, else None."""
+    return float(value) if is_real(value) else None
+
+
+def real_array(value: Any) -> np.ndarray | None:
+    """``value`` as a float array when it holds real numbers only, else None: numpy itself
+    would turn True into 1.0, "3" into 3.0 and drop the imaginary part of a complex number."""
+    try:
+        a = np.asarray(value)
+    except (TypeError, ValueError, OverflowError):
+        return None
+    return a.astype(float) if a.dtype.kind in "iuf" else None
+
+
+def length_problem(value: float, *, positive: bool = True) -> str | None:
+    """Why ``value`` (m) cannot be a length (``positive``) or a coordinate, or None."""
+    if positive and not MIN_LENGTH <= value <= MAX_LENGTH:
+        return f"expected a length from {MIN_LENGTH:g} m to {MAX_LENGTH:g} m"
+    if not positive and abs(value) > MAX_LENGTH:
+        return f"expected at most {MAX_LENGTH:g} m in size"
+    return None
+
+
+def rate_problem(value: float, unit: str) -> str | None:
+    """Why ``value`` (SI, per s or per s^2) cannot be an input's speed or acceleration."""
+    if abs(value) > MAX_RATE:
+        return (f"expected at most {MAX_RATE:g} {unit} in size (accelerations take its "
+                "square)")
+    return None
+
+
+def range_problem(start: float, stop: float, angle: bool) -> str | None:
+    """Why ``(start, stop)`` (rad, or m) cannot be an input's range (other than being
+    empty), or None."""
+    if angle and max(abs(start), abs(stop)) > MAX_TURNS * 2 * math.pi:
+        return f"expected angles within {MAX_TURNS} turns of 0 either way"
+    if not angle and max(abs(start), abs(stop)) > MAX_LENGTH:
+        return f"expected a slide within {MAX_LENGTH:g} m of 0"
+    return None
+
+
+def name_problem(name: Any) -> str | None:
+    """Why ``name`` cannot name a point, link, joint, input or mechanism, or None: names
+    head table columns and lines of messages, so they are non-empty, printable text (no
+    newline, tab, control or escape character, lone surrogate)."""
+    if not isinstance(name, str) or not name.strip():
+        return "expected a non-empty name"
+    if not name.isprintable():
+        return "expected a name of printable characters (no newline, tab, control character)"
+    return None

@@ -1,0 +1,27 @@
+"""analyze takes real numbers for q, qd and qdd: numpy would otherwise turn True into 1.0,
+"3" into 3.0 and drop the imaginary part of a complex number."""
+import datetime
+
+import numpy as np
+import pytest
+
+import kinelab as kl
+from kinelab.errors import ModelError
+
+
+@pytest.mark.parametrize("arg", ["q", "qd", "qdd"])
+@pytest.mark.parametrize("value", [True, np.array([True, False]), 1 + 2j, "1", ["0.1", "0.2"],
+                                   datetime.datetime(2020, 1, 1), np.datetime64("2020-01-01"),
+                                   10 ** 30], ids=lambda v: type(v).__name__)
+def test_only_real_numbers_are_inputs(arg, value):
+    fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
+    kwargs = {"q": 0.5, arg: value}
+    with pytest.raises(ModelError, match=rf"^{arg}: expected numbers, got "):
+        kl.analyze(fb, **kwargs)
+
+
+def test_numpy_numbers_are_inputs():
+    fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
+    a = kl.analyze(fb, q=np.int64(1), qd=np.float32(2.0))
+    b = kl.analyze(fb, q=1.0, qd=2.0)
+    assert a.omega("coupler") == b.omega("coupler")

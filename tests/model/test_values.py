@@ -1,0 +1,109 @@
+"""Only real numbers of sizes kinelab computes with, and printable names, make a model; and
+checking a model takes time linear in its size."""
+import dataclasses
+import datetime
+import time
+
+import numpy as np
+import pytest
+
+import kinelab as kl
+from kinelab.errors import ModelError
+from kinelab.model import MAX_LENGTH, MAX_RATE, MAX_TURNS, Input, Joint, Link, Mechanism, Point
+
+NOT_NUMBERS = [True, 1 + 2j, "1", datetime.datetime(2020, 1, 1), 10 ** 5000, None]
+
+
+def fourbar():
+    return kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
+
+
+def replace_point(m, **change):
+    return dataclasses.replace(m, points=(dataclasses.replace(m.points[0], **change),) + m.points[1:])
+
+
+@pytest.mark.parametrize("value", NOT_NUMBERS, ids=lambda v: type(v).__name__)
+def test_a_coordinate_is_a_real_number(value):
+    with pytest.raises(ModelError, match=r"point 'O2': coordinates must be finite numbers"):
+        replace_point(fourbar(), x=value)
+
+
+def test_a_coordinate_is_at_most_max_length():
+    with pytest.raises(ModelError, match=r"point 'O2': coordinates: expected at most 1e\+09 m in size, "
+                                         r"got \(1e\+300, 0, 0\) m"):
+        replace_point(fourbar(), x=1e300)
+    replace_point(fourbar(), x=MAX_LENGTH / 2)     # within: accepted
+
+
+@pytest.mark.parametrize("field", ["mass", "inertia", "length"])
+@pytest.mark.parametrize("value", [True, 1j, "2"], ids=repr)
+def test_link_fields_are_real_numbers(field, value):
+    m = fourbar()
+    crank = dataclasses.replace(m.links[1], **{field: value})
+    with pytest.raises(ModelError, match=rf"link 'crank': {field}: expected a positive number"):
+        dataclasses.replace(m, links=(m.links[0], crank) + m.links[2:])
+
+
+@pytest.mark.parametrize("field", ["speed", "acceleration"])
+@pytest.mark.parametrize("value", [True, 1j, "2", datetime.date(2020, 1, 1)], ids=repr)
+def test_input_rates_are_real_numbers(field, value):
+    with pytest.raises(ModelError, match=rf"inputs\[0\]: {field}: expected a finite number"):
+        dataclasses.replace(fourbar(), inputs=(Input(joint="jO2", **{field: value}),))
+
+
+def test_input_rates_whose_squares_overflow_are_refused():
+    # 1e300 rad/s squared is inf: the accelerations would be inf in every table
+    with pytest.raises(ModelError, match=r"inputs\[0\]: speed: expected at most 1e\+100 rad/s in "
+                                         r"size \(accelerations take its square\), got 1e\+300 rad/s"):
+        dataclasses.replace(fourbar(), inputs=(Input(joint="jO2", speed=1e300),))
+    dataclasses.replace(fourbar(), inputs=(Input(joint="jO2", speed=MAX_RATE),))
+
+
+def test_an_angle_range_is_within_max_turns():
+    turns = 2 * np.pi * MAX_TURNS
+    dataclasses.replace(fourbar(), inputs=(Input(joint="jO2", range=(-turns, turns)),))
+    with pytest.raises(ModelError, match=r"inputs\[0\]: range: expected angles within 1000 "
+                                         r"turns of 0 either way"):
+        dataclasses.replace(fourbar(), inputs=(Input(joint="jO2", range=(0.0, 1.01 * turns)),))
+    with pytest.raises(ModelError, match=r"inputs\[0\]: range: expected two finite numbers"):
+        dataclasses.replace(fourbar(), inputs=(Input(joint="jO2", range=(0.0, True)),))
+
+
+@pytest.mark.parametrize("name, shown", [("a\nb", r"'a\nb'"), ("\ud800", r"'\ud800'"),
+                                          ("\x1b[31mP", r"'\x1b[31mP'"), ("P\x00", r"'P\x00'"),
+                                          ("", "''"), (["P"], "['P']")])
+def test_names_are_printable_text(name, shown):
+    with pytest.raises(ModelError) as info:
+        replace_point(fourbar(), name=name)
+    assert f"got {shown}" in str(info.value)
+    assert str(info.value).count("\n") == 0
+
+
+def test_a_lookup_of_a_long_unknown_name_stays_short():
+    with pytest.raises(ModelError) as info:
+        fourbar().point("Q" * 100_000)
+    assert len(str(info.value)) < 300
+
+
+# -- linear work --------------------------------------------------------------------------
+def pendulums(n: int, per_link: int = 5) -> Mechanism:
+    """A ground and ``n`` pendulums pinned to it, each carrying ``per_link`` points, all used."""
+    points, links, joints = [Point("g", -1.0, 0.0)], [], []
+    for k in range(n):
+        names = tuple(f"p{k}_{i}" for i in range(per_link))
+        points += [Point(p, float(k), float(i)) for i, p in enumerate(names)]
+        links.append(Link(f"l{k}", names))
+        joints.append(Joint(f"j{k}", "R", ("ground", f"l{k}"), point=names[0]))
+    ground = Link("ground", ("g",) + tuple(j.point for j in joints), ground=True)
+    return Mechanism("pendulums", tuple(points), (ground, *links), tuple(joints))
+
+
+def test_validation_is_linear_in_the_size_of_the_model():
+    # 100,000 points, 20,000 links: the ground carries 20,001 of them.  Checking each pin
+    # against a list of the ground's points (as a walk through lists does) is 4e8 steps,
+    # minutes; with sets and dictionaries it is about a second.  60 s leaves a slow
+    # machine room and still fails the quadratic walk by far.
+    start = time.perf_counter()
+    m = pendulums(20_000)
+    assert len(m.points) == 100_001 and m.links_carrying("p19999_0") == ("ground", "l19999")
+    assert time.perf_counter() - start < 60.0
