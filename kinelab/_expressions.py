@@ -14,12 +14,29 @@ Variables, vectorised over N samples:
 - ``q``, ``qd`` -- the input coordinate and its rate when the mechanism has one input
   (rad or m, rad/s or m/s); with several inputs write ``q[0]``, ``qd[1]`` ... (0-based,
   in the order of the model's inputs).
+
+Numbers are float64 and every operation is numpy's (``1/0`` is inf, never Python's
+ZeroDivisionError; ``10**400`` overflows to inf rather than building a big integer);
+comparisons, ``and``, ``or`` and ``not`` give 1.0 or 0.0.  The bounds, the same for every
+user of expressions (force laws, tables' ``of``, synthesis targets, :func:`to_sympy`):
+
+- at most :data:`MAX_LENGTH` characters and :data:`MAX_PARTS` numbers, names and
+  operators (a law is a formula, not a program: a long law belongs in a table);
+- at most :data:`MAX_DEPTH` levels of nesting (brackets, function calls, powers, signs; a
+  long sum or product is one level);
+- a constant exponent of at most :data:`MAX_EXPONENT` in size, and no power towers
+  (``a ** b ** c``);
+- a part without variables is evaluated when the text is parsed and must be finite (and
+  a constant divisor non-zero);
+- where the expression is evaluated, a value that is inf or NaN raises a ModelError
+  naming the expression and the sample (t, q, qd) where it happened.
 """
 from __future__ import annotations
 
 import ast
+import io
 import math
-import operator
+import tokenize
 from collections.abc import Callable, Mapping
 from typing import Any
 
@@ -27,9 +44,14 @@ import numpy as np
 
 from kinelab.errors import ModelError
 
-__all__ = ["parse_expression", "parse_function", "parse_table", "to_sympy", "FUNCTIONS"]
+__all__ = ["parse_expression", "parse_function", "parse_table", "to_sympy", "FUNCTIONS",
+           "MAX_LENGTH", "MAX_PARTS", "MAX_DEPTH", "MAX_EXPONENT"]
 
-MAX_LENGTH = 2000   # characters: a force law is a formula, not a program
+MAX_LENGTH = 10_000   # characters
+MAX_PARTS = 1_000     # numbers, names and operators (brackets and commas not counted)
+MAX_DEPTH = 100       # levels of brackets, calls, powers and signs
+MAX_EXPONENT = 1_000  # size of a constant exponent: 10.0 ** 309 is already inf
+_EXACT_BITS = 4096    # to_sympy: a power with a larger exact coefficient uses a float
 
 FUNCTIONS: dict[str, tuple[Callable, int]] = {
     # name: (numpy function, number of arguments)
@@ -41,14 +63,18 @@ FUNCTIONS: dict[str, tuple[Callable, int]] = {
     "ceil": (np.ceil, 1), "min": (np.minimum, 2), "max": (np.maximum, 2),
     "hypot": (np.hypot, 2), "clip": (np.clip, 3), "where": (np.where, 3),
 }
-_CONSTANTS = {"pi": math.pi, "e": math.e}
-_BINARY = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
-           ast.Div: operator.truediv, ast.Pow: operator.pow, ast.Mod: np.mod}
-_UNARY = {ast.USub: operator.neg, ast.UAdd: operator.pos, ast.Not: np.logical_not}
+_CONSTANTS = {"pi": np.float64(math.pi), "e": np.float64(math.e)}
+_BINARY = {ast.Add: np.add, ast.Sub: np.subtract, ast.Mult: np.multiply,
+           ast.Div: np.divide, ast.Pow: np.power, ast.Mod: np.mod}
+_UNARY = {ast.USub: np.negative, ast.UAdd: np.positive, ast.Not: np.logical_not}
 _COMPARE = {ast.Lt: np.less, ast.LtE: np.less_equal, ast.Gt: np.greater,
             ast.GtE: np.greater_equal, ast.Eq: np.equal, ast.NotEq: np.not_equal}
 _BOOL = {ast.And: np.logical_and, ast.Or: np.logical_or}
-_STATE = ("t", "q", "qd")
+# Left-associative runs of one precedence (a + b - c, a * b / c % d) are one level of
+# nesting, read and evaluated in a loop: a long sum is long, not deep.
+_CHAIN = {ast.Add: "sum", ast.Sub: "sum", ast.Mult: "product", ast.Div: "product",
+          ast.Mod: "product"}
+_NOT_COUNTED = {"(", ")", "[", "]", ","}
 
 _OPERATIONS = ("pi, e, + - * / ** %, comparisons, and/or/not, 'a if c else b' and the "
                "functions " + ", ".join(FUNCTIONS))
@@ -64,9 +90,58 @@ class _Env:
         self.t, self.q, self.qd = t, q, qd
 
 
+class _Const:
+    """A part without variables, evaluated (in float64) once, when the text is parsed."""
+
+    __slots__ = ("value",)
+
+    def __init__(self, value):
+        self.value = value
+
+    def __call__(self, env):
+        return self.value
+
+
+def _float(value):
+    """numpy's float64 of a result: booleans become 1.0 and 0.0."""
+    return np.asarray(value, dtype=np.float64)[()]
+
+
+def _shown(text: str) -> str:
+    """The text in a message, shortened so that the message stays one readable line."""
+    text = text.strip()
+    return repr(text if len(text) <= 80 else text[:72] + " ...")
+
+
+def _describe(value: float) -> str:
+    if math.isnan(value):
+        return "nan (an undefined result such as 0/0, sqrt(-1) or log(-1))"
+    return f"{value} (an overflow or a division by zero)"
+
+
+def not_finite(where: str, what: str, values, **state) -> ModelError:
+    """The error for ``values`` of shape (), (N,) or (N, k) that are not all finite: the
+    first sample that is not, with the state there (``t=``, ``q=``, ``qd=`` or the
+    formula's variable)."""
+    values = np.asarray(values, dtype=float)
+    bad = ~np.isfinite(values)
+    k = int(np.argmax(bad.reshape(len(bad), -1).any(axis=1))) if values.ndim else None
+    value = float(values[bad][0])
+
+    def shown(name, a):
+        a = np.asarray(a, dtype=float)
+        row = np.ravel(a if a.ndim == 0 or k is None else a[min(k, len(a) - 1)])
+        text = (f"{row[0]:.6g}" if row.size == 1
+                else "[" + ", ".join(f"{v:.6g}" for v in row) + "]")
+        return f"{name} = {text}" + (" s" if name == "t" else "")
+    at = ", ".join(shown(n, a) for n, a in state.items() if a is not None)
+    return ModelError(f"{where}: {what} gives {_describe(value)} at {at}; expected a finite "
+                      "value; guard it there, for example with where(...) or clip(...)")
+
+
 def _refuse(where: str, text: str, what: str, variable: str | None = None) -> ModelError:
     allowed = ALLOWED if variable is None else f"numbers, {variable}, {_OPERATIONS}"
-    return ModelError(f"{where}: {what} is not allowed in the expression {text!r}; "
+    return ModelError(f"{where}: {what} is not allowed in the expression {_shown(text)}; "
                       f"an expression may use {allowed}")
 
 
@@ -84,12 +159,16 @@ def parse_expression(text: str, *, where: str = "expression") -> Callable[[Any, 
     -------
     callable
         ``f(t, q, qd)`` with ``t`` of shape (N,) and ``q``, ``qd`` of shape (N, M),
-        returning an array of shape (N,).
+        returning float64 values of shape (N,) (or () for a constant).  It raises a
+        ModelError naming the sample where a value is inf or NaN.
 
     Raises
     ------
     ModelError
-        The text does not parse, or uses anything outside the whitelist.
+        The text does not parse, uses anything outside the whitelist, goes beyond the
+        bounds (:data:`MAX_LENGTH`, :data:`MAX_PARTS`, :data:`MAX_DEPTH`,
+        :data:`MAX_EXPONENT`, power towers), or has a part without variables that is
+        not finite.
 
     Examples
     --------
@@ -100,12 +179,22 @@ def parse_expression(text: str, *, where: str = "expression") -> Callable[[Any, 
     Traceback (most recent call last):
     ...
     kinelab.errors.ModelError: expression: the function '__import__' is not allowed ...
+    >>> parse_expression("1 / q")(np.zeros(1), np.zeros((1, 1)), np.zeros((1, 1)))
+    Traceback (most recent call last):
+    ...
+    kinelab.errors.ModelError: expression: the expression '1 / q' gives inf (an overflow or a division by zero) at t = 0 s, q = 0, qd = 0; expected a finite value; guard it there, for example with where(...) or clip(...)
     """
-    tree = _parse(text, where)
-    node = _compile(tree.body, where, text)
+    _, node = _checked(text, where)
+    what = f"the expression {_shown(text)}"
 
     def law(t, q, qd):
-        return node(_Env(t, q, qd))
+        env = _Env(np.asarray(t, dtype=np.float64), np.asarray(q, dtype=np.float64),
+                   np.asarray(qd, dtype=np.float64))
+        with np.errstate(all="ignore"):
+            out = _float(node(env))
+        if not np.all(np.isfinite(out)):
+            raise not_finite(where, what, out, t=env.t, q=env.q, qd=env.qd)
+        return out
     law.text = text
     return law
 
@@ -114,7 +203,8 @@ def parse_function(text: str, variable: str = "x", *, where: str = "expression"
                    ) -> Callable[[Any], np.ndarray]:
     """Turn a formula of one variable into a vectorised function, without executing it.
 
-    Same whitelist as :func:`parse_expression`, with ``variable`` the only name.
+    Same whitelist and bounds as :func:`parse_expression`, with ``variable`` the only
+    name; a value that is inf or NaN raises a ModelError naming the variable's value.
 
     Examples
     --------
@@ -122,136 +212,284 @@ def parse_function(text: str, variable: str = "x", *, where: str = "expression"
     >>> f(np.array([1.0, 10.0]))
     array([  1., 101.])
     """
-    tree = _parse(text, where)
-    node = _compile(tree.body, where, text, variable)
+    _, node = _checked(text, where, variable)
+    what = f"the expression {_shown(text)}"
 
     def function(x):
-        x = np.asarray(x, float)
-        return np.broadcast_to(np.asarray(node(_Env(x, None, None)), float), x.shape)
+        x = np.asarray(x, dtype=np.float64)
+        with np.errstate(all="ignore"):
+            out = np.broadcast_to(_float(node(_Env(x, None, None))), x.shape)
+        if not np.all(np.isfinite(out)):
+            raise not_finite(where, what, out, **{variable: x})
+        return out
     function.text = text
     return function
 
 
-def _parse(text: str, where: str) -> ast.Expression:
+def _checked(text: str, where: str, variable: str | None = None):
+    """The parsed tree of ``text`` and its closure, once every bound and the whitelist
+    are checked: what :func:`parse_expression`, :func:`parse_function` and
+    :func:`to_sympy` all refuse."""
     if not isinstance(text, str):
         raise ModelError(f"{where}: expected an expression (text) or a number, got {text!r}")
     if len(text) > MAX_LENGTH:
-        raise ModelError(f"{where}: the expression is {len(text)} characters long; a formula "
-                         f"is limited to {MAX_LENGTH}; use a table for long laws")
+        raise ModelError(f"{where}: the expression is {len(text)} characters long; expected at "
+                         f"most {MAX_LENGTH}; use a table for a long law")
+    source = text.strip()
+    parts = _parts(source)
+    if parts > MAX_PARTS:
+        raise ModelError(f"{where}: the expression {_shown(text)} has {parts} numbers, names and "
+                         f"operators; expected at most {MAX_PARTS}; use a table for a long law")
     try:
-        return ast.parse(text.strip(), mode="eval")
+        tree = ast.parse(source, mode="eval")
     except SyntaxError as exc:
-        raise ModelError(f"{where}: cannot parse the expression {text!r}: {exc.msg} "
+        raise ModelError(f"{where}: cannot parse the expression {_shown(text)}: {exc.msg} "
                          f"(column {exc.offset}); check the brackets and operators") from None
     except (RecursionError, MemoryError):
-        raise ModelError(f"{where}: the expression {text!r} is nested too deeply") from None
+        tree = None
+    depth = MAX_DEPTH + 1 if tree is None else _depth(tree.body)
+    if depth > MAX_DEPTH:
+        deep = "too deeply" if tree is None else f"{depth} levels deep"
+        raise ModelError(f"{where}: the expression {_shown(text)} is nested {deep} (brackets, "
+                         f"function calls, powers, signs); expected at most {MAX_DEPTH} levels; "
+                         "write it with fewer brackets or as several laws")
+    return tree, _Compiler(where, text, source, variable).compile(tree.body)
 
 
-def _compile(node: ast.AST, where: str, text: str, variable: str | None = None
-             ) -> Callable[[_Env], Any]:
-    """A closure computing ``node``; refuses every node type outside the whitelist.
+def _parts(source: str) -> int:
+    """How many numbers, names and operators ``source`` has, counted before it is parsed
+    (Python's parser recurses once per term of a long sum)."""
+    n = 0
+    try:
+        for tok in tokenize.generate_tokens(io.StringIO(source).readline):
+            if tok.type in (tokenize.NAME, tokenize.NUMBER, tokenize.STRING) or (
+                    tok.type == tokenize.OP and tok.string not in _NOT_COUNTED):
+                n += 1
+    except (tokenize.TokenError, SyntaxError):    # unbalanced brackets: ast.parse says so
+        pass
+    return n
+
+
+def _depth(root: ast.expr) -> int:
+    """Levels of nesting, without recursion; a run of one precedence is one level."""
+    deepest, stack = 0, [(root, 1)]
+    while stack:
+        node, d = stack.pop()
+        deepest = max(deepest, d)
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, ast.expr):
+                same = (isinstance(node, ast.BinOp) and child is node.left
+                        and isinstance(child, ast.BinOp) and _CHAIN.get(type(child.op)) is not None
+                        and _CHAIN.get(type(child.op)) == _CHAIN.get(type(node.op)))
+                stack.append((child, d if same else d + 1))
+    return deepest
+
+
+def _chain(node: ast.BinOp) -> tuple[ast.expr, list[ast.BinOp]]:
+    """The first operand of the run of one precedence ending at ``node`` and the BinOps
+    applying the others, innermost first: ``a - b + c`` is ``a``, [``a - b``, ``... + c``]."""
+    kind, links = _CHAIN[type(node.op)], []
+    while isinstance(node, ast.BinOp) and _CHAIN.get(type(node.op)) == kind:
+        links.append(node)
+        node = node.left
+    return node, links[::-1]
+
+
+def _exponent(node: ast.BinOp) -> ast.expr:
+    """The exponent of a power, under its signs."""
+    e = node.right
+    while isinstance(e, ast.UnaryOp) and isinstance(e.op, (ast.USub, ast.UAdd)):
+        e = e.operand
+    return e
+
+
+def _boolean(node: ast.expr) -> bool:
+    return isinstance(node, (ast.Compare, ast.BoolOp)) or (
+        isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not))
+
+
+class _Compiler:
+    """Turns a checked tree into closures; refuses every node type outside the whitelist
+    and evaluates the parts without variables once, in float64.
 
     With ``variable`` the formula is of that one name (held in ``env.t``) and t, q, qd are
     not allowed.
     """
-    c = lambda n: _compile(n, where, text, variable)   # noqa: E731 - local shorthand
 
-    def _refuse_here(what):
-        return _refuse(where, text, what, variable)
-    if isinstance(node, ast.Constant):
-        if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
-            raise _refuse_here(f"the constant {node.value!r}")
-        value = float(node.value)
-        return lambda env: value
-    if isinstance(node, ast.Name):
-        if node.id in _CONSTANTS:
-            value = _CONSTANTS[node.id]
-            return lambda env: value
-        if variable is not None:
-            if node.id == variable:
+    def __init__(self, where: str, text: str, source: str, variable: str | None):
+        self.where, self.text, self.source, self.variable = where, text, source, variable
+
+    def refuse(self, what: str) -> ModelError:
+        return _refuse(self.where, self.text, what, self.variable)
+
+    def part(self, node: ast.AST, noun: str = "the part") -> str:
+        """How a message names a part of the expression: ``the part '1/0' in the
+        expression 'q + 1/0'``, or ``the expression '1/0'`` when it is the whole."""
+        segment = ast.get_source_segment(self.source, node) or ""
+        if segment == self.source:
+            return f"{'the expression' if noun == 'the part' else noun} {_shown(self.text)}"
+        return f"{noun} {_shown(segment)} in the expression {_shown(self.text)}"
+
+    def fold(self, node: ast.AST, fn: Callable, *values) -> _Const:
+        """``fn(*values)`` now, as a constant; refused unless finite."""
+        with np.errstate(all="ignore"):
+            value = _float(fn(*values))
+        if not np.isfinite(value):
+            raise ModelError(f"{self.where}: {self.part(node)} has no variables and evaluates "
+                             f"to {_describe(float(value))} in float64; expected a finite "
+                             "number (float64 reaches 1.8e308); correct the numbers")
+        return _Const(value)
+
+    def apply(self, node: ast.AST, fn: Callable, args: list) -> Callable[[_Env], Any]:
+        """``fn`` of the closures ``args``: folded when none has variables."""
+        if all(isinstance(a, _Const) for a in args):
+            return self.fold(node, fn, *(a.value for a in args))
+        if len(args) == 1:
+            a, = args
+            return lambda env: fn(a(env))
+        if len(args) == 2:
+            a, b = args
+            return lambda env: fn(a(env), b(env))
+        return lambda env: fn(*[a(env) for a in args])
+
+    def compile(self, node: ast.AST) -> Callable[[_Env], Any]:
+        c, variable = self.compile, self.variable
+        if isinstance(node, ast.Constant):
+            if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
+                raise self.refuse(f"the constant {node.value!r}")
+            try:
+                value = np.float64(node.value)
+            except OverflowError:
+                value = np.float64(np.inf)
+            if not np.isfinite(value):
+                raise ModelError(f"{self.where}: {self.part(node, 'the number')} is beyond float64; "
+                                 "expected a size of at most 1.8e308; correct the number")
+            return _Const(value)
+        if isinstance(node, ast.Name):
+            if node.id in _CONSTANTS:
+                return _Const(_CONSTANTS[node.id])
+            if variable is not None:
+                if node.id == variable:
+                    return lambda env: env.t
+                raise self.refuse(f"the name {node.id!r} (the only variable is {variable!r})")
+            if node.id == "t":
                 return lambda env: env.t
-            raise _refuse_here(f"the name {node.id!r} (the only variable is {variable!r})")
-        if node.id == "t":
-            return lambda env: env.t
-        if node.id in ("q", "qd"):
-            name = node.id
+            if node.id in ("q", "qd"):
+                return self.state(node.id, None)
+            raise self.refuse(f"the name {node.id!r}")
+        if isinstance(node, ast.Subscript):
+            if variable is not None or not (isinstance(node.value, ast.Name)
+                                            and node.value.id in ("q", "qd")):
+                raise self.refuse("indexing anything but q or qd")
+            index = node.slice
+            if not (isinstance(index, ast.Constant) and isinstance(index.value, int)
+                    and not isinstance(index.value, bool) and index.value >= 0):
+                raise self.refuse("an index that is not a whole number >= 0")
+            return self.state(node.value.id, index.value)
+        if isinstance(node, ast.BinOp):
+            if type(node.op) not in _BINARY:
+                raise self.refuse(f"the operator {type(node.op).__name__}")
+            if isinstance(node.op, ast.Pow):
+                return self.power(node)
+            first, links = _chain(node)
+            value = c(first)
+            rest = []
+            for link in links:
+                op, right = _BINARY[type(link.op)], c(link.right)
+                if (isinstance(link.op, (ast.Div, ast.Mod)) and isinstance(right, _Const)
+                        and right.value == 0):
+                    raise ModelError(f"{self.where}: division by zero in {self.part(link)}: the "
+                                     "divisor is a constant 0; expected a non-zero divisor")
+                if not rest and isinstance(value, _Const) and isinstance(right, _Const):
+                    value = self.fold(link, op, value.value, right.value)
+                else:
+                    rest.append((op, right))
+            if not rest:
+                return value
+            if len(rest) == 1:
+                (op, right), = rest
+                return lambda env: op(value(env), right(env))
 
-            def whole(env):
-                a = getattr(env, name)
-                if a.shape[1] != 1:
-                    raise ModelError(f"{where}: '{name}' in {text!r}: the mechanism has "
-                                     f"{a.shape[1]} inputs; write {name}[0] ... {name}[{a.shape[1] - 1}]")
-                return a[:, 0]
-            return whole
-        raise _refuse_here(f"the name {node.id!r}")
-    if isinstance(node, ast.Subscript):
-        if variable is not None or not (isinstance(node.value, ast.Name)
-                                        and node.value.id in ("q", "qd")):
-            raise _refuse_here("indexing anything but q or qd")
-        index = node.slice
-        if not (isinstance(index, ast.Constant) and isinstance(index.value, int)
-                and not isinstance(index.value, bool) and index.value >= 0):
-            raise _refuse_here("an index that is not a whole number >= 0")
-        name, k = node.value.id, index.value
+            def run(env):
+                out = value(env)
+                for op, right in rest:
+                    out = op(out, right(env))
+                return out
+            return run
+        if isinstance(node, ast.UnaryOp):
+            op = _UNARY.get(type(node.op))
+            if op is None:
+                raise self.refuse(f"the operator {type(node.op).__name__}")
+            if isinstance(node.op, ast.Not):
+                return self.apply(node, lambda a: _float(np.logical_not(a)), [c(node.operand)])
+            return self.apply(node, op, [c(node.operand)])
+        if isinstance(node, ast.Compare):
+            ops = [_COMPARE.get(type(o)) for o in node.ops]
+            if None in ops:
+                raise self.refuse("this comparison")
+
+            def compare(*values):
+                out = ops[0](values[0], values[1])
+                for op, a, b in zip(ops[1:], values[1:], values[2:]):
+                    out = np.logical_and(out, op(a, b))
+                return _float(out)
+            return self.apply(node, compare, [c(node.left)] + [c(n) for n in node.comparators])
+        if isinstance(node, ast.BoolOp):
+            op = _BOOL[type(node.op)]
+
+            def boolean(*values):
+                out = values[0]
+                for v in values[1:]:
+                    out = op(out, v)
+                return _float(out)
+            return self.apply(node, boolean, [c(n) for n in node.values])
+        if isinstance(node, ast.IfExp):
+            return self.apply(node, np.where, [c(node.test), c(node.body), c(node.orelse)])
+        if isinstance(node, ast.Call):
+            if not isinstance(node.func, ast.Name) or node.func.id not in FUNCTIONS:
+                name = (node.func.id if isinstance(node.func, ast.Name)
+                        else ast.get_source_segment(self.source, node.func))
+                raise self.refuse(f"the function {name!r}")
+            if node.keywords:
+                raise self.refuse("a keyword argument")
+            fn, nargs = FUNCTIONS[node.func.id]
+            if len(node.args) != nargs:
+                raise ModelError(f"{self.where}: {node.func.id}() takes {nargs} argument(s), got "
+                                 f"{len(node.args)} in {_shown(self.text)}")
+            return self.apply(node, fn, [c(a) for a in node.args])
+        segment = ast.get_source_segment(self.source, node) or ""
+        raise self.refuse(f"{type(node).__name__} ({segment[:60]!r})")
+
+    def power(self, node: ast.BinOp) -> Callable[[_Env], Any]:
+        if isinstance(_exponent(node), ast.BinOp) and isinstance(_exponent(node).op, ast.Pow):
+            raise ModelError(f"{self.where}: {self.part(node, 'the power tower')} is not "
+                             "allowed (a ** b ** c); expected a number, a name or a bracketed "
+                             "term as the exponent; write the exponent b ** c out as a number, or "
+                             "bracket the base if (a ** b) ** c was meant")
+        base, exponent = self.compile(node.left), self.compile(node.right)
+        if isinstance(exponent, _Const) and not abs(exponent.value) <= MAX_EXPONENT:
+            raise ModelError(f"{self.where}: the exponent {exponent.value:g} of "
+                             f"{self.part(node, 'the power')} is too large; expected a constant "
+                             f"exponent of at most {MAX_EXPONENT} in size; rescale the quantity "
+                             "raised to it")
+        return self.apply(node, np.power, [base, exponent])
+
+    def state(self, name: str, k: int | None) -> Callable[[_Env], Any]:
+        """``q`` or ``qd`` of a one-input mechanism (``k`` None), or column ``k``."""
+        where, text = self.where, _shown(self.text)
 
         def column(env):
             a = getattr(env, name)
+            if k is None:
+                if a.shape[1] != 1:
+                    raise ModelError(f"{where}: '{name}' in {text}: the mechanism has "
+                                     f"{a.shape[1]} inputs; write {name}[0] ... {name}[{a.shape[1] - 1}]")
+                return a[:, 0]
             if k >= a.shape[1]:
-                raise ModelError(f"{where}: {name}[{k}] in {text!r}: the mechanism has "
+                raise ModelError(f"{where}: {name}[{k}] in {text}: the mechanism has "
                                  f"{a.shape[1]} input(s), numbered from 0")
             return a[:, k]
         return column
-    if isinstance(node, ast.BinOp):
-        op = _BINARY.get(type(node.op))
-        if op is None:
-            raise _refuse_here(f"the operator {type(node.op).__name__}")
-        left, right = c(node.left), c(node.right)
-        return lambda env: op(left(env), right(env))
-    if isinstance(node, ast.UnaryOp):
-        op = _UNARY.get(type(node.op))
-        if op is None:
-            raise _refuse_here(f"the operator {type(node.op).__name__}")
-        operand = c(node.operand)
-        return lambda env: op(operand(env))
-    if isinstance(node, ast.Compare):
-        ops = [_COMPARE.get(type(o)) for o in node.ops]
-        if None in ops:
-            raise _refuse_here("this comparison")
-        terms = [c(node.left)] + [c(n) for n in node.comparators]
-
-        def compare(env):
-            values = [f(env) for f in terms]
-            out = ops[0](values[0], values[1])
-            for op, a, b in zip(ops[1:], values[1:], values[2:]):
-                out = np.logical_and(out, op(a, b))
-            return out
-        return compare
-    if isinstance(node, ast.BoolOp):
-        op = _BOOL[type(node.op)]
-        terms = [c(n) for n in node.values]
-
-        def boolean(env):
-            out = terms[0](env)
-            for f in terms[1:]:
-                out = op(out, f(env))
-            return out
-        return boolean
-    if isinstance(node, ast.IfExp):
-        test, body, orelse = c(node.test), c(node.body), c(node.orelse)
-        return lambda env: np.where(test(env), body(env), orelse(env))
-    if isinstance(node, ast.Call):
-        if not isinstance(node.func, ast.Name) or node.func.id not in FUNCTIONS:
-            name = node.func.id if isinstance(node.func, ast.Name) else ast.unparse(node.func)
-            raise _refuse_here(f"the function {name!r}")
-        if node.keywords:
-            raise _refuse_here("a keyword argument")
-        fn, nargs = FUNCTIONS[node.func.id]
-        if len(node.args) != nargs:
-            raise ModelError(f"{where}: {node.func.id}() takes {nargs} argument(s), got "
-                             f"{len(node.args)} in {text!r}")
-        args = [c(a) for a in node.args]
-        return lambda env: fn(*(a(env) for a in args))
-    raise _refuse_here(f"{type(node).__name__} ({ast.unparse(node)!r})")
 
 
 def parse_table(spec: Mapping[str, Any], *, where: str = "table") -> Callable[[Any, Any, Any], np.ndarray]:
@@ -317,12 +555,15 @@ def parse_table(spec: Mapping[str, Any], *, where: str = "table") -> Callable[[A
     return table
 
 
+
 def to_sympy(text: str, t, q, qd, *, where: str = "expression"):
     """The sympy form of an expression, for symbolic equations of motion.
 
     ``t`` is a sympy symbol, ``q`` and ``qd`` sequences of symbols (one per input).  The
-    text is checked by :func:`parse_expression` first, so only whitelisted constructs
-    reach this walk.
+    text is checked as :func:`parse_expression` checks it (same whitelist, same bounds,
+    same messages), so only bounded, whitelisted constructs reach this walk.  Integers
+    stay exact unless a power of them would exceed a few thousand bits; comparisons used
+    as numbers are 1 or 0, as in :func:`parse_expression`.
 
     Examples
     --------
@@ -330,50 +571,84 @@ def to_sympy(text: str, t, q, qd, *, where: str = "expression"):
     >>> t, q1, u1 = sp.symbols("t q1 u1")
     >>> to_sympy("2 * sin(q) - 0.5 * qd", t, [q1], [u1])
     -0.5*u1 + 2*sin(q1)
+    >>> to_sympy("-500 * (q > 0)", t, [q1], [u1])
+    -500*Piecewise((1, q1 > 0), (0, True))
     """
     import sympy as sp
 
-    parse_expression(text, where=where)          # the whitelist
+    tree, _ = _checked(text, where)
+    shown = _shown(text)
+
+    def power(base, exponent):
+        # Exact integers stay small: a large coefficient is raised as a float.
+        coeff, rest = base.as_coeff_Mul()
+        if exponent.is_Number and coeff.is_Rational and abs(exponent) * max(
+                abs(coeff.p).bit_length(), coeff.q.bit_length()) > _EXACT_BITS:
+            base = sp.Float(coeff) * rest
+        return base ** exponent
     fn = {"sin": sp.sin, "cos": sp.cos, "tan": sp.tan, "asin": sp.asin, "acos": sp.acos,
           "atan": sp.atan, "atan2": sp.atan2, "sinh": sp.sinh, "cosh": sp.cosh, "tanh": sp.tanh,
           "exp": sp.exp, "log": sp.log, "log10": lambda x: sp.log(x, 10), "sqrt": sp.sqrt,
           "abs": sp.Abs, "sign": sp.sign, "floor": sp.floor, "ceil": sp.ceiling, "min": sp.Min,
-          "max": sp.Max, "hypot": lambda a, b: sp.sqrt(a ** 2 + b ** 2),
+          "max": sp.Max, "hypot": lambda a, b: sp.sqrt(power(a, sp.Integer(2)) + power(b, sp.Integer(2))),
           "clip": lambda x, lo, hi: sp.Min(sp.Max(x, lo), hi),
           "where": lambda c, a, b: sp.Piecewise((a, c), (b, True))}
-    binary = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
-              ast.Div: operator.truediv, ast.Pow: operator.pow, ast.Mod: sp.Mod}
+    binary = {ast.Add: lambda a, b: a + b, ast.Sub: lambda a, b: a - b,
+              ast.Mult: lambda a, b: a * b, ast.Div: lambda a, b: a / b, ast.Pow: power,
+              ast.Mod: sp.Mod}
     compare = {ast.Lt: sp.Lt, ast.LtE: sp.Le, ast.Gt: sp.Gt, ast.GtE: sp.Ge, ast.Eq: sp.Eq,
                ast.NotEq: sp.Ne}
     names = {"t": t, "pi": sp.pi, "e": sp.E}
     if len(q) == 1:
         names.update(q=q[0], qd=qd[0])
 
+    def number(node):             # a condition used as a number is 1 or 0
+        v = walk(node)
+        return sp.Piecewise((1, v), (0, True)) if _boolean(node) else v
+
+    def truth(node):              # a number used as a condition is true when non-zero
+        v = walk(node)
+        return v if _boolean(node) else sp.Ne(v, 0)
+
     def walk(node):
         if isinstance(node, ast.Constant):
-            return sp.nsimplify(node.value) if isinstance(node.value, int) else sp.Float(node.value)
+            return sp.Integer(node.value) if isinstance(node.value, int) else sp.Float(node.value)
         if isinstance(node, ast.Name):
             if node.id not in names:
-                raise ModelError(f"{where}: '{node.id}' in {text!r}: the mechanism has {len(q)} inputs; "
+                raise ModelError(f"{where}: '{node.id}' in {shown}: the mechanism has {len(q)} inputs; "
                                  f"write {node.id}[0] ... {node.id}[{len(q) - 1}]")
             return names[node.id]
         if isinstance(node, ast.Subscript):
             seq = q if node.value.id == "q" else qd
             if node.slice.value >= len(seq):
-                raise ModelError(f"{where}: {node.value.id}[{node.slice.value}] in {text!r}: the "
+                raise ModelError(f"{where}: {node.value.id}[{node.slice.value}] in {shown}: the "
                                  f"mechanism has {len(seq)} input(s), numbered from 0")
             return seq[node.slice.value]
         if isinstance(node, ast.BinOp):
-            return binary[type(node.op)](walk(node.left), walk(node.right))
+            if isinstance(node.op, ast.Pow):
+                return power(number(node.left), number(node.right))
+            first, links = _chain(node)
+            out = number(first)
+            for link in links:
+                out = binary[type(link.op)](out, number(link.right))
+            return out
         if isinstance(node, ast.UnaryOp):
-            v = walk(node.operand)
-            return {ast.USub: lambda: -v, ast.UAdd: lambda: v, ast.Not: lambda: sp.Not(v)}[type(node.op)]()
+            if isinstance(node.op, ast.Not):
+                return sp.Not(truth(node.operand))
+            v = number(node.operand)
+            return -v if isinstance(node.op, ast.USub) else v
         if isinstance(node, ast.Compare):
-            terms = [walk(node.left)] + [walk(n) for n in node.comparators]
+            terms = [number(node.left)] + [number(n) for n in node.comparators]
             return sp.And(*(compare[type(o)](a, b) for o, a, b in zip(node.ops, terms, terms[1:])))
         if isinstance(node, ast.BoolOp):
-            return (sp.And if isinstance(node.op, ast.And) else sp.Or)(*(walk(n) for n in node.values))
+            return (sp.And if isinstance(node.op, ast.And) else sp.Or)(*(truth(n) for n in node.values))
         if isinstance(node, ast.IfExp):
-            return sp.Piecewise((walk(node.body), walk(node.test)), (walk(node.orelse), True))
-        return fn[node.func.id](*(walk(a) for a in node.args))      # ast.Call, checked above
-    return walk(ast.parse(text.strip(), mode="eval").body)
+            return sp.Piecewise((number(node.body), truth(node.test)), (number(node.orelse), True))
+        args = [truth(a) if node.func.id == "where" and i == 0 else number(a)   # ast.Call
+                for i, a in enumerate(node.args)]
+        return fn[node.func.id](*args)
+    try:
+        return number(tree.body)
+    except ZeroDivisionError:     # sympy found a divisor that is 0 whatever the state
+        raise ModelError(f"{where}: the expression {shown} divides by a term that is always 0; "
+                         "expected a non-zero divisor") from None

@@ -159,10 +159,24 @@ def check(model, si, degrees):
     with errors_from(mf, "inputs"):
         q, qd, qdd = mf.sample_inputs(min(mf.samples or (361,)))
         sol = kinematics.analyze(m, q, qd, qdd, at_singular="flag")
+    _probe_loads(mf, q, sol)
     n_sing = int(sol.singular.sum())
     click.echo(f"sweep: {sol.N} samples assemble" + (f", {n_sing} singular" if n_sing else
                                                      ", none singular"))
     click.echo("ok")
+
+
+def _probe_loads(mf, q, sol):
+    """Evaluate the [dynamics] forces and torques on the sweep, at the times `kinelab
+    dynamics` gives them: a law that is not finite there is reported now."""
+    from kinelab import dynamics
+    from kinelab.cli._dynamics import times
+    loads = dynamics.DynamicsSetup.from_model(mf.mechanism).loads
+    inp = mf.mechanism.inputs[0]
+    t = times(q, inp.speed, inp.acceleration)
+    with errors_from(mf):
+        for item in loads.forces + loads.torques:
+            item.value(t, sol.q, sol.qd)
 
 
 def _check_range(mf, ranges, full, si_unit):

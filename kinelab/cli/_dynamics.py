@@ -17,10 +17,10 @@ from kinelab.io import ModelFile
 from kinelab.io._modelfile import MAX_SAMPLES
 from kinelab.model import Units
 
-__all__ = ["dynamics_command", "run"]
+__all__ = ["dynamics_command", "run", "times"]
 
 
-def _times(q: np.ndarray, speed: float, acceleration: float) -> np.ndarray:
+def times(q: np.ndarray, speed: float, acceleration: float) -> np.ndarray:
     """Time along a one-input sweep at constant speed (zero otherwise), s."""
     if q.ndim == 1 and speed != 0.0 and acceleration == 0.0:
         return (q - q[0]) / speed
@@ -43,7 +43,7 @@ def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
     q, qd, qdd = mf.sample_inputs(samples)
     inp = m.inputs[0]
     res = dynamics.inverse(m, q, qd, qdd, loads=loads, masses=setup.masses(m),
-                           t=_times(q, inp.speed, inp.acceleration))
+                           t=times(q, inp.speed, inp.acceleration))
     out = Path(out)
     written = [out / f"{m.name}_dynamics.csv"]
     res.to_csv(written[0], units=units)

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from kinelab._expressions import parse_expression, parse_table
+from kinelab._expressions import not_finite, parse_expression, parse_table
 from kinelab.errors import ModelError
 from kinelab.model import Mechanism
 
@@ -94,7 +94,7 @@ class Law:
         else:
             qa, qda = (q[:, 0], qd[:, 0]) if q.shape[1] == 1 else (q, qd)
             out = self.source(t, qa, qda)
-        return _finite(self.where, out, shape, t, q)
+        return _finite(self.where, out, shape, t, q, qd)
 
     def to_data(self):
         """The number, text or table this law was given as (for model files)."""
@@ -104,16 +104,14 @@ class Law:
         return dict(self.source) if isinstance(self.source, Mapping) else self.source
 
 
-def _finite(where: str, out, shape: tuple[int, ...], t, q) -> np.ndarray:
+def _finite(where: str, out, shape: tuple[int, ...], t, q, qd) -> np.ndarray:
     try:
         a = np.broadcast_to(np.asarray(out, dtype=float), shape)
     except (TypeError, ValueError):
         got = np.shape(out) if not isinstance(out, (str, type(None))) else repr(out)
         raise ModelError(f"{where}: expected values of shape () or {shape}, got {got}") from None
     if not np.all(np.isfinite(a)):
-        i = int(np.argwhere(~np.isfinite(a))[0][0])
-        raise ModelError(f"{where}: the law gives {np.asarray(a[i]).tolist()} at t = {float(t[i]):.6g} s, "
-                         f"q = {np.round(q[i], 6).tolist()}; a load must be finite there")
+        raise not_finite(where, "the law", a, t=t, q=q, qd=qd)
     return np.array(a)
 
 

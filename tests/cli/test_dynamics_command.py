@@ -1,5 +1,7 @@
 """``kinelab dynamics`` on model files with a [dynamics] section."""
 import csv
+import re
+from pathlib import Path
 
 import numpy as np
 
@@ -123,3 +125,49 @@ def test_library_calls_use_the_files_dynamics_section(tmp_path):
     # held by the file's constant 10 N m at theta = 0, the pendulum stays put
     sim = kl.dynamics.simulate(m, (0.0, 0.5), q0=0.0, qd0=0.0, t_eval=[0.5])
     assert sim.q[-1, 0] == pytest.approx(0.0, abs=1e-9)
+
+
+ENGINE = Path(__file__).parents[2] / "examples" / "engine.toml"
+
+
+def engine_with_torque(tmp_path, law):
+    """examples/engine.toml with a torque on the crank given by ``law``."""
+    path = tmp_path / "engine.toml"
+    path.write_text(ENGINE.read_text() + f'\n[[dynamics.torques]]\nlink = "crank"\ntorque = "{law}"\n')
+    return str(path)
+
+
+def ends_with_one_error_line(result, message):
+    """Exit status 2 and a last line 'kinelab: error: engine.toml: <field>: <message>', no traceback."""
+    lines = result.output.strip().splitlines()
+    assert result.exit_code == 2, result.output
+    assert "Traceback" not in result.output
+    assert [n for n, line in enumerate(lines) if line.startswith("kinelab: error:")] == [len(lines) - 1]
+    assert re.match(r"kinelab: error: engine\.toml: dynamics\.torques\[0\]\.torque: " + message,
+                    lines[-1]), lines[-1]
+
+
+@pytest.mark.parametrize("law, message", [
+    ("+".join(["1"] * 900), r"the expression '1\+1\+.*' has 1799 numbers, names and operators; "
+                            r"expected at most 1000"),
+    ("1/0", r"division by zero in the expression '1/0'"),
+    ("10**400", r"the expression '10\*\*400' has no variables and evaluates to inf"),
+    ("9**9**9", r"the power tower '9\*\*9\*\*9' is not allowed"),
+])
+@pytest.mark.parametrize("command", ["check", "dynamics"])
+def test_laws_beyond_the_bounds_end_in_one_line(tmp_path, command, law, message):
+    path = engine_with_torque(tmp_path, law)
+    args = [command, path] + (["--out", str(tmp_path), "--no-plots"] if command == "dynamics" else [])
+    ends_with_one_error_line(CliRunner().invoke(main, args), message)
+    assert not (tmp_path / "engine_dynamics.csv").exists()
+
+
+@pytest.mark.parametrize("command", ["check", "dynamics"])
+def test_a_law_that_is_not_finite_on_the_sweep_is_found(tmp_path, command):
+    """1/sin(q) at the crank's first sample, q = 0: 'kinelab check' evaluates the loads
+    where 'kinelab dynamics' will."""
+    path = engine_with_torque(tmp_path, "1 / sin(q)")
+    args = [command, path] + (["--out", str(tmp_path), "--no-plots"] if command == "dynamics" else [])
+    ends_with_one_error_line(CliRunner().invoke(main, args),
+                             r"the expression '1 / sin\(q\)' gives inf \(an overflow or a division by "
+                             r"zero\) at t = 0 s, q = 0, qd = 31.4159; expected a finite value")

@@ -143,7 +143,11 @@ B0 = [1, 1]
     ("log(y)", "function.expression: the name 'y' (the only variable is 'x') is not allowed in the "
                "expression 'log(y)'; an expression may use numbers, x, pi, e"),
     ("x +* 2", "function.expression: cannot parse the expression 'x +* 2'"),
-    ("__import__('os').getcwd()", "is not allowed in the expression")])
+    ("__import__('os').getcwd()", "is not allowed in the expression"),
+    ("9**9**9 * x", "function.expression: the power tower '9**9**9' in the expression '9**9**9 * x' "
+                    "is not allowed"),
+    ("log10(x - 1)", "function.expression: the expression 'log10(x - 1)' gives -inf (an overflow or "
+                     "a division by zero) at x = 1; expected a finite value")])
 def test_bad_formula(tmp_path, expr, message):
     res = run(tmp_path, f"""
 task = "function"
