@@ -24,7 +24,7 @@ import threading
 
 import numpy as np
 
-from kinelab.errors import MemoryBudgetError, ModelError
+from kinelab.errors import MemoryBudgetError, ModelError, describe
 
 _SMALLEST = 1 << 20                 # smaller arrays come from the allocator's own free lists
 _DEFAULT_LIMIT = 1 << 30
@@ -107,7 +107,7 @@ def reuse_result_memory(max_bytes: int) -> int:
     0
     """
     if isinstance(max_bytes, bool) or not isinstance(max_bytes, int | np.integer) or max_bytes < 0:
-        raise ModelError(f"max_bytes: expected a whole number of bytes >= 0, got {max_bytes!r}")
+        raise ModelError(f"max_bytes: expected a whole number of bytes >= 0, got {describe(max_bytes)}")
     old = _pool.limit
     _pool.set_limit(int(max_bytes))
     return old
@@ -127,7 +127,7 @@ def parse_size(text: str, where: str) -> int:
         value = math.nan
     if not (math.isfinite(value) and value > 0):
         raise ModelError(f"{where}: expected a size such as 8G, 512M or a number of bytes, got "
-                         f"{str(text)[:40]!r}")
+                         f"{describe(str(text)[:40])}")
     return int(value * _UNITS[unit])
 
 
@@ -160,7 +160,7 @@ def memory_budget(max_bytes: int | str | None = None) -> int:
     if max_bytes is not None:
         if isinstance(max_bytes, bool) or not isinstance(max_bytes, (int, np.integer, str)):
             raise ModelError(f"max_bytes: expected a number of bytes or a size such as '8G', got "
-                             f"{max_bytes!r}")
+                             f"{describe(max_bytes)}")
         _budget = parse_size(max_bytes, "max_bytes")
     return old
 

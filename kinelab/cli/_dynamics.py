@@ -16,6 +16,7 @@ from kinelab.cli._main import DEGREES, SI, errors_from, output_units, read_model
 from kinelab.io import ModelFile
 from kinelab.io._modelfile import MAX_SAMPLES
 from kinelab.model import Units
+from kinelab.errors import describe
 
 __all__ = ["dynamics_command", "run", "times"]
 
@@ -70,7 +71,7 @@ def _gravity(text: str | None):
     except ValueError:
         g = ()
     if len(g) != 2:
-        raise click.BadParameter(f"expected GX,GY in m/s^2 (e.g. 0,-9.81), got {text!r}")
+        raise click.BadParameter(f"expected GX,GY in m/s^2 (e.g. 0,-9.81), got {describe(text)}")
     return g
 
 

@@ -8,7 +8,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.integrate import cumulative_trapezoid
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 
 __all__ = ["flywheel", "Flywheel"]
 
@@ -110,7 +110,7 @@ def flywheel(theta: ArrayLike, torque: ArrayLike, *, speed: float, fluctuation: 
         problems.append("theta: expected increasing crank angles over one cycle")
     for name, v in (("speed", speed), ("fluctuation", fluctuation)):
         if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
-            problems.append(f"{name}: expected a positive number, got {v!r}")
+            problems.append(f"{name}: expected a positive number, got {describe(v)}")
     if problems:
         raise ModelError(problems)
     span = th[-1] - th[0]

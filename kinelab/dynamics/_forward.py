@@ -14,7 +14,7 @@ from kinelab.dynamics._loads import Law, Loads
 from kinelab.dynamics._masses import MassProperties
 from kinelab.dynamics._results import MotionResult
 from kinelab.dynamics._terms import System, build_system, evaluate
-from kinelab.errors import AssemblyError, ModelError, SingularityError
+from kinelab.errors import AssemblyError, ModelError, SingularityError, describe
 from kinelab.kinematics import SINGULAR_TOL, KinematicSolution, analyze, change_points, plan
 from kinelab.kinematics._columns import Columns
 from kinelab.model import Mechanism, Units
@@ -227,7 +227,7 @@ def _state(name: str, value, M: int) -> np.ndarray:
     try:
         a = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise ModelError(f"{name}: expected numbers, got {value!r}") from None
+        raise ModelError(f"{name}: expected numbers, got {describe(value)}") from None
     if a.ndim == 0:
         a = np.full(M, float(a))
     if a.shape != (M,):
@@ -368,9 +368,9 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
     try:
         t0, t1 = (float(v) for v in t_span)
     except (TypeError, ValueError):
-        raise ModelError(f"t_span: expected (start, end) in s, got {t_span!r}") from None
+        raise ModelError(f"t_span: expected (start, end) in s, got {describe(t_span)}") from None
     if not (math.isfinite(t0) and math.isfinite(t1) and t1 > t0):
-        raise ModelError(f"t_span: expected finite start < end, got {t_span!r}")
+        raise ModelError(f"t_span: expected finite start < end, got {describe(t_span)}")
     q_init, qd_init = _state("q0", q0, M), _state("qd0", qd0, M)
     if t_eval is not None:
         t_eval = np.asarray(t_eval, dtype=float).ravel()

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from kinelab._expressions import not_finite, parse_expression, parse_table
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 from kinelab.model import Mechanism
 
 __all__ = ["Law", "PointForce", "Torque", "Spring", "Damper", "Loads", "STANDARD_GRAVITY"]
@@ -63,7 +63,7 @@ class Law:
             s = s.source
         if _number(s):
             if not math.isfinite(float(s)):
-                raise ModelError(f"{self.where}: expected a finite number, got {s!r}")
+                raise ModelError(f"{self.where}: expected a finite number, got {describe(s)}")
             fn = None
         elif isinstance(s, str):
             fn = parse_expression(s, where=self.where)
@@ -73,7 +73,7 @@ class Law:
             fn = None
         else:
             raise ModelError(f"{self.where}: expected a number, an expression (text), a table "
-                             f"or a callable f(t, q, qd), got {s!r}")
+                             f"or a callable f(t, q, qd), got {describe(s)}")
         object.__setattr__(self, "_fn", fn)
 
     @property
@@ -121,7 +121,7 @@ def _laws(value, where: str, width: int) -> tuple[Law, ...] | Law:
         return Law(value, where)
     if isinstance(value, (str, Mapping)) or _number(value) or not isinstance(value, Iterable):
         raise ModelError(f"{where}: expected {width} components (fx, fy) or a callable "
-                         f"f(t, q, qd) returning shape (2,) or (N, 2), got {value!r}")
+                         f"f(t, q, qd) returning shape (2,) or (N, 2), got {describe(value)}")
     parts = tuple(value)
     if len(parts) != width:
         raise ModelError(f"{where}: expected {width} components (fx, fy), got {len(parts)}")
@@ -224,7 +224,7 @@ class Spring:
         for label in ("stiffness", "free_length"):
             v = getattr(self, label)
             if not (_number(v) and math.isfinite(v) and v >= 0):
-                raise ModelError(f"{_label(self, 'spring')}: {label}: expected a number >= 0, got {v!r}")
+                raise ModelError(f"{_label(self, 'spring')}: {label}: expected a number >= 0, got {describe(v)}")
 
 
 @dataclass(frozen=True)
@@ -250,7 +250,7 @@ class Damper:
         _check_pair(self, "damper")
         v = self.damping
         if not (_number(v) and math.isfinite(v) and v >= 0):
-            raise ModelError(f"{_label(self, 'damper')}: damping: expected a number >= 0, got {v!r}")
+            raise ModelError(f"{_label(self, 'damper')}: damping: expected a number >= 0, got {describe(v)}")
 
 
 def _label(item, kind: str) -> str:
@@ -262,13 +262,13 @@ def _check_pair(item, kind: str) -> None:
     object.__setattr__(item, "points", pts)
     object.__setattr__(item, "links", tuple(item.links))
     if not (isinstance(pts, tuple) and len(pts) == 2 and all(isinstance(p, str) for p in pts)):
-        raise ModelError(f"{kind}: points: expected two point names, got {pts!r}")
+        raise ModelError(f"{kind}: points: expected two point names, got {describe(pts)}")
     if pts[0] == pts[1]:
         raise ModelError(f"{_label(item, kind)}: points: its two ends are the same point "
                          f"'{pts[0]}'; a {kind} joins two different points")
     if len(item.links) != 2:
         raise ModelError(f"{_label(item, kind)}: links: expected two entries (or None), got "
-                         f"{item.links!r}")
+                         f"{describe(item.links)}")
 
 
 @dataclass(frozen=True, eq=False)
@@ -304,7 +304,7 @@ class Loads:
         g = self.gravity
         if (isinstance(g, (str, bytes)) or not isinstance(g, Iterable) or len(tuple(g)) != 2
                 or not all(_number(c) and math.isfinite(c) for c in g)):
-            raise ModelError(f"gravity: expected two finite numbers (gx, gy) in m/s^2, got {g!r}")
+            raise ModelError(f"gravity: expected two finite numbers (gx, gy) in m/s^2, got {describe(g)}")
         object.__setattr__(self, "gravity", tuple(float(c) for c in g))
         for attr, kind in (("forces", PointForce), ("torques", Torque), ("springs", Spring),
                            ("dampers", Damper)):
@@ -383,12 +383,12 @@ class Loads:
             items = []
             raw = data.get(key, [])
             if not isinstance(raw, (list, tuple)):
-                problems.append(f"{where}.{key}: expected a list of tables, got {raw!r}")
+                problems.append(f"{where}.{key}: expected a list of tables, got {describe(raw)}")
                 return ()
             for i, d in enumerate(raw):
                 w = f"{where}.{key}[{i}]"
                 if not isinstance(d, Mapping):
-                    problems.append(f"{w}: expected a table, got {d!r}")
+                    problems.append(f"{w}: expected a table, got {describe(d)}")
                     continue
                 extra = set(d) - allowed
                 if extra:

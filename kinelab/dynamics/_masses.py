@@ -5,7 +5,7 @@ import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 from kinelab.model import Mechanism
 
 __all__ = ["LinkMass", "PointMass", "MassProperties"]
@@ -40,11 +40,11 @@ class LinkMass:
 
     def __post_init__(self):
         if not _positive(self.mass):
-            raise ModelError(f"link '{self.link}': mass: expected a positive number (kg), got {self.mass!r}")
+            raise ModelError(f"link '{self.link}': mass: expected a positive number (kg), got {describe(self.mass)}")
         if not (isinstance(self.inertia, (int, float)) and math.isfinite(self.inertia)
                 and self.inertia >= 0):
             raise ModelError(f"link '{self.link}': inertia: expected a number >= 0 (kg m^2), "
-                             f"got {self.inertia!r}")
+                             f"got {describe(self.inertia)}")
 
 
 @dataclass(frozen=True)
@@ -68,7 +68,7 @@ class PointMass:
     def __post_init__(self):
         if not _positive(self.mass):
             raise ModelError(f"point mass at '{self.point}': mass: expected a positive number (kg), "
-                             f"got {self.mass!r}")
+                             f"got {describe(self.mass)}")
 
 
 @dataclass(frozen=True)

@@ -7,7 +7,7 @@ from typing import Any
 
 from kinelab.dynamics._loads import Law, Loads
 from kinelab.dynamics._masses import MassProperties, _positive
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 from kinelab.model import Mechanism
 
 __all__ = ["DynamicsSetup"]
@@ -75,7 +75,7 @@ class DynamicsSetup:
         if data is None:
             return cls()
         if not isinstance(data, Mapping):
-            raise ModelError(f"{where}: expected a table, got {data!r}")
+            raise ModelError(f"{where}: expected a table, got {describe(data)}")
         problems: list[str] = []
         unknown = set(data) - set(_KEYS)
         if unknown:
@@ -89,7 +89,7 @@ class DynamicsSetup:
         actuators: dict[str, Law] = {}
         raw = data.get("actuators", {})
         if not isinstance(raw, Mapping):
-            problems.append(f"{where}.actuators: expected a table of input name = law, got {raw!r}")
+            problems.append(f"{where}.actuators: expected a table of input name = law, got {describe(raw)}")
         else:
             for name, law in raw.items():
                 try:
@@ -98,15 +98,15 @@ class DynamicsSetup:
                     problems.extend(exc.problems)
         massless = data.get("massless", ())
         if not isinstance(massless, (list, tuple)) or not all(isinstance(n, str) for n in massless):
-            problems.append(f"{where}.massless: expected a list of link names, got {massless!r}")
+            problems.append(f"{where}.massless: expected a list of link names, got {describe(massless)}")
             massless = ()
         lumps = data.get("point_masses", {})
         if not isinstance(lumps, Mapping):
-            problems.append(f"{where}.point_masses: expected a table of point = mass (kg), got {lumps!r}")
+            problems.append(f"{where}.point_masses: expected a table of point = mass (kg), got {describe(lumps)}")
             lumps = {}
         for p, mass in lumps.items():
             if not _positive(mass):
-                problems.append(f"{where}.point_masses.{p}: expected a positive mass (kg), got {mass!r}")
+                problems.append(f"{where}.point_masses.{p}: expected a positive mass (kg), got {describe(mass)}")
         if problems:
             raise ModelError(problems)
         return cls(loads=loads, actuators=actuators, massless=tuple(massless),

@@ -11,7 +11,7 @@ from kinelab._expressions import to_sympy
 from kinelab.dynamics._loads import Law, Loads
 from kinelab.dynamics._masses import MassProperties
 from kinelab.dynamics._terms import build_system
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 from kinelab.kinematics import plan
 from kinelab.model import Mechanism
 
@@ -156,7 +156,7 @@ def equations_of_motion(model: Mechanism, *, loads: Loads | None = None,
     system = build_system(model, loads, masses)
     loads, masses = system.loads, system.masses
     if lengths not in ("numeric", "symbols"):
-        raise ModelError(f"lengths: expected one of 'numeric', 'symbols', got {lengths!r}")
+        raise ModelError(f"lengths: expected one of 'numeric', 'symbols', got {describe(lengths)}")
     M = len(model.inputs)
     t = sp.Symbol("t")
     q = sp.symbols(f"q1:{M + 1}")

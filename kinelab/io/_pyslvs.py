@@ -53,7 +53,7 @@ class _Tokens:
         while pos < len(text):
             m = _TOKEN.match(text, pos)
             if m is None:
-                raise ModelError(f"expression: character {pos + 1}: unexpected {text[pos]!r}; "
+                raise ModelError(f"expression: character {pos + 1}: unexpected {describe(text[pos])}; "
                                  "expected the Pyslvs form M[J[R, P[x, y], L[a, b]], ...]")
             if m.lastgroup != "space":
                 self.items.append((m.lastgroup, m.group(), pos + 1))

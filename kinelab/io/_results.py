@@ -11,7 +11,7 @@ from typing import Literal
 import numpy as np
 
 from kinelab._files import atomic_write, write_csv
-from kinelab.errors import ModelError, check_choice, shown
+from kinelab.errors import ModelError, check_choice, describe, shown
 from kinelab.kinematics import KinematicSolution
 from kinelab.model import Units
 
@@ -87,8 +87,8 @@ def result_format(path: str | os.PathLike, format: str | None = None) -> str:
     if format is not None:
         check_choice("format", format, RESULT_FORMATS)
         if named is not None and named != format:
-            raise ModelError(f"format: {format!r} was asked for, but the file name "
-                             f"{shown(Path(path).name)} says {named!r}; make them agree")
+            raise ModelError(f"format: {describe(format)} was asked for, but the file name "
+                             f"{shown(Path(path).name)} says {describe(named)}; make them agree")
         return format
     if named is None and suffix:
         raise ModelError(f"path: expected a file name ending in "

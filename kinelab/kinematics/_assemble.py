@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinelab.errors import AssemblyError, ModelError
+from kinelab.errors import AssemblyError, ModelError, describe
 from kinelab.kinematics._geometry import sketch_angle
 from kinelab.model import Mechanism, Point, Units
 
@@ -167,7 +167,7 @@ def check_assembled(m: Mechanism) -> None:
     system = _Constraints(m)
     name, miss = system.worst(system.x0)
     if miss > 1e-9 * system.scale:
-        raise ModelError(f"the sketch is not assembled: {name!r} misses its declared length or "
+        raise ModelError(f"the sketch is not assembled: {describe(name)} misses its declared length or "
                          f"place by {miss:.6g} m; assemble it first, with "
                          "kl.kinematics.assemble(mechanism).mechanism")
 

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinelab.errors import ModelError, quoted, suggest
+from kinelab.errors import ModelError, describe, quoted, suggest
 from kinelab.kinematics._geometry import k_cross
 from kinelab.kinematics._solution import KinematicSolution
 
@@ -79,8 +79,8 @@ class InstantCenters(Mapping):
             found = self._centers.get(pair) or self._centers.get(pair[::-1])
             if found is not None:
                 return found
-        raise KeyError(f"{pair!r}: expected a pair of two different links, in either order, "
-                       f"such as {next(iter(self._centers), ('a', 'b'))!r}")
+        raise KeyError(f"{describe(pair)}: expected a pair of two different links, in either order, "
+                       f"such as {describe(next(iter(self._centers), ('a', 'b')))}")
 
     def __iter__(self) -> Iterator[tuple[str, str]]:
         return iter(self._centers)
@@ -151,7 +151,7 @@ def _model_order(sol: KinematicSolution, a: str, b: str) -> tuple[str, str]:
     order = list(sol.link_names)
     for name in (a, b):
         if name not in order:
-            raise ModelError(f"link: expected one of {quoted(order)}, got {name!r}"
+            raise ModelError(f"link: expected one of {quoted(order)}, got {describe(name)}"
                              f"{suggest(str(name), order)}")
     if a == b:
         raise ModelError(f"links: expected two different links, got '{a}' twice; a link has "

@@ -485,21 +485,21 @@ def _pair_lengths(pts, links, lengths) -> dict[str, float]:
         return out
     if not isinstance(lengths, Mapping):
         raise ModelError(f"lengths: expected a mapping of point pairs such as 'O2-A' to lengths (m), "
-                         f"got {lengths!r}")
+                         f"got {describe(lengths)}")
     valid = ", ".join(repr(k) for k in pairs)
     problems, seen = [], {}
     for key, value in lengths.items():
-        where = f"lengths[{key!r}]"
+        where = f"lengths[{describe(key)}]"
         a, _, b = str(key).partition("-")
         pair = f"{a}-{b}" if f"{a}-{b}" in pairs else f"{b}-{a}"
         if pair in pairs:
             if pair in seen:
-                problems.append(f"{where}: the pair {pair} is given twice (as {seen[pair]!r} too); keep one")
+                problems.append(f"{where}: the pair {pair} is given twice (as {describe(seen[pair])} too); keep one")
                 continue
             seen[pair] = key
             if not (isinstance(value, (int, float)) and not isinstance(value, bool)
                     and math.isfinite(value) and value > 0):
-                problems.append(f"{where}: expected a positive length (m), got {value!r}")
+                problems.append(f"{where}: expected a positive length (m), got {describe(value)}")
                 continue
             out[pair] = float(value)
         elif a != b and a in ground and b in ground:
@@ -509,7 +509,7 @@ def _pair_lengths(pts, links, lengths) -> dict[str, float]:
             problems.append(f"{where}: {a} and {b} are not on one link; expected one of {valid}")
         else:
             problems.append(f"{where}: expected a pair 'X-Y' of points of one link, one of {valid}, "
-                            f"got {key!r}")
+                            f"got {describe(key)}")
     if problems:
         raise ModelError(problems)
     for ln, lp in links:
@@ -521,7 +521,7 @@ def _pair_lengths(pts, links, lengths) -> dict[str, float]:
             total = sides[rest[0]] + sides[rest[1]]
             if value > total:
                 raise ModelError(
-                    f"lengths[{side!r}]: the triangle {'-'.join(lp)} of link '{ln}' cannot close: "
+                    f"lengths[{describe(side)}]: the triangle {'-'.join(lp)} of link '{ln}' cannot close: "
                     f"expected {side} <= {rest[0]} + {rest[1]} = {total:.6g} m, got {value:.6g} m; "
                     f"shorten {side} or lengthen {rest[0]} or {rest[1]}")
     return out
@@ -540,7 +540,7 @@ def _modes(pts, branch) -> tuple[str, str]:
         return modes[0], modes[1]
     if isinstance(branch, str) or not isinstance(branch, (list, tuple)) or len(branch) != 2:
         raise ModelError(f"branch: expected a pair of 'open'/'crossed', one per dyad "
-                         f"({', '.join(f'{X}-{P}-{Z}' for P, X, Z in _SIX_BAR_DYADS)}), got {branch!r}")
+                         f"({', '.join(f'{X}-{P}-{Z}' for P, X, Z in _SIX_BAR_DYADS)}), got {describe(branch)}")
     for i, mode in enumerate(branch):
         check_choice(f"branch[{i}]", mode, ("open", "crossed"))
     return branch[0], branch[1]

@@ -4,7 +4,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 
 __all__ = ["Grashof", "grashof"]
 
@@ -107,7 +107,7 @@ def grashof(ground: float, crank: float, coupler: float, rocker: float, *,
     ('change-point', 'S2X', 'parallelogram', True, True)
     """
     lengths = {"ground": ground, "crank": crank, "coupler": coupler, "rocker": rocker}
-    bad = [f"{k}: expected a positive length (m), got {v!r}" for k, v in lengths.items()
+    bad = [f"{k}: expected a positive length (m), got {describe(v)}" for k, v in lengths.items()
            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0)]
     if bad:
         raise ModelError(bad)

@@ -478,6 +478,9 @@ def _validate(m: Mechanism) -> list[str]:
                 add(f"{where}: axis: expected {dim} finite numbers, got {describe(axis)}")
             elif math.hypot(*axis) <= 1e-12:
                 add(f"{where}: axis: must not be the zero vector")
+            elif max(abs(c) for c in axis) > 1e100:
+                add(f"{where}: axis: expected a direction whose components are at most 1e100 in "
+                    f"size (only its direction counts), got {describe(axis)}; scale it down")
         if j.type == "P" and j.origin is not None and (not isinstance(j.origin, str)
                                                        or (j.origin, a) not in carried):
             add(f"{where}: origin: expected a point of the guide {shown(a)} "

@@ -19,7 +19,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Literal
 
-from kinelab.errors import ModelError, expected_one_of, quoted, suggest
+from kinelab.errors import ModelError, describe, expected_one_of, quoted, suggest
 
 __all__ = ["LENGTH_UNITS", "ANGLE_UNITS", "Units"]
 
@@ -106,7 +106,7 @@ class Units:
             asked = units.get("angle") if isinstance(units, Mapping) else (
                 units.angle if isinstance(units, Units) else None)
             if asked not in (None, "deg"):
-                raise ModelError(f"units.angle: degrees=True asks for 'deg', got {asked!r}; "
+                raise ModelError(f"units.angle: degrees=True asks for 'deg', got {describe(asked)}; "
                                  "drop one of them")
             u = cls(u.length, "deg")
         return u

@@ -8,7 +8,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ConvergenceError, ModelError
+from kinelab.errors import ConvergenceError, ModelError, describe
 from kinelab.solvers._newton import newton
 
 __all__ = ["ContinuationResult", "continuation"]
@@ -106,7 +106,7 @@ def continuation(fun: Callable, jac: Callable, x0: ArrayLike, params: ArrayLike,
     (True, True)
     """
     if on_failure not in ("raise", "mask"):
-        raise ModelError(f"on_failure: expected one of 'raise', 'mask', got {on_failure!r}")
+        raise ModelError(f"on_failure: expected one of 'raise', 'mask', got {describe(on_failure)}")
     params = np.asarray(params, dtype=float)
     if params.ndim != 1 or params.size == 0 or not np.all(np.isfinite(params)):
         raise ModelError(f"params: expected a 1-D array of finite values, got shape "

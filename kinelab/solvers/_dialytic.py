@@ -11,7 +11,7 @@ import sympy as sp
 from sympy.polys.matrices import DomainMatrix
 from sympy.polys.polyerrors import CoercionFailed
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 from kinelab.solvers._newton import newton
 
 __all__ = ["DialyticSolution", "dialytic"]
@@ -188,7 +188,7 @@ def dialytic(p: Polynomial, q: Polynomial, variables: tuple | None = None, *,
 def _variables(p, q, variables) -> tuple[sp.Symbol, sp.Symbol]:
     if variables is not None:
         if len(variables) != 2 or not all(isinstance(v, sp.Symbol) for v in variables):
-            raise ModelError(f"variables: expected two sympy symbols (x, y), got {variables!r}")
+            raise ModelError(f"variables: expected two sympy symbols (x, y), got {describe(variables)}")
         return tuple(variables)
     if isinstance(p, Mapping) and isinstance(q, Mapping):
         return sp.symbols("x y")
@@ -212,9 +212,9 @@ def _poly(f, name: str, x: sp.Symbol, y: sp.Symbol) -> tuple[sp.Poly, bool]:
             if not (isinstance(key, tuple) and len(key) == 2
                     and all(isinstance(e, numbers.Integral) and e >= 0 for e in key)):
                 raise ModelError(f"{name}: expected keys (i, j), the non-negative powers of "
-                                 f"x and y, got {key!r}")
+                                 f"x and y, got {describe(key)}")
             if not isinstance(c, numbers.Number):
-                raise ModelError(f"{name}[{key}]: expected a number, got {c!r}")
+                raise ModelError(f"{name}[{key}]: expected a number, got {describe(c)}")
             terms.append(sp.sympify(c) * x**key[0] * y**key[1])
         f = sp.Add(*terms)
     f = sp.sympify(f)

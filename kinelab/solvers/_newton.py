@@ -8,7 +8,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ConvergenceError, ModelError, SingularityError
+from kinelab.errors import ConvergenceError, ModelError, SingularityError, describe
 
 __all__ = ["NewtonHistory", "NewtonResult", "iteration_table", "newton"]
 
@@ -206,11 +206,11 @@ def newton(fun: Callable[[np.ndarray], ArrayLike], jac: Callable[[np.ndarray], A
     ((1000, 2), True, True)
     """
     if on_failure not in _ON_FAILURE:
-        raise ModelError(f"on_failure: expected one of 'raise', 'mask', got {on_failure!r}")
+        raise ModelError(f"on_failure: expected one of 'raise', 'mask', got {describe(on_failure)}")
     if not (isinstance(max_iter, (int, np.integer)) and max_iter >= 1):
-        raise ModelError(f"max_iter: expected a positive integer, got {max_iter!r}")
+        raise ModelError(f"max_iter: expected a positive integer, got {describe(max_iter)}")
     if not tol > 0:
-        raise ModelError(f"tol: expected a positive number, got {tol!r}")
+        raise ModelError(f"tol: expected a positive number, got {describe(tol)}")
     x = np.array(x0)
     x = x.astype(np.result_type(x.dtype, float))     # complex x0 stays complex
     batched = x.ndim == 2

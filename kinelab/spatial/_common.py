@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 
 
 def as_array(name: str, value: ArrayLike, tail: tuple[int, ...] = (), *,
@@ -16,7 +16,7 @@ def as_array(name: str, value: ArrayLike, tail: tuple[int, ...] = (), *,
     try:
         array = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise ModelError(f"{name}: expected real numbers, got {value!r}") from None
+        raise ModelError(f"{name}: expected real numbers, got {describe(value)}") from None
     shapes = [tail] + ([(None, *tail)] if batch else [])
     if not any(array.ndim == len(s) and all(a == b for a, b in zip(array.shape, s)
                                             if b is not None) for s in shapes):
@@ -45,9 +45,9 @@ def as_length(name: str, value: float, *, positive: bool = False) -> float:
     try:
         number = float(value)
     except (TypeError, ValueError):
-        raise ModelError(f"{name}: expected {kind} in m, got {value!r}") from None
+        raise ModelError(f"{name}: expected {kind} in m, got {describe(value)}") from None
     if not np.isfinite(number) or (positive and number <= 0.0):
-        raise ModelError(f"{name}: expected {kind} in m, got {number!r}")
+        raise ModelError(f"{name}: expected {kind} in m, got {describe(number)}")
     return number
 
 

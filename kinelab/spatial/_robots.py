@@ -19,6 +19,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from kinelab.errors import describe
 from kinelab.errors import (AssemblyError, ConvergenceError, ModelError, SingularityError,
                             check_choice)
 from kinelab.spatial._common import as_array, as_length, as_vectors, indices
@@ -166,7 +167,7 @@ class SerialRobot:
         object.__setattr__(self, "joints", tuple(self.joints))
         if not self.joints or not all(isinstance(j, RobotJoint) for j in self.joints):
             raise ModelError(f"robot '{self.name}': joints: expected one or more "
-                             f"RobotJoint, got {self.joints!r}")
+                             f"RobotJoint, got {describe(self.joints)}")
         tool = as_array("tool", self.tool, (3,), batch=False)
         object.__setattr__(self, "tool", tuple(float(t) for t in tool))
         if self.planar:

@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.spatial.transform import Rotation
 
-from kinelab.errors import ModelError, check_choice
+from kinelab.errors import ModelError, check_choice, describe
 from kinelab.spatial._common import as_array, as_vectors
 
 __all__ = [
@@ -123,7 +123,7 @@ def _scipy_sequence(sequence: str, axes: str) -> str:
     if not (isinstance(sequence, str) and 1 <= len(sequence) <= 3
             and set(sequence.lower()) <= set("xyz")):
         raise ModelError(f"sequence: expected 1 to 3 of the letters x, y, z such as 'zyx' or "
-                         f"'zxz', got {sequence!r}")
+                         f"'zxz', got {describe(sequence)}")
     # scipy: lower case = extrinsic (fixed axes), upper case = intrinsic (moving axes).
     return sequence.lower() if axes == "fixed" else sequence.upper()
 
@@ -203,7 +203,7 @@ def euler_angles(rotation: Rotation, sequence: str, *,
     seq = _scipy_sequence(sequence, axes)
     if len(seq) != 3:
         raise ModelError(f"sequence: expected 3 letters to recover angles from a rotation, "
-                         f"got {sequence!r}")
+                         f"got {describe(sequence)}")
     return rotation.as_euler(seq, degrees=degrees)
 
 

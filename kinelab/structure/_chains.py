@@ -31,7 +31,7 @@ from numbers import Integral
 
 import numpy as np
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 from kinelab.model import Input, Joint, Link, Mechanism, Point
 from kinelab.structure._canon import canonical_form, orbits
 from kinelab.structure._count import whole
@@ -324,7 +324,7 @@ class KinematicChain:
         """
         if not isinstance(ground, Integral) or not 0 <= ground < self.links:
             raise ModelError(f"ground: expected a link of the chain, 0 to {self.links - 1}, "
-                             f"got {ground!r}")
+                             f"got {describe(ground)}")
         return _sketch(self, int(ground), name, seed)
 
     def __repr__(self) -> str:

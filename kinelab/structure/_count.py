@@ -16,7 +16,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from numbers import Integral
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 from kinelab.model import JOINT_TYPES, Mechanism
 
 __all__ = ["LAMBDAS", "PairClass", "joint_catalogue", "kutzbach_gruebler", "pair_counts",
@@ -62,7 +62,7 @@ def space_dimension(space: str | int) -> int:
     elif isinstance(space, Integral) and not isinstance(space, bool) and int(space) in _VALID_LAMBDAS:
         return int(space)
     raise ModelError(f"space: expected one of 'planar', 'spherical', 'spatial' or lambda = 2, 3 "
-                     f"or 6, got {space!r}; lambda is 3 for planar and spherical mechanisms "
+                     f"or 6, got {describe(space)}; lambda is 3 for planar and spherical mechanisms "
                      "and 6 for spatial ones")
 
 
@@ -94,11 +94,11 @@ def pair_freedoms(joint_type: str, space: str) -> int:
     5
     """
     if space not in LAMBDAS:
-        raise ModelError(f"space: expected one of 'planar', 'spherical', 'spatial', got {space!r}")
+        raise ModelError(f"space: expected one of 'planar', 'spherical', 'spatial', got {describe(space)}")
     jt = JOINT_TYPES.get(joint_type)
     if jt is None:
         raise ModelError(f"joint type: expected one of {', '.join(map(repr, JOINT_TYPES))}, "
-                         f"got {joint_type!r}")
+                         f"got {describe(joint_type)}")
     if space == "planar":
         if not jt.planar:
             raise ModelError(f"a {joint_type} pair ({jt.description}) does not exist in a planar "
@@ -198,7 +198,7 @@ def whole(value, what: str, low: int, high: int | None = None, hint: str = "") -
     if (not isinstance(value, Integral) or isinstance(value, bool) or value < low
             or (high is not None and value > high)):
         span = f"from {low} to {high}" if high is not None else f">= {low}"
-        raise ModelError(f"{what}: expected a whole number {span}, got {value!r}{hint}")
+        raise ModelError(f"{what}: expected a whole number {span}, got {describe(value)}{hint}")
     return int(value)
 
 
@@ -261,6 +261,6 @@ def kutzbach_gruebler(links: int, pairs: Mapping[int, int], space: str | int) ->
         j = int(key[1]) if isinstance(key, str) and re.fullmatch(r"P[1-6]", key) else key
         if not isinstance(j, Integral) or isinstance(j, bool) or not 1 <= j <= lam:
             raise ModelError(f"pairs: a pair allows 1 to {lam} freedoms when lambda = {lam}, "
-                             f"got {key!r}")
-        removed += (lam - int(j)) * whole(n, f"pairs[{key!r}]", 0)
+                             f"got {describe(key)}")
+        removed += (lam - int(j)) * whole(n, f"pairs[{describe(key)}]", 0)
     return lam * (ne - 1) - removed

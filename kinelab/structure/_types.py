@@ -31,7 +31,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 from kinelab.structure._count import LAMBDAS, pair_freedoms, whole
 from kinelab.structure._screws import _rot, _trans, pair_screws, rank
 
@@ -53,7 +53,7 @@ _LOWER = {"planar": ("R", "P"), "spherical": ("R", "U", "S"),
 def _space(space) -> tuple[str, int]:
     if space not in LAMBDAS:
         raise ModelError(f"space: expected one of 'planar', 'spherical', 'spatial', got "
-                         f"{space!r}; type synthesis chooses pairs for a named space")
+                         f"{describe(space)}; type synthesis chooses pairs for a named space")
     return space, LAMBDAS[space]
 
 
@@ -97,9 +97,9 @@ class Motion:
         bad = [t for t in tokens if not (isinstance(t, str) and re.fullmatch(r"[RT]\w*", t))]
         if bad or not tokens:
             raise ModelError(f"motion: expected translations and rotations such as 'Tx Tz Ry' "
-                             f"(T or R, then a direction), got {motion!r}")
+                             f"(T or R, then a direction), got {describe(motion)}")
         if len(set(tokens)) < len(tokens):
-            raise ModelError(f"motion: {motion!r} names a displacement twice")
+            raise ModelError(f"motion: {describe(motion)} names a displacement twice")
         m = cls(tokens)
         rot, tra = _LIMITS[space]
         if m.rotations > rot or m.translations > tra:
@@ -255,7 +255,7 @@ def _generic_screws(joint: str, space: str, rng: np.random.Generator) -> list[np
     p, u = rng.standard_normal(3), unit()
     if joint in ("R", "P", "H", "C", "U", "S", "E"):
         return pair_screws(joint, p, u, unit(), pitch=rng.standard_normal())
-    raise ModelError(f"joints: a {joint!r} pair has no place in a chain type; use "
+    raise ModelError(f"joints: a {describe(joint)} pair has no place in a chain type; use "
                      f"{', '.join(_DEFAULT_JOINTS['spatial'])} (or H, E)")
 
 
@@ -271,7 +271,7 @@ def _alphabet(joints, space: str) -> tuple[str, ...]:
         pair_freedoms(j, space)  # a ModelError for pairs foreign to the space
         if j not in _LOWER[space]:
             raise ModelError(f"joints: a {space} chain type is made of "
-                             f"{', '.join(_LOWER[space])}, got {j!r}")
+                             f"{', '.join(_LOWER[space])}, got {describe(j)}")
     if not joints:
         raise ModelError("joints: expected at least one pair type, got none")
     return joints
@@ -372,7 +372,7 @@ def number_synthesis(mobility: int, space: str, *, joints: Sequence[str] | None 
     alphabet = _alphabet(joints or _OPEN_JOINTS[space], space)
     for j in alphabet:
         if pair_freedoms(j, space) != 1:
-            raise ModelError(f"joints: number synthesis uses P1 pairs (R, P), got {j!r}")
+            raise ModelError(f"joints: number synthesis uses P1 pairs (R, P), got {describe(j)}")
     table = tuple((n, Fraction(m + lam + (lam - 1) * n, lam)) for n in range(1, m + 1))
     chains = chain_types(m, space, joints=alphabet, max_joints=m, active=True, motion=motion)
     return TypeSynthesis("open chain", space, lam, m, m, ((m,),), {m: chains},
@@ -531,7 +531,7 @@ def type_synthesis(space: str, mobility: int | None = None, *, method: str = "ac
     ('3-RRR', '3-RRP', '3-RPR')
     """
     if method not in _METHODS:
-        raise ModelError(f"method: expected one of {', '.join(map(repr, _METHODS))}, got {method!r}")
+        raise ModelError(f"method: expected one of {', '.join(map(repr, _METHODS))}, got {describe(method)}")
     if method in ("passive", "alternative"):
         if motion is None:
             raise ModelError(f"motion: the {method} method needs the wanted motion, e.g. 'Tx Ty'")

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 from kinelab.synthesis._motion import motion_solution
 from kinelab.synthesis._pivots import solve_rows, suh_radcliffe_rows
 from kinelab.synthesis._positions import Positions, as_positions, fmt
@@ -211,7 +211,7 @@ def burmester_curves(points, angles=None, *, samples: int = 1441,
     """
     pos = _four(points, angles, degrees)
     if not (isinstance(samples, (int, np.integer)) and samples >= 3):
-        raise ModelError(f"samples: expected an integer >= 3, got {samples!r}")
+        raise ModelError(f"samples: expected an integer >= 3, got {describe(samples)}")
     npos, origin, L = _normalised(pos)
     delta = (npos.points[1:] - npos.points[0]) @ np.array([1.0, 1j])      # (3,) complex
     ea = np.exp(1j * npos.alpha[1:]) - 1.0
@@ -306,7 +306,7 @@ def four_positions(points, angles=None, a0x: float = None, b0x: float = None, *,
     array([-20.195,  25.565, -29.167,  42.355, -25.349,  25.379, -37.085,  36.094])
     """
     pos = _four(points, angles, degrees)
-    problems = [f"{n}: expected a finite number, got {v!r}" for n, v in (("a0x", a0x), ("b0x", b0x))
+    problems = [f"{n}: expected a finite number, got {describe(v)}" for n, v in (("a0x", a0x), ("b0x", b0x))
                 if not (isinstance(v, (int, float, np.floating, np.integer)) and np.isfinite(v))]
     if problems:
         raise ModelError(problems)

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 from kinelab.kinematics import analyze, transmission_angle
 from kinelab.mechanisms import Grashof
 from kinelab.model import Mechanism
@@ -45,7 +45,7 @@ def chebyshev_points(x_range: tuple[float, float], n: int) -> np.ndarray:
     """
     x0, xf = _range("x_range", x_range)
     if not (isinstance(n, (int, np.integer)) and n >= 1):
-        raise ModelError(f"n: expected a positive integer, got {n!r}")
+        raise ModelError(f"n: expected a positive integer, got {describe(n)}")
     j = np.arange(1, n + 1)
     return 0.5 * (x0 + xf) - 0.5 * (xf - x0) * np.cos((2 * j - 1) * np.pi / (2 * n))
 
@@ -153,9 +153,9 @@ def _range(name, r) -> tuple[float, float]:
     try:
         a, b = (float(v) for v in r)
     except (TypeError, ValueError):
-        raise ModelError(f"{name}: expected (start, end), got {r!r}") from None
+        raise ModelError(f"{name}: expected (start, end), got {describe(r)}") from None
     if not (np.isfinite(a) and np.isfinite(b)) or a == b:
-        raise ModelError(f"{name}: expected two different finite numbers, got {r!r}")
+        raise ModelError(f"{name}: expected two different finite numbers, got {describe(r)}")
     return a, b
 
 
@@ -208,7 +208,7 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
     (0.00042, True)
     """
     if not callable(f):
-        raise ModelError(f"f: expected a function of x, got {f!r}")
+        raise ModelError(f"f: expected a function of x, got {describe(f)}")
     x0, xf = _range("x_range", x_range)
     t2s, t2e = _range("input_range", input_range)
     t4s, t4e = _range("output_range", output_range)
@@ -218,9 +218,9 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
         raise ModelError("input_range: the crank would turn a full circle or more, so an input "
                          "angle would stand for two values of x; use less than one turn")
     if not (isinstance(ground, (int, float)) and np.isfinite(ground) and ground > 0):
-        raise ModelError(f"ground: expected a positive length (m), got {ground!r}")
+        raise ModelError(f"ground: expected a positive length (m), got {describe(ground)}")
     if not (isinstance(samples, (int, np.integer)) and samples >= 2):
-        raise ModelError(f"samples: expected an integer >= 2, got {samples!r}")
+        raise ModelError(f"samples: expected an integer >= 2, got {describe(samples)}")
     y0, yf = (float(v) for v in np.asarray(f(np.array([x0, xf])), float))
     if not (np.isfinite(y0) and np.isfinite(yf)) or y0 == yf:
         raise ModelError(f"f: f(x0) = {y0:.6g} and f(xf) = {yf:.6g} must be different finite "

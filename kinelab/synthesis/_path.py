@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 from kinelab.mechanisms import Grashof
 from kinelab.model import Mechanism
 from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, finite_or_inf, fourbar_model,
@@ -374,10 +374,10 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 300, pop
     for name, v, low in (("runs", runs, 1), ("maxiter", maxiter, 1), ("popsize", popsize, 5),
                          ("samples", samples, 24)):
         if not (isinstance(v, (int, np.integer)) and v >= low):
-            raise ModelError(f"{name}: expected an integer >= {low}, got {v!r}")
+            raise ModelError(f"{name}: expected an integer >= {low}, got {describe(v)}")
     mu = min_transmission_angle
     if not (isinstance(mu, (int, float)) and 0.0 <= mu < np.pi / 2):
-        raise ModelError(f"min_transmission_angle: expected an angle in [0, pi/2) rad, got {mu!r}")
+        raise ModelError(f"min_transmission_angle: expected an angle in [0, pi/2) rad, got {describe(mu)}")
     from scipy.optimize import differential_evolution
 
     center = T.mean(axis=0)

@@ -17,7 +17,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 from kinelab.synthesis._positions import Positions, as_positions, as_xy, fmt, poles, rotation
 
 __all__ = ["suh_radcliffe_rows", "moving_pivot", "fixed_pivot"]
@@ -123,7 +123,7 @@ def moving_pivot(points, angles=None, fixed: ArrayLike = None, *,
     if method == "poles":
         return _burmester_moving_pivot(pos, A0)
     if method != "suh-radcliffe":
-        raise ModelError(f"method: expected one of 'suh-radcliffe', 'poles', got {method!r}")
+        raise ModelError(f"method: expected one of 'suh-radcliffe', 'poles', got {describe(method)}")
     scale = float(np.ptp(np.vstack([pos.points, A0]), axis=0).max())
     rows = suh_radcliffe_rows(pos, A0)
     a = solve_rows(rows, scale, f"fixed pivot {fmt(A0)}",

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 from kinelab.solvers import wrap_angle
 
 __all__ = ["Positions", "Poles", "poles", "pole"]
@@ -28,9 +28,9 @@ def as_xy(name: str, value: ArrayLike) -> np.ndarray:
     try:
         a = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise ModelError(f"{name}: expected a point (x, y), got {value!r}") from None
+        raise ModelError(f"{name}: expected a point (x, y), got {describe(value)}") from None
     if a.shape != (2,) or not np.all(np.isfinite(a)):
-        raise ModelError(f"{name}: expected a point (x, y) of two finite numbers, got {value!r}")
+        raise ModelError(f"{name}: expected a point (x, y) of two finite numbers, got {describe(value)}")
     return a
 
 
@@ -97,11 +97,11 @@ class Positions:
         try:
             p = np.asarray(points, dtype=float)
         except (TypeError, ValueError):
-            raise ModelError(f"points: expected an array of shape (n, 2), got {points!r}") from None
+            raise ModelError(f"points: expected an array of shape (n, 2), got {describe(points)}") from None
         try:
             a = np.asarray(angles, dtype=float)
         except (TypeError, ValueError):
-            raise ModelError(f"angles: expected an array of numbers, got {angles!r}") from None
+            raise ModelError(f"angles: expected an array of numbers, got {describe(angles)}") from None
         if p.ndim != 2 or p.shape[1] != 2:
             problems.append(f"points: expected shape (n, 2), got {p.shape}")
         elif p.shape[0] < 2:

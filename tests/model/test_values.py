@@ -107,3 +107,13 @@ def test_validation_is_linear_in_the_size_of_the_model():
     m = pendulums(20_000)
     assert len(m.points) == 100_001 and m.links_carrying("p19999_0") == ("ground", "l19999")
     assert time.perf_counter() - start < 60.0
+
+
+def test_a_slide_axis_of_absurd_size_is_refused():
+    """Only its direction counts, but a component of 1e308 overflows its norm's square."""
+    sc = kl.mechanisms.slider_crank(1.0, 3.0)
+    joints = tuple(dataclasses.replace(j, axis=(1.79e308, 0.0)) if j.name == "slide" else j
+                   for j in sc.joints)
+    with pytest.raises(ModelError, match=r"joint 'slide': axis: expected a direction whose "
+                                         r"components are at most 1e100 in size"):
+        Mechanism("sc", sc.points, sc.links, joints, sc.inputs)
