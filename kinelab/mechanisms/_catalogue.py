@@ -20,14 +20,20 @@ __all__ = ["fourbar", "slider_crank", "inverted_slider_crank", "slotted_link", "
            "fivebar", "watt6", "stephenson6", "triad6"]
 
 
+def _length_problems(**lengths: float) -> list[str]:
+    """Why each of ``lengths`` is not a length kinelab computes with
+    (:data:`~kinelab.model.MIN_LENGTH` to :data:`~kinelab.model.MAX_LENGTH` m): a boolean,
+    text, a complex number, zero or less, or out of that range."""
+    return [f"{name}: expected a positive length (m), got {describe(value)}"
+            if not (is_real(value) and value > 0) else
+            f"{name}: {why}, got {float(value):g} m"
+            for name, value in lengths.items()
+            if not (is_real(value) and value > 0) or (why := length_problem(float(value)))]
+
+
 def _positive(**lengths: float) -> None:
-    """Refuse anything but lengths kinelab computes with (:data:`~kinelab.model.MIN_LENGTH`
-    to :data:`~kinelab.model.MAX_LENGTH` m): not a boolean, not text, not a complex number."""
-    problems = [f"{name}: expected a positive length (m), got {describe(value)}"
-                if not (is_real(value) and value > 0) else
-                f"{name}: {why}, got {float(value):g} m"
-                for name, value in lengths.items()
-                if not (is_real(value) and value > 0) or (why := length_problem(float(value)))]
+    """Refuse anything but lengths kinelab computes with (see :func:`_length_problems`)."""
+    problems = _length_problems(**lengths)
     if problems:
         raise ModelError(problems)
 
@@ -497,9 +503,9 @@ def _pair_lengths(pts, links, lengths) -> dict[str, float]:
                 problems.append(f"{where}: the pair {pair} is given twice (as {describe(seen[pair])} too); keep one")
                 continue
             seen[pair] = key
-            if not (isinstance(value, (int, float)) and not isinstance(value, bool)
-                    and math.isfinite(value) and value > 0):
-                problems.append(f"{where}: expected a positive length (m), got {describe(value)}")
+            bad = _length_problems(**{where: value})
+            if bad:
+                problems += bad
                 continue
             out[pair] = float(value)
         elif a != b and a in ground and b in ground:

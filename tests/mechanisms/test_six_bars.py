@@ -194,6 +194,8 @@ WATT_PAIRS = "'O2-A', 'A-B', 'O4-B', 'O4-C', 'B-C', 'C-D', 'O6-D'"
     ({"lengths": {"O2-A": 0.0, "C-D": -1.0}},
      r"^lengths\['O2-A'\]: expected a positive length \(m\), got 0.0\n"
      r"lengths\['C-D'\]: expected a positive length \(m\), got -1.0$"),
+    ({"lengths": {"O2-A": 1.7976931348623157e308}},      # its square would overflow
+     r"^lengths\['O2-A'\]: expected a length from 1e-09 m to 1e\+09 m, got 1.79769e\+308 m$"),
     ({"lengths": {"O2-A": 1.0, "A-O2": 1.0}},
      r"^lengths\['A-O2'\]: the pair O2-A is given twice \(as 'O2-A' too\); keep one$"),
     ({"lengths": [1.0]},

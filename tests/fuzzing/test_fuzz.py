@@ -1,0 +1,21 @@
+"""Hostile model files and task files, generated from valid ones field by field (see
+``grammar.py``): each ends in success or in one bounded line with exit status 2, quickly.
+A modest number of cases here; ``benchmarks/fuzz_model_files.py`` runs 10^5 and more."""
+import time
+
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from tests.fuzzing import grammar
+
+
+@settings(max_examples=150, suppress_health_check=[HealthCheck.too_slow,
+                                                   HealthCheck.function_scoped_fixture])
+@given(rng=st.randoms(use_true_random=False))
+def test_a_hostile_file_ends_in_one_line_or_success(rng, tmp_path_factory):
+    c = grammar.case(rng)
+    start = time.perf_counter()
+    outcome, detail = grammar.run(c, tmp_path_factory.mktemp("case"))
+    elapsed = time.perf_counter() - start
+    assert outcome in grammar.FINE, (outcome, detail, c.command, c.suffix, c.text[:500])
+    assert elapsed < 60.0, (elapsed, c.command)           # generous: a check takes well under 1 s
