@@ -21,8 +21,10 @@ def budget():
 def test_a_billion_samples_are_refused_with_the_estimate(budget):
     fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5)
     q = np.broadcast_to(0.5, (10**9,))             # no memory behind it
+    # 6 stored coordinates x (value, K, L, two rates) x 8 bytes, 3 copies of the inputs and
+    # a status: 1e9 x (240 + 24 + 41) bytes = 284 GiB
     with pytest.raises(MemoryBudgetError, match=r"the results of 1,000,000,000 samples \(6 "
-                       r"coordinates each, with K, L and rates\) would take about 262 GiB, more "
+                       r"coordinates each, with K, L and rates\) would take about 284 GiB, more "
                        r"than the memory budget of 2 GiB; .* KINELAB_MEMORY_BUDGET"):
         kl.analyze(fb, q)
 
@@ -83,3 +85,19 @@ def test_the_command_line_option(tmp_path, budget):
     assert result.exit_code == 2
     assert result.stderr.count("\n") == 1 and "more than the memory budget of 1 MiB" in result.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_check_of_a_large_model_needs_little_memory(tmp_path, budget):
+    """A coupler carrying 50,000 points: reading, planning and checking its sweep take
+    seconds and stay within a 256 MiB budget (analysing the sweep would need 1.4 GB)."""
+    from tests.io.bad_cases import BASE
+
+    extra = "".join(f"X{i} = [{100 + i * 1e-3}, 150]\n" for i in range(50_000))
+    names = ", ".join(f'"X{i}"' for i in range(50_000))
+    text = (BASE.replace("O4 = [300, 0]", "O4 = [300, 0]\n" + extra)
+            .replace('points = ["A", "B"]', f'points = ["A", "B", {names}]'))
+    path = tmp_path / "big.toml"
+    path.write_text(text)
+    result = CliRunner().invoke(main, ["--memory-budget", "256M", "check", str(path)])
+    assert result.exit_code == 0, result.output
+    assert "sweep: 361 samples assemble, none singular" in result.stdout

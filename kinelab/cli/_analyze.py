@@ -158,17 +158,19 @@ def check(model, si, degrees):
         _check_range(mf, ranges, full, u)
     with errors_from(mf, "inputs"):
         q, qd, qdd = mf.sample_inputs(min(mf.samples or (361,)))
-        sol = kinematics.analyze(m, q, qd, qdd, at_singular="flag")
-    _probe_loads(mf, q, sol)
-    n_sing = int(sol.singular.sum())
-    click.echo(f"sweep: {sol.N} samples assemble" + (f", {n_sing} singular" if n_sing else
-                                                     ", none singular"))
+        status = kinematics.assembly_status(m, q)      # a few bytes a sample, whatever the model
+        if not status.assembled.all():                 # the analysis says where and why
+            kinematics.analyze(m, q[~status.assembled][:1])
+    _probe_loads(mf, q, qd)
+    n_sing = int(status.singular.sum())
+    click.echo(f"sweep: {len(q)} samples assemble" + (f", {n_sing} singular" if n_sing else
+                                                      ", none singular"))
     click.echo("ok")
 
 
-def _probe_loads(mf, q, sol):
-    """Evaluate the [dynamics] forces and torques on the sweep, at the times `kinelab
-    dynamics` gives them: a law that is not finite there is reported now."""
+def _probe_loads(mf, q, qd):
+    """Evaluate the [dynamics] forces and torques on the sweep (inputs q, rates qd), at the
+    times `kinelab dynamics` gives them: a law that is not finite there is reported now."""
     from kinelab import dynamics
     from kinelab.cli._dynamics import times
     loads = dynamics.DynamicsSetup.from_model(mf.mechanism).loads
@@ -176,7 +178,7 @@ def _probe_loads(mf, q, sol):
     t = times(q, inp.speed, inp.acceleration)
     with errors_from(mf):
         for item in loads.forces + loads.torques:
-            item.value(t, sol.q, sol.qd)
+            item.value(t, np.reshape(q, (len(q), -1)), np.reshape(qd, (len(q), -1)))
 
 
 def _check_range(mf, ranges, full, si_unit):

@@ -5,8 +5,8 @@ The notes' method (Erthal, *Mecanismos com 1 GL: análise geral de velocidade e 
 J = dPhi/dS and Q = dPhi/dq, velocity coefficients K = -J^-1 Q and acceleration
 coefficients L = dK/dq, singular configurations where det J = 0.
 """
-from kinelab.kinematics._analyze import (SINGULAR_TOL, analyze, change_points, plan, reachable_ranges,
-                                         turns_fully)
+from kinelab.kinematics._analyze import (SINGULAR_TOL, AssemblyStatus, analyze, assembly_status,
+                                         change_points, plan, reachable_ranges, turns_fully)
 from kinelab.kinematics._assemble import Assembly, assemble, pose
 from kinelab.kinematics._branches import ChangePoint
 from kinelab.kinematics._instant_centers import (InstantCenter, InstantCenters, instant_center,
@@ -19,4 +19,4 @@ __all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "KinematicSolut
            "GuidePoint",
            "Plan", "Step", "SINGULAR_TOL", "transmission_angle", "time_ratio", "TimeRatio",
            "instant_center", "instant_centers", "InstantCenter", "InstantCenters", "change_points",
-           "ChangePoint", "assemble", "Assembly", "pose"]
+           "ChangePoint", "assemble", "Assembly", "pose", "assembly_status", "AssemblyStatus"]

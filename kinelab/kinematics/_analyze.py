@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
@@ -18,7 +19,8 @@ from kinelab.kinematics._solution import KinematicSolution
 from kinelab.model import Mechanism, real_array
 from kinelab.solvers import bisect, wrap_angle
 
-__all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "change_points"]
+__all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "change_points",
+           "assembly_status", "AssemblyStatus"]
 
 _NOTHING = np.empty(0, np.int64)   # items written out where only the status matters
 
@@ -120,6 +122,54 @@ def change_points(mechanism: Mechanism, lo: float, hi: float, *,
     return bmap.change_points(float(lo), float(hi)) if bmap is not None else ()
 
 
+@dataclass(frozen=True)
+class AssemblyStatus:
+    """Whether a mechanism assembles at each input value, and where it is singular.
+
+    Attributes
+    ----------
+    assembled, singular : ndarray of bool, shape (N,)
+    singularity : ndarray, shape (N,)
+        The distance from singularity of :class:`KinematicSolution` (NaN where it does not
+        assemble).
+    """
+
+    assembled: np.ndarray
+    singular: np.ndarray
+    singularity: np.ndarray
+
+
+def assembly_status(mechanism: Mechanism, q: ArrayLike, *, method: Literal["auto", "newton"] = "auto",
+                    at_change_point: Literal["smooth", "switch"] = "smooth") -> AssemblyStatus:
+    """Where a mechanism assembles and where it is singular, over the input values ``q``,
+    without keeping its coordinates: the check of a sweep, in memory of a few bytes per
+    sample whatever the size of the mechanism.  The same branches as :func:`analyze`.
+
+    Examples
+    --------
+    >>> rocker = kl.mechanisms.fourbar(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)
+    >>> kl.kinematics.assembly_status(rocker, [0.0, 1.0, 2.0]).assembled.tolist()
+    [True, True, False]
+    """
+    p = plan(mechanism, method=method)
+    M = len(mechanism.inputs)
+    check_choice("at_change_point", at_change_point, ("smooth", "switch"))
+    q2, qd2, qdd2, _ = _normalise_q(q, 0.0, 0.0, M)
+    out = _solve(p, _branch_map(p, M, at_change_point), q2, qd2, qdd2, stored=_NOTHING)
+    ok = out["status"] == k.ST_OK
+    measure = np.where(ok, out["diag"][:, 1], np.nan)
+    return AssemblyStatus(ok, ok & (measure < SINGULAR_TOL), measure)
+
+
+def _require_results(p: Plan, shape: tuple[int, ...], M: int) -> None:
+    """Refuse a sweep whose results (and copies of its inputs) exceed the memory budget."""
+    N = math.prod(shape[:-1] if M > 1 and len(shape) > 1 else shape)
+    n = len(p.stored_items)
+    memory.require(N * (8 * n * (3 + M + M * M) + 24 * M + 41),
+                   f"the results of {N:,} samples ({n} coordinates each, with K, L and rates)",
+                   "analyse fewer samples at a time (a sweep in pieces continues with start=)")
+
+
 def _branch_map(p: Plan, M: int, followed: str) -> BranchMap | None:
     """The change points to follow, for a one-input plan in closed form that has any."""
     if M != 1 or p.groups is not None or not branched_ops(p):
@@ -128,18 +178,29 @@ def _branch_map(p: Plan, M: int, followed: str) -> BranchMap | None:
     return None if bmap.trivial else bmap
 
 
-def _run_branches(p: Plan, bmap: BranchMap, q, qd, qdd):
+def _solve(p: Plan, bmap: BranchMap | None, q, qd, qdd, resume=None, stored=None):
+    """The kernel's outputs at every sample, each on the branch the analysis follows there
+    (the change points of ``bmap``; for Newton plans, a turn away when continuation does
+    not reach it directly)."""
+    out = (_run_branches(p, bmap, q, qd, qdd, stored) if bmap is not None
+           else _run(p, q, qd, qdd, resume, stored=stored))
+    if p.groups is not None and p.input_kinds == ("angle",) and resume is None:
+        _a_turn_away(p, out, q, qd, qdd, stored)
+    return out
+
+
+def _run_branches(p: Plan, bmap: BranchMap, q, qd, qdd, stored=None):
     """Run the kernel with each sample on its own branch: the samples that share the signs
     of their dyads in one call each."""
     index, tables = bmap.variants(q[:, 0])
     used = np.unique(index)
     if len(used) == 1:
-        return _run(p, q, qd, qdd, ops_f=tables[int(used[0])])
+        return _run(p, q, qd, qdd, ops_f=tables[int(used[0])], stored=stored)
     out = None
     for v in used.tolist():
         rows = np.flatnonzero(index == v)
         part = _run(p, q[rows], qd if len(qd) == 1 else qd[rows],
-                    qdd if len(qdd) == 1 else qdd[rows], ops_f=tables[v])
+                    qdd if len(qdd) == 1 else qdd[rows], ops_f=tables[v], stored=stored)
         if out is None:
             out = {key: np.empty((len(q),) + a.shape[1:], a.dtype) for key, a in part.items()}
         for key, a in part.items():
@@ -147,7 +208,7 @@ def _run_branches(p: Plan, bmap: BranchMap, q, qd, qdd):
     return out
 
 
-def _a_turn_away(p: Plan, out, q, qd, qdd) -> None:
+def _a_turn_away(p: Plan, out, q, qd, qdd, stored=None) -> None:
     """Newton plans: samples that continuation from the sketch did not reach, solved at the
     same crank angle a whole number of turns away, inside the interval it does reach (an
     arc of a crank that cannot turn fully may straddle the end of the swept window, as the
@@ -165,7 +226,7 @@ def _a_turn_away(p: Plan, out, q, qd, qdd) -> None:
     order = np.argsort(shifted)
     rows, shifted = rows[order], shifted[order]
     again = _run(p, shifted[:, None], qd if len(qd) == 1 else qd[rows],
-                 qdd if len(qdd) == 1 else qdd[rows])
+                 qdd if len(qdd) == 1 else qdd[rows], stored=stored)
     good = again["status"] == k.ST_OK
     for key in ("jets", "rates", "diag", "status", "fail"):
         out[key][rows[good]] = again[key][good]
@@ -396,6 +457,7 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
     check_choice("at_change_point", at_change_point, ("smooth", "switch"))
     if at_singular not in ("auto", "raise", "flag"):
         raise ModelError(f"at_singular: expected one of 'auto', 'raise', 'flag', got '{at_singular}'")
+    _require_results(p, np.shape(q), M)          # before anything of that size is made
     q2, qd2, qdd2, single = _normalise_q(q, qd, qdd, M)
     resume = None
     if start is not None:
@@ -408,14 +470,8 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
                 raise ModelError("start: the earlier analysis used another method; analyze "
                                  "with the same method to continue from it")
             resume = start.newton_state
-    n = len(p.stored_items)
-    memory.require(len(q2) * (8 * n * (3 + M + M * M) + 41),
-                   f"the results of {len(q2):,} samples ({n} coordinates each, with K, L and rates)",
-                   "analyse fewer samples at a time (a sweep in pieces continues with start=)")
     bmap = _branch_map(p, M, at_change_point)
-    out = _run_branches(p, bmap, q2, qd2, qdd2) if bmap is not None else _run(p, q2, qd2, qdd2, resume)
-    if p.groups is not None and p.input_kinds == ("angle",) and resume is None:
-        _a_turn_away(p, out, q2, qd2, qdd2)
+    out = _solve(p, bmap, q2, qd2, qdd2, resume)
     jets, rates, diag = out["jets"], out["rates"], out["diag"]
     ok = out["status"] == k.ST_OK
     if not ok.all():

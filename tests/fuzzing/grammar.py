@@ -88,8 +88,11 @@ def bases() -> list[tuple[dict, tuple[str, ...]]]:
 
 
 def _paths(data, prefix=()):
-    """Every path into nested dicts and lists (a path is a tuple of keys and indices)."""
+    """Every path into nested dicts and lists (a path is a tuple of keys and indices), down
+    to 20 levels (a deeply nested value is one thing to replace, not a place to dig)."""
     yield prefix
+    if len(prefix) >= 20:
+        return
     if isinstance(data, dict):
         for k, v in data.items():
             yield from _paths(v, prefix + (k,))
@@ -138,7 +141,8 @@ def _value(rng: random.Random, old):
 
 
 def mutate(data: dict, rng: random.Random, count: int) -> dict:
-    """``count`` field-level mutations of a copy of ``data``."""
+    """``count`` field-level mutations of a copy of ``data`` (a deeply nested value, once
+    made, is not copied again: it is only ever replaced)."""
     data = copy.deepcopy(data)
     for _ in range(count):
         paths = [p for p in _paths(data) if p]
@@ -156,7 +160,7 @@ def mutate(data: dict, rng: random.Random, count: int) -> dict:
             parent[rng.choice(["extra", "nme", "lenght", "points ", "\u00e9", "a.b"])] = rng.choice(
                 EDGE_NUMBERS[:5])
         elif op < 0.85 and isinstance(parent, list):
-            parent.append(copy.deepcopy(parent[key]))          # a duplicated entry
+            parent.append(parent[key])                          # a duplicated entry
         elif op < 0.92 and isinstance(parent[key], dict) and "name" in parent[key]:
             parent[key]["name"] = rng.choice(["ground", "O2", "A", "jO2", "crank", "x" * 300,
                                               "new\nline"])      # a reused or odd name
