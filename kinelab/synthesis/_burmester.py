@@ -27,6 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError, describe
+from kinelab.model import is_real, length_problem
 from kinelab.synthesis._motion import motion_solution
 from kinelab.synthesis._pivots import solve_rows, suh_radcliffe_rows
 from kinelab.synthesis._positions import Positions, as_positions, fmt
@@ -99,6 +100,9 @@ def _real_roots(c: np.ndarray) -> list[np.ndarray]:
     """Real roots of each row's polynomial (highest power first), polished by Newton."""
     out = []
     for row in c:
+        if not np.all(np.isfinite(row)):
+            out.append(np.zeros(0))     # coefficients beyond float range: no root to report
+            continue
         scale = np.abs(row).max()
         if scale == 0.0:
             out.append(None)        # identically zero: the whole line lies on the curve
@@ -306,8 +310,10 @@ def four_positions(points, angles=None, a0x: float = None, b0x: float = None, *,
     array([-20.195,  25.565, -29.167,  42.355, -25.349,  25.379, -37.085,  36.094])
     """
     pos = _four(points, angles, degrees)
-    problems = [f"{n}: expected a finite number, got {describe(v)}" for n, v in (("a0x", a0x), ("b0x", b0x))
-                if not (isinstance(v, (int, float, np.floating, np.integer)) and np.isfinite(v))]
+    problems = [f"{n}: expected a finite number, got {describe(v)}" if not is_real(v)
+                else f"{n}: {why}, got {float(v):g} m"
+                for n, v in (("a0x", a0x), ("b0x", b0x))
+                if not is_real(v) or (why := length_problem(float(v), positive=False))]
     if problems:
         raise ModelError(problems)
     roots = {}
