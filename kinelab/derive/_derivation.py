@@ -76,7 +76,8 @@ class Derivation:
         Each symbol of S -> ``("angle", link)`` or ``("slide", joint)``: the quantity
         ``sol.angle(link)`` or ``sol.slide(joint)`` of :func:`kinelab.analyze`.
     inputs : dict
-        Each symbol of q -> the input's name (its joint).
+        Each symbol of q -> the input's joint (for an input between two links without a
+        joint, the input's name).
     parameters : dict
         Each length, offset, constant angle and fixed coordinate symbol -> its value in
         the model, SI (m, rad).
@@ -221,8 +222,11 @@ class Derivation:
         def at(name, shape):
             f = self._functions[name]
             out = np.empty((N,) + shape)
-            for k in range(N):          # one configuration at a time: shapes stay plain
-                out[k] = np.asarray(f(*q2[k], *S[k], *values), float).reshape(shape)
+            # at a singular configuration K and L divide by det J = 0: inf or NaN there, as
+            # the engine's NaN, and the document says so
+            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+                for k in range(N):      # one configuration at a time: shapes stay plain
+                    out[k] = np.asarray(f(*q2[k], *S[k], *values), float).reshape(shape)
             return out
         return DerivationValues(
             q=q2, S=S, Phi=at("Phi", (n,)), J=at("J", (n, n)), Q=at("Q", (n, M)),

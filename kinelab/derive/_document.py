@@ -491,6 +491,7 @@ def _numbers(d, w, T, N, tex, at) -> None:
         w.para(T("det_value", det=_fmt(v.det_J[0]), engine=_fmt(v.engine_det_J[0])))
         if not np.all(np.isfinite(v.K_engine[0])):
             w.para(T("singular_here"))
+            return
         rows = []
         for i, s in enumerate(eq.S):
             for k in range(M):

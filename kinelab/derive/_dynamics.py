@@ -284,7 +284,7 @@ def kane_terms(d, plan: BodyPlan) -> KaneDerivation:
         subs[d.ddot(s)] = acc_i
     Csym = sp.eye(M).col_join(Ks) if len(d.S) else sp.eye(M)
     tau_expr = (-(Csym.T * e)).xreplace(subs).applyfunc(lambda ex: _tidy(ex, qdd, qd))
-    tau = tuple(names(f"tau_{name}") for name in d.inputs.values())
+    tau = tuple(names(f"tau_{name}") for name in m.input_names)
     return KaneDerivation(derivation=d, bodies=plan.bodies, x=x, u=u, C=C, D=D, f=f, tau=tau,
                           equations=tau_expr, L_symbols=L_symbols, parameters=params,
                           load_values=loads, loads=plan.loads, masses=plan.masses, positions={b.point: pos[b.point] for b in plan.bodies},

@@ -60,7 +60,7 @@ class LoopEquations:
     q: tuple                       # input symbols
     S: tuple                       # unknowns' symbols
     unknowns: dict                 # symbol of S -> ("angle", link) or ("slide", joint)
-    inputs: dict                   # symbol of q -> input name
+    inputs: dict                   # symbol of q -> the input's joint (its name without one)
     parameters: dict               # symbol -> value, SI
     meaning: dict                  # symbol -> (kind, *names): what each symbol stands for
     loops: tuple[Loop, ...]
@@ -187,7 +187,7 @@ class _Builder:
         M = len(m.inputs)
         qs = tuple(self.names(self.name(("input", k), "q" if M == 1 else f"q_{k + 1}"))
                    for k in range(M))
-        inputs = {s: inp.label for s, inp in zip(qs, m.inputs)}
+        inputs = {s: inp.joint or inp.label for s, inp in zip(qs, m.inputs)}
         classes = self.classes = self.angle_classes()
         # the angle of each class's root: 0 for the ground's class (angles absolute there),
         # an input where one drives it, else an unknown

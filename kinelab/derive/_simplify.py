@@ -17,10 +17,10 @@ import threading
 
 __all__ = ["SIMPLIFY_OPS", "SIMPLIFY_SECONDS", "READABLE_OPS", "simplified", "size", "factors"]
 
-SIMPLIFY_OPS = 400
+SIMPLIFY_OPS = 300
 """Operations above which an expression is not simplified."""
 
-SIMPLIFY_SECONDS = 2.0
+SIMPLIFY_SECONDS = 1.0
 """Time after which one simplification gives up and keeps the expression as derived."""
 
 READABLE_OPS = 120
