@@ -301,6 +301,11 @@ def _meaning(meaning: tuple, d, T, N) -> str:
         if root == m.ground.name:
             return T("direction_ground", a=N(meaning[2]), b=N(meaning[3]))
         return T("direction", a=N(meaning[2]), b=N(meaning[3]), root=N(root))
+    if kind == "link_offset":
+        root = d.equations.roots[meaning[1]]
+        if root == m.ground.name:
+            return T("link_offset_ground", link=N(meaning[1]))
+        return T("link_offset", link=N(meaning[1]), root=N(root))
     if kind == "axis":
         j = m.joint(meaning[1])
         root = d.equations.roots[j.links[0]]

@@ -27,6 +27,7 @@ from kinelab.derive._loops import _Names
 from kinelab.derive._simplify import simplified
 from kinelab.dynamics import DynamicsSetup, Loads, MassProperties
 from kinelab.dynamics._loads import default_carrier
+from kinelab.dynamics._symbolic import _exact, spring_tension
 from kinelab.dynamics._terms import build_system
 from kinelab.model import Mechanism
 
@@ -206,7 +207,7 @@ def kane_terms(d, plan: BodyPlan) -> KaneDerivation:
     gvec = sp.zeros(2, 1)
     if gmag:
         gs = param("g", gmag)
-        gvec = sp.Matrix([_unit(c / gmag) for c in g]) * gs
+        gvec = sp.Matrix([_exact(c / gmag) for c in g]) * gs
     pos = eq.position
 
     def vel(r):
@@ -231,14 +232,13 @@ def kane_terms(d, plan: BodyPlan) -> KaneDerivation:
         torque_on.get(tq.link, []).append(T)
         if tq.reacting:
             torque_on.get(tq.reacting, []).append(-T)
-    for kind, items in (("spring", plan.loads.springs), ("damper", plan.loads.dampers)):
+    for items in (plan.loads.springs, plan.loads.dampers):
         for s in items:
             a, b = s.points
             T = names(f"T_{s.name or a + b}")
             dvec = pos[b] - pos[a]
             length = sp.sqrt(dvec.dot(dvec))
-            tension = (_num(s.stiffness) * (length - _num(s.free_length)) if kind == "spring"
-                       else _num(s.damping) * (dvec.dot(vel(dvec)) / length))
+            tension = spring_tension(s, length, dvec.dot(vel(dvec)) / length)
             loads[T] = ("tension", s, tension)
             e = dvec / length
             for p, n, sign in ((a, s.links[0], 1), (b, s.links[1], -1)):
@@ -299,28 +299,13 @@ def _tidy(expr, qdd, qd):
     expr = sp.expand(expr)
     monomials = list(qdd) + [a * b for a, b in combinations_with_replacement(qd, 2)]
     poly = sp.Poly(expr, *qdd, *qd)
-    out, used = sp.Integer(0), set()
+    out = sp.Integer(0)
     for mono in monomials:
         c = poly.coeff_monomial(mono)
         if c != 0:
             out += simplified(c)[0] * mono
-        used.add(mono)
     rest = sp.expand(expr - sum((poly.coeff_monomial(mn) * mn for mn in monomials), sp.Integer(0)))
     return out + simplified(rest)[0]
-
-
-def _unit(c: float):
-    """A direction cosine, exact when it is 0 or +-1."""
-    import sympy as sp
-    for v in (0, 1, -1):
-        if abs(c - v) < 1e-15:
-            return sp.Integer(v)
-    return sp.Float(c)
-
-
-def _num(v: float):
-    import sympy as sp
-    return sp.Float(v) if v != int(v) else sp.Integer(int(v))
 
 
 def _source_text(law) -> str:

@@ -171,16 +171,19 @@ class _Builder:
                     root[other] = keep
         return {n: find(n) for n in m.link_names}
 
-    def turning(self, link: str, direction: float, key: tuple, default: str, meaning: tuple):
-        """The angle of a direction fixed in a link (``direction`` at the sketch, rad): its
-        group's angle plus a constant, exact when a multiple of pi/2, else a symbol."""
+    def constant(self, link: str, direction: float, key: tuple, default: str, meaning: tuple):
+        """The angle of a direction fixed in a link (``direction`` at the sketch, rad) from
+        its group's root link (from the x axis in the ground's group): exact when a multiple
+        of pi/2, else a symbol."""
         r = self.classes[link]
-        base = self.theta_s[r] if r != self.ground else 0.0
-        c = float(wrap_angle(direction - base))
+        c = float(wrap_angle(direction - (self.theta_s[r] if r != self.ground else 0.0)))
         exact = _exact_angle(c)
-        if exact is None:
-            exact = self.param(key, default, c, meaning)
-        return self.root_angle[r] + exact
+        return exact if exact is not None else self.param(key, default, c, meaning)
+
+    def turning(self, link: str, direction: float, key: tuple, default: str, meaning: tuple):
+        """The angle of a direction fixed in a link: its group's angle plus a constant."""
+        return self.root_angle[self.classes[link]] + self.constant(link, direction, key, default,
+                                                                     meaning)
 
     def build(self, points: tuple[str, ...]) -> LoopEquations:
         sp, m = self.sp, self.m
@@ -206,19 +209,16 @@ class _Builder:
             if r not in bound and r not in placeholders:
                 placeholders[r] = sp.Dummy(r)
 
-        def root_angle(r):
-            return bound.get(r, placeholders.get(r))
-
         def input_angle(n):
             """theta_n as inputs measure it (the ground's frame is 0)."""
             if n == self.ground:
                 return sp.Integer(0)
-            return root_angle(classes[n]) + offset(n)
+            return bound.get(classes[n], placeholders.get(classes[n])) + offset(n)
 
         def offset(n):
             """theta_n minus the angle of its group's root (absolute in the ground's)."""
-            r = classes[n]
-            return self.theta_s[n] - (self.theta_s[r] if r != self.ground else 0.0)
+            return self.constant(n, self.theta_s[n], ("link_offset", n), f"delta_{n}",
+                                 ("link_offset", n))
         for a, b, qk in pending:
             ra, rb = classes[a], classes[b]
             if rb not in bound:
@@ -261,8 +261,9 @@ class _Builder:
         self.slides = slides
         self.root_angle = bound
         # the angle of every link, for its angular velocity: its group's plus a constant
-        angle = {n: bound[classes[n]] + sp.Float(offset(n)) if n != self.ground
-                 else sp.Integer(0) for n in m.link_names}
+        angle = {n: bound[classes[n]] + sp.Float(self.theta_s[n] - (
+                     self.theta_s[classes[n]] if classes[n] != self.ground else 0.0))
+                 if n != self.ground else sp.Integer(0) for n in m.link_names}
         loops = self.loops()
         rows = []
         for lp in loops:

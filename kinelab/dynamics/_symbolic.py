@@ -106,6 +106,14 @@ def _exact(x: float):
     return v if abs(float(v) - x) <= 1e-12 * max(1.0, abs(x)) else sp.Float(x)
 
 
+def spring_tension(item, length, rate):
+    """The tension of a spring, ``k (l - l0)``, or of a damper, ``c dl/dt``, in symbols
+    (``length`` and ``rate`` are sympy expressions)."""
+    if hasattr(item, "stiffness"):
+        return _exact(item.stiffness) * (length - _exact(item.free_length))
+    return _exact(item.damping) * rate
+
+
 def equations_of_motion(model: Mechanism, *, loads: Loads | None = None,
                         masses: MassProperties | None = None,
                         lengths: Literal["numeric", "symbols"] = "numeric") -> EquationsOfMotion:
@@ -217,8 +225,7 @@ def equations_of_motion(model: Mechanism, *, loads: Loads | None = None,
         d = pos[s.points[1]] - pos[s.points[0]]
         length = sp.sqrt(sp.trigsimp(sp.expand(d.dot(d))))
         dl = jac([length])
-        tension = (_exact(s.stiffness) * (length - _exact(s.free_length)) if hasattr(s, "stiffness")
-                   else _exact(s.damping) * (dl * uv)[0])
+        tension = spring_tension(s, length, (dl * uv)[0])
         applied -= dl.T * tension
     Mm, h, Q = (mat.applyfunc(lambda e: sp.trigsimp(sp.expand(e))) for mat in (Mm, h, Q))
     Q = Q + applied
