@@ -13,8 +13,10 @@ is asked to obtain by hand, obtained for any planar model kinelab analyses:
 """
 from kinelab.derive._derivation import (LANGUAGES, Derivation, DerivationValues, Singularity,
                                         derive)
+from kinelab.derive._dynamics import Body, KaneDerivation
 from kinelab.derive._loops import Loop, LoopEquations, loop_equations
 from kinelab.derive._simplify import READABLE_OPS, SIMPLIFY_OPS, SIMPLIFY_SECONDS
 
-__all__ = ["derive", "Derivation", "DerivationValues", "Singularity", "loop_equations",
-           "LoopEquations", "Loop", "LANGUAGES", "SIMPLIFY_OPS", "SIMPLIFY_SECONDS", "READABLE_OPS"]
+__all__ = ["derive", "Derivation", "DerivationValues", "Singularity", "KaneDerivation", "Body",
+           "loop_equations", "LoopEquations", "Loop", "LANGUAGES", "SIMPLIFY_OPS",
+           "SIMPLIFY_SECONDS", "READABLE_OPS"]

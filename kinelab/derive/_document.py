@@ -481,9 +481,10 @@ def _numbers(d, w, T, N, tex, at) -> None:
         q = np.reshape(np.asarray(at, float), (M,))
     kinds = [("slide" if inp.joint is not None and m.joint(inp.joint).type == "P" else "angle")
              for inp in m.inputs]
-    shown = ", ".join(f"${tex(s)} = {_fmt(v)}$" + (f" ({_fmt(math.degrees(v))}{w.degree})" if k == "angle"
-                                                    else " m")
-                      for s, v, k in zip(eq.q, q, kinds))
+    def value(s, v, kind):
+        unit = f" ({_fmt(math.degrees(v))}{w.degree})" if kind == "angle" else " m"
+        return f"${tex(s)} = {_fmt(v)}$" + unit
+    shown = ", ".join(value(s, v, k) for s, v, k in zip(eq.q, q, kinds))
     w.heading(T("numbers", at=shown))
     v = d.evaluate(q if M > 1 else q[0])
     w.para(T("numbers_intro"))
@@ -506,7 +507,7 @@ def _numbers(d, w, T, N, tex, at) -> None:
         for i, s in enumerate(eq.S):
             for a_ in range(M):
                 for b_ in range(M):
-                    label = ("L_{" + tex(s) + "}" if M == 1 else "L_{" + tex(s) + f",{a_ + 1}{b_ + 1}}}")
+                    label = "L_{" + tex(s) + ("}" if M == 1 else f",{a_ + 1}{b_ + 1}}}")
                     a, b = v.L[0, i, a_, b_], v.L_engine[0, i, a_, b_]
                     rows.append(["$" + label + "$", _fmt(a), _fmt(b), _fmt(a - b)])
         w.table([T("col_symbol"), T("col_derived"), T("col_engine"), T("col_difference")], rows)

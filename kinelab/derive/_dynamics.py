@@ -287,7 +287,8 @@ def kane_terms(d, plan: BodyPlan) -> KaneDerivation:
     tau = tuple(names(f"tau_{name}") for name in m.input_names)
     return KaneDerivation(derivation=d, bodies=plan.bodies, x=x, u=u, C=C, D=D, f=f, tau=tau,
                           equations=tau_expr, L_symbols=L_symbols, parameters=params,
-                          load_values=loads, loads=plan.loads, masses=plan.masses, positions={b.point: pos[b.point] for b in plan.bodies},
+                          load_values=loads, loads=plan.loads, masses=plan.masses,
+                          positions={b.point: pos[b.point] for b in plan.bodies},
                           _e=e)
 
 

@@ -275,7 +275,8 @@ class _Builder:
         return LoopEquations(model=m, q=qs, S=tuple(S), unknowns=unknowns, inputs=inputs,
                              parameters=self.parameters, meaning=self.meaning,
                              loops=tuple(loops), rows=tuple(rows), independent=independent,
-                             angle=angle, roots=dict(classes), slide=slides, position=position, sketch=sketch)
+                             angle=angle, roots=dict(classes), slide=slides, position=position,
+                             sketch=sketch)
 
     # -- vectors -----------------------------------------------------------------------------
     def direction(self, phi):

@@ -21,7 +21,8 @@ def test_K_and_L_against_analyze(name):
     assert np.abs(v.Phi).max() <= 1e-12 * scale
     # exact algebra on both sides: agreement to rounding, relative to the coefficient's size
     np.testing.assert_allclose(v.K, v.K_engine, rtol=1e-12, atol=1e-12)
-    np.testing.assert_allclose(v.L, v.L_engine, rtol=1e-12, atol=1e-12 * max(1.0, np.abs(v.L_engine).max()))
+    np.testing.assert_allclose(v.L, v.L_engine, rtol=1e-12,
+                               atol=1e-12 * max(1.0, np.abs(v.L_engine).max()))
     # and the engine's values are not trivially zero: the comparison could fail
     assert np.abs(v.K_engine).max() > 1e-3
 
@@ -52,3 +53,17 @@ def test_K_against_finite_differences_of_the_engines_positions():
         diff = (np.unwrap(np.stack([down, up]), axis=0)[1] - down) / (2 * h) if kind == "angle" \
             else (up - down) / (2 * h)
         np.testing.assert_allclose(v.K[:, i, 0], diff, rtol=0, atol=1e-8)
+
+
+def test_the_contracts_shapes():
+    import sympy as sp
+    one, two = derivation("slotted_link"), derivation("fivebar")
+    assert isinstance(one.Phi, sp.MatrixBase) and one.Phi.shape == (2, 1)
+    assert one.K.shape == (2, 1) and isinstance(one.L, sp.MatrixBase) and one.L.shape == (2, 1)
+    assert len(two.q) == 2 and two.K.shape == (2, 2) and two.Q.shape == (2, 2)
+    assert isinstance(two.L, sp.NDimArray) and two.L.shape == (2, 2, 2)
+    assert set(two.unknowns.values()) == {("angle", "coupler1"), ("angle", "coupler2")}
+    assert list(two.inputs.values()) == ["jO2", "jO4"]
+    # L of several inputs is symmetric in its input indices (a second derivative of S)
+    v = two.evaluate(configurations(two, 2, seed=3))
+    assert abs(v.L - v.L.transpose(0, 1, 3, 2)).max() < 1e-12

@@ -27,7 +27,8 @@ def motion(d, n):
 
 
 CASES = {
-    "engine (closed, slider-crank)": (engine, Loads(gravity=G, forces=[PointForce("B", ("-800 * (q > 1)", 0.0))])),
+    "engine (closed, slider-crank)": (engine, Loads(gravity=G,
+                                                    forces=[PointForce("B", ("-800 * (q > 1)", 0.0))])),
     "four-bar with every kind of load": (fourbar, Loads(
         gravity=G, forces=[PointForce("P", ("3 * sin(q)", 2.0))],
         torques=[Torque("rocker", "-0.4 * qd", reacting="ground")],
