@@ -114,6 +114,9 @@ class FunctionSolution(CheckedLinkage):
     structural_error : ndarray, shape (m,)
         The generated output minus f(x), in the units of y (from the engine's rocker
         angle; +inf where the linkage cannot close there).
+    precision_errors : ndarray, shape (n,)
+        The same at the precision points: zero (to rounding) with three of them; with more,
+        the residual of the least-squares fit at each one.
     grashof : Grashof
     min_transmission_angle : float
         Over the whole input range, rad.
@@ -132,6 +135,7 @@ class FunctionSolution(CheckedLinkage):
     output_range: tuple[float, float]
     x_samples: np.ndarray
     structural_error: np.ndarray
+    precision_errors: np.ndarray
     grashof: Grashof
     min_transmission_angle: float
     branch_defect: bool
@@ -178,7 +182,9 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
         Rocker angle at f(x0) and at f(xf), same units.
     points : int or array_like
         The number of precision points, spaced as Chebyshev's nodes (3 = exact), or the
-        precision points themselves (x values; more than 3 = least squares).
+        precision points themselves (x values).  With more than three (more than the three
+        unknowns K1, K2, K3) Freudenstein's equation is solved in the least-squares sense,
+        and ``precision_errors`` holds the residual at each point.
     ground : float
         O2O4, m (the linkage is scale-free; this sets its size).
     samples : int
@@ -229,8 +235,9 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
         x = chebyshev_points((x0, xf), int(points))
     else:
         x = np.sort(np.asarray(points, float))
-        if x.ndim != 1 or np.any((x < min(x0, xf)) | (x > max(x0, xf))):
-            raise ModelError("points: expected precision points (x values) inside x_range")
+        if x.ndim != 1 or not np.all((x >= min(x0, xf)) & (x <= max(x0, xf))):
+            raise ModelError(f"points: expected precision points (x values) from {min(x0, xf):g} "
+                             f"to {max(x0, xf):g} (x_range), got {describe(points)}")
     if x.size < 3:
         raise ModelError(f"points: expected at least 3 precision points, got {x.size}")
 
@@ -282,10 +289,13 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
     for arr in (K, x, q, xs):
         arr.setflags(write=False)
     err = error[:samples]
-    err.setflags(write=False)
+    at_points = error[samples:samples + x.size]
+    for arr in (err, at_points):
+        arr.setflags(write=False)
     return FunctionSolution(
         model=model, K=K, x=x, q=q, input_range=(t2s + q_off, t2e + q_off),
         output_range=(t4s + out_off, t4e + out_off), x_samples=xs, structural_error=err,
+        precision_errors=at_points,
         grashof=model_grashof(model),
         min_transmission_angle=float(mu.min()) if mu.size else float("nan"),
         branch_defect=bool(defects), defects=tuple(defects))
