@@ -21,6 +21,7 @@ All lengths in metres and angles in radians (``degrees=True`` where people type 
 The notes' examples in centimetres are reproduced in metres: the synthesis is
 scale-free, so every length simply scales by 0.01.
 """
+from kinelab.synthesis._approximate import approximate_positions, fit_dyads
 from kinelab.synthesis._burmester import (BurmesterCurves, burmester_curves, center_point_cubic,
                                           center_points, four_positions)
 from kinelab.synthesis._five_positions import burmester_points, five_positions
@@ -39,4 +40,5 @@ __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "four_positions", "center_points", "center_point_cubic", "burmester_curves",
            "BurmesterCurves", "SolutionList", "function_generation", "FunctionSolution",
            "chebyshev_points", "freudenstein", "path_generation", "PathSolution",
-           "coupler_curves", "fourbar_model", "five_positions", "burmester_points"]
+           "coupler_curves", "fourbar_model", "five_positions", "burmester_points",
+           "approximate_positions", "fit_dyads"]

@@ -6,17 +6,9 @@ from scipy.optimize import fsolve
 import kinelab as kl
 from kinelab.errors import ModelError
 from kinelab.synthesis import Positions, burmester_points, five_positions
-from tests.synthesis.helpers import catalogue_poses, engine_pose_errors, wrap
+from tests.synthesis.helpers import catalogue_poses, crank_lengths, engine_pose_errors, wrap
 
 Q5 = np.radians([0.0, 30.0, 60.0, 90.0, 120.0])
-
-
-def crank_lengths(pos, A0, A1):
-    """|A_j - A0| over the positions, by rotating A1 about P1 here (not Positions.carry)."""
-    a = pos.alpha
-    R = np.stack([np.stack([np.cos(a), -np.sin(a)], -1), np.stack([np.sin(a), np.cos(a)], -1)], -2)
-    Aj = pos.points + np.einsum("nij,j->ni", R, np.asarray(A1) - pos.points[0])
-    return np.linalg.norm(Aj - A0, axis=1)
 
 
 def test_a_four_bar_is_found_again_through_five_of_its_poses():
