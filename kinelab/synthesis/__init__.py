@@ -33,6 +33,9 @@ from kinelab.synthesis._motion import (MotionSolution, TwoPositions, three_posit
 from kinelab.synthesis._path import PathSolution, coupler_curves, path_generation
 from kinelab.synthesis._pivots import fixed_pivot, moving_pivot
 from kinelab.synthesis._positions import Poles, Positions, pole, poles
+from kinelab.synthesis._quick_return import (CrankRocker, QuickReturn, crank_rocker, crank_rockers,
+                                             imbalance_angle, max_time_ratio, offset_slider_crank,
+                                             slotted_lever, whitworth)
 from kinelab.synthesis._results import SolutionList
 
 __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
@@ -41,4 +44,6 @@ __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "BurmesterCurves", "SolutionList", "function_generation", "FunctionSolution",
            "chebyshev_points", "freudenstein", "path_generation", "PathSolution",
            "coupler_curves", "fourbar_model", "five_positions", "burmester_points",
-           "approximate_positions", "fit_dyads"]
+           "approximate_positions", "fit_dyads", "crank_rocker", "crank_rockers", "CrankRocker",
+           "offset_slider_crank", "slotted_lever", "whitworth", "QuickReturn",
+           "imbalance_angle", "max_time_ratio"]
