@@ -37,7 +37,7 @@ from kinelab.errors import ModelError, SingularityError, describe
 from kinelab.kinematics import analyze, time_ratio as engine_time_ratio, transmission_angle
 from kinelab.mechanisms import Grashof, grashof, slider_crank, slotted_link, fourbar
 from kinelab.mechanisms import whitworth as whitworth_mechanism
-from kinelab.model import Mechanism, is_real, length_problem
+from kinelab.model import Mechanism, Units, is_real, length_problem
 from kinelab.solvers import bisect, wrap_angle
 from kinelab.synthesis._results import SolutionList
 
@@ -188,8 +188,25 @@ class QuickReturn:
 
 
 # -- checks of the arguments ----------------------------------------------------------------
-def _angle_text(value: float, degrees: bool) -> str:
-    return f"{value:.6g} deg" if degrees else f"{value:.6g} rad"
+def _len(u: Units, value: float) -> str:
+    """A length (m) for a message, in the units of the call (a task file's)."""
+    return f"{u.convert(value, 'm'):.6g} {u.length}"
+
+
+def _ang(u: Units, value: float) -> str:
+    """An angle (rad) for a message, in the units of the call."""
+    return f"{u.convert(value, 'rad'):.6g} {u.angle}"
+
+
+def _shown(degrees) -> Units:
+    """The units of messages and results for ``degrees``."""
+    return Units(angle="deg" if _flag("degrees", degrees) else "rad")
+
+
+def _radians(value, degrees: bool):
+    """An angle given by a caller, in rad (left as it is when it is not a number: the check
+    that follows names it)."""
+    return math.radians(value) if degrees and is_real(value) else value
 
 
 def _length(name: str, value) -> float:
@@ -206,14 +223,14 @@ def _flag(name: str, value) -> bool:
     return value
 
 
-def _swing(swing, degrees: bool) -> float:
-    half = "180 deg" if degrees else "pi rad"
-    psi = (math.radians(swing) if degrees else float(swing)) if is_real(swing) else math.nan
-    if not 0.0 < psi < math.pi:
-        raise ModelError(f"swing: expected an angle between 0 and {half} (both excluded), "
-                         f"got {describe(swing)}{' deg' if degrees and is_real(swing) else ''}; "
-                         "a rocker that swings half a turn or more has no limit positions")
-    return psi
+def _swing(psi, u: Units) -> float:
+    """The rocker's swing (rad), strictly between 0 and pi."""
+    if not (is_real(psi) and 0.0 < psi < math.pi):
+        got = _ang(u, float(psi)) if is_real(psi) else describe(psi)
+        raise ModelError(f"swing: expected an angle between 0 and {_ang(u, math.pi)} (both "
+                         f"excluded), got {got}; a rocker that swings half a turn or more has no "
+                         "limit positions")
+    return float(psi)
 
 
 def _ratio(time_ratio, *, above_one: bool = False, below: float = math.inf,
@@ -400,22 +417,19 @@ def _pick(arc: _Arc, t: float) -> dict:
     return arc.designs(np.array([t]))
 
 
-def _crank_rocker_task(ground, swing, time_ratio, degrees) -> tuple[float, float, float, list[_Arc]]:
-    degrees = _flag("degrees", degrees)
+def _crank_rocker_task(ground, psi, time_ratio, u: Units) -> tuple[float, float, list[_Arc]]:
     ground = _length("ground", ground)
-    psi = _swing(swing, degrees)
+    psi = _swing(psi, u)
     Q = _ratio(time_ratio, below=max_time_ratio(psi),
-               why=f"no crank-rocker with a swing of {_angle_text(swing, degrees)} reaches "
+               why=f"no crank-rocker with a swing of {_ang(u, psi)} reaches "
                "(3 pi + swing) / (pi - swing): lower the time ratio or widen the swing")
     delta = imbalance_angle(Q)
+    arcs = _crank_rocker_arcs(psi, delta)
     if Q == 1.0:
-        # no quick return: delta = 0 and O2 is on the line B1B2 (no pivot angle to speak of)
-        arcs = _crank_rocker_arcs(psi, 0.0)
+        # no quick return: O2 is on the line B1B2, so no pivot angle places it
         arcs = [_Arc(a.lo, a.hi, lambda t, f=a.designs: {**f(t), "pivot": np.full(t.shape, np.nan)})
                 for a in arcs]
-    else:
-        arcs = _crank_rocker_arcs(psi, delta)
-    return ground, psi, Q, arcs
+    return ground, Q, arcs
 
 
 def crank_rockers(ground: float, swing: float, time_ratio: float, crank: float, *,
@@ -459,7 +473,14 @@ def crank_rockers(ground: float, swing: float, time_ratio: float, crank: float, 
     >>> all(abs(d.time_ratio - 1.25) < 1e-9 and abs(d.swing - 45) < 1e-9 for d in designs)
     True
     """
-    ground, psi, Q, arcs = _crank_rocker_task(ground, swing, time_ratio, degrees)
+    u = _shown(degrees)
+    return _crank_rockers(ground, _radians(swing, degrees), time_ratio, crank, degrees, u)
+
+
+def _crank_rockers(ground, psi, time_ratio, crank, degrees: bool, u: Units) -> SolutionList:
+    """:func:`crank_rockers` with the swing in rad; results in degrees with ``degrees``,
+    messages in ``u``."""
+    ground, Q, arcs = _crank_rocker_task(ground, psi, time_ratio, u)
     crank = _length("crank", crank)
     rho = crank / ground
 
@@ -468,10 +489,10 @@ def crank_rockers(ground: float, swing: float, time_ratio: float, crank: float, 
     found = [(arc, t) for arc in arcs for t in _roots(arc, ratio, rho)]
     if not found:
         lo, hi = _refined_range(arcs, ratio)
-        raise ModelError(f"crank: expected a crank between {lo * ground:.6g} and {hi * ground:.6g} m "
-                         f"(both excluded) for ground {ground:g} m, swing "
-                         f"{_angle_text(swing, degrees)} and time ratio {Q:g}, got {crank:g} m; "
-                         "no crank-rocker of this family has it")
+        raise ModelError(f"crank: expected a crank between {_len(u, lo * ground)} and "
+                         f"{_len(u, hi * ground)} (both excluded) for ground {_len(u, ground)}, "
+                         f"swing {_ang(u, psi)} and time ratio {Q:g}, got {_len(u, crank)}; no "
+                         "crank-rocker of this family has it")
     designs = [_measured_crank_rocker(_pick(arc, t), ground, degrees, "crank") for arc, t in found]
     designs.sort(key=lambda s: -s.transmission_min)
     return SolutionList(designs)
@@ -539,31 +560,38 @@ def crank_rocker(ground: float, swing: float, time_ratio: float, *, crank: float
     >>> {k: round(v, 4) for k, v in cr.lengths.items()}
     {'ground': 1.0, 'crank': 0.3457, 'coupler': 0.8336, 'rocker': 0.9666}
     """
+    u = _shown(degrees)
+    return _crank_rocker(ground, _radians(swing, degrees), time_ratio, crank,
+                         _radians(pivot_angle, degrees), degrees, u)
+
+
+def _crank_rocker(ground, psi, time_ratio, crank, pivot_angle, degrees: bool,
+                  u: Units) -> CrankRocker:
+    """:func:`crank_rocker` with the angles in rad; results in degrees with ``degrees``,
+    messages in ``u``."""
     if crank is not None and pivot_angle is not None:
         raise ModelError("crank, pivot_angle: give at most one free choice, got both; the "
                          "other follows from the construction")
     if crank is not None:
-        return crank_rockers(ground, swing, time_ratio, crank, degrees=degrees)[0]
-    ground, psi, Q, arcs = _crank_rocker_task(ground, swing, time_ratio, degrees)
+        return _crank_rockers(ground, psi, time_ratio, crank, degrees, u)[0]
+    ground, Q, arcs = _crank_rocker_task(ground, psi, time_ratio, u)
     if pivot_angle is not None:
-        return _by_pivot_angle(ground, swing, Q, arcs, pivot_angle, degrees)
+        return _by_pivot_angle(ground, psi, Q, arcs, pivot_angle, degrees, u)
     if Q == 1.0:
         raise ModelError("crank: with time_ratio = 1 the smallest transmission angle keeps "
-                         f"growing as the crank shrinks (towards 90 deg - swing/2) and no design "
+                         "growing as the crank shrinks (towards 90 deg - swing/2) and no design "
                          "is best; give the crank")
     best = [(arc, *_refined_max(arc, lambda d: d["mu"])) for arc in arcs]
     arc, t, _ = max(best, key=lambda b: b[2])
     return _measured_crank_rocker(_pick(arc, t), ground, degrees, "time_ratio")
 
 
-def _by_pivot_angle(ground, swing, Q, arcs, pivot_angle, degrees) -> CrankRocker:
+def _by_pivot_angle(ground, psi, Q, arcs, phi, degrees: bool, u: Units) -> CrankRocker:
     if Q == 1.0:
         raise ModelError("pivot_angle: with time_ratio = 1 the crank pivot is on the line "
                          "B1B2 in every design, so no angle places it; give the crank instead")
-    if not is_real(pivot_angle):
-        raise ModelError(f"pivot_angle: expected an angle, got {describe(pivot_angle)}")
-    phi = math.radians(pivot_angle) if degrees else float(pivot_angle)
-    conv = math.degrees if degrees else (lambda v: v)
+    if not is_real(phi):
+        raise ModelError(f"pivot_angle: expected an angle, got {describe(phi)}")
     spans = [_pivot_arc_angles(a) for a in arcs]
     for arc, (lo, hi) in zip(arcs, spans):
         if lo < phi < hi:
@@ -571,11 +599,11 @@ def _by_pivot_angle(ground, swing, Q, arcs, pivot_angle, degrees) -> CrankRocker
             if t.size:
                 return _measured_crank_rocker(_pick(arc, float(t[0])), ground, degrees,
                                               "pivot_angle")
-    ranges = " or ".join(f"({conv(lo):.6g}, {conv(hi):.6g})" for lo, hi in spans)
-    raise ModelError(f"pivot_angle: expected an angle in {ranges} "
-                     f"{'deg' if degrees else 'rad'} for swing {_angle_text(swing, degrees)} "
-                     f"and time ratio {Q:g}, got {_angle_text(pivot_angle, degrees)}; elsewhere "
-                     "the two limit positions are on different assembly branches")
+    ranges = " or ".join(f"({u.convert(lo, 'rad'):.6g}, {u.convert(hi, 'rad'):.6g})"
+                         for lo, hi in spans)
+    raise ModelError(f"pivot_angle: expected an angle in {ranges} {u.angle} for swing "
+                     f"{_ang(u, psi)} and time ratio {Q:g}, got {_ang(u, phi)}; elsewhere the "
+                     "two limit positions are on different assembly branches")
 
 
 # -- offset slider-crank --------------------------------------------------------------------
@@ -659,7 +687,11 @@ def offset_slider_crank(stroke: float, time_ratio: float, *, rod: float | None =
     >>> {k: round(v, 5) for k, v in sc.lengths.items()}, round(sc.transmission_min, 3)
     ({'crank': 0.0455, 'rod': 0.09214, 'offset': 0.0321}, 32.632)
     """
-    degrees = _flag("degrees", degrees)
+    return _offset_slider_crank(stroke, time_ratio, rod, degrees, _shown(degrees))
+
+
+def _offset_slider_crank(stroke, time_ratio, rod, degrees: bool, u: Units) -> QuickReturn:
+    """:func:`offset_slider_crank`, messages in ``u``."""
     S = _length("stroke", stroke)
     Q = _ratio(time_ratio, below=3.0, why="an offset slider-crank's limit-position lines meet "
                "at less than 90 deg, so its time ratio stays below 3: use a slotted lever "
@@ -672,7 +704,8 @@ def offset_slider_crank(stroke: float, time_ratio: float, *, rod: float | None =
                              "transmission angle keeps growing with the rod, so no design is "
                              "best; give the rod")
         if not rod > S / 2:
-            raise ModelError(f"rod: expected more than half the stroke ({S / 2:g} m), got {rod:g} m")
+            raise ModelError(f"rod: expected more than half the stroke ({_len(u, S / 2)}), got "
+                             f"{_len(u, rod)}")
         lengths = dict(crank=S / 2, rod=rod, offset=0.0)
     else:
         arc = _slider_crank_arc(imbalance_angle(Q))
@@ -682,8 +715,9 @@ def offset_slider_crank(stroke: float, time_ratio: float, *, rod: float | None =
             roots = _roots(arc, lambda d: d["rod"] * S, rod)
             if roots.size == 0:
                 lo, hi = _refined_range([arc], lambda d: d["rod"] * S)
-                raise ModelError(f"rod: expected a rod between {lo:.6g} and {hi:.6g} m (both "
-                                 f"excluded) for stroke {S:g} m and time ratio {Q:g}, got {rod:g} m")
+                raise ModelError(f"rod: expected a rod between {_len(u, lo)} and {_len(u, hi)} "
+                                 f"(both excluded) for stroke {_len(u, S)} and time ratio {Q:g}, "
+                                 f"got {_len(u, rod)}")
             t = max(roots, key=lambda x: float(_pick(arc, x)["mu"][0]))
         d = _pick(arc, t)
         lengths = {k: float(d[k][0]) * S for k in ("crank", "rod", "offset")}
@@ -767,14 +801,18 @@ def whitworth(time_ratio: float, distance: float, stroke: float, *, rod: float |
     >>> round(w.lengths["crank"], 12), round(w.time_ratio, 9), round(w.stroke, 12)
     (0.1, 2.0, 0.3)
     """
-    degrees = _flag("degrees", degrees)
+    return _whitworth(time_ratio, distance, stroke, rod, degrees, _shown(degrees))
+
+
+def _whitworth(time_ratio, distance, stroke, rod, degrees: bool, u: Units) -> QuickReturn:
+    """:func:`whitworth`, messages in ``u``."""
     Q = _ratio(time_ratio, above_one=True)
     d = _length("distance", distance)
     S = _length("stroke", stroke)
     rod = S if rod is None else _length("rod", rod)
     if not rod > S / 2:
-        raise ModelError(f"rod: expected more than half the stroke ({S / 2:g} m) so that it "
-                         f"reaches the ram's line, got {rod:g} m")
+        raise ModelError(f"rod: expected more than half the stroke ({_len(u, S / 2)}) so that it "
+                         f"reaches the ram's line, got {_len(u, rod)}")
     R = d / math.sin(0.5 * imbalance_angle(Q))
     if why := length_problem(R):
         raise ModelError(f"time_ratio: the crank would be {R:.3g} m ({why}); raise the time "
