@@ -14,6 +14,8 @@ smallest for a given number of points when they are spaced as Chebyshev's nodes.
 """
 from __future__ import annotations
 
+import math
+
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -260,6 +262,10 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
                          "the number of points")
     A = a * np.array([np.cos(theta2(x[0])), np.sin(theta2(x[0]))])
     B = np.array([d, 0.0]) + c * np.array([np.cos(theta4(x[0])), np.sin(theta4(x[0]))])
+    if x.size > 3:
+        # least squares: the linkage of Freudenstein's lengths (coupler sqrt(b2)), assembled
+        # at the first point's crank angle where its rocker pin is nearest the prescribed one
+        B = _assembled(A, np.array([d, 0.0]), math.sqrt(b2), abs(c), B)
     model = fourbar_model((0.0, 0.0), (d, 0.0), A, B, name="function generator")
     q_off = np.pi if a < 0 else 0.0
     out_off = np.pi if c < 0 else 0.0
@@ -299,3 +305,17 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
         grashof=model_grashof(model),
         min_transmission_angle=float(mu.min()) if mu.size else float("nan"),
         branch_defect=bool(defects), defects=tuple(defects))
+
+
+def _assembled(A: np.ndarray, O4: np.ndarray, coupler: float, rocker: float,
+               near: np.ndarray) -> np.ndarray:
+    """The rocker pin B at |B - A| = coupler, |B - O4| = rocker nearest ``near``."""
+    D = O4 - A
+    L = float(np.hypot(*D))
+    if not abs(coupler - rocker) < L < coupler + rocker:
+        raise ModelError("points: the least-squares linkage cannot be assembled at the first "
+                         "precision point; change the angle ranges or the points")
+    along = (L * L + coupler * coupler - rocker * rocker) / (2 * L)
+    h = math.sqrt(max(coupler * coupler - along * along, 0.0))
+    mid, n = A + along * D / L, np.array([-D[1], D[0]]) / L
+    return min((mid + h * n, mid - h * n), key=lambda B: float(np.hypot(*(B - near))))

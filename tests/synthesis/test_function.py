@@ -83,6 +83,12 @@ def test_least_squares_residual_at_each_precision_point():
     M = np.column_stack([np.cos(t4), -np.cos(t2), np.ones(7)])
     gradient = M.T @ (M @ sol.K - np.cos(t2 - t4))
     assert np.abs(gradient).max() < 1e-12 * np.abs(M).max() ** 2 * np.abs(sol.K).max()
+    # the model is that least-squares linkage: its lengths give K back
+    L = sol.lengths
+    d, a, b, c = L["ground"], L["crank"], L["coupler"], L["rocker"]
+    assert np.all(sol.K[:2] > 0)
+    np.testing.assert_allclose(sol.K, [d / a, d / c, (a * a - b * b + c * c + d * d) / (2 * a * c)],
+                               rtol=1e-12)
     s = kl.analyze(sol.model, q=sol.q)
     y_gen = ((s.angle("rocker") - sol.output_range[0])
              / (sol.output_range[1] - sol.output_range[0]) * np.log10(2.0))
