@@ -484,7 +484,9 @@ def _fmt_xy(v, u: Units):
 @DEGREES
 def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si: bool,
           degrees: bool) -> None:
-    """Dimensional synthesis of a four-bar from the TOML task file TASK.
+    """Dimensional synthesis from the TOML task file TASK: a four-bar through positions,
+    a function or path generator, a crank-rocker for a swing and a time ratio, a quick
+    return.
 
     Writes each linkage found as a model file solution_<i>.toml and, unless --no-figures,
     a figure solution_<i>.png, with summary.json: all in the task's units (--si for m and

@@ -31,7 +31,7 @@ _GRID = 61          # circle points per side of the grid
 _BOX = 3.0          # ... spanning the task's centre +- this many task sizes
 _FAR = 20.0         # pivots farther than this many task sizes: a slider would do, not a crank
 _POLISHED = 16      # local minima of the grid polished
-_DISTINCT = 1e-6    # task sizes under which two fitted centres are one dyad
+_DISTINCT = 1e-5    # task sizes under which two fitted circle points are one dyad
 
 
 def _fit_circles(pos: Positions, a: np.ndarray):
@@ -137,7 +137,9 @@ def fit_dyads(points, angles=None, *, dyads: int = 4, degrees: bool = False):
         if not (np.all(np.isfinite(z)) and np.linalg.norm(c1 - mid) <= _FAR
                 and np.linalg.norm(a1 - mid) <= _FAR and 0 < r1 <= 2 * _FAR):
             continue
-        if any(np.linalg.norm(c1 - f[1]) <= _DISTINCT for f in fits):
+        # one dyad per circle point (the positions of one point are on one best circle;
+        # along a flat valley the polish may stop at slightly different centres)
+        if any(np.linalg.norm(a1 - f[0]) <= _DISTINCT for f in fits):
             continue
         fits.append((a1, c1, r1, rj))
     fits.sort(key=lambda f: float(np.sqrt(np.mean(f[3] ** 2))))
@@ -209,6 +211,6 @@ def approximate_positions(points, angles=None, *, dyads: int = 4,
         except ModelError as exc:
             reasons.append(f"dyads at {fmt(centers[i])} and {fmt(centers[j])} left out: {exc}")
     sols.sort(key=lambda s: (not s.valid, float(np.sqrt(np.mean(s.position_errors ** 2)))))
-    if not sols:
+    if centers.shape[0] < 2:
         reasons.insert(0, f"{centers.shape[0]} dyad(s) found; a four-bar needs two")
     return SolutionList(sols, reason="; ".join(reasons))

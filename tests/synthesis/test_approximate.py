@@ -73,3 +73,16 @@ def test_approximate_positions_bad_input(kwargs, message):
         P[2, 0] = np.nan
     with pytest.raises(ModelError, match=message):
         approximate_positions(P, th, **({"dyads": kwargs["dyads"]} if "dyads" in kwargs else {}))
+
+
+def test_one_dyad_per_circle_point():
+    """Poses along a smooth path with small turns: the near-slider dyads lie in flat valleys,
+    where polishing stops at slightly different centres; each circle point is one dyad."""
+    P = np.array([(0, 0), (5, 8), (10, 15), (18, 20), (25, 22), (30, 21)]) * 0.01
+    centers, circles, radii, res = fit_dyads(P, [0, 10, 20, 30, 40, 50], dyads=8, degrees=True)
+    gaps = np.linalg.norm(circles[:, None] - circles[None], axis=-1)[np.triu_indices(len(circles), 1)]
+    assert gaps.size == 0 or gaps.min() > 1e-3
+    rms = np.sqrt(np.mean(res ** 2, axis=1))
+    assert np.all(np.diff(rms) >= 0)                    # the best first
+    sols = approximate_positions(P, [0, 10, 20, 30, 40, 50], degrees=True)
+    assert len(sols) == 0 and sols.reason.startswith("dyads at ")   # the pair cannot assemble
