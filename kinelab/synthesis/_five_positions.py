@@ -195,12 +195,8 @@ def five_positions(points, angles=None, *, degrees: bool = False) -> SolutionLis
 
     Parameters
     ----------
-    points : array_like, shape (5, 2), or Positions
-        The coupler point P in the five positions, m.
-    angles : array_like, shape (5,) or (4,)
-        The coupler's orientations, or its rotations alpha_2..alpha_5 from position 1, rad.
-    degrees : bool
-        Angles in degrees.
+    points, angles, degrees : see :func:`burmester_points`
+        The five positions.
 
     Returns
     -------

@@ -35,7 +35,7 @@ import numpy as np
 
 from kinelab.errors import ModelError, SingularityError, describe
 from kinelab.kinematics import analyze, time_ratio as engine_time_ratio, transmission_angle
-from kinelab.mechanisms import Grashof, grashof, slider_crank, slotted_link, fourbar
+from kinelab.mechanisms import Grashof, fourbar, grashof, slider_crank, slotted_link
 from kinelab.mechanisms import whitworth as whitworth_mechanism
 from kinelab.model import Mechanism, Units, is_real, length_problem
 from kinelab.solvers import bisect, wrap_angle
@@ -76,7 +76,7 @@ def max_time_ratio(swing: float, *, degrees: bool = False) -> float:
     >>> round(kl.synthesis.max_time_ratio(45, degrees=True), 12)     # (540 + 45) / (180 - 45)
     4.333333333333
     """
-    psi = math.radians(swing) if degrees else float(swing)
+    psi = _swing(_radians(swing, degrees), _shown(degrees))
     return (3.0 * math.pi + psi) / (math.pi - psi)
 
 

@@ -63,14 +63,14 @@ def closed_form(a, b, c, d=1.0):
 
 @pytest.mark.parametrize("psi, Q", CASES[:3])
 def test_best_transmission_angle_certified_by_an_independent_scan(psi, Q):
-    """For 300 cranks across the family, solve swing(b, c) = psi and delta(b, c) = delta with
+    """For 200 cranks across the family, solve swing(b, c) = psi and delta(b, c) = delta with
     fsolve from several starts (ground 1): no crank-rocker found beats the optimum, and the
     best of the scan comes close to it."""
     best = crank_rocker(1.0, psi, Q)
     delta = imbalance_angle(Q)
     lo, hi = 0.0, np.sin(psi / 2)              # the family's crank runs below sin(psi/2)
     scan = []
-    for a in np.linspace(lo, hi, 302)[1:-1]:
+    for a in np.linspace(lo, hi, 202)[1:-1]:
         for b0, c0 in [(1.0, 0.5), (1.0, 1.0), (2.0, 1.0), (0.5, 0.7), (1.5, 1.5), (3.0, 2.0)]:
             def eqs(x):
                 with np.errstate(invalid="ignore"):
@@ -86,9 +86,9 @@ def test_best_transmission_angle_certified_by_an_independent_scan(psi, Q):
             swing, ratio = measured_swing_and_ratio(fb) if len(scan) % 50 == 0 else (psi, Q)
             assert abs(swing - psi) < 1e-8 and abs(ratio - Q) < 1e-8   # the scan is right
             scan.append(closed_form(a, x[0], x[1])[2])
-    assert len(scan) > 100
+    assert len(scan) > 70
     assert max(scan) <= best.transmission_min + 1e-12
-    assert best.transmission_min - max(scan) < 2e-3      # cranks 0.3 % of the range apart
+    assert best.transmission_min - max(scan) < 2e-3      # cranks 0.5 % of the range apart
 
 
 @pytest.mark.parametrize("lengths", [(2.5, 1.0, 3.2, 3.0), (3.0, 1.0, 3.0, 2.5),
@@ -217,7 +217,7 @@ def test_offset_slider_crank_against_the_engine_and_a_scan(Q):
     # independent family: for each offset solve stroke = 0.1 and delta, keep the best angle
     delta = imbalance_angle(Q)
     scan = []
-    for e in np.linspace(0.0, 0.2, 400)[1:]:
+    for e in np.linspace(0.0, 0.2, 250)[1:]:
         for seed in [(r, l) for r in (0.02, 0.04, 0.06) for l in (0.06, 0.1, 0.2, 0.4)]:
             x, _, ok, _ = fsolve(lambda v: np.subtract(slider_closed_form(e, *v)[:2],
                                                        [0.1, delta]), seed, full_output=True)
