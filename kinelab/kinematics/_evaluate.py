@@ -1,26 +1,27 @@
-"""Running the compiled kernel over a batch of inputs, on threads when the batch is large."""
+"""Running the kernel over a batch of inputs: compiled, on threads when the batch is large,
+or in its numpy form while the compiled one is not ready (see ``_compiled.py``)."""
 from __future__ import annotations
 
 import functools
 import os
 from concurrent.futures import ThreadPoolExecutor
 
-import numba
 import numpy as np
 
 from kinelab import _memory as memory
-from kinelab.kinematics import _kernel as k
+from kinelab.kinematics import _codes as k
+from kinelab.kinematics import _compiled
 from kinelab.kinematics._plan import Plan
 
-__all__ = ["run"]
+__all__ = ["run", "run_compiled", "entry_point"]
 
-_CONTINUATION_STEP = 0.05  # largest continuation step of a Newton group, rad (or m / scale)
 _PARALLEL_FROM = 4096      # samples per thread below which a sweep runs on the calling thread
 _PIECE = 1 << 16           # samples a thread takes at a time: a thread that the system
                            # slows down leaves more of the sweep to the others
 
 
 def _threads() -> int:
+    import numba
     return max(1, min(numba.get_num_threads(), _cpu_count()))
 
 
@@ -34,8 +35,23 @@ def _pool(workers: int) -> ThreadPoolExecutor:
     return ThreadPoolExecutor(max_workers=workers, thread_name_prefix="kinelab")
 
 
+def entry_point(p: Plan) -> str:
+    """The kernel's entry point for a plan (see ``_compiled.ENTRIES``)."""
+    kind = "closed_form" if p.groups is None else "continuation"
+    return kind + "_one_input" if len(p.input_kinds) == 1 else kind
+
+
 def run(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None):
-    """Run the kernel over the rows of ``q`` (N, M) with rates ``qd``, ``qdd`` (N, M) or (1, M).
+    """Run the kernel (compiled, or its numpy form until that is ready) over the rows of
+    ``q``; see :func:`run_compiled`."""
+    if _compiled.ready(entry_point(p)):
+        return run_compiled(p, q, qd, qdd, start, ops_f, stored)
+    from kinelab.kinematics import _interpreter
+    return _interpreter.run(p, q, qd, qdd, start, ops_f, stored)
+
+
+def run_compiled(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None):
+    """Run the compiled kernel over the rows of ``q`` (N, M) with rates ``qd``, ``qdd`` (N, M) or (1, M).
 
     ``start`` = (q, group state) to continue Newton groups from instead of the sketch;
     ``ops_f`` replaces the plan's operation parameters (another assembly mode of its dyads);
@@ -44,6 +60,7 @@ def run(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None):
     stored items), diag (det J and the singularity measure), status and fail per sample, and
     the Newton state at the end.  Refuses results beyond the memory budget.
     """
+    from kinelab.kinematics import _kernel
     ops_f = p.ops_f if ops_f is None else ops_f
     stored = p.stored_items if stored is None else np.asarray(stored, np.int64)
     N, M = q.shape
@@ -60,10 +77,10 @@ def run(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None):
                      stored, *tail)
         if M == 1:
             def piece(lo, hi):
-                k.run_closed_form_one_input(q, qd, qdd, lo, hi, *plan_args)
+                _kernel.run_closed_form_one_input(q, qd, qdd, lo, hi, *plan_args)
         else:
             def piece(lo, hi):
-                k.run_closed_form(q, qd, qdd, lo, hi, *plan_args, M)
+                _kernel.run_closed_form(q, qd, qdd, lo, hi, *plan_args, M)
         workers = min(_threads(), N // _PARALLEL_FROM) if N >= 2 * _PARALLEL_FROM else 1
         if workers <= 1:
             piece(0, N)
@@ -77,15 +94,15 @@ def run(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None):
         if start is not None:
             q0, x0 = start
         # continuation steps of at most 0.05 rad (or 0.05 sizes of the mechanism for slides)
-        max_step = _CONTINUATION_STEP * (1.0 if all(kd == "angle" for kd in p.input_kinds)
+        max_step = k.CONTINUATION_STEP * (1.0 if all(kd == "angle" for kd in p.input_kinds)
                                          else min(1.0, p.scale))
         state = np.empty(len(x0) + M)
         args = (q, qd, qdd, np.array(q0, float), max_step, p.ops_i, ops_f, p.const_items,
                 p.const_values, p.n_items, p.n_angles, stored, groups_i, con_i, con_f,
                 np.array(x0, float), p.scale, *tail, state)
         if M == 1:
-            k.run_continuation_one_input(*args)
+            _kernel.run_continuation_one_input(*args)
         else:
-            k.run_continuation(*args, M)
+            _kernel.run_continuation(*args, M)
         out["state"] = (state[len(x0):].copy(), state[:len(x0)].copy())
     return out
