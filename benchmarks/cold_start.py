@@ -3,7 +3,8 @@
 Each measurement is a new Python process, as a user's first command is: the import of
 kinelab, then the first analysis of each plan kind (a four-bar: one input; a five-bar: two
 inputs; the four-bar with ``method="newton"``: Newton groups), 361 samples each, timed
-inside the process.  Side by side in the same run:
+inside the process, in wall time and in the process's CPU time (on a shared machine the
+wall time also counts the other processes, the helper compiling among them).  Side by side in the same run:
 
 - kinelab as installed ("auto": the numpy form of the kernel answers while the compiled
   one is prepared in a helper process);
@@ -36,9 +37,10 @@ KINELAB = textwrap.dedent("""
                             np.column_stack([1.2 + 0.1 * np.sin(q), 1.9 + 0.1 * np.cos(q)]), "auto"),
              "Newton groups": (kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5), q, "newton")}
     for name, (m, qq, method) in cases.items():
-        t = time.perf_counter()
+        t, c = time.perf_counter(), time.process_time()
         kl.analyze(m, qq, method=method)
         out[name] = time.perf_counter() - t
+        out[name + ", CPU"] = time.process_time() - c
     t = time.perf_counter()
     kl.kinematics.Tracker(cases["one input"][0]).positions(0.5)
     out["one sample (Tracker)"] = time.perf_counter() - t
@@ -90,7 +92,7 @@ def measure(label: str, script: str, mode: str | None, cold: bool, repeat: int, 
                for key in runs[0]}
     print(f"  {label}")
     for key, (best, median) in summary.items():
-        print(f"    {key:22s} best {best:8.3f} s   median {median:8.3f} s")
+        print(f"    {key:27s} best {best:8.3f} s   median {median:8.3f} s")
     return summary
 
 
@@ -110,7 +112,7 @@ def main() -> None:
     if auto and ref:
         for key in auto:
             if key != "import":
-                print(f"    {key:22s} compiled in the process / auto: "
+                print(f"    {key:27s} compiled in the process / auto: "
                       f"{ref[key][0] / auto[key][0]:8.1f} x")
     print(" warm compile cache:")
     run(KINELAB, {**os.environ, "KINELAB_KERNEL": "compiled"})     # fill the default cache
