@@ -10,10 +10,10 @@ import numpy as np
 
 from kinelab import _memory as memory
 from kinelab.kinematics import _codes as k
-from kinelab.kinematics import _compiled
+from kinelab import _compiled
 from kinelab.kinematics._plan import Plan
 
-__all__ = ["run", "run_compiled", "entry_point"]
+__all__ = ["run", "run_compiled", "entry_point", "warm_up"]
 
 _PARALLEL_FROM = 4096      # samples per thread below which a sweep runs on the calling thread
 _PIECE = 1 << 16           # samples a thread takes at a time: a thread that the system
@@ -106,3 +106,25 @@ def run_compiled(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None):
             _kernel.run_continuation(*args, M)
         out["state"] = (state[len(x0):].copy(), state[:len(x0)].copy())
     return out
+
+
+def warm_up(name: str) -> None:
+    """Run an entry point of the kernel once on a small mechanism, with the argument types
+    of every call (see ``kinelab._compiled``)."""
+    from kinelab import mechanisms
+    from kinelab.kinematics._analyze import plan
+
+    fourbar = mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
+    fivebar = mechanisms.fivebar(3.0, 1.0, 2.5, 2.5, 1.0)
+    one, two = np.array([[0.1], [0.2]]), np.array([[1.2, 1.9], [1.25, 1.95]])
+    if name == "closed_form_one_input":
+        run_compiled(plan(fourbar), one, one, one)
+    elif name == "closed_form":
+        run_compiled(plan(fivebar), two, two, two)
+    elif name == "continuation_one_input":
+        run_compiled(plan(fourbar, method="newton"), one, one, one)
+    elif name == "continuation":
+        run_compiled(plan(fivebar, method="newton"), two, two, two)
+    else:
+        from kinelab.kinematics._tracker import Tracker
+        Tracker(fourbar)._positions_kernel.run_compiled(np.zeros((3, 1)), 0)

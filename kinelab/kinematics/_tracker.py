@@ -10,7 +10,7 @@ from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError, check_choice
 from kinelab.kinematics import _codes as k
-from kinelab.kinematics import _compiled
+from kinelab import _compiled
 from kinelab.kinematics._analyze import (SINGULAR_TOL, _branch_map, _check_redundant,
                                          _normalise_q, analyze, plan)
 from kinelab.kinematics._solution import KinematicSolution
@@ -178,7 +178,7 @@ class _Packed:
 
     def run(self, x: np.ndarray, variant: int) -> tuple[np.ndarray, int] | None:
         """The kernel's output and status at the sample ``x`` (3, M) on a branch, or None
-        while the compiled kernel is not ready (see ``_compiled.py``)."""
+        while the compiled kernel is not ready (see ``kinelab._compiled``)."""
         if not _compiled.ready("one_sample"):
             return None
         return self.run_compiled(x, variant)

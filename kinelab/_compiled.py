@@ -1,10 +1,12 @@
-"""The compiled kernel, made ready without anyone waiting for it.
+"""The compiled kernels, made ready without anyone waiting for them.
 
-numba compiles each entry point of the kernel (``_kernel.py``) once per machine, in 15 to 20
-seconds each, and keeps the result in its cache on disk; a later process loads it in a
-fraction of a second.  Nobody should wait for that: until an entry point is ready in this
-process, the analyses that need it run on the numpy form of the kernel
-(``_interpreter.py``), which gives the same numbers to rounding, at once.
+numba compiles each entry point of the kernels (``kinematics/_kernel.py``,
+``dynamics/_kernel.py``) once per machine, in 15 to 50 seconds each, and keeps the result
+in its cache on disk; a later process loads it in a fraction of a second.  Nobody should
+wait for that: until an entry point is ready in this process, the work that needs it runs
+without it (the kinematics on the kernel's numpy form, ``kinematics/_interpreter.py``, which
+gives the same numbers to rounding; forward dynamics on scipy's solve_ivp with a numpy
+right-hand side), at once.
 
 The first analysis of a process starts the preparation: a separate Python process brings
 numba's cache of every entry point up to date (compiling what is missing, on its own
@@ -34,8 +36,14 @@ from kinelab.errors import ModelError
 
 __all__ = ["ENTRIES", "mode", "set_mode", "ready", "wait"]
 
-ENTRIES = ("closed_form_one_input", "one_sample", "closed_form", "continuation_one_input",
-           "continuation")
+# each entry point, and the module whose warm_up(entry) runs it once with the argument types
+# of every call (this module sits below the rooms and names them only here)
+ENTRIES = {"closed_form_one_input": "kinelab.kinematics._evaluate",
+           "one_sample": "kinelab.kinematics._evaluate",
+           "closed_form": "kinelab.kinematics._evaluate",
+           "continuation_one_input": "kinelab.kinematics._evaluate",
+           "continuation": "kinelab.kinematics._evaluate",
+           "dynamics": "kinelab.dynamics._compiled"}
 _MODES = ("auto", "compiled", "numpy")
 
 _ready = {name: threading.Event() for name in ENTRIES}
@@ -99,7 +107,7 @@ def _prepare_all() -> None:
     global _helper
     try:
         env = {**os.environ, "KINELAB_KERNEL": "compiled"}
-        helper = _helper = subprocess.Popen([sys.executable, "-m", "kinelab.kinematics._compiled"],
+        helper = _helper = subprocess.Popen([sys.executable, "-c", "from kinelab._compiled import _helper_main; _helper_main()"],
                                   stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                                   stderr=subprocess.DEVNULL, env=env, text=True,
                                   start_new_session=True)
@@ -129,27 +137,8 @@ def _load(name: str) -> None:
 
 
 def _warm_up(name: str) -> None:
-    """Run an entry point once on a small mechanism, with the argument types of every call."""
-    import numpy as np
-
-    from kinelab import mechanisms
-    from kinelab.kinematics import _evaluate
-    from kinelab.kinematics._analyze import plan
-
-    fourbar = mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
-    fivebar = mechanisms.fivebar(3.0, 1.0, 2.5, 2.5, 1.0)
-    one, two = np.array([[0.1], [0.2]]), np.array([[1.2, 1.9], [1.25, 1.95]])
-    if name == "closed_form_one_input":
-        _evaluate.run_compiled(plan(fourbar), one, one, one)
-    elif name == "closed_form":
-        _evaluate.run_compiled(plan(fivebar), two, two, two)
-    elif name == "continuation_one_input":
-        _evaluate.run_compiled(plan(fourbar, method="newton"), one, one, one)
-    elif name == "continuation":
-        _evaluate.run_compiled(plan(fivebar, method="newton"), two, two, two)
-    else:
-        from kinelab.kinematics._tracker import Tracker
-        Tracker(fourbar)._positions_kernel.run_compiled(np.zeros((3, 1)), 0)
+    import importlib
+    importlib.import_module(ENTRIES[name]).warm_up(name)
 
 
 def _helper_main() -> None:
@@ -188,6 +177,3 @@ def _machine_lock():
         return None
     return f
 
-
-if __name__ == "__main__":
-    _helper_main()
