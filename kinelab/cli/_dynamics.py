@@ -103,6 +103,9 @@ def dynamics_command(model, out, samples, si, degrees, gravity, no_plots):
     for name, kind, col in zip(res.input_names, res.input_kinds, res.input_forces.T):
         unit = "N m" if kind == "angle" else "N"
         ok = np.isfinite(col)
+        if not ok.any():
+            click.echo(f"{name}: no effort defined (every sample singular or unassembled)")
+            continue
         click.echo(f"{name}: peak |effort| {np.max(np.abs(col[ok])):.6g} {unit}, "
                    f"rms {np.sqrt(np.mean(col[ok] ** 2)):.6g} {unit}")
     F = np.hypot(*res.shaking_force.T)

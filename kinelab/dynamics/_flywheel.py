@@ -6,7 +6,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.integrate import cumulative_trapezoid
 
 from kinelab.errors import ModelError, describe
 
@@ -114,6 +113,7 @@ def flywheel(theta: ArrayLike, torque: ArrayLike, *, speed: float, fluctuation: 
     if problems:
         raise ModelError(problems)
     span = th[-1] - th[0]
+    from scipy.integrate import cumulative_trapezoid
     work = cumulative_trapezoid(tq, th, initial=0.0)
     mean = work[-1] / span
     energy = mean * (th - th[0]) - work

@@ -17,7 +17,7 @@ import numpy as np
 
 from kinelab._expressions import not_finite, parse_expression, parse_table
 from kinelab.errors import ModelError, describe
-from kinelab.model import Mechanism
+from kinelab.model import MAX_RATE, Mechanism, is_real
 
 __all__ = ["Law", "PointForce", "Torque", "Spring", "Damper", "Loads", "STANDARD_GRAVITY"]
 
@@ -62,7 +62,7 @@ class Law:
             object.__setattr__(self, "where", s.where)
             s = s.source
         if _number(s):
-            if not math.isfinite(float(s)):
+            if not is_real(s):          # inf, nan, or an integer too large for a float
                 raise ModelError(f"{self.where}: expected a finite number, got {describe(s)}")
             fn = None
         elif isinstance(s, str):
@@ -223,7 +223,7 @@ class Spring:
         _check_pair(self, "spring")
         for label in ("stiffness", "free_length"):
             v = getattr(self, label)
-            if not (_number(v) and math.isfinite(v) and v >= 0):
+            if not (is_real(v) and v >= 0):
                 raise ModelError(f"{_label(self, 'spring')}: {label}: expected a number >= 0, got {describe(v)}")
 
 
@@ -249,7 +249,7 @@ class Damper:
     def __post_init__(self):
         _check_pair(self, "damper")
         v = self.damping
-        if not (_number(v) and math.isfinite(v) and v >= 0):
+        if not (is_real(v) and v >= 0):
             raise ModelError(f"{_label(self, 'damper')}: damping: expected a number >= 0, got {describe(v)}")
 
 
@@ -303,8 +303,11 @@ class Loads:
     def __post_init__(self):
         g = self.gravity
         if (isinstance(g, (str, bytes)) or not isinstance(g, Iterable) or len(tuple(g)) != 2
-                or not all(_number(c) and math.isfinite(c) for c in g)):
+                or not all(is_real(c) for c in g)):
             raise ModelError(f"gravity: expected two finite numbers (gx, gy) in m/s^2, got {describe(g)}")
+        if max(abs(float(c)) for c in g) > MAX_RATE:
+            raise ModelError(f"gravity: expected components at most {MAX_RATE:g} m/s^2 in size "
+                             f"(forces take it times the masses), got {describe(tuple(g))}")
         object.__setattr__(self, "gravity", tuple(float(c) for c in g))
         for attr, kind in (("forces", PointForce), ("torques", Torque), ("springs", Spring),
                            ("dampers", Damper)):

@@ -6,15 +6,16 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
 from kinelab.errors import ModelError, describe
-from kinelab.model import Mechanism
+from kinelab.model import MAX_INERTIA, MAX_MASS, Mechanism, is_real
 
 __all__ = ["LinkMass", "PointMass", "MassProperties"]
 
 _ON_LINE = 1e-9   # relative distance of a centre of mass off the line of a lumped link's ends
 
 
-def _positive(v) -> bool:
-    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v > 0
+def _positive(v, limit: float = MAX_MASS) -> bool:
+    """A real number above 0 and at most ``limit`` (see ``kinelab.model.MAX_MASS``)."""
+    return is_real(v) and 0 < v <= limit
 
 
 @dataclass(frozen=True)
@@ -40,11 +41,11 @@ class LinkMass:
 
     def __post_init__(self):
         if not _positive(self.mass):
-            raise ModelError(f"link '{self.link}': mass: expected a positive number (kg), got {describe(self.mass)}")
-        if not (isinstance(self.inertia, (int, float)) and math.isfinite(self.inertia)
-                and self.inertia >= 0):
-            raise ModelError(f"link '{self.link}': inertia: expected a number >= 0 (kg m^2), "
-                             f"got {describe(self.inertia)}")
+            raise ModelError(f"link '{self.link}': mass: expected a positive number (kg) up to "
+                             f"{MAX_MASS:g}, got {describe(self.mass)}")
+        if not (is_real(self.inertia) and 0 <= self.inertia <= MAX_INERTIA):
+            raise ModelError(f"link '{self.link}': inertia: expected a number >= 0 (kg m^2) up to "
+                             f"{MAX_INERTIA:g}, got {describe(self.inertia)}")
 
 
 @dataclass(frozen=True)
@@ -67,8 +68,8 @@ class PointMass:
 
     def __post_init__(self):
         if not _positive(self.mass):
-            raise ModelError(f"point mass at '{self.point}': mass: expected a positive number (kg), "
-                             f"got {describe(self.mass)}")
+            raise ModelError(f"point mass at '{self.point}': mass: expected a positive number (kg) "
+                             f"up to {MAX_MASS:g}, got {describe(self.mass)}")
 
 
 @dataclass(frozen=True)

@@ -15,7 +15,8 @@ from typing import Any, Literal
 
 from kinelab.errors import PROBLEMS_SHOWN, ModelError, describe, quoted, shown, suggest
 from kinelab.model._joints import JOINT_TYPES
-from kinelab.model._values import is_real, length_problem, name_problem, range_problem, rate_problem
+from kinelab.model._values import (MAX_INERTIA, MAX_MASS, is_real, length_problem, name_problem,
+                                   range_problem, rate_problem)
 
 __all__ = ["Point", "Link", "Joint", "Input", "Mechanism", "SPACES"]
 
@@ -408,6 +409,9 @@ def _validate(m: Mechanism) -> list[str]:
                 add(f"{where}: {label}: expected a positive number, got {describe(attr)}")
             elif label == "length" and attr is not None and (why := length_problem(float(attr))):
                 add(f"{where}: length: {why}, got {float(attr):g} m")
+            elif label != "length" and attr is not None and attr > (limit := {
+                    "mass": MAX_MASS, "inertia": MAX_INERTIA}[label]):
+                add(f"{where}: {label}: expected at most {limit:g} (SI), got {float(attr):g}")
         if link.length is not None and len(link.points) < 2:
             add(f"{where}: length: a link with one point has no length; remove it")
         if link.local is not None:

@@ -27,6 +27,11 @@ MAX_RATE = 1e100
 # An angle input's range: at most this many turns from 0 at either end.  Beyond it the
 # samples of an angle are too far apart, or the angle too large for its sine to mean anything.
 MAX_TURNS = 1000
+# Masses (kg) and moments of inertia (kg m^2): with the lengths and rates above, momenta,
+# forces and energies (m v^2 <= 1e30 x (1e100 x 1e9)^2) stay finite; gravity is bounded
+# like a rate.
+MAX_MASS = 1e30
+MAX_INERTIA = MAX_MASS * MAX_LENGTH ** 2
 
 
 def is_real(value: Any) -> bool:

@@ -11,7 +11,6 @@
 from kinelab.solvers._angles import turn_intervals, wrap_angle
 from kinelab.solvers._bisect import bisect
 from kinelab.solvers._continuation import ContinuationResult, continuation
-from kinelab.solvers._dialytic import DialyticSolution, dialytic
 from kinelab.solvers._half_angle import HalfAngleSolution, half_angle
 from kinelab.solvers._newton import NewtonHistory, NewtonResult, iteration_table, newton
 
@@ -19,3 +18,11 @@ __all__ = ["bisect", "ContinuationResult", "continuation", "DialyticSolution", "
            "HalfAngleSolution", "half_angle",
            "NewtonHistory", "NewtonResult", "iteration_table", "newton", "wrap_angle",
            "turn_intervals"]
+
+
+def __getattr__(name: str):
+    # dialytic elimination needs sympy, which takes a second to import: only when it is used
+    if name in ("dialytic", "DialyticSolution"):
+        from kinelab.solvers import _dialytic
+        return getattr(_dialytic, name)
+    raise AttributeError(f"module 'kinelab.solvers' has no attribute {name!r}")

@@ -27,6 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError, describe
+from kinelab.model import is_real, length_problem
 from kinelab.synthesis._motion import motion_solution
 from kinelab.synthesis._pivots import solve_rows, suh_radcliffe_rows
 from kinelab.synthesis._positions import Positions, as_positions, fmt
@@ -84,10 +85,12 @@ def center_point_cubic(points, angles=None, a0x: ArrayLike = 0.0, *,
     return _cubic(pos, x.reshape(-1)).reshape(x.shape + (4,))
 
 
-def _cubic(pos: Positions, x: np.ndarray) -> np.ndarray:
-    """(m, 4) coefficients in y of det(rows(x, y)), highest power first (exact expansion)."""
-    u = suh_radcliffe_rows(pos, np.stack([x, np.zeros_like(x)], -1))        # (m, 3, 3)
-    v = suh_radcliffe_rows(pos, np.stack([x, np.ones_like(x)], -1)) - u     # rows' slope in y
+def _cubic(pos: Positions, x: np.ndarray, rows: tuple[int, int, int] = (0, 1, 2)) -> np.ndarray:
+    """(m, 4) coefficients in y of det(rows(x, y)), highest power first (exact expansion);
+    ``rows`` picks three of the equations j = 2..n (0-based), for n > 4 positions."""
+    sel = list(rows)
+    u = suh_radcliffe_rows(pos, np.stack([x, np.zeros_like(x)], -1))[..., sel, :]   # (m, 3, 3)
+    v = suh_radcliffe_rows(pos, np.stack([x, np.ones_like(x)], -1))[..., sel, :] - u  # slope in y
     c = np.zeros(x.shape + (4,))
     for mask in itertools.product((0, 1), repeat=3):
         M = np.where(np.array(mask, bool)[:, None], v, u)
@@ -99,6 +102,9 @@ def _real_roots(c: np.ndarray) -> list[np.ndarray]:
     """Real roots of each row's polynomial (highest power first), polished by Newton."""
     out = []
     for row in c:
+        if not np.all(np.isfinite(row)):
+            out.append(np.zeros(0))     # coefficients beyond float range: no root to report
+            continue
         scale = np.abs(row).max()
         if scale == 0.0:
             out.append(None)        # identically zero: the whole line lies on the curve
@@ -306,8 +312,10 @@ def four_positions(points, angles=None, a0x: float = None, b0x: float = None, *,
     array([-20.195,  25.565, -29.167,  42.355, -25.349,  25.379, -37.085,  36.094])
     """
     pos = _four(points, angles, degrees)
-    problems = [f"{n}: expected a finite number, got {describe(v)}" for n, v in (("a0x", a0x), ("b0x", b0x))
-                if not (isinstance(v, (int, float, np.floating, np.integer)) and np.isfinite(v))]
+    problems = [f"{n}: expected a finite number, got {describe(v)}" if not is_real(v)
+                else f"{n}: {why}, got {float(v):g} m"
+                for n, v in (("a0x", a0x), ("b0x", b0x))
+                if not is_real(v) or (why := length_problem(float(v), positive=False))]
     if problems:
         raise ModelError(problems)
     roots = {}

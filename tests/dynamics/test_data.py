@@ -44,19 +44,24 @@ def test_non_positive_mass_or_inertia_in_the_model(field, value):
 
 
 def test_non_positive_masses_built_by_hand():
-    with pytest.raises(ModelError, match=r"link 'arm': mass: expected a positive number \(kg\), got -2"):
+    with pytest.raises(ModelError, match=r"link 'arm': mass: expected a positive number \(kg\) up to "
+                                         r"1e\+30, got -2"):
         LinkMass("arm", -2, "G", 0.1)
-    with pytest.raises(ModelError, match=r"link 'arm': inertia: expected a number >= 0 \(kg m\^2\), got -0.1"):
+    with pytest.raises(ModelError, match=r"link 'arm': inertia: expected a number >= 0 \(kg m\^2\) up "
+                                         r"to 1e\+48, got -0.1"):
         LinkMass("arm", 2.0, "G", -0.1)
-    with pytest.raises(ModelError, match=r"point mass at 'P': mass: expected a positive number \(kg\), got 0"):
+    with pytest.raises(ModelError, match=r"point mass at 'P': mass: expected a positive number \(kg\) "
+                                         r"up to 1e\+30, got 0"):
         PointMass("P", 0)
+    with pytest.raises(ModelError, match=r"up to 1e\+30, got 1e\+300"):    # m v^2 would overflow
+        PointMass("P", 1e300)
     with pytest.raises(ModelError) as info:
         MassProperties.from_model(rp_robot(), massless=("arm", "hand"), point_masses={"G2": -1.0, "Q": 1.0})
     assert info.value.problems == (
         "massless: expected a link of 'rp', got 'hand'; its links are 'ground', 'arm', 'gripper'",
         "link 'gripper': mass: missing; give mass (kg), center_of_mass (one of its points) "
         "and inertia (kg m^2), or declare it massless",
-        "point mass at 'G2': mass: expected a positive number (kg), got -1.0",
+        "point mass at 'G2': mass: expected a positive number (kg) up to 1e+30, got -1.0",
         "point_masses: expected a point of 'rp', got 'Q'")
 
 

@@ -1,8 +1,10 @@
 """Hostile model files and task files, generated from valid ones field by field (see
 ``grammar.py``): each ends in success or in one bounded line with exit status 2, quickly.
 A modest number of cases here; ``benchmarks/fuzz_model_files.py`` runs 10^5 and more."""
+import random
 import time
 
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -19,3 +21,12 @@ def test_a_hostile_file_ends_in_one_line_or_success(rng, tmp_path_factory):
     elapsed = time.perf_counter() - start
     assert outcome in grammar.FINE, (outcome, detail, c.command, c.suffix, c.text[:500])
     assert elapsed < 60.0, (elapsed, c.command)           # generous: a check takes well under 1 s
+
+
+# cases the fuzzing found (benchmarks/fuzz_model_files.py, 100,000 cases): a huge pivot
+# abscissa in a synthesis task (three seeds), a dynamics run with no finite effort, and a
+# gravity component too large for a float
+@pytest.mark.parametrize("seed", [129989, 141339, 153981, 139037, 149413])
+def test_cases_that_once_escaped(seed, tmp_path):
+    outcome, detail = grammar.run(grammar.case(random.Random(seed)), tmp_path)
+    assert outcome in grammar.FINE, (outcome, detail)
