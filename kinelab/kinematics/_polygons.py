@@ -463,20 +463,8 @@ def acceleration_polygon(sol: KinematicSolution, sample: int = 0) -> Acceleratio
     """The acceleration polygon and the acceleration images of the links at one sample,
     each side split into its normal, tangential, Coriolis and sliding parts.
 
-    Parameters
-    ----------
-    sol : KinematicSolution
-    sample : int
-        Which sample of ``sol`` (0 for a single configuration; negative counts from the end).
-
-    Returns
-    -------
-    AccelerationPolygon
-
-    Raises
-    ------
-    ModelError, SingularityError, AssemblyError
-        As :func:`velocity_polygon`.
+    Parameters, and the errors raised, as :func:`velocity_polygon`; returns an
+    :class:`AccelerationPolygon`.
 
     Examples
     --------

@@ -122,12 +122,19 @@ class _Fits:
     [-1, 1], which keeps the normal equations well conditioned; a lower degree's system is
     a corner of the higher one's."""
 
-    def __init__(self, x: np.ndarray, rows: np.ndarray, window: int, degrees=(DEGREE,)):
+    def __init__(self, x: np.ndarray, rows: np.ndarray, window: int, degrees=(DEGREE,),
+                 even: bool = False):
         from numpy.polynomial import legendre
         n, top = len(x), max(degrees)
         start = np.clip(rows - window // 2, 0, n - window)   # centred; at the ends, the first or last
         self.index = start[:, None] + np.arange(window)
-        xw = x[self.index]
+        every = rows
+        if even:
+            # evenly spaced: the weights depend only on where the sample sits in its window,
+            # so they are computed once for each place and shared
+            _, first, shared = np.unique(rows - start, return_index=True, return_inverse=True)
+            rows, start = rows[first], start[first]
+        xw = x[start[:, None] + np.arange(window)]
         mid, half = 0.5 * (xw[:, -1] + xw[:, 0]), 0.5 * (xw[:, -1] - xw[:, 0])
         V = legendre.legvander((xw - mid[:, None]) / half[:, None], top)   # (rows, window, top + 1)
         gram = np.swapaxes(V, 1, 2) @ V
@@ -141,6 +148,9 @@ class _Fits:
         for d in degrees:
             coef = np.linalg.solve(gram[:, :d + 1, :d + 1], basis[:, :d + 1])
             self.weights[d] = (V[:, :, :d + 1] @ coef) * scale
+            if even:
+                self.weights[d] = self.weights[d][shared]
+        rows, start = every, self.index[:, 0]
         self.self_weight = self.weights[degrees[0]][np.arange(len(rows)), rows - start, 0]
 
     def apply(self, degree: int, y: np.ndarray) -> np.ndarray:
@@ -157,18 +167,19 @@ def _blocks(rows: np.ndarray, window: int):
     return np.array_split(rows, max(1, len(rows) * window * (DEGREE + 3) // BLOCK))
 
 
-def _residuals(x: np.ndarray, y: np.ndarray, rows: np.ndarray, window: int) -> tuple[float, float]:
+def _residuals(x: np.ndarray, y: np.ndarray, rows: np.ndarray, window: int,
+               even: bool = False) -> tuple[float, float]:
     """The residual sum of squares of the fits at ``rows`` and the sum of their weights on
     their own sample (the trace of the hat matrix)."""
     rss = trace = 0.0
     for block in _blocks(rows, window):
-        f = _Fits(x, block, window)
+        f = _Fits(x, block, window, even=even)
         rss += float(np.sum((y[block] - f.apply(DEGREE, y)[:, 0]) ** 2))
         trace += float(np.sum(f.self_weight))
     return rss, trace
 
 
-def _gcv_window(x: np.ndarray, y: np.ndarray) -> int:
+def _gcv_window(x: np.ndarray, y: np.ndarray, even: bool = False) -> int:
     """The window that minimises the generalised cross-validation score of the smoothed
     curve, N RSS / (N - trace H)^2, summed over at most GCV_SAMPLES evenly spread samples."""
     n = len(x)
@@ -177,7 +188,7 @@ def _gcv_window(x: np.ndarray, y: np.ndarray) -> int:
     windows = windows[windows <= n]
     scores = []
     for w in windows:
-        rss, trace = _residuals(x, y, rows, int(w))
+        rss, trace = _residuals(x, y, rows, int(w), even)
         scores.append(len(rows) * rss / max(len(rows) - trace, 1e-300) ** 2)
     return int(windows[int(np.argmin(scores))])
 
@@ -255,13 +266,15 @@ def differentiate(x: ArrayLike, y: ArrayLike, *, window: int | None = None) -> D
     y0 = float(np.mean(y))
     ys = float(np.max(np.abs(y - y0))) or 1.0
     u, v = (x - x[0]) / xs, (y - y0) / ys
-    gcv = _gcv_window(u, v) if window is None else int(window)
+    step = np.diff(u)
+    even = bool(np.ptp(step) <= 1e-9 * np.mean(step))
+    gcv = _gcv_window(u, v, even) if window is None else int(window)
     used = int(window) if window is not None else max(MIN_WINDOW, int(round(UNDERSMOOTH * gcv)) | 1)
-    rss, trace = _residuals(u, v, np.arange(n), gcv)
+    rss, trace = _residuals(u, v, np.arange(n), gcv, even)
     sigma = np.sqrt(rss / max(n - trace, 1.0))
     fit, norm, change = np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3))
     for rows in _blocks(np.arange(n), used):
-        f = _Fits(u, rows, used, (DEGREE, DEGREE + 2))
+        f = _Fits(u, rows, used, (DEGREE, DEGREE + 2), even)
         fit[rows] = f.apply(DEGREE, v)
         norm[rows] = f.norms(DEGREE)
         change[rows] = fit[rows] - f.apply(DEGREE + 2, v)
