@@ -429,15 +429,30 @@ def centrodes(sol: KinematicSolution, link: str, sample: int = 0, *, ax=None,
     th = float(np.reshape(sol.angle(link), (-1,))[i])
     rot = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]])
     placed = origin + c.moving @ rot.T
-    ax.plot(*u.convert(c.fixed, "m").T, lw=1.5, color="tab:red", label="fixed centrode")
-    ax.plot(*u.convert(placed, "m").T, lw=1.5, ls="--", color="tab:blue", label="moving centrode")
+    # a centrode through infinity (the link's centre leaving on one side and coming back on
+    # the other) is cut there, and the view keeps to the mechanism's neighbourhood
+    pts = np.array([np.reshape(sol.position(p), (-1, 2))[i] for p in sol.point_names])
+    mid, size = 0.5 * (pts.min(axis=0) + pts.max(axis=0)), float(np.ptp(pts, axis=0).max())
+
+    def cut(xy):
+        return np.where((np.linalg.norm(xy - mid, axis=1) <= 10 * size)[:, None], xy, np.nan)
+    ax.plot(*u.convert(cut(c.fixed), "m").T, lw=1.5, color="tab:red", label="fixed centrode")
+    ax.plot(*u.convert(cut(placed), "m").T, lw=1.5, ls="--", color="tab:blue",
+            label="moving centrode")
+    near = np.vstack([pts, *(xy[np.linalg.norm(xy - mid, axis=1) <= 2 * size]
+                             for xy in (c.fixed, placed))])
+    near = u.convert(near[np.isfinite(near).all(axis=1)], "m")
+    lo, hi = near.min(axis=0), near.max(axis=0)
+    pad = 0.08 * float(max(hi - lo))
+    ax.set_xlim(lo[0] - pad, hi[0] + pad)
+    ax.set_ylim(lo[1] - pad, hi[1] + pad)
     if c.defined[i]:
         numbers = {lk: k + 1 for k, lk in enumerate(
             [sol.mechanism.ground.name] + [x for x in sol.link_names if x != sol.mechanism.ground.name])}
         a, b = sorted((numbers[sol.mechanism.ground.name], numbers[link]))
         ax.plot(*u.convert(c.fixed[i], "m"), "o", color="black", ms=6,
                 label=f"instant centre O{a}{b}")
-    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_aspect("equal", adjustable="box")
     ax.set_xlabel(f"x [{u.length}]")
     ax.set_ylabel(f"y [{u.length}]")
     ax.grid(True, alpha=0.3)
