@@ -9,6 +9,7 @@ from kinelab.cli._draw import animate, plot
 from kinelab.cli._dynamics import dynamics_command
 from kinelab.cli._exchange import export, import_
 from kinelab.cli._main import main
+from kinelab.cli._serve import serve
 from kinelab.cli._structure import mobility, types
 from kinelab.cli._synthesis import synth
 
@@ -23,5 +24,6 @@ main.add_command(types)
 main.add_command(synth)
 main.add_command(dynamics_command)
 main.add_command(derive_command)
+main.add_command(serve)
 
 __all__ = ["main"]
