@@ -127,7 +127,7 @@ _CATALOGUE = {
     "stephenson6": {"catalogue": {"kind": "stephenson6"}},
 }
 for _kind, _data in _CATALOGUE.items():
-    _data.update(schema=1, name=_kind.replace("_", "-"))
+    _data.update(schema=1, name=_kind.replace("_", "-"), units={"length": "m", "angle": "deg"})
 
 
 # -- analysis -------------------------------------------------------------------------------
