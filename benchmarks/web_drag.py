@@ -50,9 +50,13 @@ def main(repeats: int = 30) -> None:
                 name = page.evaluate("() => Object.keys(window.kinelab.model.points).find("
                                      "p => !window.kinelab.study.drawing.ground_points.includes(p))")
                 for k in range(repeats):
-                    box = page.locator(f"#canvas circle[data-point='{name}']").bounding_box()
-                    if box is None:
-                        raise SystemExit(f"{tool}: point {name} not drawn")
+                    page.wait_for_function("() => window.kinelab.config !== null")
+                    box = None
+                    for _ in range(20):          # the drawing is redrawn when an answer comes
+                        box = page.locator(f"#canvas circle[data-point='{name}']").bounding_box()
+                        if box is not None:
+                            break
+                        page.wait_for_timeout(20)
                     x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
                     page.mouse.move(x, y)
                     page.mouse.down()
