@@ -10,6 +10,7 @@ from kinelab.cli._dynamics import dynamics_command
 from kinelab.cli._exchange import export, import_
 from kinelab.cli._graphical import centres, differentiate_command, polygons
 from kinelab.cli._main import main
+from kinelab.cli._serve import serve
 from kinelab.cli._structure import mobility, types
 from kinelab.cli._synthesis import synth
 
@@ -27,5 +28,6 @@ main.add_command(derive_command)
 main.add_command(polygons)
 main.add_command(centres)
 main.add_command(differentiate_command)
+main.add_command(serve)
 
 __all__ = ["main"]
