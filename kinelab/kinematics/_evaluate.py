@@ -50,6 +50,22 @@ def run(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None):
     return _interpreter.run(p, q, qd, qdd, start, ops_f, stored)
 
 
+def outputs(p: Plan, q, ops_f=None, stored=None) -> tuple[np.ndarray, np.ndarray, dict]:
+    """The operation parameters and stored items of a run (the plan's unless given), and
+    its outputs allocated for the rows of ``q`` (N, M), within the memory budget."""
+    ops_f = p.ops_f if ops_f is None else ops_f
+    stored = p.stored_items if stored is None else np.asarray(stored, np.int64)
+    N, M = q.shape
+    n = len(stored)
+    memory.require(N * (8 * n * (3 + M + M * M) + 41),
+                   f"the results of {N:,} samples ({n} coordinates each, with K, L and rates)",
+                   "analyse fewer samples at a time (a sweep in pieces continues with start=)")
+    out = dict(jets=memory.empty((N, n, 1 + M + M * M)), rates=memory.empty((N, n, 2)),
+               diag=memory.empty((N, 2)), status=memory.empty((N,), np.int8),
+               fail=memory.empty((N, 2)))
+    return ops_f, stored, out
+
+
 def run_compiled(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None):
     """Run the compiled kernel over the rows of ``q`` (N, M) with rates ``qd``, ``qdd`` (N, M) or (1, M).
 
@@ -61,16 +77,8 @@ def run_compiled(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None):
     the Newton state at the end.  Refuses results beyond the memory budget.
     """
     from kinelab.kinematics import _kernel
-    ops_f = p.ops_f if ops_f is None else ops_f
-    stored = p.stored_items if stored is None else np.asarray(stored, np.int64)
+    ops_f, stored, out = outputs(p, q, ops_f, stored)
     N, M = q.shape
-    n = len(stored)
-    memory.require(N * (8 * n * (3 + M + M * M) + 41),
-                   f"the results of {N:,} samples ({n} coordinates each, with K, L and rates)",
-                   "analyse fewer samples at a time (a sweep in pieces continues with start=)")
-    out = dict(jets=memory.empty((N, n, 1 + M + M * M)), rates=memory.empty((N, n, 2)),
-               diag=memory.empty((N, 2)), status=memory.empty((N,), np.int8),
-               fail=memory.empty((N, 2)))
     tail = (out["jets"], out["rates"], out["diag"], out["status"], out["fail"])
     if p.groups is None:
         plan_args = (p.ops_i, ops_f, p.const_items, p.const_values, p.n_items, p.n_angles,

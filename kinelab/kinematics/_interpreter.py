@@ -26,7 +26,6 @@ import math
 
 import numpy as np
 
-from kinelab import _memory as memory
 from kinelab.kinematics import _codes as k
 from kinelab.kinematics._plan import Plan
 
@@ -946,19 +945,12 @@ def run(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None):
     (1, M): the arguments and the outputs of :func:`kinelab.kinematics._evaluate.run`
     (jets, rates, diag, status, fail and, for plans with Newton groups, the state where
     the run ended), computed with numpy and no compilation."""
-    ops_f = p.ops_f if ops_f is None else ops_f
-    stored = p.stored_items if stored is None else np.asarray(stored, np.int64)
+    from kinelab.kinematics._evaluate import outputs
     q = np.asarray(q, float)
     qd = np.asarray(qd, float)
     qdd = np.asarray(qdd, float)
+    ops_f, stored, out = outputs(p, q, ops_f, stored)
     N, M = q.shape
-    n = len(stored)
-    memory.require(N * (8 * n * (3 + M + M * M) + 41),
-                   f"the results of {N:,} samples ({n} coordinates each, with K, L and rates)",
-                   "analyse fewer samples at a time (a sweep in pieces continues with start=)")
-    out = dict(jets=memory.empty((N, n, 1 + M + M * M)), rates=memory.empty((N, n, 2)),
-               diag=memory.empty((N, 2)), status=memory.empty((N,), np.int8),
-               fail=memory.empty((N, 2)))
     T = _tables(p, M)
     with np.errstate(all="ignore"):     # an exact singularity gives inf or NaN, then flagged
         if p.groups is None:

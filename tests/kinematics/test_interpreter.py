@@ -31,6 +31,7 @@ import kinelab as kl
 from kinelab.kinematics import _evaluate, _interpreter
 from kinelab.kinematics import _codes as k
 from kinelab.kinematics._analyze import SINGULAR_TOL, _branch_map, plan
+from tests.kinematics.test_engine import CATALOGUE
 from tests.kinematics.checks import wrap
 from tests.kinematics.test_engine import _hydraulic_boom, _with_input
 
@@ -75,19 +76,10 @@ def coupler_angle_driven():
 
 # mechanisms, and the sweeps they turn through (None: inside their reach, from the sketch)
 TURNING = {
-    "fourbar": lambda: kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0)),
-    "fourbar_crossed": lambda: kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, (1.5, -0.4), "crossed"),
-    "slider_crank": lambda: kl.mechanisms.slider_crank(1.0, 3.0, offset=0.5),
-    "slider_crank_left": lambda: kl.mechanisms.slider_crank(1.0, 3.0, offset=-0.3, branch="left"),
-    "slotted_link": lambda: kl.mechanisms.slotted_link(1.0, 2.0),
-    "inverted_slider_crank": lambda: kl.mechanisms.inverted_slider_crank(2.0, 1.0, offset=0.3),
+    **CATALOGUE,
     "inverted_negative": lambda: kl.mechanisms.inverted_slider_crank(2.0, 1.0, offset=0.3, branch="negative"),
-    "whitworth": lambda: kl.mechanisms.whitworth(1.0, 0.5, 1.0, 2.0),
-    "watt6": kl.mechanisms.watt6,
     "watt6_crossed": lambda: kl.mechanisms.watt6(lengths={}, branch=("crossed", "crossed")),
-    "stephenson6": kl.mechanisms.stephenson6,
     "stephenson6_mixed": lambda: kl.mechanisms.stephenson6(lengths={}, branch=("open", "crossed")),
-    "triad6": kl.mechanisms.triad6,
     **{f"example_{p.stem}": (lambda p=p: kl.load(p)) for p in EXAMPLES if p.stem != "fivebar"},
 }
 INSIDE = {"prp_yoke": prp_yoke, "piston": piston_driven, "relative_angle": relative_angle_driven,
