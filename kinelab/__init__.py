@@ -7,13 +7,13 @@
 ((720,), (720, 2))
 """
 from kinelab import (derive, dynamics, errors, io, kinematics, mechanisms, model, plot, solvers,
-                     spatial, structure, synthesis)
+                     spatial, structure, sweep, synthesis)
 from kinelab._memory import memory_budget, reuse_result_memory
 from kinelab.io import load
 from kinelab.kinematics import KinematicSolution, analyze
 from kinelab.model import Mechanism
 
 __all__ = ["errors", "model", "solvers", "mechanisms", "kinematics", "spatial", "structure",
-           "synthesis", "dynamics", "derive", "io",
+           "synthesis", "dynamics", "derive", "sweep", "io",
            "plot", "analyze", "load",
            "Mechanism", "KinematicSolution", "reuse_result_memory", "memory_budget"]
