@@ -84,6 +84,11 @@ class Family:
         """Designs and samples in one vectorised closed form (else one engine call per design)."""
         return self.make is mechanisms.fourbar and not self.has_masses
 
+    def has_point(self, columns) -> bool:
+        """Whether designs with these columns have the coupler point (the catalogue four-bar
+        has one only when its columns are given)."""
+        return self.make is not mechanisms.fourbar or any(c in columns for c in _POINT_COLUMNS)
+
     @property
     def grashof(self) -> bool:
         return self.make is mechanisms.fourbar
@@ -101,7 +106,9 @@ class Family:
             return self.make(**kwargs)
         points = tuple(Point(p.name, values.get(f"{p.name}.x", p.x), values.get(f"{p.name}.y", p.y),
                              p.z) for p in self.base.points)
-        return dataclasses.replace(self.base, points=points)
+        # the points make the lengths: a length the file declares is the sketch's, not the design's
+        links = tuple(dataclasses.replace(link, length=None) for link in self.base.links)
+        return dataclasses.replace(self.base, points=points, links=links)
 
     def prepare(self, columns: Mapping[str, np.ndarray], problems: list[str]) -> Designs:
         """D designs ready to evaluate: ``columns`` parameter -> (D,) values, ``problems`` the

@@ -150,7 +150,7 @@ def run(family: str | Family, designs, *, samples=72, metrics=None, client=None,
     >>> df["assembles"].tolist(), df["grashof"].tolist()
     ([True, False], ['crank-rocker', 'triple-rocker'])
     >>> round(float(np.degrees(df["transmission_min"][0])), 6)    # at q = 0: cos mu = (9 + 6.25 - 4) / 15
-    41.40962
+    41.409622
     """
     import pandas
 
@@ -165,6 +165,9 @@ def run(family: str | Family, designs, *, samples=72, metrics=None, client=None,
                    if _available(fam, m, isinstance(samples, int))]
     checked = check_metrics(fam, metrics, isinstance(samples, int))
     table = DesignTable(designs, fam)
+    if "descriptors" in checked.values() and fam.closed_form and not fam.has_point(table.columns):
+        raise ModelError("metrics: 'descriptors' needs the family's coupler point: add the columns "
+                         "coupler_point_along and coupler_point_perpendicular (m) to the designs")
     S = samples if isinstance(samples, int) else len(samples)
     if chunk_size is not None and (isinstance(chunk_size, bool)
                                    or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1):
