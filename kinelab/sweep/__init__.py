@@ -11,6 +11,7 @@ or on a Dask cluster with the same call and the same results (``client=``).
 - :func:`atlas`, :class:`Atlas` -- coupler curves of many four-bars, searched by shape;
 - :func:`tolerance` -- Monte Carlo of an output's error under dimensional tolerances.
 """
+from kinelab.sweep._atlas import Atlas, atlas
 from kinelab.sweep._batch import Batch
 from kinelab.sweep._designs import grid, random, sobol
 from kinelab.sweep._family import CATALOGUE, Family, family
@@ -18,5 +19,5 @@ from kinelab.sweep._metrics import METRICS, descriptors, evaluate_chunk
 from kinelab.sweep._run import STANDARD_METRICS, connect, run, write_parquet
 
 __all__ = ["run", "family", "Family", "Batch", "grid", "random", "sobol", "descriptors",
-           "evaluate_chunk", "connect", "write_parquet", "METRICS", "STANDARD_METRICS",
+           "evaluate_chunk", "connect", "atlas", "Atlas", "write_parquet", "METRICS", "STANDARD_METRICS",
            "CATALOGUE"]

@@ -301,27 +301,33 @@ def descriptors(points: np.ndarray, harmonics: int = DEFAULT_HARMONICS) -> np.nd
         raise ModelError(f"points: expected shape (D, S, 2) with S >= {2 * harmonics + 1}, got "
                          f"{describe(P)}")
     D, S, _ = P.shape
-    seg = np.hypot(*(np.roll(P, -1, axis=1) - P).transpose(2, 0, 1))       # (D, S)
-    total = seg.sum(axis=1, keepdims=True)
-    usable = np.isfinite(total[:, 0]) & (total[:, 0] > 0)
-    total = np.where(usable[:, None], total, 1.0)
-    seg = np.where(usable[:, None], seg, 1.0 / S)
-    # arc length at each sample, as a fraction of the whole, then S points evenly along it
-    s = np.concatenate([np.zeros((D, 1)), np.cumsum(seg, axis=1) / total], axis=1)   # (D, S+1)
-    closed = np.concatenate([P, P[:, :1]], axis=1)
-    rows = np.arange(D)[:, None]
-    target = np.arange(S) / S
-    # one searchsorted for all rows: each row's fractions shifted by its row number
-    idx = np.searchsorted((s[:, 1:] + rows).ravel(), (target + rows).ravel(), side="right")
-    idx = idx.reshape(D, S) - rows * S
-    idx = np.clip(idx, 0, S - 1)
-    s0, s1 = s[rows, idx], s[rows, idx + 1]
-    w = np.where(s1 > s0, (target - s0) / np.where(s1 > s0, s1 - s0, 1.0), 0.0)
-    z0 = closed[rows, idx, 0] + 1j * closed[rows, idx, 1]
-    z1 = closed[rows, idx + 1, 0] + 1j * closed[rows, idx + 1, 1]
-    c = np.fft.fft(z0 + w * (z1 - z0), axis=1) / S
+    z, usable = resample_closed(P, S)
+    c = np.fft.fft(z[..., 0] + 1j * z[..., 1], axis=1) / S
     k = np.arange(1, harmonics + 1)
     mags = np.abs(np.stack([c[:, k], c[:, -k]], axis=-1)).reshape(D, 2 * harmonics)
     norm = np.linalg.norm(mags, axis=1, keepdims=True)
     fd = np.where(usable[:, None] & (norm > 0), mags / np.where(norm > 0, norm, 1.0), np.nan)
     return fd[0] if single else fd
+
+
+def resample_closed(P: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Closed curves (D, S, 2) resampled at n points evenly along their chords from their
+    first sample, (D, n, 2); and which curves could be (finite, of non-zero length)."""
+    D, S, _ = P.shape
+    seg = np.hypot(*(np.roll(P, -1, axis=1) - P).transpose(2, 0, 1))       # (D, S)
+    total = seg.sum(axis=1, keepdims=True)
+    usable = np.isfinite(total[:, 0]) & (total[:, 0] > 0)
+    total = np.where(usable[:, None], total, 1.0)
+    seg = np.where(usable[:, None], seg, 1.0 / S)
+    # arc length at each sample, as a fraction of the whole, then n points evenly along it
+    s = np.concatenate([np.zeros((D, 1)), np.cumsum(seg, axis=1) / total], axis=1)   # (D, S+1)
+    closed = np.concatenate([P, P[:, :1]], axis=1)
+    rows = np.arange(D)[:, None]
+    target = np.arange(n) / n
+    # one searchsorted for all rows: each row's fractions shifted by its row number
+    idx = np.searchsorted((s[:, 1:] + rows).ravel(), np.broadcast_to(target + rows, (D, n)).ravel(),
+                          side="right")
+    idx = np.clip(idx.reshape(D, n) - rows * S, 0, S - 1)
+    s0, s1 = s[rows, idx], s[rows, idx + 1]
+    w = np.where(s1 > s0, (target - s0) / np.where(s1 > s0, s1 - s0, 1.0), 0.0)[..., None]
+    return closed[rows, idx] + w * (closed[rows, idx + 1] - closed[rows, idx]), usable
