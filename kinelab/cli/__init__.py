@@ -10,6 +10,7 @@ from kinelab.cli._dynamics import dynamics_command
 from kinelab.cli._exchange import export, import_
 from kinelab.cli._main import main
 from kinelab.cli._structure import mobility, types
+from kinelab.cli._sweep import atlas_command, sweep_command
 from kinelab.cli._synthesis import synth
 
 main.add_command(analyze)
@@ -23,5 +24,7 @@ main.add_command(types)
 main.add_command(synth)
 main.add_command(dynamics_command)
 main.add_command(derive_command)
+main.add_command(sweep_command)
+main.add_command(atlas_command)
 
 __all__ = ["main"]

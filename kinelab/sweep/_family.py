@@ -34,6 +34,8 @@ _ROLES = {"fourbar": ("rocker", ("coupler", "rocker"), "P"),
           "slotted_link": ("lever", None, None),
           "whitworth": ("ram_slide", None, None)}
 
+_SLIDE_OUTPUTS = ("slide", "ram_slide")
+
 # The four-bar's coupler point is one constructor argument, (along, perpendicular): two columns.
 _POINT_COLUMNS = ("coupler_point_along", "coupler_point_perpendicular")
 
@@ -83,6 +85,13 @@ class Family:
     def closed_form(self) -> bool:
         """Designs and samples in one vectorised closed form (else one engine call per design)."""
         return self.make is mechanisms.fourbar and not self.has_masses
+
+    @property
+    def output_is_slide(self) -> bool:
+        """The output is a prismatic joint's slide (m), not a link's angle (rad)."""
+        if self.base is not None:
+            return any(j.name == self.output and j.type == "P" for j in self.base.joints)
+        return self.output in _SLIDE_OUTPUTS
 
     def has_point(self, columns) -> bool:
         """Whether designs with these columns have the coupler point (the catalogue four-bar

@@ -80,12 +80,36 @@ def connect(scheduler: Any):
     if not isinstance(scheduler, str):
         raise ModelError(f"client: expected a dask.distributed.Client or a scheduler address "
                          f"such as 'tcp://host:8786', got {describe(scheduler)}")
+    _check_reachable(scheduler)
     try:
         return Client(scheduler, timeout=_CONNECT_TIMEOUT, set_as_default=False)
-    except (OSError, TimeoutError, ValueError) as exc:
-        raise ModelError(f"scheduler: cannot reach {scheduler!r} within {_CONNECT_TIMEOUT:g} s "
-                         f"({type(exc).__name__}); check the address and that the scheduler is "
-                         "running") from None
+    except Exception as exc:     # refused, timed out, or something else answered there
+        raise ModelError(f"scheduler: no Dask scheduler answered at {scheduler!r} within "
+                         f"{_CONNECT_TIMEOUT:g} s ({type(exc).__name__}); check the address and that "
+                         "the scheduler is running") from None
+
+
+def _check_reachable(address: str) -> None:
+    """Refuse at once a TCP scheduler address where nothing listens (a Dask client would
+    retry until its timeout, and its threads would keep the process alive a while longer)."""
+    import socket
+
+    from distributed.comm import parse_address, parse_host_port
+
+    try:
+        protocol, location = parse_address(address)
+        if protocol not in ("tcp", "tls"):
+            return
+        host, port = parse_host_port(location)
+    except (ValueError, TypeError):
+        raise ModelError(f"scheduler: expected an address such as 'tcp://host:8786', got "
+                         f"{describe(address)}") from None
+    try:
+        socket.create_connection((host, port), timeout=_CONNECT_TIMEOUT).close()
+    except OSError as exc:
+        raise ModelError(f"scheduler: cannot reach {address!r} within {_CONNECT_TIMEOUT:g} s "
+                         f"({exc.strerror or type(exc).__name__}); check the address and that the "
+                         "scheduler is running") from None
 
 
 def run(family: str | Family, designs, *, samples=72, metrics=None, client=None,
@@ -187,7 +211,12 @@ def run(family: str | Family, designs, *, samples=72, metrics=None, client=None,
             if report:
                 report(hi)
     else:
-        parts = _on_dask(connect(client), fam, table, chunks, options, report)
+        dask_client = connect(client)
+        try:
+            parts = _on_dask(dask_client, fam, table, chunks, options, report)
+        finally:
+            if dask_client is not client:       # made here from an address: closed here
+                dask_client.close()
     columns = {}
     for name in metric_columns(checked, harmonics):
         pieces = [p[name] for p in parts]
