@@ -156,7 +156,7 @@ class DesignTable:
                 if not problems[i]:
                     what = "a positive length (m)" if name in fam.lengths else "a finite number"
                     problems[i] = f"{name}: expected {what}, got {f[i]:g}"
-        self.problems = problems
+        self.problems = np.array(problems, object)    # an array: Dask ships it as one block
         self.index = index if index is not None else pandas.RangeIndex(self.size)
 
     def chunk(self, lo: int, hi: int) -> dict[str, np.ndarray]:
