@@ -12,11 +12,14 @@ linkage in each position), :func:`burmester_curves`, :func:`five_positions` (the
 centre-point curves and Burmester's points), :func:`structural_error`,
 :func:`path_solution`, :func:`limit_positions` (a crank-rocker or quick return at its dead
 centres).
+
+Sweeps: :func:`tolerance_band` and :func:`error_histogram` (a tolerance study).
 """
 from kinelab.plot._animate import animate, can_write_mp4
 from kinelab.plot._dynamics import effort_curves, energy_curves, reaction_curves, shaking_curves
 from kinelab.plot._figures import (coefficients, coupler_curve, curves, input_axis, mechanism, save,
                                    transmission)
+from kinelab.plot._sweep import error_histogram, tolerance_band
 from kinelab.plot._synthesis import (burmester_curves, five_positions, limit_positions,
                                      motion_solution, path_solution, prescribed_positions,
                                      structural_error)
@@ -25,4 +28,5 @@ __all__ = ["curves", "coefficients", "coupler_curve", "transmission", "mechanism
            "save", "can_write_mp4", "input_axis", "prescribed_positions", "motion_solution",
            "burmester_curves", "structural_error", "path_solution", "limit_positions",
            "five_positions", "effort_curves",
-           "reaction_curves", "shaking_curves", "energy_curves"]
+           "reaction_curves", "shaking_curves", "energy_curves", "tolerance_band",
+           "error_histogram"]

@@ -17,7 +17,8 @@ from kinelab.sweep._designs import grid, random, sobol
 from kinelab.sweep._family import CATALOGUE, Family, family
 from kinelab.sweep._metrics import METRICS, descriptors, evaluate_chunk
 from kinelab.sweep._run import STANDARD_METRICS, connect, run, write_parquet
+from kinelab.sweep._tolerance import ToleranceStudy, tolerance
 
 __all__ = ["run", "family", "Family", "Batch", "grid", "random", "sobol", "descriptors",
-           "evaluate_chunk", "connect", "atlas", "Atlas", "write_parquet", "METRICS", "STANDARD_METRICS",
+           "evaluate_chunk", "connect", "atlas", "Atlas", "tolerance", "ToleranceStudy", "write_parquet", "METRICS", "STANDARD_METRICS",
            "CATALOGUE"]

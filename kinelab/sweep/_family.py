@@ -86,12 +86,15 @@ class Family:
         """Designs and samples in one vectorised closed form (else one engine call per design)."""
         return self.make is mechanisms.fourbar and not self.has_masses
 
+    def is_slide(self, name: str | None) -> bool:
+        """``name`` is a prismatic joint's slide (m), not a link's angle (rad)."""
+        if self.base is not None:
+            return any(j.name == name and j.type == "P" for j in self.base.joints)
+        return name in _SLIDE_OUTPUTS
+
     @property
     def output_is_slide(self) -> bool:
-        """The output is a prismatic joint's slide (m), not a link's angle (rad)."""
-        if self.base is not None:
-            return any(j.name == self.output and j.type == "P" for j in self.base.joints)
-        return self.output in _SLIDE_OUTPUTS
+        return self.is_slide(self.output)
 
     def has_point(self, columns) -> bool:
         """Whether designs with these columns have the coupler point (the catalogue four-bar
