@@ -67,6 +67,12 @@ class Batch:
         mu = np.abs(wrap_angle(self.angle(links[0]) - self.angle(links[1])))
         return np.minimum(mu, np.pi - mu)
 
+    def transmission_range(self, links: tuple[str, str]) -> tuple[np.ndarray, np.ndarray]:
+        """Smallest and largest transmission angle over the samples, (D,) each (NaN for a
+        design that does not assemble at every sample)."""
+        mu = self.transmission(links)
+        return mu.min(axis=1), mu.max(axis=1)
+
     @property
     def shape(self) -> tuple[int, int]:
         return self.q.shape
@@ -115,7 +121,10 @@ class FourbarBatch(Batch):
     @functools.cached_property
     def _pivot_distance2(self):
         """|O4 A|^2, (D, S): every assembly question is a question about it."""
-        return self.r1 ** 2 + self.r2 ** 2 - 2 * self.r1 * self.r2 * np.cos(self.q)
+        q = self.q
+        # the same samples for every design (a broadcast view): one row of cosines
+        cos_q = np.cos(q[:1]) if q.strides[0] == 0 else np.cos(q)
+        return self.r1 ** 2 + self.r2 ** 2 - 2 * self.r1 * self.r2 * cos_q
 
     @functools.cached_property
     def _cos_mu(self):
@@ -184,6 +193,12 @@ class FourbarBatch(Batch):
 
     def transmission(self, links):
         if tuple(links) in (("coupler", "rocker"), ("rocker", "coupler")):
-            mu = np.arccos(np.clip(self._cos_mu, -1.0, 1.0))
-            return np.where(self.assembled, np.minimum(mu, np.pi - mu), np.nan)
+            return np.where(self.assembled, np.arccos(np.minimum(np.abs(self._cos_mu), 1.0)), np.nan)
         return super().transmission(links)
+
+    def transmission_range(self, links):
+        if tuple(links) in (("coupler", "rocker"), ("rocker", "coupler")):
+            # the acute angle is arccos |cos mu|, decreasing in |cos mu|: two arccos per design
+            c = np.where(self.assembled, np.abs(self._cos_mu), np.nan)
+            return np.arccos(np.minimum(c.max(axis=1), 1.0)), np.arccos(c.min(axis=1))
+        return super().transmission_range(links)

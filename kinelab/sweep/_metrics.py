@@ -123,10 +123,10 @@ def evaluate_chunk(fam: Family, columns: Mapping[str, np.ndarray], problems: lis
                                     ("ground", "crank", "coupler", "rocker")))
             out[name] = np.where(bad, None, kinds).astype(object)
         elif m in ("transmission_min", "transmission_max"):
-            mu = batch.transmission(fam.transmission)
-            reduce = np.min if m == "transmission_min" else np.max
-            out[name] = np.where(assembled, reduce(np.where(assembled[:, None], mu, 0.0), axis=1),
-                                 np.nan)
+            if "_mu" not in out:
+                out["_mu"] = batch.transmission_range(fam.transmission)
+            value = out["_mu"][0 if m == "transmission_min" else 1]
+            out[name] = np.where(assembled, value, np.nan)
         elif m in ("time_ratio", "swing"):
             if "_dead" not in out:
                 out["_dead"] = _dead_centres(fam, designs, batch, assembled)
@@ -138,6 +138,7 @@ def evaluate_chunk(fam: Family, columns: Mapping[str, np.ndarray], problems: lis
         elif m == "peak_torque":
             out[name] = np.where(bad, np.nan, designs.peak_torque(q, speed))
     out.pop("_dead", None)
+    out.pop("_mu", None)
     out["_problems"] = np.array(problems, object)
     return out
 

@@ -225,7 +225,8 @@ def run(family: str | Family, designs, *, samples=72, metrics=None, client=None,
     df = pandas.DataFrame(columns, index=table.index)
     if "grashof" in df:
         df["grashof"] = df["grashof"].astype(object)
-    df.attrs["problems"] = {label: str(p) for label, p in zip(table.index, problems) if p}
+    bad = np.flatnonzero(problems != "")
+    df.attrs["problems"] = {table.index[i]: str(problems[i]) for i in bad}
     if path is not None:
         write_parquet(df, path)
     return df
