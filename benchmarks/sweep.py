@@ -108,7 +108,7 @@ def main(n: int) -> None:
         return
     for workers in (1, 2):
         with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                          host="127.0.0.1", dashboard_address=None) as cluster, Client(cluster) as client:
+                          host="127.0.0.1", dashboard_address=":0") as cluster, Client(cluster) as client:
             kl.sweep.run("fourbar", t.head(1000), metrics=quick, client=client)   # warm the workers
             remote, b, m, c = timed(lambda: kl.sweep.run("fourbar", t, metrics=quick, client=client,
                                                          progress=False))

@@ -339,7 +339,8 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 300, pop
     initial : array_like, shape (k, 10), optional
         Designs to start from (the form of :func:`coupler_curves`, m), e.g. the nearest
         curves of an atlas (:meth:`kinelab.sweep.Atlas.refine`): they join each run's first
-        population, the rest of which is drawn as usual (Latin hypercube).
+        population, the rest of which is drawn as usual (Latin hypercube), in a search box
+        grown to hold them.
 
     Returns
     -------
@@ -396,8 +397,11 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 300, pop
         starts[:, 0:4] = ((starts[:, 0:4].reshape(-1, 2, 2) - center) / scale).reshape(-1, 4)
         starts[:, 4:9] /= scale
         starts[:, 9] = np.where(starts[:, 9] >= 0, 0.5, -0.5)
+        starts = starts[: popsize * 10]
+        # the search box grows to hold them (a long ground beside a small path, say)
         lo, hi = np.array(bounds).T
-        starts = np.clip(starts, lo, hi)[: popsize * 10]
+        lo, hi = np.minimum(lo, starts.min(axis=0)), np.maximum(hi, starts.max(axis=0))
+        bounds = list(zip(lo, hi))
     found, reasons = [], []
     for r in range(runs):
         init = "latinhypercube"

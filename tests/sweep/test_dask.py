@@ -42,7 +42,7 @@ def test_dask_gives_the_local_table():
     with deadline(240):
         local = kl.sweep.run("fourbar", t, metrics=metrics, chunk_size=400)
         with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                      host="127.0.0.1", dashboard_address=None) as cluster, \
+                                      host="127.0.0.1", dashboard_address=":0") as cluster, \
                 distributed.Client(cluster) as client:
             # the workers run this same kinelab, not another installed copy
             assert set(client.run(_kinelab_path).values()) == {_kinelab_path()}
