@@ -120,11 +120,13 @@ class DesignTable:
             index = None
         else:
             a = np.asarray(designs)
-            if a.ndim != 2 or a.shape[1] != len(fam.parameters):
+            required = sum(p not in fam.defaults for p in fam.parameters)
+            if a.ndim != 2 or not required <= a.shape[1] <= len(fam.parameters):
                 raise ModelError(f"designs: expected a DataFrame, a mapping of columns or an array "
-                                 f"of shape (D, {len(fam.parameters)}) with columns "
-                                 f"{', '.join(fam.parameters)}, got {describe(designs)}")
-            raw = {p: a[:, i] for i, p in enumerate(fam.parameters)}
+                                 f"of shape (D, {required}) to (D, {len(fam.parameters)}), its "
+                                 f"columns the first of {', '.join(fam.parameters)}, got "
+                                 f"{describe(designs)}")
+            raw = {p: a[:, i] for i, p in enumerate(fam.parameters[:a.shape[1]])}
             index = None
         for name in raw:
             if name not in fam.parameters:

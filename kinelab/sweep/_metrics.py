@@ -7,7 +7,7 @@ refined by evaluating the designs again at the inputs that matter, still all at 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -69,6 +69,7 @@ def check_metrics(fam: Family, metrics, full_turn: bool) -> dict[str, object]:
                 "time_ratio": (fam.output is not None and full_turn,
                                "needs the family's output (kl.sweep.family(..., output='rocker')) "
                                "and samples over a full turn (samples=72)"),
+                "reachable": (full_turn, "needs samples over a full turn (samples=72)"),
                 "descriptors": (fam.point is not None,
                                 "needs the family's coupler point (the four-bar's columns "
                                 "coupler_point_along and coupler_point_perpendicular, or "
@@ -202,7 +203,8 @@ def _dead_centres(fam: Family, designs: Designs, batch: Batch, assembled: np.nda
     count = flips.sum(axis=1)
     ratio = np.full(D, np.nan)
     swing = np.full(D, np.nan)
-    turning = valid & (count == 0) & (fam.output in _angles_of(batch, fam.output))
+    angle = not fam.is_slide(fam.output)
+    turning = valid & (count == 0) & angle
     swing[turning] = 2 * math.pi
     two = np.flatnonzero(valid & (count == 2))
     if len(two):
@@ -215,7 +217,7 @@ def _dead_centres(fam: Family, designs: Designs, batch: Batch, assembled: np.nda
         slow, fast = np.maximum(first, 2 * math.pi - first), np.minimum(first, 2 * math.pi - first)
         ratio[two] = slow / fast
         diff = values[:, 1] - values[:, 0]
-        swing[two] = np.abs(wrap_angle(diff) if _is_angle(batch, fam.output) else diff)
+        swing[two] = np.abs(wrap_angle(diff) if angle else diff)
     return {"time_ratio": ratio, "swing": swing}
 
 
@@ -228,18 +230,6 @@ def _fourbar_dead_centres(designs, assembled):
     swing = np.where(ok, np.abs(wrap_angle(rocker[:, 1] - rocker[:, 0])),
                      np.where(assembled, 2 * math.pi, np.nan))
     return {"time_ratio": ratio, "swing": swing}
-
-
-def _angles_of(batch: Batch, name: str) -> tuple[str, ...]:
-    return (name,) if _is_angle(batch, name) else ()
-
-
-def _is_angle(batch: Batch, name: str) -> bool:
-    try:
-        batch.angle(name)
-        return True
-    except ModelError:
-        return False
 
 
 def _roots(fam, designs, rows, a, b, fa, fb):

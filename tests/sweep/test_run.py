@@ -47,11 +47,14 @@ def test_order_and_index_are_kept():
 
 def test_an_array_table_takes_the_family_parameters_in_order():
     a = table(5).to_numpy()
-    with pytest.raises(ModelError, match=r"expected a DataFrame, a mapping of columns or an array of shape \(D, 6\)"):
-        kl.sweep.run("fourbar", a)
-    full = np.column_stack([a, np.zeros((5, 2))])
-    df = kl.sweep.run("fourbar", full, metrics=("grashof",))
+    with pytest.raises(ModelError, match=r"expected a DataFrame, a mapping of columns or an array of "
+                                         r"shape \(D, 4\) to \(D, 6\)"):
+        kl.sweep.run("fourbar", a[:, :3])
+    df = kl.sweep.run("fourbar", a, metrics=("grashof", "transmission_min"))
     assert df["grashof"].tolist() == kl.mechanisms.grashof_kinds(*a.T).tolist()
+    full = np.column_stack([a, np.full((5, 2), 0.5)])
+    same = kl.sweep.run("fourbar", full, metrics=("grashof", "transmission_min"))
+    pd.testing.assert_frame_equal(df, same)
 
 
 def test_chunks_do_not_change_the_results():
