@@ -151,14 +151,12 @@ def _reachable(designs: Designs, batch: Batch, bad: np.ndarray):
     D, S = ok.shape
     q = batch.q
     step = 2 * math.pi / S
-    # the longest cyclic run of True: lengths of runs ending at each sample, over two turns
+    # the longest cyclic run of True: over two turns, the run ending at sample j is j minus
+    # the last sample before it that does not assemble
     twice = np.concatenate([ok, ok], axis=1)
-    run = np.zeros((D, 2 * S), int)
-    count = np.zeros(D, int)
-    for j in range(2 * S):     # a loop over samples, not designs: each step is one (D,) op
-        count = np.where(twice[:, j], count + 1, 0)
-        run[:, j] = count
-    run = np.minimum(run, S)
+    j = np.arange(2 * S)
+    last_gap = np.maximum.accumulate(np.where(twice, -1, j), axis=1)
+    run = np.minimum(j - last_gap, S)
     end = np.argmax(run, axis=1)
     length = run[np.arange(D), end]
     first = end - length + 1
