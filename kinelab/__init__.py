@@ -15,13 +15,13 @@ from kinelab.kinematics import KinematicSolution, analyze
 from kinelab.model import Mechanism
 
 __all__ = ["errors", "model", "solvers", "mechanisms", "kinematics", "spatial", "structure",
-           "synthesis", "dynamics", "derive", "io",
+           "synthesis", "dynamics", "derive", "sweep", "io",
            "plot", "analyze", "load",
            "Mechanism", "KinematicSolution", "reuse_result_memory", "memory_budget"]
 
-# the rooms that bring in sympy, scipy.spatial or matplotlib load on first use (kl.derive, ...),
+# the rooms that bring in sympy, scipy.spatial, matplotlib or dask load on first use (kl.derive, ...),
 # so that a command that does not need them starts quicker
-_ON_FIRST_USE = ("derive", "dynamics", "plot", "spatial", "structure", "synthesis")
+_ON_FIRST_USE = ("derive", "dynamics", "plot", "spatial", "structure", "sweep", "synthesis")
 
 
 def __getattr__(name):

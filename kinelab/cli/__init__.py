@@ -12,6 +12,7 @@ from kinelab.cli._graphical import centres, differentiate_command, polygons
 from kinelab.cli._main import main
 from kinelab.cli._serve import serve
 from kinelab.cli._structure import mobility, types
+from kinelab.cli._sweep import atlas_command, sweep_command
 from kinelab.cli._synthesis import synth
 
 main.add_command(analyze)
@@ -29,5 +30,7 @@ main.add_command(polygons)
 main.add_command(centres)
 main.add_command(differentiate_command)
 main.add_command(serve)
+main.add_command(sweep_command)
+main.add_command(atlas_command)
 
 __all__ = ["main"]

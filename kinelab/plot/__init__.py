@@ -16,6 +16,8 @@ linkage in each position), :func:`burmester_curves`, :func:`five_positions` (the
 centre-point curves and Burmester's points), :func:`structural_error`,
 :func:`path_solution`, :func:`limit_positions` (a crank-rocker or quick return at its dead
 centres).
+
+Sweeps: :func:`tolerance_band` and :func:`error_histogram` (a tolerance study).
 """
 from kinelab.plot._animate import animate, can_write_mp4
 from kinelab.plot._dynamics import effort_curves, energy_curves, reaction_curves, shaking_curves
@@ -23,6 +25,7 @@ from kinelab.plot._figures import (coefficients, coupler_curve, curves, input_ax
                                    transmission)
 from kinelab.plot._graphical import (PANEL_CM, acceleration_polygon, centrodes, derivatives,
                                      drawing_scale, instant_centers, velocity_polygon)
+from kinelab.plot._sweep import error_histogram, tolerance_band
 from kinelab.plot._synthesis import (burmester_curves, five_positions, limit_positions,
                                      motion_solution, path_solution, prescribed_positions,
                                      structural_error)
@@ -33,4 +36,4 @@ __all__ = ["curves", "coefficients", "coupler_curve", "transmission", "mechanism
            "five_positions", "effort_curves",
            "reaction_curves", "shaking_curves", "energy_curves", "velocity_polygon",
            "acceleration_polygon", "instant_centers", "centrodes", "derivatives", "drawing_scale",
-           "PANEL_CM"]
+           "PANEL_CM", "tolerance_band", "error_histogram"]

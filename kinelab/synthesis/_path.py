@@ -313,7 +313,7 @@ def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray) -> PathSol
 
 def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 300, popsize: int = 15,
                     samples: int = 180, min_transmission_angle: float = 0.0, seed: int = 0,
-                    refine: bool = True) -> SolutionList:
+                    refine: bool = True, initial: ArrayLike | None = None) -> SolutionList:
     """Four-bars whose coupler point passes near prescribed points, in order.
 
     Parameters
@@ -336,6 +336,11 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 300, pop
     refine : bool
         Polish each run's best design by least squares over the design and the crank
         angles of the targets (exact when an exact solution is near).
+    initial : array_like, shape (k, 10), optional
+        Designs to start from (the form of :func:`coupler_curves`, m), e.g. the nearest
+        curves of an atlas (:meth:`kinelab.sweep.Atlas.refine`): they join each run's first
+        population, the rest of which is drawn as usual (Latin hypercube), in a search box
+        grown to hold them.
 
     Returns
     -------
@@ -384,10 +389,30 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 300, pop
     scale = float(np.linalg.norm(T - center, axis=1).max())
     obj = _Objective((T - center) / scale, samples, float(min_transmission_angle))
     bounds = [(-3, 3)] * 4 + [(0.05, 3.0), (0.05, 6.0), (0.05, 6.0), (-4, 4), (-4, 4), (-1, 1)]
+    starts = None
+    if initial is not None:
+        starts = np.array(initial, float, ndmin=2)
+        if starts.ndim != 2 or starts.shape[1] != 10 or not np.all(np.isfinite(starts)):
+            raise ModelError(f"initial: expected finite designs of shape (k, 10), got {describe(initial)}")
+        starts[:, 0:4] = ((starts[:, 0:4].reshape(-1, 2, 2) - center) / scale).reshape(-1, 4)
+        starts[:, 4:9] /= scale
+        starts[:, 9] = np.where(starts[:, 9] >= 0, 0.5, -0.5)
+        starts = starts[: popsize * 10]
+        # the search box grows to hold them (a long ground beside a small path, say)
+        lo, hi = np.array(bounds).T
+        lo, hi = np.minimum(lo, starts.min(axis=0)), np.maximum(hi, starts.max(axis=0))
+        bounds = list(zip(lo, hi))
     found, reasons = [], []
     for r in range(runs):
+        init = "latinhypercube"
+        if starts is not None:
+            from scipy.stats import qmc
+            lo, hi = np.array(bounds).T
+            init = lo + qmc.LatinHypercube(d=10, seed=seed + r).random(popsize * 10) * (hi - lo)
+            init[: len(starts)] = starts
         res = differential_evolution(obj, bounds, maxiter=maxiter, popsize=popsize, seed=seed + r,
-                                     vectorized=True, updating="deferred", polish=False, tol=0.0)
+                                     vectorized=True, updating="deferred", polish=False, tol=0.0,
+                                     init=init)
         design = res.x
         k = obj.match(design[None, :])[0]
         q = k[0] * (2 * np.pi / samples)        # crank angles of the matched curve points
