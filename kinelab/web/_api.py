@@ -27,7 +27,8 @@ from kinelab.kinematics import KinematicSolution, Tracker
 from kinelab.kinematics._columns import INPUT_SI_UNITS
 
 __all__ = ["MAX_SAMPLES", "DEFAULT_SAMPLES", "read_model", "analyze", "study", "configuration",
-           "drag", "flip", "catalogue", "example", "load", "save", "derivation"]
+           "drag", "flip", "catalogue", "example", "load", "save", "derivation", "synthesize",
+           "MAX_SEARCH_EFFORT"]
 
 MAX_SAMPLES = 20_000
 """The longest sweep the page may ask for: past it a drawing or a plot shows nothing more,
@@ -457,6 +458,37 @@ def _explicit(mf: ModelFile) -> dict:
                                      float(f"{e[0] * v[1] - e[1] * v[0]:.14g}")])
             link["local"] = local
     return data
+
+
+# -- synthesis ------------------------------------------------------------------------------
+MAX_SEARCH_EFFORT = 4 * (3 * 300 * 15 * 180)
+"""The most work a path-generation search may ask of the server (runs x maxiter x popsize x
+samples): four times the default search; the command line has no such cap."""
+_SEARCH_DEFAULTS = {"runs": 3, "maxiter": 300, "popsize": 15, "samples": 180}
+
+
+def synthesize(body: dict) -> dict:
+    """A synthesis task (``body["task"]``: a task file's content as plain data, as
+    ``kinelab synth`` reads it; ``body["source"]``, a file name, names it in messages)
+    solved: the summary ``kinelab synth TASK --json`` prints, in the task's units, and
+    ``models``, each linkage as the JSON form of the model file ``kinelab synth`` writes
+    for it (``solution_<i>.toml``)."""
+    source = body.get("source")
+    if source is not None and not isinstance(source, str):
+        raise ModelError(f"source: expected a file name, got {describe(source)}")
+    task = io.read_task(body.get("task"), source=source,
+                        name=Path(source).stem if source else "task")
+    if task.kind == "path":
+        effort = math.prod(task.search.get(k, v) for k, v in _SEARCH_DEFAULTS.items())
+        if effort > MAX_SEARCH_EFFORT:
+            raise ModelError(f"search: runs x maxiter x popsize x samples is {effort:,}; the page "
+                             f"searches at most {MAX_SEARCH_EFFORT:,} (four times the default "
+                             "search): ask for less, or run kinelab synth", source=source)
+    solutions, extra = io.solve_task(task)
+    summary = io.task_summary(task, solutions, extra)
+    summary["models"] = [ModelFile(mechanism=s.model, units=task.units).to_dict()
+                         for s in solutions]
+    return summary
 
 
 # -- derivation -----------------------------------------------------------------------------
