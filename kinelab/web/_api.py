@@ -320,21 +320,38 @@ def _centres(sol: KinematicSolution, u) -> list[dict]:
 
 
 def polygons(sol: KinematicSolution, u) -> dict | None:
-    """The velocity and acceleration polygons of a one-configuration solution, vertices in
-    the model's units (length/s, length/s^2), where :mod:`kinelab.kinematics` draws them
-    (``velocity_polygon``, ``acceleration_polygon``); else None, and the page shows the
-    instant centres only."""
-    velocity_polygon = getattr(kinematics, "velocity_polygon", None)
-    acceleration_polygon = getattr(kinematics, "acceleration_polygon", None)
-    if velocity_polygon is None or acceleration_polygon is None or bool(sol.singular[0]):
+    """The velocity and acceleration polygons of a one-configuration solution, by
+    :func:`kinelab.kinematics.velocity_polygon` and
+    :func:`~kinelab.kinematics.acceleration_polygon`, in the model's units (length/s,
+    length/s^2); None where they are not defined (a singular configuration).
+
+    Each polygon: ``vertices`` (every point, from the pole o), ``coincident`` (the guide's
+    point under each slider's point), ``sides`` (point, reference, kind "difference" or
+    "relative", link or joint, the vector and, in the acceleration polygon, its named parts:
+    normal and tangential, or Coriolis and sliding) and ``images`` (each moving link's
+    points, in the order of its image).
+    """
+    if bool(sol.singular[0]):
         return None
     try:
-        v, a = velocity_polygon(sol), acceleration_polygon(sol)
+        return {"velocity": _polygon_data(kinematics.velocity_polygon(sol), u, "m/s"),
+                "acceleration": _polygon_data(kinematics.acceleration_polygon(sol), u, "m/s^2")}
     except KinelabError:
         return None
-    return {"velocity": {p: _finite(u.convert(np.reshape(x, 2), "m/s")) for p, x in v.vertices.items()},
-            "acceleration": {p: _finite(u.convert(np.reshape(x, 2), "m/s^2"))
-                             for p, x in a.vertices.items()}}
+
+
+def _polygon_data(polygon, u, unit: str) -> dict:
+    def xy(v) -> list:
+        return _finite(u.convert(np.reshape(v, 2), unit))
+    return {
+        "vertices": {p: xy(v) for p, v in polygon.vertices.items()},
+        "coincident": {p: xy(v) for p, v in polygon.coincident.items()},
+        "sides": [{"point": side.point, "reference": side.reference, "kind": side.kind,
+                   "link": side.link, "vector": xy(side.vector),
+                   "parts": {k: xy(v) for k, v in side.parts.items()}}
+                  for side in polygon.sides.values()],
+        "images": {name: list(image.points) for name, image in polygon.images.items()},
+    }
 
 
 def drag(body: dict) -> dict:

@@ -258,3 +258,49 @@ def test_synthesize_a_crank_rocker_and_open_it(page, tmp_path):
     page.wait_for_function("() => window.kinelab.frames > 5")
     page.click("#play")
     assert state(page, "window.kinelab.index") > 0
+
+
+def polygon_lines(pg, kind):
+    return pg.evaluate(f"""() => [...document.querySelectorAll("svg[data-polygon={kind}] line")]
+        .map((l) => [l.dataset.side, +l.getAttribute("x1"), +l.getAttribute("y1"),
+                     +l.getAttribute("x2"), +l.getAttribute("y2")])""")
+
+
+def test_the_polygons_show_and_follow_the_input(page):
+    page.click("#tabs button[data-tab=method]")
+    page.wait_for_selector("svg[data-polygon=acceleration] line", state="attached")
+    page.shot("polygons")
+    config = state(page, "window.kinelab.config")
+    velocity = polygon_lines(page, "velocity")
+    # an arrow from the pole for every moving point, a side V_BA for the coupler
+    assert {"A", "B", "P"} <= {side for side, *_ in velocity}
+    assert "B A" in {side for side, *_ in velocity}
+    text = page.inner_text("#polygons")
+    assert "velocity polygon (mm/s, from the pole OV)" in text
+    # the arrows are drawn to one scale: their screen lengths are in the ratio of |V|
+    v = config["polygons"]["velocity"]["vertices"]
+    length = {side: math.hypot(x2 - x1, y2 - y1) for side, x1, y1, x2, y2 in velocity}
+    assert length["B"] / length["A"] == pytest.approx(math.hypot(*v["B"]) / math.hypot(*v["A"]), rel=1e-3)
+    parts = {side.split()[-1] for side, *_ in polygon_lines(page, "acceleration") if " " in side}
+    assert parts == {"normal", "tangential"}
+    # the input moves: the polygons change with it
+    page.fill("#scrub", "90")
+    page.wait_for_function(f"() => window.kinelab.config && window.kinelab.config.q[0] !== {config['q'][0]}")
+    page.wait_for_timeout(100)
+    page.shot("polygons_moved")
+    assert polygon_lines(page, "velocity") != velocity
+    moved = state(page, "window.kinelab.config")
+    v = moved["polygons"]["velocity"]["vertices"]
+    length = {side: math.hypot(x2 - x1, y2 - y1) for side, x1, y1, x2, y2 in polygon_lines(page, "velocity")}
+    assert length["B"] / length["A"] == pytest.approx(math.hypot(*v["B"]) / math.hypot(*v["A"]), rel=1e-3)
+
+
+def test_the_acceleration_polygon_of_a_slotted_link_shows_coriolis(page):
+    page.select_option("#open", "slotted_link")
+    page.wait_for_function("() => (window.kinelab.source || '').includes('slotted_link')")
+    page.click("#tabs button[data-tab=method]")
+    page.fill("#scrub", "60")             # the crank at 60 deg: the lever turns, the slider slides
+    page.wait_for_function("""() => [...document.querySelectorAll("svg[data-polygon=acceleration] line")]
+        .some((l) => (l.dataset.side || '').endsWith('coriolis'))""")
+    page.shot("coriolis")
+    assert "AcAA@lever" in page.text_content("svg[data-polygon=acceleration]")   # A^c_{A A@lever}

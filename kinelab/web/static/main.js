@@ -177,6 +177,7 @@ async function dragTo(name, xy) {
     if (tool() === "move") {
       const c = await post("/api/drag", {model: state.model, source: state.source, point: name, to: xy});
       state.config = c;
+      showCentres($("centres"), $("polygons"), c, state.study);
       const q0 = c.q[0], qs = column(state.study.inputs[0]);
       let best = 0;
       qs.forEach((v, i) => { if (v !== null && Math.abs(v - q0) < Math.abs(qs[best] - q0)) best = i; });
