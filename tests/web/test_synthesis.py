@@ -13,47 +13,24 @@ from kinelab.cli import main
 from kinelab.io import ModelFile
 from kinelab.web import create_app
 from kinelab.web._api import MAX_SEARCH_EFFORT
+from tests.synthesis.test_cli import CRANK_ROCKER, NOTES_6_5, NOTES_6_7
 
-TASKS = {
-    "crank-rocker": """
-task = "crank-rocker"
-units = { length = "mm", angle = "deg" }
-[crank_rocker]
-ground = 100
-swing = 45
-time_ratio = 1.25
-""",
-    "three positions": """
-task = "motion"
-units = { angle = "deg" }
-[positions]
-points = [[1, 1], [2, 0.5], [3, 1.5]]
-angles = [0, 0, 45]
-[pivots]
-A0 = [5, 0]
-B0 = [0, 0]
-""",
-    "four positions": """
-task = "motion"
-name = "Mecanismos, §6.7"
-units = { length = "cm", angle = "deg" }
-[positions]
-points = [[0, 0], [5, 8], [10, 15], [18, 20]]
-angles = [10, 20, 30]
-[pivots]
-a0x = -20.195
-b0x = -29.167
-""",
-    "five positions": None,            # five_position_task()
-    "function": """
+FUNCTION = """
 task = "function"
 units = { angle = "deg" }
 [function]
-expression = "log10(x)"
-x_range = [1, 2]
-input_range = [90, 150]
-output_range = [0, 90]
-""",
+expression = "sqrt(x)"
+x_range = [1, 4]
+input_range = [60, 150]
+output_range = [10, 100]
+points = 4
+"""
+TASKS = {
+    "crank-rocker": CRANK_ROCKER,
+    "three positions": NOTES_6_5,
+    "four positions": NOTES_6_7,
+    "five positions": None,            # five_position_task()
+    "function": FUNCTION,
     "path": """
 task = "path"
 [positions]
