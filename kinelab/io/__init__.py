@@ -8,6 +8,8 @@
   :func:`to_dxf`;
 - measured curves: :func:`read_curve` (a CSV of an abscissa and a displacement, for
   :func:`kinelab.solvers.differentiate`);
+- synthesis tasks: :func:`load_task` / :func:`read_task` (a task file, or its content),
+  :func:`solve_task`, :func:`task_summary` (what ``kinelab synth`` prints and writes, as data);
 - results: :func:`write_results` (CSV, JSON, Parquet), :func:`results_json` and
   :func:`summary` (a sweep at a glance,
   as data).
@@ -19,6 +21,7 @@ from kinelab.io._linkage2d import from_linkage2d_json
 from kinelab.io._outline import Outline, outlines, to_dxf, to_svg
 from kinelab.io._pyslvs import IMPORT_SPEEDS, from_pyslvs, to_pyslvs
 from kinelab.io._results import RESULT_FORMATS, result_format, results_json, write_results
+from kinelab.io._task import Task, TASK_KINDS, load_task, read_task, solve_task, task_summary
 from kinelab.io._summary import (Extreme, QuickReturn, Summary, Transmission, default_outputs,
                                  summary)
 
@@ -26,4 +29,5 @@ __all__ = ["load", "save", "ModelFile", "Units", "Outputs", "SCHEMA", "LENGTH_UN
            "ANGLE_UNITS", "from_toml", "to_toml", "from_json", "to_json", "write_results",
            "result_format", "results_json", "RESULT_FORMATS", "summary", "Summary", "Extreme", "Transmission", "QuickReturn",
            "default_outputs", "from_pyslvs", "to_pyslvs", "IMPORT_SPEEDS", "from_linkage2d_json",
-           "to_svg", "to_dxf", "outlines", "Outline", "read_curve", "MeasuredCurve"]
+           "to_svg", "to_dxf", "outlines", "Outline", "read_curve", "MeasuredCurve",
+           "Task", "TASK_KINDS", "load_task", "read_task", "solve_task", "task_summary"]

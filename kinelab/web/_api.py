@@ -27,7 +27,8 @@ from kinelab.kinematics import KinematicSolution, Tracker
 from kinelab.kinematics._columns import INPUT_SI_UNITS
 
 __all__ = ["MAX_SAMPLES", "DEFAULT_SAMPLES", "read_model", "analyze", "study", "configuration",
-           "drag", "flip", "catalogue", "example", "load", "save", "derivation"]
+           "drag", "flip", "catalogue", "example", "load", "save", "derivation", "synthesize",
+           "MAX_SEARCH_EFFORT"]
 
 MAX_SAMPLES = 20_000
 """The longest sweep the page may ask for: past it a drawing or a plot shows nothing more,
@@ -319,21 +320,38 @@ def _centres(sol: KinematicSolution, u) -> list[dict]:
 
 
 def polygons(sol: KinematicSolution, u) -> dict | None:
-    """The velocity and acceleration polygons of a one-configuration solution, vertices in
-    the model's units (length/s, length/s^2), where :mod:`kinelab.kinematics` draws them
-    (``velocity_polygon``, ``acceleration_polygon``); else None, and the page shows the
-    instant centres only."""
-    velocity_polygon = getattr(kinematics, "velocity_polygon", None)
-    acceleration_polygon = getattr(kinematics, "acceleration_polygon", None)
-    if velocity_polygon is None or acceleration_polygon is None or bool(sol.singular[0]):
+    """The velocity and acceleration polygons of a one-configuration solution, by
+    :func:`kinelab.kinematics.velocity_polygon` and
+    :func:`~kinelab.kinematics.acceleration_polygon`, in the model's units (length/s,
+    length/s^2); None where they are not defined (a singular configuration).
+
+    Each polygon: ``vertices`` (every point, from the pole o), ``coincident`` (the guide's
+    point under each slider's point), ``sides`` (point, reference, kind "difference" or
+    "relative", link or joint, the vector and, in the acceleration polygon, its named parts:
+    normal and tangential, or Coriolis and sliding) and ``images`` (each moving link's
+    points, in the order of its image).
+    """
+    if bool(sol.singular[0]):
         return None
     try:
-        v, a = velocity_polygon(sol), acceleration_polygon(sol)
+        return {"velocity": _polygon_data(kinematics.velocity_polygon(sol), u, "m/s"),
+                "acceleration": _polygon_data(kinematics.acceleration_polygon(sol), u, "m/s^2")}
     except KinelabError:
         return None
-    return {"velocity": {p: _finite(u.convert(np.reshape(x, 2), "m/s")) for p, x in v.vertices.items()},
-            "acceleration": {p: _finite(u.convert(np.reshape(x, 2), "m/s^2"))
-                             for p, x in a.vertices.items()}}
+
+
+def _polygon_data(polygon, u, unit: str) -> dict:
+    def xy(v) -> list:
+        return _finite(u.convert(np.reshape(v, 2), unit))
+    return {
+        "vertices": {p: xy(v) for p, v in polygon.vertices.items()},
+        "coincident": {p: xy(v) for p, v in polygon.coincident.items()},
+        "sides": [{"point": side.point, "reference": side.reference, "kind": side.kind,
+                   "link": side.link, "vector": xy(side.vector),
+                   "parts": {k: xy(v) for k, v in side.parts.items()}}
+                  for side in polygon.sides.values()],
+        "images": {name: list(image.points) for name, image in polygon.images.items()},
+    }
 
 
 def drag(body: dict) -> dict:
@@ -457,6 +475,37 @@ def _explicit(mf: ModelFile) -> dict:
                                      float(f"{e[0] * v[1] - e[1] * v[0]:.14g}")])
             link["local"] = local
     return data
+
+
+# -- synthesis ------------------------------------------------------------------------------
+MAX_SEARCH_EFFORT = 4 * (3 * 300 * 15 * 180)
+"""The most work a path-generation search may ask of the server (runs x maxiter x popsize x
+samples): four times the default search; the command line has no such cap."""
+_SEARCH_DEFAULTS = {"runs": 3, "maxiter": 300, "popsize": 15, "samples": 180}
+
+
+def synthesize(body: dict) -> dict:
+    """A synthesis task (``body["task"]``: a task file's content as plain data, as
+    ``kinelab synth`` reads it; ``body["source"]``, a file name, names it in messages)
+    solved: the summary ``kinelab synth TASK --json`` prints, in the task's units, and
+    ``models``, each linkage as the JSON form of the model file ``kinelab synth`` writes
+    for it (``solution_<i>.toml``)."""
+    source = body.get("source")
+    if source is not None and not isinstance(source, str):
+        raise ModelError(f"source: expected a file name, got {describe(source)}")
+    task = io.read_task(body.get("task"), source=source,
+                        name=Path(source).stem if source else "task")
+    if task.kind == "path":
+        effort = math.prod(task.search.get(k, v) for k, v in _SEARCH_DEFAULTS.items())
+        if effort > MAX_SEARCH_EFFORT:
+            raise ModelError(f"search: runs x maxiter x popsize x samples is {effort:,}; the page "
+                             f"searches at most {MAX_SEARCH_EFFORT:,} (four times the default "
+                             "search): ask for less, or run kinelab synth", source=source)
+    solutions, extra = io.solve_task(task)
+    summary = io.task_summary(task, solutions, extra)
+    summary["models"] = [ModelFile(mechanism=s.model, units=task.units).to_dict()
+                         for s in solutions]
+    return summary
 
 
 # -- derivation -----------------------------------------------------------------------------

@@ -123,6 +123,7 @@ def create_app(start: dict | None = None) -> Starlette:
         Route("/api/drag", _route(_api.drag), methods=["POST"]),
         Route("/api/flip", _route(_api.flip), methods=["POST"]),
         Route("/api/derive", _route(_api.derivation), methods=["POST"]),
+        Route("/api/synthesize", _route(_api.synthesize), methods=["POST"]),
         Route("/api/export", _route(_export.export, raw=True), methods=["POST"]),
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]

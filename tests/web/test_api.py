@@ -107,26 +107,38 @@ def test_configuration_is_the_engines_with_its_instant_centres(client):
     assert centres["coupler", "rocker"]["position"] == pytest.approx((sol.position("B") * 1000).tolist(), abs=1e-9)
     assert centres["ground", "coupler"]["position"] == pytest.approx(
         (np.reshape(ic["ground", "coupler"].position, 2) * 1000).tolist(), abs=1e-9)
-    assert c["polygons"] is None or set(c["polygons"]) == {"velocity", "acceleration"}
+    assert set(c["polygons"]) == {"velocity", "acceleration"}
 
 
-def test_the_polygons_panel_calls_kinematics_polygons_when_they_exist(monkeypatch):
-    class Polygon:
-        def __init__(self, vertices):
-            self.vertices = vertices
-
-    def velocity_polygon(sol, sample=0):
-        return Polygon({p: sol.velocity(p).reshape(2) for p in sol.mechanism.point_names})
-
-    def acceleration_polygon(sol, sample=0):
-        return Polygon({p: sol.acceleration(p).reshape(2) for p in sol.mechanism.point_names})
-    monkeypatch.setattr(kinematics, "velocity_polygon", velocity_polygon, raising=False)
-    monkeypatch.setattr(kinematics, "acceleration_polygon", acceleration_polygon, raising=False)
-    mf, model = model_of("crank_rocker")
-    c = _api.configuration({"model": model, "q": 10})
-    sol = kl.analyze(mf.mechanism, math.radians(10), qd=mf.mechanism.inputs[0].speed)
-    assert c["polygons"]["velocity"]["P"] == pytest.approx((sol.velocity("P") * 1000).tolist(), rel=1e-12)
-    assert c["polygons"]["acceleration"]["B"] == pytest.approx((sol.acceleration("B") * 1000).tolist(), rel=1e-12)
+@pytest.mark.parametrize("name, q", [("crank_rocker", 40), ("slotted_link", 60)])
+def test_the_polygons_are_kinematics_polygons_in_the_models_units(client, name, q):
+    mf, model = model_of(name)
+    c = client.post("/api/configuration", json={"model": model, "q": q}).json()
+    m, u = mf.mechanism, mf.units
+    sol = kl.analyze(m, math.radians(q), qd=m.inputs[0].speed, qdd=m.inputs[0].acceleration)
+    vp, ap = kinematics.velocity_polygon(sol), kinematics.acceleration_polygon(sol)
+    scale = 1 / u.length_scale
+    for answer, polygon in ((c["polygons"]["velocity"], vp), (c["polygons"]["acceleration"], ap)):
+        assert set(answer["vertices"]) == set(m.point_names)
+        for p, v in polygon.vertices.items():
+            assert answer["vertices"][p] == pytest.approx((v * scale).tolist(), rel=1e-12, abs=1e-12)
+        assert [(s["point"], s["reference"]) for s in answer["sides"]] == list(polygon.sides)
+        for side in answer["sides"]:
+            ref = polygon.sides[side["point"], side["reference"]]
+            assert side["vector"] == pytest.approx((ref.vector * scale).tolist(), rel=1e-12, abs=1e-12)
+            # each side closes: its vector is its end vertex minus its start vertex, and the
+            # sum of its parts (acceleration)
+            end, start = (polygon.vertex(side["point"]), polygon.vertex(side["reference"]))
+            assert side["vector"] == pytest.approx(((end - start) * scale).tolist(), abs=1e-9)
+            if side["parts"]:
+                total = np.sum([v for v in side["parts"].values()], axis=0)
+                assert total == pytest.approx(side["vector"], abs=1e-9)
+    # and the velocities are the engine's point velocities
+    assert c["polygons"]["velocity"]["vertices"]["A"] == pytest.approx(
+        (sol.velocity("A") * scale).tolist(), rel=1e-12)
+    if name == "slotted_link":
+        parts = {k for s in c["polygons"]["acceleration"]["sides"] for k in s["parts"]}
+        assert {"normal", "tangential", "coriolis", "sliding"} <= parts
 
 
 def test_a_drag_follows_the_pointer_along_the_path_and_keeps_the_lengths(client):

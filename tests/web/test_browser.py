@@ -220,3 +220,87 @@ def test_a_refused_drag_keeps_the_last_good_configuration(page):
     page.shot("refused")
     assert "rocker" in page.inner_text("#status")
     assert state(page, "window.kinelab.model.links[3].length") == 250
+
+
+def test_synthesize_a_crank_rocker_and_open_it(page, tmp_path):
+    from click.testing import CliRunner
+
+    from kinelab.cli import main
+    from kinelab.io import ModelFile
+    page.click("#tabs button[data-tab=synthesis]")
+    page.select_option("#synth-kind", "crank-rocker")
+    page.fill("[data-field='crank_rocker.swing']", "40")
+    page.fill("[data-field='crank_rocker.time_ratio']", "1.2")
+    page.click("#synth-solve")
+    page.wait_for_selector("#synth-results tr[data-solution='1']", timeout=60_000)
+    page.shot("synthesized")
+    row = page.inner_text("#synth-results tr[data-solution='1']")
+    assert "crank-rocker" in row and "swing 40 deg" in row and "time ratio 1.2" in row
+    # the same task through kinelab synth
+    task = tmp_path / "task.toml"
+    task.write_text('task = "crank-rocker"\nunits = { length = "mm", angle = "deg" }\n'
+                    '[crank_rocker]\nground = 100\nswing = 40\ntime_ratio = 1.2\n')
+    r = CliRunner().invoke(main, ["synth", str(task), "--out", str(tmp_path / "out"), "--no-figures"])
+    assert r.exit_code == 0, r.output
+    written = ModelFile.read(tmp_path / "out" / "solution_1.toml")
+    page.click("#synth-results tr[data-solution='1'] button.open-solution")
+    page.wait_for_function("() => (window.kinelab.source || '').includes('solution_1')")
+    page.wait_for_function("() => window.kinelab.config !== null")
+    page.shot("opened")
+    assert ModelFile.from_dict(state(page, "window.kinelab.model")) == written
+    assert page.locator("#canvas .link").count() >= 4
+    # drawn and swept as any model: the rocker swings 40 deg over the cycle (361 samples)
+    s = state(page, "window.kinelab.study")
+    rocker = np.unwrap(np.radians(s["columns"]["rocker.angle[deg]"]))
+    assert np.degrees(rocker.max() - rocker.min()) == pytest.approx(40.0, abs=0.05)
+    # and it moves: the animation plays
+    page.click("#play")
+    page.wait_for_function("() => window.kinelab.frames > 5")
+    page.click("#play")
+    assert state(page, "window.kinelab.index") > 0
+
+
+def polygon_lines(pg, kind):
+    return pg.evaluate(f"""() => [...document.querySelectorAll("svg[data-polygon={kind}] line")]
+        .map((l) => [l.dataset.side, +l.getAttribute("x1"), +l.getAttribute("y1"),
+                     +l.getAttribute("x2"), +l.getAttribute("y2")])""")
+
+
+def test_the_polygons_show_and_follow_the_input(page):
+    page.click("#tabs button[data-tab=method]")
+    page.wait_for_selector("svg[data-polygon=acceleration] line", state="attached")
+    page.shot("polygons")
+    config = state(page, "window.kinelab.config")
+    velocity = polygon_lines(page, "velocity")
+    # an arrow from the pole for every moving point, a side V_BA for the coupler
+    assert {"A", "B", "P"} <= {side for side, *_ in velocity}
+    assert "B A" in {side for side, *_ in velocity}
+    text = page.inner_text("#polygons")
+    assert "velocity polygon (mm/s, from the pole OV)" in text
+    # the arrows are drawn to one scale: their screen lengths are in the ratio of |V|
+    v = config["polygons"]["velocity"]["vertices"]
+    length = {side: math.hypot(x2 - x1, y2 - y1) for side, x1, y1, x2, y2 in velocity}
+    assert length["B"] / length["A"] == pytest.approx(math.hypot(*v["B"]) / math.hypot(*v["A"]), rel=1e-3)
+    parts = {side.split()[-1] for side, *_ in polygon_lines(page, "acceleration") if " " in side}
+    assert parts == {"normal", "tangential"}
+    # the input moves: the polygons change with it
+    page.fill("#scrub", "90")
+    page.wait_for_function(f"() => window.kinelab.config && window.kinelab.config.q[0] !== {config['q'][0]}")
+    page.wait_for_timeout(100)
+    page.shot("polygons_moved")
+    assert polygon_lines(page, "velocity") != velocity
+    moved = state(page, "window.kinelab.config")
+    v = moved["polygons"]["velocity"]["vertices"]
+    length = {side: math.hypot(x2 - x1, y2 - y1) for side, x1, y1, x2, y2 in polygon_lines(page, "velocity")}
+    assert length["B"] / length["A"] == pytest.approx(math.hypot(*v["B"]) / math.hypot(*v["A"]), rel=1e-3)
+
+
+def test_the_acceleration_polygon_of_a_slotted_link_shows_coriolis(page):
+    page.select_option("#open", "slotted_link")
+    page.wait_for_function("() => (window.kinelab.source || '').includes('slotted_link')")
+    page.click("#tabs button[data-tab=method]")
+    page.fill("#scrub", "60")             # the crank at 60 deg: the lever turns, the slider slides
+    page.wait_for_function("""() => [...document.querySelectorAll("svg[data-polygon=acceleration] line")]
+        .some((l) => (l.dataset.side || '').endsWith('coriolis'))""")
+    page.shot("coriolis")
+    assert "AcAA@lever" in page.text_content("svg[data-polygon=acceleration]")   # A^c_{A A@lever}

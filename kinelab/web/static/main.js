@@ -7,6 +7,7 @@ import {movePoint} from "./geometry.js";
 import {renderTable} from "./table.js";
 import {showCentres, derive} from "./method.js";
 import * as draw from "./draw.js";
+import {synthesisPanel} from "./synth.js";
 
 const $ = (id) => document.getElementById(id);
 const state = {model: null, source: null, study: null, index: 0, config: null,
@@ -54,6 +55,7 @@ async function setModel(model, source, {record = true, refit = true, keepDraft =
 
 function accept(s, source, refit) {
   state.study = s; state.model = s.model; state.source = source; state.draft = false;
+  state.config = null;             // the last configuration was of the model before
   if (state.index >= s.samples) state.index = 0;
   $("scrub").max = s.samples - 1;
   $("title").textContent = `${s.model.name}${source ? " — " + source : ""}`;
@@ -175,6 +177,7 @@ async function dragTo(name, xy) {
     if (tool() === "move") {
       const c = await post("/api/drag", {model: state.model, source: state.source, point: name, to: xy});
       state.config = c;
+      showCentres($("centres"), $("polygons"), c, state.study);
       const q0 = c.q[0], qs = column(state.study.inputs[0]);
       let best = 0;
       qs.forEach((v, i) => { if (v !== null && Math.abs(v - q0) < Math.abs(qs[best] - q0)) best = i; });
@@ -367,6 +370,8 @@ document.addEventListener("keydown", (e) => {
   else if (e.key === " " && e.target.tagName !== "BUTTON") { e.preventDefault(); state.playing ? pause() : play(); }
 });
 window.addEventListener("resize", () => { if (state.model) { fitView(); redraw(); plotNow(); } });
+synthesisPanel($("tab-synthesis"), {
+  open: (model, source) => setModel(model, source), status});
 state.setIndex = setIndex;
 state.play = play;
 state.pause = pause;

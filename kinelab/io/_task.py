@@ -1,0 +1,471 @@
+"""Synthesis task files: a task's data (the TOML of ``kinelab synth``, see
+``docs/synthesis.md``, or the same content as plain data) read and checked, converted to SI
+once; the task solved by :mod:`kinelab.synthesis`; its linkages summarised as plain data in the
+task's units.  The command line and the browser app both read, solve and summarise tasks
+here, so a task gives the same answer, and a malformed one the same message, in either.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from kinelab import synthesis
+from kinelab.errors import ModelError, describe, expected_one_of, quoted, shown_key
+from kinelab.io._text import loads, read_text
+from kinelab.model import (ANGLE_UNITS, LENGTH_UNITS, Units, is_real, length_problem, name_problem,
+                           real_array)
+
+__all__ = ["Task", "TASK_KINDS", "load_task", "read_task", "solve_task", "task_summary"]
+
+TASK_KINDS = ("motion", "function", "path", "crank-rocker", "quick-return")
+MECHANISMS = ("offset slider-crank", "slotted lever", "whitworth")
+# Bounds on a task's whole numbers, so that a typo cannot ask for days of search or more
+# memory than a machine has; each is far above what a synthesis needs.
+MAX_SAMPLES = 1_000_000
+MAX_PRECISION_POINTS = 100
+_SEARCH_BOUNDS = {"runs": (1, 1000), "maxiter": (1, 1_000_000), "popsize": (1, 10_000),
+                  "samples": (2, MAX_SAMPLES), "seed": (0, 2 ** 32 - 1)}
+_SECTIONS = {"task", "name", "units", "positions", "pivots", "function", "search", "crank_rocker",
+             "quick_return"}
+# the keys of a design task's section: whether each is a length, an angle or a number
+_DESIGN_KEYS = {
+    "crank_rocker": {"ground": "length", "swing": "angle", "time_ratio": "number",
+                     "crank": "length", "pivot_angle": "angle"},
+    "quick_return": {"mechanism": "choice", "time_ratio": "number", "stroke": "length",
+                     "rod": "length", "distance": "length"},
+}
+_REQUIRED = {"crank-rocker": ("ground", "swing", "time_ratio"),
+             "offset slider-crank": ("stroke", "time_ratio"),
+             "slotted lever": ("time_ratio", "distance"),
+             "whitworth": ("time_ratio", "distance", "stroke")}
+
+
+@dataclass
+class Task:
+    """A synthesis task read from a file, in SI units."""
+
+    kind: str
+    name: str
+    length_unit: str
+    angle_unit: str
+    positions: synthesis.Positions | None = None
+    pivots: dict[str, Any] = field(default_factory=dict)
+    targets: np.ndarray | None = None
+    function: dict[str, Any] = field(default_factory=dict)
+    search: dict[str, Any] = field(default_factory=dict)
+    design: dict[str, Any] = field(default_factory=dict)
+    source: str = ""
+
+    @property
+    def units(self) -> Units:
+        """The units the task file is written in."""
+        return Units(self.length_unit, self.angle_unit)
+
+
+class _Reader:
+    """Collects every problem of a task file, each naming its field."""
+
+    def __init__(self, data: dict):
+        self.data = data
+        self.problems: list[str] = []
+
+    def get(self, section: str, key: str, default=None):
+        sec = self.data.get(section, {})
+        return sec.get(key, default) if isinstance(sec, dict) else default
+
+    def array(self, where: str, value, shape: tuple, scale: float = 1.0):
+        """Real numbers of ``shape`` (None: any length) times ``scale``; with a length
+        ``scale`` (the default is not), coordinates of at most MAX_LENGTH m."""
+        a = real_array(value)
+        ok = a is not None and a.ndim == len(shape) and all(
+            s is None or s == n for s, n in zip(shape, a.shape))
+        if not ok or not np.all(np.isfinite(a)):
+            want = "(" + ", ".join("n" if s is None else str(s) for s in shape) + ")"
+            self.problems.append(f"{where}: expected finite numbers of shape {want}, got "
+                                 f"{describe(value)}")
+            return None
+        return a * scale
+
+    def lengths(self, where: str, value, shape: tuple, scale: float):
+        """Coordinates (file units to m), each at most MAX_LENGTH m in size."""
+        a = self.array(where, value, shape, scale)
+        if a is not None and a.size and (why := length_problem(float(np.abs(a).max()),
+                                                               positive=False)):
+            self.problems.append(f"{where}: {why}, got {describe(value)}")
+            return None
+        return a
+
+    def number(self, where: str, value, scale: float = 1.0, positive: bool = False):
+        if not is_real(value) or (positive and value <= 0):
+            kind = "a positive number" if positive else "a finite number"
+            self.problems.append(f"{where}: expected {kind}, got {describe(value)}")
+            return None
+        return float(value) * scale
+
+    def integer(self, where: str, value, low: int, high: int):
+        """A whole number from ``low`` to ``high``: bounds that keep a search's time and
+        memory within reason."""
+        if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+            self.problems.append(f"{where}: expected a whole number from {low:,} to {high:,}, "
+                                 f"got {describe(value)}")
+            return None
+        return value
+
+    def unknown(self, section: str, allowed: set[str]):
+        sec = self.data.get(section, {})
+        if not isinstance(sec, dict):
+            self.problems.append(f"[{section}]: expected a table")
+            return
+        for key in sec:
+            if key not in allowed:
+                self.problems.append(f"{section}.{shown_key(key)}: unknown key; expected one of "
+                                     f"{quoted(sorted(allowed))}")
+
+
+def load_task(path: str | Path) -> Task:
+    """Read a task file (TOML) and convert it to SI units.
+
+    Raises
+    ------
+    ModelError
+        Every problem of the file at once, each naming its field.
+    """
+    path = Path(path)
+    data = loads(read_text(path), "TOML", source=str(path))
+    return read_task(data, source=str(path), name=path.stem)
+
+
+def read_task(data: Any, *, source: str | None = None, name: str = "task") -> Task:
+    """A task given as plain data (what a task file's TOML reads as), converted to SI units.
+
+    Parameters
+    ----------
+    data : dict
+        The task: ``task``, ``units``, and the sections of its kind (``docs/synthesis.md``).
+    source : str, optional
+        The file it comes from, named in messages.
+    name : str
+        The task's name when ``data`` gives none.
+
+    Raises
+    ------
+    ModelError
+        Every problem of the task at once, each naming its field.
+
+    Examples
+    --------
+    >>> task = kl.io.read_task({"task": "crank-rocker", "units": {"angle": "deg"},
+    ...                         "crank_rocker": {"ground": 1.0, "swing": 45, "time_ratio": 1.25}})
+    >>> task.kind, round(task.design["swing"], 12) == round(np.pi / 4, 12)
+    ('crank-rocker', True)
+    """
+    if not isinstance(data, dict):
+        raise ModelError(f"task: expected a table of the task's sections, got {describe(data)}",
+                         source=source)
+    r = _Reader(data)
+    for key in data:
+        if key not in _SECTIONS:
+            r.problems.append(f"{shown_key(key)}: unknown key; expected one of "
+                              f"{quoted(sorted(_SECTIONS))}")
+    kind = data.get("task")
+    if kind not in TASK_KINDS:
+        r.problems.append(f"task: {expected_one_of(kind, TASK_KINDS)}")
+    units = data.get("units", {})
+    lu = units.get("length", "m") if isinstance(units, dict) else "m"
+    au = units.get("angle", "rad") if isinstance(units, dict) else "rad"
+    if not isinstance(lu, str) or lu not in LENGTH_UNITS:
+        r.problems.append(f"units.length: {expected_one_of(lu, LENGTH_UNITS)}")
+        lu = "m"
+    if not isinstance(au, str) or au not in ANGLE_UNITS:
+        r.problems.append(f"units.angle: {expected_one_of(au, ANGLE_UNITS)}")
+        au = "rad"
+    r.unknown("units", {"length", "angle"})
+    name = data.get("name", name)
+    if (why := name_problem(name)) is not None:
+        r.problems.append(f"name: {why}, got {describe(name)}")
+    L, A = LENGTH_UNITS[lu], ANGLE_UNITS[au]
+    task = Task(kind=str(kind), name=str(name), length_unit=lu, angle_unit=au, source=source or "")
+    if kind == "motion":
+        _motion_task(r, task, L, A)
+    elif kind == "function":
+        _function_task(r, task, L, A)
+    elif kind == "path":
+        _path_task(r, task, L, A)
+    elif kind in ("crank-rocker", "quick-return"):
+        _design_task(r, task, L, A)
+    if r.problems:
+        raise ModelError(r.problems, source=source)
+    return task
+
+
+def _motion_task(r: _Reader, task: Task, L: float, A: float) -> None:
+    r.unknown("positions", {"points", "angles", "second_points"})
+    r.unknown("pivots", {"A0", "B0", "A1", "B1", "a0x", "b0x", "s", "t"})
+    pts = r.lengths("positions.points", r.get("positions", "points"), (None, 2), L)
+    angles, second = r.get("positions", "angles"), r.get("positions", "second_points")
+    if (angles is None) == (second is None):
+        r.problems.append("positions: give either angles (orientations, or rotations from "
+                          "position 1) or second_points (a second point of the coupler in "
+                          "each position)")
+        return
+    if pts is None:
+        return
+    try:
+        if angles is not None:
+            ang = r.array("positions.angles", angles, (None,), A)
+            if ang is None:
+                return
+            task.positions = synthesis.Positions(pts, ang)
+        else:
+            sec = r.lengths("positions.second_points", second, (None, 2), L)
+            if sec is None:
+                return
+            task.positions = synthesis.Positions.from_two_points(pts, sec)
+    except ModelError as exc:
+        r.problems.extend(f"positions.{p}" for p in exc.problems)
+        return
+    n = task.positions.n
+    piv = {k: r.get("pivots", k) for k in ("A0", "B0", "A1", "B1", "a0x", "b0x", "s", "t")}
+    given = {k for k, v in piv.items() if v is not None}
+    allowed = {2: {"A1", "B1", "s", "t"}, 3: {"A0", "B0", "A1", "B1"}, 4: {"a0x", "b0x"}}
+    if n >= 5:
+        # five: Burmester's points; more: least squares; no pivot is chosen
+        for k in sorted(given):
+            r.problems.append(f"pivots.{k}: not used with {n} positions; with five or more the "
+                              "pivots follow from the positions alone")
+        if n > 5:
+            r.unknown("search", {"dyads"})
+            s = r.data.get("search", {}) if isinstance(r.data.get("search"), dict) else {}
+            if "dyads" in s:
+                task.search["dyads"] = r.integer("search.dyads", s["dyads"], 2, 100)
+            return
+    if "search" in r.data:
+        r.problems.append(f"search: not used with {n} positions (only with more than five)")
+    if n >= 5:
+        return
+    for k in sorted(given - allowed[n]):
+        r.problems.append(f"pivots.{k}: not used with {n} positions; with {n} give "
+                          f"{quoted(sorted(allowed[n]))}")
+    for k in given & allowed[n]:
+        if k in ("A0", "B0", "A1", "B1"):
+            task.pivots[k] = r.lengths(f"pivots.{k}", piv[k], (2,), L)
+        else:
+            task.pivots[k] = r.number(f"pivots.{k}", piv[k], L)
+    need = {2: ("A1", "B1"), 4: ("a0x", "b0x")}.get(n, ())
+    for k in need:
+        if k not in given:
+            r.problems.append(f"pivots.{k}: missing; {n} positions need "
+                              f"{quoted(need)}")
+    if n == 3:
+        for side in "AB":
+            if (f"{side}0" in given) == (f"{side}1" in given):
+                r.problems.append(f"pivots: give exactly one of {side}0 (fixed pivot) and "
+                                  f"{side}1 (moving pivot in position 1)")
+
+
+def _function_task(r: _Reader, task: Task, L: float, A: float) -> None:
+    keys = {"expression", "x_range", "input_range", "output_range", "points", "ground",
+            "samples"}
+    r.unknown("function", keys)
+    f = dict(r.data.get("function", {})) if isinstance(r.data.get("function"), dict) else {}
+    expr = f.get("expression")
+    if not isinstance(expr, str):
+        r.problems.append(f"function.expression: expected a formula in x such as 'log10(x)', "
+                          f"got {describe(expr)}")
+    else:
+        try:
+            task.function["f"] = _formula(expr)
+        except ModelError as exc:
+            r.problems.extend(exc.problems)
+    task.function["x_range"] = r.array("function.x_range", f.get("x_range"), (2,))
+    task.function["input_range"] = r.array("function.input_range", f.get("input_range"), (2,), A)
+    task.function["output_range"] = r.array("function.output_range", f.get("output_range"), (2,), A)
+    if "points" in f:
+        p = f["points"]
+        task.function["points"] = (r.integer("function.points", p, 2, MAX_PRECISION_POINTS)
+                                   if isinstance(p, int) else r.array("function.points", p, (None,)))
+    if "ground" in f:
+        # the ground length is in the file's length unit
+        ground = r.number("function.ground", f["ground"], L, positive=True)
+        if ground is not None and (why := length_problem(ground)):
+            r.problems.append(f"function.ground: {why}, got {describe(f['ground'])}")
+        task.function["ground"] = ground
+    if "samples" in f:
+        task.function["samples"] = r.integer("function.samples", f["samples"], 2, MAX_SAMPLES)
+
+
+def _formula(expr: str):
+    """A vectorised function of x from a formula, parsed with the whitelist of model-file
+    expressions: a task file never executes code."""
+    from kinelab._expressions import parse_function
+    return parse_function(expr, "x", where="function.expression")
+
+
+def _path_task(r: _Reader, task: Task, L: float, A: float) -> None:
+    r.unknown("positions", {"points"})
+    r.unknown("search", {"runs", "maxiter", "popsize", "samples", "seed",
+                         "min_transmission_angle", "refine"})
+    task.targets = r.lengths("positions.points", r.get("positions", "points"), (None, 2), L)
+    s = dict(r.data.get("search", {})) if isinstance(r.data.get("search"), dict) else {}
+    if "min_transmission_angle" in s:
+        s["min_transmission_angle"] = r.number("search.min_transmission_angle",
+                                               s["min_transmission_angle"], A)
+    for key, (low, high) in _SEARCH_BOUNDS.items():
+        if key in s:
+            s[key] = r.integer(f"search.{key}", s[key], low, high)
+    if "refine" in s and not isinstance(s["refine"], bool):
+        r.problems.append(f"search.refine: expected true or false, got {describe(s['refine'])}")
+    task.search = s
+
+
+def _design_task(r: _Reader, task: Task, L: float, A: float) -> None:
+    """A crank-rocker or quick-return task: its section's values in SI."""
+    section = task.kind.replace("-", "_")
+    keys = _DESIGN_KEYS[section]
+    r.unknown(section, set(keys))
+    sec = r.data.get(section)
+    if not isinstance(sec, dict):
+        r.problems.append(f"{section}: missing; a {task.kind} task gives its values in a "
+                          f"[{section}] table")
+        return
+    mechanism = "crank-rocker"
+    if section == "quick_return":
+        mechanism = sec.get("mechanism")
+        if mechanism not in MECHANISMS:
+            r.problems.append(f"quick_return.mechanism: {expected_one_of(mechanism, MECHANISMS)}")
+            return
+    task.design["mechanism"] = mechanism
+    need = _REQUIRED[mechanism]
+    usable = set(need) | ({"crank", "pivot_angle"} if mechanism == "crank-rocker" else set()) \
+        | ({"rod"} if mechanism in ("offset slider-crank", "whitworth") else set())
+    for key, kind in keys.items():
+        if key == "mechanism":
+            continue
+        where = f"{section}.{key}"
+        if key not in sec:
+            if key in need:
+                r.problems.append(f"{where}: missing; a {mechanism} needs {quoted(need)}")
+            continue
+        if key not in usable:
+            r.problems.append(f"{where}: not used by a {mechanism}; it takes "
+                              f"{quoted(sorted(usable))}")
+            continue
+        scale = {"length": L, "angle": A}.get(kind, 1.0)
+        value = r.number(where, sec[key], scale)
+        if value is not None and kind == "length" and (why := length_problem(value)):
+            r.problems.append(f"{where}: {why}, got {describe(sec[key])}")
+            continue
+        task.design[key] = value
+
+
+def _design(task: Task) -> list:
+    """Run a crank-rocker or quick-return task (SI in, SI out); a problem the synthesis finds
+    names the task's field and is worded in the task's units."""
+    from kinelab.synthesis import _quick_return as qr
+
+    d = dict(task.design)
+    u = task.units
+    mechanism = d.pop("mechanism")
+    section = task.kind.replace("-", "_")
+    try:
+        if mechanism == "crank-rocker":
+            return [qr._crank_rocker(d["ground"], d["swing"], d["time_ratio"], d.get("crank"),
+                                     d.get("pivot_angle"), False, u)]
+        if mechanism == "offset slider-crank":
+            return [qr._offset_slider_crank(d["stroke"], d["time_ratio"], d.get("rod"), False, u)]
+        if mechanism == "whitworth":
+            return [qr._whitworth(d["time_ratio"], d["distance"], d["stroke"], d.get("rod"),
+                                  False, u)]
+        return [synthesis.slotted_lever(d["time_ratio"], d["distance"])]
+    except ModelError as exc:
+        raise ModelError([f"{section}.{p}" for p in exc.problems], source=task.source or None) from None
+
+
+def solve_task(task: Task) -> tuple[list, dict[str, Any]]:
+    """Run a task: its solutions, and the extra results worth drawing."""
+    if task.kind == "function":
+        return [synthesis.function_generation(**task.function)], {}
+    if task.kind == "path":
+        sols = synthesis.path_generation(task.targets, **task.search)
+        return list(sols), {"reason": sols.reason}
+    if task.kind in ("crank-rocker", "quick-return"):
+        return _design(task), {}
+    pos, piv = task.positions, task.pivots
+    if pos.n == 5:
+        sols = synthesis.five_positions(pos)
+        return list(sols), {"five": True, "reason": sols.reason}
+    if pos.n > 5:
+        sols = synthesis.approximate_positions(pos, **task.search)
+        return list(sols), {"reason": sols.reason}
+    if pos.n == 2:
+        fam = synthesis.two_positions(pos, A1=piv["A1"], B1=piv["B1"])
+        return [fam.solution(piv.get("s", 0.0), piv.get("t", 0.0))], {}
+    if pos.n == 3:
+        return [synthesis.three_positions(pos, A0=piv.get("A0"), B0=piv.get("B0"),
+                                          A1=piv.get("A1"), B1=piv.get("B1"))], {}
+    sols = synthesis.four_positions(pos, a0x=piv["a0x"], b0x=piv["b0x"])
+    curves = synthesis.burmester_curves(pos)
+    return list(sols), {"curves": curves, "reason": sols.reason}
+
+
+def _design_row(i: int, s, u: Units) -> dict[str, Any]:
+    """A crank-rocker or quick return as plain data, lengths and angles in ``u``."""
+    row: dict[str, Any] = {"solution": i, "mechanism": getattr(s, "kind", "crank-rocker"),
+                           "lengths": {k: u.convert(v, "m") for k, v in s.lengths.items()},
+                           "time_ratio": s.time_ratio,
+                           "dead_centres": u.convert(np.asarray(s.dead_centres), "rad").tolist()}
+    for key in ("swing", "transmission_min", "pivot_angle"):
+        v = getattr(s, key, None)
+        if v is not None and not math.isnan(v):
+            row[key] = u.convert(v, "rad")
+    if getattr(s, "stroke", None) is not None:
+        row["stroke"] = u.convert(s.stroke, "m")
+    if hasattr(s, "grashof"):
+        row["grashof"] = s.grashof.kind
+    return row
+
+
+def _rows(sols: list, u: Units) -> list[dict[str, Any]]:
+    """Each solution as plain data, lengths and angles in ``u``."""
+    rows = []
+    for i, s in enumerate(sols, 1):
+        if isinstance(s, (synthesis.CrankRocker, synthesis.QuickReturn)):
+            rows.append(_design_row(i, s, u))
+            continue
+        row: dict[str, Any] = {"solution": i, "valid": s.valid, "defects": list(s.defects),
+                               "grashof": s.grashof.kind,
+                               "lengths": {k: u.convert(v, "m") for k, v in s.lengths.items()}}
+        if hasattr(s, "A0"):
+            row.update({k: u.convert(getattr(s, k), "m").tolist() for k in ("A0", "B0", "A1", "B1")})
+        if not math.isnan(s.min_transmission_angle):
+            row["min_transmission_angle"] = u.convert(s.min_transmission_angle, "rad")
+        if hasattr(s, "rms_error"):
+            row["rms_error"] = u.convert(s.rms_error, "m")
+        if hasattr(s, "max_structural_error"):
+            row["max_structural_error"] = s.max_structural_error
+            row["precision_errors"] = s.precision_errors.tolist()
+        if hasattr(s, "dyad_residuals") and s.points.shape[0] > 5:
+            # least squares: what each position misses by
+            row["dyad_residuals"] = u.convert(s.dyad_residuals, "m").tolist()
+            row["position_errors"] = u.convert(s.position_errors, "m").tolist()
+            row["angle_errors"] = u.convert(s.angle_errors, "rad").tolist()
+        rows.append(row)
+    return rows
+
+
+def task_summary(task: Task, solutions: list, extra: dict[str, Any],
+                 units: Units | None = None) -> dict[str, Any]:
+    """What ``summary.json`` of ``kinelab synth`` holds: the task, its units and each linkage
+    found as plain data (pivots, lengths, angles, defects, Grashof class), in ``units``
+    (default the task's own).
+
+    ``solutions, extra`` are what :func:`solve_task` returns.
+    """
+    u = units or task.units
+    return {"task": task.kind, "name": task.name,
+            "units": {"length": u.length, "angle": u.angle},
+            "reason": extra.get("reason", ""), "solutions": _rows(solutions, u)}

@@ -1,0 +1,193 @@
+// The synthesis panel: a task typed in a form (the content of a `kinelab synth` task file),
+// solved on the server, its linkages listed; any of them opens as the model.
+import {post} from "./api.js";
+
+const LENGTHS = ["m", "cm", "mm", "in"], ANGLES = ["deg", "rad"];
+
+// Each kind: its units, its fields [key in the task, label, kind, example], the poses it
+// takes ("poses": x y angle per line, "points": x y per line) and the task's fixed entries.
+// The examples are those of docs/synthesis.md (Flores & Claro, Mecanismos, §6.5 and §6.7).
+export const KINDS = {
+  "crank-rocker": {label: "crank-rocker: rocker swing and time ratio", task: {task: "crank-rocker"},
+    units: ["mm", "deg"], fields: [
+      ["crank_rocker.ground", "ground O2O4", "length", "100"],
+      ["crank_rocker.swing", "rocker swing", "angle", "45"],
+      ["crank_rocker.time_ratio", "time ratio", "", "1.25"],
+      ["crank_rocker.crank", "crank (optional)", "length", ""],
+      ["crank_rocker.pivot_angle", "pivot angle (optional)", "angle", ""]]},
+  "quick-return": {label: "quick return: stroke and time ratio", task: {task: "quick-return"},
+    units: ["mm", "deg"], fields: [
+      ["quick_return.mechanism", "mechanism", ["offset slider-crank", "slotted lever", "whitworth"], "offset slider-crank"],
+      ["quick_return.time_ratio", "time ratio", "", "1.4"],
+      ["quick_return.stroke", "stroke", "length", "100"],
+      ["quick_return.distance", "distance O2O4 (slotted lever, whitworth)", "length", ""],
+      ["quick_return.rod", "rod (optional)", "length", ""]]},
+  "three": {label: "motion: three positions", task: {task: "motion"}, units: ["m", "deg"],
+    poses: "1 1 0\n2 0.5 0\n3 1.5 45", fields: [
+      ["pivots.A0", "A0, fixed pivot (or A1)", "point", "5, 0"],
+      ["pivots.A1", "A1, moving pivot in position 1", "point", ""],
+      ["pivots.B0", "B0, fixed pivot (or B1)", "point", "0, 0"],
+      ["pivots.B1", "B1, moving pivot in position 1", "point", ""]]},
+  "four": {label: "motion: four positions", task: {task: "motion"}, units: ["cm", "deg"],
+    poses: "0 0 0\n5 8 10\n10 15 20\n18 20 30", fields: [
+      ["pivots.a0x", "a0x, centre point's x", "length", "-20.195"],
+      ["pivots.b0x", "b0x, centre point's x", "length", "-29.167"]]},
+  "five": {label: "motion: five positions (Burmester's points)", task: {task: "motion"},
+    units: ["m", "deg"], poses: "1.017 1.8027 55.771\n1.3272 2.356 38.173\n0.9699 2.6022 30.099\n" +
+      "0.3165 2.4733 29.379\n-0.2622 2.0126 34.235", fields: []},
+  "function": {label: "function generation", task: {task: "function"}, units: ["m", "deg"], fields: [
+    ["function.expression", "y = f(x)", "text", "log10(x)"],
+    ["function.x_range", "x from, to", "pair", "1, 2"],
+    ["function.input_range", "crank angle from, to", "pair", "90, 150"],
+    ["function.output_range", "rocker angle from, to", "pair", "0, 90"],
+    ["function.points", "precision points", "", "3"],
+    ["function.ground", "ground", "length", "1"]]},
+  "path": {label: "path generation", task: {task: "path"}, units: ["m", "deg"],
+    points: "0 0\n0.25 0.02\n0.5 0.03\n0.75 0.02\n1 0", fields: [
+      ["search.runs", "runs", "", "1"], ["search.maxiter", "iterations", "", "100"],
+      ["search.seed", "seed", "", "0"]]},
+};
+
+const make = (tag, attrs = {}, text = "") => {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
+  if (text) e.textContent = text;
+  return e;
+};
+
+// A number where the text is one, else the text itself: the server names what is wrong.
+const value = (text) => { const t = text.trim(); return t !== "" && Number.isFinite(Number(t)) ? Number(t) : t; };
+const numbers = (text) => text.split(/[\s,;]+/).filter((t) => t !== "").map(value);
+const rows = (text) => text.split("\n").map((l) => l.trim()).filter((l) => l && !l.startsWith("#")).map(numbers);
+
+function put(task, key, v) {
+  const [section, name] = key.split(".");
+  (task[section] ??= {})[name] = v;
+}
+
+// The task the form describes, as the task file's content.
+export function taskOf(root) {
+  const kind = KINDS[root.querySelector("#synth-kind").value];
+  const task = structuredClone(kind.task);
+  task.units = {length: root.querySelector("#synth-length").value, angle: root.querySelector("#synth-angle").value};
+  const poses = root.querySelector("#synth-poses");
+  if (kind.poses) {
+    const r = rows(poses.value);
+    task.positions = {points: r.map((p) => p.slice(0, 2)), angles: r.map((p) => p[2])};
+  } else if (kind.points) {
+    task.positions = {points: rows(poses.value)};
+  }
+  for (const [key, , type] of kind.fields) {
+    const text = root.querySelector(`[data-field='${key}']`).value;
+    if (text.trim() === "") continue;
+    put(task, key, type === "point" || type === "pair" ? numbers(text) : type === "text" || Array.isArray(type) ? text : value(text));
+  }
+  return task;
+}
+
+function form(root, kindName, units) {
+  const kind = KINDS[kindName];
+  const box = root.querySelector("#synth-form");
+  box.replaceChildren();
+  const [lu, au] = kind.units;
+  root.querySelector("#synth-length").value = lu;
+  root.querySelector("#synth-angle").value = au;
+  const unit = (type) => type === "length" ? () => root.querySelector("#synth-length").value
+    : type === "angle" ? () => root.querySelector("#synth-angle").value : () => "";
+  if (kind.poses || kind.points) {
+    const label = make("label", {}, kind.poses ? "poses: x y angle, one per line" : "points: x y, one per line");
+    const area = make("textarea", {id: "synth-poses", rows: 6, spellcheck: "false"});
+    area.value = kind.poses || kind.points;
+    label.append(make("br"), area);
+    box.append(label);
+  }
+  const t = make("table");
+  for (const [key, label, type, example] of kind.fields) {
+    const tr = make("tr");
+    const td = make("td");
+    let input;
+    if (Array.isArray(type)) {
+      input = make("select");
+      for (const c of type) input.append(new Option(c, c));
+    } else input = make("input", {spellcheck: "false"});
+    input.value = example;
+    input.dataset.field = key;
+    td.append(input);
+    const u = make("td", {class: "unit"});
+    const show = unit(type);
+    u.textContent = show();
+    u.dataset.unit = type;
+    tr.append(make("td", {}, label), td, u);
+    t.append(tr);
+  }
+  box.append(t);
+  const refresh = () => { for (const u of box.querySelectorAll("td.unit")) u.textContent = unit(u.dataset.unit)(); };
+  root.querySelector("#synth-length").onchange = refresh;
+  root.querySelector("#synth-angle").onchange = refresh;
+}
+
+const f = (v) => Number(Number(v).toPrecision(5)).toString();
+
+function describe(row, units) {
+  const parts = [Object.entries(row.lengths).map(([k, v]) => `${k} ${f(v)}`).join(", ") + ` ${units.length}`];
+  if (row.swing !== undefined) parts.push(`swing ${f(row.swing)} ${units.angle}`);
+  if (row.stroke !== undefined) parts.push(`stroke ${f(row.stroke)} ${units.length}`);
+  if (row.time_ratio !== undefined) parts.push(`time ratio ${f(row.time_ratio)}`);
+  const mu = row.min_transmission_angle ?? row.transmission_min;
+  if (mu !== undefined) parts.push(`min transmission ${f(mu)} ${units.angle}`);
+  if (row.rms_error !== undefined) parts.push(`rms error ${f(row.rms_error)} ${units.length}`);
+  if (row.max_structural_error !== undefined) parts.push(`max structural error ${f(row.max_structural_error)}`);
+  return parts.join("; ");
+}
+
+function results(root, answer, open) {
+  const box = root.querySelector("#synth-results");
+  box.replaceChildren();
+  const head = make("p", {}, `${answer.solutions.length} linkage(s)` + (answer.reason ? ` (${answer.reason})` : ""));
+  box.append(head);
+  const t = make("table", {class: "solutions"});
+  const hr = make("tr");
+  for (const h of ["", "Grashof class", "defects", "linkage", ""]) hr.append(make("th", {}, h));
+  t.append(hr);
+  answer.solutions.forEach((row, i) => {
+    const tr = make("tr", {"data-solution": row.solution});
+    const defects = row.defects === undefined ? "–" : row.defects.length ? row.defects.join(", ") : "none";
+    const button = make("button", {class: "open-solution"}, "open");
+    button.onclick = () => open(answer.models[i], `${answer.name}_solution_${row.solution}.toml`);
+    for (const c of [String(row.solution), row.grashof || row.mechanism, defects, describe(row, answer.units)])
+      tr.append(make("td", {}, c));
+    const td = make("td"); td.append(button); tr.append(td);
+    t.append(tr);
+  });
+  box.append(t);
+}
+
+// The panel in `root`; `open(model, source)` makes a linkage the model; `status` reports.
+export function synthesisPanel(root, {open, status}) {
+  root.innerHTML = `<div class="row"><label>task <select id="synth-kind"></select></label>
+    <label>length <select id="synth-length"></select></label>
+    <label>angle <select id="synth-angle"></select></label></div>
+    <div id="synth-form"></div>
+    <div class="row"><button id="synth-solve">solve</button></div>
+    <div id="synth-results"></div>
+    <p class="hint">The task is the content of a <code>kinelab synth</code> task file
+    (docs/synthesis.md), solved on the server as the command solves it.</p>`;
+  const kind = root.querySelector("#synth-kind");
+  for (const [k, v] of Object.entries(KINDS)) kind.append(new Option(v.label, k));
+  for (const u of LENGTHS) root.querySelector("#synth-length").append(new Option(u, u));
+  for (const u of ANGLES) root.querySelector("#synth-angle").append(new Option(u, u));
+  kind.onchange = () => { form(root, kind.value); root.querySelector("#synth-results").replaceChildren(); };
+  form(root, kind.value);
+  root.querySelector("#synth-solve").onclick = async () => {
+    const box = root.querySelector("#synth-results");
+    box.textContent = "solving…";
+    try {
+      const answer = await post("/api/synthesize", {task: taskOf(root)});
+      results(root, answer, open);
+      status("");
+    } catch (err) {
+      box.textContent = "";
+      status(err.message, true);
+    }
+  };
+}
