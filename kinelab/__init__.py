@@ -6,14 +6,14 @@
 >>> sol.angle("coupler").shape, sol.position("B").shape
 ((720,), (720, 2))
 """
-from kinelab import (dynamics, errors, io, kinematics, mechanisms, model, plot, solvers, spatial,
-                     structure, synthesis)
+from kinelab import (derive, dynamics, errors, io, kinematics, mechanisms, model, plot, solvers,
+                     spatial, structure, synthesis)
 from kinelab._memory import memory_budget, reuse_result_memory
 from kinelab.io import load
 from kinelab.kinematics import KinematicSolution, analyze
 from kinelab.model import Mechanism
 
 __all__ = ["errors", "model", "solvers", "mechanisms", "kinematics", "spatial", "structure",
-           "synthesis", "dynamics", "io",
+           "synthesis", "dynamics", "derive", "io",
            "plot", "analyze", "load",
            "Mechanism", "KinematicSolution", "reuse_result_memory", "memory_budget"]

@@ -4,6 +4,7 @@ Each command lives in a module of this package and is registered here with one l
 room adds its commands with ``main.add_command(command)``.
 """
 from kinelab.cli._analyze import analyze, check
+from kinelab.cli._derive import derive_command
 from kinelab.cli._draw import animate, plot
 from kinelab.cli._dynamics import dynamics_command
 from kinelab.cli._exchange import export, import_
@@ -21,5 +22,6 @@ main.add_command(mobility)
 main.add_command(types)
 main.add_command(synth)
 main.add_command(dynamics_command)
+main.add_command(derive_command)
 
 __all__ = ["main"]

@@ -28,14 +28,27 @@ from kinelab.model import (ANGLE_UNITS, LENGTH_UNITS, Units, is_real, length_pro
 
 __all__ = ["synth", "load_task", "Task"]
 
-KINDS = ("motion", "function", "path")
+KINDS = ("motion", "function", "path", "crank-rocker", "quick-return")
+MECHANISMS = ("offset slider-crank", "slotted lever", "whitworth")
 # Bounds on a task's whole numbers, so that a typo cannot ask for days of search or more
 # memory than a machine has; each is far above what a synthesis needs.
 MAX_SAMPLES = 1_000_000
 MAX_PRECISION_POINTS = 100
 _SEARCH_BOUNDS = {"runs": (1, 1000), "maxiter": (1, 1_000_000), "popsize": (1, 10_000),
                   "samples": (2, MAX_SAMPLES), "seed": (0, 2 ** 32 - 1)}
-_SECTIONS = {"task", "name", "units", "positions", "pivots", "function", "search"}
+_SECTIONS = {"task", "name", "units", "positions", "pivots", "function", "search", "crank_rocker",
+             "quick_return"}
+# the keys of a design task's section: whether each is a length, an angle or a number
+_DESIGN_KEYS = {
+    "crank_rocker": {"ground": "length", "swing": "angle", "time_ratio": "number",
+                     "crank": "length", "pivot_angle": "angle"},
+    "quick_return": {"mechanism": "choice", "time_ratio": "number", "stroke": "length",
+                     "rod": "length", "distance": "length"},
+}
+_REQUIRED = {"crank-rocker": ("ground", "swing", "time_ratio"),
+             "offset slider-crank": ("stroke", "time_ratio"),
+             "slotted lever": ("time_ratio", "distance"),
+             "whitworth": ("time_ratio", "distance", "stroke")}
 
 
 @dataclass
@@ -51,6 +64,8 @@ class Task:
     targets: np.ndarray | None = None
     function: dict[str, Any] = field(default_factory=dict)
     search: dict[str, Any] = field(default_factory=dict)
+    design: dict[str, Any] = field(default_factory=dict)
+    source: str = ""
 
     @property
     def units(self) -> Units:
@@ -150,13 +165,15 @@ def load_task(path: str | Path) -> Task:
     if (why := name_problem(name)) is not None:
         r.problems.append(f"name: {why}, got {describe(name)}")
     L, A = LENGTH_UNITS[lu], ANGLE_UNITS[au]
-    task = Task(kind=str(kind), name=str(name), length_unit=lu, angle_unit=au)
+    task = Task(kind=str(kind), name=str(name), length_unit=lu, angle_unit=au, source=str(path))
     if kind == "motion":
         _motion_task(r, task, L, A)
     elif kind == "function":
         _function_task(r, task, L, A)
     elif kind == "path":
         _path_task(r, task, L, A)
+    elif kind in ("crank-rocker", "quick-return"):
+        _design_task(r, task, L, A)
     if r.problems:
         raise ModelError(r.problems, source=str(path))
     return task
@@ -192,8 +209,20 @@ def _motion_task(r: _Reader, task: Task, L: float, A: float) -> None:
     piv = {k: r.get("pivots", k) for k in ("A0", "B0", "A1", "B1", "a0x", "b0x", "s", "t")}
     given = {k for k, v in piv.items() if v is not None}
     allowed = {2: {"A1", "B1", "s", "t"}, 3: {"A0", "B0", "A1", "B1"}, 4: {"a0x", "b0x"}}
-    if n not in allowed:
-        r.problems.append(f"positions.points: motion generation takes 2, 3 or 4 positions, got {n}")
+    if n >= 5:
+        # five: Burmester's points; more: least squares; no pivot is chosen
+        for k in sorted(given):
+            r.problems.append(f"pivots.{k}: not used with {n} positions; with five or more the "
+                              "pivots follow from the positions alone")
+        if n > 5:
+            r.unknown("search", {"dyads"})
+            s = r.data.get("search", {}) if isinstance(r.data.get("search"), dict) else {}
+            if "dyads" in s:
+                task.search["dyads"] = r.integer("search.dyads", s["dyads"], 2, 100)
+            return
+    if "search" in r.data:
+        r.problems.append(f"search: not used with {n} positions (only with more than five)")
+    if n >= 5:
         return
     for k in sorted(given - allowed[n]):
         r.problems.append(f"pivots.{k}: not used with {n} positions; with {n} give "
@@ -270,6 +299,69 @@ def _path_task(r: _Reader, task: Task, L: float, A: float) -> None:
     task.search = s
 
 
+def _design_task(r: _Reader, task: Task, L: float, A: float) -> None:
+    """A crank-rocker or quick-return task: its section's values in SI."""
+    section = task.kind.replace("-", "_")
+    keys = _DESIGN_KEYS[section]
+    r.unknown(section, set(keys))
+    sec = r.data.get(section)
+    if not isinstance(sec, dict):
+        r.problems.append(f"{section}: missing; a {task.kind} task gives its values in a "
+                          f"[{section}] table")
+        return
+    mechanism = "crank-rocker"
+    if section == "quick_return":
+        mechanism = sec.get("mechanism")
+        if mechanism not in MECHANISMS:
+            r.problems.append(f"quick_return.mechanism: {expected_one_of(mechanism, MECHANISMS)}")
+            return
+    task.design["mechanism"] = mechanism
+    need = _REQUIRED[mechanism]
+    usable = set(need) | ({"crank", "pivot_angle"} if mechanism == "crank-rocker" else set()) \
+        | ({"rod"} if mechanism in ("offset slider-crank", "whitworth") else set())
+    for key, kind in keys.items():
+        if key == "mechanism":
+            continue
+        where = f"{section}.{key}"
+        if key not in sec:
+            if key in need:
+                r.problems.append(f"{where}: missing; a {mechanism} needs {quoted(need)}")
+            continue
+        if key not in usable:
+            r.problems.append(f"{where}: not used by a {mechanism}; it takes "
+                              f"{quoted(sorted(usable))}")
+            continue
+        scale = {"length": L, "angle": A}.get(kind, 1.0)
+        value = r.number(where, sec[key], scale)
+        if value is not None and kind == "length" and (why := length_problem(value)):
+            r.problems.append(f"{where}: {why}, got {describe(sec[key])}")
+            continue
+        task.design[key] = value
+
+
+def _design(task: Task) -> list:
+    """Run a crank-rocker or quick-return task (SI in, SI out); a problem the synthesis finds
+    names the task's field and is worded in the task's units."""
+    from kinelab.synthesis import _quick_return as qr
+
+    d = dict(task.design)
+    u = task.units
+    mechanism = d.pop("mechanism")
+    section = task.kind.replace("-", "_")
+    try:
+        if mechanism == "crank-rocker":
+            return [qr._crank_rocker(d["ground"], d["swing"], d["time_ratio"], d.get("crank"),
+                                     d.get("pivot_angle"), False, u)]
+        if mechanism == "offset slider-crank":
+            return [qr._offset_slider_crank(d["stroke"], d["time_ratio"], d.get("rod"), False, u)]
+        if mechanism == "whitworth":
+            return [qr._whitworth(d["time_ratio"], d["distance"], d["stroke"], d.get("rod"),
+                                  False, u)]
+        return [synthesis.slotted_lever(d["time_ratio"], d["distance"])]
+    except ModelError as exc:
+        raise ModelError([f"{section}.{p}" for p in exc.problems], source=task.source) from None
+
+
 def solve(task: Task) -> tuple[list, dict[str, Any]]:
     """Run a task: its solutions, and the extra results worth drawing."""
     if task.kind == "function":
@@ -277,7 +369,15 @@ def solve(task: Task) -> tuple[list, dict[str, Any]]:
     if task.kind == "path":
         sols = synthesis.path_generation(task.targets, **task.search)
         return list(sols), {"reason": sols.reason}
+    if task.kind in ("crank-rocker", "quick-return"):
+        return _design(task), {}
     pos, piv = task.positions, task.pivots
+    if pos.n == 5:
+        sols = synthesis.five_positions(pos)
+        return list(sols), {"five": True, "reason": sols.reason}
+    if pos.n > 5:
+        sols = synthesis.approximate_positions(pos, **task.search)
+        return list(sols), {"reason": sols.reason}
     if pos.n == 2:
         fam = synthesis.two_positions(pos, A1=piv["A1"], B1=piv["B1"])
         return [fam.solution(piv.get("s", 0.0), piv.get("t", 0.0))], {}
@@ -289,10 +389,30 @@ def solve(task: Task) -> tuple[list, dict[str, Any]]:
     return list(sols), {"curves": curves, "reason": sols.reason}
 
 
+def _design_row(i: int, s, u: Units) -> dict[str, Any]:
+    """A crank-rocker or quick return as plain data, lengths and angles in ``u``."""
+    row: dict[str, Any] = {"solution": i, "mechanism": getattr(s, "kind", "crank-rocker"),
+                           "lengths": {k: u.convert(v, "m") for k, v in s.lengths.items()},
+                           "time_ratio": s.time_ratio,
+                           "dead_centres": u.convert(np.asarray(s.dead_centres), "rad").tolist()}
+    for key in ("swing", "transmission_min", "pivot_angle"):
+        v = getattr(s, key, None)
+        if v is not None and not math.isnan(v):
+            row[key] = u.convert(v, "rad")
+    if getattr(s, "stroke", None) is not None:
+        row["stroke"] = u.convert(s.stroke, "m")
+    if hasattr(s, "grashof"):
+        row["grashof"] = s.grashof.kind
+    return row
+
+
 def _summary(sols: list, u: Units) -> list[dict[str, Any]]:
     """Each solution as plain data, lengths and angles in ``u``."""
     rows = []
     for i, s in enumerate(sols, 1):
+        if isinstance(s, (synthesis.CrankRocker, synthesis.QuickReturn)):
+            rows.append(_design_row(i, s, u))
+            continue
         row: dict[str, Any] = {"solution": i, "valid": s.valid, "defects": list(s.defects),
                                "grashof": s.grashof.kind,
                                "lengths": {k: u.convert(v, "m") for k, v in s.lengths.items()}}
@@ -304,6 +424,12 @@ def _summary(sols: list, u: Units) -> list[dict[str, Any]]:
             row["rms_error"] = u.convert(s.rms_error, "m")
         if hasattr(s, "max_structural_error"):
             row["max_structural_error"] = s.max_structural_error
+            row["precision_errors"] = s.precision_errors.tolist()
+        if hasattr(s, "dyad_residuals") and s.points.shape[0] > 5:
+            # least squares: what each position misses by
+            row["dyad_residuals"] = u.convert(s.dyad_residuals, "m").tolist()
+            row["position_errors"] = u.convert(s.position_errors, "m").tolist()
+            row["angle_errors"] = u.convert(s.angle_errors, "rad").tolist()
         rows.append(row)
     return rows
 
@@ -321,8 +447,14 @@ def _figures(task: Task, sols: list, extra: dict, u: Units) -> dict[str, bytes]:
         plt.close(ax.figure)
         out[name] = buf.getvalue()
 
+    if task.kind in ("crank-rocker", "quick-return"):
+        for i, s in enumerate(sols, 1):
+            grab(f"solution_{i}.png", plot.limit_positions(s, units=u))
+        return out
     if task.positions is not None:
         grab("positions.png", plot.prescribed_positions(task.positions, units=u))
+    if extra.get("five"):
+        grab("curves.png", plot.five_positions(task.positions, sols, units=u))
     if "curves" in extra:
         grab("curves.png", plot.burmester_curves(extra["curves"], positions=task.positions,
                                                  solutions=sols, units=u))
@@ -352,7 +484,9 @@ def _fmt_xy(v, u: Units):
 @DEGREES
 def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si: bool,
           degrees: bool) -> None:
-    """Dimensional synthesis of a four-bar from the TOML task file TASK.
+    """Dimensional synthesis from the TOML task file TASK: a four-bar through positions,
+    a function or path generator, a crank-rocker for a swing and a time ratio, a quick
+    return.
 
     Writes each linkage found as a model file solution_<i>.toml and, unless --no-figures,
     a figure solution_<i>.png, with summary.json: all in the task's units (--si for m and
@@ -381,10 +515,14 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si:
     if as_json:
         click.echo(json.dumps(summary, indent=2))
         return
-    click.echo(f"{task.name}: {task.kind} generation, {len(sols)} linkage(s)"
+    what = task.kind if task.kind in ("crank-rocker", "quick-return") else f"{task.kind} generation"
+    click.echo(f"{task.name}: {what}, {len(sols)} linkage(s)"
                + (f" ({summary['reason']})" if summary["reason"] else ""))
     for s, row in zip(sols, rows):
         head = f"  {row['solution']}: "
+        if "mechanism" in row:
+            click.echo(head + _design_line(row, u))
+            continue
         if hasattr(s, "A0"):
             head += (f"A0 {_fmt_xy(s.A0, u)} B0 {_fmt_xy(s.B0, u)} A1 {_fmt_xy(s.A1, u)} "
                      f"B1 {_fmt_xy(s.B1, u)} {u.length}, ")
@@ -400,3 +538,19 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si:
         head += f"{s.grashof.kind}, {s.state}"
         click.echo(head)
     click.echo(f"wrote {len(files)} file(s) to {out}")
+
+
+def _design_line(row: dict[str, Any], u: Units) -> str:
+    """One printed line of a crank-rocker or quick return, in ``u``."""
+    parts = [row["mechanism"], ", ".join(f"{k} {v:.4f}" for k, v in row["lengths"].items())
+             + f" {u.length}"]
+    if "swing" in row:
+        parts.append(f"swing {row['swing']:.6g} {u.angle}")
+    if "stroke" in row:
+        parts.append(f"stroke {row['stroke']:.6g} {u.length}")
+    parts.append(f"time ratio {row['time_ratio']:.6g}")
+    if "transmission_min" in row:
+        parts.append(f"min transmission {row['transmission_min']:.3g} {u.angle}")
+    if "pivot_angle" in row:
+        parts.append(f"pivot angle {row['pivot_angle']:.4g} {u.angle}")
+    return ", ".join(parts)

@@ -1,4 +1,5 @@
-"""Equations of motion in symbols (sympy), for small open-chain models."""
+"""Equations of motion in symbols (sympy), for small open-chain models (closed chains:
+:func:`kinelab.derive.derive`, which writes the notes' C, D and f)."""
 from __future__ import annotations
 
 import math
@@ -105,6 +106,14 @@ def _exact(x: float):
     return v if abs(float(v) - x) <= 1e-12 * max(1.0, abs(x)) else sp.Float(x)
 
 
+def spring_tension(item, length, rate):
+    """The tension of a spring, ``k (l - l0)``, or of a damper, ``c dl/dt``, in symbols
+    (``length`` and ``rate`` are sympy expressions)."""
+    if hasattr(item, "stiffness"):
+        return _exact(item.stiffness) * (length - _exact(item.free_length))
+    return _exact(item.damping) * rate
+
+
 def equations_of_motion(model: Mechanism, *, loads: Loads | None = None,
                         masses: MassProperties | None = None,
                         lengths: Literal["numeric", "symbols"] = "numeric") -> EquationsOfMotion:
@@ -137,7 +146,8 @@ def equations_of_motion(model: Mechanism, *, loads: Loads | None = None,
     ------
     ModelError
         A closed chain, or a joint that is not an input (the explicit positions of an open
-        chain are what make the symbols small).
+        chain are what make the symbols small); :func:`kinelab.derive.derive` writes the
+        equations of a closed chain, through its loop equations.
 
     Examples
     --------
@@ -215,8 +225,7 @@ def equations_of_motion(model: Mechanism, *, loads: Loads | None = None,
         d = pos[s.points[1]] - pos[s.points[0]]
         length = sp.sqrt(sp.trigsimp(sp.expand(d.dot(d))))
         dl = jac([length])
-        tension = (_exact(s.stiffness) * (length - _exact(s.free_length)) if hasattr(s, "stiffness")
-                   else _exact(s.damping) * (dl * uv)[0])
+        tension = spring_tension(s, length, (dl * uv)[0])
         applied -= dl.T * tension
     Mm, h, Q = (mat.applyfunc(lambda e: sp.trigsimp(sp.expand(e))) for mat in (Mm, h, Q))
     Q = Q + applied
@@ -244,8 +253,8 @@ def _place(model: Mechanism, q, lengths: str, param):
     if passive:
         raise ModelError(f"equations_of_motion: joint(s) {', '.join(map(repr, passive))} are not "
                          "inputs; symbolic equations are derived for open chains whose every joint "
-                         "is driven (pendulums, serial robots); use inverse() and simulate() for "
-                         "closed chains")
+                         "is driven (pendulums, serial robots); for closed chains use "
+                         "kinelab.derive.derive (C^T D f = 0 in symbols), inverse() and simulate()")
     ground = model.ground.name
     sk = {n: (0.0 if n == ground else float(p.sketch_angles[p.link_item[n]])) for n in model.link_names}
     xy = {pt.name: np.array(pt.xy) for pt in model.points}
@@ -272,8 +281,9 @@ def _place(model: Mechanism, q, lengths: str, param):
             if (a in frame) == (b in frame):
                 if a in frame:
                     raise ModelError(f"equations_of_motion: joint '{j.name}' closes a loop; symbolic "
-                                     "equations are derived for open chains; use inverse() and "
-                                     "simulate() for closed chains")
+                                     "equations are derived for open chains; for closed chains use "
+                                     "kinelab.derive.derive (C^T D f = 0 in symbols), inverse() "
+                                     "and simulate()")
                 continue
             known, new = (a, b) if a in frame else (b, a)
             qk = q[inputs[j.name]]

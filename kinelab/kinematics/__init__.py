@@ -14,9 +14,11 @@ from kinelab.kinematics._instant_centers import (InstantCenter, InstantCenters, 
 from kinelab.kinematics._measures import TimeRatio, time_ratio, transmission_angle
 from kinelab.kinematics._plan import Plan, Step
 from kinelab.kinematics._solution import AccelerationComponents, GuidePoint, KinematicSolution
+from kinelab.kinematics._tracker import Tracker
 
 __all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "KinematicSolution", "AccelerationComponents",
            "GuidePoint",
            "Plan", "Step", "SINGULAR_TOL", "transmission_angle", "time_ratio", "TimeRatio",
            "instant_center", "instant_centers", "InstantCenter", "InstantCenters", "change_points",
-           "ChangePoint", "assemble", "Assembly", "pose", "assembly_status", "AssemblyStatus"]
+           "ChangePoint", "assemble", "Assembly", "pose", "assembly_status", "AssemblyStatus",
+           "Tracker"]

@@ -51,28 +51,38 @@ def plan(mechanism: Mechanism, *, method: Literal["auto", "newton"] = "auto") ->
     return cache[method]
 
 
-def _as_inputs(name: str, value: ArrayLike, M: int, shape: tuple[int, ...] | None):
-    a = real_array(value)
+def _finite(name: str, value: ArrayLike) -> np.ndarray:
+    """``value`` as a new C-ordered float array of finite numbers (the solution keeps it, so
+    a caller who changes their own array afterwards must not change it)."""
+    if type(value) is float and math.isfinite(value):       # one number: the common case
+        return np.array(value)
+    a = real_array(value)                                     # a copy
     if a is None:
         raise ModelError(f"{name}: expected numbers, got {describe(value)}")
-    if not np.all(np.isfinite(a)):
+    if not np.isfinite(a).all():
         bad = np.argwhere(~np.isfinite(a))[0].tolist()
         raise ModelError(f"{name}: expected finite numbers, got {a[tuple(bad)]}"
                          + (f" at index {bad}" if bad else ""))
-    if shape is not None:
-        if M == 1:
-            target = shape[:1] if len(shape) else ()
-        else:
-            target = shape
-        try:
-            a = np.broadcast_to(a, target if M == 1 else shape)
-        except ValueError:
-            raise ModelError(f"{name}: shape {a.shape} does not match q's shape {shape}") from None
-    return a
+    return a if a.flags.c_contiguous else a.copy(order="C")
+
+
+def _rates(name: str, value: ArrayLike, M: int, shape: tuple[int, ...]) -> np.ndarray:
+    """Rates of the inputs as rows (N, M) like q, or (1, M) when one row holds for all."""
+    a = _finite(name, value)
+    if a.ndim == 0:
+        return np.full((1, M), float(a))
+    if a.shape == shape:
+        return a.reshape(-1, M)
+    try:
+        b = np.broadcast_to(a, shape).reshape(-1, M)
+    except ValueError:
+        raise ModelError(f"{name}: shape {a.shape} does not match q's shape {shape}") from None
+    return np.array(b[:1] if b.strides[0] == 0 else b, dtype=float, order="C")
 
 
 def _normalise_q(q, qd, qdd, M):
-    qa = _as_inputs("q", q, M, None)
+    """q (N, M), qd and qdd (N, M) or (1, M), all new arrays, and whether q was one sample."""
+    qa = _finite("q", q)
     if M == 1:
         if qa.ndim > 1:
             raise ModelError(f"q: expected shape () or (N,) for a mechanism with one input, got {qa.shape}")
@@ -82,17 +92,8 @@ def _normalise_q(q, qd, qdd, M):
             raise ModelError(f"q: expected shape ({M},) or (N, {M}) for a mechanism with {M} "
                              f"inputs, got {qa.shape}")
         single = qa.ndim == 1
-    shape = qa.shape
-    qd_a = _as_inputs("qd", qd, M, shape)
-    qdd_a = _as_inputs("qdd", qdd, M, shape)
-
-    def rows(a):
-        """(N, M); for rates broadcast from one value per input, the single row (1, M).
-        Always a copy: the solution reads q and the rates back, so a caller who changes
-        their own array afterwards must not change it."""
-        a = np.reshape(a, (-1, M))
-        return np.array(a[:1] if a.strides[0] == 0 else a, dtype=float, order="C")
-    return np.array(np.reshape(qa, (-1, M)), dtype=float, order="C"), rows(qd_a), rows(qdd_a), single
+    return (qa.reshape(-1, M), _rates("qd", qd, M, qa.shape), _rates("qdd", qdd, M, qa.shape),
+            single)
 
 
 def _per_sample(rates: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
@@ -172,10 +173,13 @@ def _require_results(p: Plan, shape: tuple[int, ...], M: int) -> None:
 
 def _branch_map(p: Plan, M: int, followed: str) -> BranchMap | None:
     """The change points to follow, for a one-input plan in closed form that has any."""
-    if M != 1 or p.groups is not None or not branched_ops(p):
-        return None
-    bmap = branch_map(p, followed)
-    return None if bmap.trivial else bmap
+    key = ("branch map", followed)
+    if key not in p.memo:
+        bmap = None
+        if M == 1 and p.groups is None and branched_ops(p):
+            bmap = branch_map(p, followed)
+        p.memo[key] = None if bmap is None or bmap.trivial else bmap
+    return p.memo[key]
 
 
 def _solve(p: Plan, bmap: BranchMap | None, q, qd, qdd, resume=None, stored=None):

@@ -64,7 +64,7 @@ def run(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None):
         else:
             def piece(lo, hi):
                 k.run_closed_form(q, qd, qdd, lo, hi, *plan_args, M)
-        workers = min(_threads(), N // _PARALLEL_FROM)
+        workers = min(_threads(), N // _PARALLEL_FROM) if N >= 2 * _PARALLEL_FROM else 1
         if workers <= 1:
             piece(0, N)
         else:   # the kernel releases the GIL: threads take pieces of the sweep in turn

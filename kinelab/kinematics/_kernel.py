@@ -1089,6 +1089,73 @@ def run_closed_form_one_input(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, con
                  n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail, 1)
 
 
+# One sample at a time (an input dragged in an interactive view): the plan and the outputs
+# packed in a few arrays, since each array argument costs about 0.1 us at the call.
+_HEADER = 7     # plan_i starts with n_items, n_angles, ops, ops_i columns, ops_f columns,
+                # const items, stored items
+
+
+def pack_plan(ops_i, ops_f, const_items, const_values, n_items, n_angles, stored):
+    """The arguments of :func:`run_one_sample` that describe a plan: (plan_i, plan_f)."""
+    head = [n_items, n_angles, ops_i.shape[0], ops_i.shape[1], ops_f.shape[1],
+            len(const_items), len(stored)]
+    plan_i = np.concatenate([head, ops_i.ravel(), const_items, stored]).astype(np.int64)
+    plan_f = np.concatenate([ops_f.ravel(), const_values]).astype(np.float64)
+    return plan_i, plan_f
+
+
+def one_sample_layout(n_stored, M):
+    """Where :func:`run_one_sample` writes in ``out``: the slices of the jets (n_stored,
+    1 + M + M*M), the rates (n_stored, 2), det J and the singularity measure, the gap and the
+    failed operation, and the status; and the length of ``out``."""
+    w = n_stored * (1 + M + M * M)
+    r = w + 2 * n_stored
+    return slice(0, w), slice(w, r), slice(r, r + 2), slice(r + 2, r + 4), r + 4, r + 5
+
+
+@_jit(nogil=True)
+def run_one_sample(x, plan_i, plan_f, out):
+    """Evaluate one sample of a plan without Newton groups: x (3, M) holds q, q' and q''.
+
+    plan_i and plan_f come from :func:`pack_plan`; ``out`` is laid out as
+    :func:`one_sample_layout` says.  Returns the status.
+    """
+    M = x.shape[1]
+    n_items, n_angles, n_ops, wi, wf, nc, ns = plan_i[0], plan_i[1], plan_i[2], plan_i[3], \
+        plan_i[4], plan_i[5], plan_i[6]
+    a = _HEADER + n_ops * wi
+    ops_i = plan_i[_HEADER:a].reshape((n_ops, wi))
+    const_items = plan_i[a:a + nc]
+    stored = plan_i[a + nc:a + nc + ns]
+    ops_f = plan_f[:n_ops * wf].reshape((n_ops, wf))
+    const_values = plan_f[n_ops * wf:n_ops * wf + nc]
+    w = 1 + M + M * M
+    r = ns * w
+    o_jet = out[:r].reshape((1, ns, w))
+    o_rate = out[r:r + 2 * ns].reshape((1, ns, 2))
+    o_diag = out[r + 2 * ns:r + 2 * ns + 2].reshape((1, 2))
+    o_fail = out[r + 2 * ns + 2:r + 2 * ns + 4].reshape((1, 2))
+    o_status = np.zeros(1, np.int8)
+    jet = _new_jet(1, n_items, M, const_items, const_values)
+    Kt = np.zeros(M)
+    Kt2 = np.zeros(M)
+    Lt = np.zeros((M, M))
+    res = np.zeros(4)
+    lane_f = np.zeros((3, 1))
+    lane_i = np.zeros((2, 1), np.int64)
+    gi = np.zeros((1, 8), np.int64)      # no Newton group: empty stand-ins
+    gf = np.zeros((1, 8))
+    g1 = np.zeros(1)
+    g2 = np.zeros((1, M))
+    g3 = np.zeros((1, M, M))
+    piv = np.zeros(1, np.int64)
+    st = _evaluate(x[0:1], x[1:2], x[2:3], 0, 1, True, ops_i, ops_f, jet, M, Kt, Kt2, Lt, gi,
+                   gi, gf, 1.0, g1, g2, g3, g2, g1, g1, piv, res, lane_f, lane_i, n_angles,
+                   stored, o_jet, o_rate, o_diag, o_status, o_fail)
+    out[r + 2 * ns + 4] = st
+    return st
+
+
 @_jit()
 def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
                   n_items, n_angles, stored, groups_i, con_i, con_f, grp_x0, scale,

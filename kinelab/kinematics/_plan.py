@@ -83,6 +83,8 @@ class Plan:
     scale: float
     input_kinds: tuple[str, ...] = field(default=())   # "angle" or "slide" per input
     _columns: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    memo: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    """What analyses derive from the plan once (its change points, its packed form)."""
 
     @property
     def n_angles(self) -> int:

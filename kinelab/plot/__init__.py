@@ -8,17 +8,21 @@ Dynamics: :func:`effort_curves`, :func:`reaction_curves`, :func:`shaking_curves`
 :func:`energy_curves`.
 
 Synthesis: :func:`prescribed_positions` (and their poles), :func:`motion_solution` (the
-linkage in each position), :func:`burmester_curves`, :func:`structural_error`,
-:func:`path_solution`.
+linkage in each position), :func:`burmester_curves`, :func:`five_positions` (the two
+centre-point curves and Burmester's points), :func:`structural_error`,
+:func:`path_solution`, :func:`limit_positions` (a crank-rocker or quick return at its dead
+centres).
 """
 from kinelab.plot._animate import animate, can_write_mp4
 from kinelab.plot._dynamics import effort_curves, energy_curves, reaction_curves, shaking_curves
 from kinelab.plot._figures import (coefficients, coupler_curve, curves, input_axis, mechanism, save,
                                    transmission)
-from kinelab.plot._synthesis import (burmester_curves, motion_solution, path_solution,
-                                     prescribed_positions, structural_error)
+from kinelab.plot._synthesis import (burmester_curves, five_positions, limit_positions,
+                                     motion_solution, path_solution, prescribed_positions,
+                                     structural_error)
 
 __all__ = ["curves", "coefficients", "coupler_curve", "transmission", "mechanism", "animate",
            "save", "can_write_mp4", "input_axis", "prescribed_positions", "motion_solution",
-           "burmester_curves", "structural_error", "path_solution", "effort_curves",
+           "burmester_curves", "structural_error", "path_solution", "limit_positions",
+           "five_positions", "effort_curves",
            "reaction_curves", "shaking_curves", "energy_curves"]

@@ -1,6 +1,7 @@
 """Figures of dimensional synthesis: prescribed positions and their poles, the linkage in
-each position, Burmester's centre- and circle-point curves, the structural error of a
-function generator, the coupler curve of a path generator.
+each position, Burmester's centre- and circle-point curves (of four positions, and the two
+whose crossings are the Burmester points of five), the structural error of a function
+generator, the coupler curve of a path generator, a quick return at its limit positions.
 
 matplotlib is imported inside each function (``import kinelab`` must not need it).  Each
 function draws on ``ax`` (a new figure's axes when omitted) and returns the axes; lengths
@@ -14,11 +15,12 @@ import numpy as np
 
 from kinelab.kinematics import analyze
 from kinelab.model import Units
-from kinelab.synthesis import (BurmesterCurves, FunctionSolution, MotionSolution, PathSolution,
-                               Positions, poles)
+from kinelab.synthesis import (BurmesterCurves, CrankRocker, FunctionSolution, MotionSolution,
+                               PathSolution, Positions, QuickReturn, poles)
+from kinelab.synthesis import burmester_curves as synthesis_curves
 
 __all__ = ["prescribed_positions", "motion_solution", "burmester_curves", "structural_error",
-           "path_solution"]
+           "path_solution", "limit_positions", "five_positions"]
 
 _POSITION_COLOURS = "tab:blue tab:orange tab:green tab:red tab:purple tab:brown tab:pink " \
                     "tab:olive tab:cyan tab:gray".split()
@@ -243,3 +245,111 @@ def path_solution(sol: PathSolution, *, ax=None, units: Units | Mapping[str, str
     ax.legend(loc="best", fontsize=8)
     return _finish(ax, f"path generator through {n} points (rms error "
                        f"{u.convert(sol.rms_error, 'm'):.3g} {u.length})", u)
+
+
+def limit_positions(design: CrankRocker | QuickReturn, *, ax=None,
+                    units: Units | Mapping[str, str] | None = None):
+    """A crank-rocker or quick return drawn by the engine at its two limit positions (dead
+    centres), with the crank circle and the output's travel over a turn, lengths in
+    ``units`` (default SI).
+
+    Parameters
+    ----------
+    design : CrankRocker or QuickReturn
+        From :func:`kinelab.synthesis.crank_rocker`, :func:`~kinelab.synthesis.offset_slider_crank`,
+        :func:`~kinelab.synthesis.slotted_lever` or :func:`~kinelab.synthesis.whitworth`.
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    u = Units.resolve(units)
+    ax = _axes(ax)
+    m = design.model
+    dc = np.radians(design.dead_centres) if design.degrees else np.asarray(design.dead_centres)
+    s = analyze(m, q=dc)
+    turn = analyze(m, q=np.linspace(0.0, 2 * np.pi, 721), unreachable="mask", at_singular="flag")
+    xy = {p: u.convert(s.position(p), "m") for p in s.point_names}
+    labels = ("limit position 1", "limit position 2")
+    for k, colour in enumerate(("tab:blue", "tab:orange")):
+        for link in m.links:
+            if link.ground or len(link.points) < 2:
+                continue
+            pts = np.array([xy[p][k] for p in link.points])
+            ax.plot(*pts.T, "-o", color=colour, lw=2.2, ms=4,
+                    label=labels[k] if link.name == "crank" else None)
+    for p in m.link("ground").points:
+        X = u.convert(np.array(m.point(p).xy), "m")
+        ax.plot(*X, "k^", ms=9)
+        ax.annotate(p, X, textcoords="offset points", xytext=(5, -12))
+    # the crank pin's circle and the path of the output's pin over a whole turn
+    for p, style, label in (("A", ":", "crank circle"), (_output_pin(m), "--", "output travel")):
+        path = np.where(turn.assembled[:, None], turn.position(p), np.nan)
+        ax.plot(*u.convert(path, "m").T, style, color="0.4", lw=1.0, label=label)
+    unit = "deg" if design.degrees else "rad"
+    if isinstance(design, CrankRocker):
+        what = (f"crank-rocker: swing {design.swing:.4g} {unit}, time ratio "
+                f"{design.time_ratio:.4g}, min transmission {design.transmission_min:.3g} {unit}")
+    else:
+        travel = (f"stroke {u.convert(design.stroke, 'm'):.4g} {u.length}" if design.stroke is not None
+                  else f"swing {design.swing:.4g} {unit}")
+        what = f"{design.kind}: {travel}, time ratio {design.time_ratio:.4g}"
+    ax.legend(loc="best", fontsize=8)
+    return _finish(ax, what, u)
+
+
+def _output_pin(model) -> str:
+    """The point whose path shows the output's travel: the rocker pin, the slider's pin,
+    the lever's end or the ram."""
+    for name in ("D", "B", "C"):
+        if name in {p.name for p in model.points}:
+            return name
+    return "A"
+
+
+def five_positions(positions: Positions, solutions=(), *, ax=None, samples: int = 1441,
+                   units: Units | Mapping[str, str] | None = None):
+    """Five positions with their centre-point curves (of positions 1-4 and 1, 2, 3, 5),
+    which meet in Burmester's points (the fixed pivots of the dyads through all five),
+    and the pivots of the given linkages.
+
+    Parameters
+    ----------
+    positions : Positions
+        The five positions.
+    solutions : sequence of MotionSolution
+        Linkages from :func:`kinelab.synthesis.five_positions`, whose pivots are marked.
+    samples : int
+        Crank rotations sampled along each curve.
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    u = Units.resolve(units)
+    ax = _axes(ax)
+    prescribed_positions(positions, ax=ax, show_poles=False, units=u)
+    sets = {"1-4": [0, 1, 2, 3], "1, 2, 3, 5": [0, 1, 2, 4]}
+    for (name, idx), colour in zip(sets.items(), ("tab:blue", "tab:green")):
+        sub = Positions(positions.points[idx], positions.alpha[idx])
+        cur = synthesis_curves(sub, samples=samples)
+        for k in range(2):
+            c = u.convert(np.where(cur.valid[k][:, None], cur.center[k], np.nan), "m")
+            ax.plot(*c.T, "-", color=colour, lw=1.0,
+                    label=f"centre points of positions {name}" if k == 0 else None)
+    keep = [u.convert(positions.points, "m")]
+    for s in solutions:
+        piv = u.convert(np.array([s.A0, s.B0]), "m")
+        ax.plot(*piv.T, "^", color="tab:red", ms=9)
+        ax.plot(*u.convert(np.array([s.A1, s.B1]), "m").T, "o", color="tab:red", ms=5)
+        keep.append(piv)
+    pts = np.vstack(keep)
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    pad = 0.3 * max((hi - lo).max(), 1e-300)
+    ax.legend(loc="best", fontsize=8)
+    _finish(ax, "five positions, centre-point curves and Burmester points", u)
+    # the curves run off to infinity: frame the positions and the pivots, at equal scales
+    ax.set_aspect("equal", adjustable="box")
+    ax.set_xlim(lo[0] - pad, hi[0] + pad)
+    ax.set_ylim(lo[1] - pad, hi[1] + pad)
+    return ax

@@ -1,8 +1,10 @@
 """Dimensional synthesis of four-bars (*Mecanismos*, §3.2 and §6).
 
-Motion generation (the coupler passes through prescribed positions), function generation
-(the rocker angle is a prescribed function of the crank angle) and path generation (a
-coupler point passes through prescribed points).  Every synthesized linkage comes back as
+Motion generation (the coupler passes through prescribed positions: two to five exactly,
+more by least squares), function generation (the rocker angle is a prescribed function of
+the crank angle), path generation (a coupler point passes through prescribed points), and
+the designer's questions about limit positions: a crank-rocker for a rocker swing and a
+time ratio (with the best transmission angle), quick returns for a time ratio.  Every synthesized linkage comes back as
 a kinelab model, sketched in its first position, with the checks made by moving it with
 the planar kinematics engine:
 
@@ -11,14 +13,18 @@ the planar kinematics engine:
   without passing a limit (toggle) or dead-centre configuration;
 - **order defect**: turning the crank one way does not pass the positions in the order
   1, 2, ..., n;
+- **circuit defect**: some position lies on the other circuit of a Grashof linkage, which
+  no motion reaches without taking the linkage apart;
 - the Grashof class and the smallest transmission angle on the way.
 
 All lengths in metres and angles in radians (``degrees=True`` where people type angles).
 The notes' examples in centimetres are reproduced in metres: the synthesis is
 scale-free, so every length simply scales by 0.01.
 """
+from kinelab.synthesis._approximate import approximate_positions, fit_dyads
 from kinelab.synthesis._burmester import (BurmesterCurves, burmester_curves, center_point_cubic,
                                           center_points, four_positions)
+from kinelab.synthesis._five_positions import burmester_points, five_positions
 from kinelab.synthesis._function import (FunctionSolution, chebyshev_points, freudenstein,
                                          function_generation)
 from kinelab.synthesis._linkage import fourbar_model
@@ -27,6 +33,9 @@ from kinelab.synthesis._motion import (MotionSolution, TwoPositions, three_posit
 from kinelab.synthesis._path import PathSolution, coupler_curves, path_generation
 from kinelab.synthesis._pivots import fixed_pivot, moving_pivot
 from kinelab.synthesis._positions import Poles, Positions, pole, poles
+from kinelab.synthesis._quick_return import (CrankRocker, QuickReturn, crank_rocker, crank_rockers,
+                                             imbalance_angle, max_time_ratio, offset_slider_crank,
+                                             slotted_lever, whitworth)
 from kinelab.synthesis._results import SolutionList
 
 __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
@@ -34,4 +43,7 @@ __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "four_positions", "center_points", "center_point_cubic", "burmester_curves",
            "BurmesterCurves", "SolutionList", "function_generation", "FunctionSolution",
            "chebyshev_points", "freudenstein", "path_generation", "PathSolution",
-           "coupler_curves", "fourbar_model"]
+           "coupler_curves", "fourbar_model", "five_positions", "burmester_points",
+           "approximate_positions", "fit_dyads", "crank_rocker", "crank_rockers", "CrankRocker",
+           "offset_slider_crank", "slotted_lever", "whitworth", "QuickReturn",
+           "imbalance_angle", "max_time_ratio"]

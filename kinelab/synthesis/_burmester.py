@@ -85,10 +85,12 @@ def center_point_cubic(points, angles=None, a0x: ArrayLike = 0.0, *,
     return _cubic(pos, x.reshape(-1)).reshape(x.shape + (4,))
 
 
-def _cubic(pos: Positions, x: np.ndarray) -> np.ndarray:
-    """(m, 4) coefficients in y of det(rows(x, y)), highest power first (exact expansion)."""
-    u = suh_radcliffe_rows(pos, np.stack([x, np.zeros_like(x)], -1))        # (m, 3, 3)
-    v = suh_radcliffe_rows(pos, np.stack([x, np.ones_like(x)], -1)) - u     # rows' slope in y
+def _cubic(pos: Positions, x: np.ndarray, rows: tuple[int, int, int] = (0, 1, 2)) -> np.ndarray:
+    """(m, 4) coefficients in y of det(rows(x, y)), highest power first (exact expansion);
+    ``rows`` picks three of the equations j = 2..n (0-based), for n > 4 positions."""
+    sel = list(rows)
+    u = suh_radcliffe_rows(pos, np.stack([x, np.zeros_like(x)], -1))[..., sel, :]   # (m, 3, 3)
+    v = suh_radcliffe_rows(pos, np.stack([x, np.ones_like(x)], -1))[..., sel, :] - u  # slope in y
     c = np.zeros(x.shape + (4,))
     for mask in itertools.product((0, 1), repeat=3):
         M = np.where(np.array(mask, bool)[:, None], v, u)

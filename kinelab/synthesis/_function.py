@@ -14,6 +14,8 @@ smallest for a given number of points when they are spaced as Chebyshev's nodes.
 """
 from __future__ import annotations
 
+import math
+
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -114,6 +116,9 @@ class FunctionSolution(CheckedLinkage):
     structural_error : ndarray, shape (m,)
         The generated output minus f(x), in the units of y (from the engine's rocker
         angle; +inf where the linkage cannot close there).
+    precision_errors : ndarray, shape (n,)
+        The same at the precision points: zero (to rounding) with three of them; with more,
+        the residual of the least-squares fit at each one.
     grashof : Grashof
     min_transmission_angle : float
         Over the whole input range, rad.
@@ -132,6 +137,7 @@ class FunctionSolution(CheckedLinkage):
     output_range: tuple[float, float]
     x_samples: np.ndarray
     structural_error: np.ndarray
+    precision_errors: np.ndarray
     grashof: Grashof
     min_transmission_angle: float
     branch_defect: bool
@@ -178,7 +184,9 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
         Rocker angle at f(x0) and at f(xf), same units.
     points : int or array_like
         The number of precision points, spaced as Chebyshev's nodes (3 = exact), or the
-        precision points themselves (x values; more than 3 = least squares).
+        precision points themselves (x values).  With more than three (more than the three
+        unknowns K1, K2, K3) Freudenstein's equation is solved in the least-squares sense,
+        and ``precision_errors`` holds the residual at each point.
     ground : float
         O2O4, m (the linkage is scale-free; this sets its size).
     samples : int
@@ -229,8 +237,9 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
         x = chebyshev_points((x0, xf), int(points))
     else:
         x = np.sort(np.asarray(points, float))
-        if x.ndim != 1 or np.any((x < min(x0, xf)) | (x > max(x0, xf))):
-            raise ModelError("points: expected precision points (x values) inside x_range")
+        if x.ndim != 1 or not np.all((x >= min(x0, xf)) & (x <= max(x0, xf))):
+            raise ModelError(f"points: expected precision points (x values) from {min(x0, xf):g} "
+                             f"to {max(x0, xf):g} (x_range), got {describe(points)}")
     if x.size < 3:
         raise ModelError(f"points: expected at least 3 precision points, got {x.size}")
 
@@ -253,6 +262,10 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
                          "the number of points")
     A = a * np.array([np.cos(theta2(x[0])), np.sin(theta2(x[0]))])
     B = np.array([d, 0.0]) + c * np.array([np.cos(theta4(x[0])), np.sin(theta4(x[0]))])
+    if x.size > 3:
+        # least squares: the linkage of Freudenstein's lengths (coupler sqrt(b2)), assembled
+        # at the first point's crank angle where its rocker pin is nearest the prescribed one
+        B = _assembled(A, np.array([d, 0.0]), math.sqrt(b2), abs(c), B)
     model = fourbar_model((0.0, 0.0), (d, 0.0), A, B, name="function generator")
     q_off = np.pi if a < 0 else 0.0
     out_off = np.pi if c < 0 else 0.0
@@ -282,10 +295,27 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
     for arr in (K, x, q, xs):
         arr.setflags(write=False)
     err = error[:samples]
-    err.setflags(write=False)
+    at_points = error[samples:samples + x.size]
+    for arr in (err, at_points):
+        arr.setflags(write=False)
     return FunctionSolution(
         model=model, K=K, x=x, q=q, input_range=(t2s + q_off, t2e + q_off),
         output_range=(t4s + out_off, t4e + out_off), x_samples=xs, structural_error=err,
+        precision_errors=at_points,
         grashof=model_grashof(model),
         min_transmission_angle=float(mu.min()) if mu.size else float("nan"),
         branch_defect=bool(defects), defects=tuple(defects))
+
+
+def _assembled(A: np.ndarray, O4: np.ndarray, coupler: float, rocker: float,
+               near: np.ndarray) -> np.ndarray:
+    """The rocker pin B at |B - A| = coupler, |B - O4| = rocker nearest ``near``."""
+    D = O4 - A
+    L = float(np.hypot(*D))
+    if not abs(coupler - rocker) < L < coupler + rocker:
+        raise ModelError("points: the least-squares linkage cannot be assembled at the first "
+                         "precision point; change the angle ranges or the points")
+    along = (L * L + coupler * coupler - rocker * rocker) / (2 * L)
+    h = math.sqrt(max(coupler * coupler - along * along, 0.0))
+    mid, n = A + along * D / L, np.array([-D[1], D[0]]) / L
+    return min((mid + h * n, mid - h * n), key=lambda B: float(np.hypot(*(B - near))))

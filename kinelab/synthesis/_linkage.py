@@ -28,7 +28,7 @@ from kinelab.mechanisms import Grashof, grashof
 from kinelab.model import Input, Joint, Link, Mechanism, Point
 from kinelab.synthesis._positions import as_xy, cross, fmt
 
-__all__ = ["fourbar_model", "CheckedLinkage", "Travel", "travel"]
+__all__ = ["fourbar_model", "CheckedLinkage", "Travel", "travel", "circuits", "nearer_branch"]
 
 _SWEEP_STEP = math.radians(0.5)   # crank step of the sweeps that look for limit positions
 _DEGENERATE = 1e-12               # relative length below which a link has no length
@@ -216,6 +216,39 @@ def travel(model: Mechanism, q: np.ndarray,
         direction = min(works, key=lambda d: deltas[d][reachable].max())
         mu = mu_min[direction]
     return Travel(direction, branch_defect, order_defect, mu, tuple(defects))
+
+
+# The joint whose angle tells a Grashof four-bar's two circuits apart: one of the joints of
+# the link opposite the shortest.  Its two links can never come into line (that would need
+# s + l > p + q), so the sign of its angle is fixed on each circuit (Chase and Mirth,
+# "Circuits and branches of single-degree-of-freedom planar linkages", 1993).
+_CIRCUIT_JOINT = {"crank-rocker": "B", "rocker-crank": "A", "double-crank": "A",
+                  "double-rocker": "O2"}
+
+
+def circuits(A0: np.ndarray, B0: np.ndarray, A: np.ndarray, B: np.ndarray,
+             kind: Grashof) -> np.ndarray | None:
+    """The circuit (+1 or -1) of each configuration of a Grashof four-bar, shape (n,), from
+    its pivots A0, B0 and its moving pivots A, B (n, 2); None when the linkage has one
+    circuit (non-Grashof or change-point)."""
+    joint = _CIRCUIT_JOINT.get(kind.kind) if kind.margin > 0 else None
+    if joint is None:
+        return None
+    u, v = {"B": (B - A, B - B0), "A": (A - A0, B - A), "O2": (B0 - A0, A - A0)}[joint]
+    return np.sign(cross(u, v))
+
+
+def nearer_branch(sol: KinematicSolution, idx: np.ndarray, B: np.ndarray,
+                  B0: np.ndarray) -> np.ndarray:
+    """(n,) bool: the engine's rocker pin at samples ``idx`` is nearer the prescribed pins
+    ``B`` (n, 2) than its mirror image across the line from the crank pin to ``B0`` (where
+    the other assembly branch puts it) is."""
+    Ae, Be = sol.position("A")[idx], sol.position("B")[idx]
+    d = B0 - Ae
+    n = np.stack([-d[:, 1], d[:, 0]], -1) / np.linalg.norm(d, axis=1)[:, None]
+    Bm = Be - 2.0 * np.sum((Be - Ae) * n, axis=1)[:, None] * n
+    near = np.linalg.norm(Be - B, axis=1) <= np.linalg.norm(Bm - B, axis=1)
+    return near & np.all(np.isfinite(Be), axis=1)
 
 
 def at_inputs(model: Mechanism, q: np.ndarray) -> KinematicSolution:

@@ -5,6 +5,7 @@ model sketched in position 1, and the checks made with the kinematics engine.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -14,10 +15,10 @@ from kinelab.errors import ModelError
 from kinelab.mechanisms import Grashof
 from kinelab.model import Mechanism
 from kinelab.solvers import wrap_angle
-from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, finite_or_inf, fourbar_model,
-                                        model_grashof, travel)
+from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, circuits, finite_or_inf,
+                                        fourbar_model, model_grashof, nearer_branch, travel)
 from kinelab.synthesis._pivots import fixed_pivot, moving_pivot
-from kinelab.synthesis._positions import Positions, as_positions, as_xy, poles
+from kinelab.synthesis._positions import Positions, as_positions, as_xy, cross, poles
 
 __all__ = ["MotionSolution", "TwoPositions", "two_positions", "three_positions", "motion_solution"]
 
@@ -52,6 +53,9 @@ class MotionSolution(CheckedLinkage):
         See :mod:`kinelab.synthesis` (a branch defect: some position lies on the other
         assembly branch or beyond a limit position; an order defect: turning the crank one
         way does not pass the positions in order).
+    circuit_defect : bool
+        Some position lies on the other circuit of a Grashof linkage: no motion of the
+        assembled linkage reaches it from position 1 (see :func:`circuits`).
     direction : int
         +1 if the crank turns counter-clockwise from position 1 to n, -1 clockwise, 0 if
         no single sense passes the positions in order.
@@ -60,6 +64,11 @@ class MotionSolution(CheckedLinkage):
         (+inf where the linkage cannot close there on position 1's branch).
     angle_errors : ndarray, shape (n,)
         Error of the engine's coupler rotation at ``q[j]``, rad (+inf likewise).
+    dyad_residuals : ndarray, shape (n, 2)
+        For each position, how much the crank (column 0) and the rocker (column 1) would
+        have to change length to reach it: ``|A_j - A0| - crank``, ``|B_j - B0| - rocker``,
+        m.  Zero (to rounding) for exact synthesis; the residuals of the least-squares fit
+        for :func:`approximate_positions`.
     defects : tuple of str
         A sentence for each defect found; empty for a usable linkage.
     """
@@ -76,9 +85,11 @@ class MotionSolution(CheckedLinkage):
     min_transmission_angle: float
     branch_defect: bool
     order_defect: bool
+    circuit_defect: bool
     direction: int
     position_errors: np.ndarray
     angle_errors: np.ndarray
+    dyad_residuals: np.ndarray
     defects: tuple[str, ...]
 
     def __repr__(self) -> str:
@@ -89,11 +100,24 @@ class MotionSolution(CheckedLinkage):
                 f"{self.grashof.kind}, {state})")
 
 
-def motion_solution(pos: Positions, A0, B0, A1, B1) -> MotionSolution:
-    """Build the model of a synthesized four-bar and check it with the engine."""
+def motion_solution(pos: Positions, A0, B0, A1, B1,
+                    radii: tuple[float, float] | None = None) -> MotionSolution:
+    """Build the model of a synthesized four-bar and check it with the engine.
+
+    With ``radii`` (the crank's and the rocker's lengths fitted by least squares) the
+    linkage is approximate: it is sketched with those lengths at the crank angle of
+    position 1, and a position counts as reached on the sketch's branch when the engine's
+    rocker pin is nearer the prescribed one than its mirror image across the line from the
+    crank pin to B0 (the other branch's pin) is.
+    """
     A0, B0, A1, B1 = (np.asarray(v, float) for v in (A0, B0, A1, B1))
-    model = fourbar_model(A0, B0, A1, B1, P=pos.points[0], name="synthesized fourbar")
-    Aj = pos.carry(A1)
+    Aj, Bj = pos.carry(A1), pos.carry(B1)
+    exact = radii is None
+    if exact:
+        model = fourbar_model(A0, B0, A1, B1, P=pos.points[0], name="synthesized fourbar")
+        radii = (float(np.linalg.norm(A1 - A0)), float(np.linalg.norm(B1 - B0)))
+    else:
+        model = _fitted_model(pos, A0, B0, A1, B1, radii)
     q = np.arctan2(Aj[:, 1] - A0[1], Aj[:, 0] - A0[0])
     scale = max(pos.size, max(model.parameters[k] for k in ("ground", "crank", "coupler", "rocker")))
 
@@ -105,21 +129,54 @@ def motion_solution(pos: Positions, A0, B0, A1, B1) -> MotionSolution:
         return finite_or_inf(dpos), finite_or_inf(dang)
 
     def reached(sol, idx):
+        if not exact:
+            return nearer_branch(sol, idx, Bj, B0)
         dpos, dang = pose_errors(sol, idx)
         return (dpos <= _REACHED * scale) & (dang <= _REACHED)
 
     t = travel(model, q, reached)
+    circuit = circuits(A0, B0, Aj, Bj, model_grashof(model))
+    defects = t.defects
+    if circuit is not None and np.any(circuit != circuit[0]):
+        lost = ", ".join(str(j + 1) for j in np.flatnonzero(circuit != circuit[0]))
+        defects += (f"circuit defect: position(s) {lost} lie on the other circuit of the "
+                    "linkage; it cannot move there from position 1 without being taken apart",)
     dpos, dang = pose_errors(at_inputs(model, q), np.arange(pos.n))
-    for a in (A0, B0, A1, B1, q, dpos, dang):
+    residuals = np.column_stack([np.linalg.norm(Aj - A0, axis=1) - radii[0],
+                                 np.linalg.norm(Bj - B0, axis=1) - radii[1]])
+    for a in (A0, B0, A1, B1, q, dpos, dang, residuals):
         a.setflags(write=False)
     return MotionSolution(A0=A0, B0=B0, A1=A1, B1=B1, points=pos.points, alpha=pos.alpha,
                           model=model, q=q, grashof=model_grashof(model),
                           min_transmission_angle=t.min_transmission_angle,
                           branch_defect=t.branch_defect, order_defect=t.order_defect,
+                          circuit_defect=len(defects) > len(t.defects),
                           direction=t.direction, position_errors=dpos, angle_errors=dang,
-                          defects=t.defects)
+                          dyad_residuals=residuals, defects=defects)
 
 
+def _fitted_model(pos: Positions, A0, B0, A1, B1, radii) -> Mechanism:
+    """The four-bar with crank and rocker of the fitted lengths, the coupler of the moving
+    plane, assembled at position 1's crank angle on position 1's branch."""
+    ra, rb = radii
+    A = A0 + ra * (A1 - A0) / np.linalg.norm(A1 - A0)
+    coupler = float(np.linalg.norm(B1 - A1))
+    D = B0 - A
+    L = float(np.linalg.norm(D))
+    if not abs(coupler - rb) < L < coupler + rb:
+        raise ModelError("the fitted crank and rocker cannot be assembled at position 1's crank "
+                         "angle (the coupler does not reach the rocker's circle)")
+    along = (L * L + coupler * coupler - rb * rb) / (2 * L)
+    side = np.sign(cross(B0 - A1, B1 - A1)) or 1.0
+    perp = side * np.array([-D[1], D[0]]) / L    # towards B1's side of the line A -> B0
+    B = A + along * D / L + math.sqrt(max(coupler * coupler - along * along, 0.0)) * perp
+    # the coupler point: the same place relative to AB as in the moving plane
+    e1 = (B1 - A1) / coupler
+    r = pos.points[0] - A1
+    u, v = float(r @ e1), float(cross(e1, r))
+    e = (B - A) / coupler
+    P = A + u * e + v * np.array([-e[1], e[0]])
+    return fourbar_model(A0, B0, A, B, P=P, name="synthesized fourbar")
 # -- two positions ----------------------------------------------------------------------
 @dataclass(frozen=True, eq=False)
 class TwoPositions:

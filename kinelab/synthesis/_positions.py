@@ -107,11 +107,14 @@ class Positions:
         elif p.shape[0] < 2:
             problems.append(f"points: expected at least two positions, got {p.shape[0]}")
         elif not np.all(np.isfinite(p)):
-            problems.append("points: expected finite numbers")
+            j = int(np.flatnonzero(~np.all(np.isfinite(p), axis=1))[0])
+            problems.append(f"points[{j}]: expected two finite numbers (x, y), got "
+                            f"{describe(p[j].tolist())}")
         if a.ndim != 1:
             problems.append(f"angles: expected shape (n,) or (n - 1,), got {a.shape}")
         elif not np.all(np.isfinite(a)):
-            problems.append("angles: expected finite numbers")
+            j = int(np.flatnonzero(~np.isfinite(a))[0])
+            problems.append(f"angles[{j}]: expected a finite number, got {describe(float(a[j]))}")
         if not problems:
             n = p.shape[0]
             if a.shape[0] == n:

@@ -25,3 +25,12 @@ def engine_pose_errors(model, q, points, alpha):
     th = sol.angle("coupler")
     return (np.linalg.norm(P - points, axis=1),
             np.abs(wrap(th - th[0] - (np.asarray(alpha) - alpha[0]))))
+
+
+def crank_lengths(pos, A0, A1):
+    """|A_j - A0| over the positions of a Positions, rotating A1 about P1 here (not with
+    Positions.carry)."""
+    a = pos.alpha
+    R = np.stack([np.stack([np.cos(a), -np.sin(a)], -1), np.stack([np.sin(a), np.cos(a)], -1)], -2)
+    Aj = pos.points + np.einsum("nij,j->ni", R, np.asarray(A1) - pos.points[0])
+    return np.linalg.norm(Aj - A0, axis=1)

@@ -33,6 +33,15 @@ A0 = [5, 0]
 B0 = [0, 0]
 """
 
+CRANK_ROCKER = """
+task = "crank-rocker"
+units = { length = "mm", angle = "deg" }
+[crank_rocker]
+ground = 100
+swing = 45
+time_ratio = 1.25
+"""
+
 
 def run(tmp_path, text, *args):
     task = tmp_path / "task.toml"
@@ -210,6 +219,34 @@ def test_answers_in_the_tasks_units_or_si(tmp_path):
     ('task = "path"\n[positions]\npoints = [[0, ' + "9" * 5000 + ']]\n',
      "line 3, column 15: a number of more than 4300 digits; no value needs so many, write it "
      "with an exponent (1.5e3) or fix it"),
+    # what a design cannot meet: the field, the feasible range, in the task's units
+    (CRANK_ROCKER + "crank = 90\n",
+     "crank_rocker.crank: expected a crank between 6.80657 mm and 38.2683 mm (both excluded) "
+     "for ground 100 mm, swing 45 deg and time ratio 1.25, got 90 mm; no crank-rocker of this "
+     "family has it"),
+    (CRANK_ROCKER + "pivot_angle = 10\n",
+     "crank_rocker.pivot_angle: expected an angle in (92.5, 160) or (-160, -112.5) deg for swing "
+     "45 deg and time ratio 1.25, got 10 deg; elsewhere the two limit positions are on different "
+     "assembly branches"),
+    (CRANK_ROCKER.replace("swing = 45", "swing = 200"),
+     "crank_rocker.swing: expected an angle between 0 and 180 deg (both excluded), got 200 deg; a "
+     "rocker that swings half a turn or more has no limit positions"),
+    (CRANK_ROCKER.replace("time_ratio = 1.25", "time_ratio = 9"),
+     "crank_rocker.time_ratio: expected the slow stroke's time over the fast one's, at least 1 "
+     "and less than 4.33333, got 9.0; no crank-rocker with a swing of 45 deg reaches (3 pi + "
+     "swing) / (pi - swing): lower the time ratio or widen the swing"),
+    (CRANK_ROCKER.replace("ground = 100\n", ""),
+     "crank_rocker.ground: missing; a crank-rocker needs 'ground', 'swing', 'time_ratio'"),
+    ('task = "quick-return"\n[quick_return]\nmechanism = "shaper"\ntime_ratio = 2\n',
+     "quick_return.mechanism: expected one of 'offset slider-crank', 'slotted lever', "
+     "'whitworth', got 'shaper'"),
+    ('task = "quick-return"\n[quick_return]\nmechanism = "slotted lever"\ntime_ratio = 2\n'
+     'distance = 1\nrod = 2\n',
+     "quick_return.rod: not used by a slotted lever; it takes 'distance', 'time_ratio'"),
+    ('task = "quick-return"\nunits = { length = "mm" }\n[quick_return]\n'
+     'mechanism = "offset slider-crank"\nstroke = 100\ntime_ratio = 1.4\nrod = 500\n',
+     "quick_return.rod: expected a rod between 50 mm and 186.603 mm (both excluded) for stroke "
+     "100 mm and time ratio 1.4, got 500 mm"),
 ])
 def test_bad_values_in_a_task_file_are_refused_in_one_line_each(tmp_path, text, problem):
     res = run(tmp_path, text)
@@ -224,3 +261,75 @@ def test_a_task_file_that_is_not_utf8(tmp_path):
     res = CliRunner().invoke(main, ["synth", str(task)])
     assert res.exit_code == 2 and res.stderr.endswith("task.toml: line 2: not UTF-8 text; save the "
                                                       "file as UTF-8\n")
+
+
+# -- swing and time ratio; five and more positions -----------------------------------------
+def test_crank_rocker_task_in_the_files_units(tmp_path):
+    res = run(tmp_path, CRANK_ROCKER, "--json")
+    assert res.exit_code == 0, res.output
+    row = json.loads(res.output)["solutions"][0]
+    best = kl.synthesis.crank_rocker(0.1, np.radians(45), 1.25)          # SI
+    for k, v in best.lengths.items():
+        assert row["lengths"][k] == pytest.approx(v * 1000, rel=1e-12)   # mm
+    assert row["swing"] == pytest.approx(45, rel=1e-10)                  # deg
+    assert row["time_ratio"] == pytest.approx(1.25, rel=1e-10)
+    assert row["transmission_min"] == pytest.approx(np.degrees(best.transmission_min), rel=1e-12)
+    # the model file, read back in SI, swings 45 deg with time ratio 1.25 by the engine
+    m = kl.load(tmp_path / "out" / "solution_1.toml")
+    tr = kl.kinematics.time_ratio(m, "rocker")
+    th = kl.analyze(m, q=tr.dead_centres).angle("rocker")
+    assert abs(np.degrees(abs(th[1] - th[0])) - 45) < 1e-9 and abs(tr.ratio - 1.25) < 1e-9
+    assert (tmp_path / "out" / "solution_1.png").stat().st_size > 5000
+    # with a crank, the printed line names it in mm
+    res = run(tmp_path, CRANK_ROCKER + "crank = 30\n")
+    assert res.exit_code == 0, res.output
+    assert "crank 30.0000" in res.output and "swing 45 deg, time ratio 1.25" in res.output
+
+
+@pytest.mark.parametrize("mechanism, values, output, travel", [
+    ("offset slider-crank", "stroke = 100\ntime_ratio = 1.4\n", "slide", 100.0),
+    ("slotted lever", "distance = 100\ntime_ratio = 2\n", "lever", 60.0),
+    ("whitworth", "distance = 50\nstroke = 300\ntime_ratio = 2\n", "ram_slide", 300.0),
+])
+def test_quick_return_tasks(tmp_path, mechanism, values, output, travel):
+    res = run(tmp_path, f'task = "quick-return"\nunits = {{ length = "mm", angle = "deg" }}\n'
+                        f'[quick_return]\nmechanism = "{mechanism}"\n{values}', "--json")
+    assert res.exit_code == 0, res.output
+    row = json.loads(res.output)["solutions"][0]
+    assert row["mechanism"] == mechanism
+    assert row.get("stroke", row.get("swing")) == pytest.approx(travel, rel=1e-10)
+    m = kl.load(tmp_path / "out" / "solution_1.toml")
+    assert abs(kl.kinematics.time_ratio(m, output).ratio - row["time_ratio"]) < 1e-9
+
+
+FIVE = """
+task = "motion"
+[positions]
+points = {points}
+angles = {angles}
+"""
+
+
+def test_five_and_more_positions(tmp_path):
+    fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
+    s = kl.analyze(fb, q=np.radians([0, 40, 80, 120, 160, 200, 240]))
+    P, th = s.position("P"), s.angle("coupler")
+    res = run(tmp_path, FIVE.format(points=P[:5].tolist(), angles=th[:5].tolist()), "--json")
+    assert res.exit_code == 0, res.output
+    rows = json.loads(res.output)["solutions"]
+    assert len(rows) == len(kl.synthesis.five_positions(P[:5], th[:5])) == 6
+    assert any(np.allclose(r["A0"] + r["B0"], [0, 0, 3, 0], atol=1e-9) for r in rows)
+    assert (tmp_path / "out" / "curves.png").stat().st_size > 5000
+    res = run(tmp_path, FIVE.format(points=P.tolist(), angles=th.tolist()) + "[search]\ndyads = 2\n",
+              "--json")
+    assert res.exit_code == 0, res.output
+    best = json.loads(res.output)["solutions"][0]
+    assert best["valid"] and np.allclose(best["A0"] + best["B0"], [0, 0, 3, 0], atol=1e-9)
+    assert np.abs(best["dyad_residuals"]).max() < 1e-9 and len(best["position_errors"]) == 7
+    # pivots are not chosen with five positions or more
+    res = run(tmp_path, FIVE.format(points=P[:5].tolist(), angles=th[:5].tolist())
+              + "[pivots]\na0x = 1\n")
+    assert res.exit_code == 2 and "pivots.a0x: not used with 5 positions" in res.stderr
+    res = run(tmp_path, FIVE.format(points=P[:5].tolist(), angles=th[:5].tolist())
+              + "[search]\ndyads = 2\n")
+    assert res.exit_code == 2 and "search: not used with 5 positions" in res.stderr

@@ -86,3 +86,40 @@ def test_figures_in_the_units_asked_for():
     ax = plot.motion_solution(next(s for s in sols if s.valid), units=cm)
     squares = [line.get_xydata()[0] for line in ax.lines if line.get_marker() == "s"]
     np.testing.assert_allclose(squares, P7 * 100, rtol=1e-15, atol=1e-15)
+
+
+def test_limit_positions_of_a_crank_rocker(tmp_path):
+    """The rocker drawn at its two limit positions: its pins are where the engine puts B at
+    the dead centres (in mm), 45 deg apart about O4."""
+    cr = kl.synthesis.crank_rocker(0.1, 45, 1.25, degrees=True)
+    ax = plot.limit_positions(cr, units={"length": "mm"})
+    links = [line.get_xydata() for line in ax.lines if line.get_marker() == "o"]
+    rocker = [seg for seg in links if np.linalg.norm(seg - [100, 0], axis=1).min() < 1e-9]
+    assert len(links) == 6 and len(rocker) == 2        # crank, coupler, rocker, twice
+    B = kl.analyze(cr.model, q=np.radians(cr.dead_centres)).position("B") * 1000
+    ends = np.array([seg[np.argmax(np.linalg.norm(seg - [100, 0], axis=1))] for seg in rocker])
+    np.testing.assert_allclose(ends, B, atol=1e-9)
+    u, v = B - [100, 0]
+    assert np.degrees(np.arccos(u @ v / np.linalg.norm(u) / np.linalg.norm(v))) == pytest.approx(45)
+    assert "time ratio 1.25" in ax.get_title() and ax.get_xlabel() == "x [mm]"
+    _written(ax, tmp_path / "crank_rocker.png")
+    for design in (kl.synthesis.offset_slider_crank(0.1, 1.4), kl.synthesis.slotted_lever(2.0, 0.5),
+                   kl.synthesis.whitworth(2.0, 0.05, 0.3)):
+        ax = plot.limit_positions(design)
+        assert ax.get_title().startswith(design.kind)
+        _written(ax, tmp_path / "quick_return.png")
+
+
+def test_five_positions_with_their_centre_point_curves(tmp_path):
+    fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
+    s = kl.analyze(fb, q=np.radians([0, 40, 80, 120, 160]))
+    pos = kl.synthesis.Positions(s.position("P"), s.angle("coupler"))
+    sols = kl.synthesis.five_positions(pos)
+    ax = plot.five_positions(pos, sols, samples=361)
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert labels == ["centre points of positions 1-4", "centre points of positions 1, 2, 3, 5"]
+    fixed = np.vstack([line.get_xydata() for line in ax.lines if line.get_marker() == "^"])
+    centers, _ = kl.synthesis.burmester_points(pos)
+    # every Burmester point is marked, and only they
+    assert {tuple(p) for p in np.round(fixed, 9)} == {tuple(p) for p in np.round(centers, 9)}
+    _written(ax, tmp_path / "five.png")

@@ -73,6 +73,37 @@ def test_more_points_by_least_squares():
     assert sol.max_structural_error < 2 * function_generation(**LOG).max_structural_error
 
 
+def test_least_squares_residual_at_each_precision_point():
+    """Seven precision points for three unknowns: K solves the normal equations of
+    Freudenstein's equation, and precision_errors are the engine's output errors there."""
+    sol = function_generation(**LOG, points=7)
+    assert sol.valid and sol.x.size == sol.precision_errors.size == 7
+    t2 = np.radians(90 + 60 * (sol.x - 1.0))
+    t4 = np.radians(90 * np.log10(sol.x) / np.log10(2.0))
+    M = np.column_stack([np.cos(t4), -np.cos(t2), np.ones(7)])
+    gradient = M.T @ (M @ sol.K - np.cos(t2 - t4))
+    assert np.abs(gradient).max() < 1e-12 * np.abs(M).max() ** 2 * np.abs(sol.K).max()
+    # the model is that least-squares linkage: its lengths give K back
+    L = sol.lengths
+    d, a, b, c = L["ground"], L["crank"], L["coupler"], L["rocker"]
+    assert np.all(sol.K[:2] > 0)
+    np.testing.assert_allclose(sol.K, [d / a, d / c, (a * a - b * b + c * c + d * d) / (2 * a * c)],
+                               rtol=1e-12)
+    s = kl.analyze(sol.model, q=sol.q)
+    y_gen = ((s.angle("rocker") - sol.output_range[0])
+             / (sol.output_range[1] - sol.output_range[0]) * np.log10(2.0))
+    np.testing.assert_allclose(sol.precision_errors, y_gen - np.log10(sol.x), atol=1e-12)
+    # seven points cannot all be met: the residuals are small but not rounding
+    assert 1e-7 < np.abs(sol.precision_errors).max() < 1e-3
+    assert np.abs(function_generation(**LOG).precision_errors).max() < 1e-12   # three: exact
+
+
+def test_precision_points_must_be_finite():
+    with pytest.raises(ModelError, match=r"points: expected precision points \(x values\) from 1 "
+                                         r"to 2 \(x_range\), got \[1\.1, nan, 1\.9\]"):
+        function_generation(**LOG, points=[1.1, np.nan, 1.9])
+
+
 def test_branch_defect_flagged():
     # y = log10 x on [1, 10], crank 45 -> 105 deg, rocker 135 -> 225 deg: Freudenstein's
     # linkage has a negative rocker and cannot move over the range on one branch

@@ -89,6 +89,8 @@ def test_branch_defect_is_found():
     assert sol.branch_defect and not sol.order_defect and not sol.valid
     assert sol.position_errors[:2].max() < 1e-12 and sol.position_errors[2] > 1.0
     assert "position(s) 3 cannot be reached" in sol.defects[0]
+    # open and crossed are the two circuits of a crank-rocker: no motion joins them
+    assert sol.circuit_defect and "position(s) 3 lie on the other circuit" in sol.defects[-1]
 
 
 def test_full_turn_crank_needs_the_right_sense():

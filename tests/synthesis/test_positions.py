@@ -71,7 +71,9 @@ def test_translation_has_its_pole_at_infinity():
     ([(0, 0)], [0], r"points: expected at least two positions, got 1"),
     ([(0, 0), (1, 1)], [0, 1, 2], r"angles: expected 2 orientations .* or 1 rotations"),
     ([(0, 0, 0), (1, 1, 1)], [0, 1], r"points: expected shape \(n, 2\), got \(2, 3\)"),
-    ([(0, 0), (1, np.nan)], [0, 1], r"points: expected finite numbers"),
+    ([(0, 0), (1, np.nan)], [0, 1], r"points\[1\]: expected two finite numbers \(x, y\), got "
+                                    r"\[1\.0, nan\]"),
+    ([(0, 0), (1, 1)], [0, np.inf], r"angles\[1\]: expected a finite number, got inf"),
 ])
 def test_bad_positions(points, angles, message):
     with pytest.raises(ModelError, match=message):

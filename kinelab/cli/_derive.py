@@ -1,0 +1,51 @@
+"""``kinelab derive``: the derivation of a model in the notes' notation, as a document.
+
+It reads the model file and calls :func:`kinelab.derive.derive`; the document is the
+derivation's own (:meth:`~kinelab.derive.Derivation.to_markdown`, ``to_latex``), and a PDF
+is that LaTeX compiled by the TeX engine installed, if any.
+"""
+from __future__ import annotations
+
+import click
+
+from kinelab._files import atomic_write
+from kinelab.cli._main import errors_from, output_path, parse_inputs, read_model, stem
+from kinelab.derive import LANGUAGES, derive
+from kinelab.derive._document import write_pdf
+
+__all__ = ["derive_command"]
+
+
+@click.command("derive")
+@click.argument("model", type=click.Path(exists=True, dir_okay=False))
+@click.option("--at", "at", default=None, metavar="VALUE",
+              help="Input(s) of the last section's numbers, in the file's units or with a unit "
+                   "(30, 30deg, 0.5rad, 12mm; 30,60 for two inputs); default the sketch's.")
+@click.option("--lang", type=click.Choice(LANGUAGES), default="en", show_default=True,
+              help="Language of the document: English or Portuguese.")
+@click.option("--format", "fmt", type=click.Choice(("md", "tex", "pdf")), default="md",
+              show_default=True,
+              help="Markdown with LaTeX maths, a standalone LaTeX file, or a PDF (needs a TeX "
+                   "engine: lualatex, xelatex, pdflatex or tectonic).")
+@click.option("--out", "-o", default=".", metavar="DIR", show_default=True,
+              help="Directory (or file) to write <name>_derivation.<format> to.")
+def derive_command(model, at, lang, fmt, out):
+    """Write the derivation of MODEL in the notes' notation: position equations (one vector
+    loop per independent circuit), their time derivative, J, Q, det J and the singular
+    configurations, K and L, and for a model with masses the Gibbs-Appell / Kane terms,
+    after Erthal, "Mecanismos com 1 GL: análise geral de velocidade e aceleração" and the
+    course notes "Mecanismos".  The last section gives the numbers at one input beside
+    kinelab's analysis (SI units)."""
+    mf = read_model(model)
+    q = None
+    if at is not None:
+        q = parse_inputs(at, mf)
+    with errors_from(mf):
+        d = derive(mf.mechanism, lang)
+        text = d.to_markdown(at=q) if fmt == "md" else d.to_latex(at=q)
+    path = output_path(out, f"{stem(model)}_derivation", fmt)
+    if fmt == "pdf":
+        write_pdf(text, path)
+    else:
+        atomic_write(path, lambda f: f.write(text))
+    click.echo(f"wrote {path}")

@@ -1,0 +1,567 @@
+"""A derivation as a document a teacher can hand out: Markdown with LaTeX maths, or LaTeX.
+
+One function walks the notes' order (symbols, position equations, their time derivative,
+the matrix form, J, Q, det J and the singular configurations, K, the accelerations and L,
+the dynamics, the numbers at one input); two small writers turn its headings, paragraphs,
+equations and tables into Markdown or LaTeX.  The sentences come from :mod:`._words`, in
+the language asked for; the maths comes from sympy's LaTeX printer.
+"""
+from __future__ import annotations
+
+import math
+import re
+import shutil
+import subprocess
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from kinelab._files import atomic_write
+from kinelab.derive._simplify import READABLE_OPS, size
+from kinelab.derive._words import WORDS
+from kinelab.errors import ModelError, check_choice
+
+__all__ = ["document", "symbol_latex", "write_pdf", "TEX_ENGINES"]
+
+TEX_ENGINES = ("lualatex", "xelatex", "pdflatex", "tectonic")
+_GREEK = {"alpha", "beta", "gamma", "delta", "theta", "phi", "psi", "omega", "tau", "rho", "sigma",
+          "lambda", "mu", "nu", "eta", "xi", "zeta", "kappa", "chi", "epsilon"}
+_TEX_TEXT = {"\\": r"\textbackslash{}", "{": r"\{", "}": r"\}", "$": r"\$", "&": r"\&",
+             "#": r"\#", "%": r"\%", "_": r"\_", "^": r"\textasciicircum{}",
+             "~": r"\textasciitilde{}"}
+
+
+def _tex_text(s: str) -> str:
+    return "".join(_TEX_TEXT.get(c, c) for c in s)
+
+
+def _fmt(v: float) -> str:
+    """A number as the documents show it: 10 significant digits, no '-0'."""
+    v = float(v)
+    if not math.isfinite(v):
+        return str(v)
+    out = f"{v:.10g}"
+    return "0" if out in ("-0", "0") else out
+
+
+# -- symbols in LaTeX -------------------------------------------------------------------------
+def _name_latex(name: str) -> str:
+    """``theta_coupler`` -> ``\\theta_{\\text{coupler}}``, ``L_2`` -> ``L_{2}``, ``x_O2`` ->
+    ``x_{O_{2}}``; a name kinelab made unique with primes keeps them."""
+    primes = len(name) - len(name.rstrip("'"))
+    name = name.rstrip("'")
+    base, _, sub = name.partition("_")
+
+    def part(s: str) -> str:
+        if s in _GREEK:
+            return "\\" + s
+        if re.fullmatch(r"[A-Za-z]|\d+", s):
+            return s
+        m = re.fullmatch(r"([A-Za-z])(\d+)", s)
+        if m:
+            return f"{m.group(1)}_{{{m.group(2)}}}"
+        return r"\text{" + _tex_text(s) + "}"
+    out = part(base) if base else r"\text{}"
+    if sub:
+        out += "_{" + ",".join(part(p) for p in sub.split(",")) + "}"
+    return out + "'" * primes
+
+
+def symbol_latex(d) -> dict:
+    """The LaTeX of every symbol of a derivation (and of its dynamics)."""
+    eq = d.equations
+    names = {}
+    for s in tuple(eq.q) + tuple(eq.S) + tuple(eq.parameters):
+        names[s] = _name_latex(str(s))
+    for s in tuple(eq.q) + tuple(eq.S):
+        names[d.dot(s)] = r"\dot{" + names[s] + "}"
+        names[d.ddot(s)] = r"\ddot{" + names[s] + "}"
+    M = len(eq.q)
+    for i, s in enumerate(eq.S):
+        for k in range(M):
+            names[d.K_symbols[i * M + k]] = ("K_{" + names[s] + "}" if M == 1
+                                             else "K_{" + names[s] + f",{k + 1}}}")
+    if d.dynamics is not None:
+        kd = d.dynamics
+        for i, s in enumerate(eq.S):
+            for a in range(M):
+                for b in range(M):
+                    names[kd.L_symbols[i * M * M + a * M + b]] = (
+                        "L_{" + names[s] + "}" if M == 1 else "L_{" + names[s] + f",{a + 1}{b + 1}}}")
+        for s in list(kd.parameters) + list(kd.load_values) + list(kd.tau):
+            names[s] = _name_latex(str(s))
+    return names
+
+
+# -- writers --------------------------------------------------------------------------------
+class _Markdown:
+    fmt = "md"
+    arrow = " → "
+    degree = "°"
+
+    def __init__(self):
+        self.out: list[str] = []
+
+    def name(self, s: str) -> str:
+        ticks = "``" if "`" in s else "`"
+        pad = " " if "`" in s else ""
+        return f"{ticks}{pad}{s}{pad}{ticks}"
+
+    def text(self, template: str, **fields) -> str:
+        return template.format(**fields)
+
+    def heading(self, text: str, level: int = 2) -> None:
+        self.out.append("#" * level + " " + text)
+
+    def para(self, text: str) -> None:
+        self.out.append(text)
+
+    def display(self, lines: list[str]) -> None:
+        body = lines[0] if len(lines) == 1 else (
+            "\\begin{aligned}\n" + " \\\\\n".join(lines) + "\n\\end{aligned}")
+        self.out.append("$$\n" + body + "\n$$")
+
+    def items(self, rows: list[str]) -> None:
+        self.out.append("\n".join(f"- {r}" for r in rows))
+
+    def table(self, header: list[str], rows: list[list[str]]) -> None:
+        def cell(c):
+            return c.replace("|", "\\|")
+        lines = ["| " + " | ".join(map(cell, header)) + " |",
+                 "|" + "|".join(" --- " for _ in header) + "|"]
+        lines += ["| " + " | ".join(map(cell, r)) + " |" for r in rows]
+        self.out.append("\n".join(lines))
+
+    def finish(self, title: str) -> str:
+        return "# " + title + "\n\n" + "\n\n".join(self.out) + "\n"
+
+
+class _Latex:
+    fmt = "tex"
+    arrow = " $\\to$ "
+    degree = "$^\\circ$"
+
+    def __init__(self, lang: str):
+        self.out: list[str] = []
+        self.lang = lang
+
+    def name(self, s: str) -> str:
+        return r"\texttt{" + _tex_text(s) + "}"
+
+    def text(self, template: str, **fields) -> str:
+        """A sentence of the words table in LaTeX: text escaped, maths kept, fields (already
+        LaTeX) filled in."""
+        out = []
+        for piece in re.split(r"(\$[^$]*\$)", template):
+            if len(piece) > 1 and piece.startswith("$") and piece.endswith("$"):
+                out.append(piece.format(**fields))
+                continue
+            parts = re.split(r"\{([a-z_]+)\}", piece)       # text, field, text, field ...
+            esc = "".join(_tex_text(p) if k % 2 == 0 else f"\0{p}\0" for k, p in enumerate(parts))
+            esc = re.sub(r"\*([^*]+)\*", r"\\emph{\1}", esc)
+            esc = re.sub(r"`([^`]+)`", r"\\texttt{\1}", esc)
+            out.append(re.sub(r"\0([a-z_]+)\0", lambda mt: str(fields[mt.group(1)]), esc))
+        return "".join(out)
+
+    def heading(self, text: str, level: int = 2) -> None:
+        self.out.append(("\\section*{" if level <= 2 else "\\subsection*{") + text + "}")
+
+    def para(self, text: str) -> None:
+        self.out.append(text)
+
+    def display(self, lines: list[str]) -> None:
+        if len(lines) == 1:
+            self.out.append("\\[\n" + lines[0] + "\n\\]")
+        else:
+            self.out.append("\\begin{align*}\n" + " \\\\\n".join(lines) + "\n\\end{align*}")
+
+    def items(self, rows: list[str]) -> None:
+        self.out.append("\\begin{itemize}\n" + "\n".join(f"\\item {r}" for r in rows)
+                        + "\n\\end{itemize}")
+
+    def table(self, header: list[str], rows: list[list[str]]) -> None:
+        cols = "l" * len(header)
+        lines = [" & ".join(header) + r" \\ \hline"] + [" & ".join(r) + r" \\" for r in rows]
+        self.out.append("\\begin{tabular}{" + cols + "}\n" + "\n".join(lines) + "\n\\end{tabular}")
+
+    def finish(self, title: str) -> str:
+        head = ["\\documentclass[11pt]{article}", "\\usepackage[T1]{fontenc}",
+                "\\usepackage[utf8]{inputenc}", "\\usepackage{amsmath,amssymb}",
+                "\\usepackage[margin=2cm]{geometry}", "\\allowdisplaybreaks",
+                "\\begin{document}", "\\section*{" + title + "}"]
+        return "\n".join(head) + "\n\n" + "\n\n".join(self.out) + "\n\n\\end{document}\n"
+
+
+# -- the document ---------------------------------------------------------------------------
+def document(d, fmt: str, *, at=None, lang: str = "en") -> str:
+    """The whole document of derivation ``d`` in format ``"md"`` or ``"tex"``."""
+    import sympy as sp
+    from kinelab.derive._derivation import LANGUAGES
+    check_choice("lang", lang, LANGUAGES)
+    check_choice("format", fmt, ("md", "tex"))
+    words = WORDS[lang]
+    w = _Markdown() if fmt == "md" else _Latex(lang)
+    eq, m = d.equations, d.model
+    names = symbol_latex(d)
+
+    def tex(e) -> str:
+        return sp.latex(e, symbol_names=names, fold_func_brackets=True)
+
+    def T(key: str, **fields) -> str:
+        return w.text(words[key], **fields)
+
+    def N(s: str) -> str:
+        return w.name(s)
+
+    def M_(e) -> str:
+        return "$" + tex(e) + "$"
+    Mn, n = len(eq.q), len(eq.S)
+    title = w.text(words["title"], name=N(m.name))
+    w.para(T("intro"))
+    _symbols(d, w, T, N, M_)
+    # -- position equations
+    w.heading(T("position"))
+    nl = len(m.links)
+    nj = len(m.joints)
+    if not eq.loops:
+        w.para(T("no_loops"))
+    else:
+        w.para(T("loops_count", links=nl, joints=nj, loops=len(eq.loops)))
+        row = 0
+        for k, lp in enumerate(eq.loops, start=1):
+            path = w.arrow.join(N(x) for x in lp.links)
+            w.para(T("loop", k=k, path=path))
+            lines = []
+            for _ in range(2):
+                lines.append(tex(eq.rows[row]) + " &= 0 && (" + str(row + 1) + ")")
+                row += 1
+            w.display(lines)
+        if d.redundant:
+            w.para(T("redundant", rows=", ".join(f"({i + 1})" for i in d.redundant)))
+    if n:
+        _velocity(d, w, T, N, tex)
+        _coefficients(d, w, T, tex)
+        _accelerations(d, w, T, tex)
+    if d.dynamics is not None:
+        _dynamics(d, w, T, N, tex)
+    _numbers(d, w, T, N, tex, at)
+    return w.finish(title)
+
+
+def _symbols(d, w, T, N, M_) -> None:
+    eq, m = d.equations, d.model
+    w.heading(T("symbols"))
+    w.para(T("symbols_intro"))
+    head = [T("col_symbol"), T("col_meaning")]
+    rows = []
+    ground = m.ground.name
+    for k, (s, inp) in enumerate(zip(eq.q, m.inputs)):
+        if inp.joint is not None and m.joint(inp.joint).type == "P":
+            rows.append([M_(s), T("input_slide", joint=N(inp.joint), name=N(inp.label))])
+        else:
+            a, b = m.joint(inp.joint).links if inp.joint is not None else inp.links
+            key = "input_angle_ground" if a == ground else "input_angle"
+            rows.append([M_(s), T(key, a=N(a), b=N(b), name=N(inp.label))])
+    w.para(T("inputs_head"))
+    w.table(head, rows)
+    if eq.S:
+        rows = []
+        for s in eq.S:
+            kind, name = eq.unknowns[s]
+            if kind == "angle":
+                pts = m.link(name).points
+                rows.append([M_(s), T("unknown_angle", link=N(name), p=N(pts[0]), r=N(pts[1]))
+                             if len(pts) > 1 else T("unknown_angle_one", link=N(name))])
+            else:
+                j = m.joint(name)
+                origin = j.origin or m.link(j.links[0]).points[0]
+                rows.append([M_(s), T("unknown_slide", joint=N(name), point=N(j.point),
+                                      origin=N(origin))])
+        w.para(T("unknowns_head"))
+        w.table(head, rows)
+    if eq.parameters:
+        rows = []
+        for s, v in eq.parameters.items():
+            rows.append([M_(s), _meaning(eq.meaning[s], d, T, N), _fmt(v)])
+        w.para(T("parameters_head"))
+        w.table(head + [T("col_value")], rows)
+
+
+def _meaning(meaning: tuple, d, T, N) -> str:
+    m = d.model
+    kind = meaning[0]
+    if kind == "length":
+        pts = m.link(meaning[1]).points
+        return T("length", link=N(meaning[1]), a=N(pts[0]), b=N(pts[1]))
+    if kind == "distance":
+        return T("distance", link=N(meaning[1]), a=N(meaning[2]), b=N(meaning[3]))
+    if kind == "direction":
+        root = d.equations.roots[meaning[1]]
+        if root == m.ground.name:
+            return T("direction_ground", a=N(meaning[2]), b=N(meaning[3]))
+        return T("direction", a=N(meaning[2]), b=N(meaning[3]), root=N(root))
+    if kind == "link_offset":
+        root = d.equations.roots[meaning[1]]
+        if root == m.ground.name:
+            return T("link_offset_ground", link=N(meaning[1]))
+        return T("link_offset", link=N(meaning[1]), root=N(root))
+    if kind == "axis":
+        j = m.joint(meaning[1])
+        root = d.equations.roots[j.links[0]]
+        if root == m.ground.name:
+            return T("axis_ground", joint=N(j.name))
+        return T("axis", joint=N(j.name), root=N(root))
+    if kind == "offset":
+        j = m.joint(meaning[1])
+        return T("offset", joint=N(j.name), origin=N(j.origin or m.link(j.links[0]).points[0]))
+    return T(kind, point=N(meaning[1]))
+
+
+def _velocity(d, w, T, N, tex) -> None:
+    import sympy as sp
+    eq = d.equations
+    w.heading(T("velocity"))
+    w.para(T("velocity_intro"))
+    v = d.velocity_equations().applyfunc(sp.expand)
+    w.display([tex(e) + " &= 0" for e in v])
+    w.para(T("matrix_form"))
+    Sd = sp.Matrix([d.dot(s) for s in eq.S])
+    qd = sp.Matrix([d.dot(s) for s in eq.q])
+    w.display([tex(d.J) + tex(Sd) + " + " + tex(d.Q) + tex(qd if len(eq.q) > 1 else qd[0])
+               + " = " + tex(sp.zeros(len(eq.S), 1))])
+    w.para(T("matrix_names"))
+    w.heading(T("jacobian"))
+    w.para(T("det"))
+    if d.readable["det_J"]:
+        w.display([r"\det J = " + tex(d.det_J)])
+    else:
+        w.para(T("det_large", ops=size(d.det_J)))
+    if not d.singularities:
+        w.para(T("sing_none"))
+        return
+    w.para(T("singular_intro"))
+    w.items([_singular_words(s, d, w, T, N, tex) for s in d.singularities])
+
+
+def _singular_words(s, d, w, T, N, tex) -> str:
+    m = d.model
+    f = "$" + tex(s.factor) + " = 0$"
+    if s.kind == "slide":
+        joint, point, origin = s.names
+        j = m.joint(joint)
+        pivot = ""
+        guide = j.links[0]
+        if any(k.type == "R" and k.point == origin for k in m.joints_of(guide)):
+            pivot = T("sing_pivot", link=N(guide))
+        return T("sing_slide", factor=f, point=N(point), origin=N(origin), joint=N(joint),
+                 pivot=pivot)
+    if s.kind in ("in_line", "perpendicular"):
+        return T("sing_" + s.kind, factor=f, a=N(s.names[0]), b=N(s.names[1]))
+    if s.kind == "angle":
+        values = f" {T('or')} ".join(f"{_fmt(v)}{w.degree}" for v in s.values)
+        return T("sing_angle", factor=f, link=N(s.names[0]), values=values)
+    return T("sing_other", factor=f)
+
+
+def _coefficients(d, w, T, tex) -> None:
+    eq = d.equations
+    w.heading(T("coefficients"))
+    if d.readable["K"]:
+        w.para(T("K_intro"))
+        lines = []
+        for i in range(len(eq.S)):
+            for k in range(len(eq.q)):
+                sym = d.K_symbols[i * len(eq.q) + k]
+                lines.append(tex(sym) + " &= " + tex(d.K[i, k]))
+        w.display(lines)
+    else:
+        w.para(T("K_large", ops=size(d.K)))
+
+
+def _accelerations(d, w, T, tex) -> None:
+    import sympy as sp
+    eq = d.equations
+    M = len(eq.q)
+    w.heading(T("acceleration"))
+    acc = d.acceleration_equations()
+    Sdd = sp.Matrix([d.ddot(s) for s in eq.S])
+    rhs = (-(acc - d.J * Sdd)).applyfunc(sp.expand)
+    if max(size(e) for e in rhs) <= READABLE_OPS:
+        w.para(T("acceleration_intro"))
+        w.display([tex(d.J) + tex(Sdd) + " = " + tex(rhs)])
+    else:
+        w.para(T("acceleration_large", ops=size(rhs)))
+    w.para(T("L_intro" if M == 1 else "L_intro_many"))
+
+    def lines_of(L):
+        out = []
+        for i, s in enumerate(eq.S):
+            for a in range(M):
+                for b in range(M):
+                    e = L[i] if M == 1 else L[i, a, b]
+                    label = ("L_{" + tex(s) + "}" if M == 1
+                             else "L_{" + tex(s) + f",{a + 1}{b + 1}}}")
+                    out.append(label + " &= " + tex(e))
+        return out
+    if d.readable["L_in_K"]:
+        w.display(lines_of(d.L_in_K))
+    else:
+        w.para(T("L_in_K_large", ops=size(d.L_in_K)))
+    if d.readable["L"]:
+        w.para(T("L_explicit"))
+        w.display(lines_of(d.L))
+    else:
+        w.para(T("L_large", ops=size(d.L)))
+
+
+def _dynamics(d, w, T, N, tex) -> None:
+    import sympy as sp
+    kd = d.dynamics
+    w.heading(T("dynamics"))
+    w.para(T("dynamics_intro", bodies=len(kd.bodies)))
+    rows = []
+    for b in kd.bodies:
+        if not b.turns:
+            rows.append(T("body_point", m=_quantity(kd, f"m_{b.name}", tex), point=N(b.point),
+                          link=N(b.link)))
+        elif b.mass or b.inertia:
+            rows.append(T("body_link", link=N(b.link), m=_quantity(kd, f"m_{b.name}", tex),
+                          I=_quantity(kd, f"I_{b.name}", tex), point=N(b.point)))
+        else:
+            rows.append(T("body_loaded", link=N(b.link), point=N(b.point)))
+    w.items(rows)
+    loads = []
+    for s, (kind, obj, law) in kd.load_values.items():
+        if kind != "tension":
+            loads.append(T("load_force", symbol="$" + tex(s) + "$", law=N(str(law))))
+        else:
+            loads.append(T("load_force", symbol="$" + tex(s) + "$", law="$" + tex(law) + "$"))
+    gsym = next((s for s in kd.parameters if str(s) == "g"), None)
+    if gsym is not None:
+        g = np.asarray(kd.loads.gravity, float)
+        loads.insert(0, T("gravity", g=f"${tex(gsym)} = {_fmt(kd.parameters[gsym])}$",
+                          direction=f"$({_fmt(g[0] / np.hypot(*g))}, {_fmt(g[1] / np.hypot(*g))})$"))
+    if loads:
+        w.para(T("loads_head", items="; ".join(loads)))
+    Ks = sp.Matrix(len(d.S), len(d.q), d.K_symbols) if d.S else sp.zeros(0, len(d.q))
+    C = sp.eye(len(d.q)).col_join(Ks) if d.S else sp.eye(len(d.q))
+    w.para(T("C_intro"))
+    w.display(["C = " + tex(C)])
+    w.para(T("D_intro"))
+    if max((size(e) for e in kd.D), default=0) <= READABLE_OPS and kd.D.cols <= 12:
+        w.display(["D = " + tex(kd.D)])
+    else:
+        w.para(T("matrix_large", what="$D$", ops=size(kd.D)))
+    w.para(T("f_intro"))
+    if max((size(e) for e in kd.f), default=0) <= READABLE_OPS:
+        w.display([f"f_{{{k + 1}}} &= " + tex(e) for k, e in enumerate(kd.f)])
+    else:
+        w.para(T("matrix_large", what="$f$", ops=size(kd.f)))
+    w.para(T("tau_intro"))
+    if max(size(e) for e in kd.equations) <= 6 * READABLE_OPS:
+        w.display([tex(t) + " &= " + tex(e) for t, e in zip(kd.tau, kd.equations)])
+    else:
+        w.para(T("tau_large", ops=size(kd.equations)))
+
+
+def _quantity(kd, name: str, tex) -> str:
+    s = next((s for s in kd.parameters if str(s) == name), None)
+    if s is None:
+        return "$0$"
+    return f"${tex(s)} = {_fmt(kd.parameters[s])}$"
+
+
+def _numbers(d, w, T, N, tex, at) -> None:
+    eq, m = d.equations, d.model
+    M, n = len(eq.q), len(eq.S)
+    if at is None:
+        q = np.array([eq.sketch[s] for s in eq.q])
+    else:
+        q = np.reshape(np.asarray(at, float), (M,))
+    kinds = [("slide" if inp.joint is not None and m.joint(inp.joint).type == "P" else "angle")
+             for inp in m.inputs]
+    def value(s, v, kind):
+        unit = f" ({_fmt(math.degrees(v))}{w.degree})" if kind == "angle" else " m"
+        return f"${tex(s)} = {_fmt(v)}$" + unit
+    shown = ", ".join(value(s, v, k) for s, v, k in zip(eq.q, q, kinds))
+    w.heading(T("numbers", at=shown))
+    v = d.evaluate(q if M > 1 else q[0])
+    w.para(T("numbers_intro"))
+    if n:
+        w.table([T("col_symbol"), T("col_engine")],
+                [["$" + tex(s) + "$", _fmt(v.S[0, i])] for i, s in enumerate(eq.S)])
+        w.para(T("residual", r=_fmt(np.abs(v.Phi[0]).max())))
+        w.para(T("J_value"))
+        w.display(["J = " + _matrix(v.J[0]) + ",\\quad Q = " + _matrix(v.Q[0])])
+        w.para(T("det_value", det=_fmt(v.det_J[0]), engine=_fmt(v.engine_det_J[0])))
+        if not np.all(np.isfinite(v.K_engine[0])):
+            w.para(T("singular_here"))
+            return
+        rows = []
+        for i, s in enumerate(eq.S):
+            for k in range(M):
+                sym = d.K_symbols[i * M + k]
+                a, b = v.K[0, i, k], v.K_engine[0, i, k]
+                rows.append(["$" + tex(sym) + "$", _fmt(a), _fmt(b), _fmt(a - b)])
+        for i, s in enumerate(eq.S):
+            for a_ in range(M):
+                for b_ in range(M):
+                    label = "L_{" + tex(s) + ("}" if M == 1 else f",{a_ + 1}{b_ + 1}}}")
+                    a, b = v.L[0, i, a_, b_], v.L_engine[0, i, a_, b_]
+                    rows.append(["$" + label + "$", _fmt(a), _fmt(b), _fmt(a - b)])
+        w.table([T("col_symbol"), T("col_derived"), T("col_engine"), T("col_difference")], rows)
+    if d.dynamics is not None:
+        from kinelab.dynamics import inverse
+        kd = d.dynamics
+        qd = np.array([inp.speed or 1.0 for inp in m.inputs])
+        qdd = np.array([inp.acceleration for inp in m.inputs])
+        pick = (lambda a: a) if M > 1 else (lambda a: a[0])
+        mine = kd.efforts(pick(q), pick(qd), pick(qdd))[0]
+        ref = np.reshape(inverse(m, pick(q), pick(qd), pick(qdd), loads=kd.loads,
+                                 masses=kd.masses, reactions=False).input_forces, (M,))
+        w.para(T("efforts_head", qd=", ".join(_fmt(x) for x in qd),
+                 qdd=", ".join(_fmt(x) for x in qdd)))
+        w.table([T("col_symbol"), T("col_derived"), "kinelab.dynamics.inverse", T("col_difference")],
+                [["$" + tex(t) + "$", _fmt(a), _fmt(b), _fmt(a - b)]
+                 for t, a, b in zip(kd.tau, mine, ref)])
+        w.para(T("efforts_note"))
+
+
+def _matrix(a: np.ndarray) -> str:
+    rows = [" & ".join(_fmt(x) for x in row) for row in np.atleast_2d(a)]
+    return r"\left[\begin{matrix}" + r" \\ ".join(rows) + r"\end{matrix}\right]"
+
+
+# -- PDF ----------------------------------------------------------------------------------------
+def tex_engine() -> str | None:
+    """The first TeX engine found on the PATH, or None."""
+    return next((e for e in TEX_ENGINES if shutil.which(e)), None)
+
+
+def write_pdf(tex: str, path: str | Path) -> Path:
+    """Compile a LaTeX document to ``path`` with the first TeX engine found.
+
+    Raises
+    ------
+    ModelError
+        No TeX engine is installed (a clear message, no traceback at the command line), or
+        the engine fails (its last lines of log).
+    """
+    engine = tex_engine()
+    if engine is None:
+        raise ModelError(f"format: PDF needs a TeX engine ({', '.join(TEX_ENGINES)}), and none is "
+                         "installed; write --format tex (or md) and compile it elsewhere")
+    path = Path(path)
+    with tempfile.TemporaryDirectory() as tmp:
+        src = Path(tmp) / "derivation.tex"
+        src.write_text(tex, encoding="utf-8")
+        cmd = ([engine, "derivation.tex"] if engine == "tectonic"
+               else [engine, "-interaction=nonstopmode", "-halt-on-error", "derivation.tex"])
+        run = subprocess.run(cmd, cwd=tmp, capture_output=True, text=True, timeout=300)
+        pdf = Path(tmp) / "derivation.pdf"
+        if run.returncode != 0 or not pdf.exists():
+            tail = " / ".join((run.stdout + run.stderr).strip().splitlines()[-3:])
+            raise ModelError(f"format: {engine} could not compile the document: {tail}")
+        data = pdf.read_bytes()
+    return atomic_write(path, lambda f: f.write(data), binary=True)

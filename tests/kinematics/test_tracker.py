@@ -1,0 +1,136 @@
+"""A tracker answers one configuration at a time exactly as analyze does: the same numbers,
+the same branches, the same errors; its configurations close their loops."""
+import math
+
+import numpy as np
+import pytest
+
+import kinelab as kl
+from kinelab.errors import AssemblyError, ModelError, SingularityError
+from tests.kinematics.checks import closure_residual
+
+FOURBAR = dict(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5, coupler_point=(1.5, 1.0))
+
+
+def same_solution(a, b):
+    """Every value, rate, K and L of two one-sample solutions agree to rounding."""
+    assert a.single and b.single
+    for link in a.link_names:
+        for get in (a.angle, a.omega, a.alpha, a.K, a.L):
+            other = getattr(b, get.__name__)
+            assert np.allclose(get(link), other(link), rtol=1e-14, atol=1e-14), (get.__name__, link)
+    for point in a.point_names:
+        for get in ("position", "velocity", "acceleration", "K", "L"):
+            assert np.allclose(getattr(a, get)(point), getattr(b, get)(point), rtol=1e-14,
+                               atol=1e-14), (get, point)
+    for slide in a.slide_names:
+        assert np.allclose(a.slide(slide), b.slide(slide), rtol=1e-14, atol=1e-14)
+    assert a.det_J[0] == pytest.approx(b.det_J[0], rel=1e-14)
+    assert a.singularity[0] == pytest.approx(b.singularity[0], rel=1e-14)
+
+
+@pytest.mark.parametrize("m", [kl.mechanisms.fourbar(**FOURBAR),
+                               kl.mechanisms.slider_crank(crank=1.0, rod=3.0, offset=0.2),
+                               kl.mechanisms.stephenson6(),
+                               kl.mechanisms.whitworth(crank=1.0, distance=0.5, lever=1.0, rod=2.0)],
+                         ids=["fourbar", "slider-crank", "stephenson6", "whitworth"])
+def test_one_configuration_is_analyze_s(m):
+    track = kl.kinematics.Tracker(m)
+    for q in np.linspace(0.05, 2 * math.pi, 13).tolist():
+        sol = track(q, 7.0, -3.0)
+        same_solution(sol, kl.analyze(m, q, 7.0, -3.0))
+        assert closure_residual(sol) < 1e-12
+        xy = track.positions(q)
+        assert xy.shape == (len(track.point_names), 2)
+        for name, row in zip(track.point_names, xy):
+            assert np.array_equal(row, sol.position(name))
+
+
+def test_numbers_of_any_kind_and_sweeps():
+    fb = kl.mechanisms.fourbar(**FOURBAR)
+    track = kl.kinematics.Tracker(fb)
+    ref = kl.analyze(fb, 0.7, 2.0, 1.0)
+    for q, qd, qdd in [(0.7, 2, 1), (np.float64(0.7), 2.0, np.array(1.0)), (np.array(0.7), 2.0, 1.0)]:
+        same_solution(track(q, qd, qdd), ref)
+    q = np.linspace(0.0, 2 * math.pi, 50)
+    sweep = track(q, 2.0)
+    assert np.array_equal(sweep.position("P"), kl.analyze(fb, q, 2.0).position("P"))
+    xy = track.positions(q)
+    assert xy.shape == (50, len(track.point_names), 2)
+    assert np.array_equal(xy[:, track.point_names.index("B")], sweep.position("B"))
+
+
+def test_solutions_do_not_share_memory():
+    """Each answer is its own: a later call does not change an earlier one."""
+    track = kl.kinematics.Tracker(kl.mechanisms.fourbar(**FOURBAR))
+    first, xy = track(0.3), track.positions(0.3)
+    kept, kept_xy = first.position("B").copy(), xy.copy()
+    track(2.0), track.positions(2.0)
+    assert np.array_equal(first.position("B"), kept) and np.array_equal(xy, kept_xy)
+
+
+@pytest.mark.parametrize("followed", ["smooth", "switch"])
+def test_change_points_follow_analyze(followed):
+    """A parallelogram: both sides of each change point, on the branch analyze takes."""
+    fb = kl.mechanisms.fourbar(ground=100, crank=60, coupler=100, rocker=60)
+    track = kl.kinematics.Tracker(fb, at_change_point=followed)
+    for q in [0.5, 3.0, 3.3, 6.0, 6.4, 9.5, -0.4, -3.3]:
+        same_solution(track(q, 1.0), kl.analyze(fb, q, 1.0, at_change_point=followed))
+        assert np.array_equal(track.positions(q),
+                              np.array([kl.analyze(fb, q, at_change_point=followed).position(p)
+                                        for p in track.point_names]))
+
+
+def test_unreachable_and_singular_as_analyze():
+    rocker = kl.mechanisms.fourbar(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)
+    track = kl.kinematics.Tracker(rocker)
+    with pytest.raises(AssemblyError, match="reachable q is"):
+        track(2.0)
+    with pytest.raises(AssemblyError, match="reachable q is"):
+        track.positions(2.0)
+    masked = kl.kinematics.Tracker(rocker, unreachable="mask")
+    assert np.isnan(masked.positions(2.0)).all()
+    assert not masked(2.0).assembled[0]
+    parallelogram = kl.mechanisms.fourbar(ground=100, crank=60, coupler=100, rocker=60)
+    with pytest.raises(SingularityError):
+        kl.kinematics.Tracker(parallelogram)(math.pi)          # a change point
+    flagged = kl.kinematics.Tracker(parallelogram, at_singular="flag")(math.pi, 1.0)
+    assert flagged.singular[0] and np.isnan(flagged.velocity("B")).all()
+    xy = kl.kinematics.Tracker(parallelogram).positions(math.pi)   # positions exist there
+    assert np.allclose(xy, [[0, 0], [-60, 0], [40, 0], [100, 0]], atol=1e-9)
+
+
+def test_bad_input_is_named():
+    track = kl.kinematics.Tracker(kl.mechanisms.fourbar(**FOURBAR))
+    for bad in (float("nan"), "x", [[0.1]], True):
+        with pytest.raises(ModelError, match="q"):
+            track(bad)
+        with pytest.raises(ModelError, match="q"):
+            track.positions(bad)
+    with pytest.raises(ModelError, match="qd"):
+        track(0.1, float("inf"))
+    with pytest.raises(ModelError, match="at_change_point"):
+        kl.kinematics.Tracker(kl.mechanisms.fourbar(**FOURBAR), at_change_point="jump")
+
+
+def test_two_inputs():
+    five = kl.mechanisms.fivebar(3.0, 1.0, 2.5, 2.5, 1.0)
+    track = kl.kinematics.Tracker(five)
+    q = np.array([1.2, 1.9])
+    same_solution(track(q, np.array([1.0, -2.0])), kl.analyze(five, q, np.array([1.0, -2.0])))
+    assert closure_residual(track(q)) < 1e-12
+
+
+def test_newton_groups_go_on_from_the_previous_call():
+    """A drag of a triad in small steps stays on the branch it is on, as one sweep does."""
+    triad = kl.mechanisms.triad6()
+    track = kl.kinematics.Tracker(triad)
+    q = np.linspace(float(kl.kinematics.plan(triad).q_sketch[0]), 1.0, 40)
+    sweep = kl.analyze(triad, q)
+    for i, qi in enumerate(q.tolist()):
+        sol = track(qi)
+        assert closure_residual(sol) < 1e-10
+        for p in sol.point_names:
+            assert np.allclose(sol.position(p), sweep.position(p)[i], atol=1e-10)
+    assert np.allclose(track.positions(float(q[-1])),
+                       [sweep.position(p)[-1] for p in track.point_names], atol=1e-10)
