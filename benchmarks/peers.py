@@ -12,19 +12,30 @@ its previous position: the assembly branch is carried from step to step, set by 
 starting position.  So
 
 - one configuration: write the crank pin, then one call of the per-step kernel
-  ``pylinkage.solver.simulation.step_single`` with ``dt = 0`` (the same kernel
-  ``Linkage.step_fast`` loops over; a Python ``Linkage.step()`` is some 30 times slower);
+  ``pylinkage.solver.simulation.step_single`` with ``dt = 0`` (the kernel
+  ``Linkage.step_fast`` loops over); a step of the Python ``Linkage.step()`` generator
+  takes two to four times as long;
 - a sweep: ``pylinkage.solver.simulate`` over uniformly spaced angles (crank
   increment = the spacing, ``dt = 1``), the loop ``Linkage.step_fast`` calls, without
-  its copies in and out of the Python objects.  Its closed-form alternative,
-  ``pylinkage.symbolic`` (lambdified sympy expressions), is some ten times slower;
+  its copies in and out of the Python objects: some 0.2 to 0.5 us a configuration,
+  30 to 50 times faster than ``Linkage.step()``.  pylinkage's closed form,
+  ``pylinkage.symbolic`` (lambdified sympy expressions over an array of angles), is
+  some 10 to 20 times slower than this loop;
 - path synthesis: ``pylinkage.optimization.particle_swarm_optimization`` with a fitness
-  function that runs that same kernel on a template ``SolverData``.
+  function that runs that same loop on a template ``SolverData``.
 
-pyslvs (22.7.0, the last release) does not build on Python 3.11: its Cython sources need
-a Cython 3 pre-release and fail with the current one
-("pyslvs/bfgs.pyx:104:38: Too many members for 'const Point &'"), so ``HAVE_PYSLVS`` is
-False unless a build of it can be imported.
+pyslvs 22.7.0 (the last release, AGPL) ships only a source distribution, and a plain
+``pip install pyslvs`` fails on Python 3.11: it asks for ``cython >= 3.0a6``, and the
+newest Cython, which an isolated build takes, rejects its sources
+("pyslvs/bfgs.pyx:104:38: Too many members for 'const Point &'").  It builds with
+Cython 3.0.0 (several minutes of C++)::
+
+    pip install cython==3.0.0 setuptools wheel
+    pip install --no-build-isolation pyslvs
+
+so it is not in the ``bench`` extra, and ``HAVE_PYSLVS`` is True only where it was built
+that way.  Its path synthesis, :func:`pyslvs_path_synthesis`, runs its differential
+evolution on its own objective.
 
 Error measure of a synthesised path (:func:`path_error`), the one kinelab's benchmarks
 report: the RMS distance from each target point to the nearest point of the coupler curve
@@ -100,32 +111,39 @@ def path_error(curve_xy, target_xy) -> float:
     fin = np.all(np.isfinite(C), axis=1)
     if not fin.any():
         return math.inf
-    V = C[fin]
-    d2 = np.min(np.sum((T[:, None, :] - V[None, :, :]) ** 2, axis=-1), axis=1)
+    # x and y apart: reductions over a last axis of length 2 would dominate the cost.
+    tx, ty = T[:, :1], T[:, 1:]
     seg = fin[:-1] & fin[1:]
+    alone = fin.copy()                                      # finite, on no segment
+    alone[:-1] &= ~seg
+    alone[1:] &= ~seg
+    d2 = np.full(len(T), np.inf)
     if seg.any():
-        P0, E = C[:-1][seg], (C[1:] - C[:-1])[seg]
-        D = T[:, None, :] - P0[None, :, :]                                   # (n, s, 2)
-        ee = np.sum(E * E, axis=-1)
-        t = np.clip(np.sum(D * E, axis=-1) / np.where(ee > 0, ee, 1.0), 0.0, 1.0)
-        d2 = np.minimum(d2, np.min(np.sum((D - t[..., None] * E) ** 2, axis=-1), axis=1))
+        x0, y0 = C[:-1, 0][seg], C[:-1, 1][seg]
+        ex, ey = C[1:, 0][seg] - x0, C[1:, 1][seg] - y0
+        dx, dy = tx - x0, ty - y0                                        # (n, s)
+        ee = ex * ex + ey * ey
+        t = np.clip((dx * ex + dy * ey) / np.where(ee > 0, ee, 1.0), 0.0, 1.0)
+        rx, ry = dx - t * ex, dy - t * ey
+        d2 = (rx * rx + ry * ry).min(axis=1)
+    if alone.any():
+        d2 = np.minimum(d2, ((tx - C[alone, 0]) ** 2 + (ty - C[alone, 1]) ** 2).min(axis=1))
     return float(math.sqrt(np.mean(d2)) / size)
 
 
 def _circle_left(X, Z, lx: float, lz: float, sigma: float = 1.0):
     """The intersection of circles (X, lx) and (Z, lz) to the left (sigma = +1) of X -> Z,
-    or None where they do not meet."""
-    X, Z = np.asarray(X, float), np.asarray(Z, float)
-    d = Z - X
-    D = math.hypot(*d)
+    as an array of shape (2,), or None where they do not meet."""
+    dx, dy = Z[0] - X[0], Z[1] - X[1]
+    D = math.hypot(dx, dy)
     if D == 0:
         return None
     a = (lx ** 2 - lz ** 2 + D ** 2) / (2 * D)
     h2 = lx ** 2 - a ** 2
     if h2 < 0:
         return None
-    e = d / D
-    return X + a * e + sigma * math.sqrt(h2) * np.array([-e[1], e[0]])
+    ex, ey, h = dx / D, dy / D, sigma * math.sqrt(h2)
+    return np.array([X[0] + a * ex - h * ey, X[1] + a * ey + h * ex])
 
 
 # --------------------------------------------------------------------------------------
@@ -303,18 +321,14 @@ def pylinkage_path_synthesis(target_points, *, n_particles: int = 100, iteration
     evaluations = 0
 
     def curve(x, n):
-        """P over a full turn, n + 1 samples (closed), or None."""
-        o2, o4 = np.array(x[0:2]), np.array(x[2:4])
-        crank, coupler, rocker, u, v, branch = x[4:10]
+        """P over a full turn from the crank at +x, n + 1 samples (closed), or None."""
+        ax, ay, bx, by, crank, coupler, rocker, u, v, branch = x
         dq = 2 * np.pi / n
-        A = o2 + crank * np.array([1.0, 0.0])
-        B = _circle_left(A, o4, coupler, rocker, 1.0 if branch >= 0 else -1.0)
+        B = _circle_left((ax + crank, ay), (bx, by), coupler, rocker, 1.0 if branch >= 0 else -1.0)
         if B is None:
             return None
-        pos = np.empty((5, 2))
-        pos[0], pos[3], pos[2] = o2, o4, B
-        pos[1] = o2 + crank * np.array([math.cos(-dq), math.sin(-dq)])
-        pos[4] = A
+        pos = np.array([(ax, ay), (ax + crank * math.cos(dq), ay - crank * math.sin(dq)),
+                        B, (bx, by), (ax + crank, ay)])
         c = d.constraints.copy()
         c[offsets[1]], c[offsets[1] + 1] = crank, dq
         c[offsets[2]], c[offsets[2] + 1] = coupler, rocker
@@ -339,6 +353,83 @@ def pylinkage_path_synthesis(target_points, *, n_particles: int = 100, iteration
     P = curve(x, 3600)
     error = math.inf if P is None else path_error(P, Tn)
     return PeerSynthesis(error, seconds, evaluations)
+
+
+# --------------------------------------------------------------------------------------
+# pyslvs
+
+def pyslvs_path_synthesis(target_points, *, pop_num: int = 400, max_gen: int = 1000,
+                          seed: int = 0) -> PeerSynthesis:
+    """A four-bar whose coupler point passes near the targets, by pyslvs' differential
+    evolution (``pyslvs.metaheuristics``, DE with its default settings) on its path
+    objective ``pyslvs.optimization.FPlanar``.
+
+    pyslvs' design is the pivots O2 and O4, the lengths O2A, AB, O4B, AP, the angle of P
+    from A -> B, and one crank angle per target (the timing is a variable); its fitness is
+    the sum of the distances from the coupler point at those angles to the targets.  The
+    mechanism is pyslvs' catalogue "Four bar linkage mechanism" (B on kinelab's "open"
+    side), the task centred and scaled to unit size, the pivots in [-3, 3] and the lengths
+    in [0.05, 6] as in kinelab's search.  The error returned is :func:`path_error` of the
+    best linkage's coupler curve over a full turn (3600 samples, broken where the loop
+    does not close), so it compares with the other peers'.
+
+    pyslvs draws from the C library's ``rand()``, seeded from the clock when an algorithm
+    is built; it is reseeded with ``srand(seed)`` before the run, so a result can be
+    reproduced (glibc's ``srand(0)`` is ``srand(1)``: seeds 0 and 1 give one run).
+
+    Returns
+    -------
+    PeerSynthesis
+        (error, seconds, evaluations).
+    """
+    _require(HAVE_PYSLVS, "pyslvs")
+    import ctypes
+
+    from pyslvs import collection_list, parse_vpoints, t_config
+    from pyslvs.metaheuristics import AlgorithmType, algorithm, default
+    from pyslvs.optimization import FPlanar
+
+    T = np.asarray(target_points, float)
+    center = T.mean(axis=0)
+    scale = float(np.linalg.norm(T - center, axis=1).max())
+    Tn = (T - center) / scale
+    fourbar = collection_list("Four bar linkage mechanism")
+    vpoints = parse_vpoints(fourbar["expression"])
+    inputs = list(fourbar["input"])
+    stack = t_config(vpoints, tuple(pair for pair, _ in inputs)).as_list()
+    if [e[0] for e in stack] != ["PLA", "PLLP", "PLAP"] or stack[1][4:] != ("P1", "P3"):
+        raise RuntimeError(f"pyslvs' four-bar is solved in an unexpected order: {stack}")
+    sketch = np.array([vp.c[0] for vp in vpoints])
+    d, e = sketch[1] - sketch[2], sketch[3] - sketch[2]          # A -> O4, A -> B
+    side = 1.0 if d[0] * e[1] - d[1] * e[0] > 0 else -1.0
+    objective = FPlanar({"expression": vpoints, "input": inputs,
+                         "placement": {0: (0.0, 0.0, 3.0), 1: (0.0, 0.0, 3.0)},
+                         "target": {4: [tuple(p) for p in Tn]}, "upper": 6.0, "lower": 0.05})
+    settings = default(AlgorithmType.DE)
+    settings.update(pop_num=pop_num, max_gen=max_gen, report=max_gen)
+    de = algorithm(AlgorithmType.DE)(objective, settings)
+    ctypes.CDLL(None).srand(seed)
+    t0 = time.perf_counter()
+    de.run()
+    seconds = time.perf_counter() - t0
+    v, fitness = de.result()
+    # v = [O2x, O2y, O4x, O4y, O2A, AB, O4B, AP, angle of P from A->B, crank angles...]
+    o2, o4 = v[0:2], v[2:4]
+    crank, coupler, rocker, ap, angle = v[4:9]
+
+    def coupler_point(q):
+        A = o2 + crank * np.array([math.cos(q), math.sin(q)])
+        B = _circle_left(A, o4, coupler, rocker, side)
+        if B is None:
+            return (np.nan, np.nan)
+        a = math.atan2(B[1] - A[1], B[0] - A[0]) + angle
+        return A + ap * np.array([math.cos(a), math.sin(a)])
+
+    at_targets = np.array([coupler_point(q) for q in v[9:]])
+    if not abs(np.linalg.norm(at_targets - Tn, axis=1).sum() - fitness) <= 1e-9 * max(1.0, fitness):
+        raise RuntimeError("the linkage rebuilt from pyslvs' design does not reproduce its fitness")
+    curve = np.array([coupler_point(q) for q in np.linspace(0.0, 2 * np.pi, 3601)])
+    return PeerSynthesis(path_error(curve, Tn), seconds, int(objective.callback))
 
 
 # --------------------------------------------------------------------------------------
@@ -369,6 +460,10 @@ def main():
               f"{r.evaluations:,} evaluations")
     if not HAVE_PYSLVS:
         print("pyslvs: not installed")
+    else:
+        r = pyslvs_path_synthesis(ELLIPSE_10)
+        print(f"pyslvs {pyslvs.__version__}: differential evolution on the 10-point ellipse: "
+              f"error {r.error:.3g}, {r.seconds:.1f} s, {r.evaluations:,} evaluations")
 
 
 if __name__ == "__main__":
