@@ -72,6 +72,19 @@ ELLIPSE_10 = np.column_stack([2 * np.cos(np.radians(np.linspace(0, 270, 10))),
                               np.sin(np.radians(np.linspace(0, 270, 10)))])
 
 
+# 10 points over 270 degrees of the coupler curve of kinelab's catalogue crank-rocker
+# (ground 3, crank 1, coupler 3, rocker 2.5, P = (1.5, 1) from A): an exact task.
+_q = np.radians(np.linspace(0, 270, 10))
+_A = np.column_stack([np.cos(_q), np.sin(_q)])
+_d = np.array([3.0, 0.0]) - _A
+_D = np.hypot(_d[:, 0], _d[:, 1])[:, None]
+_a = (9.0 - 6.25 + _D ** 2) / (2 * _D)
+_e = _d / _D
+_B = _A + _a * _e + np.sqrt(9.0 - _a ** 2) * np.column_stack([-_e[:, 1], _e[:, 0]])
+_w = (_B - _A) / 3.0
+COUPLER_10 = _A + 1.5 * _w + 1.0 * np.column_stack([-_w[:, 1], _w[:, 0]])
+
+
 def _require(flag: bool, name: str) -> None:
     if not flag:
         raise ImportError(f"{name} is not installed; pip install -e .[bench]")
@@ -276,8 +289,9 @@ def check_pylinkage() -> float:
 
 class PeerSynthesis(NamedTuple):
     error: float            # path_error of the best linkage, on a curve of 3600 samples
-    seconds: float          # wall time of the search
-    evaluations: int        # fitness evaluations (linkages simulated)
+    seconds: float          # processor time of the search (time.process_time)
+    evaluations: int        # fitness evaluations (linkages simulated); -1: not counted
+    trace: tuple = ()       # (seconds, error) each time the best so far improved, if known
 
 
 _BOUNDS = ([-3.0] * 4 + [0.05, 0.05, 0.05, -4.0, -4.0, -1.0],
@@ -302,7 +316,8 @@ def pylinkage_path_synthesis(target_points, *, n_particles: int = 100, iteration
     Returns
     -------
     PeerSynthesis
-        (error, seconds, evaluations).
+        (error, seconds, evaluations, trace): the trace holds the time and the error
+        (:func:`path_error`, 3600 samples) of each new best design of the swarm.
     """
     _require(HAVE_PYLINKAGE, "pylinkage")
     from unittest import mock
@@ -336,23 +351,31 @@ def pylinkage_path_synthesis(target_points, *, n_particles: int = 100, iteration
         P = simulate(pos, c, *kernel, n + 1, 1.0)[:, 4]
         return None if np.isnan(P).any() else P
 
+    improvements = []                  # (seconds, fitness, design) of each new best
+
     def fitness(_linkage, params, _init_pos):
         nonlocal evaluations
         evaluations += 1
         P = curve(params, samples)
+        f = math.inf if P is None else path_error(P, Tn)
+        if f < (improvements[-1][1] if improvements else math.inf):
+            improvements.append((time.process_time() - t0, f, np.array(params, float)))
+        return f
+
+    def error_of(x):
+        P = curve(x, 3600)
         return math.inf if P is None else path_error(P, Tn)
 
     real_rng = np.random.default_rng
-    t0 = time.perf_counter()
+    t0 = time.process_time()
     with mock.patch("numpy.random.default_rng", lambda *a, **k: real_rng(seed)):
         best = particle_swarm_optimization(
             fitness, template.linkage, dimensions=len(_BOUNDS[0]), n_particles=n_particles,
             iterations=iterations, bounds=_BOUNDS, order_relation=min, verbose=False)
-    seconds = time.perf_counter() - t0
-    x = np.asarray(best.dimensions[0], float)
-    P = curve(x, 3600)
-    error = math.inf if P is None else path_error(P, Tn)
-    return PeerSynthesis(error, seconds, evaluations)
+    seconds = time.process_time() - t0
+    trace = tuple((t, error_of(x)) for t, _, x in improvements)
+    return PeerSynthesis(error_of(np.asarray(best.dimensions[0], float)), seconds, evaluations,
+                         trace)
 
 
 # --------------------------------------------------------------------------------------
@@ -409,9 +432,9 @@ def pyslvs_path_synthesis(target_points, *, pop_num: int = 400, max_gen: int = 1
     settings.update(pop_num=pop_num, max_gen=max_gen, report=max_gen)
     de = algorithm(AlgorithmType.DE)(objective, settings)
     ctypes.CDLL(None).srand(seed)
-    t0 = time.perf_counter()
+    t0 = time.process_time()
     de.run()
-    seconds = time.perf_counter() - t0
+    seconds = time.process_time() - t0
     v, fitness = de.result()
     # v = [O2x, O2y, O4x, O4y, O2A, AB, O4B, AP, angle of P from A->B, crank angles...]
     o2, o4 = v[0:2], v[2:4]
@@ -433,37 +456,161 @@ def pyslvs_path_synthesis(target_points, *, pop_num: int = 400, max_gen: int = 1
 
 
 # --------------------------------------------------------------------------------------
+# kinelab, measured the same way
+
+def kinelab_path_synthesis(target_points, *, tolerance: float = 1e-3, seed: int = 0
+                           ) -> PeerSynthesis:
+    """``kl.synthesis.path_generation`` (one run, stopped at ``tolerance``), its error
+    measured as the peers' are: :func:`path_error` of the engine's coupler curve over a
+    full turn (3600 samples, broken where the loop does not close)."""
+    import kinelab as kl
+
+    T = np.asarray(target_points, float)
+    t0 = time.process_time()
+    sols = kl.synthesis.path_generation(T, runs=1, seed=seed, tolerance=tolerance)
+    seconds = time.process_time() - t0
+    if not sols:
+        return PeerSynthesis(math.inf, seconds, -1)
+    sol = kl.analyze(sols[0].model, np.linspace(0.0, 2 * np.pi, 3601), unreachable="mask",
+                     at_singular="flag")
+    return PeerSynthesis(path_error(sol.position("P"), T), seconds, -1)
+
+
+def _per_call(call, args, repeats: int = 15) -> np.ndarray:
+    """Processor time of one call (s), for each of ``repeats`` loops over ``args``."""
+    out = []
+    for _ in range(repeats):
+        t0 = time.thread_time()
+        for a in args:
+            call(a)
+        out.append((time.thread_time() - t0) / len(args))
+    return np.array(out)
+
+
+def _row(name: str, t: np.ndarray, ref: np.ndarray | None, unit: float = 1e6) -> str:
+    """best, median, and the reference's median over this one's (> 1: this is faster)."""
+    ratio = "" if ref is None else f"{np.median(ref) / np.median(t):9.2f}x"
+    return f"  {name:56s} {np.min(t) * unit:9.3f} {np.median(t) * unit:9.3f} {ratio}"
+
+
+def compare_one_configuration(model, fb, repeats: int = 15):
+    """kinelab's Tracker and analyze against pylinkage's one step, one crank angle a call."""
+    import kinelab as kl
+
+    q = [float(x) for x in np.linspace(0.0, 2 * np.pi, 2000)]
+    track = kl.kinematics.Tracker(model)
+    track(q[0], 10.0, 0.0), track.positions(q[0]), kl.analyze(model, q[0], 10.0, 0.0)   # warm
+    pylinkage_one_step(fb, q[0])
+    ref = _per_call(lambda x: pylinkage_one_step(fb, x), q, repeats)
+    print("one configuration per call, us (best, median; pylinkage's median / this one's)")
+    print(_row(f"pylinkage {pylinkage.__version__} step_single (O2, A, B, O4, P)", ref, None))
+    print(_row("kinelab Tracker.positions(q) (every point)", _per_call(track.positions, q, repeats),
+               ref))
+    print(_row("kinelab Tracker(q, qd, qdd) (whole analysis)",
+               _per_call(lambda x: track(x, 10.0, 0.0), q, repeats), ref))
+    print(_row("kinelab analyze(model, q, qd, qdd)",
+               _per_call(lambda x: kl.analyze(model, x, 10.0, 0.0), q[:500], repeats), ref))
+
+
+def compare_sweep(model, fb, n: int = 3600, repeats: int = 15):
+    """kinelab's analyze against pylinkage's numba loop over n crank angles."""
+    import kinelab as kl
+
+    q = np.linspace(0.0, 2 * np.pi, n)
+    kl.analyze(model, q, 10.0, 0.0), pylinkage_sweep(fb, q)               # warm
+    print(f"a sweep of {n:,} crank angles, us per configuration (best, median; ratio)")
+    ref = _per_call(lambda _: pylinkage_sweep(fb, q), [None] * 5, repeats) / n
+    print(_row("pylinkage simulate (positions)", ref, None))
+    print(_row("kinelab analyze (positions, velocities, accelerations)",
+               _per_call(lambda _: kl.analyze(model, q, 10.0, 0.0), [None] * 5, repeats) / n, ref))
+
+
+def _time_to(runs, error: float) -> np.ndarray:
+    """Per seed, the time at which a method first held a design within ``error`` (inf:
+    never).  ``runs``: per seed, a list of (seconds, error) points."""
+    return np.array([min((t for t, e in points if e <= error), default=math.inf)
+                     for points in runs])
+
+
+def compare_path_synthesis(targets, name: str, errors=(3e-2, 1e-2, 1e-3), seeds: int = 10,
+                           peer_seeds: int = 3):
+    """Processor time to reach each error (path_error) on one task, per method and seed."""
+    rows = {}
+    kinelab_path_synthesis(targets, tolerance=1e-1, seed=0)                   # warm
+    # kinelab: one run per seed and error, stopped there
+    runs = [[] for _ in range(seeds)]
+    final = []
+    for s in range(seeds):
+        for e in errors:
+            r = kinelab_path_synthesis(targets, tolerance=e, seed=s)
+            runs[s].append((r.seconds, r.error))
+        final.append(r.error)
+    rows["kinelab path_generation"] = (runs, final)
+    if HAVE_PYLINKAGE:
+        runs, final = [], []
+        for s in range(peer_seeds):
+            r = pylinkage_path_synthesis(targets, seed=s)
+            runs.append(list(r.trace))
+            final.append(r.error)
+        rows["pylinkage particle swarm (100 x 200)"] = (runs, final)
+    if HAVE_PYSLVS:
+        runs, final = [], []
+        for s in range(1, peer_seeds + 1):               # srand(0) is srand(1) in glibc
+            points = []
+            for gens in (125, 250, 500, 1000):           # each budget its own run
+                r = pyslvs_path_synthesis(targets, max_gen=gens, seed=s)
+                points.append((r.seconds, r.error))
+            runs.append(points)
+            final.append(points[-1][1])
+        rows["pyslvs differential evolution (400 x 1000)"] = (runs, final)
+    print(f"path synthesis, {name}: processor time to an error of (s; best / median over "
+          f"seeds, '-': not reached), and the last error reached")
+    head = "".join(f"{'<= ' + format(e, 'g'):>16s}" for e in errors)
+    print(f"  {'':56s}{head}   {'last error':>10s}")
+    ref = {e: _time_to(rows["kinelab path_generation"][0], e) for e in errors}
+    for label, (runs, final) in rows.items():
+        cells = []
+        for e in errors:
+            t = _time_to(runs, e)
+            cells.append(f"{_fmt_s(t.min())} / {_fmt_s(np.median(t))}")
+        print(f"  {label:56s}" + "".join(f"{c:>16s}" for c in cells)
+              + f"   {np.median(final):10.2g}")
+        if not label.startswith("kinelab"):
+            ratios = []
+            for e in errors:
+                t = np.median(_time_to(runs, e))
+                ratios.append("-" if not math.isfinite(t) else f"{t / np.median(ref[e]):.0f}x")
+            print(f"  {'  its median time / kinelab median':56s}"
+                  + "".join(f"{c:>16s}" for c in ratios))
+    if not HAVE_PYLINKAGE:
+        print("  pylinkage: not installed (pip install -e .[bench])")
+    if not HAVE_PYSLVS:
+        print("  pyslvs: not installed; pip install pyslvs fails on Python 3.11 (its Cython "
+              "sources need Cython 3.0.0, see this file's docstring)")
+
+
+def _fmt_s(t: float) -> str:
+    return "-" if not math.isfinite(t) else f"{t:.2f}"
+
 
 def main():
-    if not HAVE_PYLINKAGE:
-        print("pylinkage: not installed")
-    else:
+    import kinelab as kl
+
+    print(f"kinelab against its peers, one process; numpy {np.__version__}")
+    if HAVE_PYLINKAGE:
         print(f"pylinkage {pylinkage.__version__}: largest difference from kinelab "
               f"{check_pylinkage():.1e} m")
+        model = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
         fb = pylinkage_fourbar(3.0, 1.0, 3.0, 2.5, (1.5, 1.0))
-        q = np.linspace(0.0, 2 * np.pi, 1000)
-        n = 20_000
-        t0 = time.perf_counter()
-        for i in range(n):
-            pylinkage_one_step(fb, q[i % 1000])
-        print(f"  one step: {(time.perf_counter() - t0) / n * 1e6:.2f} us")
-        for m in (1_000, 100_000):
-            qs = np.linspace(0.0, 2 * np.pi, m)
-            best = np.inf
-            for _ in range(5):
-                t0 = time.perf_counter()
-                pylinkage_sweep(fb, qs)
-                best = min(best, time.perf_counter() - t0)
-            print(f"  sweep of {m:,}: {best / m * 1e6:.3f} us per configuration")
-        r = pylinkage_path_synthesis(ELLIPSE_10)
-        print(f"  particle swarm on the 10-point ellipse: error {r.error:.3g}, {r.seconds:.1f} s, "
-              f"{r.evaluations:,} evaluations")
-    if not HAVE_PYSLVS:
-        print("pyslvs: not installed")
+        compare_one_configuration(model, fb)
+        compare_sweep(model, fb)
     else:
-        r = pyslvs_path_synthesis(ELLIPSE_10)
-        print(f"pyslvs {pyslvs.__version__}: differential evolution on the 10-point ellipse: "
-              f"error {r.error:.3g}, {r.seconds:.1f} s, {r.evaluations:,} evaluations")
+        print("pylinkage: not installed (pip install -e .[bench])")
+    if HAVE_PYSLVS:
+        print(f"pyslvs {pyslvs.__version__}")
+    compare_path_synthesis(ELLIPSE_10, "10 points of a 2 x 1 ellipse over 270 deg")
+    compare_path_synthesis(COUPLER_10, "10 points of the crank-rocker's coupler curve "
+                           "(an exact solution exists)")
 
 
 if __name__ == "__main__":

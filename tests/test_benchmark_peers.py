@@ -95,3 +95,32 @@ def test_pylinkage_path_synthesis_small_budget():
     assert 0.0 < r.error < 1.0
     again = peers.pylinkage_path_synthesis(peers.ELLIPSE_10, n_particles=20, iterations=5, seed=1)
     assert again.error == r.error                # seeded: reproducible
+
+
+def test_coupler_task_is_traced_by_the_catalogue_crank_rocker():
+    import kinelab as kl
+    fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
+    P = kl.analyze(fb, np.radians(np.linspace(0, 270, 10))).position("P")
+    np.testing.assert_allclose(peers.COUPLER_10, P, atol=1e-12)
+
+
+def test_kinelab_path_synthesis_within_its_tolerance_by_the_peers_measure():
+    # the search stops on the RMS distance at the targets' own crank angles; the peers'
+    # measure, to the nearest point of the curve, can only be smaller (plus the chord sag)
+    r = peers.kinelab_path_synthesis(peers.COUPLER_10, tolerance=1e-3, seed=0)
+    assert r.error <= 1e-3
+
+
+def test_time_to_an_error():
+    runs = [[(0.5, 0.1), (1.0, 0.01), (2.0, 0.001)], [(0.2, 0.05)]]
+    np.testing.assert_array_equal(peers._time_to(runs, 0.05), [1.0, 0.2])
+    np.testing.assert_array_equal(peers._time_to(runs, 0.01), [1.0, np.inf])
+
+
+def test_pylinkage_trace_improves_to_the_result():
+    pytest.importorskip("pylinkage")
+    r = peers.pylinkage_path_synthesis(peers.ELLIPSE_10, n_particles=20, iterations=5, seed=1)
+    t = np.array([p[0] for p in r.trace])
+    assert len(t) >= 1 and np.all(np.diff(t) >= 0)
+    # the swarm's best is the last design that improved its fitness
+    assert r.trace[-1][1] == r.error

@@ -427,11 +427,11 @@ def _levenberg_marquardt(T: np.ndarray, Z: np.ndarray, sigma: np.ndarray, sense:
 _STARTS = 32          # designs screened per unit of popsize in each round
 _KEEP = 8             # least-squares starts per unit of popsize in each round
 _POLISHED = 16        # of those, carried on by the longer least squares
-_BRIEF, _LONG = 20, 150   # their Levenberg-Marquardt iterations
+_BRIEF, _LONG = 20, 50    # their Levenberg-Marquardt iterations
 _NEAR = 0.25          # share of a round's starts drawn near the best designs so far
 _ELITE = 8            # how many of those are kept
 _PATIENCE = 3         # rounds without progress after which they are forgotten
-_CHECKED = 3          # of those, refined under the travel's constraints and built
+_CHECKED = 3          # of the polished, built as models and checked with the engine
 _CHUNK = 1024         # designs screened (or started from) at once: bounds the memory
 _BOUNDS = np.array([(-3, 3)] * 4 + [(0.05, 3.0), (0.05, 6.0), (0.05, 6.0), (-4, 4), (-4, 4),
                     (-1, 1)], float)      # the designs drawn, for a task of unit size
@@ -515,7 +515,7 @@ class _Search:
         return [(designs[i], Z[i, 9:], score[i]) for i in order if np.isfinite(score[i])]
 
 
-def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 10, popsize: int = 15,
+def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, popsize: int = 15,
                     samples: int = 180, min_transmission_angle: float = 0.0, seed: int = 0,
                     refine: bool = True, tolerance: float = 1e-4) -> SolutionList:
     """Four-bars whose coupler point passes near prescribed points, in order.
