@@ -6,14 +6,29 @@
 >>> sol.angle("coupler").shape, sol.position("B").shape
 ((720,), (720, 2))
 """
-from kinelab import (derive, dynamics, errors, io, kinematics, mechanisms, model, plot, solvers,
-                     spatial, structure, synthesis)
+import importlib
+
+from kinelab import errors, io, kinematics, mechanisms, model, solvers
 from kinelab._memory import memory_budget, reuse_result_memory
 from kinelab.io import load
 from kinelab.kinematics import KinematicSolution, analyze
 from kinelab.model import Mechanism
 
 __all__ = ["errors", "model", "solvers", "mechanisms", "kinematics", "spatial", "structure",
-           "synthesis", "dynamics", "derive", "io",
+           "synthesis", "dynamics", "derive", "sweep", "io",
            "plot", "analyze", "load",
            "Mechanism", "KinematicSolution", "reuse_result_memory", "memory_budget"]
+
+# the rooms that bring in sympy, scipy.spatial, matplotlib or dask load on first use (kl.derive, ...),
+# so that a command that does not need them starts quicker
+_ON_FIRST_USE = ("derive", "dynamics", "plot", "spatial", "structure", "sweep", "synthesis")
+
+
+def __getattr__(name):
+    if name in _ON_FIRST_USE:
+        return importlib.import_module(f"kinelab.{name}")
+    raise AttributeError(f"module 'kinelab' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_ON_FIRST_USE))

@@ -44,7 +44,7 @@ import numpy as np
 
 from kinelab.errors import ModelError
 
-__all__ = ["parse_expression", "parse_function", "parse_table", "to_sympy", "FUNCTIONS",
+__all__ = ["parse_expression", "parse_function", "parse_table", "to_sympy", "to_program", "FUNCTIONS",
            "MAX_LENGTH", "MAX_PARTS", "MAX_DEPTH", "MAX_EXPONENT"]
 
 MAX_LENGTH = 10_000   # characters
@@ -554,6 +554,127 @@ def parse_table(spec: Mapping[str, Any], *, where: str = "table") -> Callable[[A
         return np.interp(s, x, y)
     return table
 
+
+
+# The instructions of a program (see to_program): the stack machine that runs them is
+# kinelab.dynamics._kernel.run_law.  Each is a row (code, argument).
+OP_CONST, OP_T, OP_Q, OP_QD = 0, 1, 2, 3          # push constants[arg], t, q[arg], qd[arg]
+OP_ADD, OP_SUB, OP_MUL, OP_DIV, OP_POW, OP_MOD = 4, 5, 6, 7, 8, 9
+OP_NEG, OP_NOT, OP_AND, OP_OR = 10, 11, 12, 13
+OP_LT, OP_LE, OP_GT, OP_GE, OP_EQ, OP_NE = 14, 15, 16, 17, 18, 19
+OP_WHERE = 20                                    # c, a, b -> a if c != 0 else b
+OP_FUNCTION = 21                                 # arg: the index in PROGRAM_FUNCTIONS
+PROGRAM_FUNCTIONS = tuple(FUNCTIONS)
+_PROGRAM_BINARY = {ast.Add: OP_ADD, ast.Sub: OP_SUB, ast.Mult: OP_MUL, ast.Div: OP_DIV,
+                   ast.Pow: OP_POW, ast.Mod: OP_MOD}
+_PROGRAM_COMPARE = {ast.Lt: OP_LT, ast.LtE: OP_LE, ast.Gt: OP_GT, ast.GtE: OP_GE,
+                    ast.Eq: OP_EQ, ast.NotEq: OP_NE}
+
+
+def to_program(text: str, M: int, *, where: str = "expression"
+               ) -> tuple[np.ndarray, np.ndarray] | None:
+    """The expression as a program for a stack machine: a compiled kernel evaluates it
+    without Python (forward dynamics calls a law at every step).
+
+    The text is checked as :func:`parse_expression` checks it, and its parts without
+    variables are folded by the same numpy arithmetic; the rest is postfix code over
+    float64 with the same meaning (numpy's ``mod``, comparisons and ``and``/``or`` giving
+    1.0 or 0.0, ``where`` evaluating both branches).
+
+    Returns
+    -------
+    (code, constants) : ndarray (n, 2) of int64, ndarray of float64
+        Rows ``(op, argument)`` (the ``OP_*`` codes of this module) and the constants
+        they push; None when the text names ``q`` or ``qd`` in a way that does not fit
+        ``M`` inputs (a bare ``q`` with several inputs, an index past the last), which
+        :func:`parse_expression` reports when evaluated.
+
+    Examples
+    --------
+    >>> code, constants = to_program("2 * q + 1", 1)
+    >>> code.tolist(), constants.tolist()
+    ([[0, 0], [2, 0], [6, 0], [0, 1], [4, 0]], [2.0, 1.0])
+    """
+    tree, _ = _checked(text, where)
+    compiler = _Compiler(where, text, text.strip(), None)
+    code: list[tuple[int, int]] = []
+    constants: list[float] = []
+
+    def const(value):
+        code.append((OP_CONST, len(constants)))
+        constants.append(float(value))
+
+    def emit(node):
+        if not isinstance(node, (ast.Constant, ast.Name, ast.Subscript)):
+            folded = compiler.compile(node)
+            if isinstance(folded, _Const):
+                return const(folded.value)
+        if isinstance(node, ast.Constant):
+            return const(compiler.compile(node).value)
+        if isinstance(node, ast.Name):
+            if node.id in _CONSTANTS:
+                return const(_CONSTANTS[node.id])
+            if node.id == "t":
+                return code.append((OP_T, 0))
+            if M != 1:
+                raise _DoesNotFit
+            return code.append((OP_Q if node.id == "q" else OP_QD, 0))
+        if isinstance(node, ast.Subscript):
+            if node.slice.value >= M:
+                raise _DoesNotFit
+            return code.append((OP_Q if node.value.id == "q" else OP_QD, node.slice.value))
+        if isinstance(node, ast.BinOp):
+            if isinstance(node.op, ast.Pow):
+                emit(node.left)
+                emit(node.right)
+                return code.append((OP_POW, 0))
+            first, links = _chain(node)
+            emit(first)
+            for link in links:
+                emit(link.right)
+                code.append((_PROGRAM_BINARY[type(link.op)], 0))
+            return None
+        if isinstance(node, ast.UnaryOp):
+            emit(node.operand)
+            if isinstance(node.op, ast.USub):
+                code.append((OP_NEG, 0))
+            elif isinstance(node.op, ast.Not):
+                code.append((OP_NOT, 0))
+            return None
+        if isinstance(node, ast.Compare):
+            terms = [node.left] + list(node.comparators)
+            for i, (op, a, b) in enumerate(zip(node.ops, terms, terms[1:])):
+                emit(a)
+                emit(b)
+                code.append((_PROGRAM_COMPARE[type(op)], 0))
+                if i:
+                    code.append((OP_AND, 0))
+            return None
+        if isinstance(node, ast.BoolOp):
+            emit(node.values[0])
+            for v in node.values[1:]:
+                emit(v)
+                code.append((OP_AND if isinstance(node.op, ast.And) else OP_OR, 0))
+            return None
+        if isinstance(node, ast.IfExp):
+            for part in (node.test, node.body, node.orelse):
+                emit(part)
+            return code.append((OP_WHERE, 0))
+        for a in node.args:                          # ast.Call, checked by _checked
+            emit(a)
+        if node.func.id == "where":
+            return code.append((OP_WHERE, 0))
+        return code.append((OP_FUNCTION, PROGRAM_FUNCTIONS.index(node.func.id)))
+
+    try:
+        emit(tree.body)
+    except _DoesNotFit:
+        return None
+    return np.array(code, np.int64).reshape(-1, 2), np.array(constants, np.float64)
+
+
+class _DoesNotFit(Exception):
+    """A name of the state that the number of inputs does not have."""
 
 
 def to_sympy(text: str, t, q, qd, *, where: str = "expression"):

@@ -8,8 +8,11 @@ from kinelab.cli._derive import derive_command
 from kinelab.cli._draw import animate, plot
 from kinelab.cli._dynamics import dynamics_command
 from kinelab.cli._exchange import export, import_
+from kinelab.cli._graphical import centres, differentiate_command, polygons
 from kinelab.cli._main import main
+from kinelab.cli._serve import serve
 from kinelab.cli._structure import mobility, types
+from kinelab.cli._sweep import atlas_command, sweep_command
 from kinelab.cli._synthesis import synth
 
 main.add_command(analyze)
@@ -23,5 +26,11 @@ main.add_command(types)
 main.add_command(synth)
 main.add_command(dynamics_command)
 main.add_command(derive_command)
+main.add_command(polygons)
+main.add_command(centres)
+main.add_command(differentiate_command)
+main.add_command(serve)
+main.add_command(sweep_command)
+main.add_command(atlas_command)
 
 __all__ = ["main"]

@@ -13,6 +13,7 @@ from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, errors_from, output_p
                                read_model, stem, sweep)
 from kinelab.io._modelfile import MAX_SAMPLES
 from kinelab.errors import AssemblyError, KinelabError, ModelError
+from kinelab.kinematics import KinematicSolution
 from kinelab.kinematics._columns import INPUT_SI_UNITS
 
 __all__ = ["analyze", "check"]
@@ -83,14 +84,7 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
     m = mf.mechanism
     units = output_units(mf.units, si, degrees)
     if at is not None:
-        q = parse_inputs(at, mf)
-        M = len(m.inputs)
-        qd = np.array([i.speed for i in m.inputs]) if M > 1 else m.inputs[0].speed
-        qdd = np.array([i.acceleration for i in m.inputs]) if M > 1 else m.inputs[0].acceleration
-        with errors_from(mf, "--at"):
-            sol = kinematics.analyze(m, q, qd, qdd, at_singular="flag",
-                                     at_change_point=change_points)
-        click.echo(configuration_text(sol, units))
+        click.echo(configuration_text(configuration(mf, at, change_points), units))
         return
     path = output_path(out, stem(model), fmt or "csv")
     kind = io.result_format(path, fmt)       # before the sweep, which can be long
@@ -105,6 +99,18 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
     told = f"{kind.upper()} as --format says, whatever the name; " if (
         written.suffix.lower() != f".{kind}") else ""
     click.echo(f"wrote {written} ({told}{sol.N} rows, {len(sol.columns())} columns)")
+
+
+def configuration(mf: io.ModelFile, at: str, change_points: str = "smooth") -> KinematicSolution:
+    """The file's mechanism at the input typed in ``--at``, at the file's input speeds and
+    accelerations; a singular configuration is flagged, not refused."""
+    m = mf.mechanism
+    q = parse_inputs(at, mf)
+    M = len(m.inputs)
+    qd = np.array([i.speed for i in m.inputs]) if M > 1 else m.inputs[0].speed
+    qdd = np.array([i.acceleration for i in m.inputs]) if M > 1 else m.inputs[0].acceleration
+    with errors_from(mf, "--at"):
+        return kinematics.analyze(m, q, qd, qdd, at_singular="flag", at_change_point=change_points)
 
 
 def with_speeds(mf, qd) -> io.ModelFile:

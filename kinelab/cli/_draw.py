@@ -99,12 +99,17 @@ def plot(model, out, formats, outputs, samples, si, degrees, change_points):
               help="Comma-separated points whose paths are traced (default: coupler points).")
 @click.option("--frames", type=click.IntRange(2, 2000), default=120, show_default=True)
 @click.option("--fps", type=click.IntRange(1, 120), default=30, show_default=True)
+@click.option("--centres", "centers", is_flag=True,
+              help="Overlay the instant centres (O12, O13, ...) in each frame.")
+@click.option("--velocities", is_flag=True,
+              help="Overlay each moving point's velocity as an arrow, at one stated scale.")
 @SAMPLES
 @SI
 @CHANGE_POINTS
-def animate(model, out, fmt, trace, frames, fps, samples, si, change_points):
-    """Write an animation of MODEL moving through its sweep, with its coupler curves traced;
-    axes in the file's length unit (--si for m)."""
+def animate(model, out, fmt, trace, frames, fps, centers, velocities, samples, si, change_points):
+    """Write an animation of MODEL moving through its sweep, with its coupler curves traced
+    (and, on request, its instant centres and velocities); axes in the file's length unit
+    (--si for m)."""
     from kinelab import plot as kplot
     _agg()
     mf = read_model(model)
@@ -117,5 +122,5 @@ def animate(model, out, fmt, trace, frames, fps, samples, si, change_points):
     path = output_path(out, stem(model), fmt)
     with errors_from(mf, "--trace" if trace else ""):
         written = kplot.animate(sol, path, trace=_names(trace), frames=frames, fps=fps,
-                                units=units)
+                                units=units, centers=centers, velocities=velocities)
     click.echo(f"wrote {written}")

@@ -6,7 +6,6 @@ import math
 import os
 import re
 import sys
-from contextlib import contextmanager
 from pathlib import Path
 
 import click
@@ -15,6 +14,7 @@ import numpy as np
 from kinelab import kinematics
 from kinelab.errors import KinelabError, ModelError, quoted, shown
 from kinelab.io import ModelFile
+from kinelab.io._modelfile import errors_from
 from kinelab.kinematics import KinematicSolution
 from kinelab.model import ANGLE_UNITS, LENGTH_UNITS, Units, range_problem, rate_problem
 
@@ -96,18 +96,6 @@ def output_units(file_units: Units, si: bool, degrees: bool) -> Units:
     return Units(u.length, "deg") if degrees else u
 
 
-@contextmanager
-def errors_from(mf: ModelFile, field: str = ""):
-    """Name the file (and a field) in the errors the analysis raises for it."""
-    try:
-        yield
-    except KinelabError as exc:
-        prefix = f"{mf.source or 'model'}: {field + ': ' if field else ''}"
-        if isinstance(exc, ModelError):
-            raise ModelError([prefix + p for p in exc.problems]) from None
-        raise type(exc)("\n".join(prefix + line for line in str(exc).splitlines())) from None
-
-
 def sweep(mf: ModelFile, samples: int | None = None, *, progress: bool | None = None,
           change_points: str = "smooth") -> KinematicSolution:
     """Analyse the file's sweep; on a terminal, in chunks with a progress bar; through
@@ -118,10 +106,9 @@ def sweep(mf: ModelFile, samples: int | None = None, *, progress: bool | None = 
         progress = sys.stderr.isatty()
     p = kinematics.plan(m)
     big = len(q) >= (200 if p.uses_newton else 20000)
+    if not (progress and big):
+        return mf.analyze(samples, at_change_point=change_points)
     with errors_from(mf, "inputs"):
-        if not (progress and big):
-            return kinematics.analyze(m, q, qd, qdd, at_singular="flag",
-                                      at_change_point=change_points)
         return analyze_in_chunks(m, q, qd, qdd, chunks=50, label=f"analysing {m.name}",
                                  at_change_point=change_points)
 

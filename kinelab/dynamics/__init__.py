@@ -6,7 +6,7 @@ and its time derivative comes from the acceleration coefficients L, so every ter
 vectorised product of K, L and the mass data over the samples.
 
 - :func:`inverse` -- actuator efforts, joint reactions and shaking force over a motion;
-- :func:`simulate` -- the motion under given actuator laws and loads;
+- :func:`simulate` -- the motion under given actuator laws and loads, one run or a batch;
 - :class:`Loads` -- gravity, point forces, torques, springs, dampers;
 - :class:`MassProperties` -- the links' masses and inertias, point masses, lumping;
 - :class:`DynamicsSetup` -- a model file's ``[dynamics]`` section (loads, actuator laws);
@@ -15,7 +15,7 @@ vectorised product of K, L and the mass data over the samples.
 """
 from kinelab._expressions import parse_expression, parse_table, to_sympy
 from kinelab.dynamics._flywheel import Flywheel, flywheel
-from kinelab.dynamics._forward import Simulation, simulate
+from kinelab.dynamics._forward import Simulation, SimulationBatch, simulate
 from kinelab.dynamics._inverse import InverseDynamics, inverse
 from kinelab.dynamics._loads import (STANDARD_GRAVITY, Damper, Law, Loads, PointForce, Spring,
                                      Torque)
@@ -23,7 +23,7 @@ from kinelab.dynamics._masses import LinkMass, MassProperties, PointMass
 from kinelab.dynamics._setup import DynamicsSetup
 from kinelab.dynamics._symbolic import EquationsOfMotion, equations_of_motion
 
-__all__ = ["inverse", "InverseDynamics", "simulate", "Simulation", "Loads", "PointForce", "Torque", "Spring", "Damper",
+__all__ = ["inverse", "InverseDynamics", "simulate", "Simulation", "SimulationBatch", "Loads", "PointForce", "Torque", "Spring", "Damper",
            "Law", "STANDARD_GRAVITY", "MassProperties", "LinkMass", "PointMass",
            "DynamicsSetup", "flywheel", "Flywheel", "equations_of_motion", "EquationsOfMotion",
            "parse_expression", "parse_table", "to_sympy"]

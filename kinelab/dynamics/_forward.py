@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import os
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any, Literal
@@ -10,17 +11,19 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from kinelab import _compiled
+from kinelab.dynamics._compiled import compiled_system, work_arrays
 from kinelab.dynamics._loads import Law, Loads
 from kinelab.dynamics._masses import MassProperties
 from kinelab.dynamics._results import MotionResult
 from kinelab.dynamics._terms import System, build_system, evaluate
-from kinelab.errors import AssemblyError, ModelError, SingularityError, describe
+from kinelab.errors import AssemblyError, ModelError, SingularityError, check_choice, describe
 from kinelab.kinematics import SINGULAR_TOL, KinematicSolution, analyze, change_points, plan
 from kinelab.kinematics._columns import Columns
 from kinelab.model import Mechanism, Units
 from kinelab.solvers import wrap_angle
 
-__all__ = ["simulate", "Simulation"]
+__all__ = ["simulate", "Simulation", "SimulationBatch"]
 
 SINGULAR_STOP = 2 * SINGULAR_TOL   # singularity measure (a sine) at which the integration
                                    # stops: before the kinematics flags the configuration
@@ -163,6 +166,7 @@ def actuator_laws(model: Mechanism, inputs) -> Callable[[np.ndarray, np.ndarray,
             if law is not None:
                 out[:, k] = law(t, q, qd)
         return out
+    by_input.laws = tuple(laws)        # what the compiled kernel runs as programs
     return by_input
 
 
@@ -223,20 +227,6 @@ class _Halt(Exception):
         self.t, self.q, self.kind = t, q, kind
 
 
-def _state(name: str, value, M: int) -> np.ndarray:
-    try:
-        a = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ModelError(f"{name}: expected numbers, got {describe(value)}") from None
-    if a.ndim == 0:
-        a = np.full(M, float(a))
-    if a.shape != (M,):
-        raise ModelError(f"{name}: expected one value per input, shape () or ({M},), got shape {a.shape}")
-    if not np.all(np.isfinite(a)):
-        raise ModelError(f"{name}: expected finite numbers, got {a.tolist()}")
-    return a.reshape(M)
-
-
 def drift(sol: KinematicSolution) -> np.ndarray:
     """Largest violation of the model's constraints at each sample, m (or rad for angles).
 
@@ -281,24 +271,34 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
              masses: MassProperties | None = None, t_eval: ArrayLike | None = None,
              method: Literal["DOP853", "RK45", "Radau", "LSODA", "BDF"] = "DOP853",
              rtol: float = 1e-10, atol: float = 1e-12, max_step: float = np.inf,
-             singular_stop: float = SINGULAR_STOP) -> Simulation:
-    """Integrate the motion of a mechanism under actuator laws and loads.
+             singular_stop: float = SINGULAR_STOP, threads: int | None = None
+             ) -> Simulation | SimulationBatch:
+    """Integrate the motion of a mechanism under actuator laws and loads: one run, or a
+    batch of runs from different initial states.
 
     The state is the independent coordinates q and their rates; at every evaluation the
     position problem is solved by the kinematics engine (so the loops always close) and
     Kane's equations give ``M(q) q'' = tau + Q - h`` with the mass matrix
     ``M = sum m K_G^T K_G + I K_theta^T K_theta`` and the velocity terms
     ``h = sum m K_G^T (q'^T L_G q') + I K_theta^T (q'^T L_theta q')``.  The actuators'
-    work, the loads' work and the dampers' losses are integrated with the motion, so the
-    result carries its own energy balance.
+    work, the loads' work and the dampers' losses are integrated with the motion as
+    quadratures that do not steer the step size (the error is measured on q and q'
+    only), so the result carries its own energy balance.
+
+    With the default method (DOP853), a model whose kinematics are in closed form and
+    whose laws are numbers or expressions is integrated by a compiled kernel (scipy's
+    DOP853 algorithm, step for step), a few microseconds per evaluation; a table or a
+    Python callable law, a plan with Newton groups or change points, or another method
+    uses :func:`scipy.integrate.solve_ivp` with the right-hand side in Python.
 
     Parameters
     ----------
     model : Mechanism
     t_span : (float, float)
         Start and end time, s.
-    q0, qd0 : float or array_like, shape () or (M,)
-        Initial inputs (rad or m) and rates.
+    q0, qd0 : float or array_like, shape () or (M,); (B, M) for a batch
+        Initial inputs (rad or m) and rates.  Either of shape (B, M) makes a batch of B
+        runs (the other broadcast to it), which needs ``t_eval``.
     inputs : mapping of str to law, sequence of laws, or callable, optional
         Actuator effort at each input, by input name: a number, an expression of
         ``t, q, qd``, a table or a callable ``f(t, q, qd)`` (see :class:`Law`); a torque
@@ -312,12 +312,12 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
         Default: the links' mass data with the ``[dynamics]`` section's massless links and
         point masses.
     t_eval : array_like, shape (N,), optional
-        Output times (default: the integrator's steps).
+        Output times (default: the integrator's steps; required for a batch).
     method : str
         A :func:`scipy.integrate.solve_ivp` method; DOP853 (default) for accuracy, Radau
         or BDF for stiff springs and dampers.
     rtol, atol : float
-        Integration tolerances.
+        Integration tolerances, on q and q'.
     max_step : float
         Largest step, s.
     singular_stop : float
@@ -325,16 +325,23 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
         ``singularity``, a sine) falls below this; the result says so.  A change point
         (two assembly modes meeting, e.g. a parallelogram at 180 degrees) is crossed on
         the branch that continues smoothly, as :func:`kinelab.kinematics.analyze` does.
+    threads : int, optional
+        Threads sharing the runs of a compiled batch (default: one per processor).
 
     Returns
     -------
     Simulation
+        For one run: ``t`` (N,), ``q``, ``qd`` (N, M), ``energy`` (N,) ...
+    SimulationBatch
+        For a batch: ``t`` (N,), ``q``, ``qd`` (B, N, M), ``energy`` (B, N) ...; each
+        run as a :class:`Simulation` by ``batch[i]``.
 
     Raises
     ------
     ModelError
         Bad model data, a law for a joint that is not an input, a mass matrix that
-        cannot be inverted (a coordinate without inertia).
+        cannot be inverted (a coordinate without inertia), initial states of shapes that
+        do not match.
     AssemblyError
         The motion runs into a position where the loops cannot close.
 
@@ -352,9 +359,16 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
     ...                loads=Loads(gravity=(0.0, -9.81)), t_eval=[0.0, 0.5, 1.0])
     >>> sim.q.shape, bool(sim.q[-1, 0] < 0), sim.energy_error < 1e-9
     ((3, 1), True, True)
-    """
-    from scipy.integrate import solve_ivp
 
+    Released from three angles at once, one batch:
+
+    >>> runs = simulate(pendulum, (0.0, 1.0), q0=[[0.0], [-0.5], [-1.0]], qd0=0.0,
+    ...                 loads=Loads(gravity=(0.0, -9.81)), t_eval=[0.0, 0.5, 1.0])
+    >>> runs.q.shape, runs.energy.shape
+    ((3, 3, 1), (3, 3))
+    >>> bool(abs(runs.q[0, -1, 0] - sim.q[-1, 0]) < 1e-12)
+    True
+    """
     if inputs is None and isinstance(model, Mechanism):
         # the model file's [dynamics] section: actuators, and loads and masses not given
         from kinelab.dynamics._setup import DynamicsSetup
@@ -371,11 +385,169 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
         raise ModelError(f"t_span: expected (start, end) in s, got {describe(t_span)}") from None
     if not (math.isfinite(t0) and math.isfinite(t1) and t1 > t0):
         raise ModelError(f"t_span: expected finite start < end, got {describe(t_span)}")
-    q_init, qd_init = _state("q0", q0, M), _state("qd0", qd0, M)
+    q_init, qd_init, batch = _initial_states(q0, qd0, M)
     if t_eval is not None:
         t_eval = np.asarray(t_eval, dtype=float).ravel()
         if t_eval.size == 0 or np.any(t_eval < t0) or np.any(t_eval > t1) or np.any(np.diff(t_eval) <= 0):
             raise ModelError(f"t_eval: expected increasing times within t_span [{t0}, {t1}] s")
+    elif batch:
+        raise ModelError(f"t_eval: a batch of {len(q_init)} runs (q0, qd0 of shape (B, M)) needs "
+                         "output times shared by every run; give t_eval")
+    check_choice("method", method, ("DOP853", "RK45", "Radau", "LSODA", "BDF"))
+    for name, v in (("rtol", rtol), ("atol", atol)):
+        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+            raise ModelError(f"{name}: expected a positive number, got {describe(v)}")
+    # the compiled kernel once it is ready in this process (see kinelab._compiled)
+    compiled = (compiled_system(system, actuators)
+                if method == "DOP853" and _compiled.ready("dynamics") else None)
+    y0 = np.concatenate([q_init, qd_init, np.zeros((len(q_init), 3))], axis=1)
+    if compiled is not None:
+        runs = _integrate_compiled(system, actuators, compiled, y0, (t0, t1), t_eval, rtol, atol,
+                                   max_step, singular_stop, threads, batch)
+    else:
+        runs = [_integrate_scipy(system, actuators, y, (t0, t1), t_eval, method, rtol, atol,
+                                 max_step, singular_stop, f" (run {i})" if batch else "")
+                for i, y in enumerate(y0)]
+    if not batch:
+        t, y, status, message, nfev = runs[0]
+        return _simulation(system, actuators, t, y, status, message, nfev)
+    return _batch(system, actuators, t_eval, runs)
+
+
+def _initial_states(q0, qd0, M: int) -> tuple[np.ndarray, np.ndarray, bool]:
+    """q0 and q'0 as (B, M) arrays, and whether they make a batch."""
+    q, qd = _values("q0", q0), _values("qd0", qd0)
+    batch = q.ndim == 2 or qd.ndim == 2
+    for name, a in (("q0", q), ("qd0", qd)):
+        if not (a.ndim == 0 or a.shape == (M,) or (a.ndim == 2 and a.shape[1] == M and len(a))):
+            raise ModelError(f"{name}: expected one value per input, shape () or ({M},), got shape "
+                             f"{a.shape}; for a batch of B runs give shape (B, {M})")
+    if q.ndim == 2 and qd.ndim == 2 and len(q) != len(qd):
+        raise ModelError(f"q0, qd0: expected the same number of runs, got {len(q)} and {len(qd)}; "
+                         "give both as (B, M), or one as () or (M,) to share it")
+    B = max(len(a) if a.ndim == 2 else 1 for a in (q, qd))
+    return np.broadcast_to(q, (B, M)).copy(), np.broadcast_to(qd, (B, M)).copy(), batch
+
+
+def _values(name: str, value) -> np.ndarray:
+    try:
+        a = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ModelError(f"{name}: expected numbers, got {describe(value)}") from None
+    if not np.all(np.isfinite(a)):
+        raise ModelError(f"{name}: expected finite numbers, got {describe(value)}")
+    return a
+
+
+def _integrate_compiled(system: System, actuators, compiled, y0: np.ndarray, span, t_eval, rtol,
+                        atol, max_step, singular_stop, threads, batch: bool) -> list:
+    """The runs by the compiled kernel: (t, y, status, message, nfev) each."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from kinelab.dynamics import _kernel
+
+    packed, stack = compiled
+    M = system.M
+    B, n = y0.shape
+    args = (span[0], span[1], np.zeros(0) if t_eval is None else t_eval, float(rtol), float(atol),
+            float(max_step), float(singular_stop), M, packed)
+    if not batch:
+        status, nfev, info, t, y = _kernel.integrate_run(y0[0], *args, work_arrays(packed, M, stack))
+        statuses, nfevs, infos, counts, ys = [status], [nfev], [info], [len(t)], [y]
+    else:
+        N = len(t_eval)
+        o_y = np.full((B, N, n), np.nan)
+        statuses, nfevs = np.zeros(B, np.int64), np.zeros(B, np.int64)
+        infos, counts = np.zeros((B, 2 + n)), np.zeros(B, np.int64)
+        chunks = max(1, min(B, threads or os.cpu_count() or 1))
+        edges = np.linspace(0, B, chunks + 1).astype(int)
+
+        def part(c):
+            _kernel.integrate_runs(y0, *args, edges[c], edges[c + 1], o_y, statuses, nfevs, infos,
+                                   counts, stack)
+        if chunks == 1:
+            part(0)
+        else:
+            with ThreadPoolExecutor(chunks) as pool:
+                list(pool.map(part, range(chunks)))
+        t, ys = t_eval, o_y
+    runs = []
+    for i in range(B):
+        where = f" (run {i})" if batch else ""
+        status, info = int(statuses[i]), infos[i]
+        if status not in (_kernel.RUN_FINISHED, _kernel.RUN_SINGULAR):
+            _raise_failure(system, actuators, status, info, where)
+        message = "reached the end of t_span"
+        if status == _kernel.RUN_SINGULAR:
+            message = _stop_message(info[0], info[2:2 + M], singular_stop)
+        runs.append((t[:counts[i]], ys[i][:counts[i]], "singular" if status else "finished",
+                     message, int(nfevs[i])))
+    return runs
+
+
+def _stop_message(t: float, q, singular_stop: float) -> str:
+    return (f"stopped at t = {t:.6g} s: within {singular_stop:g} of a singular configuration "
+            f"(q = {np.round(np.asarray(q, float), 6).tolist()})")
+
+
+def _raise_failure(system: System, actuators, status: int, info: np.ndarray, where: str):
+    """The error of a compiled run that failed, as the Python right-hand side says it."""
+    from kinelab.dynamics import _kernel
+    model, M = system.model, system.M
+    t, q, qd = float(info[0]), info[2:2 + M], info[2 + M:2 + 2 * M]
+    if status == _kernel.FAIL_ASSEMBLY:
+        raise _halted(model, _Halt(t, q, "assembly"), where)
+    if status == _kernel.FAIL_SINGULAR:
+        raise _halted(model, _Halt(t, q, "singular"), where)
+    if status == _kernel.FAIL_MASS:
+        raise _singular_mass(model, q, where)
+    if status in (_kernel.FAIL_LAW, _kernel.FAIL_SPRING):
+        # the same state through Python: its laws and springs say what is wrong
+        tt, qq, qqd = np.array([t]), q[None, :], qd[None, :]
+        actuators(tt, qq, qqd)
+        sol = analyze(model, _as_q(qq, M), _as_q(qqd, M), 0.0, at_singular="flag")
+        evaluate(system, sol, tt)
+        raise ModelError(f"a law of '{model.name}' is not finite at t = {t:.6g} s{where}, "
+                         f"q = {np.round(q, 6).tolist()}, qd = {np.round(qd, 6).tolist()}")
+    raise ModelError(f"the integration of '{model.name}' failed at t = {t:.6g} s{where}: the step "
+                     "size fell below the resolution of t; try method='Radau' for stiff springs "
+                     "or dampers, or looser tolerances")
+
+
+def _halted(model: Mechanism, h: _Halt, where: str = "") -> Exception:
+    at = f"at t = {h.t:.6g} s{where} (q = {np.round(h.q, 6).tolist()})"
+    if h.kind == "assembly":
+        return AssemblyError(f"the motion of '{model.name}' reaches a position where its loops "
+                             f"cannot close {at}: a limit position; limit the motion or check "
+                             "the loads")
+    return SingularityError(f"the motion of '{model.name}' reaches a singular configuration {at}; "
+                            "raise singular_stop to stop before it")
+
+
+def _singular_mass(model: Mechanism, q, where: str = "") -> ModelError:
+    return ModelError(f"the mass matrix of '{model.name}' is singular at q = "
+                      f"{np.round(np.asarray(q, float), 6).tolist()}{where}: some input moves no "
+                      "mass; give the links it drives mass and inertia")
+
+
+def _accelerations(system: System, actuators, sol: KinematicSolution, t: np.ndarray, where: str = ""):
+    """q'' with the actuators' efforts and Kane's terms at the samples of ``sol``."""
+    terms = evaluate(system, sol, t, mass_matrix=True)
+    tau = actuators(t, sol.q, sol.qd)
+    rhs = tau + terms.applied - terms.inertia     # inertia at qdd = 0 is the bias h
+    try:
+        qdd = np.linalg.solve(terms.mass_matrix, rhs[..., None])[..., 0]
+    except np.linalg.LinAlgError:
+        raise _singular_mass(system.model, sol.q[0], where) from None
+    return qdd, tau, terms
+
+
+def _integrate_scipy(system: System, actuators, y0: np.ndarray, span, t_eval, method, rtol, atol,
+                     max_step, singular_stop, where: str):
+    """One run by :func:`scipy.integrate.solve_ivp` with the right-hand side in Python."""
+    from scipy.integrate import solve_ivp
+
+    model, M = system.model, system.M
     cache: dict[str, Any] = {}
 
     def kinematics(t, y):
@@ -397,21 +569,9 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
         cache.update(key=key, sol=sol, crossing=crossing)
         return sol
 
-    def accelerations(system: System, sol, t):
-        terms = evaluate(system, sol, t, mass_matrix=True)
-        tau = actuators(t, sol.q, sol.qd)
-        rhs = tau + terms.applied - terms.inertia     # inertia at qdd = 0 is the bias h
-        try:
-            qdd = np.linalg.solve(terms.mass_matrix, rhs[..., None])[..., 0]
-        except np.linalg.LinAlgError:
-            raise ModelError(f"the mass matrix of '{model.name}' is singular at q = "
-                             f"{np.round(sol.q[0], 6).tolist()}: some input moves no mass; give the "
-                             "links it drives mass and inertia") from None
-        return qdd, tau, terms
-
     def rhs(t, y):
         sol = kinematics(t, y)
-        qdd, tau, terms = accelerations(system, sol, np.array([t]))
+        qdd, tau, terms = _accelerations(system, actuators, sol, np.array([t]), where)
         return np.concatenate([y[M:2 * M], qdd[0], [tau[0] @ sol.qd[0], terms.applied_power[0],
                                                       terms.dissipation[0]]])
 
@@ -421,34 +581,148 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
     near_singular.terminal = True
     near_singular.direction = -1
 
-    y0 = np.concatenate([q_init, qd_init, np.zeros(3)])
+    # The works are quadratures: an infinite atol keeps them out of the error norm, and
+    # the tolerances of q and q' shrink by sqrt(2M / (2M + 3)) so that solve_ivp's RMS norm
+    # over 2M + 3 components equals the norm of q and q' alone.
+    shrink = math.sqrt(2 * M / (2 * M + 3))
+    atols = np.concatenate([np.full(2 * M, atol * shrink), np.full(3, np.inf)])
     try:
-        out = solve_ivp(rhs, (t0, t1), y0, method=method, t_eval=t_eval, rtol=rtol, atol=atol,
+        out = solve_ivp(rhs, span, y0, method=method, t_eval=t_eval, rtol=rtol * shrink, atol=atols,
                         max_step=max_step, events=near_singular if singular_stop > 0 else None)
     except _Halt as h:
-        where = f"at t = {h.t:.6g} s (q = {np.round(h.q, 6).tolist()})"
-        if h.kind == "assembly":
-            raise AssemblyError(f"the motion of '{model.name}' reaches a position where its loops "
-                                f"cannot close {where}: a limit position; limit the motion or check "
-                                "the loads") from None
-        raise SingularityError(f"the motion of '{model.name}' reaches a singular configuration {where}; "
-                               "raise singular_stop to stop before it") from None
+        raise _halted(model, h, where) from None
     if out.status == -1:
-        raise ModelError(f"the integration of '{model.name}' failed: {out.message}; try "
+        raise ModelError(f"the integration of '{model.name}' failed{where}: {out.message}; try "
                          "method='Radau' for stiff springs or dampers, or looser tolerances")
     status, message = "finished", "reached the end of t_span"
     if out.status == 1:
         status = "singular"
-        message = (f"stopped at t = {out.t_events[0][0]:.6g} s: within {singular_stop:g} of a singular "
-                   f"configuration (q = {np.round(out.y_events[0][0][:M], 6).tolist()})")
-    y = out.y.T
+        message = _stop_message(out.t_events[0][0], out.y_events[0][0][:M], singular_stop)
+    return out.t, out.y.T, status, message, int(out.nfev)
+
+
+def _motion(system: System, actuators, t: np.ndarray, y: np.ndarray):
+    """The kinematics with accelerations, efforts and Kane's terms along a motion."""
+    M = system.M
     q, qd = y[:, :M], y[:, M:2 * M]
-    t = out.t
-    sol = analyze(model, _as_q(q, M), _as_q(qd, M), 0.0, at_singular="flag")
-    qdd, tau, terms = accelerations(system, sol, t)
-    sol = analyze(model, _as_q(q, M), _as_q(qd, M), _as_q(qdd, M), at_singular="flag")
+    sol = analyze(system.model, _as_q(q, M), _as_q(qd, M), 0.0, at_singular="flag")
+    qdd, tau, terms = _accelerations(system, actuators, sol, t)
+    sol = analyze(system.model, _as_q(q, M), _as_q(qd, M), _as_q(qdd, M), at_singular="flag")
+    return sol, tau, terms
+
+
+def _simulation(system: System, actuators, t, y, status, message, nfev) -> Simulation:
+    sol, tau, terms = _motion(system, actuators, t, y)
+    M = system.M
     return Simulation(
         t=t, input_forces=tau, kinetic_energy=terms.kinetic,
         potential_energy=terms.potential, actuator_work=y[:, 2 * M], applied_work=y[:, 2 * M + 1],
         dissipated=y[:, 2 * M + 2], drift=drift(sol), status=status, message=message,
-        nfev=int(out.nfev), kinematics=sol)
+        nfev=nfev, kinematics=sol)
+
+
+@dataclass(frozen=True, eq=False)
+class SimulationBatch:
+    """B runs of one mechanism from different initial states, at shared output times.
+
+    A run stopped near a singular configuration (``status[i] == "singular"``) has NaN
+    after the stop, and its ``message`` says where.
+
+    Attributes
+    ----------
+    mechanism : Mechanism
+    t : ndarray, shape (N,)
+        Output times, s.
+    q, qd, qdd : ndarray, shape (B, N, M)
+        Inputs, rates and accelerations of each run.
+    input_forces : ndarray, shape (B, N, M)
+        The actuators' efforts, N m or N.
+    kinetic_energy, potential_energy, actuator_work, applied_work, dissipated : ndarray, shape (B, N)
+        J, as in :class:`Simulation`.
+    status : ndarray of str, shape (B,)
+        "finished" or "singular".
+    message : tuple of str
+    nfev : ndarray of int, shape (B,)
+        Evaluations of the equations of motion of each run.
+    """
+
+    mechanism: Mechanism
+    t: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+    input_forces: np.ndarray
+    kinetic_energy: np.ndarray
+    potential_energy: np.ndarray
+    actuator_work: np.ndarray
+    applied_work: np.ndarray
+    dissipated: np.ndarray
+    status: np.ndarray
+    message: tuple[str, ...]
+    nfev: np.ndarray
+    _system: Any = dataclasses.field(repr=False)
+    _actuators: Any = dataclasses.field(repr=False)
+
+    @property
+    def energy(self) -> np.ndarray:
+        """Mechanical energy of each run, kinetic + potential, J, shape (B, N)."""
+        return self.kinetic_energy + self.potential_energy
+
+    @property
+    def energy_balance(self) -> np.ndarray:
+        """As :attr:`Simulation.energy_balance`, shape (B, N)."""
+        return (self.energy - self.energy[:, :1] - self.actuator_work - self.applied_work
+                + self.dissipated)
+
+    @property
+    def energy_error(self) -> np.ndarray:
+        """Each run's largest |energy_balance| relative to the largest energy involved, (B,)."""
+        parts = np.stack([self.kinetic_energy, self.potential_energy, self.actuator_work,
+                          self.applied_work, self.dissipated])
+        scale = np.maximum(np.nanmax(np.abs(parts), axis=(0, 2)), 1e-300)
+        return np.nanmax(np.abs(self.energy_balance), axis=1) / scale
+
+    def __len__(self) -> int:
+        return self.q.shape[0]
+
+    def __getitem__(self, i: int) -> Simulation:
+        """Run i as a :class:`Simulation` (with its kinematics)."""
+        n = int(np.sum(np.isfinite(self.q[i, :, 0])))
+        y = np.concatenate([self.q[i, :n], self.qd[i, :n], self.actuator_work[i, :n, None],
+                            self.applied_work[i, :n, None], self.dissipated[i, :n, None]], axis=1)
+        return _simulation(self._system, self._actuators, self.t[:n], y, str(self.status[i]),
+                           self.message[i], int(self.nfev[i]))
+
+    def __repr__(self) -> str:
+        return (f"SimulationBatch('{self.mechanism.name}', B={len(self)}, t = {self.t[0]:.4g}.."
+                f"{self.t[-1]:.4g} s, N={len(self.t)}, {int(np.sum(self.status == 'finished'))} finished)")
+
+
+_CHUNK = 50_000      # samples per post-processing pass over a batch: bounded memory
+
+
+def _batch(system: System, actuators, t_eval: np.ndarray, runs: list) -> SimulationBatch:
+    """The runs' outputs as one result: efforts and energies from the kinematics of every
+    sample, a chunk of samples at a time."""
+    M, B, N = system.M, len(runs), len(t_eval)
+    y = np.full((B, N, 2 * M + 3), np.nan)
+    for i, (_, yi, *_rest) in enumerate(runs):
+        y[i, :len(yi)] = yi
+    valid = np.isfinite(y[:, :, 0]).ravel()
+    flat = y.reshape(B * N, -1)
+    tt = np.broadcast_to(t_eval, (B, N)).ravel()
+    qdd, tau = np.full((B * N, M), np.nan), np.full((B * N, M), np.nan)
+    kinetic, potential = np.full(B * N, np.nan), np.full(B * N, np.nan)
+    rows = np.flatnonzero(valid)
+    for lo in range(0, len(rows), _CHUNK):
+        r = rows[lo:lo + _CHUNK]
+        sol, tau_r, terms = _motion(system, actuators, tt[r], flat[r])
+        qdd[r], tau[r], kinetic[r], potential[r] = sol.qdd, tau_r, terms.kinetic, terms.potential
+    shape = (B, N, M)
+    return SimulationBatch(
+        mechanism=system.model, t=t_eval, q=y[:, :, :M], qd=y[:, :, M:2 * M],
+        qdd=qdd.reshape(shape), input_forces=tau.reshape(shape),
+        kinetic_energy=kinetic.reshape(B, N), potential_energy=potential.reshape(B, N),
+        actuator_work=y[:, :, 2 * M], applied_work=y[:, :, 2 * M + 1], dissipated=y[:, :, 2 * M + 2],
+        status=np.array([r[2] for r in runs]), message=tuple(r[3] for r in runs),
+        nfev=np.array([r[4] for r in runs], np.int64), _system=system, _actuators=actuators)

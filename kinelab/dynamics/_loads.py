@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from kinelab._expressions import not_finite, parse_expression, parse_table
+from kinelab._expressions import OP_CONST, not_finite, parse_expression, parse_table, to_program
 from kinelab.errors import ModelError, describe
 from kinelab.model import MAX_RATE, Mechanism, is_real
 
@@ -95,6 +95,16 @@ class Law:
             qa, qda = (q[:, 0], qd[:, 0]) if q.shape[1] == 1 else (q, qd)
             out = self.source(t, qa, qda)
         return _finite(self.where, out, shape, t, q, qd)
+
+    def program(self, M: int):
+        """The law as a program for the compiled dynamics (see
+        :func:`kinelab._expressions.to_program`), for a mechanism of M inputs; None for a
+        table or a Python callable, which run in Python."""
+        if self.constant:
+            return np.array([[OP_CONST, 0]], np.int64), np.array([float(self.source)])
+        if isinstance(self.source, str):
+            return to_program(self.source, M, where=self.where)
+        return None
 
     def to_data(self):
         """The number, text or table this law was given as (for model files)."""

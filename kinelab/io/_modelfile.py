@@ -14,6 +14,7 @@ import math
 import os
 import re
 from collections.abc import Mapping
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Literal
@@ -23,7 +24,7 @@ import numpy as np
 from kinelab import mechanisms as catalogue
 from kinelab import _memory as memory
 from kinelab._files import atomic_write
-from kinelab.errors import AssemblyError, ModelError
+from kinelab.errors import AssemblyError, KinelabError, ModelError
 from kinelab.io import _toml
 from kinelab.io._fields import Reader, describe, quoted, shown, shown_key
 from kinelab.io._text import loads, read_text
@@ -34,7 +35,7 @@ from kinelab.model import (ANGLE_UNITS, JOINT_TYPES, LENGTH_UNITS, SPACES, Input
                            rate_problem)
 
 __all__ = ["SCHEMA", "LENGTH_UNITS", "ANGLE_UNITS", "Units", "Outputs", "ModelFile", "load",
-           "save", "from_toml", "to_toml", "from_json", "to_json"]
+           "save", "from_toml", "to_toml", "from_json", "to_json", "errors_from"]
 
 SCHEMA = 1
 """The newest schema version this kinelab reads and the one it writes."""
@@ -177,6 +178,25 @@ class ModelFile:
         return atomic_write(path, lambda f: f.write(text))
 
     # -- the sweep -------------------------------------------------------------------------
+    def analyze(self, samples: int | None = None, *,
+              at_change_point: Literal["smooth", "switch"] = "smooth"):
+        """The analysis of the file's sweep (:meth:`sample_inputs`), singular samples
+        flagged, through change points as ``at_change_point`` says: what ``kinelab
+        analyze`` writes.  Errors name the file and its ``inputs``.
+
+        Examples
+        --------
+        >>> sol = kl.io.ModelFile.read("examples/crank_rocker.toml").analyze(5)
+        >>> sol.N, sol.mechanism.name
+        (5, 'crank-rocker')
+        """
+        from kinelab.kinematics import analyze
+
+        q, qd, qdd = self.sample_inputs(samples)
+        with errors_from(self, "inputs"):
+            return analyze(self.mechanism, q, qd, qdd, at_singular="flag",
+                           at_change_point=at_change_point)
+
     def sample_inputs(self, samples: int | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Input values, rates and accelerations of the file's sweep, SI.
 
@@ -234,6 +254,19 @@ class ModelFile:
         qdd = np.broadcast_to(np.array([i.acceleration for i in m.inputs]).reshape(shape[1:] or ()),
                               shape)
         return q, np.array(qd), np.array(qdd)
+
+
+@contextmanager
+def errors_from(mf: ModelFile, field: str = ""):
+    """Name the file (and a field) in the errors raised inside: ``crank_rocker.toml:
+    inputs: ...`` (``model: ...`` when the file has no name)."""
+    try:
+        yield
+    except KinelabError as exc:
+        prefix = f"{mf.source or 'model'}: {field + ': ' if field else ''}"
+        if isinstance(exc, ModelError):
+            raise ModelError([prefix + p for p in exc.problems]) from None
+        raise type(exc)("\n".join(prefix + line for line in str(exc).splitlines())) from None
 
 
 def _reachable_span(m: Mechanism) -> tuple[float, float]:

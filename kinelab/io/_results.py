@@ -15,7 +15,7 @@ from kinelab.errors import ModelError, check_choice, describe, shown
 from kinelab.kinematics import KinematicSolution
 from kinelab.model import Units
 
-__all__ = ["RESULT_FORMATS", "write_results", "result_format"]
+__all__ = ["RESULT_FORMATS", "write_results", "result_format", "results_json"]
 
 RESULT_FORMATS = ("csv", "json", "parquet")
 
@@ -95,6 +95,26 @@ def result_format(path: str | os.PathLike, format: str | None = None) -> str:
                          f"{', '.join('.' + f for f in RESULT_FORMATS)}, got "
                          f"{shown(Path(path).name)}; rename it or give the format")
     return named or "csv"
+
+
+def results_json(sol: KinematicSolution, *, degrees: bool = False,
+                 units: Units | Mapping[str, str] | None = None) -> str:
+    """The JSON text :func:`write_results` writes for ``sol``: a list of row objects, one
+    per sample, ``null`` where a value is undefined.
+
+    Examples
+    --------
+    >>> import json
+    >>> sol = kl.analyze(kl.mechanisms.slider_crank(1.0, 3.0), q=[0.0, 0.5], qd=1.0)
+    >>> rows = json.loads(kl.io.results_json(sol, units={"length": "mm"}))
+    >>> len(rows), rows[0]["B.x[mm]"]
+    (2, 4000.0)
+    """
+    import io
+
+    buffer = io.StringIO()
+    _write_json(sol.columns(degrees=degrees, units=units), buffer)
+    return buffer.getvalue()
 
 
 def _write_json(columns: dict[str, np.ndarray], f) -> None:

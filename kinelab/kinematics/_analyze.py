@@ -10,7 +10,7 @@ from numpy.typing import ArrayLike
 
 from kinelab import _memory as memory
 from kinelab.errors import AssemblyError, ModelError, SingularityError, check_choice, describe
-from kinelab.kinematics import _kernel as k
+from kinelab.kinematics import _codes as k
 from kinelab.kinematics._assemble import check_assembled
 from kinelab.kinematics._branches import BranchMap, ChangePoint, branch_map, branched_ops
 from kinelab.kinematics._evaluate import run as _run

@@ -25,7 +25,7 @@ from typing import Literal
 
 import numpy as np
 
-from kinelab.kinematics import _kernel as k
+from kinelab.kinematics import _codes as k
 from kinelab.kinematics._evaluate import run
 from kinelab.kinematics._plan import SIGN_FIELDS, Plan
 from kinelab.solvers import wrap_angle

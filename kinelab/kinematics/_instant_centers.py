@@ -179,7 +179,9 @@ def _centers(sol: KinematicSolution, pairs) -> dict[tuple[str, str], InstantCent
         with np.errstate(divide="ignore", invalid="ignore"):
             position = np.where(infinite[:, None], 0.0,
                                 -k_cross(rhs) / np.where(infinite, 1.0, dw)[:, None])
-        rel = vb - va                      # relative translation velocity where dw = 0
+        # where dw = 0 the relative velocity is the same at every point: at a's reference
+        # point it is v_b + w_b k x (pa - pb) - v_a (a guide turning with its slider counts)
+        rel = vb - va + wb[:, None] * k_cross(pa - pb)
         norm = np.linalg.norm(rel, axis=-1)
         direction = np.where((infinite & (norm > 0))[:, None],
                              k_cross(rel) / np.where(norm > 0, norm, 1.0)[:, None], 0.0)

@@ -26,44 +26,19 @@ import math
 import numpy as np
 from numba import njit
 
+from kinelab.kinematics._codes import (BASE_MIN, C_DRIVE_ANGLE, C_DRIVE_SLIDE, C_PRISMATIC,
+                                       C_REVOLUTE, DISC_TOL, DISC_ZERO, FOLDED, HEADER,
+                                       JUMP_RATIO, NEWTON_MAX_ITER, NEWTON_TOL, NODE_STEP,
+                                       OP_DRIVE_ANGLE, OP_FRAME_POINT, OP_LINES, OP_LOCK_ANGLE,
+                                       OP_NEWTON, OP_RIGID_POINT, OP_RPR, OP_RRP, OP_RRR,
+                                       OP_SLIDE_OUT, OP_SLIDE_POINT, OP_TWO_POINTS,
+                                       ST_NO_ASSEMBLY, ST_NO_CONVERGENCE, ST_OK)
+
 
 def _jit(**options):
     # error_model="numpy": a division by zero at an exact singularity gives inf/nan (then
     # flagged), not a Python exception from inside the kernel
     return njit(cache=True, error_model="numpy", fastmath={"contract"}, **options)
-
-
-# operation codes: rows of ops_i / ops_f.  Points are given by the item of their x.
-OP_DRIVE_ANGLE = 1   # i: b, a (-1: ground frame), m           f: sign
-OP_LOCK_ANGLE = 2    # i: b, a                                 f: offset
-OP_RIGID_POINT = 3   # i: p, link, anchor                      f: rx, ry (link frame)
-OP_SLIDE_POINT = 4   # i: out, base, dirlink, m                f: beta, s0, sign
-OP_LINES = 5         # i: out, o1, l1, o2, l2                  f: beta1, beta2
-OP_RRR = 6           # i: b, c, X, Y, Z                         f: lb, lc, sigma, offb, offc
-OP_RRP = 7           # i: b, X, Y, o, g                         f: lb, beta, sigma, offb
-OP_RPR = 8           # i: G, X, Z                               f: rho_x, rho_y, u_x, u_y, sigma
-OP_NEWTON = 9        # i: group
-OP_SLIDE_OUT = 10    # i: slide, p, o, g                        f: beta, s0
-OP_TWO_POINTS = 11   # i: b, p1, p2                             f: offset
-OP_FRAME_POINT = 12  # i: p, a, b                               f: lam, mu
-
-# Newton-group constraint kinds (rows of con_i / con_f); a side is either a link of the
-# group (g >= 0, with a point given in the link's frame) or known (g = -1, a point item).
-C_REVOLUTE = 0     # i: kind, gi, pi, li, gj, pj, lj             f: rix, riy, rjx, rjy
-C_PRISMATIC = 1    # i: kind, gg, po, lg, gs, pp, ls             f: rox, roy, rpx, rpy, beta, offset
-C_DRIVE_ANGLE = 2  # i: kind, ga, -, la, gb, -, lb, m            f: sign
-C_DRIVE_SLIDE = 3  # i: kind, gg, po, lg, gs, pp, ls, m          f: rox, roy, rpx, rpy, beta, s0
-
-# status codes written per sample
-ST_OK = 0
-ST_NO_ASSEMBLY = 1     # a closed-form group cannot close (gap > 0)
-ST_NO_CONVERGENCE = 2  # a Newton group failed even with the smallest continuation step
-
-_DISC_TOL = 1e-12  # relative: a discriminant this far below zero is rounding at a limit position
-_DISC_ZERO = 1e-15  # relative: a discriminant this close to zero is zero (its rounding is a
-                    # few eps): a dyad at its straight position comes out straight, exactly
-_FOLDED = 1e-16    # an RRR dyad whose ends are closer than 1e-8 of its arm has folded: the
-                   # direction of d = Z - X is rounding, the direction it moves along is not
 
 
 # --------------------------------------------------------------------------------------
@@ -173,7 +148,7 @@ def _rrr(jet, lane, b, c, X, Y, Z, lb, lc, sigma, offb, offc, M):
     dx = jet[lane, Z, 0] - jet[lane, X, 0]
     dy = jet[lane, Z + 1, 0] - jet[lane, X + 1, 0]
     D2 = dx * dx + dy * dy
-    if D2 <= _FOLDED * lb * lb:      # X and Z coincide to rounding: d has no direction
+    if D2 <= FOLDED * lb * lb:      # X and Z coincide to rounding: d has no direction
         if abs(lb - lc) > 1e-12 * lb:
             return 0.0, 0.0, abs(lb - lc) - math.sqrt(D2)
         _rrr_folded(jet, lane, b, c, X, Y, Z, lb, sigma, offb, offc, M)
@@ -181,8 +156,8 @@ def _rrr(jet, lane, b, c, X, Y, Z, lb, lc, sigma, offb, offc, M):
     inv_D2 = 1.0 / D2
     alpha = 0.5 * (lb * lb - lc * lc + D2) * inv_D2
     beta2 = lb * lb * inv_D2 - alpha * alpha
-    if beta2 < _DISC_ZERO * lb * lb * inv_D2:
-        if beta2 < -_DISC_TOL * lb * lb * inv_D2:
+    if beta2 < DISC_ZERO * lb * lb * inv_D2:
+        if beta2 < -DISC_TOL * lb * lb * inv_D2:
             D = math.sqrt(D2)
             return 0.0, 0.0, max(D - (lb + lc), abs(lb - lc) - D)
         beta2 = 0.0
@@ -246,8 +221,8 @@ def _rrp(jet, lane, b, X, Y, o, g, lb, beta, sigma, offb, M, Ks):
     uw = ux * w0x + uy * w0y
     hh = nx * w0x + ny * w0y            # signed distance of X from the line
     t2 = lb * lb - hh * hh
-    if t2 < _DISC_ZERO * lb * lb:
-        if t2 < -_DISC_TOL * lb * lb:
+    if t2 < DISC_ZERO * lb * lb:
+        if t2 < -DISC_TOL * lb * lb:
             return 0.0, 0.0, abs(hh) - lb
         t2 = 0.0
     t = sigma * math.sqrt(t2)
@@ -291,12 +266,12 @@ def _rpr(jet, lane, G, X, Z, rho_x, rho_y, u_x, u_y, sigma, M, Ks):
     D2 = wx * wx + wy * wy
     h = u_x * rho_y - u_y * rho_x           # distance of Z from the line, in G's frame
     rho2 = rho_x * rho_x + rho_y * rho_y
-    if D2 <= _FOLDED * rho2 and h * h <= _FOLDED * rho2:
+    if D2 <= FOLDED * rho2 and h * h <= FOLDED * rho2:
         _rpr_through_pivot(jet, lane, G, X, Z, u_x, u_y, sigma, M)
         return 0.0, 0.0, 0.0
     t2 = D2 - h * h
-    if t2 < _DISC_ZERO * max(D2, h * h):
-        if t2 < -_DISC_TOL * max(D2, h * h):
+    if t2 < DISC_ZERO * max(D2, h * h):
+        if t2 < -DISC_TOL * max(D2, h * h):
             return 0.0, 0.0, abs(h) - math.sqrt(D2)
         t2 = 0.0
     t = sigma * math.sqrt(t2)
@@ -693,14 +668,6 @@ def _group_rhs(c0, c1, con_i, con_f, x, cs, gK, jet, m, n, second, M, rhs):
             row += 2 if kind == C_PRISMATIC else 1
 
 
-_NEWTON_MAX_ITER = 12
-_NEWTON_TOL = 1e-13     # step, relative to the mechanism's size, at which Newton has converged
-_JUMP_RATIO = 0.2       # a correction this large against the predicted step means a jump
-_BASE_MIN = 1e-6        # a group solved where its measure (|det| over its rows' norms) is
-                        # below this is written but not kept to predict from: next to a
-                        # singular configuration K and L are rounding
-_NODE_STEP = 1e-3       # a sample on a singular configuration the motion passes (a change
-                        # point) is placed from this fraction of a continuation step either side
 
 
 @_jit()
@@ -740,7 +707,7 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
     converged = False
     det = 0.0
     hada = 1.0
-    for it in range(_NEWTON_MAX_ITER):
+    for it in range(NEWTON_MAX_ITER):
         A[:, :] = 0.0
         _link_trig(x, nlk, cs)
         _group_residual(c0, c1, con_i, con_f, x, cs, q, jet, A, phi, True)
@@ -760,7 +727,7 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
             dn += phi[i] * phi[i]
         if not math.isfinite(dn):
             break
-        if math.sqrt(dn) <= _NEWTON_TOL * scale:
+        if math.sqrt(dn) <= NEWTON_TOL * scale:
             converged = True
             break
     if not converged or det == 0.0:
@@ -768,7 +735,7 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
     corr = 0.0
     for i in range(n):
         corr += (x[i] - xp[i]) ** 2
-    if math.sqrt(corr) > _JUMP_RATIO * step + 1e-9 * scale:
+    if math.sqrt(corr) > JUMP_RATIO * step + 1e-9 * scale:
         return ST_NO_CONVERGENCE, 0.0, 0.0
     # K and L: linear solves with the last factorisation, whose Jacobian differs from the
     # one at the solution by the last Newton step (below 1e-13 of the mechanism's size)
@@ -787,7 +754,7 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
                 Lw[i, k, m] = phi[i]
     # accept: store the state (unless too near a singular configuration to predict from)
     # and write the links' angles and anchor points
-    if abs(det) >= _BASE_MIN * hada:
+    if abs(det) >= BASE_MIN * hada:
         for i in range(n):
             gx[o + i] = x[i]
             for m in range(M):
@@ -1089,30 +1056,6 @@ def run_closed_form_one_input(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, con
                  n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail, 1)
 
 
-# One sample at a time (an input dragged in an interactive view): the plan and the outputs
-# packed in a few arrays, since each array argument costs about 0.1 us at the call.
-_HEADER = 7     # plan_i starts with n_items, n_angles, ops, ops_i columns, ops_f columns,
-                # const items, stored items
-
-
-def pack_plan(ops_i, ops_f, const_items, const_values, n_items, n_angles, stored):
-    """The arguments of :func:`run_one_sample` that describe a plan: (plan_i, plan_f)."""
-    head = [n_items, n_angles, ops_i.shape[0], ops_i.shape[1], ops_f.shape[1],
-            len(const_items), len(stored)]
-    plan_i = np.concatenate([head, ops_i.ravel(), const_items, stored]).astype(np.int64)
-    plan_f = np.concatenate([ops_f.ravel(), const_values]).astype(np.float64)
-    return plan_i, plan_f
-
-
-def one_sample_layout(n_stored, M):
-    """Where :func:`run_one_sample` writes in ``out``: the slices of the jets (n_stored,
-    1 + M + M*M), the rates (n_stored, 2), det J and the singularity measure, the gap and the
-    failed operation, and the status; and the length of ``out``."""
-    w = n_stored * (1 + M + M * M)
-    r = w + 2 * n_stored
-    return slice(0, w), slice(w, r), slice(r, r + 2), slice(r + 2, r + 4), r + 4, r + 5
-
-
 @_jit(nogil=True)
 def run_one_sample(x, plan_i, plan_f, out):
     """Evaluate one sample of a plan without Newton groups: x (3, M) holds q, q' and q''.
@@ -1123,8 +1066,8 @@ def run_one_sample(x, plan_i, plan_f, out):
     M = x.shape[1]
     n_items, n_angles, n_ops, wi, wf, nc, ns = plan_i[0], plan_i[1], plan_i[2], plan_i[3], \
         plan_i[4], plan_i[5], plan_i[6]
-    a = _HEADER + n_ops * wi
-    ops_i = plan_i[_HEADER:a].reshape((n_ops, wi))
+    a = HEADER + n_ops * wi
+    ops_i = plan_i[HEADER:a].reshape((n_ops, wi))
     const_items = plan_i[a:a + nc]
     stored = plan_i[a + nc:a + nc + ns]
     ops_f = plan_f[:n_ops * wf].reshape((n_ops, wf))
@@ -1245,7 +1188,7 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
             if st == ST_OK:
                 t = tt
                 h = min(2.0 * h, max_step / dist) if dist > 0.0 else 1.0
-                if (1.0 - t) * dist >= 10.0 * _NODE_STEP * max_step:
+                if (1.0 - t) * dist >= 10.0 * NODE_STEP * max_step:
                     sx[:] = gx          # still well clear of the sample: a state to place it
                     sK[:] = gK          # from, should it sit on a singular configuration
                     sL[:] = gL
@@ -1260,7 +1203,7 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
                 if st == ST_NO_ASSEMBLY or h < 1e-9:
                     break
                 h *= 0.5
-        if st != ST_OK and dist > 0.0 and (1.0 - t) * dist <= 0.1 * _NODE_STEP * max_step:
+        if st != ST_OK and dist > 0.0 and (1.0 - t) * dist <= 0.1 * NODE_STEP * max_step:
             # stopped right at the sample: a singular configuration the motion passes.  Its
             # place comes from either side, predicted from a state well clear of it (those
             # next to it are too near the singularity to predict from)
@@ -1269,7 +1212,7 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
             gL[:] = sL
             gq[:] = sq
             gdet[:] = sdet
-            eps = _NODE_STEP * max_step / dist
+            eps = NODE_STEP * max_step / dist
             if _place_between(q, i, qprev, eps, qt, jet, jet_b, qd, qdd, ops_i, ops_f, M, Kt,
                               Kt2, Lt, groups_i, con_i, con_f, scale, gx, gK, gL, gq, gdet,
                               work, piv, res, lane_f, lane_i, n_angles, stored, o_jet, o_rate,

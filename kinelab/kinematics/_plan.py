@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from kinelab.errors import ModelError
-from kinelab.kinematics import _kernel as k
+from kinelab.kinematics import _codes as k
 from kinelab.kinematics._geometry import sketch_angle
 from kinelab.model import Joint, Mechanism
 from kinelab.solvers import wrap_angle
@@ -739,8 +739,9 @@ class _Builder:
             del self.ops_i[nops:]
             del self.ops_f[nops:]
         # a jet of the sketch: angles, then x, y of every point known so far
-        nl = len(self.L)
-        jet = np.zeros((nl + 2 * len(pt), 1))
+        from kinelab.kinematics import _interpreter
+        nl, M = len(self.L), len(self.q_sketch)
+        jet = np.zeros((nl + 2 * len(pt), 1 + M + M * M))
         jet[:nl, 0] = ang
         jet[nl:, 0] = pt.ravel()
         ci = ci.copy()
@@ -748,12 +749,10 @@ class _Builder:
             for gcol, pcol in ((1, 2), (4, 5)):
                 if row[gcol] < 0 and row[pcol] >= 0:
                     row[pcol] = nl + 2 * row[pcol]
-        rows = sum(2 if r[0] in (k.C_REVOLUTE, k.C_PRISMATIC) else 1 for r in ci)
-        A = np.zeros((rows, 3 * len(links)))
-        phi = np.zeros(rows)
-        cs = np.zeros(2 * len(links))
-        k._link_trig(x0, len(links), cs)
-        k._group_residual(0, len(ci), ci, cf, x0, cs, self.q_sketch, jet, A, phi, True)
+        group = np.array([[0, len(links), 0, len(ci), *range(len(links)), *[0] * len(links)]],
+                         np.int64)
+        G = _interpreter._Group(0, group, ci, cf, M)
+        _, A = _interpreter._residual(G, x0, _interpreter._Known(G, jet, M), 0.0, 0.0)
         return A
 
     def _full_rank(self, links, cons) -> bool:

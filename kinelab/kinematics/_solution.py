@@ -385,7 +385,9 @@ class KinematicSolution(TableExport):
         if not joints:
             names = ", ".join(repr(j.name) for j in m.joints if j.type == "P") or "none"
             raise ModelError(f"point '{point}': expected the point of a prismatic joint"
-                             + (f" '{joint}'" if joint else "") + f"; prismatic joints are {names}")
+                             + (f" '{joint}'" if joint else "") + f"; prismatic joints are {names}; "
+                             "for the normal and tangential parts of a point of a pinned link, "
+                             "use kinelab.kinematics.acceleration_difference(sol, point, reference)")
         if len(joints) > 1:
             raise ModelError(f"point '{point}' slides in {len(joints)} joints; name one with joint=")
         s = self._slide_motion(joints[0].name)

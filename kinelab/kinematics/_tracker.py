@@ -9,7 +9,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError, check_choice
-from kinelab.kinematics import _kernel as k
+from kinelab.kinematics import _codes as k
+from kinelab import _compiled
 from kinelab.kinematics._analyze import (SINGULAR_TOL, _branch_map, _check_redundant,
                                          _normalise_q, analyze, plan)
 from kinelab.kinematics._solution import KinematicSolution
@@ -66,8 +67,8 @@ class Tracker:
         self.M = M = len(mechanism.inputs)
         self._bmap = _branch_map(p, M, at_change_point)
         self._last: KinematicSolution | None = None       # where Newton groups go on from
-        self._compiled = p.groups is None
-        if self._compiled:
+        self._closed_form = p.groups is None
+        if self._closed_form:
             tables = self._bmap.variants(np.zeros(1))[1] if self._bmap else [p.ops_f]
             point_items = [i for item in p.point_item.values() for i in (item, item + 1)]
             self._solution_kernel = _Packed(p, tables, p.stored_items, M)
@@ -88,7 +89,10 @@ class Tracker:
         if x is None:
             return self._analyze(q, qd, qdd)
         kernel = self._solution_kernel
-        out, status = kernel.run(x, self._variant(x))
+        done = kernel.run(x, self._variant(x))
+        if done is None:
+            return self._analyze(q, qd, qdd)
+        out, status = done
         jets, rates, diag, _, _ = kernel.views(out)
         if status != k.ST_OK or diag[1] < SINGULAR_TOL:
             return self._analyze(q, qd, qdd)          # its errors and flags, in full
@@ -106,13 +110,14 @@ class Tracker:
         :attr:`point_names`, or (N, P, 2) for a sweep.  Positions exist at a singular
         configuration: it is not flagged here."""
         x = self._one_sample(q, 0.0, 0.0)
-        if x is None or not self._compiled:
+        kernel = self._positions_kernel if x is not None else None
+        done = kernel.run(x, self._variant(x)) if kernel is not None else None
+        if done is None:
             sol = self._analyze(q, at_singular="flag")
             xy = sol.item_jets([i for i in self.plan.point_item.values() for i in (i, i + 1)])
             xy = xy[:, :, 0].reshape(sol.N, -1, 2)
             return xy[0] if sol.single else xy
-        kernel = self._positions_kernel
-        out, status = kernel.run(x, self._variant(x))
+        out, status = done
         if status != k.ST_OK:
             if self._options["unreachable"] == "raise":
                 self._analyze(q)                           # raises, naming the group and the reach
@@ -122,7 +127,7 @@ class Tracker:
     def _one_sample(self, q, qd, qdd) -> np.ndarray | None:
         """(3, M) rows q, q', q'' of one configuration of a plan in closed form, or None
         for anything else (a sweep; a plan with Newton groups), which analyze handles."""
-        if not self._compiled:
+        if not self._closed_form:
             return None
         if self.M == 1 and type(q) is float and type(qd) is float and type(qdd) is float:
             if math.isfinite(q) and math.isfinite(qd) and math.isfinite(qdd):
@@ -171,9 +176,17 @@ class _Packed:
             k.one_sample_layout(self.n, M)
         self.width = 1 + M + M * M
 
-    def run(self, x: np.ndarray, variant: int) -> tuple[np.ndarray, int]:
+    def run(self, x: np.ndarray, variant: int) -> tuple[np.ndarray, int] | None:
+        """The kernel's output and status at the sample ``x`` (3, M) on a branch, or None
+        while the compiled kernel is not ready (see ``kinelab._compiled``)."""
+        if not _compiled.ready("one_sample"):
+            return None
+        return self.run_compiled(x, variant)
+
+    def run_compiled(self, x: np.ndarray, variant: int) -> tuple[np.ndarray, int]:
+        from kinelab.kinematics import _kernel
         out = np.empty(self.size)
-        status = k.run_one_sample(x, self.plan_i, self.plan_f[variant], out)
+        status = _kernel.run_one_sample(x, self.plan_i, self.plan_f[variant], out)
         return out, status
 
     def views(self, out: np.ndarray):

@@ -4,9 +4,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+from numpy.typing import ArrayLike
+
 from kinelab.errors import ModelError, describe
 
-__all__ = ["Grashof", "grashof"]
+__all__ = ["Grashof", "grashof", "grashof_kinds"]
 
 
 @dataclass(frozen=True)
@@ -140,3 +143,38 @@ def grashof(ground: float, crank: float, coupler: float, rocker: float, *,
     longest = max(lengths, key=lengths.get)
     code = "RRR" + str(list(lengths).index(longest) + 1)
     return Grashof("triple-rocker", code, False, False, False, margin)
+
+
+_GRASHOF_BY_SHORTEST = np.array(["double-crank", "crank-rocker", "double-rocker", "rocker-crank"],
+                                object)
+
+
+def grashof_kinds(ground: ArrayLike, crank: ArrayLike, coupler: ArrayLike, rocker: ArrayLike, *,
+                  rtol: float = 1e-12) -> np.ndarray:
+    """:attr:`Grashof.kind` of many four-bars at once: arrays of link lengths (broadcast
+    together, m) in, an object array of the class names out (None where a length is not a
+    positive number).
+
+    Examples
+    --------
+    >>> kl.mechanisms.grashof_kinds([3.0, 1.0, 1.0], 1.0, [3.0, 1.0, 2.0], [2.5, 1.0, 1.5]).tolist()
+    ['crank-rocker', 'change-point', 'triple-rocker']
+    """
+    r = np.broadcast_arrays(*(np.asarray(v, float) for v in (ground, crank, coupler, rocker)))
+    lengths = np.stack(r)                                           # (4, ...)
+    total = lengths.sum(axis=0)
+    s, l_ = lengths.min(axis=0), lengths.max(axis=0)
+    margin = (total - s - l_) - (s + l_)
+    tol = rtol * total
+
+    def equal(a, b):
+        return np.abs(lengths[a] - lengths[b]) <= tol
+    opposite = equal(0, 2) & equal(1, 3)
+    adjacent = (equal(0, 1) & equal(2, 3)) | (equal(0, 3) & equal(1, 2))
+    change = opposite | adjacent | (np.abs(margin) <= tol)
+    kinds = np.where(change, "change-point",
+                     np.where(margin > 0, _GRASHOF_BY_SHORTEST[np.argmin(lengths, axis=0)],
+                              "triple-rocker")).astype(object)
+    good = np.isfinite(lengths).all(axis=0) & (lengths > 0).all(axis=0)
+    kinds[~good] = None
+    return kinds

@@ -4,6 +4,10 @@
 (K and L), :func:`coupler_curve`, :func:`transmission`, :func:`mechanism` (the linkage at one
 sample), :func:`animate` (GIF or MP4) and :func:`save` (a figure, atomically).
 
+Graphical methods: :func:`velocity_polygon` and :func:`acceleration_polygon` (to scale, beside
+the mechanism), :func:`instant_centers` (with Kennedy's circle diagram), :func:`centrodes`,
+:func:`derivatives` (of a measured curve, with error bands).
+
 Dynamics: :func:`effort_curves`, :func:`reaction_curves`, :func:`shaking_curves`,
 :func:`energy_curves`.
 
@@ -12,11 +16,16 @@ linkage in each position), :func:`burmester_curves`, :func:`five_positions` (the
 centre-point curves and Burmester's points), :func:`structural_error`,
 :func:`path_solution`, :func:`limit_positions` (a crank-rocker or quick return at its dead
 centres).
+
+Sweeps: :func:`tolerance_band` and :func:`error_histogram` (a tolerance study).
 """
 from kinelab.plot._animate import animate, can_write_mp4
 from kinelab.plot._dynamics import effort_curves, energy_curves, reaction_curves, shaking_curves
 from kinelab.plot._figures import (coefficients, coupler_curve, curves, input_axis, mechanism, save,
                                    transmission)
+from kinelab.plot._graphical import (PANEL_CM, acceleration_polygon, centrodes, derivatives,
+                                     drawing_scale, instant_centers, velocity_polygon)
+from kinelab.plot._sweep import error_histogram, tolerance_band
 from kinelab.plot._synthesis import (burmester_curves, five_positions, limit_positions,
                                      motion_solution, path_solution, prescribed_positions,
                                      structural_error)
@@ -25,4 +34,6 @@ __all__ = ["curves", "coefficients", "coupler_curve", "transmission", "mechanism
            "save", "can_write_mp4", "input_axis", "prescribed_positions", "motion_solution",
            "burmester_curves", "structural_error", "path_solution", "limit_positions",
            "five_positions", "effort_curves",
-           "reaction_curves", "shaking_curves", "energy_curves"]
+           "reaction_curves", "shaking_curves", "energy_curves", "velocity_polygon",
+           "acceleration_polygon", "instant_centers", "centrodes", "derivatives", "drawing_scale",
+           "PANEL_CM", "tolerance_band", "error_histogram"]

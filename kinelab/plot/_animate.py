@@ -22,7 +22,8 @@ def can_write_mp4() -> bool:
 
 
 def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, frames: int = 120,
-            fps: int = 30, units: Units | Mapping[str, str] | None = None) -> Path:
+            fps: int = 30, units: Units | Mapping[str, str] | None = None,
+            centers: bool = False, velocities: bool = False) -> Path:
     """Write an animation of the mechanism moving through the sweep, the paths of the
     ``trace`` points drawn as they go.
 
@@ -39,6 +40,12 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
     units : Units or mapping, optional
         ``{"length": "mm"}``: the unit of the axes (default SI).  Traced paths leave out the
         singular samples, which are marked.
+    centers : bool
+        Overlay every instant centre (Kennedy's construction), labelled as the notes do
+        (O13); centres at infinity and far off the view are left out of a frame.
+    velocities : bool
+        Overlay each moving point's velocity as an arrow, at one scale for the whole
+        animation (stated in the legend).
 
     Returns
     -------
@@ -50,6 +57,10 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
     >>> fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
     >>> sol = kl.analyze(fb, q=np.linspace(0, 2 * np.pi, 25))
     >>> path = kl.plot.animate(sol, pathlib.Path(tempfile.mkdtemp()) / "fb.gif", frames=12)
+    >>> path.stat().st_size > 0
+    True
+    >>> path = kl.plot.animate(sol, pathlib.Path(tempfile.mkdtemp()) / "fb.gif", frames=4,
+    ...                        centers=True, velocities=True)
     >>> path.stat().st_size > 0
     True
     """
@@ -100,7 +111,14 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
                 label=SINGULAR_LABEL if k == 0 else None)
     artists: dict = {}
     mechanism(sol, int(idx[0]), ax=ax, artists=artists, units=u)
-    if traced or singular:
+    overlays = []
+    if centers:
+        overlays.append(_centre_overlay(ax, sol, u, (lo - pad, hi + pad)))
+    if velocities:
+        overlays.append(_velocity_overlay(ax, sol, u, float(max(hi - lo))))
+    for overlay in overlays:
+        overlay(int(idx[0]))
+    if traced or singular or velocities:
         ax.legend(fontsize="small", loc="upper right")
     ax.set_aspect("equal", adjustable="box")
     ax.set_xlim(lo[0] - pad, hi[0] + pad)
@@ -111,7 +129,8 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
         mechanism(sol, i, ax=ax, artists=artists, units=u)
         for p, line in traced.items():
             line.set_data(paths[p][:i + 1, 0], paths[p][:i + 1, 1])
-        return list(artists.values()) + list(traced.values())
+        moved = [a for overlay in overlays for a in overlay(i)]
+        return list(artists.values()) + list(traced.values()) + moved
 
     anim = animation.FuncAnimation(fig, draw, frames=len(idx), blit=False)
     writer = (animation.PillowWriter(fps=fps) if suffix == ".gif"
@@ -127,3 +146,52 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
     finally:
         plt.close(fig)
     return path
+
+
+def _centre_overlay(ax, sol: KinematicSolution, u: Units, view):
+    """A function of the sample that moves a marker and a label to each finite instant
+    centre inside ``view`` ((lo, hi) corners), and hides the others."""
+    from kinelab.kinematics import kennedy_construction
+    kc = kennedy_construction(sol)
+    lo, hi = view
+    marks, labels = {}, {}
+    for pair in kc.centers:
+        primary = pair in kc.primary
+        marks[pair] = ax.plot([], [], "o", ms=5, color="tab:red", zorder=6,
+                              mfc="tab:red" if primary else "white")[0]
+        labels[pair] = ax.text(0, 0, kc.label(pair), fontsize=7, color="tab:red", zorder=6,
+                               visible=False)
+
+    def place(i):
+        for pair, c in kc.centers.items():
+            xy = np.asarray(u.convert(c.position[i], "m"), float)
+            show = (not bool(c.at_infinity[i]) and bool(np.isfinite(xy).all())
+                    and bool(np.all((xy >= lo) & (xy <= hi))))
+            marks[pair].set_data([xy[0]] if show else [], [xy[1]] if show else [])
+            labels[pair].set_visible(show)
+            if show:
+                labels[pair].set_position(xy)
+        return [*marks.values(), *labels.values()]
+    return place
+
+
+def _velocity_overlay(ax, sol: KinematicSolution, u: Units, span: float):
+    """A function of the sample that sets a velocity arrow on each moving point, at one
+    scale: the fastest point's arrow is a quarter of the view."""
+    ground = set(sol.mechanism.ground.points)
+    points = [p for p in sol.point_names if p not in ground]
+    xy = np.stack([u.convert(sol.position(p), "m") for p in points], axis=1)      # (N, k, 2)
+    v = np.stack([u.convert(sol.velocity(p), "m/s") for p in points], axis=1)
+    v = np.where(np.isfinite(v), v, 0.0)
+    fastest = float(np.max(np.linalg.norm(v, axis=2))) or 1.0
+    seconds = 0.25 * span / fastest          # an arrow's length is the velocity times this
+    arrows = ax.quiver(xy[0, :, 0], xy[0, :, 1], v[0, :, 0], v[0, :, 1], angles="xy",
+                       scale_units="xy", scale=1.0 / seconds, color="tab:blue", width=0.006,
+                       zorder=5, label=f"velocities: 1 {u.length} = {1 / seconds:.3g} "
+                                       f"{u.unit('m/s')}")
+
+    def place(i):
+        arrows.set_offsets(np.where(np.isfinite(xy[i]), xy[i], 0.0))
+        arrows.set_UVC(v[i, :, 0], v[i, :, 1])
+        return [arrows]
+    return place

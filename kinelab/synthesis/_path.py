@@ -441,10 +441,13 @@ class _Search:
     """One run of :func:`path_generation`: rounds of screened quasi-random starts, each
     followed by batched least squares."""
 
-    def __init__(self, obj: _Objective, popsize: int, seed: int):
+    def __init__(self, obj: _Objective, popsize: int, seed: int, bounds: np.ndarray,
+                 initial: np.ndarray | None = None):
         from scipy.stats import qmc
         self.obj = obj
         self.popsize = popsize
+        self.bounds = bounds
+        self.initial = initial          # designs the first round starts from, whatever the screen
         self.draw = qmc.Halton(d=10, scramble=True, seed=seed)
         self.rng = np.random.default_rng(seed)
         self.cos_floor = float(np.cos(max(obj.mu_min, _MU_FLOOR)))
@@ -467,8 +470,13 @@ class _Search:
     def round(self, refine: bool):
         """Candidates (design (10,), crank angles (n,), RMS distance to the targets at
         those angles), most promising first."""
-        lo, hi = _BOUNDS[:, 0], _BOUNDS[:, 1]
+        lo, hi = self.bounds[:, 0], self.bounds[:, 1]
         X = lo + self.draw.random(self.popsize * _STARTS) * (hi - lo)
+        given = 0
+        if self.initial is not None:
+            given = len(self.initial)
+            X[:given] = self.initial
+            self.initial = None
         if self.elite is not None and _NEAR > 0:
             # some starts near the best linkages met so far, at scales from 1% to 20%
             m = int(_NEAR * len(X))
@@ -477,6 +485,7 @@ class _Search:
             X[:m, :9] = pick[:, :9] + spread[:, :9] * self.rng.standard_normal((m, 9))
             X[:m, 9] = pick[:, 9]
         f, q = self.screen(X)
+        f[:given] = -np.inf
         if not refine:
             best = int(np.argmin(f))
             return [(X[best], q[best], f[best])]
@@ -517,7 +526,8 @@ class _Search:
 
 def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, popsize: int = 15,
                     samples: int = 180, min_transmission_angle: float = 0.0, seed: int = 0,
-                    refine: bool = True, tolerance: float = 1e-4) -> SolutionList:
+                    refine: bool = True, tolerance: float = 1e-4,
+                    initial: ArrayLike | None = None) -> SolutionList:
     """Four-bars whose coupler point passes near prescribed points, in order.
 
     Each run searches in rounds.  A round draws ``popsize * 32`` designs (a scrambled
@@ -559,6 +569,11 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
         A run stops when its best linkage's RMS distance to the targets is below
         ``tolerance`` times the size of the path (the diagonal of the targets' bounding
         box).  0 runs every round.
+    initial : array_like, shape (k, 10), optional
+        Designs to start from (the form of :func:`coupler_curves`, m), e.g. the nearest
+        curves of an atlas (:meth:`kinelab.sweep.Atlas.refine`): each run's first round
+        starts least squares from them (at most ``popsize * 8``), besides its own draws,
+        in a search box grown to hold them.
 
     Returns
     -------
@@ -608,9 +623,22 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
     scale = float(np.linalg.norm(T - center, axis=1).max())
     obj = _Objective((T - center) / scale, samples, float(min_transmission_angle))
     goal = tolerance * float(np.hypot(*np.ptp(T, axis=0)))
+    bounds, starts = _BOUNDS, None
+    if initial is not None:
+        starts = np.array(initial, float, ndmin=2)
+        if starts.ndim != 2 or starts.shape[1] != 10 or not np.all(np.isfinite(starts)):
+            raise ModelError(f"initial: expected finite designs of shape (k, 10), got "
+                             f"{describe(initial)}")
+        starts[:, 0:4] = ((starts[:, 0:4].reshape(-1, 2, 2) - center) / scale).reshape(-1, 4)
+        starts[:, 4:9] /= scale
+        starts[:, 9] = np.where(starts[:, 9] >= 0, 0.5, -0.5)
+        starts = starts[:popsize * _KEEP]
+        # the search box grows to hold them (a long ground beside a small path, say)
+        bounds = np.column_stack([np.minimum(_BOUNDS[:, 0], starts.min(axis=0)),
+                                  np.maximum(_BOUNDS[:, 1], starts.max(axis=0))])
     found, reasons = [], []
     for r in range(runs):
-        search = _Search(obj, popsize, seed + r)
+        search = _Search(obj, popsize, seed + r, bounds, starts)
         sol = None
         for _ in range(maxiter):
             for design, q, rms in search.round(refine):

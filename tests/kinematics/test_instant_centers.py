@@ -139,3 +139,25 @@ def test_pairs_that_name_no_centre():
     assert ("crank", "crank") not in ic and "crank" not in ic
     with pytest.raises(KeyError, match="a pair of two different links"):
         ic["crank", "crank"]
+
+
+@pytest.mark.parametrize("make, pair", [
+    (lambda: kl.mechanisms.slotted_link(1.0, 2.0), ("block", "lever")),
+    (lambda: kl.mechanisms.inverted_slider_crank(2.0, 1.0, offset=0.3), ("block", "rocker")),
+    (lambda: kl.mechanisms.slider_crank(1.0, 3.0, offset=0.4), ("ground", "slider"))])
+def test_a_centre_at_infinity_is_perpendicular_to_the_relative_velocity(make, pair):
+    """A block sliding on a turning guide translates relative to it, along the slide: the
+    direction of their centre at infinity is perpendicular to the slide, however the guide
+    turns (it was taken across the two links' reference points, which the guide's turning
+    moves apart)."""
+    sol = kl.analyze(make(), q=Q, qd=1.5)
+    ic = kl.kinematics.instant_center(sol, *pair)
+    assert ic.at_infinity.all()
+    joint = next(j for j in sol.mechanism.joints if j.type == "P" and set(j.links) == set(pair))
+    u = sol.slide_axes(joint.name)
+    np.testing.assert_allclose(np.abs((ic.direction * u).sum(axis=1)), 0.0, atol=1e-12)
+    np.testing.assert_allclose(np.linalg.norm(ic.direction, axis=1), 1.0, rtol=1e-12)
+    # and the same from the rigid-body velocities at any point, the joint's own included
+    xy = sol.position(joint.point) + 0.37
+    rel = velocity_on(sol, pair[1], xy) - velocity_on(sol, pair[0], xy)
+    np.testing.assert_allclose((ic.direction * rel).sum(axis=1), 0.0, atol=1e-9)

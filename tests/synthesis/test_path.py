@@ -103,6 +103,18 @@ def test_ten_point_tasks_reach_the_tolerance(k):
         assert np.sqrt(np.mean(errors ** 2)) < 1e-3 * size
 
 
+def test_initial_designs_are_started_from():
+    # a task far outside the search box (pivots 40 sizes away): found in one round only
+    # because the round starts from the given design, slightly off
+    design = np.array([0, 0, 3, 0, 1.0, 3.0, 2.5, 1.5, 1.0, 1.0])
+    far = design.copy()
+    far[0:4] += 100.0
+    T = _traced_task(far, np.radians(np.linspace(0, 90, 6)))
+    near = far + np.r_[[0.01] * 9, 0.0]
+    sols = path_generation(T, runs=1, maxiter=1, initial=[near], tolerance=1e-9)
+    assert sols and sols[0].valid and sols[0].rms_error < 1e-9
+
+
 def test_path_generation_is_reproducible():
     a = path_generation(EXACT_TASK[:5], runs=1, maxiter=15, seed=3, refine=False)
     b = path_generation(EXACT_TASK[:5], runs=1, maxiter=15, seed=3, refine=False)
@@ -125,6 +137,8 @@ def test_transmission_angle_bound_is_kept():
     ([(0, 0), (1, 1), (0, 0)], {}, r"points: points 1 and 3 coincide"),
     ([(0, 0), (1, 1), (2, 0)], dict(runs=0), r"runs: expected an integer >= 1, got 0"),
     ([(0, 0), (1, 1), (2, 0)], dict(popsize=2), r"popsize: expected an integer >= 5, got 2"),
+    ([(0, 0), (1, 1), (2, 0)], dict(initial=[[0, 0, 1]]),
+     r"initial: expected finite designs of shape \(k, 10\), got \[\[0, 0, 1\]\]"),
     ([(0, 0), (1, 1), (2, 0)], dict(tolerance=-1e-3),
      r"tolerance: expected a fraction of the path's size in \[0, 1\), got -0.001"),
     ([(0, 0), (1, 1), (2, 0)], dict(min_transmission_angle=30.0),

@@ -1,0 +1,231 @@
+"""``kinelab polygons``, ``kinelab centres`` and ``kinelab differentiate``: the graphical
+methods of Flores & Claro, *Cinemática de Mecanismos — 4. Análise de Velocidades*, §4.6,
+as tables and figures."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+import numpy as np
+
+from kinelab import io, kinematics, solvers
+from kinelab.cli._analyze import MODEL, SAMPLES, configuration, with_speeds
+from kinelab.cli._draw import FIGURE_FORMATS, _agg
+from kinelab.cli._format import _num
+from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, errors_from, output_units, parse_inputs,
+                               read_model, stem, sweep)
+from kinelab.errors import ModelError
+from kinelab.model import Units
+
+__all__ = ["polygons", "centres", "differentiate_command"]
+
+AT = click.option("--at", "at", required=True, metavar="VALUE",
+                  help="The input value: in the file's unit, or with a unit (30deg, 0.5rad, "
+                       "12mm); comma-separated for several inputs.")
+SPEED = click.option("--speed", "speed", default=None, metavar="VALUE",
+                     help="Input speed, instead of the file's: in the file's unit per second, "
+                          "or with a unit (60deg, 1rad, 12mm: per second).")
+OUT = click.option("--out", "-o", "out", default=".", show_default=True, metavar="DIR",
+                   help="Directory for the figures.")
+FORMATS = click.option("--format", "formats", type=click.Choice(FIGURE_FORMATS), multiple=True,
+                       default=("png",), show_default=True, help="Repeat for several formats.")
+
+
+def _table(rows: list[tuple[str, ...]]) -> list[str]:
+    widths = [max(len(r[k]) for r in rows) for k in range(len(rows[0]))]
+    return ["  " + "  ".join(c.ljust(w) if k == 0 else c.rjust(w)
+                             for k, (c, w) in enumerate(zip(r, widths))).rstrip() for r in rows]
+
+
+def _vector_row(name: str, v, u: Units, si: str) -> tuple[str, ...]:
+    x, y = (float(c) for c in u.convert(np.asarray(v, float), si))
+    return (name, _num(x), _num(y), _num(float(np.hypot(x, y))))
+
+
+def _save(fig, out: str, name: str, formats) -> list[Path]:
+    from kinelab import plot as kplot
+    import matplotlib.pyplot as plt
+    try:
+        return [kplot.save(fig, Path(out) / f"{name}.{fmt}") for fmt in formats]
+    finally:
+        plt.close(fig)
+
+
+@click.command()
+@MODEL
+@AT
+@SPEED
+@OUT
+@FORMATS
+@click.option("--velocity-scale", "velocity_scale", type=click.FloatRange(min=0, min_open=True),
+              default=None, metavar="VALUE",
+              help="Velocity per centimetre of the drawing, in the results' length unit per "
+                   "second (default: a round number that fits).")
+@click.option("--acceleration-scale", "acceleration_scale",
+              type=click.FloatRange(min=0, min_open=True), default=None, metavar="VALUE",
+              help="Acceleration per centimetre of the drawing, in the results' length unit "
+                   "per second squared (default: a round number that fits).")
+@SI
+@DEGREES
+@CHANGE_POINTS
+def polygons(model, at, speed, out, formats, velocity_scale, acceleration_scale, si, degrees,
+             change_points):
+    """Velocity and acceleration polygons of MODEL at one input: every point's velocity and
+    acceleration from the pole, every side with its parts (normal, tangential, Coriolis,
+    sliding), printed and drawn to scale beside the mechanism."""
+    from kinelab import plot as kplot
+    _agg()
+    mf = read_model(model)
+    if speed is not None:
+        mf = with_speeds(mf, parse_inputs(speed, mf, "--speed", rate=True))
+    units = output_units(mf.units, si, degrees)
+    sol = configuration(mf, at, change_points)
+    with errors_from(mf, "--at"):
+        vp = kinematics.velocity_polygon(sol)
+        ap = kinematics.acceleration_polygon(sol)
+    v_unit, a_unit = units.unit("m/s"), units.unit("m/s^2")
+
+    def name(p):        # a guide's point under a slider's point A: A'
+        return p.split("@")[0] + "'" if "@" in p else p
+    lines = [f"{mf.mechanism.name}: velocity polygon [{v_unit}], from the pole O_V"]
+    rows = [("", "vx", "vy", "|v|")]
+    rows += [_vector_row(f"V_{p}", v, units, "m/s") for p, v in vp.vertices.items()]
+    rows += [_vector_row(f"V_{name(p)}{name(r)}", s.vector, units, "m/s")
+             for (p, r), s in vp.sides.items()]
+    lines += _table(rows)
+    lines.append("")
+    lines.append(f"acceleration polygon [{a_unit}], from the pole O_A")
+    rows = [("", "ax", "ay", "|a|")]
+    rows += [_vector_row(f"A_{p}", a, units, "m/s^2") for p, a in ap.vertices.items()]
+    mark = {"normal": "n", "tangential": "t", "coriolis": "c", "sliding": "s"}
+    for (p, r), side in ap.sides.items():
+        sub = f"{name(p)}{name(r)}"
+        rows.append(_vector_row(f"A_{sub}", side.vector, units, "m/s^2"))
+        rows += [_vector_row(f"  A^{mark[k]}_{sub}", v, units, "m/s^2") for k, v in side.parts.items()]
+    lines += _table(rows)
+    for c in vp.coincident:
+        point, guide = c.split("@")
+        lines.append(f"{point}' is the point of {guide} under {point}")
+    click.echo("\n".join(lines))
+    base = stem(model)
+    written = _save(kplot.velocity_polygon(sol, units=units, scale=velocity_scale), out,
+                    f"{base}_velocity_polygon", formats)
+    written += _save(kplot.acceleration_polygon(sol, units=units, scale=acceleration_scale), out,
+                     f"{base}_acceleration_polygon", formats)
+    for path in written:
+        click.echo(f"wrote {path}")
+
+
+@click.command()
+@MODEL
+@AT
+@OUT
+@FORMATS
+@click.option("--centrodes", "with_centrodes", is_flag=True,
+              help="Also sweep the file's input range and draw the fixed and moving centrodes "
+                   "of each link not pinned to the ground.")
+@SAMPLES
+@SI
+@CHANGE_POINTS
+def centres(model, at, out, formats, with_centrodes, samples, si, change_points):
+    """Every instant centre of MODEL at one input, found as the notes find them: primary
+    centres from the joints, the others by Kennedy's theorem in the order of the circle
+    diagram; printed and drawn on the mechanism beside the circle diagram."""
+    from kinelab import plot as kplot
+    _agg()
+    mf = read_model(model)
+    units = output_units(mf.units, si, False)
+    sol = configuration(mf, at, change_points)
+    with errors_from(mf, "--at"):
+        if bool(sol.singular[0]):
+            kinematics.velocity_polygon(sol)         # the singular sample's message
+        kc = kinematics.kennedy_construction(sol)
+    order = {s.pair: k + 1 for k, s in enumerate(kc.steps)}
+    numbers = ", ".join(f"{n} {lk}" for lk, n in kc.numbers.items())
+    lines = [f"{mf.mechanism.name}: instant centres [{units.length}]; links {numbers}"]
+    rows = [("", "links", "found", "x", "y")]
+    for pair, c in kc.centers.items():
+        how = (f"joint {kc.primary[pair]}" if pair in kc.primary else
+               f"Kennedy ({order[pair]})" if pair in order else "velocities")
+        if bool(c.at_infinity):
+            d = c.direction
+            where = ("at infinity", f"direction ({_num(float(d[0]), 4)}, {_num(float(d[1]), 4)})")
+        else:
+            x, y = (float(v) for v in units.convert(c.position, "m"))
+            where = (_num(x), _num(y))
+        rows.append((kc.label(pair), "-".join(pair), how, *where))
+    lines += _table(rows)
+    click.echo("\n".join(lines))
+    base = stem(model)
+    written = _save(kplot.instant_centers(sol, units=units), out, f"{base}_centres", formats)
+    if with_centrodes:
+        m = mf.mechanism
+        pinned = {lk for j in m.joints if j.type == "R" and m.ground.name in j.links
+                  for lk in j.links}
+        links = [lk for lk in m.link_names if lk != m.ground.name and lk not in pinned]
+        if not links:
+            raise click.UsageError("--centrodes: every moving link of this mechanism is pinned to "
+                                   "the ground, and its centrodes are its pivot")
+        swept = sweep(mf, samples, change_points=change_points)
+        near = int(np.argmin(np.abs(swept.q[:, 0] - sol.q[0, 0]))) if swept.M == 1 else 0
+        ok = swept.assembled & ~swept.singular
+        if not ok[near]:
+            near = int(np.flatnonzero(ok)[0]) if ok.any() else near
+        for lk in links:
+            with errors_from(mf, "--centrodes"):
+                ax = kplot.centrodes(swept, lk, near, units=units)
+            written += _save(ax.figure, out, f"{base}_centrodes_{lk}", formats)
+    for path in written:
+        click.echo(f"wrote {path}")
+
+
+@click.command("differentiate")
+@click.argument("data", type=click.Path(dir_okay=False))
+@click.option("--x", "x_column", default=None, metavar="COLUMN",
+              help="The abscissa's column, by name or number from 1 (default: the first).")
+@click.option("--y", "y_column", default=None, metavar="COLUMN",
+              help="The curve's column, by name or number from 1 (default: the second).")
+@click.option("--window", type=int, default=None, metavar="SAMPLES",
+              help="Samples per local fit (odd, at least 11), instead of the one chosen by "
+                   "cross-validation.")
+@click.option("--out", "-o", "out", default=".", show_default=True, metavar="DIR",
+              help="Directory for the table and the figure.")
+@FORMATS
+def differentiate_command(data, x_column, y_column, window, out, formats):
+    """Velocity and acceleration of a measured curve: DATA is a CSV file with a header row
+    (e.g. 't [s], x [mm]'), an abscissa (time or an input angle) and a displacement, evenly
+    sampled or not, with noise.  Writes the derivatives with their error bands (a table and a
+    figure) and prints how the smoothing was chosen."""
+    from kinelab import plot as kplot
+    _agg()
+    curve = io.read_curve(data, x=x_column, y=y_column)
+    try:
+        d = solvers.differentiate(curve.x, curve.y, window=window)
+    except ModelError as exc:           # name the file in the message
+        raise ModelError(exc.problems, source=curve.source) from None
+    xn, yn = curve.x_name or "x", curve.y_name or "y"
+    xu, yu = curve.x_unit, curve.y_unit
+
+    def unit(text):
+        return f" [{text}]" if text else ""
+    rate = f"{yu or '1'}/{xu or '1'}"
+    columns = {f"{xn}{unit(xu)}": d.x, f"{yn}{unit(yu)}": d.y + d.residual,
+               f"{yn}.smoothed{unit(yu)}": d.y,
+               f"d{yn}/d{xn}{unit(rate)}": d.velocity,
+               f"d{yn}/d{xn}.error{unit(rate)}": d.velocity_error,
+               f"d2{yn}/d{xn}2{unit(rate + '^2' if xu else rate)}": d.acceleration,
+               f"d2{yn}/d{xn}2.error{unit(rate + '^2' if xu else rate)}": d.acceleration_error}
+    from kinelab._files import write_csv
+    base = Path(data).stem
+    written = [write_csv(columns, Path(out) / f"{base}_derivatives.csv")]
+    fig = kplot.derivatives(d, x_label=f"{xn}{unit(xu)}", y_label=yn, y_unit=yu or "1",
+                            x_unit=xu or "1")
+    written += _save(fig, out, f"{base}_derivatives", formats)
+    how = ("as --window says" if window is not None else
+           f"0.7 of the {d.window_gcv} generalised cross-validation chose")
+    click.echo(f"{Path(data).name}: {len(d.x)} samples of {yn} against {xn}; noise about "
+               f"{_num(d.noise, 3)} {yu}; local fits of degree 5 over {d.window} samples "
+               f"({how}); median error band on the velocity "
+               f"{_num(float(np.median(d.velocity_error)), 3)} {rate}".replace(" ;", ";"))
+    for path in written:
+        click.echo(f"wrote {path}")

@@ -1,0 +1,222 @@
+"""``kinelab sweep`` and ``kinelab atlas``: studies over many designs, on this machine or a
+Dask cluster (``--scheduler ADDRESS``).
+
+Design tables come from a CSV or Parquet file (one column per parameter, SI: m, rad) or
+from ranges (``--sobol 4096 --range crank=0.5:1.5 ...``).  Results are Parquet (or CSV),
+one row per design, every column naming its unit.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+import numpy as np
+
+from kinelab import sweep as sw
+from kinelab._files import atomic_write
+from kinelab.errors import ModelError, describe
+
+__all__ = ["sweep_command", "atlas_command"]
+
+_PROBLEMS_SHOWN = 20
+_ANGLES = ("transmission_min", "transmission_max", "reachable_from", "reachable_to")
+
+
+def _read_table(path: str):
+    import pandas
+
+    p = Path(path)
+    if not p.is_file():
+        raise ModelError(f"{path}: no such file; give a CSV or Parquet table of designs")
+    try:
+        if p.suffix.lower() in (".parquet", ".pq"):
+            return pandas.read_parquet(p)
+        return pandas.read_csv(p)
+    except (OSError, ValueError, ImportError) as exc:
+        line = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise ModelError(f"{path}: cannot read a table: {line}") from None
+
+
+def _range(text: str):
+    name, sep, spec = text.partition("=")
+    parts = spec.split(":")
+    try:
+        values = [float(v) for v in parts]
+    except ValueError:
+        values = []
+    if not sep or not name or len(values) not in (2, 3):
+        raise ModelError(f"--range: expected NAME=LOW:HIGH (or NAME=LOW:HIGH:COUNT for --grid), "
+                         f"got {describe(text)}")
+    return name.strip(), values
+
+
+def designs_from(table: str | None, sobol: int | None, random: int | None, grid: bool,
+                 ranges: tuple[str, ...], seed: int):
+    """The design table of a command: a file, or generated from ``--range`` options."""
+    chosen = [x for x in (table is not None, sobol is not None, random is not None, grid) if x]
+    if len(chosen) != 1:
+        raise ModelError("designs: give exactly one of a DESIGNS file, --sobol N, --random N or "
+                         "--grid (with --range NAME=LOW:HIGH for each varied parameter)")
+    if table is not None:
+        if ranges:
+            raise ModelError("--range: only with --sobol, --random or --grid, not with a DESIGNS file")
+        return _read_table(table)
+    parsed = dict(_range(r) for r in ranges)
+    if grid:
+        axes = {}
+        for name, v in parsed.items():
+            if len(v) != 3 or v[2] != int(v[2]) or v[2] < 1:
+                raise ModelError(f"--range {name}: --grid needs NAME=LOW:HIGH:COUNT with a whole COUNT")
+            axes[name] = (v[0], v[1], int(v[2]))
+        return sw.grid(**axes)
+    bounds = {name: tuple(v[:2]) for name, v in parsed.items()}
+    return (sw.sobol(sobol, seed=seed, **bounds) if sobol is not None
+            else sw.random(random, seed=seed, **bounds))
+
+
+def _family_of(spec: str, branch: str | None, output: str | None):
+    options = {} if branch is None else {"branch": branch}
+    if spec in sw.CATALOGUE:
+        return sw.family(spec, output=output, **options)
+    if not Path(spec).suffix.lower() in (".toml", ".json"):
+        raise ModelError(f"FAMILY: expected a catalogue kind ({', '.join(sw.CATALOGUE)}) or a "
+                         f"model file (.toml or .json), got {describe(spec)}")
+    from kinelab.io import load
+    return sw.family(load(spec), output=output, **options)
+
+
+def _labelled(df, degrees: bool, output_is_slide: bool):
+    """Columns named with their units (angles in rad, or deg with --degrees)."""
+    unit = "deg" if degrees else "rad"
+    out = df.copy()
+    names = {}
+    for c in df.columns:
+        if c in _ANGLES or (c == "swing" and not output_is_slide):
+            if degrees:
+                out[c] = np.degrees(df[c])
+            names[c] = f"{c}[{unit}]"
+        elif c == "swing":
+            names[c] = "swing[m]"
+        elif c == "peak_torque":
+            names[c] = "peak_torque[N m]"
+    return out.rename(columns=names)
+
+
+def _write(df, path: Path) -> None:
+    if path.suffix.lower() == ".csv":
+        atomic_write(path, lambda f: df.to_csv(f, index=False))
+    else:
+        sw.write_parquet(df, path)
+
+
+def _report_problems(df) -> None:
+    problems = df.attrs.get("problems", {})
+    for label, message in list(problems.items())[:_PROBLEMS_SHOWN]:
+        click.echo(f"kinelab: warning: design {label}: {message}", err=True)
+    if len(problems) > _PROBLEMS_SHOWN:
+        click.echo(f"kinelab: warning: ... and {len(problems) - _PROBLEMS_SHOWN} more designs "
+                   "that could not be analysed", err=True)
+
+
+DESIGNS_OPTIONS = [
+    click.option("--sobol", type=click.IntRange(min=1), default=None, metavar="N",
+                 help="N designs of a scrambled Sobol sequence in the --range bounds."),
+    click.option("--random", "random_n", type=click.IntRange(min=1), default=None, metavar="N",
+                 help="N designs drawn uniformly in the --range bounds."),
+    click.option("--grid", is_flag=True, help="Every combination of --range NAME=LOW:HIGH:COUNT."),
+    click.option("--range", "ranges", multiple=True, metavar="NAME=LOW:HIGH[:COUNT]",
+                 help="Bounds of a parameter (m or rad), repeated for each one varied."),
+    click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True,
+                 help="Seed of --sobol and --random."),
+    click.option("--scheduler", default=None, metavar="ADDRESS",
+                 help="Run on the Dask cluster of this scheduler (tcp://host:8786)."),
+    click.option("--chunk-size", type=click.IntRange(min=1), default=None,
+                 help="Designs per chunk (default: what fits in 32 MiB)."),
+    click.option("--samples", type=click.IntRange(min=4), default=72, show_default=True,
+                 help="Input samples over a full turn."),
+]
+
+
+def _designs_options(f):
+    for option in reversed(DESIGNS_OPTIONS):
+        f = option(f)
+    return f
+
+
+@click.command("sweep")
+@click.argument("family_spec", metavar="FAMILY")
+@click.argument("table", metavar="[DESIGNS]", required=False)
+@_designs_options
+@click.option("--metrics", default=None, metavar="NAMES",
+              help="Comma-separated: " + ", ".join(sw.METRICS) + " (default: the family's "
+                   "standard ones).")
+@click.option("--branch", default=None, help="Assembly mode of a catalogue family (open/crossed ...).")
+@click.option("--output", "output_name", default=None,
+              help="Link or prismatic joint whose swing and time ratio are measured.")
+@click.option("--speed", type=float, default=1.0, show_default=True,
+              help="Input speed for peak_torque, rad/s.")
+@click.option("--degrees", is_flag=True, help="Angles in degrees in the table.")
+@click.option("--out", "-o", "out", default="sweep.parquet", show_default=True, metavar="PATH",
+              help="Result table: .parquet or .csv.")
+def sweep_command(family_spec, table, sobol, random_n, grid, ranges, seed, scheduler, chunk_size,
+                  samples, metrics, branch, output_name, speed, degrees, out):
+    """Metrics of every design of FAMILY (a catalogue kind such as fourbar, or a model file)
+    over a turn of its input, one row per design of DESIGNS (CSV or Parquet) or of --sobol,
+    --random or --grid; on a Dask cluster with --scheduler."""
+    import time
+
+    fam = _family_of(family_spec, branch, output_name)
+    designs = designs_from(table, sobol, random_n, grid, ranges, seed)
+    names = None if metrics is None else tuple(m.strip() for m in metrics.split(",") if m.strip())
+    start = time.perf_counter()
+    df = sw.run(fam, designs, samples=samples, metrics=names, client=scheduler,
+                chunk_size=chunk_size, speed=speed)
+    seconds = time.perf_counter() - start
+    path = Path(out)
+    _write(_labelled(df, degrees, fam.output_is_slide), path)
+    _report_problems(df)
+    assembles = f", {int(df['assembles'].sum()):,} assemble over the turn" if "assembles" in df else ""
+    click.echo(f"{len(df):,} designs in {seconds:.3g} s{assembles}; wrote {path}")
+
+
+@click.group("atlas")
+def atlas_command():
+    """Atlases of four-bar coupler curves: build one, find the designs nearest a path."""
+
+
+@atlas_command.command("build")
+@click.argument("table", metavar="[DESIGNS]", required=False)
+@_designs_options
+@click.option("--branch", type=click.Choice(("open", "crossed")), default="open", show_default=True)
+@click.option("--out", "-o", "out", default="atlas.parquet", show_default=True, metavar="PATH")
+def atlas_build(table, sobol, random_n, grid, ranges, seed, scheduler, chunk_size, samples,
+                branch, out):
+    """Build an atlas from four-bar designs (columns ground, crank, coupler, rocker,
+    coupler_point_along, coupler_point_perpendicular, m)."""
+    designs = designs_from(table, sobol, random_n, grid, ranges, seed)
+    a = sw.atlas(designs, branch=branch, samples=samples, client=scheduler, chunk_size=chunk_size)
+    a.to_parquet(out)
+    click.echo(f"{len(a):,} of {len(designs):,} designs turn their crank fully; wrote {out}")
+
+
+@atlas_command.command("find")
+@click.argument("atlas_path", metavar="ATLAS")
+@click.argument("path_file", metavar="PATH")
+@click.option("-k", "k", type=click.IntRange(min=1), default=5, show_default=True,
+              help="How many designs.")
+@click.option("--refine", is_flag=True,
+              help="Polish the nearest designs into linkages through the path (path synthesis).")
+def atlas_find(atlas_path, path_file, k, refine):
+    """The designs of ATLAS whose coupler curves are nearest in shape to the closed path in
+    PATH (a CSV of x, y points in order, m)."""
+    a = sw.Atlas.from_parquet(atlas_path)
+    points = _read_table(path_file).select_dtypes("number").to_numpy()[:, :2]
+    near = a.nearest(points, k)
+    click.echo(near.to_string(float_format=lambda v: f"{v:.6g}"))
+    if refine:
+        sols = a.refine(points, k=min(k, 3))
+        if not len(sols):
+            raise ModelError(f"refine: {sols.reason}")
+        best = sols[0]
+        click.echo(f"refined: A0 = ({best.A0[0]:.6g}, {best.A0[1]:.6g}) m, B0 = ({best.B0[0]:.6g}, "
+                   f"{best.B0[1]:.6g}) m, largest error {best.max_error:.3g} m")

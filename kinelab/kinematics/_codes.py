@@ -1,0 +1,75 @@
+"""The kernel's interface, shared by its compiled form (``_kernel.py``) and its numpy form
+(``_interpreter.py``): the codes of a plan's operations and of a sample's status, the
+numerical tolerances both apply, and the packed plan of the one-sample entry point.
+
+Nothing here imports numba: the rest of kinelab reads these without loading the compiler.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+# operation codes: rows of ops_i / ops_f.  Points are given by the item of their x.
+OP_DRIVE_ANGLE = 1   # i: b, a (-1: ground frame), m           f: sign
+OP_LOCK_ANGLE = 2    # i: b, a                                 f: offset
+OP_RIGID_POINT = 3   # i: p, link, anchor                      f: rx, ry (link frame)
+OP_SLIDE_POINT = 4   # i: out, base, dirlink, m                f: beta, s0, sign
+OP_LINES = 5         # i: out, o1, l1, o2, l2                  f: beta1, beta2
+OP_RRR = 6           # i: b, c, X, Y, Z                         f: lb, lc, sigma, offb, offc
+OP_RRP = 7           # i: b, X, Y, o, g                         f: lb, beta, sigma, offb
+OP_RPR = 8           # i: G, X, Z                               f: rho_x, rho_y, u_x, u_y, sigma
+OP_NEWTON = 9        # i: group
+OP_SLIDE_OUT = 10    # i: slide, p, o, g                        f: beta, s0
+OP_TWO_POINTS = 11   # i: b, p1, p2                             f: offset
+OP_FRAME_POINT = 12  # i: p, a, b                               f: lam, mu
+
+# Newton-group constraint kinds (rows of con_i / con_f); a side is either a link of the
+# group (g >= 0, with a point given in the link's frame) or known (g = -1, a point item).
+C_REVOLUTE = 0     # i: kind, gi, pi, li, gj, pj, lj             f: rix, riy, rjx, rjy
+C_PRISMATIC = 1    # i: kind, gg, po, lg, gs, pp, ls             f: rox, roy, rpx, rpy, beta, offset
+C_DRIVE_ANGLE = 2  # i: kind, ga, -, la, gb, -, lb, m            f: sign
+C_DRIVE_SLIDE = 3  # i: kind, gg, po, lg, gs, pp, ls, m          f: rox, roy, rpx, rpy, beta, s0
+
+# status codes written per sample
+ST_OK = 0
+ST_NO_ASSEMBLY = 1     # a closed-form group cannot close (gap > 0)
+ST_NO_CONVERGENCE = 2  # a Newton group failed even with the smallest continuation step
+
+DISC_TOL = 1e-12   # relative: a discriminant this far below zero is rounding at a limit position
+DISC_ZERO = 1e-15  # relative: a discriminant this close to zero is zero (its rounding is a
+                   # few eps): a dyad at its straight position comes out straight, exactly
+FOLDED = 1e-16     # an RRR dyad whose ends are closer than 1e-8 of its arm has folded: the
+                   # direction of d = Z - X is rounding, the direction it moves along is not
+
+NEWTON_MAX_ITER = 12
+NEWTON_TOL = 1e-13        # step, relative to the mechanism's size, at which Newton has converged
+JUMP_RATIO = 0.2          # a correction this large against the predicted step means a jump
+BASE_MIN = 1e-6           # a group solved where its measure (|det| over its rows' norms) is
+                          # below this is written but not kept to predict from: next to a
+                          # singular configuration K and L are rounding
+NODE_STEP = 1e-3          # a sample on a singular configuration the motion passes (a change
+                          # point) is placed from this fraction of a continuation step either side
+CONTINUATION_STEP = 0.05  # largest continuation step of a Newton group, rad (or m / scale)
+
+
+# One sample at a time (an input dragged in an interactive view): the plan and the outputs
+# packed in a few arrays, since each array argument costs about 0.1 us at the call.
+HEADER = 7  # plan_i starts with n_items, n_angles, ops, ops_i columns, ops_f columns,
+            # const items, stored items
+
+
+def pack_plan(ops_i, ops_f, const_items, const_values, n_items, n_angles, stored):
+    """The arguments of the kernel's ``run_one_sample`` describe a plan: (plan_i, plan_f)."""
+    head = [n_items, n_angles, ops_i.shape[0], ops_i.shape[1], ops_f.shape[1],
+            len(const_items), len(stored)]
+    plan_i = np.concatenate([head, ops_i.ravel(), const_items, stored]).astype(np.int64)
+    plan_f = np.concatenate([ops_f.ravel(), const_values]).astype(np.float64)
+    return plan_i, plan_f
+
+
+def one_sample_layout(n_stored, M):
+    """Where the kernel's ``run_one_sample`` writes in ``out``: the slices of the jets (n_stored,
+    1 + M + M*M), the rates (n_stored, 2), det J and the singularity measure, the gap and the
+    failed operation, and the status; and the length of ``out``."""
+    w = n_stored * (1 + M + M * M)
+    r = w + 2 * n_stored
+    return slice(0, w), slice(w, r), slice(r, r + 2), slice(r + 2, r + 4), r + 4, r + 5

@@ -1,0 +1,227 @@
+"""An atlas of four-bar coupler curves, searched by shape.
+
+The atlas keeps, for every design that turns its crank fully, the normalised Fourier
+descriptors of its coupler curve (:func:`~kinelab.sweep.descriptors`): they do not depend
+on where the curve is, how it is turned or how large it is, so one atlas of designs with
+O2O4 = (ground, 0) serves every target.  A target path is matched by its own descriptors
+(a k-d tree, scipy.spatial), both ways round, since a mirrored or backwards curve swaps
+the harmonics +k and -k; a match is then moved, turned and scaled onto the target (least
+squares over the start of the curve) and polished by
+:func:`kinelab.synthesis.path_generation`.
+"""
+from __future__ import annotations
+
+import functools
+import os
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from kinelab.errors import ModelError, describe
+from kinelab.sweep._metrics import (DEFAULT_HARMONICS, descriptor_names, descriptors,
+                                    resample_closed)
+from kinelab.sweep._run import run, write_parquet
+from kinelab.synthesis import coupler_curves, path_generation
+
+__all__ = ["Atlas", "atlas"]
+
+COLUMNS = ("ground", "crank", "coupler", "rocker", "coupler_point_along",
+           "coupler_point_perpendicular")
+_CURVE_SAMPLES = 256        # samples of a matched curve when it is fitted onto the target
+
+
+def atlas(designs, *, branch: str = "open", samples: int = 180,
+          harmonics: int = DEFAULT_HARMONICS, client=None, progress=None, chunk_size=None) -> Atlas:
+    """The coupler curves of many four-bars, ready to be searched by shape.
+
+    Parameters
+    ----------
+    designs : DataFrame or mapping of columns
+        ``ground, crank, coupler, rocker, coupler_point_along, coupler_point_perpendicular``
+        (m), e.g. ``kl.sweep.sobol(2**16, ...)``.
+    branch : {"open", "crossed"}
+    samples, harmonics, client, progress, chunk_size
+        As for :func:`run` (``client`` spreads the atlas over a Dask cluster).
+
+    Returns
+    -------
+    Atlas
+        The designs that turn their crank fully, with their descriptors.
+
+    Examples
+    --------
+    >>> designs = kl.sweep.sobol(256, seed=1, ground=(1, 4), crank=(0.3, 1), coupler=(1, 4),
+    ...                          rocker=(1, 4), coupler_point_along=(-1, 2),
+    ...                          coupler_point_perpendicular=(-1, 1))
+    >>> a = kl.sweep.atlas(designs)
+    >>> fb = kl.mechanisms.fourbar(2.5, 0.6, 2.8, 2.2, coupler_point=(1.2, 0.7))
+    >>> path = kl.analyze(fb, np.linspace(0, 2 * np.pi, 90, endpoint=False)).position("P")
+    >>> a.nearest(path, k=3).shape[0]
+    3
+    """
+    from kinelab.sweep._family import family
+
+    fam = family("fourbar", branch=branch)
+    df = run(fam, designs, samples=samples, metrics=("assembles", "descriptors"),
+             harmonics=harmonics, client=client, progress=progress, chunk_size=chunk_size)
+    import pandas
+
+    table = designs if isinstance(designs, pandas.DataFrame) else pandas.DataFrame(designs)
+    missing = [c for c in COLUMNS if c not in table]
+    if missing:
+        raise ModelError(f"designs: an atlas needs the columns {', '.join(missing)}")
+    keep = df["assembles"].to_numpy()
+    rows = table.loc[keep, list(COLUMNS)].reset_index(drop=True)
+    fd = df.loc[keep, descriptor_names(harmonics)].reset_index(drop=True)
+    return Atlas(pandas.concat([rows, fd], axis=1), harmonics, branch)
+
+
+@dataclass(frozen=True, eq=False)
+class Atlas:
+    """Four-bar designs (O2 at the origin, O4 at (ground, 0)) with the descriptors of their
+    coupler curves.
+
+    Attributes
+    ----------
+    table : pandas.DataFrame
+        One row per design: :data:`COLUMNS` and the descriptors ``fd+1, fd-1, ...``.
+    harmonics : int
+    branch : str
+    """
+
+    table: "pandas.DataFrame"
+    harmonics: int
+    branch: str
+
+    def __len__(self) -> int:
+        return len(self.table)
+
+    @functools.cached_property
+    def _tree(self):
+        from scipy.spatial import cKDTree
+        return cKDTree(self.table[descriptor_names(self.harmonics)].to_numpy())
+
+    def nearest(self, path: ArrayLike, k: int = 5) -> "pandas.DataFrame":
+        """The ``k`` designs whose coupler curves are nearest in shape to a closed path.
+
+        Parameters
+        ----------
+        path : array_like, shape (n, 2)
+            Points along the path, in order (n > 2 * harmonics), m.
+
+        Returns
+        -------
+        pandas.DataFrame
+            Their rows of :attr:`table`, nearest first, with ``distance`` (between
+            descriptors, 0 for the same shape) and ``mirrored`` (matched with the harmonics
+            swapped: the path backwards or mirrored).
+        """
+        P = _path(path, self.harmonics)
+        if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or k < 1:
+            raise ModelError(f"k: expected a whole number >= 1, got {describe(k)}")
+        if len(self) == 0:
+            raise ModelError("atlas: it holds no design that turns its crank fully; build it "
+                             "from more or other designs")
+        fd = descriptors(P, self.harmonics)
+        swapped = fd.reshape(-1, 2)[:, ::-1].ravel()
+        k = min(int(k), len(self))
+        found = {}
+        for mirrored, target in ((False, fd), (True, swapped)):
+            dist, idx = self._tree.query(target, k=k)
+            for d, i in zip(np.atleast_1d(dist), np.atleast_1d(idx)):
+                if i not in found or d < found[i][0]:
+                    found[i] = (float(d), mirrored)
+        best = sorted(found.items(), key=lambda item: item[1][0])[:k]
+        out = self.table.iloc[[i for i, _ in best]].copy()
+        out["distance"] = [d for _, (d, _) in best]
+        out["mirrored"] = [m for _, (_, m) in best]
+        return out
+
+    def placed(self, path: ArrayLike, k: int = 5) -> np.ndarray:
+        """The ``k`` nearest designs moved, turned and scaled onto the path: (k, 10) in the
+        form of :func:`kinelab.synthesis.coupler_curves` (pivots A0, B0, lengths, coupler
+        point, branch)."""
+        P = _path(path, self.harmonics)
+        near = self.nearest(P, k)
+        sigma = 1.0 if self.branch == "open" else -1.0
+        target = _resampled(P[None], _CURVE_SAMPLES)[0]
+        target = target[:, 0] + 1j * target[:, 1]
+        placed = []
+        for _, row in near.iterrows():
+            g, c, b, r, u, v = (float(row[name]) for name in COLUMNS)
+            best = None
+            for mirror in (1.0, -1.0):       # the mirror image: v and the branch change sign
+                design = np.array([0, 0, g, 0, c, b, r, u, mirror * v, mirror * sigma])
+                q = np.linspace(0, 2 * np.pi, _CURVE_SAMPLES, endpoint=False)
+                curve = _resampled(coupler_curves(design[None], q)[0], _CURVE_SAMPLES)[0]
+                z = curve[:, 0] + 1j * curve[:, 1]
+                for zz in (z, z[::-1]):
+                    fit = _similarity(zz, target)
+                    if best is None or fit[0] < best[0]:
+                        best = (*fit, design)
+            _, a, shift, design = best
+            pivots = a * np.array([0j, design[2]]) + shift
+            out = design.copy()
+            out[0:4] = [pivots[0].real, pivots[0].imag, pivots[1].real, pivots[1].imag]
+            out[4:9] *= abs(a)
+            placed.append(out)
+        return np.array(placed)
+
+    def refine(self, path: ArrayLike, k: int = 3, *, points: int = 8, **options):
+        """Linkages through ``points`` points of the path, polished from the ``k`` nearest
+        designs by :func:`kinelab.synthesis.path_generation` (its ``options``: runs,
+        maxiter, seed, tolerance ...; by default one run)."""
+        P = _path(path, self.harmonics)
+        if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or points < 3:
+            raise ModelError(f"points: expected a whole number >= 3, got {describe(points)}")
+        targets = _resampled(P[None], int(points))[0]
+        options = {"runs": 1, **options}
+        return path_generation(targets, initial=self.placed(P, k), **options)
+
+    def to_parquet(self, path: str | os.PathLike) -> None:
+        df = self.table.copy()
+        df.attrs = {"harmonics": self.harmonics, "branch": self.branch}
+        write_parquet(df, path)
+
+    @classmethod
+    def from_parquet(cls, path: str | os.PathLike) -> Atlas:
+        import pandas
+
+        try:
+            df = pandas.read_parquet(path)
+        except (OSError, ValueError) as exc:
+            raise ModelError(f"{os.fspath(path)}: cannot read an atlas: {exc}") from None
+        attrs = dict(df.attrs)
+        if "harmonics" not in attrs or "branch" not in attrs:
+            raise ModelError(f"{os.fspath(path)}: not an atlas (no harmonics and branch in its "
+                             "metadata); build one with kinelab atlas")
+        df.attrs = {}
+        return cls(df, int(attrs["harmonics"]), str(attrs["branch"]))
+
+
+def _path(path, harmonics: int) -> np.ndarray:
+    P = np.asarray(path, float) if not isinstance(path, (str, bytes)) else None
+    if P is None or P.ndim != 2 or P.shape[1] != 2 or len(P) <= 2 * harmonics \
+            or not np.isfinite(P).all():
+        raise ModelError(f"path: expected more than {2 * harmonics} finite points, shape (n, 2), "
+                         f"got {describe(path)}")
+    return P
+
+
+def _resampled(P: np.ndarray, n: int) -> np.ndarray:
+    return resample_closed(P, n)[0]
+
+
+def _similarity(z: np.ndarray, target: np.ndarray):
+    """The map w = a z + b (a complex: turn and scale) that best fits z, started at any of
+    its samples, onto the target (both resampled evenly): (residual, a, b)."""
+    zc, tc = z - z.mean(), target - target.mean()
+    n = len(z)
+    # <tc, roll(zc, s)> for every shift s at once, by FFT
+    cross = np.fft.ifft(np.fft.fft(tc) * np.conj(np.fft.fft(zc)))   # sum_j tc[j] conj(zc[j - s])
+    a_all = cross / np.vdot(zc, zc)
+    residual = np.vdot(tc, tc).real - np.abs(cross) ** 2 / np.vdot(zc, zc).real
+    s = int(np.argmin(residual))
+    a = a_all[s]
+    return float(max(residual[s], 0.0) / n), a, target.mean() - a * z.mean()

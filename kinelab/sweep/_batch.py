@@ -1,0 +1,204 @@
+"""The kinematics of many designs at many inputs: arrays of shape (D, S).
+
+Two ways to fill them: the engine (:func:`kinelab.analyze`, one call per design, vectorised
+over its samples) for any family, and closed forms vectorised over designs *and* samples
+for the catalogue four-bar (:class:`FourbarBatch`), where a million designs are one numpy
+computation in chunks.
+"""
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+from kinelab.errors import ModelError, expected_one_of
+from kinelab.solvers import wrap_angle
+from kinelab.synthesis import coupler_curves
+
+__all__ = ["Batch", "EngineBatch", "FourbarBatch"]
+
+
+def _pick(table: dict[str, np.ndarray], name: str, what: str) -> np.ndarray:
+    try:
+        return table[name]
+    except KeyError:
+        raise ModelError(f"{what}: {expected_one_of(name, table)}") from None
+
+
+class Batch:
+    """Kinematics of D designs at S input values each, the named accessors of
+    :class:`~kinelab.KinematicSolution` with a leading design axis.
+
+    Attributes
+    ----------
+    q : ndarray, shape (D, S)
+        The input of each design at each sample, rad.
+    assembled : ndarray of bool, shape (D, S)
+        Whether the design closes its loops there; elsewhere every value is NaN.
+
+    Angles come in (-pi, pi]; ``K`` is the velocity coefficient d(angle or slide)/dq.
+    """
+
+    q: np.ndarray
+    assembled: np.ndarray
+
+    def angle(self, link: str) -> np.ndarray:
+        """Angle of a link, rad, (D, S)."""
+        raise NotImplementedError
+
+    def K(self, name: str) -> np.ndarray:
+        """Velocity coefficient of a link's angle or a prismatic joint's slide, (D, S)."""
+        raise NotImplementedError
+
+    def position(self, point: str) -> np.ndarray:
+        """Position of a point, m, (D, S, 2)."""
+        raise NotImplementedError
+
+    def slide(self, joint: str) -> np.ndarray:
+        """Slide of a prismatic joint, m, (D, S)."""
+        raise NotImplementedError
+
+    def value(self, name: str) -> np.ndarray:
+        """A link's angle or a prismatic joint's slide, whichever ``name`` is."""
+        raise NotImplementedError
+
+    def transmission(self, links: tuple[str, str]) -> np.ndarray:
+        """Acute angle between two links, rad, in [0, pi/2], (D, S)."""
+        mu = np.abs(wrap_angle(self.angle(links[0]) - self.angle(links[1])))
+        return np.minimum(mu, np.pi - mu)
+
+    def transmission_range(self, links: tuple[str, str]) -> tuple[np.ndarray, np.ndarray]:
+        """Smallest and largest transmission angle over the samples, (D,) each (NaN for a
+        design that does not assemble at every sample)."""
+        mu = self.transmission(links)
+        return mu.min(axis=1), mu.max(axis=1)
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return self.q.shape
+
+
+class EngineBatch(Batch):
+    """Arrays gathered from one :func:`kinelab.analyze` per design (NaN where a design could
+    not be built or does not assemble)."""
+
+    def __init__(self, q, assembled, angles, K, points, slides, singular):
+        self.q, self.assembled, self.singular = q, assembled, singular
+        self._angles, self._K, self._points, self._slides = angles, K, points, slides
+
+    def angle(self, link):
+        return _pick(self._angles, link, "link")
+
+    def K(self, name):
+        return _pick(self._K, name, "link or prismatic joint")
+
+    def position(self, point):
+        return _pick(self._points, point, "point")
+
+    def slide(self, joint):
+        return _pick(self._slides, joint, "prismatic joint")
+
+    def value(self, name):
+        return self._angles[name] if name in self._angles else self.slide(name)
+
+
+class FourbarBatch(Batch):
+    """The catalogue four-bar in closed form (O2 at the origin, O4 at (ground, 0), q the crank
+    angle), vectorised over designs and samples; each quantity is computed when first asked.
+
+    ``lengths`` are (D, 1) columns ground, crank, coupler, rocker; ``point`` the coupler point
+    (along AB, to its left) as (D, 1) columns or None; ``sigma`` +1 "open", -1 "crossed".
+    """
+
+    _LINKS = ("ground", "crank", "coupler", "rocker")
+
+    def __init__(self, q, lengths, point, sigma: float):
+        self.q = q
+        self.r1, self.r2, self.r3, self.r4 = lengths
+        self.point = point
+        self.sigma = sigma
+
+    @functools.cached_property
+    def _pivot_distance2(self):
+        """|O4 A|^2, (D, S): every assembly question is a question about it."""
+        q = self.q
+        # the same samples for every design (a broadcast view): one row of cosines
+        cos_q = np.cos(q[:1]) if q.strides[0] == 0 else np.cos(q)
+        return self.r1 ** 2 + self.r2 ** 2 - 2 * self.r1 * self.r2 * cos_q
+
+    @functools.cached_property
+    def _cos_mu(self):
+        """Cosine of the angle at B between BA and BO4 (law of cosines)."""
+        return (self.r3 ** 2 + self.r4 ** 2 - self._pivot_distance2) / (2 * self.r3 * self.r4)
+
+    @functools.cached_property
+    def assembled(self):
+        return np.abs(self._cos_mu) <= 1.0
+
+    @functools.cached_property
+    def _curves(self):
+        D, S = self.q.shape
+        zeros = np.zeros(D)
+        u, v = (zeros, zeros) if self.point is None else (self.point[0][:, 0], self.point[1][:, 0])
+        designs = np.column_stack([zeros, zeros, self.r1[:, 0], zeros, self.r2[:, 0], self.r3[:, 0],
+                                   self.r4[:, 0], u, v, np.full(D, self.sigma)])
+        P, A, B, ok = coupler_curves(designs, self.q)
+        missing = ~ok[..., None]
+        return {"A": A, "B": np.where(missing, np.nan, B), "P": np.where(missing, np.nan, P)}
+
+    @functools.cached_property
+    def _angles(self):
+        A, B = self._curves["A"], self._curves["B"]
+        theta3 = np.arctan2(B[..., 1] - A[..., 1], B[..., 0] - A[..., 0])
+        theta4 = np.arctan2(B[..., 1], B[..., 0] - self.r1)
+        return {"ground": np.where(self.assembled, 0.0, np.nan),
+                "crank": np.where(self.assembled, wrap_angle(self.q), np.nan),
+                "coupler": theta3, "rocker": theta4}
+
+    @functools.cached_property
+    def _K(self):
+        # From the derivative of the loop r2 e2 + r3 e3 - r4 e4 - r1 = 0, projected on the
+        # normals of the coupler and the rocker.
+        t2, t3, t4 = self.q, self._angles["coupler"], self._angles["rocker"]
+        s34 = np.sin(t3 - t4)
+        return {"ground": np.where(self.assembled, 0.0, np.nan),
+                "crank": np.where(self.assembled, 1.0, np.nan),
+                "coupler": self.r2 * np.sin(t4 - t2) / (self.r3 * s34),
+                "rocker": self.r2 * np.sin(t3 - t2) / (self.r4 * s34)}
+
+    def angle(self, link):
+        return _pick(self._angles, link, "link")
+
+    def K(self, name):
+        return _pick(self._K, name, "link")
+
+    def position(self, point):
+        if point == "O2":
+            return np.where(self.assembled[..., None], 0.0, np.nan) * np.ones(2)
+        if point == "O4":
+            return np.where(self.assembled[..., None],
+                            np.stack([self.r1 + 0 * self.q, 0 * self.q], -1), np.nan)
+        names = ("O2", "A", "B", "O4") + (("P",) if self.point is not None else ())
+        if point not in names:
+            raise ModelError(f"point: {expected_one_of(point, names)}")
+        if point == "A":
+            return np.where(self.assembled[..., None], self._curves["A"], np.nan)
+        return self._curves[point]
+
+    def slide(self, joint):
+        raise ModelError(f"prismatic joint: the four-bar has none, got {joint!r}")
+
+    def value(self, name):
+        return self.angle(name)
+
+    def transmission(self, links):
+        if tuple(links) in (("coupler", "rocker"), ("rocker", "coupler")):
+            return np.where(self.assembled, np.arccos(np.minimum(np.abs(self._cos_mu), 1.0)), np.nan)
+        return super().transmission(links)
+
+    def transmission_range(self, links):
+        if tuple(links) in (("coupler", "rocker"), ("rocker", "coupler")):
+            # the acute angle is arccos |cos mu|, decreasing in |cos mu|: two arccos per design
+            c = np.where(self.assembled, np.abs(self._cos_mu), np.nan)
+            return np.arccos(np.minimum(c.max(axis=1), 1.0)), np.arccos(c.min(axis=1))
+        return super().transmission_range(links)

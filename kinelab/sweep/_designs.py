@@ -1,0 +1,165 @@
+"""Tables of designs: one row per design, one column per parameter of a family.
+
+A table is a pandas DataFrame, a mapping of column name to values, or a 2-D array whose
+columns are the family's parameters in order; :func:`grid`, :func:`random` and
+:func:`sobol` generate one from parameter ranges.
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+
+import numpy as np
+
+from kinelab.errors import ModelError, describe, expected_one_of
+
+__all__ = ["grid", "random", "sobol", "DesignTable"]
+
+
+def _ranges(ranges: Mapping[str, object], what: str) -> dict[str, tuple[float, float]]:
+    if not ranges:
+        raise ModelError(f"{what}: expected parameter ranges, e.g. crank=(0.5, 1.5), got none")
+    out = {}
+    for name, r in ranges.items():
+        try:
+            lo, hi = (float(v) for v in r)
+        except (TypeError, ValueError):
+            raise ModelError(f"{name}: expected a range (low, high), got {describe(r)}") from None
+        if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi):
+            raise ModelError(f"{name}: expected a finite range with low <= high, got ({lo:g}, {hi:g})")
+        out[name] = (lo, hi)
+    return out
+
+
+def _count(n, what: str) -> int:
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+        raise ModelError(f"{what}: expected a whole number >= 1, got {describe(n)}")
+    return int(n)
+
+
+def grid(**axes) -> "pandas.DataFrame":
+    """Every combination of the values of each parameter (the first varies slowest).
+
+    Each axis is a list of values, or ``(low, high, count)`` for evenly spaced ones.
+
+    Examples
+    --------
+    >>> kl.sweep.grid(crank=[1.0, 2.0], rocker=(2.0, 3.0, 3)).shape
+    (6, 2)
+    """
+    import pandas
+
+    if not axes:
+        raise ModelError("grid: expected at least one parameter, e.g. crank=(0.5, 1.5, 11)")
+    values = {}
+    for name, axis in axes.items():
+        if isinstance(axis, tuple) and len(axis) == 3:
+            lo, hi = _ranges({name: axis[:2]}, "grid")[name]
+            values[name] = np.linspace(lo, hi, _count(axis[2], f"{name}: count"))
+        else:
+            v = np.asarray(axis, float).ravel()
+            if v.size == 0:
+                raise ModelError(f"{name}: expected values or (low, high, count), got none")
+            values[name] = v
+    mesh = np.meshgrid(*values.values(), indexing="ij")
+    return pandas.DataFrame({name: m.ravel() for name, m in zip(values, mesh)})
+
+
+def _scaled(unit: np.ndarray, ranges: dict[str, tuple[float, float]]) -> "pandas.DataFrame":
+    import pandas
+
+    lo = np.array([r[0] for r in ranges.values()])
+    hi = np.array([r[1] for r in ranges.values()])
+    return pandas.DataFrame(lo + unit * (hi - lo), columns=list(ranges))
+
+
+def random(n: int, *, seed: int | None = 0, **ranges) -> "pandas.DataFrame":
+    """``n`` designs drawn uniformly in the given ranges (numpy's default generator).
+
+    Examples
+    --------
+    >>> t = kl.sweep.random(5, crank=(0.5, 1.0), rocker=(2.0, 3.0))
+    >>> t.shape, bool(t["crank"].between(0.5, 1.0).all())
+    ((5, 2), True)
+    """
+    ranges = _ranges(ranges, "random")
+    unit = np.random.default_rng(seed).random((_count(n, "n"), len(ranges)))
+    return _scaled(unit, ranges)
+
+
+def sobol(n: int, *, seed: int | None = 0, **ranges) -> "pandas.DataFrame":
+    """``n`` designs of a scrambled Sobol sequence in the given ranges (scipy.stats.qmc):
+    they fill the ranges more evenly than random ones; ``n`` a power of 2 keeps the
+    sequence's balance.
+
+    Examples
+    --------
+    >>> kl.sweep.sobol(8, crank=(0.5, 1.0), rocker=(2.0, 3.0)).shape
+    (8, 2)
+    """
+    from scipy.stats import qmc
+
+    ranges = _ranges(ranges, "sobol")
+    n = _count(n, "n")
+    unit = qmc.Sobol(d=len(ranges), scramble=True, seed=seed).random(n)
+    return _scaled(unit, ranges)
+
+
+class DesignTable:
+    """A design table checked against a family: its columns (D,) as floats, the row labels,
+    and a reason per row that cannot be analysed ('' for the good ones)."""
+
+    def __init__(self, designs, fam):
+        import pandas
+
+        if isinstance(designs, pandas.DataFrame):
+            index = designs.index
+            raw = {str(c): designs[c].to_numpy() for c in designs.columns}
+        elif isinstance(designs, Mapping):
+            raw = {str(c): np.asarray(v) for c, v in designs.items()}
+            index = None
+        else:
+            a = np.asarray(designs)
+            required = sum(p not in fam.defaults for p in fam.parameters)
+            if a.ndim != 2 or not required <= a.shape[1] <= len(fam.parameters):
+                raise ModelError(f"designs: expected a DataFrame, a mapping of columns or an array "
+                                 f"of shape (D, {required}) to (D, {len(fam.parameters)}), its "
+                                 f"columns the first of {', '.join(fam.parameters)}, got "
+                                 f"{describe(designs)}")
+            raw = {p: a[:, i] for i, p in enumerate(fam.parameters[:a.shape[1]])}
+            index = None
+        for name in raw:
+            if name not in fam.parameters:
+                raise ModelError(f"designs: column {name!r}: "
+                                 f"{expected_one_of(name, fam.parameters)} (parameters of "
+                                 f"{fam.name!r}); rename or drop it")
+        missing = [p for p in fam.parameters if p not in raw and p not in fam.defaults]
+        if missing:
+            raise ModelError(f"designs: missing column(s) {', '.join(map(repr, missing))} of "
+                             f"family {fam.name!r}; add them to the table")
+        lengths = {len(v) if np.ndim(v) == 1 else -1 for v in raw.values()}
+        if len(lengths) != 1 or -1 in lengths:
+            raise ModelError("designs: expected columns of one dimension and the same length, got "
+                             + ", ".join(f"{k} {np.shape(v)}" for k, v in raw.items()))
+        self.size = lengths.pop()
+        self.columns: dict[str, np.ndarray] = {}
+        problems = [""] * self.size
+        for name, v in raw.items():
+            try:
+                f = np.asarray(v, float)
+            except (TypeError, ValueError):
+                raise ModelError(f"designs: column {name!r}: expected numbers, got "
+                                 f"{describe(v[:3].tolist())}") from None
+            self.columns[name] = f
+            bad = ~np.isfinite(f)
+            if name in fam.lengths:
+                bad |= ~(f > 0)
+            for i in np.flatnonzero(bad):
+                if not problems[i]:
+                    what = "a positive length (m)" if name in fam.lengths else "a finite number"
+                    problems[i] = f"{name}: expected {what}, got {f[i]:g}"
+        self.problems = np.array(problems, object)    # an array: Dask ships it as one block
+        self.index = index if index is not None else pandas.RangeIndex(self.size)
+
+    def chunk(self, lo: int, hi: int) -> dict[str, np.ndarray]:
+        return {k: v[lo:hi] for k, v in self.columns.items()}

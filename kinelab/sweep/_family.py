@@ -1,0 +1,356 @@
+"""Families of mechanisms: one topology, its dimensions as named parameters.
+
+A family is either a catalogue constructor (``"fourbar"``, ``"slider_crank"`` ...: the
+design columns are its numeric arguments) or a model file (its ``[catalogue]`` table when it
+has one, else the sketch coordinates of its points, ``"B.x"``, ``"B.y"``, as parameters).
+"""
+from __future__ import annotations
+
+import dataclasses
+import inspect
+import math
+from collections.abc import Callable, Mapping
+from typing import Any
+
+import numpy as np
+
+from kinelab import mechanisms
+from kinelab.errors import KinelabError, ModelError, describe, expected_one_of
+from kinelab.kinematics import analyze
+from kinelab.model import Mechanism, Point
+from kinelab.solvers import wrap_angle
+from kinelab.sweep._batch import Batch, EngineBatch, FourbarBatch
+
+__all__ = ["Family", "Designs", "family", "CATALOGUE"]
+
+CATALOGUE = ("fourbar", "slider_crank", "inverted_slider_crank", "slotted_link", "whitworth",
+             "fivebar", "watt6", "stephenson6", "triad6")
+
+# What the metrics look at, per catalogue kind: the output whose swing and time ratio are
+# measured, the two links whose angle is the transmission angle, the coupler point.
+_ROLES = {"fourbar": ("rocker", ("coupler", "rocker"), "P"),
+          "slider_crank": ("slide", None, None),
+          "inverted_slider_crank": ("rocker", None, None),
+          "slotted_link": ("lever", None, None),
+          "whitworth": ("ram_slide", None, None)}
+
+_SLIDE_OUTPUTS = ("slide", "ram_slide")
+
+# The four-bar's coupler point is one constructor argument, (along, perpendicular): two columns.
+_POINT_COLUMNS = ("coupler_point_along", "coupler_point_perpendicular")
+
+
+def _real(value) -> bool:
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Family:
+    """Mechanisms of one topology told apart by named parameters (lengths in m, angles in rad).
+
+    Build one with :func:`family`.
+
+    Attributes
+    ----------
+    name : str
+    parameters : tuple of str
+        The design columns it takes.
+    defaults : dict
+        Parameters a design table may leave out, with the value they take.
+    lengths : tuple of str
+        Parameters that must be positive lengths.
+    output : str or None
+        Link or prismatic joint whose swing and time ratio are measured.
+    transmission : (str, str) or None
+        The links between which the transmission angle is measured.
+    point : str or None
+        The point whose path the coupler-curve descriptors describe.
+    has_masses : bool
+        The mechanisms carry mass data (the peak input torque can be computed).
+    """
+
+    name: str
+    parameters: tuple[str, ...]
+    defaults: Mapping[str, float]
+    lengths: tuple[str, ...]
+    output: str | None
+    transmission: tuple[str, str] | None
+    point: str | None
+    has_masses: bool = False
+    make: Callable[..., Mechanism] | None = None
+    options: Mapping[str, Any] = dataclasses.field(default_factory=dict)
+    base: Mechanism | None = None
+
+    @property
+    def closed_form(self) -> bool:
+        """Designs and samples in one vectorised closed form (else one engine call per design)."""
+        return self.make is mechanisms.fourbar and not self.has_masses
+
+    def is_slide(self, name: str | None) -> bool:
+        """``name`` is a prismatic joint's slide (m), not a link's angle (rad)."""
+        if self.base is not None:
+            return any(j.name == name and j.type == "P" for j in self.base.joints)
+        return name in _SLIDE_OUTPUTS
+
+    @property
+    def output_is_slide(self) -> bool:
+        return self.is_slide(self.output)
+
+    def has_point(self, columns) -> bool:
+        """Whether designs with these columns have the coupler point (the catalogue four-bar
+        has one only when its columns are given)."""
+        return self.make is not mechanisms.fourbar or any(c in columns for c in _POINT_COLUMNS)
+
+    @property
+    def grashof(self) -> bool:
+        return self.make is mechanisms.fourbar
+
+    def build(self, row: Mapping[str, float]) -> Mechanism:
+        """The mechanism of one design (a mapping parameter -> value)."""
+        values = {**self.defaults, **row}
+        if self.make is not None:
+            kwargs = dict(self.options)
+            if self.make is mechanisms.fourbar:
+                along, across = (values.pop(c, math.nan) for c in _POINT_COLUMNS)
+                if not (math.isnan(along) and math.isnan(across)):
+                    kwargs["coupler_point"] = (along, across)
+            kwargs.update(values)
+            return self.make(**kwargs)
+        points = tuple(Point(p.name, values.get(f"{p.name}.x", p.x), values.get(f"{p.name}.y", p.y),
+                             p.z) for p in self.base.points)
+        # the points make the lengths: a length the file declares is the sketch's, not the design's
+        links = tuple(dataclasses.replace(link, length=None) for link in self.base.links)
+        return dataclasses.replace(self.base, points=points, links=links)
+
+    def prepare(self, columns: Mapping[str, np.ndarray], problems: list[str]) -> Designs:
+        """D designs ready to evaluate: ``columns`` parameter -> (D,) values, ``problems`` the
+        reason per design that cannot be analysed ('' if it can), updated in place with the
+        designs that cannot be built."""
+        if self.closed_form:
+            return _FourbarDesigns(self, columns, problems)
+        return _EngineDesigns(self, columns, problems)
+
+
+class Designs:
+    """A chunk of designs of one family, evaluated at any inputs."""
+
+    problems: list[str]
+
+    def batch(self, q: np.ndarray) -> Batch:
+        """Their kinematics at inputs ``q`` (D, S)."""
+        raise NotImplementedError
+
+    def take(self, rows: np.ndarray) -> Designs:
+        """Some of them (``rows`` index the chunk)."""
+        new = object.__new__(type(self))
+        new.__dict__.update(self.__dict__)
+        new.problems = [self.problems[r] for r in rows]
+        new._take(rows)
+        return new
+
+
+class _FourbarDesigns(Designs):
+    def __init__(self, fam: Family, columns, problems):
+        self.problems = problems
+        D = len(problems)
+        bad = np.array([bool(p) for p in problems])
+
+        def col(p):
+            v = (np.asarray(columns[p], float) if p in columns
+                 else np.full(D, fam.defaults.get(p, math.nan)))
+            return np.where(bad, 1.0, v)[:, None]   # a placeholder in rows that are reported
+        self.lengths = tuple(col(p) for p in ("ground", "crank", "coupler", "rocker"))
+        self.point = None
+        if any(c in columns for c in _POINT_COLUMNS):
+            self.point = tuple(np.nan_to_num(col(c)) for c in _POINT_COLUMNS)
+        self.sigma = 1.0 if fam.options.get("branch", "open") == "open" else -1.0
+
+    def batch(self, q):
+        return FourbarBatch(q, self.lengths, self.point, self.sigma)
+
+    def dead_centres(self):
+        """Crank angles (D, 2) where the rocker reverses, and the rocker's angles there, in
+        closed form: the crank and the coupler in line, extended (O2B = crank + coupler) and
+        folded (O2B = |coupler - crank|), with B on the assembly mode's side of A -> O4.
+        NaN where either position does not exist (the rocker then turns fully, or the crank
+        does not)."""
+        r1, r2, r3, r4 = (v[:, 0] for v in self.lengths)
+        crank, rocker = [], []
+        for d, behind in ((r2 + r3, False), (np.abs(r3 - r2), r3 > r2)):
+            cos_b = (r1 * r1 + d * d - r4 * r4) / (2 * r1 * np.where(d > 0, d, 1.0))
+            beta = np.arccos(np.clip(cos_b, -1.0, 1.0))
+            exists = (d > 0) & (np.abs(cos_b) <= 1.0)
+            best_q, best_t4 = np.full(len(d), np.nan), np.full(len(d), np.nan)
+            for side in (1.0, -1.0):
+                bx, by = d * np.cos(side * beta), d * np.sin(side * beta)
+                q = np.where(behind, side * beta + np.pi, side * beta)
+                ax, ay = r2 * np.cos(q), r2 * np.sin(q)
+                turn = (r1 - ax) * (by - ay) + ay * (bx - ax)      # (O4 - A) x (B - A)
+                pick = exists & np.isnan(best_q) & (self.sigma * turn >= 0)
+                best_q = np.where(pick, q, best_q)
+                best_t4 = np.where(pick, np.arctan2(by, bx - r1), best_t4)
+            crank.append(best_q)
+            rocker.append(best_t4)
+        return np.stack(crank, 1), np.stack(rocker, 1)
+
+    def _take(self, rows):
+        self.lengths = tuple(v[rows] for v in self.lengths)
+        if self.point is not None:
+            self.point = tuple(v[rows] for v in self.point)
+
+
+class _EngineDesigns(Designs):
+    """One engine call per design (the engine is vectorised over the design's samples)."""
+
+    def __init__(self, fam: Family, columns, problems):
+        self.problems = problems
+        self.mechanisms: list[Mechanism | None] = []
+        for d, problem in enumerate(problems):
+            mech = None
+            if not problem:
+                try:
+                    mech = fam.build({p: float(v[d]) for p, v in columns.items()})
+                except KinelabError as exc:
+                    problems[d] = str(exc).splitlines()[0]
+            self.mechanisms.append(mech)
+
+    def _take(self, rows):
+        self.mechanisms = [self.mechanisms[r] for r in rows]
+
+    def batch(self, q):
+        D, S = q.shape
+        tables: dict[str, dict[str, np.ndarray]] = {k: {} for k in ("angle", "K", "point", "slide")}
+
+        def column(kind, name, shape=(D, S)):
+            if name not in tables[kind]:
+                tables[kind][name] = np.full(shape, np.nan)
+            return tables[kind][name]
+
+        assembled = np.zeros((D, S), bool)
+        singular = np.zeros((D, S), bool)
+        for d, mech in enumerate(self.mechanisms):
+            if mech is None:
+                continue
+            sol = analyze(mech, q[d], unreachable="mask", at_singular="flag")
+            assembled[d], singular[d] = sol.assembled, sol.singular
+            for link in mech.link_names:
+                column("angle", link)[d] = wrap_angle(sol.angle(link))
+                column("K", link)[d] = sol.K(link)
+            for p in mech.point_names:
+                column("point", p, (D, S, 2))[d] = sol.position(p)
+            for j in mech.joints:
+                if j.type == "P":
+                    column("slide", j.name)[d] = sol.slide(j.name)
+                    column("K", j.name)[d] = sol.K(j.name)
+        return EngineBatch(q, assembled, tables["angle"], tables["K"], tables["point"],
+                           tables["slide"], singular)
+
+    def peak_torque(self, q: np.ndarray, speed: float) -> np.ndarray:
+        """Largest |input torque| over ``q`` (D, S) at constant input ``speed`` (rad/s), (D,);
+        NaN where a design does not assemble or is singular somewhere."""
+        from kinelab.dynamics import inverse
+
+        out = np.full(len(q), np.nan)
+        for d, mech in enumerate(self.mechanisms):
+            if mech is None:
+                continue
+            sol = analyze(mech, q[d], unreachable="mask", at_singular="flag")
+            if sol.assembled.all() and not sol.singular.any():
+                out[d] = np.abs(inverse(mech, q[d], qd=speed, reactions=False).input_forces).max()
+        return out
+
+
+def _catalogue_family(kind: str, options: Mapping[str, Any], defaults: Mapping[str, Any]) -> Family:
+    make = getattr(mechanisms, kind)
+    signature = inspect.signature(make).parameters
+    numeric, fixed = [], {}
+    for name, p in signature.items():
+        if name == "q0":
+            continue
+        if name == "coupler_point" and make is mechanisms.fourbar:
+            numeric += list(_POINT_COLUMNS)
+        elif p.default is inspect.Parameter.empty or _real(p.default):
+            numeric.append(name)
+        else:
+            fixed[name] = p.default
+    unknown = [k for k in options if k not in fixed]
+    if unknown:
+        raise ModelError(f"{kind}: option {unknown[0]!r}: "
+                         + (expected_one_of(unknown[0], fixed) if fixed else
+                            f"'{kind}' takes no options beyond its design columns "
+                            f"{', '.join(numeric)}"))
+    given = {k: v for k, v in defaults.items() if k in numeric and v is not None}
+    if make is mechanisms.fourbar and defaults.get("coupler_point") is not None:
+        given.update(zip(_POINT_COLUMNS, defaults["coupler_point"]))
+    base = {name: p.default for name, p in signature.items()
+            if name in numeric and _real(p.default)}
+    if make is mechanisms.fourbar:
+        base.update(dict.fromkeys(_POINT_COLUMNS, math.nan))     # no coupler point
+    output, transmission, point = _ROLES.get(kind, (None, None, None))
+    lengths = tuple(n for n in ("ground", "crank", "coupler", "rocker", "rod", "lever",
+                                "distance", "crank1", "crank2", "coupler1", "coupler2")
+                    if n in numeric)
+    return Family(kind, tuple(numeric), {**base, **given}, lengths, output, transmission, point,
+                  make=make, options={**{k: defaults[k] for k in fixed if k in defaults},
+                                      **options})
+
+
+def family(spec: str | Mechanism | Family, *, output: str | None = None,
+           transmission: tuple[str, str] | None = None, point: str | None = None,
+           **options) -> Family:
+    """A family of mechanisms to sweep.
+
+    Parameters
+    ----------
+    spec : str, Mechanism or Family
+        A catalogue kind (``"fourbar"``, ``"slider_crank"``, ... the constructors of
+        :mod:`kinelab.mechanisms`), or a mechanism, usually read from a model file
+        (``kl.load(path)``): one built by the catalogue (a file with a ``[catalogue]`` table)
+        is that kind with its values as defaults; any other has the sketch coordinates of its
+        points as parameters, ``"<point>.x"`` and ``"<point>.y"`` (m), defaulting to the
+        sketch's, and keeps its assembly mode, masses and inertias.
+    output, transmission, point : optional
+        What the metrics measure (see :class:`Family`); the catalogue sets them for its
+        four-bar (rocker; coupler and rocker; P) and slider-cranks.
+    **options
+        Fixed, non-numeric arguments of a catalogue constructor, e.g. ``branch="crossed"``.
+
+    Examples
+    --------
+    >>> fam = kl.sweep.family("fourbar", branch="crossed")
+    >>> fam.parameters
+    ('ground', 'crank', 'coupler', 'rocker', 'coupler_point_along', 'coupler_point_perpendicular')
+    >>> kl.sweep.family("slider_crank").defaults
+    {'offset': 0.0}
+    """
+    if isinstance(spec, Family):
+        fam = spec
+    elif isinstance(spec, str) and spec in CATALOGUE:
+        fam = _catalogue_family(spec, options, {})
+    elif isinstance(spec, Mechanism):
+        fam = _mechanism_family(spec, options)
+    else:
+        raise ModelError(f"family: {expected_one_of(spec, CATALOGUE)}, or a mechanism "
+                         "(kinelab.load('model.toml'))")
+    for name, value in (("output", output), ("point", point)):
+        if value is not None and not isinstance(value, str):
+            raise ModelError(f"{name}: expected a name, got {describe(value)}")
+    changes = {k: v for k, v in (("output", output), ("point", point)) if v is not None}
+    if transmission is not None:
+        changes["transmission"] = tuple(transmission)
+    return dataclasses.replace(fam, **changes) if changes else fam
+
+
+def _mechanism_family(mech: Mechanism, options) -> Family:
+    kind = mech.parameters.get("kind")
+    has_masses = any(link.mass is not None for link in mech.links)
+    if kind in CATALOGUE and not has_masses:
+        return _catalogue_family(kind, options, mech.parameters)
+    if options:
+        raise ModelError(f"{mech.name}: options {', '.join(map(repr, options))}: the family of a "
+                         "model takes none (its assembly mode is the sketch's)")
+    names = tuple(f"{p.name}.{c}" for p in mech.points for c in "xy")
+    defaults = {f"{p.name}.{c}": getattr(p, c) for p in mech.points for c in "xy"}
+    output, transmission, point = _ROLES.get(kind, (None, None, None))
+    return Family(mech.name, names, defaults, (), output, transmission, point,
+                  has_masses=has_masses, base=mech)

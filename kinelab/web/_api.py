@@ -1,0 +1,504 @@
+"""What the page asks for, as plain data in and out: each function takes the decoded JSON
+body of a request and returns what is sent back.  The routes (``_app``) only decode, call
+and encode, so these are the server's whole behaviour and are tested without a browser.
+
+Models travel as the model file's JSON form (``ModelFile.to_dict``), in the file's units;
+they are read by the same loader as the command line, so a malformed one raises the same
+:class:`~kinelab.errors.ModelError`.  Results go out in the model's units, as the command
+line writes them.
+"""
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import threading
+from collections import OrderedDict
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from kinelab import io, kinematics
+from kinelab.errors import AssemblyError, KinelabError, ModelError, describe, quoted, shown
+from kinelab.io import ModelFile
+from kinelab.io._modelfile import errors_from
+from kinelab.kinematics import KinematicSolution, Tracker
+from kinelab.kinematics._columns import INPUT_SI_UNITS
+
+__all__ = ["MAX_SAMPLES", "DEFAULT_SAMPLES", "read_model", "analyze", "study", "configuration",
+           "drag", "flip", "catalogue", "example", "load", "save", "derivation"]
+
+MAX_SAMPLES = 20_000
+"""The longest sweep the page may ask for: past it a drawing or a plot shows nothing more,
+and the answer would take seconds to send."""
+DEFAULT_SAMPLES = 361
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+"""The example models beside the package, in a source checkout (none in an installed
+wheel: the catalogue is always there)."""
+
+
+# -- models ---------------------------------------------------------------------------------
+def read_model(body: dict) -> ModelFile:
+    """The model of a request: ``body["model"]``, the model file's JSON form, read as
+    ``kinelab`` reads a file (``body["source"]``, a file name, names it in messages)."""
+    model = body.get("model")
+    source = body.get("source")
+    if source is not None and not isinstance(source, str):
+        raise ModelError(f"source: expected a file name, got {describe(source)}")
+    if not isinstance(model, dict):
+        raise ModelError(f"model: expected the model file's JSON form (an object), got "
+                         f"{describe(model)}")
+    return ModelFile.from_dict(model, source=source)
+
+
+def samples_of(body: dict, mf: ModelFile) -> int | None:
+    """The samples a request asks for (``body["samples"]``, else the file's), refused past
+    :data:`MAX_SAMPLES` in all."""
+    samples = body.get("samples")
+    if samples is not None and (isinstance(samples, bool) or not isinstance(samples, int)
+                                or not 2 <= samples <= MAX_SAMPLES):
+        raise ModelError(f"samples: expected a whole number from 2 to {MAX_SAMPLES:,}, got "
+                         f"{describe(samples)}; the page sweeps at most {MAX_SAMPLES:,} samples")
+    counts = [samples] * len(mf.mechanism.inputs) if samples else list(mf.samples or ())
+    total = (math.prod(counts) if mf.sweep == "grid" else max(counts)) if counts else 0
+    if total > MAX_SAMPLES:
+        raise ModelError(f"{mf.source or 'model'}: inputs: {total:,} samples asked for; the page "
+                         f"sweeps at most {MAX_SAMPLES:,}: ask for fewer samples")
+    return samples
+
+
+def load(body: dict) -> dict:
+    """A model file's text (``body["text"]``, TOML or JSON as ``body["format"]`` says, or
+    the suffix of ``body["source"]``) read and checked, as its JSON form."""
+    text = body.get("text")
+    if not isinstance(text, str):
+        raise ModelError(f"text: expected the model file's text, got {describe(text)}")
+    source = body.get("source") if isinstance(body.get("source"), str) else None
+    fmt = body.get("format") or (Path(source).suffix.lstrip(".").lower() if source else "toml")
+    if fmt not in ("toml", "json"):
+        raise ModelError(f"format: expected one of 'toml', 'json', got {describe(fmt)}")
+    parse = ModelFile.from_toml if fmt == "toml" else ModelFile.from_json
+    mf = parse(text, source=source, _stem=Path(source).stem if source else None)
+    return {"model": mf.to_dict(), "source": source}
+
+
+def save(body: dict) -> dict:
+    """The text of the model file (``body["format"]``: "toml" or "json")."""
+    mf = read_model(body)
+    fmt = body.get("format", "toml")
+    if fmt not in ("toml", "json"):
+        raise ModelError(f"format: expected one of 'toml', 'json', got {describe(fmt)}")
+    return {"text": mf.to_toml() if fmt == "toml" else mf.to_json()}
+
+
+def catalogue() -> dict:
+    """The example models (in a source checkout) and the catalogue's mechanisms, each with
+    a name to ask :func:`example` for."""
+    examples = sorted(p.stem for p in EXAMPLES.glob("*.toml")) if EXAMPLES.is_dir() else []
+    return {"examples": examples, "catalogue": sorted(_CATALOGUE)}
+
+
+def example(name: str) -> dict:
+    """An example model or a catalogue mechanism, as its JSON form."""
+    if name.startswith("catalogue:"):
+        kind = name.removeprefix("catalogue:")
+        if kind not in _CATALOGUE:
+            raise ModelError(f"name: expected one of {quoted(sorted(_CATALOGUE))}, got {shown(kind)}")
+        mf = ModelFile.from_dict(_CATALOGUE[kind])
+        return {"model": mf.to_dict(), "source": f"{kind}.toml"}
+    path = EXAMPLES / f"{name}.toml"
+    known = sorted(p.stem for p in EXAMPLES.glob("*.toml")) if EXAMPLES.is_dir() else []
+    if name not in known:
+        raise ModelError(f"name: expected one of {quoted(known)}, got {shown(name)}")
+    mf = ModelFile.read(path)
+    return {"model": mf.to_dict(), "source": path.name}
+
+
+# Each catalogue mechanism, as the smallest model file that builds it (SI).
+_CATALOGUE = {
+    "fourbar": {"catalogue": {"kind": "fourbar", "ground": 3.0, "crank": 1.0, "coupler": 3.0,
+                              "rocker": 2.5, "coupler_point": [1.5, 1.0]}},
+    "slider_crank": {"catalogue": {"kind": "slider_crank", "crank": 1.0, "rod": 3.0}},
+    "inverted_slider_crank": {"catalogue": {"kind": "inverted_slider_crank", "crank": 1.0,
+                                            "ground": 2.0}},
+    "slotted_link": {"catalogue": {"kind": "slotted_link", "crank": 1.0, "distance": 2.0}},
+    "watt6": {"catalogue": {"kind": "watt6"}},
+    "stephenson6": {"catalogue": {"kind": "stephenson6"}},
+}
+for _kind, _data in _CATALOGUE.items():
+    _data.update(schema=1, name=_kind.replace("_", "-"), units={"length": "m", "angle": "deg"})
+
+
+# -- analysis -------------------------------------------------------------------------------
+def analyze(body: dict) -> str:
+    """The sweep of ``body["model"]`` over ``body["samples"]`` samples (default the
+    file's), as the JSON text ``kinelab analyze MODEL --format json`` writes."""
+    mf = read_model(body)
+    sol = mf.analyze(samples_of(body, mf))
+    return io.results_json(sol, units=mf.units)
+
+
+@dataclasses.dataclass
+class _Prepared:
+    """A model read, swept and ready for one-sample questions."""
+
+    mf: ModelFile
+    sol: KinematicSolution
+    tracker: Tracker
+    lock: threading.Lock
+
+
+_PREPARED: OrderedDict[str, _Prepared] = OrderedDict()
+_PREPARED_LOCK = threading.Lock()
+_PREPARED_KEPT = 16
+
+
+def prepare(body: dict) -> _Prepared:
+    """The model of a request, read, swept and with a :class:`Tracker`; the last few are
+    kept, so that the drags that follow a sweep answer at once."""
+    mf = read_model(body)
+    samples = samples_of(body, mf)
+    key = json.dumps([body.get("model"), samples, body.get("source")], sort_keys=True)
+    with _PREPARED_LOCK:
+        ready = _PREPARED.get(key)
+        if ready is not None:
+            _PREPARED.move_to_end(key)
+            return ready
+    sol = mf.analyze(samples)
+    with errors_from(mf):
+        tracker = Tracker(mf.mechanism, at_singular="flag")
+    ready = _Prepared(mf, sol, tracker, threading.Lock())
+    with _PREPARED_LOCK:
+        _PREPARED[key] = ready
+        while len(_PREPARED) > _PREPARED_KEPT:
+            _PREPARED.popitem(last=False)
+    return ready
+
+
+def _finite(values) -> list:
+    """Numbers for JSON: ``None`` where a value is not finite."""
+    a = np.asarray(values, float)
+    return [v if math.isfinite(v) else None for v in a.tolist()]
+
+
+def study(body: dict) -> dict:
+    """Everything the page draws and plots of a model's sweep, in the model's units.
+
+    ``model`` is the model as assembled (its JSON form); ``columns`` every column of
+    ``kinelab analyze`` (``body["columns"]``, a list, narrows them; the points' x and y are
+    always there), and the transmission angles; ``singular`` and ``change_points`` the
+    sample indices where they are; ``drawing`` the links, joints and points to draw.
+    """
+    ready = prepare(body)
+    mf, sol = ready.mf, ready.sol
+    m, u = mf.mechanism, mf.units
+    columns = sol.columns(units=u)
+    wanted = body.get("columns")
+    points = {f"{p}.{c}[{u.length}]" for p in m.point_names for c in "xy"}
+    inputs = [n for n in columns if n.endswith(("q[" + u.angle + "]", "q[" + u.length + "]"))
+              and n.count(".") == 1][:len(m.inputs)]
+    if wanted is not None:
+        if not isinstance(wanted, list) or not all(isinstance(w, str) for w in wanted):
+            raise ModelError(f"columns: expected a list of column names, got {describe(wanted)}")
+        columns = {n: v for n, v in columns.items() if n in points or n in wanted or n in inputs}
+    out_columns = {n: _finite(v) for n, v in columns.items()
+                   if n not in ("singular", "assembled")}
+    from kinelab.io._summary import _default_pairs, _transmission_values
+    pairs = list(mf.outputs.transmission) or _default_pairs(m)
+    for a, b in pairs:
+        mu = u.convert(_transmission_values(sol, (a, b)), "rad")
+        out_columns[f"{a}-{b}.transmission[{u.angle}]"] = _finite(mu)
+    qcol = np.reshape(sol.q, (sol.N, -1))[:, 0]
+    change = [{"q": u.convert(c.q, INPUT_SI_UNITS[kinematics.plan(m).input_kinds[0]]),
+               "index": int(np.argmin(np.abs(qcol - c.q))), "step": c.step}
+              for c in sol.change_points]
+    return {
+        "model": mf.to_dict(),
+        "units": {"length": u.length, "angle": u.angle},
+        "inputs": inputs,
+        "samples": sol.N,
+        "columns": out_columns,
+        "singular": np.flatnonzero(sol.singular).tolist(),
+        "unassembled": np.flatnonzero(~sol.assembled).tolist(),
+        "change_points": change,
+        "drawing": _drawing(mf),
+        "branches": _branches(mf),
+        "moved": {} if mf.assembly is None else {
+            k: u.convert(v, "m") for k, v in mf.assembly.moved.items()},
+    }
+
+
+def _drawing(mf: ModelFile) -> dict:
+    """What the canvas draws: links (their points), joints, ground points, traced points."""
+    m = mf.mechanism
+    ground = m.ground.name
+    traced = [p for p in io.default_outputs(m) if p in m.point_names]
+    return {
+        "links": [{"name": link.name, "points": list(link.points), "ground": link.ground}
+                  for link in m.links],
+        "joints": [{"name": j.name, "type": j.type, "point": j.point, "links": list(j.links),
+                    "axis": list(j.axis) if j.axis is not None else None} for j in m.joints],
+        "ground_points": list(m.link(ground).points),
+        "traced": traced,
+        "inputs": [{"name": n, "joint": i.joint,
+                    "kind": k} for n, i, k in zip(m.input_names, m.inputs,
+                                                  kinematics.plan(m).input_kinds)],
+    }
+
+
+def _branches(mf: ModelFile) -> list[dict]:
+    """The dyads whose assembly mode the page can switch (RRR groups: the middle joint
+    reflected across the line of the outer two)."""
+    return [{"step": s.label, "points": list(s.points), "links": list(s.links)}
+            for s in kinematics.plan(mf.mechanism).steps if s.kind == "RRR" and len(s.points) == 3]
+
+
+# -- one configuration ------------------------------------------------------------------
+def _input(body: dict, mf: ModelFile, key: str = "q"):
+    """The input(s) of a request, in the model's units, to SI (one float, or (M,))."""
+    value = body.get(key)
+    kinds = kinematics.plan(mf.mechanism).input_kinds
+    values = value if isinstance(value, list) else [value]
+    if len(values) != len(kinds) or not all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+            for v in values):
+        raise ModelError(f"{key}: expected {len(kinds)} finite number(s), one per input "
+                         f"({quoted(mf.mechanism.input_names)}), got {describe(value)}")
+    u = mf.units
+    si = [float(v) * (u.angle_scale if k == "angle" else u.length_scale)
+          for v, k in zip(values, kinds)]
+    return si[0] if len(si) == 1 else np.array(si)
+
+
+def configuration(body: dict) -> dict:
+    """One configuration (``body["q"]``, in the model's units), solved by the tracker: every
+    point's place, every column's value, the instant centres and, where kinelab draws them,
+    the velocity and acceleration polygons."""
+    ready = prepare(body)
+    q = _input(body, ready.mf)
+    return _configuration(ready, q)
+
+
+def _configuration(ready: _Prepared, q) -> dict:
+    mf, tracker = ready.mf, ready.tracker
+    m, u = mf.mechanism, mf.units
+    M = len(m.inputs)
+    qd = float(m.inputs[0].speed) if M == 1 else np.array([i.speed for i in m.inputs])
+    qdd = float(m.inputs[0].acceleration) if M == 1 else np.array([i.acceleration for i in m.inputs])
+    with ready.lock, errors_from(mf, "q"):
+        sol = tracker(q, qd, qdd)
+    values = {n: v[0] for n, v in sol.columns(units=u).items()}
+    return {
+        "q": [u.convert(v, k) for v, k in zip(np.atleast_1d(q).tolist(),
+                                              [INPUT_SI_UNITS[k] for k in tracker.plan.input_kinds])],
+        "points": {p: _finite(u.convert(np.reshape(sol.position(p), 2), "m"))
+                   for p in m.point_names},
+        "values": {n: (bool(v) if n in ("singular", "assembled") else
+                       (float(v) if math.isfinite(float(v)) else None)) for n, v in values.items()},
+        "singular": bool(sol.singular[0]),
+        "centres": _centres(sol, u),
+        "polygons": polygons(sol, u),
+    }
+
+
+def _centres(sol: KinematicSolution, u) -> list[dict]:
+    if bool(sol.singular[0]):
+        return []
+    try:
+        centres = kinematics.instant_centers(sol)
+    except KinelabError:
+        return []
+    out = []
+    for (a, b), c in centres.items():
+        at_inf = bool(np.reshape(c.at_infinity, -1)[0])
+        out.append({"links": [a, b], "at_infinity": at_inf,
+                    "position": None if at_inf else _finite(u.convert(np.reshape(c.position, 2), "m")),
+                    "direction": _finite(np.reshape(c.direction, 2)) if at_inf else None})
+    return out
+
+
+def polygons(sol: KinematicSolution, u) -> dict | None:
+    """The velocity and acceleration polygons of a one-configuration solution, vertices in
+    the model's units (length/s, length/s^2), where :mod:`kinelab.kinematics` draws them
+    (``velocity_polygon``, ``acceleration_polygon``); else None, and the page shows the
+    instant centres only."""
+    velocity_polygon = getattr(kinematics, "velocity_polygon", None)
+    acceleration_polygon = getattr(kinematics, "acceleration_polygon", None)
+    if velocity_polygon is None or acceleration_polygon is None or bool(sol.singular[0]):
+        return None
+    try:
+        v, a = velocity_polygon(sol), acceleration_polygon(sol)
+    except KinelabError:
+        return None
+    return {"velocity": {p: _finite(u.convert(np.reshape(x, 2), "m/s")) for p, x in v.vertices.items()},
+            "acceleration": {p: _finite(u.convert(np.reshape(x, 2), "m/s^2"))
+                             for p, x in a.vertices.items()}}
+
+
+def drag(body: dict) -> dict:
+    """The configuration where point ``body["point"]`` comes nearest to ``body["to"]`` (x, y
+    in the model's units) on its path: the linkage follows the pointer, lengths kept.
+    One input: the nearest sample of the sweep, then refined by the tracker between its
+    neighbours (golden section); several inputs: the nearest sample."""
+    ready = prepare(body)
+    mf, sol = ready.mf, ready.sol
+    m = mf.mechanism
+    point = body.get("point")
+    if point not in m.point_names:
+        raise ModelError(f"point: expected one of {quoted(m.point_names)}, got {describe(point)}")
+    to = body.get("to")
+    if not (isinstance(to, list) and len(to) == 2 and all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in to)):
+        raise ModelError(f"to: expected [x, y], two finite numbers, got {describe(to)}")
+    target = np.array(to, float) * mf.units.length_scale
+    path = sol.position(point)
+    gap = np.hypot(*(path - target).T)
+    gap[~sol.assembled] = np.inf
+    i = int(np.argmin(gap))
+    q = sol.q[i]
+    if len(m.inputs) == 1 and sol.N > 2:
+        q = _refine(ready, point, target, sol.q[max(i - 1, 0), 0], sol.q[min(i + 1, sol.N - 1), 0])
+    return _configuration(ready, float(q[0]) if np.ndim(q) else float(q)) if len(m.inputs) == 1 \
+        else _configuration(ready, np.asarray(q, float))
+
+
+_GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
+
+
+def _refine(ready: _Prepared, point: str, target: np.ndarray, lo: float, hi: float) -> float:
+    """The input in [lo, hi] where ``point`` is nearest to ``target`` (golden section on
+    the tracker's positions, to 1e-12 of the interval)."""
+    row = ready.tracker.point_names.index(point)
+
+    def gap(q: float) -> float:
+        with ready.lock:
+            xy = ready.tracker.positions(float(q))[row]
+        d = np.hypot(*(xy - target))
+        return float(d) if math.isfinite(d) else math.inf
+    a, b = float(lo), float(hi)
+    c, d = b - _GOLDEN * (b - a), a + _GOLDEN * (b - a)
+    fc, fd = gap(c), gap(d)
+    for _ in range(60):
+        if abs(b - a) <= 1e-12 * (1 + abs(a)):
+            break
+        if fc < fd:
+            b, d, fd = d, c, fc
+            c = b - _GOLDEN * (b - a)
+            fc = gap(c)
+        else:
+            a, c, fc = c, d, fd
+            d = a + _GOLDEN * (b - a)
+            fd = gap(d)
+    return c if fc < fd else d
+
+
+# -- editing --------------------------------------------------------------------------------
+def flip(body: dict) -> dict:
+    """The model with the assembly mode of one RRR dyad switched (``body["step"]``, as
+    :func:`study` lists it): its middle joint reflected across the line of its outer two,
+    the points of its two links carried along, every length kept."""
+    mf = read_model(body)
+    m = mf.mechanism
+    steps = {b["step"]: b for b in _branches(mf)}
+    step = body.get("step")
+    if step not in steps:
+        raise ModelError(f"step: expected one of {quoted(list(steps)) or 'none (no RRR dyad)'}, "
+                         f"got {describe(step)}")
+    X, Y, Z = steps[step]["points"]
+    xy = {p.name: np.array(p.xy) for p in m.points}
+    d = (xy[Z] - xy[X]) / np.linalg.norm(xy[Z] - xy[X])
+    r = xy[Y] - xy[X]
+    mirrored = xy[X] + 2 * np.dot(r, d) * d - r
+    moved = {}
+    for link in steps[step]["links"]:
+        pivot = X if X in m.link(link).points else Z
+        turn = _angle(mirrored - xy[pivot]) - _angle(xy[Y] - xy[pivot])
+        c, s = math.cos(turn), math.sin(turn)
+        for p in m.link(link).points:
+            if p not in (X, Z):
+                v = xy[p] - xy[pivot]
+                moved[p] = xy[pivot] + np.array([c * v[0] - s * v[1], s * v[0] + c * v[1]])
+    data = _explicit(mf)
+    ls = mf.units.length_scale
+    for p, v in moved.items():
+        data["points"][p] = [float(f"{c / ls:.14g}") for c in v]
+    try:
+        new = ModelFile.from_dict(data, source=mf.source)
+    except AssemblyError as exc:
+        raise AssemblyError(f"the other assembly mode of {step} does not close: {exc}") from None
+    return {"model": new.to_dict()}
+
+
+def _angle(v) -> float:
+    return math.atan2(v[1], v[0])
+
+
+def _explicit(mf: ModelFile) -> dict:
+    """The model's JSON form with every link's length (its first two points) and the local
+    places of its other points written out, and without a catalogue section: a form whose
+    points may be moved while every link keeps its shape."""
+    data = mf.to_dict()
+    data.pop("catalogue", None)
+    xy = {p: np.array(v, float) for p, v in data["points"].items()}
+    for link in data["links"]:
+        pts = link["points"]
+        if len(pts) < 2:
+            continue
+        a, b = xy[pts[0]], xy[pts[1]]
+        length = float(np.linalg.norm(b - a))
+        link.setdefault("length", float(f"{length:.14g}"))
+        if len(pts) > 2 and length > 0:
+            e = (b - a) / length
+            local = dict(link.get("local", {}))
+            for p in pts[2:]:
+                v = xy[p] - a
+                local.setdefault(p, [float(f"{np.dot(v, e):.14g}"),
+                                     float(f"{e[0] * v[1] - e[1] * v[0]:.14g}")])
+            link["local"] = local
+    return data
+
+
+# -- derivation -----------------------------------------------------------------------------
+def derivation(body: dict) -> dict:
+    """The derivation of the model in the notes' notation (``body["lang"]``: "en" or
+    "pt"): its sections, each a title and equations in presentation MathML, and the whole
+    document as Markdown."""
+    import sympy as sp
+    from sympy.printing.mathml import mathml
+
+    from kinelab.derive import LANGUAGES, derive
+    from kinelab.derive._words import WORDS
+
+    mf = read_model(body)
+    lang = body.get("lang", "en")
+    if lang not in LANGUAGES:
+        raise ModelError(f"lang: expected one of {quoted(LANGUAGES)}, got {describe(lang)}")
+    with errors_from(mf):
+        d = derive(mf.mechanism, lang)
+        markdown = d.to_markdown()
+    words = WORDS[lang]
+
+    def math(label: str, expr) -> dict:
+        body = mathml(expr, printer="presentation")
+        return {"label": label, "mathml": f'<math display="block"><mrow><mi>{label}</mi>'
+                                          f'<mo>=</mo>{body}</mrow></math>'}
+
+    def equation(expr) -> dict:
+        return {"label": "", "mathml": '<math display="block"><mrow>'
+                + mathml(expr, printer="presentation") + "<mo>=</mo><mn>0</mn></mrow></math>"}
+
+    large = {"en": "too large to read here; see the document", "pt":
+             "grande demais para ler aqui; veja o documento"}[lang]
+    sections = [
+        {"title": words["position"], "items": [
+            math("q", sp.Matrix(d.q).T), math("S", sp.Matrix(d.S).T), equation(d.Phi)]},
+        {"title": words["jacobian"], "items": [
+            math("J", d.J), math("Q", d.Q),
+            math("det J", d.det_J) if d.readable.get("det_J", True)
+            else {"label": "det J", "text": large}]},
+        {"title": words["coefficients"], "items": [
+            math("K", d.K) if d.readable.get("K", True) else {"label": "K", "text": large},
+            math("L", d.L) if d.readable.get("L", True) else {"label": "L", "text": large}]},
+    ]
+    return {"sections": sections, "markdown": markdown, "lang": lang}

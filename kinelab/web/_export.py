@@ -1,0 +1,53 @@
+"""Downloads: the files the command line writes, made from the page's model and sent as
+content (nothing is written where the page could name a place)."""
+from __future__ import annotations
+
+import tempfile
+import threading
+from pathlib import Path
+
+from starlette.responses import Response
+
+from kinelab import io
+from kinelab.errors import ModelError, describe, quoted
+from kinelab.io._modelfile import errors_from
+from kinelab.web import _api
+
+__all__ = ["export", "KINDS"]
+
+_FIGURES = threading.Lock()      # pyplot keeps global state: one figure at a time
+
+KINDS = {"csv": "text/csv", "json": "application/json", "gif": "image/gif",
+         "dxf": "application/dxf", "svg": "image/svg+xml"}
+"""What can be downloaded: the sweep's table (as ``kinelab analyze`` writes it), the
+animation (``kinelab animate --format gif``), the links' outlines (``kinelab export --to
+dxf`` / ``svg``)."""
+
+
+def export(body: dict) -> Response:
+    """The file ``body["kind"]`` of ``body["model"]``, as an attachment named after it."""
+    kind = body.get("kind")
+    if kind not in KINDS:
+        raise ModelError(f"kind: expected one of {quoted(list(KINDS))}, got {describe(kind)}")
+    mf = _api.read_model(body)
+    stem = Path(mf.source).stem if mf.source else (mf.mechanism.name or "model")
+    with tempfile.TemporaryDirectory(prefix="kinelab-web-") as folder:
+        path = Path(folder) / f"{stem}.{kind}"
+        if kind in ("csv", "json"):
+            sol = mf.analyze(_api.samples_of(body, mf))
+            io.write_results(sol, path, format=kind, units=mf.units)
+        elif kind == "gif":
+            import matplotlib
+            matplotlib.use("Agg")          # files only, from a worker thread: no window
+            from kinelab import plot
+            sol = mf.analyze(_api.samples_of(body, mf))
+            with _FIGURES, errors_from(mf):
+                plot.animate(sol, path, frames=60, fps=20, units=mf.units)
+        else:
+            sol = mf.analyze(181)          # slots span the sliders' travel, as the CLI's
+            write = io.to_svg if kind == "svg" else io.to_dxf
+            with errors_from(mf):
+                write(mf.mechanism, path, unit=mf.units.length, sol=sol)
+        content = path.read_bytes()
+    return Response(content, media_type=KINDS[kind],
+                    headers={"Content-Disposition": f'attachment; filename="{path.name}"'})

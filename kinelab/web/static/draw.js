@@ -1,0 +1,69 @@
+// Drawing a linkage point by point: each tool turns a click into a new model (JSON form).
+const round = (v) => Number(v.toPrecision(8));
+let linkStart = null;          // the first point of a link being drawn
+
+export function empty() {
+  return {schema: 1, name: "sketch", units: {length: "mm", angle: "deg"}, points: {},
+          links: [{name: "ground", points: [], ground: true}], joints: []};
+}
+
+// What the canvas draws of a model that may not assemble yet.
+export function drawingOf(model) {
+  const ground = model.links.find((l) => l.ground);
+  return {links: model.links, joints: model.joints || [], traced: [],
+          ground_points: ground ? ground.points : [], inputs: model.inputs || []};
+}
+
+function fresh(prefix, taken) {
+  for (let i = 1; ; i++) if (!taken.includes(prefix + i)) return prefix + i;
+}
+
+// Pin `link` to the other links that carry point p with an R joint at p.
+function pin(m, link, p) {
+  for (const other of m.links) {
+    if (other.name === link || !other.points.includes(p)) continue;
+    const joined = m.joints.some((j) => j.point === p && j.links.includes(link) && j.links.includes(other.name));
+    if (!joined) m.joints.push({name: fresh("j" + p, m.joints.map((j) => j.name)), type: "R",
+                                links: other.ground ? [other.name, link] : [other.name, link], point: p});
+    break;
+  }
+}
+
+export function apply(tool, model, name, xy) {
+  if (!model) return null;
+  const m = structuredClone(model);
+  delete m.catalogue;
+  m.joints = m.joints || [];
+  const addPoint = () => {
+    const p = fresh("P", Object.keys(m.points));
+    m.points[p] = xy.map(round);
+    return p;
+  };
+  if (tool === "point") { if (name) return null; addPoint(); return m; }
+  if (tool === "link") {
+    const p = name || addPoint();
+    if (!linkStart || linkStart === p || !m.points[linkStart]) { linkStart = p; return name ? null : m; }
+    const link = fresh("link", m.links.map((l) => l.name));
+    m.links.push({name: link, points: [linkStart, p]});
+    pin(m, link, linkStart); pin(m, link, p);
+    linkStart = null;
+    return m;
+  }
+  if (!name) return null;
+  if (tool === "ground") {
+    let ground = m.links.find((l) => l.ground);
+    if (!ground) { ground = {name: "ground", points: [], ground: true}; m.links.unshift(ground); }
+    if (ground.points.includes(name)) return null;
+    ground.points.push(name);
+    for (const l of m.links) if (!l.ground && l.points.includes(name)) pin(m, l.name, name);
+    return m;
+  }
+  if (tool === "input") {
+    const ground = m.links.find((l) => l.ground);
+    const j = m.joints.find((k) => k.point === name && k.type === "R" && ground && k.links.includes(ground.name));
+    if (!j) return null;
+    m.inputs = [{joint: j.name}];
+    return m;
+  }
+  return null;
+}

@@ -1,0 +1,146 @@
+// The table beside the drawing: exact coordinates, lengths, joints, the input and the
+// branches; typing a value changes the model, the server re-assembles it.
+import {movePoint, dist} from "./geometry.js";
+
+function cell(row, content) {
+  const td = document.createElement("td");
+  if (content instanceof Node) td.append(content); else td.textContent = content;
+  row.append(td);
+  return td;
+}
+
+function input(value, onchange, cls = "") {
+  const i = document.createElement("input");
+  i.value = value; i.className = cls;
+  i.addEventListener("change", () => onchange(i.value));
+  return i;
+}
+
+function table(head) {
+  const t = document.createElement("table");
+  const tr = document.createElement("tr");
+  for (const h of head) { const th = document.createElement("th"); th.textContent = h; tr.append(th); }
+  t.append(tr);
+  return t;
+}
+
+const num = (text) => { const v = Number(text); if (!Number.isFinite(v)) throw new Error(`expected a number, got '${text}'`); return v; };
+
+export function renderTable(root, state, {edit, flip}) {
+  root.replaceChildren();
+  const m = state.model, u = m.units || {length: "m", angle: "rad"};
+  const h = (text) => { const e = document.createElement("h3"); e.textContent = text; root.append(e); };
+  const guarded = (f) => (v) => { try { f(v); } catch (err) { state.error = err.message; document.getElementById("status").textContent = err.message; } };
+
+  h(`points (sketch, ${u.length}) and now`);
+  const pt = table(["point", "x", "y", "x now", "y now"]);
+  for (const [p, xy] of Object.entries(m.points)) {
+    const tr = document.createElement("tr"); tr.dataset.point = p;
+    cell(tr, p);
+    cell(tr, input(xy[0], guarded((v) => edit(movePoint(m, p, [num(v), xy[1]]))))).dataset.field = "x";
+    cell(tr, input(xy[1], guarded((v) => edit(movePoint(m, p, [xy[0], num(v)]))))).dataset.field = "y";
+    cell(tr, "").className = "now-x"; cell(tr, "").className = "now-y";
+    pt.append(tr);
+  }
+  root.append(pt);
+
+  h(`links (${u.length})`);
+  const lt = table(["link", "points", "length", "length now"]);
+  for (const [k, link] of m.links.entries()) {
+    const tr = document.createElement("tr"); tr.dataset.link = link.name;
+    cell(tr, link.name + (link.ground ? " (ground)" : ""));
+    cell(tr, input(link.points.join(", "), guarded((v) => {
+      const next = structuredClone(m); delete next.catalogue;
+      next.links[k].points = v.split(",").map((s) => s.trim()).filter(Boolean);
+      edit(next);
+    })));
+    const current = link.length ?? (link.points.length > 1 ? dist(m.points[link.points[0]], m.points[link.points[1]]) : "");
+    cell(tr, link.points.length > 1 ? input(current, guarded((v) => {
+      const next = structuredClone(m); delete next.catalogue;
+      next.links[k].length = num(v);
+      edit(next);
+    })) : "").dataset.field = "length";
+    cell(tr, "").className = "now-length";
+    lt.append(tr);
+  }
+  root.append(lt);
+
+  h("joints");
+  const jt = table(["joint", "type", "links", "point"]);
+  for (const [k, j] of (m.joints || []).entries()) {
+    const tr = document.createElement("tr");
+    cell(tr, j.name);
+    const sel = document.createElement("select");
+    for (const t of ["R", "P"]) sel.append(new Option(t, t));
+    sel.value = j.type;
+    sel.onchange = () => {
+      const next = structuredClone(m); delete next.catalogue;
+      next.joints[k].type = sel.value;
+      if (sel.value === "P" && !next.joints[k].axis) next.joints[k].axis = [1, 0];
+      if (sel.value === "R") delete next.joints[k].axis;
+      edit(next);
+    };
+    cell(tr, sel);
+    cell(tr, j.links.join(", "));
+    cell(tr, j.point);
+    jt.append(tr);
+  }
+  root.append(jt);
+
+  if (m.inputs && m.inputs.length) {
+    h(`input (${u.angle} or ${u.length})`);
+    const it = table(["input", "joint", "range", "speed /s"]);
+    for (const [k, i] of m.inputs.entries()) {
+      const tr = document.createElement("tr");
+      cell(tr, i.name || i.joint); cell(tr, i.joint || (i.links || []).join("-"));
+      cell(tr, input((i.range || []).join(", "), guarded((v) => {
+        const next = structuredClone(m);
+        const r = v.split(",").map((s) => s.trim()).filter(Boolean).map(num);
+        if (r.length) next.inputs[k].range = r; else delete next.inputs[k].range;
+        edit(next);
+      })));
+      cell(tr, input(i.speed ?? 0, guarded((v) => {
+        const next = structuredClone(m); next.inputs[k].speed = num(v); edit(next);
+      })));
+      it.append(tr);
+    }
+    root.append(it);
+  }
+
+  if (state.study && state.study.branches.length) {
+    h("branches (assembly modes)");
+    for (const b of state.study.branches) {
+      const button = document.createElement("button");
+      button.textContent = `switch ${b.points.join("-")}`;
+      button.title = `the other assembly mode of ${b.step}`;
+      button.dataset.step = b.step;
+      button.onclick = () => flip(b.step);
+      root.append(button, " ");
+    }
+  }
+  renderTable.values(state);
+}
+
+// The current configuration's exact values in the table.
+renderTable.values = (state) => {
+  const s = state.study;
+  if (!s) return;
+  const u = s.units.length;
+  const now = {};
+  for (const p of Object.keys(s.model.points)) {
+    now[p] = state.config ? state.config.points[p]
+      : [s.columns[`${p}.x[${u}]`][state.index], s.columns[`${p}.y[${u}]`][state.index]];
+  }
+  const f = (v) => v === null || v === undefined ? "–" : Number(v.toPrecision(10)).toString();
+  for (const tr of document.querySelectorAll("#tab-table tr[data-point]")) {
+    const xy = now[tr.dataset.point] || [null, null];
+    tr.querySelector(".now-x").textContent = f(xy[0]);
+    tr.querySelector(".now-y").textContent = f(xy[1]);
+  }
+  for (const tr of document.querySelectorAll("#tab-table tr[data-link]")) {
+    const link = s.model.links.find((l) => l.name === tr.dataset.link);
+    const [a, b] = link.points;
+    tr.querySelector(".now-length").textContent = b && now[a] && now[b] && now[a][0] !== null && now[b][0] !== null
+      ? f(dist(now[a], now[b])) : "–";
+  }
+};

@@ -1,0 +1,199 @@
+"""The compiled forward dynamics against the Python right-hand side, a closed form and
+single runs; batches of runs: shapes, equality with single runs, messages."""
+import numpy as np
+import pytest
+from scipy.special import ellipk
+
+import kinelab as kl
+from kinelab._expressions import parse_expression, to_program
+from kinelab.dynamics import Damper, Loads, PointForce, Spring, Torque, simulate
+from kinelab.dynamics._kernel import run_law
+from kinelab.errors import ModelError, SingularityError
+from tests.dynamics.models import engine, fourbar, pendulum, rp_robot
+
+g = (0.0, -9.81)
+GAS = "-2000 * exp(-(((q + 2 * pi) % (4 * pi) - 2 * pi - 0.3) ** 2) / 0.2)"
+ENGINE_LOADS = Loads(gravity=g, forces=[PointForce("B", (GAS, 0.0), link="slider")])
+MOTOR = {"jO2": "20 - 0.2 * qd"}
+
+
+def as_callable(text):
+    """The same law as a Python callable: it runs through solve_ivp, not the kernel."""
+    law = parse_expression(text)
+    return lambda t, q, qd: law(t, np.reshape(q, (len(t), -1)), np.reshape(qd, (len(t), -1)))
+
+
+@pytest.mark.parametrize("text", [
+    "2 * q + 1", GAS, "20 - 0.2 * qd", "where(t > 0.5, sin(q), cos(qd)) + 3 if q < 1 else -1",
+    "clip(q, -0.5, 0.5) * hypot(q, qd) - min(q, qd) + max(t, 0.2) % 0.3",
+    "atan2(q, 1 + qd) + tanh(q) * sinh(0.1 * qd) / cosh(q) + sign(q - 0.2) * abs(qd) ** 1.5",
+    "exp(-q ** 2) + log(1 + q ** 2) + log10(2 + qd ** 2) + sqrt(1 + t) + floor(3 * q) - ceil(qd)",
+    "(q > 0) and not (qd < -1) or (t >= 2) + (q != qd) * (q == q) - (q <= 0.1)",
+    "asin(0.5 * sin(q)) + acos(0.5 * cos(qd)) + atan(q) + tan(0.3 * q)",
+])
+def test_programs_against_the_numpy_expression(text):
+    """The stack machine's value of each expression against parse_expression's, at 200
+    random states (the same float64 arithmetic: agreement to rounding of libm)."""
+    rng = np.random.default_rng(7)
+    t, q, qd = rng.uniform(0, 3, 200), rng.uniform(-2, 2, (200, 1)), rng.uniform(-2, 2, (200, 1))
+    code, constants = to_program(text, 1)
+    stack = np.zeros(len(code))
+    got = np.array([run_law(code, constants, 0, len(code), t[i], q[i], qd[i], stack) for i in range(200)])
+    np.testing.assert_allclose(got, parse_expression(text)(t, q, qd), rtol=1e-14, atol=1e-14)
+
+
+def test_program_refuses_names_that_do_not_fit_the_inputs():
+    assert to_program("q", 2) is None and to_program("q[2] + 1", 2) is None
+    assert to_program("q[1] * qd[0]", 2) is not None
+
+
+def test_compiled_engine_against_the_python_right_hand_side():
+    """The engine's laws as expressions (compiled kernel) and as Python callables
+    (solve_ivp): the same DOP853 steps, so the same motion to well below the tolerance."""
+    t_eval = np.linspace(0.0, 2.0, 41)
+    fast = simulate(engine(), (0.0, 2.0), 0.0, 0.0, inputs=MOTOR, loads=ENGINE_LOADS,
+                    rtol=1e-10, atol=1e-12, t_eval=t_eval)
+    loads = Loads(gravity=g, forces=[PointForce("B", (as_callable(GAS), 0.0), link="slider")])
+    slow = simulate(engine(), (0.0, 2.0), 0.0, 0.0, inputs={"jO2": as_callable(MOTOR["jO2"])},
+                    loads=loads, rtol=1e-10, atol=1e-12, t_eval=t_eval)
+    assert fast.q[-1, 0] > 10.0                                # it runs several turns
+    np.testing.assert_allclose(fast.q, slow.q, rtol=0, atol=1e-8)
+    np.testing.assert_allclose(fast.qd, slow.qd, rtol=0, atol=1e-7)
+    np.testing.assert_allclose(fast.actuator_work, slow.actuator_work, rtol=1e-8, atol=1e-8)
+    np.testing.assert_allclose(fast.applied_work, slow.applied_work, rtol=1e-8, atol=1e-8)
+    assert abs(fast.nfev - slow.nfev) <= 0.02 * slow.nfev
+    assert fast.energy_error < 1e-8 and slow.energy_error < 1e-8
+
+
+def test_compiled_two_inputs_with_springs_dampers_and_torques_against_python():
+    """Every load the kernel forms (gravity, point force, torque between links, spring,
+    damper) on a two-input robot, against the Python right-hand side."""
+    m = rp_robot(arm_mass=2.0, gripper_inertia=0.02)
+    laws = {"shoulder": "12 * cos(q[0]) + 3 * (0.5 - q[0]) - qd[0] + sin(3 * t)",
+            "reach": "9.81 * sin(q[0]) + 20 * (0.6 - q[1]) - 2 * qd[1]"}
+    loads = dict(gravity=g, dampers=[Damper(("O", "G2"), damping=1.5)],
+                 springs=[Spring(("E", "G2"), stiffness=40.0, free_length=0.1)])
+    force, torque = ("0.5 * sin(t)", "-2 * qd[1]"), "0.3 * cos(q[1])"
+    fast = simulate(m, (0.0, 1.5), [0.3, 0.6], [0.0, 0.1], inputs=laws, t_eval=np.linspace(0, 1.5, 16),
+                    loads=Loads(**loads, forces=[PointForce("G2", force)],
+                                torques=[Torque("gripper", torque, reacting="arm")]))
+    slow = simulate(m, (0.0, 1.5), [0.3, 0.6], [0.0, 0.1], t_eval=np.linspace(0, 1.5, 16),
+                    inputs={k: as_callable(v) for k, v in laws.items()},
+                    loads=Loads(**loads, forces=[PointForce("G2", tuple(map(as_callable, force)))],
+                                torques=[Torque("gripper", as_callable(torque), reacting="arm")]))
+    np.testing.assert_allclose(fast.q, slow.q, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(fast.input_forces, slow.input_forces, rtol=1e-7, atol=1e-8)
+    for work in ("actuator_work", "applied_work", "dissipated"):
+        np.testing.assert_allclose(getattr(fast, work), getattr(slow, work), rtol=1e-7, atol=1e-9)
+    assert fast.energy_error < 1e-9
+
+
+def test_pendulum_period_against_the_elliptic_integral():
+    """Released from rest at the horizontal (90 degrees from the bottom), a pendulum of
+    moment of inertia I_O about its pivot returns after T = 4 sqrt(I_O / (m g l)) K(sin 45°)."""
+    length, mass, inertia = 0.5, 2.0, 0.01
+    I_O = inertia + mass * length ** 2
+    T = 4 * np.sqrt(I_O / (mass * 9.81 * length)) * ellipk(np.sin(np.pi / 4) ** 2)
+    sim = simulate(pendulum(length, mass, inertia), (0.0, 3 * T), 0.0, 0.0, loads=Loads(gravity=g),
+                   rtol=1e-10, atol=1e-12, t_eval=[T, 2 * T, 3 * T])
+    np.testing.assert_allclose(sim.q[:, 0], 0.0, atol=3e-8)     # rtol 1e-10 over 3 periods
+    np.testing.assert_allclose(sim.qd[:, 0], 0.0, atol=3e-7)
+
+
+def test_tighter_tolerance_converges():
+    """The engine's crank angle after 2 s at rtol 1e-8 against rtol 1e-12: within a few
+    hundred times the tolerance (the error grows along the run)."""
+    t_eval = np.linspace(0.0, 2.0, 11)
+    runs = [simulate(engine(), (0.0, 2.0), 0.0, 0.0, inputs=MOTOR, loads=ENGINE_LOADS, rtol=rtol,
+                     atol=rtol * 1e-2, t_eval=t_eval) for rtol in (1e-8, 1e-12)]
+    error = np.max(np.abs(runs[0].q - runs[1].q))
+    assert 1e-12 < error < 1e-6
+
+
+def test_batch_equals_single_runs():
+    """Four initial states in one batch, and each alone: the same kernel and steps."""
+    q0 = np.array([[0.0], [0.5], [1.0], [-2.0]])
+    qd0 = np.array([[0.0], [10.0], [-5.0], [30.0]])
+    t_eval = np.linspace(0.0, 0.5, 11)
+    runs = simulate(engine(), (0.0, 0.5), q0, qd0, inputs=MOTOR, loads=ENGINE_LOADS, rtol=1e-9,
+                    atol=1e-11, t_eval=t_eval)
+    assert runs.q.shape == runs.qd.shape == runs.qdd.shape == (4, 11, 1)
+    assert runs.energy.shape == (4, 11) and runs.t.shape == (11,) and len(runs) == 4
+    for i in range(4):
+        one = simulate(engine(), (0.0, 0.5), q0[i], qd0[i], inputs=MOTOR, loads=ENGINE_LOADS,
+                       rtol=1e-9, atol=1e-11, t_eval=t_eval)
+        np.testing.assert_allclose(runs.q[i], one.q, rtol=1e-13, atol=1e-13)
+        np.testing.assert_allclose(runs.qd[i], one.qd, rtol=1e-13, atol=1e-12)
+        np.testing.assert_allclose(runs.energy[i], one.energy, rtol=1e-12, atol=1e-12)
+        np.testing.assert_allclose(runs.input_forces[i], one.input_forces, rtol=1e-12, atol=1e-12)
+        assert runs.nfev[i] == one.nfev
+        np.testing.assert_allclose(runs[i].q, one.q, rtol=0, atol=0)
+
+
+def test_batch_through_python_equals_single_runs():
+    """A Python callable law: the batch runs one solve_ivp per run, the same as alone."""
+    motor = {"jO2": lambda t, q, qd: 5.0 - 0.1 * qd}
+    q0 = np.array([[0.0], [1.0]])
+    runs = simulate(engine(), (0.0, 0.2), q0, 0.0, inputs=motor, t_eval=[0.0, 0.1, 0.2])
+    one = simulate(engine(), (0.0, 0.2), q0[1], 0.0, inputs=motor, t_eval=[0.0, 0.1, 0.2])
+    np.testing.assert_allclose(runs.q[1], one.q, rtol=0, atol=0)
+
+
+def test_conservative_batch_keeps_its_energy():
+    """Pendulums released from five angles, under gravity only."""
+    q0 = np.linspace(-1.0, 0.5, 5)[:, None]
+    runs = simulate(pendulum(), (0.0, 3.0), q0, 0.0, loads=Loads(gravity=g), rtol=1e-12, atol=1e-12,
+                    t_eval=np.linspace(0, 3, 31))
+    swing = np.max(np.abs(runs.kinetic_energy), axis=1)
+    assert np.all(swing > 1.0)
+    assert np.all(np.max(np.abs(runs.energy - runs.energy[:, :1]), axis=1) < 1e-9 * swing)
+    assert np.all(runs.energy_error < 1e-9) and np.all(runs.status == "finished")
+
+
+def test_batch_of_two_inputs_shapes():
+    m = rp_robot(arm_mass=2.0, gripper_inertia=0.02)
+    q0 = np.array([[0.3, 0.6], [0.2, 0.5], [0.1, 0.7]])
+    runs = simulate(m, (0.0, 0.2), q0, [0.0, 0.0], loads=Loads(gravity=g), t_eval=[0.0, 0.1, 0.2])
+    assert runs.q.shape == (3, 3, 2) and runs.input_forces.shape == (3, 3, 2)
+    np.testing.assert_allclose(runs.q[:, 0], q0, rtol=0, atol=0)
+
+
+def test_batch_run_stopped_near_a_singular_configuration():
+    """One run of two reaches the limit position: it stops there, NaN after, and says so."""
+    from tests.dynamics.test_forward import _with_masses
+    m = _with_masses(kl.mechanisms.slider_crank(crank=1.0, rod=0.8))
+    runs = simulate(m, (0.0, 5.0), [[0.6], [-0.5]], 0.0, inputs={"jO2": "3 - 30 * qd"},
+                    t_eval=np.linspace(0, 5, 51))
+    assert list(runs.status) == ["singular", "finished"]
+    assert "singular configuration" in runs.message[0]
+    assert np.isnan(runs.q[0, -1, 0]) and np.all(np.isfinite(runs.q[1]))
+    assert np.all(np.isfinite(runs.energy[1]))
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(q0=np.zeros((3, 1)), qd0=np.zeros((2, 1))), r"q0, qd0: expected the same number of runs, got 3 and 2"),
+    (dict(q0=np.zeros((3, 2))), r"q0: expected one value per input, shape \(\) or \(1,\), got shape \(3, 2\); for a batch of B runs give shape \(B, 1\)"),
+    (dict(q0=np.zeros((3, 1)), t_eval=None), r"t_eval: a batch of 3 runs .* needs output times"),
+    (dict(q0=0.0, method="Euler"), r"method: expected one of"),
+    (dict(q0=0.0, rtol=-1.0), r"rtol: expected a positive number"),
+])
+def test_batch_bad_arguments(kw, message):
+    kw = {"t_span": (0.0, 1.0), "qd0": 0.0, "t_eval": [0.0, 1.0], **kw}
+    with pytest.raises(ModelError, match=message):
+        simulate(engine(), inputs=MOTOR, **kw)
+
+
+def test_compiled_failure_names_the_run():
+    """A slider-crank driven into its limit position with no stop before it: the kernel
+    halts at the stage the kinematics flags singular, and the message is the Python
+    path's, with the run."""
+    from tests.dynamics.test_forward import _with_masses
+    m = _with_masses(kl.mechanisms.slider_crank(crank=1.0, rod=0.8))
+    with pytest.raises(SingularityError, match=r"singular configuration at t = .* s \(run 1\)"):
+        simulate(m, (0.0, 5.0), [[-0.5], [0.3]], [[0.0], [1.0]], inputs={"jO2": "3 * (q > 0)"},
+                 t_eval=[0.0, 5.0], singular_stop=0.0)
+
+
+def test_law_not_finite_in_the_kernel_is_reported_by_the_law():
+    with pytest.raises(ModelError, match=r"inputs\['jO2'\]: .*gives inf"):
+        simulate(engine(), (0.0, 1.0), 0.0, 1.0, inputs={"jO2": "1 / (qd - 1)"}, t_eval=[0.0, 1.0])

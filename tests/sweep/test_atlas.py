@@ -1,0 +1,62 @@
+"""Retrieval from an atlas of coupler curves: a curve of the atlas, moved, turned, scaled,
+mirrored or backwards, finds its design; refinement reaches the path."""
+import numpy as np
+import pytest
+
+import kinelab as kl
+from kinelab.errors import ModelError
+
+COLUMNS = ("ground", "crank", "coupler", "rocker", "coupler_point_along", "coupler_point_perpendicular")
+
+
+@pytest.fixture(scope="module")
+def atlas():
+    designs = kl.sweep.sobol(1024, seed=1, ground=(1, 4), crank=(0.3, 1), coupler=(1, 4),
+                             rocker=(1, 4), coupler_point_along=(-1, 2),
+                             coupler_point_perpendicular=(-1, 1))
+    return kl.sweep.atlas(designs)
+
+
+def curve_of(row, n=120):
+    g, c, b, r, u, v = (float(row[k]) for k in COLUMNS)
+    fb = kl.mechanisms.fourbar(g, c, b, r, coupler_point=(u, v))
+    return kl.analyze(fb, np.linspace(0, 2 * np.pi, n, endpoint=False)).position("P")
+
+
+def test_only_designs_whose_crank_turns_fully(atlas):
+    kinds = kl.mechanisms.grashof_kinds(*atlas.table[list(COLUMNS[:4])].to_numpy().T)
+    assert set(kinds) <= {"crank-rocker", "double-crank", "change-point"}
+    assert 0 < len(atlas) < 1024
+
+
+@pytest.mark.parametrize("mirror, backwards", [(1, False), (-1, False), (1, True), (-1, True)])
+def test_a_moved_curve_finds_its_design(atlas, mirror, backwards):
+    row = atlas.table.iloc[37]
+    P = curve_of(row)
+    turn = np.array([[np.cos(2.0), -np.sin(2.0)], [np.sin(2.0), np.cos(2.0)]])
+    target = (P @ turn.T) * 0.25 * [1, mirror] + [3.0, -4.0]
+    if backwards:
+        target = target[::-1]
+    near = atlas.nearest(np.roll(target, 31, axis=0), k=4)
+    assert near.index[0] == 37 and near["distance"].iloc[0] < 1e-3 < near["distance"].iloc[1]
+    placed = atlas.placed(target, k=1)[0]
+    Q, _, _, ok = kl.synthesis.coupler_curves(placed[None], np.linspace(0, 2 * np.pi, 1440))
+    gap = np.linalg.norm(Q[0][:, None] - target[None], axis=-1).min(axis=0)
+    assert ok.all() and gap.max() < 0.01 * 0.25 * np.ptp(P, axis=0).max()
+
+
+def test_refined_linkage_passes_through_the_path(atlas):
+    target = curve_of(atlas.table.iloc[5]) * 2.0 + [1.0, 1.0]
+    sols = atlas.refine(target, k=2)
+    assert len(sols) >= 1 and sols[0].valid and sols[0].max_error < 1e-6 * np.ptp(target)
+
+
+def test_atlas_round_trip_and_errors(atlas, tmp_path):
+    atlas.to_parquet(tmp_path / "a.parquet")
+    back = kl.sweep.Atlas.from_parquet(tmp_path / "a.parquet")
+    assert back.harmonics == atlas.harmonics and back.branch == atlas.branch
+    assert np.array_equal(back.table.to_numpy(), atlas.table.to_numpy())
+    with pytest.raises(ModelError, match=r"path: expected more than 16 finite points"):
+        atlas.nearest(np.zeros((5, 2)))
+    with pytest.raises(ModelError, match=r"descriptors. needs the family.s coupler point: add the columns"):
+        kl.sweep.atlas({"ground": [3.0], "crank": [1.0], "coupler": [3.0], "rocker": [2.5]})

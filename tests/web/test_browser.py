@@ -1,0 +1,222 @@
+"""The page in a real browser (Debian's Chromium, headless, driven by Playwright), acting as
+a person does: open, drag, type, switch the branch, play, export.  Screenshots of each
+state go to the test's temporary folder."""
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+CHROMIUM_FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                  "--disable-background-networking", "--disable-component-update",
+                  "--disable-sync"]
+
+
+def chromium() -> str | None:
+    found = os.environ.get("KINELAB_CHROMIUM") or shutil.which("chromium") or shutil.which("chromium-browser")
+    return found if found and Path(found).exists() else None
+
+
+@pytest.fixture(scope="module")
+def browser():
+    path = chromium()
+    if path is None:
+        if os.environ.get("CI"):
+            pytest.fail("no Chromium: .ci/run installs Debian's chromium; the browser tests must run in CI")
+        pytest.skip("no Chromium found (apt-get install chromium, or set KINELAB_CHROMIUM)")
+    sync_api = pytest.importorskip("playwright.sync_api")
+    with sync_api.sync_playwright() as p:
+        b = p.chromium.launch(executable_path=path, args=CHROMIUM_FLAGS)
+        yield b
+        b.close()
+
+
+@pytest.fixture(scope="module")
+def server():
+    """``kinelab serve --port 0``: the command itself, on loopback, its address read from
+    what it prints."""
+    command = [sys.executable, "-c", "from kinelab.cli import main; main()", "serve", "--port", "0"]
+    proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                            cwd=ROOT)
+    try:
+        line = proc.stdout.readline()
+        match = re.search(r"serving at (http://127\.0\.0\.1:\d+/)", line)
+        assert match, line + proc.stdout.read() if proc.poll() is not None else line
+        yield match.group(1)
+    finally:
+        proc.terminate()
+        proc.wait(timeout=20)
+
+
+@pytest.fixture
+def page(browser, server, tmp_path):
+    context = browser.new_context(viewport={"width": 1300, "height": 820}, accept_downloads=True)
+    pg = context.new_page()
+    pg.requests = []
+    pg.errors = []
+    pg.on("request", lambda r: pg.requests.append(r.url))
+    pg.on("pageerror", lambda e: pg.errors.append(str(e)))
+    pg.goto(server)
+    pg.wait_for_selector("body[data-ready='1']", timeout=180_000)
+    pg.shot = lambda name: pg.screenshot(path=str(tmp_path / f"{name}.png"))
+    yield pg
+    assert not pg.errors, pg.errors
+    context.close()
+
+
+def state(pg, expression):
+    return pg.evaluate(f"() => {expression}")
+
+
+def point_on_screen(pg, name):
+    box = pg.locator(f"#canvas circle[data-point='{name}']").bounding_box()
+    return box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+
+
+def test_the_page_loads_everything_from_the_server_itself(page, server):
+    page.shot("loaded")
+    assert page.locator("#canvas .link").count() >= 4
+    assert page.locator("#canvas .trace").count() == 1
+    assert "crank_rocker.toml" in page.inner_text("#title")
+    assert page.requests and all(u.startswith(server) or u.startswith(("data:", "blob:"))
+                                 for u in page.requests), page.requests
+    assert all(u.startswith("http://127.0.0.1:") for u in page.requests if u.startswith("http"))
+
+
+def lengths(points):
+    d = lambda a, b: math.dist(points[a], points[b])      # noqa: E731
+    return {"crank": d("O2", "A"), "coupler": d("A", "B"), "rocker": d("O4", "B"),
+            "AP": d("A", "P"), "BP": d("B", "P")}
+
+
+def test_dragging_a_point_moves_the_linkage_and_keeps_its_lengths(page):
+    page.wait_for_function("() => window.kinelab.config !== null")
+    before = state(page, "window.kinelab.config.points")
+    x, y = point_on_screen(page, "B")
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for k in range(1, 11):
+        page.mouse.move(x - 12 * k, y + 9 * k)
+    page.mouse.up()
+    page.wait_for_function("() => !window.kinelab.busy && !window.kinelab.pending")
+    page.wait_for_timeout(200)
+    page.shot("dragged")
+    after = state(page, "window.kinelab.config.points")
+    assert math.dist(before["B"], after["B"]) > 5        # mm: it moved
+    for name, length in lengths(before).items():
+        assert lengths(after)[name] == pytest.approx(length, rel=1e-12), name
+    assert lengths(after)["coupler"] == pytest.approx(300, rel=1e-12)
+    # the drawing shows it
+    cx, cy = point_on_screen(page, "B")
+    assert math.hypot(cx - x, cy - y) > 5
+
+
+def test_editing_a_joint_changes_the_coupler_curve(page):
+    page.check("input[name=tool][value=edit]")
+    trace = page.get_attribute("#canvas .trace", "points")
+    x, y = point_on_screen(page, "O4")
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for k in range(1, 6):
+        page.mouse.move(x + 4 * k, y - 2 * k)
+    page.mouse.up()
+    page.wait_for_function("() => !window.kinelab.busy && !window.kinelab.pending")
+    page.shot("edited")
+    assert page.get_attribute("#canvas .trace", "points") != trace
+    model = state(page, "window.kinelab.model")
+    O4 = model["points"]["O4"]
+    assert O4 != [300.0, 0.0]
+    ground = next(link for link in model["links"] if link["name"] == "ground")
+    assert ground["length"] == pytest.approx(math.hypot(*O4), rel=1e-12)
+    page.click("#undo")
+    page.wait_for_function("() => window.kinelab.model.points.O4[0] === 300")
+
+
+def test_typing_a_length_re_assembles_the_linkage(page):
+    page.click("#tabs button[data-tab=table]")
+    field = page.locator("#tab-table tr[data-link=rocker] td[data-field=length] input")
+    field.fill("270")
+    field.press("Enter")
+    page.wait_for_function("() => window.kinelab.model.links[3].length === 270")
+    page.wait_for_timeout(300)
+    page.shot("typed")
+    s = state(page, "window.kinelab.study")
+    B = np.array([s["columns"]["B.x[mm]"], s["columns"]["B.y[mm]"]]).T
+    assert np.allclose(np.hypot(*(B - [300.0, 0.0]).T), 270, rtol=1e-12, atol=0)
+
+
+def test_switching_the_branch(page):
+    page.click("#tabs button[data-tab=table]")
+    y_before = state(page, "window.kinelab.model.points.B[1]")
+    page.click("#tab-table button[data-step]")
+    page.wait_for_function(f"() => window.kinelab.model.points.B[1] * {y_before} < 0")
+    page.shot("switched")
+    pts = state(page, "window.kinelab.model.points")
+    assert math.dist(pts["A"], pts["B"]) == pytest.approx(300, rel=1e-12)
+    assert math.dist(pts["O4"], pts["B"]) == pytest.approx(250, rel=1e-12)
+
+
+def test_the_plot_cursor_follows_the_animation_and_a_click_moves_the_linkage(page):
+    page.click("#play")
+    page.wait_for_function("() => window.kinelab.frames > 10")
+    page.click("#play")
+    page.shot("played")
+    index = state(page, "window.kinelab.index")
+    assert index > 0
+    assert page.get_attribute("#plot-cursor", "data-index") == str(index)
+    s = state(page, "window.kinelab.study")
+    # the cursor is where the plot puts that sample's input
+    box = page.locator("#plot").bounding_box()
+    page.mouse.click(box["x"] + box["width"] * 0.75, box["y"] + box["height"] / 2)
+    page.wait_for_function(f"() => window.kinelab.index !== {index}")
+    picked = state(page, "window.kinelab.index")
+    assert page.get_attribute("#plot-cursor", "data-index") == str(picked)
+    q = s["columns"][s["inputs"][0]][picked]
+    assert 200 < q < 340          # three quarters along an axis from 0 to 360 deg
+    assert "deg" in page.text_content("#plot-xlabel") and "[" in page.text_content("#plot-ylabel")
+
+
+def test_the_exported_csv_is_kinelab_analyze(page, tmp_path):
+    from click.testing import CliRunner
+
+    from kinelab.cli import main
+    with page.expect_download() as download:
+        page.select_option("#export", "csv")
+    path = tmp_path / "page.csv"
+    download.value.save_as(path)
+    r = CliRunner().invoke(main, ["analyze", str(ROOT / "examples" / "crank_rocker.toml"), "--out",
+                                  str(tmp_path / "cli.csv"), "-q"])
+    assert r.exit_code == 0, r.output
+    page_rows = np.genfromtxt(path, delimiter=",", names=True)
+    cli_rows = np.genfromtxt(tmp_path / "cli.csv", delimiter=",", names=True)
+    assert page_rows.dtype.names == cli_rows.dtype.names
+    for name in cli_rows.dtype.names:
+        assert np.allclose(page_rows[name], cli_rows[name], rtol=1e-12, atol=1e-12, equal_nan=True), name
+
+
+def test_the_derivation_is_typeset(page):
+    page.click("#tabs button[data-tab=derivation]")
+    page.click("#derive")
+    page.wait_for_selector("#derivation math", timeout=120_000)
+    page.shot("derivation")
+    assert page.locator("#derivation math").count() >= 6
+    box = page.locator("#derivation math").first.bounding_box()
+    assert box["height"] > 10         # laid out as maths, not as raw text
+
+
+def test_a_refused_drag_keeps_the_last_good_configuration(page):
+    page.click("#tabs button[data-tab=table]")
+    field = page.locator("#tab-table tr[data-link=rocker] td[data-field=length] input")
+    field.fill("10")
+    field.press("Enter")
+    page.wait_for_selector("#status.error")
+    page.shot("refused")
+    assert "rocker" in page.inner_text("#status")
+    assert state(page, "window.kinelab.model.links[3].length") == 250
