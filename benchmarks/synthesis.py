@@ -13,6 +13,7 @@ beside pylinkage's and pyslvs' searches.
 """
 from __future__ import annotations
 
+import os
 import time
 
 import numpy as np
@@ -126,6 +127,8 @@ def reliability(count: int = 20, seeds: int = 3, error: float = 1e-3):
 
 
 if __name__ == "__main__":
+    # the steady state: the compiled kernel, waited for by the first call
+    os.environ.setdefault("KINELAB_KERNEL", "compiled")
     evaluator_speed()
     motion_speed()
     path_tasks()
