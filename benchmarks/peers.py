@@ -42,7 +42,13 @@ report: the RMS distance from each target point to the nearest point of the coup
 (a polyline through its samples), divided by the size of the target path (the diagonal
 of its bounding box).
 
-    python benchmarks/peers.py        (checks and rough timings of the installed peers)
+Run as a script, it checks pylinkage against kinelab and prints, side by side in one
+process (processor time; best and median of repeats; the peer's median over kinelab's):
+one four-bar configuration per call (pylinkage's step against kinelab's ``Tracker`` and
+``analyze``), a sweep of 3600 crank angles, and path synthesis on two 10-point tasks, each
+method's time to an error of 3e-2, 1e-2 and 1e-3 of the path's size over several seeds.
+
+    python benchmarks/peers.py
 """
 from __future__ import annotations
 
