@@ -308,7 +308,7 @@ def _formula(expr: str):
 def _path_task(r: _Reader, task: Task, L: float, A: float) -> None:
     r.unknown("positions", {"points"})
     r.unknown("search", {"runs", "maxiter", "popsize", "samples", "seed",
-                         "min_transmission_angle", "refine"})
+                         "min_transmission_angle", "refine", "tolerance"})
     task.targets = r.lengths("positions.points", r.get("positions", "points"), (None, 2), L)
     s = dict(r.data.get("search", {})) if isinstance(r.data.get("search"), dict) else {}
     if "min_transmission_angle" in s:
@@ -317,6 +317,8 @@ def _path_task(r: _Reader, task: Task, L: float, A: float) -> None:
     for key, (low, high) in _SEARCH_BOUNDS.items():
         if key in s:
             s[key] = r.integer(f"search.{key}", s[key], low, high)
+    if "tolerance" in s:
+        s["tolerance"] = r.number("search.tolerance", s["tolerance"], positive=True)
     if "refine" in s and not isinstance(s["refine"], bool):
         r.problems.append(f"search.refine: expected true or false, got {describe(s['refine'])}")
     task.search = s

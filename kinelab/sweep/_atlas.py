@@ -171,12 +171,12 @@ class Atlas:
     def refine(self, path: ArrayLike, k: int = 3, *, points: int = 8, **options):
         """Linkages through ``points`` points of the path, polished from the ``k`` nearest
         designs by :func:`kinelab.synthesis.path_generation` (its ``options``: runs,
-        maxiter, seed ...; by default one run of 60 generations)."""
+        maxiter, seed, tolerance ...; by default one run)."""
         P = _path(path, self.harmonics)
         if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or points < 3:
             raise ModelError(f"points: expected a whole number >= 3, got {describe(points)}")
         targets = _resampled(P[None], int(points))[0]
-        options = {"runs": 1, "maxiter": 60, **options}
+        options = {"runs": 1, **options}
         return path_generation(targets, initial=self.placed(P, k), **options)
 
     def to_parquet(self, path: str | os.PathLike) -> None:

@@ -1,16 +1,17 @@
 """Path generation: a four-bar whose coupler point passes near prescribed points
-(*Mecanismos*, §3.2, fig. 26), by global optimisation.
+(*Mecanismos*, §3.2, fig. 26), by global search and least squares.
 
 The timing is free (the crank angle at each point is not prescribed).  A design is the
 fixed pivots A0, B0, the crank, coupler and rocker lengths, the coupler point (u along AB,
 v to its left) and the assembly branch.  Its coupler curve is evaluated in closed form
-for a whole population of designs at once (:func:`coupler_curves`); each target point is
-matched to the nearest sample of the curve, and the objective is the RMS distance, with a
+for many designs at once (:func:`coupler_curves`); each target point is matched to the
+nearest sample of the curve, and the screening objective is the RMS distance, with a
 penalty when the matched samples are not met in order by one sense of crank rotation
 without a limit position in between (order and branch defects) or when the transmission
-angle drops below a bound.  scipy's differential evolution searches the space with that
-vectorised objective; the best design is then refined by least squares over the design
-*and* the crank angles of the points, built as a model, and checked with the engine.
+angle drops below a bound.  Quasi-random designs are screened with it; least squares
+(Levenberg-Marquardt on the whole batch, analytic Jacobian) then takes the best of them
+over the design *and* the crank angles of the points, with the travel's constraints as
+residuals; the best results are built as models and checked with the engine.
 """
 from __future__ import annotations
 
@@ -31,7 +32,7 @@ __all__ = ["coupler_curves", "PathSolution", "path_generation"]
 _INFEASIBLE = 1.0      # added to the objective (task normalised to unit size) of a design
                        # whose points are not met in order on one branch
 _NOWHERE = 100.0       # objective of a design that assembles at no sample
-_MU_FLOOR = np.radians(1.0)   # the polish keeps the transmission angle above this at least
+_MU_FLOOR = np.radians(1.0)   # least squares keep the transmission angle above this at least
 _REACHED = 1e-8        # relative distance engine vs closed form at a matched crank angle
 
 
@@ -225,64 +226,70 @@ class PathSolution(CheckedLinkage):
                 f"{self.grashof.kind}, {state})")
 
 
-def _refine(obj: _Objective, design: np.ndarray, q: np.ndarray):
-    """Least squares over the design (branch kept) and the targets' crank angles.
+def _unwrapped(q: np.ndarray):
+    """Crank angles (K, n) unwrapped along the sense (K,) in which they are met with the
+    least travel: each next angle follows the last in that sense, less than a turn on."""
+    steps = [np.mod(d * np.diff(q, axis=1), 2 * np.pi) for d in (1, -1)]
+    ccw = steps[0].sum(axis=1) <= steps[1].sum(axis=1)
+    sense = np.where(ccw, 1.0, -1.0)
+    travel = np.where(ccw[:, None], steps[0], steps[1])
+    cumulative = np.concatenate([np.zeros((len(q), 1)), np.cumsum(travel, axis=1)], axis=1)
+    return q[:, :1] + sense[:, None] * cumulative, sense
 
-    Besides the distances to the targets, the residuals keep what the global search
-    made sure of: the crank angles stay in the sense of travel found there, and the loop
-    closes all the way from the first target to the last, with a transmission angle of at
-    least max(min_transmission_angle, 1 deg), which keeps the motion off the limit
-    positions.  That is checked exactly: the transmission angle is a monotonic function of
-    the distance L from the crank pin to B0, and L is monotonic between its extremes, met
-    where the crank points at B0 or away from it; so only the ends of the travel and those
-    two angles (when they are on the way) need checking."""
-    from scipy.optimize import least_squares
 
-    n = obj.T.shape[0]
-    branch = design[9]
-    cos_floor = np.cos(max(obj.mu_min, _MU_FLOOR))
-    # unwrap the angles along the sense in which they are met
-    steps = {d: np.mod(d * np.diff(q), 2 * np.pi) for d in (1, -1)}
-    sense = min((1, -1), key=lambda d: steps[d].sum())
-    q = q[0] + sense * np.concatenate([[0.0], np.cumsum(steps[sense])])
+def _travel_gap(Z: np.ndarray, sense: np.ndarray, cos_floor: float):
+    """How far each candidate's loop is from closing, with a transmission angle of at least
+    the floor, all the way from the first target to the last, (K,) (0 when it does).
 
-    def residuals(Z):
-        """Residuals of a batch of variable vectors Z (K, 9 + n) -> (K, 3n + 1)."""
-        d = np.column_stack([Z[:, :9], np.full(Z.shape[0], branch)])
-        qz = Z[:, 9:]
-        P, A, _, _ = coupler_curves(d, qz)
-        a0, b0, r2, r3, r4 = d[:, 0:2], d[:, 2:4], d[:, 4], d[:, 5], d[:, 6]
-        g = b0 - a0
-        G = np.hypot(g[:, 0], g[:, 1])
-        phi = np.arctan2(g[:, 1], g[:, 0])
-        L = np.hypot(b0[:, None, 0] - A[..., 0], b0[:, None, 1] - A[..., 1])      # (K, n)
-        span = sense * (qz[:, -1] - qz[:, 0])
-        on_way = [np.mod(sense * (psi - qz[:, 0]), 2 * np.pi) <= span for psi in (phi, phi + np.pi)]
-        L_min = np.where(on_way[0], np.abs(G - r2), np.minimum(L[:, 0], L[:, -1]))
-        L_max = np.where(on_way[1], G + r2, np.maximum(L[:, 0], L[:, -1]))
-        # mu >= mu_floor all the way <=> L within the band where the law of cosines gives it
-        L_hi = np.sqrt(r3 * r3 + r4 * r4 + 2 * r3 * r4 * cos_floor)
-        L_lo = np.sqrt(np.maximum(r3 * r3 + r4 * r4 - 2 * r3 * r4 * cos_floor, 0.0))
-        gap = (np.maximum(L_max - L_hi, 0) + np.maximum(L_lo - L_min, 0))[:, None]
-        back = np.maximum(-sense * np.diff(qz, axis=1), 0)
-        return np.concatenate([(P - obj.T).reshape(len(Z), -1), 10.0 * gap, 10.0 * back],
-                              axis=1)
+    ``Z`` (K, 11) holds the design's nine numbers and the crank angles at the first and
+    last targets.  The floor keeps the motion off the limit positions.  The check is
+    exact: the transmission angle is a monotonic function of the distance L from the
+    crank pin to B0, and L is monotonic between its extremes, met where the crank points
+    at B0 or away from it; so only the ends of the travel and those two angles (when they
+    are on the way) need checking."""
+    a0x, a0y, b0x, b0y, r2, r3, r4 = Z[:, :7].T
+    q0, q1 = Z[:, 9], Z[:, 10]
+    gx, gy = b0x - a0x, b0y - a0y
+    G = np.hypot(gx, gy)
+    phi = np.arctan2(gy, gx)
+    # from the crank pin to B0 at the two ends of the travel
+    L0 = np.hypot(gx - r2 * np.cos(q0), gy - r2 * np.sin(q0))
+    L1 = np.hypot(gx - r2 * np.cos(q1), gy - r2 * np.sin(q1))
+    span = sense * (q1 - q0)
+    on_way = [np.mod(sense * (psi - q0), 2 * np.pi) <= span for psi in (phi, phi + np.pi)]
+    L_min = np.where(on_way[0], np.abs(G - r2), np.minimum(L0, L1))
+    L_max = np.where(on_way[1], G + r2, np.maximum(L0, L1))
+    # mu >= floor all the way <=> L within the band where the law of cosines gives it
+    L_hi = np.sqrt(r3 * r3 + r4 * r4 + 2 * r3 * r4 * cos_floor)
+    L_lo = np.sqrt(np.maximum(r3 * r3 + r4 * r4 - 2 * r3 * r4 * cos_floor, 0.0))
+    return np.maximum(L_max - L_hi, 0) + np.maximum(L_lo - L_min, 0)
 
-    def jacobian(z):
-        # central differences, every column in one vectorised evaluation
-        h = 1e-6 * np.maximum(1.0, np.abs(z))
-        E = np.diag(h)
-        R = residuals(np.concatenate([z + E, z - E]))
-        return ((R[:z.size] - R[z.size:]) / (2 * h[:, None])).T
 
-    z0 = np.concatenate([design[:9], q])
-    lo = np.r_[[-np.inf] * 4, [1e-3] * 3, [-np.inf] * 2, [-np.inf] * n]
-    try:
-        res = least_squares(lambda z: residuals(z[None, :])[0], z0, jac=jacobian,
-                            bounds=(lo, np.inf), method="trf", max_nfev=100 * (9 + n))
-    except (ValueError, np.linalg.LinAlgError):
-        return None
-    return np.concatenate([res.x[:9], [branch]]), res.x[9:]
+def _travel_residuals(Z: np.ndarray, sense: np.ndarray, cos_floor: float):
+    """Residuals that vanish when a candidate's travel is right (K, n), and their
+    Jacobian (K, n, 9 + n).
+
+    The first is :func:`_travel_gap` (its Jacobian by central differences, every column of
+    every candidate in one evaluation); the other n - 1 keep the crank angles following
+    each other in the candidate's sense of rotation (piecewise linear: exact)."""
+    K, m = Z.shape
+    n = m - 9
+    ends = np.concatenate([Z[:, :10], Z[:, -1:]], axis=1)                       # (K, 11)
+    gap = _travel_gap(ends, sense, cos_floor)
+    h = 1e-6 * np.maximum(1.0, np.abs(ends))
+    E = h[:, :, None] * np.eye(11)
+    shifted = np.concatenate([ends[:, None, :] + E, ends[:, None, :] - E], axis=1).reshape(-1, 11)
+    both = _travel_gap(shifted, np.repeat(sense, 22), cos_floor)
+    both = both.reshape(K, 2, 11)
+    J = np.zeros((K, n, m))
+    J[:, 0, :10] = (both[:, 0, :10] - both[:, 1, :10]) / (2 * h[:, :10])
+    J[:, 0, -1] += (both[:, 0, 10] - both[:, 1, 10]) / (2 * h[:, 10])
+    ahead = -sense[:, None] * np.diff(Z[:, 9:], axis=1)                         # (K, n - 1)
+    active = np.where(ahead > 0, sense[:, None], 0.0)
+    i = np.arange(n - 1)
+    J[:, 1 + i, 9 + i] = active
+    J[:, 1 + i, 10 + i] = -active
+    return 10.0 * np.column_stack([gap, np.maximum(ahead, 0)]), 10.0 * J
 
 
 def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray) -> PathSolution:
@@ -311,36 +318,262 @@ def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray) -> PathSol
         defects=t.defects)
 
 
-def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 300, popsize: int = 15,
+
+def _timed_points(T: np.ndarray, Z: np.ndarray, sigma: np.ndarray):
+    """Coupler point minus target at each target's own crank angle, and its Jacobian.
+
+    ``Z`` (K, 9 + n) holds K candidates: ``a0x, a0y, b0x, b0y, crank, coupler, rocker, u,
+    v`` and the n crank angles; ``sigma`` (K,) their branches (+1 / -1, as in
+    :func:`coupler_curves`).  Returns the residuals (K, 2n) (x and y of target 1, then of
+    target 2, ...), whether the loop closes at each target (K, n), and the Jacobian
+    (K, 2n, 9 + n).
+
+    The Jacobian is analytic.  With unit vectors e(q), e3 along the coupler (A to B) and
+    e4 along the rocker (O4 to B), the loop ``a0 + r2 e(q) + r3 e3 - r4 e4 - b0 = 0``
+    differentiated gives ``c + r3 e3' dth3 - r4 e4' dth4 = 0`` (' turns a vector by +90
+    deg), c being the change of ``a0 - b0 + r2 e(q) + r3 e3 - r4 e4`` at fixed link
+    angles.  Dotted with e4 it leaves ``dth3 = -(c . e4) / (r3 (e3 x e4))`` (e3 x e4 is
+    the sine of the transmission angle); and ``P = A + R(th3) (u, v)`` changes by
+    ``dA + R(th3) (du, dv) + (P - A)' dth3``.
+    """
+    K, n = Z.shape[0], T.shape[0]
+    a0x, a0y, b0x, b0y, r2, r3, r4, u, v = (Z[:, k, None] for k in range(9))
+    q = Z[:, 9:]
+    sg = sigma[:, None]
+    c, s = np.cos(q), np.sin(q)
+    Ax, Ay = a0x + r2 * c, a0y + r2 * s
+    dx, dy = b0x - Ax, b0y - Ay
+    L = np.hypot(dx, dy)
+    Ls = np.where(L > 0, L, 1.0)
+    p = (r3 * r3 - r4 * r4 + L * L) / (2 * Ls)
+    h2 = r3 * r3 - p * p
+    assembled = (L > 0) & (h2 >= 0)
+    h = np.sqrt(np.maximum(h2, 0.0))
+    ex, ey = dx / Ls, dy / Ls
+    r3s = np.where(r3 != 0, r3, 1.0)
+    wx, wy = (p * ex - sg * h * ey) / r3s, (p * ey + sg * h * ex) / r3s           # e3
+    gx, gy = u * wx - v * wy, u * wy + v * wx                                     # P - A
+    R = np.stack([Ax + gx - T[:, 0], Ay + gy - T[:, 1]], -1).reshape(K, 2 * n)
+    r4s = np.where(r4 != 0, r4, 1.0)
+    fx, fy = (Ax + r3 * wx - b0x) / r4s, (Ay + r3 * wy - b0y) / r4s                # e4
+    S = r3 * (wx * fy - wy * fx)
+    inv = 1.0 / np.where(np.abs(S) > 1e-12, S, 1e-12)
+    J = np.zeros((K, n, 2, 9 + n))
+    # per design variable: dth3, and the change of P at fixed th3 (x, y)
+    columns = ((-fx * inv, 1.0, 0.0), (-fy * inv, 0.0, 1.0), (fx * inv, 0.0, 0.0),
+               (fy * inv, 0.0, 0.0), (-(c * fx + s * fy) * inv, c, s),
+               (-(wx * fx + wy * fy) * inv, 0.0, 0.0), (inv, 0.0, 0.0),
+               (0.0, wx, wy), (0.0, -wy, wx))
+    for k, (dth, px, py) in enumerate(columns):
+        J[:, :, 0, k] = px - gy * dth
+        J[:, :, 1, k] = py + gx * dth
+    dth = -r2 * (c * fy - s * fx) * inv                   # the target's own crank angle
+    i = np.arange(n)
+    J[:, i, 0, 9 + i] = -r2 * s - gy * dth
+    J[:, i, 1, 9 + i] = r2 * c + gx * dth
+    return R, assembled, J.reshape(K, 2 * n, 9 + n)
+
+
+def _levenberg_marquardt(T: np.ndarray, Z: np.ndarray, sigma: np.ndarray, sense: np.ndarray,
+                         cos_floor: float, iterations: int):
+    """Least squares of a batch of candidates at once: the distances of
+    :func:`_timed_points` and the travel's constraints of :func:`_travel_residuals`.
+
+    Levenberg-Marquardt with Marquardt's scaling and a damping of its own for each
+    candidate; a step is taken only where it lowers the sum of squares, keeps the three
+    lengths positive and the loop closed at every target.  Returns the candidates (K,
+    9 + n), the sums of squares of their distances (K,) (inf for a candidate that never
+    closed) and of their constraints (K,).  It stops early once no candidate makes
+    progress."""
+    K, m = Z.shape
+
+    def evaluate(Z):
+        R, ok, J = _timed_points(T, Z, sigma)
+        C, JC = _travel_residuals(Z, sense, cos_floor)
+        distance, violation = np.sum(R * R, axis=1), np.sum(C * C, axis=1)
+        R, J = np.concatenate([R, C], axis=1), np.concatenate([J, JC], axis=1)
+        good = ok.all(axis=1) & np.all(Z[:, 4:7] > 0, axis=1) & np.isfinite(distance) \
+            & np.isfinite(violation) & np.all(np.isfinite(J), axis=(1, 2))
+        return (np.where(good, distance, np.inf), np.where(good, violation, np.inf),
+                np.where(good[:, None], R, 0.0), np.where(good[:, None, None], J, 0.0))
+
+    distance, violation, R, J = evaluate(Z)
+    damping = np.full(K, 1e-3)
+    eye = np.eye(m)
+    idle = 0
+    for _ in range(iterations):
+        H = np.matmul(J.transpose(0, 2, 1), J)
+        g = np.einsum("kij,ki->kj", J, R)
+        D = np.diagonal(H, axis1=1, axis2=2)
+        scale = D + 1e-9 * D.max(axis=1, keepdims=True) + 1e-300
+        step = np.linalg.solve(H + damping[:, None, None] * scale[:, :, None] * eye,
+                               -g[..., None])[..., 0]
+        trial = Z + np.where(np.isfinite(step), step, 0.0)
+        d2, v2, R2, J2 = evaluate(trial)
+        cost, c2 = distance + violation, d2 + v2
+        better = c2 < cost
+        progress = better & (c2 < cost * (1 - 1e-12))
+        Z = np.where(better[:, None], trial, Z)
+        R = np.where(better[:, None], R2, R)
+        J = np.where(better[:, None, None], J2, J)
+        distance, violation = np.where(better, d2, distance), np.where(better, v2, violation)
+        damping = np.clip(np.where(better, damping / 3, damping * 4), 1e-12, 1e12)
+        idle = 0 if progress.any() else idle + 1
+        if idle == 3:               # every candidate has converged or stalled
+            break
+    return Z, distance, violation
+
+
+_STARTS = 32          # designs screened per unit of popsize in each round
+_KEEP = 8             # least-squares starts per unit of popsize in each round
+_POLISHED = 16        # of those, carried on by the longer least squares
+_BRIEF, _LONG = 20, 50    # their Levenberg-Marquardt iterations
+_NEAR = 0.25          # share of a round's starts drawn near the best designs so far
+_ELITE = 8            # how many of those are kept
+_PATIENCE = 3         # rounds without progress after which they are forgotten
+_CHECKED = 3          # of the polished, built as models and checked with the engine
+_CHUNK = 1024         # designs screened (or started from) at once: bounds the memory
+_BOUNDS = np.array([(-3, 3)] * 4 + [(0.05, 3.0), (0.05, 6.0), (0.05, 6.0), (-4, 4), (-4, 4),
+                    (-1, 1)], float)      # the designs drawn, for a task of unit size
+
+
+class _Search:
+    """One run of :func:`path_generation`: rounds of screened quasi-random starts, each
+    followed by batched least squares."""
+
+    def __init__(self, obj: _Objective, popsize: int, seed: int, bounds: np.ndarray,
+                 initial: np.ndarray | None = None):
+        from scipy.stats import qmc
+        self.obj = obj
+        self.popsize = popsize
+        self.bounds = bounds
+        self.initial = initial          # designs the first round starts from, whatever the screen
+        self.draw = qmc.Halton(d=10, scramble=True, seed=seed)
+        self.rng = np.random.default_rng(seed)
+        self.cos_floor = float(np.cos(max(obj.mu_min, _MU_FLOOR)))
+        self.elite = self.elite_score = None
+
+    def screen(self, designs: np.ndarray):
+        """The objective of each design (D,) and the crank angles of its matched samples
+        (D, n), a chunk at a time."""
+        f = np.empty(len(designs))
+        q = np.empty((len(designs), self.obj.T.shape[0]))
+        for i in range(0, len(designs), _CHUNK):
+            k, dist2, penalty = self.obj.match(designs[i:i + _CHUNK])
+            rms = np.sqrt(np.mean(dist2, axis=1))
+            f[i:i + _CHUNK] = np.where(np.isfinite(rms),
+                                       rms + np.where(penalty > 0, _INFEASIBLE + penalty, 0.0),
+                                       _NOWHERE)
+            q[i:i + _CHUNK] = k * (2 * np.pi / self.obj.q.size)
+        return f, q
+
+    def round(self, refine: bool):
+        """Candidates (design (10,), crank angles (n,), RMS distance to the targets at
+        those angles), most promising first."""
+        lo, hi = self.bounds[:, 0], self.bounds[:, 1]
+        X = lo + self.draw.random(self.popsize * _STARTS) * (hi - lo)
+        given = 0
+        if self.initial is not None:
+            given = len(self.initial)
+            X[:given] = self.initial
+            self.initial = None
+        if self.elite is not None and _NEAR > 0:
+            # some starts near the best linkages met so far, at scales from 1% to 20%
+            m = int(_NEAR * len(X))
+            pick = self.elite[self.rng.integers(len(self.elite), size=m)]
+            spread = np.exp(self.rng.uniform(np.log(0.01), np.log(0.2), (m, 1))) * (hi - lo)
+            X[:m, :9] = pick[:, :9] + spread[:, :9] * self.rng.standard_normal((m, 9))
+            X[:m, 9] = pick[:, 9]
+        f, q = self.screen(X)
+        f[:given] = -np.inf
+        if not refine:
+            best = int(np.argmin(f))
+            return [(X[best], q[best], f[best])]
+        keep = np.argsort(f)[:self.popsize * _KEEP]
+        sigma = np.where(X[keep, 9] >= 0, 1.0, -1.0)
+        q, sense = _unwrapped(q[keep])
+        T, floor = self.obj.T, self.cos_floor
+        Z = np.column_stack([X[keep, :9], q])
+        distance, violation = np.empty(len(keep)), np.empty(len(keep))
+        for i in range(0, len(keep), _CHUNK):
+            part = slice(i, i + _CHUNK)
+            Z[part], distance[part], violation[part] = _levenberg_marquardt(
+                T, Z[part], sigma[part], sense[part], floor, _BRIEF)
+        top = np.argsort(distance + violation)[:_POLISHED]
+        Z, distance, violation = _levenberg_marquardt(T, Z[top], sigma[top], sense[top], floor,
+                                                      _LONG)
+        designs = np.column_stack([Z[:, :9], sigma[top]])
+        # order, limit positions and transmission angle on the way, as the screen judges them
+        penalty = self.obj.match(designs)[2] + (violation > 1e-20)
+        score = np.sqrt(distance / T.shape[0]) + np.where(penalty > 0, _INFEASIBLE + penalty, 0.0)
+        order = np.argsort(score)[:_CHECKED]
+        if self.elite is None:
+            self.elite, self.elite_score = designs[order], score[order]
+            self.stalled = 0
+        else:
+            # rounds that improve on none of the best so far, in a row, forget them: the
+            # starts near them have led into one basin, and that basin may be the wrong one
+            improved = score[order[0]] < self.elite_score[0] * (1 - 1e-3)
+            self.stalled = 0 if improved else self.stalled + 1
+            both = np.concatenate([self.elite_score, score[order]])
+            best = np.argsort(both)[:_ELITE]
+            self.elite = np.concatenate([self.elite, designs[order]])[best]
+            self.elite_score = both[best]
+            if self.stalled >= _PATIENCE:
+                self.elite = self.elite_score = None
+        return [(designs[i], Z[i, 9:], score[i]) for i in order if np.isfinite(score[i])]
+
+
+def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, popsize: int = 15,
                     samples: int = 180, min_transmission_angle: float = 0.0, seed: int = 0,
-                    refine: bool = True, initial: ArrayLike | None = None) -> SolutionList:
+                    refine: bool = True, tolerance: float = 1e-4,
+                    initial: ArrayLike | None = None) -> SolutionList:
     """Four-bars whose coupler point passes near prescribed points, in order.
+
+    Each run searches in rounds.  A round draws ``popsize * 32`` designs (a scrambled
+    Halton sequence over the fixed pivots, the lengths, the coupler point and the branch,
+    for the task scaled to unit size; after the first round a quarter of them near the
+    best linkages found so far), scores them on their sampled coupler curves and starts
+    least squares from the best ``popsize * 8`` of them, all at once: the unknowns are
+    the design and the crank angle at each target, the residuals the distances from the
+    coupler point to the targets at those angles and the travel's constraints (the sense
+    of rotation; no limit position between the first target and the last, with a
+    transmission angle of at least ``min_transmission_angle`` and 1 deg), solved by
+    Levenberg-Marquardt on the whole batch with an analytic Jacobian.  The best few
+    results are built as models and checked with the engine.  The run stops once it
+    holds a valid linkage within ``tolerance`` of the targets, or after ``maxiter``
+    rounds.
 
     Parameters
     ----------
     points : array_like, shape (n, 2), n >= 3 (5 to 10 is typical)
         The target points, m, in the order the coupler point is to meet them.
     runs : int
-        Independent differential-evolution runs (seeds ``seed, seed + 1, ...``); each
-        gives at most one linkage.
-    maxiter, popsize : int
-        Budget of each run (scipy's ``differential_evolution``; a population of
-        ``popsize * 10`` designs is evaluated at once, vectorised).
+        Independent runs (seeds ``seed, seed + 1, ...``); each gives at most one linkage.
+    maxiter : int
+        The most rounds of each run.
+    popsize : int
+        Size of a round: ``popsize * 32`` designs screened, least squares from
+        ``popsize * 8`` of them.
     samples : int
-        Crank angles per coupler curve in the global search.
+        Crank angles per coupler curve when designs are screened.
     min_transmission_angle : float
         Designs whose transmission angle drops below this (rad) between the first and
         last target are penalised like defective ones.
     seed : int
         Seed of the first run: the result is reproducible.
     refine : bool
-        Polish each run's best design by least squares over the design and the crank
-        angles of the targets (exact when an exact solution is near).
+        Least squares from the screened designs (False: each round keeps only its best
+        screened design, the sampled curve's accuracy).
+    tolerance : float
+        A run stops when its best linkage's RMS distance to the targets is below
+        ``tolerance`` times the size of the path (the diagonal of the targets' bounding
+        box).  0 runs every round.
     initial : array_like, shape (k, 10), optional
         Designs to start from (the form of :func:`coupler_curves`, m), e.g. the nearest
-        curves of an atlas (:meth:`kinelab.sweep.Atlas.refine`): they join each run's first
-        population, the rest of which is drawn as usual (Latin hypercube), in a search box
-        grown to hold them.
+        curves of an atlas (:meth:`kinelab.sweep.Atlas.refine`): each run's first round
+        starts least squares from them (at most ``popsize * 8``), besides its own draws,
+        in a search box grown to hold them.
 
     Returns
     -------
@@ -360,7 +593,7 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 300, pop
     >>> fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5,
     ...                            coupler_point=(1.5, 1.0))
     >>> pts = kl.analyze(fb, q=np.radians([0, 40, 80, 120, 160, 200])).position("P")
-    >>> sols = kl.synthesis.path_generation(pts, runs=1, maxiter=60, seed=0)
+    >>> sols = kl.synthesis.path_generation(pts, runs=1, seed=0)
     >>> best = sols[0]
     >>> best.valid, bool(best.max_error < 1e-6)
     (True, True)
@@ -383,56 +616,45 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 300, pop
     mu = min_transmission_angle
     if not (isinstance(mu, (int, float)) and 0.0 <= mu < np.pi / 2):
         raise ModelError(f"min_transmission_angle: expected an angle in [0, pi/2) rad, got {describe(mu)}")
-    from scipy.optimize import differential_evolution
-
+    if not (isinstance(tolerance, (int, float)) and 0.0 <= tolerance < 1.0):
+        raise ModelError(f"tolerance: expected a fraction of the path's size in [0, 1), got "
+                         f"{describe(tolerance)}")
     center = T.mean(axis=0)
     scale = float(np.linalg.norm(T - center, axis=1).max())
     obj = _Objective((T - center) / scale, samples, float(min_transmission_angle))
-    bounds = [(-3, 3)] * 4 + [(0.05, 3.0), (0.05, 6.0), (0.05, 6.0), (-4, 4), (-4, 4), (-1, 1)]
-    starts = None
+    goal = tolerance * float(np.hypot(*np.ptp(T, axis=0)))
+    bounds, starts = _BOUNDS, None
     if initial is not None:
         starts = np.array(initial, float, ndmin=2)
         if starts.ndim != 2 or starts.shape[1] != 10 or not np.all(np.isfinite(starts)):
-            raise ModelError(f"initial: expected finite designs of shape (k, 10), got {describe(initial)}")
+            raise ModelError(f"initial: expected finite designs of shape (k, 10), got "
+                             f"{describe(initial)}")
         starts[:, 0:4] = ((starts[:, 0:4].reshape(-1, 2, 2) - center) / scale).reshape(-1, 4)
         starts[:, 4:9] /= scale
         starts[:, 9] = np.where(starts[:, 9] >= 0, 0.5, -0.5)
-        starts = starts[: popsize * 10]
+        starts = starts[:popsize * _KEEP]
         # the search box grows to hold them (a long ground beside a small path, say)
-        lo, hi = np.array(bounds).T
-        lo, hi = np.minimum(lo, starts.min(axis=0)), np.maximum(hi, starts.max(axis=0))
-        bounds = list(zip(lo, hi))
+        bounds = np.column_stack([np.minimum(_BOUNDS[:, 0], starts.min(axis=0)),
+                                  np.maximum(_BOUNDS[:, 1], starts.max(axis=0))])
     found, reasons = [], []
     for r in range(runs):
-        init = "latinhypercube"
-        if starts is not None:
-            from scipy.stats import qmc
-            lo, hi = np.array(bounds).T
-            init = lo + qmc.LatinHypercube(d=10, seed=seed + r).random(popsize * 10) * (hi - lo)
-            init[: len(starts)] = starts
-        res = differential_evolution(obj, bounds, maxiter=maxiter, popsize=popsize, seed=seed + r,
-                                     vectorized=True, updating="deferred", polish=False, tol=0.0,
-                                     init=init)
-        design = res.x
-        k = obj.match(design[None, :])[0]
-        q = k[0] * (2 * np.pi / samples)        # crank angles of the matched curve points
-        candidates = []
-        if refine:
-            refined = _refine(obj, design, q)
-            if refined is not None:
-                candidates.append(refined)
-        candidates.append((design, q))
+        search = _Search(obj, popsize, seed + r, bounds, starts)
         sol = None
-        for d, q in candidates:
-            phys = d.copy()
-            phys[0:4] = (center + scale * d[0:4].reshape(2, 2)).ravel()
-            phys[4:9] *= scale
-            try:
-                s = _solution(T, phys, np.asarray(q, float).copy())
-            except ModelError:
-                continue
-            if s.valid and (sol is None or s.rms_error < sol.rms_error):
-                sol = s
+        for _ in range(maxiter):
+            for design, q, rms in search.round(refine):
+                if sol is not None and rms * scale >= sol.rms_error:
+                    continue
+                phys = design.copy()
+                phys[0:4] = (center + scale * design[0:4].reshape(2, 2)).ravel()
+                phys[4:9] *= scale
+                try:
+                    s = _solution(T, phys, np.asarray(q, float).copy())
+                except ModelError:
+                    continue
+                if s.valid and (sol is None or s.rms_error < sol.rms_error):
+                    sol = s
+            if sol is not None and sol.rms_error <= goal:
+                break
         if sol is None:
             reasons.append(f"run {r + 1} (seed {seed + r}) found no linkage free of branch and "
                            "order defects; raise maxiter or popsize")
@@ -440,4 +662,3 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 300, pop
             found.append(sol)
     found.sort(key=lambda s: s.rms_error)
     return SolutionList(found, reason="; ".join(reasons))
-

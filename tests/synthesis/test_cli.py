@@ -106,6 +106,7 @@ points = [[0, 0], [0.25, 0.02], [0.5, 0.03], [0.75, 0.02], [1, 0]]
 runs = 1
 maxiter = 20
 seed = 0
+tolerance = 1e-3
 """, "--json")
     assert res.exit_code == 0, res.output
     summary = json.loads(res.output)
@@ -213,6 +214,8 @@ def test_answers_in_the_tasks_units_or_si(tmp_path):
     ('task = "path"\n[search]\nsamples = "x"\nrefine = 1\n',
      "search.samples: expected a whole number from 2 to 1,000,000, got 'x'"),
     ('task = "path"\n[search]\nrefine = 1\n', "search.refine: expected true or false, got 1"),
+    ('task = "path"\n[search]\ntolerance = "1e-3"\n',
+     "search.tolerance: expected a finite number, got '1e-3'"),
     ('task = "function"\n[function]\nexpression = "x"\nx_range = [1, 2]\ninput_range = [1, 2]\n'
      'output_range = [0, 1]\npoints = 1000000000000\n',
      "function.points: expected a whole number from 2 to 100, got 1000000000000"),

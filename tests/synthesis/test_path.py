@@ -5,7 +5,7 @@ import pytest
 import kinelab as kl
 from kinelab.errors import ModelError
 from kinelab.synthesis import coupler_curves, fourbar_model, path_generation
-from kinelab.synthesis._path import _Objective
+from kinelab.synthesis._path import _Objective, _timed_points
 
 CATALOGUE = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5,
                                   coupler_point=(1.5, 1.0))
@@ -54,6 +54,67 @@ def test_path_generation_finds_an_exact_linkage():
     np.testing.assert_allclose(np.linalg.norm(P - EXACT_TASK, axis=1), best.errors, atol=1e-12)
 
 
+@pytest.mark.parametrize("sigma", [1.0, -1.0])
+def test_timed_points_against_coupler_curves_and_finite_differences(sigma):
+    rng = np.random.default_rng(7)
+    T = rng.normal(size=(5, 2))
+    z = np.r_[0.0, 0.0, 3.0, 0.0, 1.0, 3.0, 2.5, 1.5, 1.0, rng.uniform(0, 2 * np.pi, 5)]
+    R, ok, J = _timed_points(T, z[None, :], np.array([sigma]))
+    P = coupler_curves(np.r_[z[:9], sigma][None, :], z[None, 9:])[0]
+    assert ok.all()
+    np.testing.assert_allclose(R[0].reshape(5, 2), P[0] - T, atol=1e-14)
+    # central differences, error ~ h**2 times third derivatives of order one
+    h = 1e-6
+    E = h * np.eye(z.size)
+    plus = _timed_points(T, z + E, np.full(z.size, sigma))[0]
+    minus = _timed_points(T, z - E, np.full(z.size, sigma))[0]
+    np.testing.assert_allclose(J[0], ((plus - minus) / (2 * h)).T, atol=1e-8)
+
+
+def _traced_task(d, q):
+    """Targets traced by the coupler point of design d at crank angles q (exact task)."""
+    return coupler_curves(np.asarray(d, float)[None, :], np.asarray(q, float)[None, :])[0][0]
+
+
+TEN_POINT_TASKS = [
+    # the catalogue crank-rocker over 270 deg
+    _traced_task([0, 0, 3, 0, 1.0, 3.0, 2.5, 1.5, 1.0, 1.0], np.radians(np.linspace(0, 270, 10))),
+    # crossed, the crank stopped by limit positions near 9 and 39 deg: 290 deg of travel
+    _traced_task([0.2, -0.1, 1.1, 0.3, 0.8, 1.3, 1.6, -0.4, 0.7, -1.0],
+                 np.radians(np.linspace(50, 340, 10))),
+    # a small crank, a long coupler, P behind A, over 200 deg
+    _traced_task([-0.5, 0.4, 1.5, -0.2, 0.5, 2.2, 1.4, -0.6, -0.5, 1.0],
+                 np.radians(np.linspace(-30, 170, 10))),
+]
+
+
+@pytest.mark.parametrize("k", range(len(TEN_POINT_TASKS)))
+def test_ten_point_tasks_reach_the_tolerance(k):
+    T = TEN_POINT_TASKS[k]
+    size = np.hypot(*np.ptp(T, axis=0))
+    for seed in (0, 1):
+        sols = path_generation(T, runs=1, seed=seed, tolerance=1e-3)
+        best = sols[0]
+        assert best.valid
+        # the engine, moved to the reported crank angles, puts P within 1e-3 of the size
+        P = kl.analyze(best.model, q=best.q).position("P")
+        errors = np.linalg.norm(P - T, axis=1)
+        np.testing.assert_allclose(errors, best.errors, atol=1e-12)
+        assert np.sqrt(np.mean(errors ** 2)) < 1e-3 * size
+
+
+def test_initial_designs_are_started_from():
+    # a task far outside the search box (pivots 40 sizes away): found in one round only
+    # because the round starts from the given design, slightly off
+    design = np.array([0, 0, 3, 0, 1.0, 3.0, 2.5, 1.5, 1.0, 1.0])
+    far = design.copy()
+    far[0:4] += 100.0
+    T = _traced_task(far, np.radians(np.linspace(0, 90, 6)))
+    near = far + np.r_[[0.01] * 9, 0.0]
+    sols = path_generation(T, runs=1, maxiter=1, initial=[near], tolerance=1e-9)
+    assert sols and sols[0].valid and sols[0].rms_error < 1e-9
+
+
 def test_path_generation_is_reproducible():
     a = path_generation(EXACT_TASK[:5], runs=1, maxiter=15, seed=3, refine=False)
     b = path_generation(EXACT_TASK[:5], runs=1, maxiter=15, seed=3, refine=False)
@@ -76,6 +137,10 @@ def test_transmission_angle_bound_is_kept():
     ([(0, 0), (1, 1), (0, 0)], {}, r"points: points 1 and 3 coincide"),
     ([(0, 0), (1, 1), (2, 0)], dict(runs=0), r"runs: expected an integer >= 1, got 0"),
     ([(0, 0), (1, 1), (2, 0)], dict(popsize=2), r"popsize: expected an integer >= 5, got 2"),
+    ([(0, 0), (1, 1), (2, 0)], dict(initial=[[0, 0, 1]]),
+     r"initial: expected finite designs of shape \(k, 10\), got \[\[0, 0, 1\]\]"),
+    ([(0, 0), (1, 1), (2, 0)], dict(tolerance=-1e-3),
+     r"tolerance: expected a fraction of the path's size in \[0, 1\), got -0.001"),
     ([(0, 0), (1, 1), (2, 0)], dict(min_transmission_angle=30.0),
      r"min_transmission_angle: expected an angle in \[0, pi/2\) rad, got 30.0"),
 ])
