@@ -13,6 +13,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import kinelab as kl
+
 ROOT = Path(__file__).resolve().parents[2]
 CHROMIUM_FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                   "--disable-background-networking", "--disable-component-update",
@@ -304,3 +306,62 @@ def test_the_acceleration_polygon_of_a_slotted_link_shows_coriolis(page):
         .some((l) => (l.dataset.side || '').endsWith('coriolis'))""")
     page.shot("coriolis")
     assert "AcAA@lever" in page.text_content("svg[data-polygon=acceleration]")   # A^c_{A A@lever}
+
+
+def model_to_screen(pg):
+    """The drawing's map from model units to the page's pixels, read off two ground pivots
+    of the crank-rocker example (O2 at (0, 0), O4 at (300, 0) mm)."""
+    (x0, y0), (x1, _) = point_on_screen(pg, "O2"), point_on_screen(pg, "O4")
+    scale = (x1 - x0) / 300.0
+    return lambda x, y: (x0 + scale * x, y0 - scale * y)
+
+
+def test_three_poses_placed_on_the_drawing_are_synthesized_and_inserted(page):
+    from kinelab.io import ModelFile
+    page.wait_for_function("() => window.kinelab.config !== null")
+    page.click("#tabs button[data-tab=synthesis]")
+    page.select_option("#synth-kind", "three")
+    to_screen = model_to_screen(page)
+    page.click("#synth-place")
+    assert page.input_value("#synth-length") == "mm" and page.input_value("#synth-angle") == "deg"
+    aimed = [(100, 100, 0), (200, 50, 0), (300, 150, 45)]        # mm, deg: the notes' task x 100
+    for x, y, angle in aimed:
+        X, Y = to_screen(x, y)
+        page.mouse.move(X, Y)
+        page.mouse.down()
+        for k in range(1, 7):                  # the drag gives the angle
+            page.mouse.move(X + 10 * k * math.cos(math.radians(angle)),
+                            Y - 10 * k * math.sin(math.radians(angle)))
+        page.mouse.up()
+    page.wait_for_selector("#canvas g.pose[data-pose='3']", state="attached")
+    page.shot("poses_placed")
+    assert page.locator("#canvas g.pose").count() == 3
+    poses = np.array([[float(v) for v in line.split()]
+                      for line in page.input_value("#synth-poses").strip().splitlines()])
+    assert poses.shape == (3, 3)
+    # where the mouse went, to a pixel; the angles to the drag's pixel rounding
+    pixel = 1.0 / ((point_on_screen(page, "O4")[0] - point_on_screen(page, "O2")[0]) / 300.0)
+    np.testing.assert_allclose(poses[:, :2], np.array(aimed)[:, :2], atol=1.5 * pixel)
+    np.testing.assert_allclose(poses[:, 2], np.array(aimed)[:, 2], atol=2.0)
+    # editable in the form afterwards: the arrow follows the typed angle
+    lines = page.input_value("#synth-poses").strip().splitlines()
+    x3, y3, _ = lines[2].split()
+    lines[2] = f"{x3} {y3} 45"
+    page.fill("#synth-poses", "\n".join(lines))
+    poses[2, 2] = 45.0
+    page.fill("[data-field='pivots.A0']", "500, 0")
+    page.fill("[data-field='pivots.B0']", "0, 0")
+    page.click("#synth-solve")
+    page.wait_for_selector("#synth-results tr[data-solution='1']", timeout=60_000)
+    page.click("#synth-results tr[data-solution='1'] button.open-solution")
+    page.wait_for_function("() => (window.kinelab.source || '').includes('solution_1')")
+    page.wait_for_function("() => window.kinelab.config !== null")
+    page.shot("poses_inserted")
+    # the model the page holds, moved by kinelab through the three poses (SI once read)
+    m = ModelFile.from_dict(state(page, "window.kinelab.model")).mechanism
+    points, angles = poses[:, :2] / 1000.0, np.radians(poses[:, 2])
+    sol = kl.synthesis.three_positions(points, angles, (0.5, 0.0), (0.0, 0.0))
+    s = kl.analyze(m, q=sol.q)
+    np.testing.assert_allclose(s.position("P"), points, rtol=0, atol=1e-9)
+    turned = np.unwrap(s.angle("coupler")) - np.unwrap(angles)
+    np.testing.assert_allclose(turned - turned[0], 0.0, atol=1e-9)
