@@ -365,3 +365,67 @@ def test_three_poses_placed_on_the_drawing_are_synthesized_and_inserted(page):
     np.testing.assert_allclose(s.position("P"), points, rtol=0, atol=1e-9)
     turned = np.unwrap(s.angle("coupler")) - np.unwrap(angles)
     np.testing.assert_allclose(turned - turned[0], 0.0, atol=1e-9)
+
+
+def type_in_table(pg, selector, value):
+    field = pg.locator(f"#tab-table {selector} input")
+    field.fill(str(value))
+    field.press("Enter")
+
+
+def test_a_slider_crank_drawn_from_scratch_is_kinelabs_slider_crank(page):
+    """Points, links (R joints where they meet), a slider on a guide (P joint), the ground and
+    the input, all drawn; the exact coordinates and lengths typed in the table.  The sweep the
+    page shows is that of ``kl.mechanisms.slider_crank`` with the same lengths."""
+    page.wait_for_function("() => window.kinelab.config !== null")
+    to_screen = model_to_screen(page)
+    page.click("#new")
+    page.wait_for_function("() => window.kinelab.model.name === 'sketch'")
+    crank, rod = 100.0, 300.0
+    O2, A, B = (0.0, 0.0), (0.0, crank), (math.sqrt(rod**2 - crank**2), 0.0)
+    page.check("input[name=tool][value=link]")
+    for k, xy in enumerate((O2, A), 1):
+        page.mouse.click(*to_screen(*xy))
+        page.wait_for_selector(f"#canvas circle[data-point=P{k}]", state="attached")
+    page.mouse.click(*point_on_screen(page, "P2"))
+    page.mouse.click(*to_screen(*B))
+    page.wait_for_function("() => window.kinelab.model.links.length === 3")
+    page.check("input[name=tool][value=slider]")
+    X, Y = point_on_screen(page, "P3")
+    page.mouse.move(X, Y)
+    page.mouse.down()
+    for k in range(1, 6):
+        page.mouse.move(X + 12 * k, Y)
+    page.mouse.up()
+    page.wait_for_function("() => window.kinelab.model.joints.some((j) => j.type === 'P')")
+    page.check("input[name=tool][value=ground]")
+    page.mouse.click(*point_on_screen(page, "P1"))
+    page.check("input[name=tool][value=input]")
+    page.mouse.click(*point_on_screen(page, "P1"))
+    page.wait_for_function("() => window.kinelab.study !== null && !window.kinelab.draft")
+    page.shot("slider_crank_drawn")
+    model = state(page, "window.kinelab.model")
+    assert [j["type"] for j in model["joints"]].count("P") == 1
+    assert [j["type"] for j in model["joints"]].count("R") == 3
+    slide = next(j for j in model["joints"] if j["type"] == "P")
+    assert slide["links"][0] == "ground" and slide["point"] == "P3"
+    assert slide["axis"] == [1, 0]                       # a horizontal drag
+    assert page.locator("#canvas rect.joint.P").count() == 1
+    # exact values typed in the table: coordinates first, then the lengths
+    page.click("#tabs button[data-tab=table]")
+    for point, axis, v in (("P1", "x", O2[0]), ("P1", "y", O2[1]), ("P3", "y", B[1])):
+        type_in_table(page, f"tr[data-point={point}] td[data-field={axis}]", v)
+        page.wait_for_function(f"() => window.kinelab.model.points.{point}[{'xy'.index(axis)}] === {v}")
+    for link, length in (("link1", crank), ("link2", rod)):
+        type_in_table(page, f"tr[data-link={link}] td[data-field=length]", length)
+        page.wait_for_function(f"() => window.kinelab.model.links.find((l) => l.name === '{link}').length === {length}")
+    page.wait_for_function("() => !window.kinelab.draft && window.kinelab.study.model.links[1].length === 100")
+    page.shot("slider_crank_typed")
+    s = state(page, "window.kinelab.study")
+    q = np.radians(s["columns"][s["inputs"][0]])
+    sc = kl.analyze(kl.mechanisms.slider_crank(crank / 1000, rod / 1000), q=q)
+    for mine, theirs in (("P2", "A"), ("P3", "B")):
+        drawn = np.array([s["columns"][f"{mine}.x[mm]"], s["columns"][f"{mine}.y[mm]"]]).T
+        np.testing.assert_allclose(drawn, 1000 * sc.position(theirs), rtol=0, atol=1e-9)
+    np.testing.assert_allclose(np.radians(s["columns"]["link2.angle[deg]"]), sc.angle("rod"), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(s["columns"]["link2.omega[deg/s]"], np.degrees(sc.omega("rod")), rtol=1e-9, atol=1e-9)

@@ -213,6 +213,12 @@ const canvas = new Canvas($("canvas"), {
   down(name, xy) {
     if (placing.active()) { state.pose = {xy, angle: 0}; redraw(); return "capture"; }
     const t = tool();
+    if (t === "slider") {          // the drag gives the guide's direction
+      state.sliderAt = name;
+      state.pose = {xy: name ? (state.model.points[name]) : xy, angle: 0};
+      redraw();
+      return "capture";
+    }
     if ((t === "move" || t === "edit") && name && state.study) {
       if (t === "move" && state.study.drawing.ground_points.includes(name)) { canvas.dragging = null; return; }
       dragStart = {model: state.model, source: state.source};
@@ -225,11 +231,19 @@ const canvas = new Canvas($("canvas"), {
   },
   move(name, xy) {
     if (!name.from) { dragTo(name, xy); return; }
-    const [x0, y0] = name.from;
-    state.pose = {xy: name.from, angle: Math.atan2(xy[1] - y0, xy[0] - x0)};
+    const [x0, y0] = state.pose.xy;
+    state.pose = {xy: state.pose.xy, angle: Math.atan2(xy[1] - y0, xy[0] - x0)};
     redraw();
   },
   async up(name, xy) {
+    if (name && name.from && tool() === "slider" && !placing.active()) {
+      const at = state.pose.xy;
+      state.pose = null;
+      const next = draw.slider(state.model, state.sliderAt, at, xy);
+      if (next) setModel(next, state.source, {keepDraft: true, refit: !state.study});
+      else redraw();
+      return;
+    }
     if (name && name.from) { state.pose = null; placing.add(name.from, xy); return; }
     if (!name || !dragStart) return;
     while (state.busy || state.pending) await new Promise((r) => setTimeout(r, 10));
