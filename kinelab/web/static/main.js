@@ -25,9 +25,11 @@ const lu = () => state.study.units.length;
 const column = (name) => state.study.columns[name];
 const place = (p, i) => [column(`${p}.x[${lu()}]`)[i], column(`${p}.y[${lu()}]`)[i]];
 
-async function study(model, source) {
+// `columns` narrows the sweep's columns to those named (the points' and the inputs' always
+// come): a drag asks only for what it redraws, the rest follows when it ends.
+async function study(model, source, columns = undefined) {
   const t0 = performance.now();
-  const s = await post("/api/study", {model, source});
+  const s = await post("/api/study", {model, source, columns});
   state.lastStudyMs = performance.now() - t0;
   return s;
 }
@@ -191,10 +193,14 @@ async function dragTo(name, xy) {
       renderTable.values && renderTable.values(state);
     } else {
       const model = movePoint(state.model, name, xy);
-      const s = await study(model, state.source);
-      accept(s, state.source, false);
+      const s = await study(model, state.source, [$("plot-y").value, $("plot-x").value]);
+      state.lastDragStudyMs = state.lastStudyMs;
+      state.study = s; state.model = s.model; state.config = null; state.draft = false;
+      if (state.index >= s.samples) state.index = 0;
+      state.narrowed = true;          // every column again when the drag ends
       $("canvas").dataset.sketch = "1";
       redraw();
+      plotNow();
     }
     status("");
   } catch (err) {
@@ -251,6 +257,13 @@ const canvas = new Canvas($("canvas"), {
       state.history.push(dragStart); state.future = [];
     }
     dragStart = null;
+    if (state.narrowed) {
+      state.narrowed = false;
+      try { accept(await study(state.model, state.source), state.source, false); }
+      catch (err) { status(err.message, true); }
+      $("canvas").dataset.sketch = "1";
+      redraw();
+    }
     configurationSoon();
   },
 });
