@@ -429,3 +429,22 @@ def test_a_slider_crank_drawn_from_scratch_is_kinelabs_slider_crank(page):
         np.testing.assert_allclose(drawn, 1000 * sc.position(theirs), rtol=0, atol=1e-9)
     np.testing.assert_allclose(np.radians(s["columns"]["link2.angle[deg]"]), sc.angle("rod"), rtol=0, atol=1e-12)
     np.testing.assert_allclose(s["columns"]["link2.omega[deg/s]"], np.degrees(sc.omega("rod")), rtol=1e-9, atol=1e-9)
+
+
+def test_a_guide_turned_in_the_table_carries_the_slider_along_it(page):
+    page.select_option("#open", "offset_slider_crank")
+    page.wait_for_function("() => (window.kinelab.source || '').includes('offset_slider_crank')")
+    page.click("#tabs button[data-tab=table]")
+    type_in_table(page, "tr[data-joint=slide] td[data-field=axis]", 10)
+    page.wait_for_function("""() => { const a = window.kinelab.model.joints.find((j) => j.name === 'slide').axis;
+                                      return Math.abs(Math.atan2(a[1], a[0]) * 180 / Math.PI - 10) < 1e-9; }""")
+    page.shot("guide_turned")
+    s = state(page, "window.kinelab.study")
+    B0 = np.array(s["model"]["points"]["B"])
+    B = np.array([s["columns"]["B.x[mm]"], s["columns"]["B.y[mm]"]]).T
+    A = np.array([s["columns"]["A.x[mm]"], s["columns"]["A.y[mm]"]]).T
+    along = np.array([np.cos(np.radians(10)), np.sin(np.radians(10))])
+    across = along[0] * (B - B0)[:, 1] - along[1] * (B - B0)[:, 0]
+    np.testing.assert_allclose(across, 0.0, atol=1e-9)                        # on the guide
+    assert np.ptp((B - B0) @ along) > 90                                     # and sliding
+    np.testing.assert_allclose(np.hypot(*(B - A).T), 200.0, rtol=1e-12)

@@ -79,7 +79,7 @@ export class Canvas {
       if (!P[j.point]) continue;
       const [X, Y] = S(P[j.point]);
       if (j.type === "P") {
-        const a = j.axis || [1, 0], ang = Math.atan2(-a[1], a[0]) * 180 / Math.PI;
+        const a = Array.isArray(j.axis) ? j.axis : [1, 0], ang = Math.atan2(-a[1], a[0]) * 180 / Math.PI;
         el("line", {class: "guide", x1: X - 60, y1: Y, x2: X + 60, y2: Y, "data-guide": j.name,
                     transform: `rotate(${ang} ${X} ${Y})`}, svg);
         el("rect", {class: "joint P", x: X - 10, y: Y - 6, width: 20, height: 12,
