@@ -52,7 +52,7 @@ export class Canvas {
   }
 
   // scene: {points: {name: [x, y]}, drawing, traces: {name: [[x, y], ...]}, marks, centres,
-  //         poses: [{xy, angle}] (angle in rad, drawn as numbered arrows)}
+  //         poses: [{xy, angle, label}] (angle in rad; arrows, numbered unless labelled)}
   draw(scene) {
     const svg = this.svg;
     svg.replaceChildren();
@@ -108,7 +108,7 @@ export class Canvas {
         [U + a * Math.cos(pose.angle) + b * Math.sin(pose.angle), V - a * Math.sin(pose.angle) + b * Math.cos(pose.angle)]);
       el("polygon", {points: [[U, V], ...head].join(" ")}, g);
       el("circle", {cx: X, cy: Y, r: 3.5}, g);
-      el("text", {class: "pose-label", x: X - 14, y: Y + 14}, g).textContent = String(i + 1);
+      el("text", {class: "pose-label", x: X - 14, y: Y + 14}, g).textContent = pose.label ?? String(i + 1);
     });
     for (const c of scene.centres || []) {
       if (c.at_infinity || !c.position) continue;

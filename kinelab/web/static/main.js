@@ -221,7 +221,7 @@ const canvas = new Canvas($("canvas"), {
     const t = tool();
     if (t === "slider") {          // the drag gives the guide's direction
       state.sliderAt = name;
-      state.pose = {xy: name ? (state.model.points[name]) : xy, angle: 0};
+      state.pose = {xy: name ? state.model.points[name] : xy, angle: 0, label: "guide"};
       redraw();
       return "capture";
     }
@@ -238,7 +238,7 @@ const canvas = new Canvas($("canvas"), {
   move(name, xy) {
     if (!name.from) { dragTo(name, xy); return; }
     const [x0, y0] = state.pose.xy;
-    state.pose = {xy: state.pose.xy, angle: Math.atan2(xy[1] - y0, xy[0] - x0)};
+    state.pose = {...state.pose, angle: Math.atan2(xy[1] - y0, xy[0] - x0)};
     redraw();
   },
   async up(name, xy) {
