@@ -1,6 +1,8 @@
 """Time from an edit in the page to the redrawn linkage and paths (the browser's clock):
 a drag of a six-bar's joint re-assembles and re-sweeps 361 samples on the server, sends
-them, and redraws; beside it, the server's own share (the same request from Python).
+the columns the page redraws, and redraws; beside it, the server's own share (the same
+request from Python), and the same sweep with every column (what the page asks for once the
+drag ends).
 
 Needs Chromium (Debian's, /usr/bin/chromium) and Playwright; prints best and median of
 each, in ms.
@@ -27,12 +29,20 @@ def main(repeats: int = 30) -> None:
 
     model = ModelFile.read(ROOT / "examples" / "stephenson6.toml").to_dict()
     client = TestClient(create_app())
-    server = []
-    for k in range(repeats):
-        moved = json.loads(json.dumps(model))
-        t0 = time.perf_counter()
-        client.post("/api/study", json={"model": moved, "samples": 361, "columns": [], "source": str(k)})
-        server.append(1e3 * (time.perf_counter() - t0))
+    def server_share(columns, tag):
+        times = []
+        for k in range(repeats):
+            body = {"model": json.loads(json.dumps(model)), "samples": 361, "source": f"{tag}{k}"}
+            if columns is not None:
+                body["columns"] = columns
+            t0 = time.perf_counter()
+            client.post("/api/study", json=body)
+            times.append(1e3 * (time.perf_counter() - t0))
+        return times
+
+    # what a drag asks for (the points, the inputs and the plotted column), and every column
+    server = server_share(["coupler-rocker.transmission[deg]", "jO2.q[deg]"], "drag")
+    every = server_share(None, "every")
     proc = subprocess.Popen([sys.executable, "-c", "from kinelab.cli import main; main()", "serve",
                              "--port", "0", str(ROOT / "examples" / "stephenson6.toml")],
                             stdout=subprocess.PIPE, text=True)
@@ -46,7 +56,7 @@ def main(repeats: int = 30) -> None:
             results = {}
             for tool in ("edit",):
                 page.check(f"input[name=tool][value={tool}]")
-                times = []
+                times, fetched = [], []
                 name = page.evaluate("() => Object.keys(window.kinelab.model.points).find("
                                      "p => !window.kinelab.study.drawing.ground_points.includes(p))")
                 for k in range(repeats):
@@ -64,14 +74,20 @@ def main(repeats: int = 30) -> None:
                     page.wait_for_function("() => !window.kinelab.busy && !window.kinelab.pending")
                     page.mouse.up()
                     times.append(page.evaluate("() => window.kinelab.lastUpdateMs"))
+                    fetched.append(page.evaluate("() => window.kinelab.lastDragStudyMs"))
                 results[tool] = times
+                results["fetch"] = fetched
+                results["redraw"] = [t - f for t, f in zip(times, fetched)]
             browser.close()
     finally:
         proc.terminate()
         proc.wait()
     print(f"{'six-bar (Stephenson), 361 samples':40s} {'best ms':>9s} {'median ms':>10s}")
     for label, t in [("edit drag, page end to end", results["edit"]),
-                     ("server share of it (same request)", server)]:
+                     ("  of which the request and its JSON", results["fetch"]),
+                     ("  of which the redraw", results["redraw"]),
+                     ("server share of it (same request)", server),
+                     ("server, every column of the sweep", every)]:
         print(f"{label:40s} {min(t):9.1f} {statistics.median(t):10.1f}")
 
 

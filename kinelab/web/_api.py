@@ -180,7 +180,12 @@ def prepare(body: dict) -> _Prepared:
 def _finite(values) -> list:
     """Numbers for JSON: ``None`` where a value is not finite."""
     a = np.asarray(values, float)
-    return [v if math.isfinite(v) else None for v in a.tolist()]
+    finite = np.isfinite(a)
+    if finite.all():
+        return a.tolist()
+    out = a.astype(object)
+    out[~finite] = None
+    return out.tolist()
 
 
 def study(body: dict) -> dict:

@@ -13,6 +13,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import kinelab as kl
+
 ROOT = Path(__file__).resolve().parents[2]
 CHROMIUM_FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                   "--disable-background-networking", "--disable-component-update",
@@ -304,3 +306,145 @@ def test_the_acceleration_polygon_of_a_slotted_link_shows_coriolis(page):
         .some((l) => (l.dataset.side || '').endsWith('coriolis'))""")
     page.shot("coriolis")
     assert "AcAA@lever" in page.text_content("svg[data-polygon=acceleration]")   # A^c_{A A@lever}
+
+
+def model_to_screen(pg):
+    """The drawing's map from model units to the page's pixels, read off two ground pivots
+    of the crank-rocker example (O2 at (0, 0), O4 at (300, 0) mm)."""
+    (x0, y0), (x1, _) = point_on_screen(pg, "O2"), point_on_screen(pg, "O4")
+    scale = (x1 - x0) / 300.0
+    return lambda x, y: (x0 + scale * x, y0 - scale * y)
+
+
+def test_three_poses_placed_on_the_drawing_are_synthesized_and_inserted(page):
+    from kinelab.io import ModelFile
+    page.wait_for_function("() => window.kinelab.config !== null")
+    page.click("#tabs button[data-tab=synthesis]")
+    page.select_option("#synth-kind", "three")
+    to_screen = model_to_screen(page)
+    page.click("#synth-place")
+    assert page.input_value("#synth-length") == "mm" and page.input_value("#synth-angle") == "deg"
+    aimed = [(100, 100, 0), (200, 50, 0), (300, 150, 45)]        # mm, deg: the notes' task x 100
+    for x, y, angle in aimed:
+        X, Y = to_screen(x, y)
+        page.mouse.move(X, Y)
+        page.mouse.down()
+        for k in range(1, 7):                  # the drag gives the angle
+            page.mouse.move(X + 10 * k * math.cos(math.radians(angle)),
+                            Y - 10 * k * math.sin(math.radians(angle)))
+        page.mouse.up()
+    page.wait_for_selector("#canvas g.pose[data-pose='3']", state="attached")
+    page.shot("poses_placed")
+    assert page.locator("#canvas g.pose").count() == 3
+    poses = np.array([[float(v) for v in line.split()]
+                      for line in page.input_value("#synth-poses").strip().splitlines()])
+    assert poses.shape == (3, 3)
+    # where the mouse went, to a pixel; the angles to the drag's pixel rounding
+    pixel = 1.0 / ((point_on_screen(page, "O4")[0] - point_on_screen(page, "O2")[0]) / 300.0)
+    np.testing.assert_allclose(poses[:, :2], np.array(aimed)[:, :2], atol=1.5 * pixel)
+    np.testing.assert_allclose(poses[:, 2], np.array(aimed)[:, 2], atol=2.0)
+    # editable in the form afterwards: the arrow follows the typed angle
+    lines = page.input_value("#synth-poses").strip().splitlines()
+    x3, y3, _ = lines[2].split()
+    lines[2] = f"{x3} {y3} 45"
+    page.fill("#synth-poses", "\n".join(lines))
+    poses[2, 2] = 45.0
+    page.fill("[data-field='pivots.A0']", "500, 0")
+    page.fill("[data-field='pivots.B0']", "0, 0")
+    page.click("#synth-solve")
+    page.wait_for_selector("#synth-results tr[data-solution='1']", timeout=60_000)
+    page.click("#synth-results tr[data-solution='1'] button.open-solution")
+    page.wait_for_function("() => (window.kinelab.source || '').includes('solution_1')")
+    page.wait_for_function("() => window.kinelab.config !== null")
+    page.shot("poses_inserted")
+    # the model the page holds, moved by kinelab through the three poses (SI once read)
+    m = ModelFile.from_dict(state(page, "window.kinelab.model")).mechanism
+    points, angles = poses[:, :2] / 1000.0, np.radians(poses[:, 2])
+    sol = kl.synthesis.three_positions(points, angles, (0.5, 0.0), (0.0, 0.0))
+    s = kl.analyze(m, q=sol.q)
+    np.testing.assert_allclose(s.position("P"), points, rtol=0, atol=1e-9)
+    turned = np.unwrap(s.angle("coupler")) - np.unwrap(angles)
+    np.testing.assert_allclose(turned - turned[0], 0.0, atol=1e-9)
+
+
+def type_in_table(pg, selector, value):
+    field = pg.locator(f"#tab-table {selector} input")
+    field.fill(str(value))
+    field.press("Enter")
+
+
+def test_a_slider_crank_drawn_from_scratch_is_kinelabs_slider_crank(page):
+    """Points, links (R joints where they meet), a slider on a guide (P joint), the ground and
+    the input, all drawn; the exact coordinates and lengths typed in the table.  The sweep the
+    page shows is that of ``kl.mechanisms.slider_crank`` with the same lengths."""
+    page.wait_for_function("() => window.kinelab.config !== null")
+    to_screen = model_to_screen(page)
+    page.click("#new")
+    page.wait_for_function("() => window.kinelab.model.name === 'sketch'")
+    crank, rod = 100.0, 300.0
+    O2, A, B = (0.0, 0.0), (0.0, crank), (math.sqrt(rod**2 - crank**2), 0.0)
+    page.check("input[name=tool][value=link]")
+    for k, xy in enumerate((O2, A), 1):
+        page.mouse.click(*to_screen(*xy))
+        page.wait_for_selector(f"#canvas circle[data-point=P{k}]", state="attached")
+    page.mouse.click(*point_on_screen(page, "P2"))
+    page.mouse.click(*to_screen(*B))
+    page.wait_for_function("() => window.kinelab.model.links.length === 3")
+    page.check("input[name=tool][value=slider]")
+    X, Y = point_on_screen(page, "P3")
+    page.mouse.move(X, Y)
+    page.mouse.down()
+    for k in range(1, 6):
+        page.mouse.move(X + 12 * k, Y)
+    page.mouse.up()
+    page.wait_for_function("() => window.kinelab.model.joints.some((j) => j.type === 'P')")
+    page.check("input[name=tool][value=ground]")
+    page.mouse.click(*point_on_screen(page, "P1"))
+    page.check("input[name=tool][value=input]")
+    page.mouse.click(*point_on_screen(page, "P1"))
+    page.wait_for_function("() => window.kinelab.study !== null && !window.kinelab.draft")
+    page.shot("slider_crank_drawn")
+    model = state(page, "window.kinelab.model")
+    assert [j["type"] for j in model["joints"]].count("P") == 1
+    assert [j["type"] for j in model["joints"]].count("R") == 3
+    slide = next(j for j in model["joints"] if j["type"] == "P")
+    assert slide["links"][0] == "ground" and slide["point"] == "P3"
+    assert slide["axis"] == [1, 0]                       # a horizontal drag
+    assert page.locator("#canvas rect.joint.P").count() == 1
+    # exact values typed in the table: coordinates first, then the lengths
+    page.click("#tabs button[data-tab=table]")
+    for point, axis, v in (("P1", "x", O2[0]), ("P1", "y", O2[1]), ("P3", "y", B[1])):
+        type_in_table(page, f"tr[data-point={point}] td[data-field={axis}]", v)
+        page.wait_for_function(f"() => window.kinelab.model.points.{point}[{'xy'.index(axis)}] === {v}")
+    for link, length in (("link1", crank), ("link2", rod)):
+        type_in_table(page, f"tr[data-link={link}] td[data-field=length]", length)
+        page.wait_for_function(f"() => window.kinelab.model.links.find((l) => l.name === '{link}').length === {length}")
+    page.wait_for_function("() => !window.kinelab.draft && window.kinelab.study.model.links[1].length === 100")
+    page.shot("slider_crank_typed")
+    s = state(page, "window.kinelab.study")
+    q = np.radians(s["columns"][s["inputs"][0]])
+    sc = kl.analyze(kl.mechanisms.slider_crank(crank / 1000, rod / 1000), q=q)
+    for mine, theirs in (("P2", "A"), ("P3", "B")):
+        drawn = np.array([s["columns"][f"{mine}.x[mm]"], s["columns"][f"{mine}.y[mm]"]]).T
+        np.testing.assert_allclose(drawn, 1000 * sc.position(theirs), rtol=0, atol=1e-9)
+    np.testing.assert_allclose(np.radians(s["columns"]["link2.angle[deg]"]), sc.angle("rod"), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(s["columns"]["link2.omega[deg/s]"], np.degrees(sc.omega("rod")), rtol=1e-9, atol=1e-9)
+
+
+def test_a_guide_turned_in_the_table_carries_the_slider_along_it(page):
+    page.select_option("#open", "offset_slider_crank")
+    page.wait_for_function("() => (window.kinelab.source || '').includes('offset_slider_crank')")
+    page.click("#tabs button[data-tab=table]")
+    type_in_table(page, "tr[data-joint=slide] td[data-field=axis]", 10)
+    page.wait_for_function("""() => { const a = window.kinelab.model.joints.find((j) => j.name === 'slide').axis;
+                                      return Math.abs(Math.atan2(a[1], a[0]) * 180 / Math.PI - 10) < 1e-9; }""")
+    page.shot("guide_turned")
+    s = state(page, "window.kinelab.study")
+    B0 = np.array(s["model"]["points"]["B"])
+    B = np.array([s["columns"]["B.x[mm]"], s["columns"]["B.y[mm]"]]).T
+    A = np.array([s["columns"]["A.x[mm]"], s["columns"]["A.y[mm]"]]).T
+    along = np.array([np.cos(np.radians(10)), np.sin(np.radians(10))])
+    across = along[0] * (B - B0)[:, 1] - along[1] * (B - B0)[:, 0]
+    np.testing.assert_allclose(across, 0.0, atol=1e-9)                        # on the guide
+    assert np.ptp((B - B0) @ along) > 90                                     # and sliding
+    np.testing.assert_allclose(np.hypot(*(B - A).T), 200.0, rtol=1e-12)

@@ -38,8 +38,10 @@ export class Canvas {
     const xy = this.toModel([e.clientX - r.left, e.clientY - r.top]);
     if (kind === "down") {
       const name = e.target.dataset ? e.target.dataset.point : undefined;
-      if (name) { this.dragging = name; this.svg.setPointerCapture(e.pointerId); }
-      this.handlers.down(name, xy, e);
+      this.dragging = name || null;
+      // a handler answering "capture" takes the drag itself (a pose being placed)
+      if (this.handlers.down(name, xy, e) === "capture") this.dragging = {from: xy};
+      if (this.dragging) this.svg.setPointerCapture(e.pointerId);
     } else if (kind === "move" && this.dragging) {
       this.handlers.move(this.dragging, xy);
     } else if (kind === "up") {
@@ -49,7 +51,8 @@ export class Canvas {
     }
   }
 
-  // scene: {points: {name: [x, y]}, drawing, traces: {name: [[x, y], ...]}, marks, centres}
+  // scene: {points: {name: [x, y]}, drawing, traces: {name: [[x, y], ...]}, marks, centres,
+  //         poses: [{xy, angle, label}] (angle in rad; arrows, numbered unless labelled)}
   draw(scene) {
     const svg = this.svg;
     svg.replaceChildren();
@@ -76,7 +79,9 @@ export class Canvas {
       if (!P[j.point]) continue;
       const [X, Y] = S(P[j.point]);
       if (j.type === "P") {
-        const a = j.axis || [1, 0], ang = Math.atan2(-a[1], a[0]) * 180 / Math.PI;
+        const a = Array.isArray(j.axis) ? j.axis : [1, 0], ang = Math.atan2(-a[1], a[0]) * 180 / Math.PI;
+        el("line", {class: "guide", x1: X - 60, y1: Y, x2: X + 60, y2: Y, "data-guide": j.name,
+                    transform: `rotate(${ang} ${X} ${Y})`}, svg);
         el("rect", {class: "joint P", x: X - 10, y: Y - 6, width: 20, height: 12,
                     transform: `rotate(${ang} ${X} ${Y})`}, svg);
       }
@@ -94,6 +99,17 @@ export class Canvas {
                     cx: X, cy: Y, r: jointed ? 6 : 4.5, "data-point": name}, svg);
       el("text", {class: "label", x: X + 8, y: Y - 8}, svg).textContent = name;
     }
+    scene.poses.forEach((pose, i) => {
+      const [X, Y] = S(pose.xy), L = 42;
+      const [U, V] = [X + L * Math.cos(pose.angle), Y - L * Math.sin(pose.angle)];
+      const g = el("g", {class: "pose", "data-pose": i + 1}, svg);
+      el("line", {x1: X, y1: Y, x2: U, y2: V}, g);
+      const head = [[-10, 5], [-10, -5]].map(([a, b]) =>
+        [U + a * Math.cos(pose.angle) + b * Math.sin(pose.angle), V - a * Math.sin(pose.angle) + b * Math.cos(pose.angle)]);
+      el("polygon", {points: [[U, V], ...head].join(" ")}, g);
+      el("circle", {cx: X, cy: Y, r: 3.5}, g);
+      el("text", {class: "pose-label", x: X - 14, y: Y + 14}, g).textContent = pose.label ?? String(i + 1);
+    });
     for (const c of scene.centres || []) {
       if (c.at_infinity || !c.position) continue;
       const [X, Y] = S(c.position);

@@ -49,6 +49,7 @@ export function apply(tool, model, name, xy) {
     linkStart = null;
     return m;
   }
+  if (tool === "slider") return null;          // a drag: see slider()
   if (!name) return null;
   if (tool === "ground") {
     let ground = m.links.find((l) => l.ground);
@@ -66,4 +67,28 @@ export function apply(tool, model, name, xy) {
     return m;
   }
   return null;
+}
+
+// A slider block on a guide: a press at point `name` (or at `at`, a new point there) and a
+// drag towards `to` for the slide axis.  The block is a new link carrying the point, pinned
+// by an R joint to the link already there, and joined to the ground (the guide) by a P joint.
+export function slider(model, name, at, to) {
+  if (!model) return null;
+  const axis = [to[0] - at[0], to[1] - at[1]];
+  if (Math.hypot(...axis) === 0) return null;
+  const m = structuredClone(model);
+  delete m.catalogue;
+  m.joints = m.joints || [];
+  let p = name;
+  if (!p) { p = fresh("P", Object.keys(m.points)); m.points[p] = at.map(round); }
+  let ground = m.links.find((l) => l.ground);
+  if (!ground) { ground = {name: "ground", points: [], ground: true}; m.links.unshift(ground); }
+  if (ground.points.includes(p)) return null;
+  const block = fresh("slider", m.links.map((l) => l.name));
+  m.links.push({name: block, points: [p]});
+  pin(m, block, p);
+  const norm = Math.hypot(...axis);
+  m.joints.push({name: fresh("slide", m.joints.map((j) => j.name)), type: "P", links: [ground.name, block],
+                 point: p, axis: axis.map((v) => Math.round(1e6 * v / norm) / 1e6 + 0)});   // a pixel's worth
+  return m;
 }

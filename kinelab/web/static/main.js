@@ -7,7 +7,7 @@ import {movePoint} from "./geometry.js";
 import {renderTable} from "./table.js";
 import {showCentres, derive} from "./method.js";
 import * as draw from "./draw.js";
-import {synthesisPanel} from "./synth.js";
+import {synthesisPanel, posesOnDrawing} from "./synth.js";
 
 const $ = (id) => document.getElementById(id);
 const state = {model: null, source: null, study: null, index: 0, config: null,
@@ -25,9 +25,11 @@ const lu = () => state.study.units.length;
 const column = (name) => state.study.columns[name];
 const place = (p, i) => [column(`${p}.x[${lu()}]`)[i], column(`${p}.y[${lu()}]`)[i]];
 
-async function study(model, source) {
+// `columns` narrows the sweep's columns to those named (the points' and the inputs' always
+// come): a drag asks only for what it redraws, the rest follows when it ends.
+async function study(model, source, columns = undefined) {
   const t0 = performance.now();
-  const s = await post("/api/study", {model, source});
+  const s = await post("/api/study", {model, source, columns});
   state.lastStudyMs = performance.now() - t0;
   return s;
 }
@@ -86,7 +88,10 @@ async function flip(step) {
 
 // -- drawing -------------------------------------------------------------------------------
 function scene() {
-  if (!state.study) return {points: state.model.points, drawing: draw.drawingOf(state.model)};
+  const poses = document.querySelector("#tabs button[data-tab=synthesis]").classList.contains("active")
+    ? posesOnDrawing($("tab-synthesis"), state.model.units) : [];
+  if (state.pose) poses.push(state.pose);
+  if (!state.study) return {points: state.model.points, drawing: draw.drawingOf(state.model), poses};
   const s = state.study, d = s.drawing;
   const sketch = $("canvas").dataset.sketch === "1";
   const points = {};
@@ -100,7 +105,7 @@ function scene() {
     for (const c of s.change_points) marks.push({kind: "change", xy: place(p, c.index)});
   }
   const centres = $("show-centres").checked && state.config && !sketch ? state.config.centres : [];
-  return {points, drawing: d, traces, marks, centres};
+  return {points, drawing: d, traces, marks, centres, poses};
 }
 
 function redraw() {
@@ -188,10 +193,14 @@ async function dragTo(name, xy) {
       renderTable.values && renderTable.values(state);
     } else {
       const model = movePoint(state.model, name, xy);
-      const s = await study(model, state.source);
-      accept(s, state.source, false);
+      const s = await study(model, state.source, [$("plot-y").value, $("plot-x").value]);
+      state.lastDragStudyMs = state.lastStudyMs;
+      state.study = s; state.model = s.model; state.config = null; state.draft = false;
+      if (state.index >= s.samples) state.index = 0;
+      state.narrowed = true;          // every column again when the drag ends
       $("canvas").dataset.sketch = "1";
       redraw();
+      plotNow();
     }
     status("");
   } catch (err) {
@@ -208,7 +217,14 @@ let dragStart = null;
 
 const canvas = new Canvas($("canvas"), {
   down(name, xy) {
+    if (placing.active()) { state.pose = {xy, angle: 0}; redraw(); return "capture"; }
     const t = tool();
+    if (t === "slider") {          // the drag gives the guide's direction
+      state.sliderAt = name;
+      state.pose = {xy: name ? state.model.points[name] : xy, angle: 0, label: "guide"};
+      redraw();
+      return "capture";
+    }
     if ((t === "move" || t === "edit") && name && state.study) {
       if (t === "move" && state.study.drawing.ground_points.includes(name)) { canvas.dragging = null; return; }
       dragStart = {model: state.model, source: state.source};
@@ -219,14 +235,35 @@ const canvas = new Canvas($("canvas"), {
     const next = draw.apply(t, state.model, name, xy);
     if (next) setModel(next, state.source, {keepDraft: true, refit: !state.study});
   },
-  move(name, xy) { dragTo(name, xy); },
-  async up(name) {
+  move(name, xy) {
+    if (!name.from) { dragTo(name, xy); return; }
+    const [x0, y0] = state.pose.xy;
+    state.pose = {...state.pose, angle: Math.atan2(xy[1] - y0, xy[0] - x0)};
+    redraw();
+  },
+  async up(name, xy) {
+    if (name && name.from && tool() === "slider" && !placing.active()) {
+      const at = state.pose.xy;
+      state.pose = null;
+      const next = draw.slider(state.model, state.sliderAt, at, xy);
+      if (next) setModel(next, state.source, {keepDraft: true, refit: !state.study});
+      else redraw();
+      return;
+    }
+    if (name && name.from) { state.pose = null; placing.add(name.from, xy); return; }
     if (!name || !dragStart) return;
     while (state.busy || state.pending) await new Promise((r) => setTimeout(r, 10));
     if (tool() === "edit" && state.model !== dragStart.model) {
       state.history.push(dragStart); state.future = [];
     }
     dragStart = null;
+    if (state.narrowed) {
+      state.narrowed = false;
+      try { accept(await study(state.model, state.source), state.source, false); }
+      catch (err) { status(err.message, true); }
+      $("canvas").dataset.sketch = "1";
+      redraw();
+    }
     configurationSoon();
   },
 });
@@ -362,6 +399,7 @@ for (const b of document.querySelectorAll("#tabs button")) b.onclick = () => {
   for (const o of document.querySelectorAll("#tabs button")) o.classList.toggle("active", o === b);
   for (const t of document.querySelectorAll(".tab")) t.classList.toggle("active", t.id === "tab-" + b.dataset.tab);
   if (b.dataset.tab === "plot") plotNow();
+  if (state.model) redraw();                // the poses show with the synthesis tab
 };
 document.addEventListener("keydown", (e) => {
   if (e.target.tagName === "INPUT" && e.target.type !== "range" && e.target.type !== "radio") return;
@@ -370,8 +408,9 @@ document.addEventListener("keydown", (e) => {
   else if (e.key === " " && e.target.tagName !== "BUTTON") { e.preventDefault(); state.playing ? pause() : play(); }
 });
 window.addEventListener("resize", () => { if (state.model) { fitView(); redraw(); plotNow(); } });
-synthesisPanel($("tab-synthesis"), {
-  open: (model, source) => setModel(model, source), status});
+const placing = synthesisPanel($("tab-synthesis"), {
+  open: (model, source) => setModel(model, source), status,
+  units: () => state.model && state.model.units, redraw: () => state.model && redraw()});
 state.setIndex = setIndex;
 state.play = play;
 state.pause = pause;

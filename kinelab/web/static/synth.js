@@ -22,18 +22,18 @@ export const KINDS = {
       ["quick_return.stroke", "stroke", "length", "100"],
       ["quick_return.distance", "distance O2O4 (slotted lever, whitworth)", "length", ""],
       ["quick_return.rod", "rod (optional)", "length", ""]]},
-  "three": {label: "motion: three positions", task: {task: "motion"}, units: ["m", "deg"],
+  "three": {label: "motion: three positions", task: {task: "motion"}, units: ["m", "deg"], count: 3,
     poses: "1 1 0\n2 0.5 0\n3 1.5 45", fields: [
       ["pivots.A0", "A0, fixed pivot (or A1)", "point", "5, 0"],
       ["pivots.A1", "A1, moving pivot in position 1", "point", ""],
       ["pivots.B0", "B0, fixed pivot (or B1)", "point", "0, 0"],
       ["pivots.B1", "B1, moving pivot in position 1", "point", ""]]},
-  "four": {label: "motion: four positions", task: {task: "motion"}, units: ["cm", "deg"],
+  "four": {label: "motion: four positions", task: {task: "motion"}, units: ["cm", "deg"], count: 4,
     poses: "0 0 0\n5 8 10\n10 15 20\n18 20 30", fields: [
       ["pivots.a0x", "a0x, centre point's x", "length", "-20.195"],
       ["pivots.b0x", "b0x, centre point's x", "length", "-29.167"]]},
   "five": {label: "motion: five positions (Burmester's points)", task: {task: "motion"},
-    units: ["m", "deg"], poses: "1.017 1.8027 55.771\n1.3272 2.356 38.173\n0.9699 2.6022 30.099\n" +
+    units: ["m", "deg"], count: 5, poses: "1.017 1.8027 55.771\n1.3272 2.356 38.173\n0.9699 2.6022 30.099\n" +
       "0.3165 2.4733 29.379\n-0.2622 2.0126 34.235", fields: []},
   "function": {label: "function generation", task: {task: "function"}, units: ["m", "deg"], fields: [
     ["function.expression", "y = f(x)", "text", "log10(x)"],
@@ -59,6 +59,55 @@ const make = (tag, attrs = {}, text = "") => {
 const value = (text) => { const t = text.trim(); return t !== "" && Number.isFinite(Number(t)) ? Number(t) : t; };
 const numbers = (text) => text.split(/[\s,;]+/).filter((t) => t !== "").map(value);
 const rows = (text) => text.split("\n").map((l) => l.trim()).filter((l) => l && !l.startsWith("#")).map(numbers);
+
+// Poses placed on the drawing: each a click for its point and a drag for its angle, in the
+// drawing's units; written into the form, where they stay editable, and drawn as arrows.
+const METRES = {m: 1, cm: 0.01, mm: 0.001, in: 0.0254};
+const placed = {
+  root: null, kind: null, left: 0, units: () => null, redraw: () => {},
+  active() { return this.left > 0; },
+  start(root, kind) {
+    const u = this.units();
+    if (!u) return;
+    this.root = root; this.kind = kind; this.left = kind.count;
+    for (const [id, v] of [["#synth-length", u.length], ["#synth-angle", u.angle]]) {
+      root.querySelector(id).value = v;
+      root.querySelector(id).dispatchEvent(new Event("change"));
+    }
+    root.querySelector("#synth-poses").value = "";
+    this.hint();
+    this.redraw();
+  },
+  hint() {
+    const h = this.root && this.root.querySelector("#synth-place-hint");
+    if (h) h.textContent = this.left ? `pose ${this.kind.count - this.left + 1} of ${this.kind.count}: ` +
+      "click its point on the drawing, drag towards its angle" : "";
+  },
+  // A pose from a press at `at` and a release at `to` (drawing units): its angle is the drag's.
+  add(at, to) {
+    if (!this.left) return;
+    const angle = Math.hypot(to[0] - at[0], to[1] - at[1]) > 0 ? Math.atan2(to[1] - at[1], to[0] - at[0]) : 0;
+    const a = this.root.querySelector("#synth-angle").value === "deg" ? angle * 180 / Math.PI : angle;
+    const area = this.root.querySelector("#synth-poses");
+    const line = [at[0], at[1], a].map((v) => Number(v.toPrecision(6))).join(" ");
+    area.value = (area.value.trim() ? area.value.trim() + "\n" : "") + line;
+    this.left -= 1;
+    this.hint();
+    this.redraw();
+  },
+  stop() { this.left = 0; this.hint(); },
+};
+
+// The poses of the form, in the drawing's units ({xy, angle in rad}), to draw as arrows.
+export function posesOnDrawing(root, units) {
+  const kind = KINDS[root.querySelector("#synth-kind").value];
+  const area = root.querySelector("#synth-poses");
+  if (!kind || !kind.poses || !area || !units) return [];
+  const scale = METRES[root.querySelector("#synth-length").value] / METRES[units.length];
+  const deg = root.querySelector("#synth-angle").value === "deg";
+  return rows(area.value).filter((r) => r.length === 3 && r.every(Number.isFinite))
+    .map(([x, y, a]) => ({xy: [x * scale, y * scale], angle: deg ? a * Math.PI / 180 : a}));
+}
 
 function put(task, key, v) {
   const [section, name] = key.split(".");
@@ -98,8 +147,17 @@ function form(root, kindName, units) {
     const label = make("label", {}, kind.poses ? "poses: x y angle, one per line" : "points: x y, one per line");
     const area = make("textarea", {id: "synth-poses", rows: 6, spellcheck: "false"});
     area.value = kind.poses || kind.points;
+    area.oninput = () => placed.redraw();
     label.append(make("br"), area);
     box.append(label);
+  }
+  if (kind.poses) {
+    const row = make("div", {class: "row"});
+    const place = make("button", {id: "synth-place", title: "Click on the drawing for each pose's point, drag for its angle"},
+                       `place ${kind.count} poses on the drawing`);
+    place.onclick = () => placed.start(root, kind);
+    row.append(place, make("span", {id: "synth-place-hint", class: "hint"}));
+    box.append(row);
   }
   const t = make("table");
   for (const [key, label, type, example] of kind.fields) {
@@ -122,8 +180,8 @@ function form(root, kindName, units) {
   }
   box.append(t);
   const refresh = () => { for (const u of box.querySelectorAll("td.unit")) u.textContent = unit(u.dataset.unit)(); };
-  root.querySelector("#synth-length").onchange = refresh;
-  root.querySelector("#synth-angle").onchange = refresh;
+  root.querySelector("#synth-length").onchange = () => { refresh(); placed.redraw(); };
+  root.querySelector("#synth-angle").onchange = () => { refresh(); placed.redraw(); };
 }
 
 const f = (v) => Number(Number(v).toPrecision(5)).toString();
@@ -163,7 +221,11 @@ function results(root, answer, open) {
 }
 
 // The panel in `root`; `open(model, source)` makes a linkage the model; `status` reports.
-export function synthesisPanel(root, {open, status}) {
+// `units()` gives the drawing's units; `redraw()` redraws it with the poses.  The answer is
+// the placing of poses: {active(), add(at, to)} for the drawing's pointer.
+export function synthesisPanel(root, {open, status, units, redraw}) {
+  placed.units = units;
+  placed.redraw = redraw;
   root.innerHTML = `<div class="row"><label>task <select id="synth-kind"></select></label>
     <label>length <select id="synth-length"></select></label>
     <label>angle <select id="synth-angle"></select></label></div>
@@ -176,7 +238,7 @@ export function synthesisPanel(root, {open, status}) {
   for (const [k, v] of Object.entries(KINDS)) kind.append(new Option(v.label, k));
   for (const u of LENGTHS) root.querySelector("#synth-length").append(new Option(u, u));
   for (const u of ANGLES) root.querySelector("#synth-angle").append(new Option(u, u));
-  kind.onchange = () => { form(root, kind.value); root.querySelector("#synth-results").replaceChildren(); };
+  kind.onchange = () => { placed.stop(); form(root, kind.value); root.querySelector("#synth-results").replaceChildren(); redraw(); };
   form(root, kind.value);
   root.querySelector("#synth-solve").onclick = async () => {
     const box = root.querySelector("#synth-results");
@@ -190,4 +252,5 @@ export function synthesisPanel(root, {open, status}) {
       status(err.message, true);
     }
   };
+  return placed;
 }

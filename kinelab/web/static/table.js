@@ -66,7 +66,8 @@ export function renderTable(root, state, {edit, flip}) {
   root.append(lt);
 
   h("joints");
-  const jt = table(["joint", "type", "links", "point"]);
+  const jt = table(["joint", "type", "links (P: guide, slider)", "point", `P axis (${u.angle})`]);
+  const toAngle = u.angle === "deg" ? 180 / Math.PI : 1;
   for (const [k, j] of (m.joints || []).entries()) {
     const tr = document.createElement("tr");
     cell(tr, j.name);
@@ -81,8 +82,19 @@ export function renderTable(root, state, {edit, flip}) {
       edit(next);
     };
     cell(tr, sel);
-    cell(tr, j.links.join(", "));
+    cell(tr, input(j.links.join(", "), guarded((v) => {
+      const next = structuredClone(m); delete next.catalogue;
+      next.joints[k].links = v.split(",").map((t) => t.trim()).filter(Boolean);
+      edit(next);
+    }))).dataset.field = "links";
     cell(tr, j.point);
+    const axis = Array.isArray(j.axis) ? Math.atan2(j.axis[1], j.axis[0]) * toAngle : j.axis;
+    cell(tr, j.type === "P" ? input(axis === undefined ? "" : Number(axis.toPrecision(12)), guarded((v) => {
+      const next = structuredClone(m); delete next.catalogue;
+      next.joints[k].axis = num(v);          // an angle in the model's unit, as a file has it
+      edit(next);
+    })) : "").dataset.field = "axis";
+    tr.dataset.joint = j.name;
     jt.append(tr);
   }
   root.append(jt);
