@@ -215,7 +215,9 @@ def test_answers_in_the_tasks_units_or_si(tmp_path):
      "search.samples: expected a whole number from 2 to 1,000,000, got 'x'"),
     ('task = "path"\n[search]\nrefine = 1\n', "search.refine: expected true or false, got 1"),
     ('task = "path"\n[search]\ntolerance = "1e-3"\n',
-     "search.tolerance: expected a finite number, got '1e-3'"),
+     "search.tolerance: expected a positive number, got '1e-3'"),
+    ('task = "path"\n[search]\ntolerance = 0\n',
+     "search.tolerance: expected a positive number, got 0"),
     ('task = "function"\n[function]\nexpression = "x"\nx_range = [1, 2]\ninput_range = [1, 2]\n'
      'output_range = [0, 1]\npoints = 1000000000000\n',
      "function.points: expected a whole number from 2 to 100, got 1000000000000"),
