@@ -27,7 +27,7 @@ MECHANISMS = ("offset slider-crank", "slotted lever", "whitworth")
 # memory than a machine has; each is far above what a synthesis needs.
 MAX_SAMPLES = 1_000_000
 MAX_PRECISION_POINTS = 100
-_SEARCH_BOUNDS = {"runs": (1, 1000), "maxiter": (1, 1_000_000), "popsize": (1, 10_000),
+_SEARCH_BOUNDS = {"runs": (1, 1000), "maxiter": (1, 1_000_000), "popsize": (5, 10_000),
                   "samples": (2, MAX_SAMPLES), "seed": (0, 2 ** 32 - 1)}
 _SECTIONS = {"task", "name", "units", "positions", "pivots", "function", "search", "crank_rocker",
              "quick_return"}

@@ -218,6 +218,8 @@ def test_answers_in_the_tasks_units_or_si(tmp_path):
      "search.tolerance: expected a positive number, got '1e-3'"),
     ('task = "path"\n[search]\ntolerance = 0\n',
      "search.tolerance: expected a positive number, got 0"),
+    ('task = "path"\n[search]\npopsize = 1\n',
+     "search.popsize: expected a whole number from 5 to 10,000, got 1"),
     ('task = "function"\n[function]\nexpression = "x"\nx_range = [1, 2]\ninput_range = [1, 2]\n'
      'output_range = [0, 1]\npoints = 1000000000000\n',
      "function.points: expected a whole number from 2 to 100, got 1000000000000"),
