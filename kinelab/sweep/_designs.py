@@ -11,7 +11,9 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from kinelab import _memory as memory
 from kinelab.errors import ModelError, describe, expected_one_of
+from kinelab.model import MAX_LENGTH, MIN_LENGTH, length_problem
 
 __all__ = ["grid", "random", "sobol", "DesignTable"]
 
@@ -37,6 +39,13 @@ def _count(n, what: str) -> int:
     return int(n)
 
 
+def _fits(rows: int, columns: int, what: str) -> None:
+    """Refuse a generated table beyond the memory budget (its draws, the scaled table and
+    pandas' copy of it)."""
+    memory.require(3 * 8 * rows * columns, f"{what} of {rows:,} designs",
+                   "generate fewer designs, or study them in several tables")
+
+
 def grid(**axes) -> "pandas.DataFrame":
     """Every combination of the values of each parameter (the first varies slowest).
 
@@ -55,12 +64,15 @@ def grid(**axes) -> "pandas.DataFrame":
     for name, axis in axes.items():
         if isinstance(axis, tuple) and len(axis) == 3:
             lo, hi = _ranges({name: axis[:2]}, "grid")[name]
-            values[name] = np.linspace(lo, hi, _count(axis[2], f"{name}: count"))
+            count = _count(axis[2], f"{name}: count")
+            _fits(count, 1, f"the axis {name!r} of a grid")
+            values[name] = np.linspace(lo, hi, count)
         else:
             v = np.asarray(axis, float).ravel()
             if v.size == 0:
                 raise ModelError(f"{name}: expected values or (low, high, count), got none")
             values[name] = v
+    _fits(math.prod(len(v) for v in values.values()), len(values), "a grid")
     mesh = np.meshgrid(*values.values(), indexing="ij")
     return pandas.DataFrame({name: m.ravel() for name, m in zip(values, mesh)})
 
@@ -83,7 +95,9 @@ def random(n: int, *, seed: int | None = 0, **ranges) -> "pandas.DataFrame":
     ((5, 2), True)
     """
     ranges = _ranges(ranges, "random")
-    unit = np.random.default_rng(seed).random((_count(n, "n"), len(ranges)))
+    n = _count(n, "n")
+    _fits(n, len(ranges), "a random table")
+    unit = np.random.default_rng(seed).random((n, len(ranges)))
     return _scaled(unit, ranges)
 
 
@@ -101,6 +115,7 @@ def sobol(n: int, *, seed: int | None = 0, **ranges) -> "pandas.DataFrame":
 
     ranges = _ranges(ranges, "sobol")
     n = _count(n, "n")
+    _fits(n, len(ranges), "a Sobol table")
     unit = qmc.Sobol(d=len(ranges), scramble=True, seed=seed).random(n)
     return _scaled(unit, ranges)
 
@@ -151,13 +166,13 @@ class DesignTable:
                 raise ModelError(f"designs: column {name!r}: expected numbers, got "
                                  f"{describe(v[:3].tolist())}") from None
             self.columns[name] = f
-            bad = ~np.isfinite(f)
-            if name in fam.lengths:
-                bad |= ~(f > 0)
+            is_length = name in fam.lengths
+            bad = ~((f >= MIN_LENGTH) & (f <= MAX_LENGTH) if is_length else np.abs(f) <= MAX_LENGTH)
             for i in np.flatnonzero(bad):
                 if not problems[i]:
-                    what = "a positive length (m)" if name in fam.lengths else "a finite number"
-                    problems[i] = f"{name}: expected {what}, got {f[i]:g}"
+                    why = (length_problem(f[i], positive=is_length)
+                           or f"expected {'a length' if is_length else 'a finite number'}")
+                    problems[i] = f"{name}: {why}, got {f[i]:g}"
         self.problems = np.array(problems, object)    # an array: Dask ships it as one block
         self.index = index if index is not None else pandas.RangeIndex(self.size)
 

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from kinelab import _memory as memory
 from kinelab.errors import ModelError, check_choice, describe
 from kinelab.solvers import wrap_angle
 from kinelab.sweep._designs import DesignTable
@@ -120,6 +121,9 @@ def tolerance(family: str | Family, nominal: Mapping[str, float],
                              f"its parameters are {', '.join(fam.parameters)}")
         if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol >= 0):
             raise ModelError(f"tolerances: {name}: expected a tolerance >= 0 (m), got {describe(tol)}")
+    memory.require(8 * n * (samples + 3 * len(fam.parameters)),
+                   f"a tolerance study of {n:,} designs at {samples:,} samples",
+                   "draw fewer designs or take fewer samples")
     rng = np.random.default_rng(seed)
     base = {**{k: v for k, v in fam.defaults.items() if not (isinstance(v, float) and math.isnan(v))},
             **nominal}

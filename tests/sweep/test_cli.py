@@ -47,7 +47,7 @@ def test_bad_rows_are_warnings(tmp_path):
                   "rocker": [2.5, 2.5]}).to_csv(designs, index=False)
     r = CliRunner().invoke(main, ["sweep", "fourbar", str(designs), "-o", str(tmp_path / "s.csv")])
     assert r.exit_code == 0
-    assert "kinelab: warning: design 1: crank: expected a positive length (m), got -1" in r.output
+    assert "kinelab: warning: design 1: crank: expected a length from 1e-09 m to 1e+09 m, got -1" in r.output
 
 
 @pytest.mark.parametrize("args, message", [

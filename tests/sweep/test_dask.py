@@ -52,7 +52,7 @@ def test_dask_gives_the_local_table():
             by_address = kl.sweep.run("fourbar", t.head(50), metrics=("grashof",),
                                       client=cluster.scheduler_address)
     pd.testing.assert_frame_equal(local, remote)                      # identical, not close
-    assert remote.attrs["problems"] == local.attrs["problems"] == {5: "crank: expected a positive length (m), got -2"}
+    assert remote.attrs["problems"] == local.attrs["problems"] == {5: "crank: expected a length from 1e-09 m to 1e+09 m, got -2"}
     assert sorted(seen) == seen and seen[-1] == 3000 and len(seen) == 8          # chunks of 400
     assert by_address["grashof"].tolist() == local["grashof"].head(50).tolist()
 

@@ -29,8 +29,8 @@ def test_bad_rows_are_reported_not_fatal():
     t.loc[4, "rocker"] = -1.0
     df = kl.sweep.run("fourbar", t, metrics=METRICS)
     assert set(df.attrs["problems"]) == {1, 4}
-    assert df.attrs["problems"][4] == "rocker: expected a positive length (m), got -1"
-    assert "crank: expected a positive length (m), got nan" == df.attrs["problems"][1]
+    assert df.attrs["problems"][4] == "rocker: expected a length from 1e-09 m to 1e+09 m, got -1"
+    assert "crank: expected a length from 1e-09 m to 1e+09 m, got nan" == df.attrs["problems"][1]
     assert not df.loc[[1, 4], "assembles"].any() and df.loc[[1, 4], "grashof"].isna().all()
     assert df.loc[[1, 4], ["transmission_min", "time_ratio"]].isna().all().all()
     good = kl.sweep.run("fourbar", t.drop(index=[1, 4]), metrics=METRICS)
@@ -88,7 +88,7 @@ def test_parquet_round_trip(tmp_path):
     df = kl.sweep.run("fourbar", t, path=tmp_path / "study.parquet")
     back = pd.read_parquet(tmp_path / "study.parquet")
     pd.testing.assert_frame_equal(back, df, check_dtype=False)    # text may come back as str dtype
-    assert back.attrs["problems"] == {"2": "ground: expected a positive length (m), got nan"}
+    assert back.attrs["problems"] == {"2": "ground: expected a length from 1e-09 m to 1e+09 m, got nan"}
 
 
 @pytest.mark.parametrize("call, message", [
