@@ -107,10 +107,10 @@ def _prepare_all() -> None:
     global _helper
     try:
         env = {**os.environ, "KINELAB_KERNEL": "compiled"}
-        helper = _helper = subprocess.Popen([sys.executable, "-c", "from kinelab._compiled import _helper_main; _helper_main()"],
-                                  stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                                  stderr=subprocess.DEVNULL, env=env, text=True,
-                                  start_new_session=True)
+        command = [sys.executable, "-c", "from kinelab._compiled import _helper_main; _helper_main()"]
+        helper = _helper = subprocess.Popen(command, stdin=subprocess.DEVNULL,
+                                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                                            env=env, text=True, start_new_session=True)
     except OSError:
         helper = None
     if helper is not None:
