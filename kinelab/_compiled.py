@@ -34,7 +34,7 @@ import warnings
 
 from kinelab.errors import ModelError
 
-__all__ = ["ENTRIES", "mode", "set_mode", "ready", "wait"]
+__all__ = ["ENTRIES", "mode", "set_mode", "ready", "wait", "wait_for"]
 
 # each entry point, and the module whose warm_up(entry) runs it once with the argument types
 # of every call (this module sits below the rooms and names them only here)
@@ -81,6 +81,19 @@ def ready(entry: str) -> bool:
     if chosen == "auto" and entry not in _failed:
         _prepare()
     return False
+
+
+def wait_for(entry: str) -> bool:
+    """Wait until this entry point is ready, for work that would take longer without it than
+    compiling it takes (in "auto" mode; "compiled" is always ready, "numpy" never); whether
+    it is ready."""
+    if ready(entry) or mode() != "auto":
+        return _ready[entry].is_set() or mode() == "compiled"
+    thread = _preparing
+    while not _ready[entry].wait(0.2) and entry not in _failed:
+        if thread is None or not thread.is_alive():
+            break
+    return _ready[entry].is_set()
 
 
 def wait(timeout: float | None = None) -> bool:

@@ -90,3 +90,50 @@ def test_the_helper_makes_every_entry_point_ready_with_the_same_numbers(tmp_path
     assert out["all_ready"] and out["same_status"]
     assert out["largest_difference"] < 1e-10
     assert out["swing_difference"] < 1e-8       # two integrations to rtol 1e-10
+
+
+def test_wait_for_follows_the_mode():
+    """A large batch waits for the compiled kernel in "auto" mode only: "compiled" has it
+    at once, "numpy" never."""
+    from kinelab import _compiled
+
+    saved = _compiled.mode()
+    try:
+        _compiled.set_mode("numpy")
+        assert not _compiled.wait_for("dynamics")
+        _compiled.set_mode("compiled")
+        assert _compiled.wait_for("dynamics")
+    finally:
+        _compiled.set_mode(saved)
+
+
+def test_a_large_batch_runs_compiled_in_a_fresh_process(tmp_path):
+    """In "auto" mode, a batch of WAIT_FOR_COMPILED_FROM runs waits for the compiled
+    dynamics (loaded from the suite's cache, or compiled by the helper) instead of taking
+    each run through solve_ivp."""
+    script = tmp_path / "batch.py"
+    script.write_text(textwrap.dedent("""
+        import json
+        import numpy as np
+        from kinelab import _compiled
+        from kinelab.dynamics import Loads, simulate
+        from kinelab.dynamics._forward import WAIT_FOR_COMPILED_FROM
+        from kinelab.model import Input, Joint, Link, Mechanism, Point
+        pendulum = Mechanism(
+            "pendulum", (Point("O", 0.0, 0.0), Point("G", 1.0, 0.0)),
+            (Link("ground", ("O",), ground=True),
+             Link("arm", ("O", "G"), mass=1.0, center_of_mass="G", inertia=1e-3)),
+            (Joint("pivot", "R", ("ground", "arm"), point="O"),), (Input(joint="pivot"),))
+        q0 = np.linspace(-1.0, 1.0, WAIT_FOR_COMPILED_FROM)[:, None]
+        runs = simulate(pendulum, (0.0, 0.5), q0, 0.0, loads=Loads(gravity=(0.0, -9.81)),
+                        t_eval=[0.0, 0.5])
+        print(json.dumps({"compiled": _compiled._ready["dynamics"].is_set(),
+                          "shape": list(runs.q.shape)}))
+    """))
+    env = {**os.environ, "KINELAB_KERNEL": "auto"}
+    done = subprocess.run([sys.executable, str(script)], env=env, capture_output=True, text=True,
+                          timeout=900)
+    assert done.returncode == 0, done.stderr
+    out = json.loads(done.stdout.strip().splitlines()[-1])
+    from kinelab.dynamics._forward import WAIT_FOR_COMPILED_FROM
+    assert out == {"compiled": True, "shape": [WAIT_FOR_COMPILED_FROM, 2, 1]}

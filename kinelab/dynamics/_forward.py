@@ -27,6 +27,7 @@ __all__ = ["simulate", "Simulation", "SimulationBatch"]
 
 SINGULAR_STOP = 2 * SINGULAR_TOL   # singularity measure (a sine) at which the integration
                                    # stops: before the kinematics flags the configuration
+WAIT_FOR_COMPILED_FROM = 32   # runs of a batch from which it waits for the compiled kernel
 _ACROSS = 0.02         # half-width (rad, or sizes for a slide) of the interval across a change
                        # point over which K and L are interpolated
 
@@ -397,9 +398,13 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
     for name, v in (("rtol", rtol), ("atol", atol)):
         if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
             raise ModelError(f"{name}: expected a positive number, got {describe(v)}")
-    # the compiled kernel once it is ready in this process (see kinelab._compiled)
-    compiled = (compiled_system(system, actuators)
-                if method == "DOP853" and _compiled.ready("dynamics") else None)
+    # the compiled kernel once it is ready in this process (see kinelab._compiled); a large
+    # batch waits for it, as its runs in Python would take far longer than compiling
+    compiled = compiled_system(system, actuators) if method == "DOP853" else None
+    large = batch and len(q_init) >= WAIT_FOR_COMPILED_FROM
+    if compiled is not None and not (_compiled.ready("dynamics")
+                                     or (large and _compiled.wait_for("dynamics"))):
+        compiled = None
     y0 = np.concatenate([q_init, qd_init, np.zeros((len(q_init), 3))], axis=1)
     if compiled is not None:
         runs = _integrate_compiled(system, actuators, compiled, y0, (t0, t1), t_eval, rtol, atol,
