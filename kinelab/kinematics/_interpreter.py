@@ -12,13 +12,10 @@ The state is one array ``J`` of shape (n_items, 1 + M + M*M, n): for each item o
 (link angle, point x or y, slide) its value, K and L, over n samples; ``J[i, 0]`` is the
 item's value at every sample, contiguous.
 
-Where the kernel and this module differ (beyond rounding, see the tests):
-
-- an operation that cannot close (gap > 0) leaves its outputs NaN at that sample, so that
-  the operations after it neither use nor report numbers made from them.  The kernel
-  leaves there the numbers of an earlier sample (see ``tests/kinematics/test_interpreter.py``);
-- two lines exactly parallel (``OP_LINES``): their intersection is NaN here, with the
-  sample flagged singular (det J = 0), where the kernel keeps an earlier sample's point.
+Beyond rounding (see the tests), one difference: an operation that cannot close (gap > 0)
+leaves its outputs NaN at that sample here, so that the operations after it use no numbers
+made from them; the kernel writes nothing of such a sample but its status and its failed
+group's gap, so the outputs agree.
 """
 from __future__ import annotations
 

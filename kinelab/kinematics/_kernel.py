@@ -329,7 +329,10 @@ def _lines(jet, lane, out, o1, l1, o2, l2, beta1, beta2, M, K1, K2, L1):
     u2x = math.cos(p2)
     u2y = math.sin(p2)
     cr = u1x * u2y - u1y * u2x
-    if cr == 0.0:
+    if cr == 0.0:                   # parallel: no point (NaN, not another sample's), det J = 0
+        for c in range(1 + M + M * M):
+            jet[lane, out, c] = math.nan
+            jet[lane, out + 1, c] = math.nan
         return 0.0, 0.0, 0.0
     wx = jet[lane, o2, 0] - jet[lane, o1, 0]
     wy = jet[lane, o2 + 1, 0] - jet[lane, o1 + 1, 0]
@@ -919,12 +922,14 @@ def _evaluate(qs, qd, qdd, lo, hi, write, ops_i, ops_f, jet, M, Kt, Kt2, Lt, gro
 def _tally(lane_f, lane_i, e, k, d, ms, gap):
     """Account for a group (operation k) in lane e: its det multiplies the lane's, its
     measure may lower the lane's, its gap (> 0: it cannot close) may raise the lane's; the
-    first operation with a gap is the one that failed."""
+    first operation with a gap is the one that failed, and the lane's gap is its gap (the
+    operations after it run on numbers another sample left)."""
     lane_f[0, e] *= d
     lane_f[1, e] = min(lane_f[1, e], ms)
-    lane_f[2, e] = max(lane_f[2, e], gap)
-    if gap > 0.0 and lane_i[1, e] < 0:
-        lane_i[1, e] = k
+    if lane_i[1, e] < 0:
+        lane_f[2, e] = max(lane_f[2, e], gap)
+        if gap > 0.0:
+            lane_i[1, e] = k
 
 
 @_jit(inline="always")
