@@ -189,6 +189,42 @@ def forward(m, loads, quick=False):
             print(f"  loop of single runs with the right-hand side in Python (a callable motor law, "
                   f"solve_ivp), estimated from 3: {python_loop:.0f} s; ratio to the batch "
                   f"{python_loop / cpu_1:.0f}x")
+    designs(B, quick)
+
+
+def designs(B, quick):
+    """B engines, each with its own flywheel and motor, from rest: a model and a law per run."""
+    from tests.dynamics.models import engine as engine_of
+
+    rng = np.random.default_rng(2)
+    inertias, torques = rng.uniform(0.004, 0.1, B), rng.uniform(10.0, 30.0, B)
+    loads = Loads(gravity=(0.0, -9.81), forces=[PointForce("B", (GAS, 0.0), link="slider")])
+    te = np.linspace(0.0, 1.0, 101)
+    t0 = time.process_time()
+    models = [engine_of(crank_inertia=j) for j in inertias]
+    laws = [f"{tq:.6g} - 0.2 * qd" for tq in torques]
+    built = time.process_time() - t0
+
+    def run(i):
+        return simulate(models[i], (0.0, 1.0), 0.0, 0.0, inputs={"jO2": laws[i]}, loads=loads,
+                        rtol=1e-8, atol=1e-10, t_eval=te)
+    c0 = time.process_time()
+    runs = simulate(models, (0.0, 1.0), 0.0, 0.0, inputs={"jO2": laws}, loads=loads, rtol=1e-8,
+                    atol=1e-10, t_eval=te, threads=1)
+    cpu = time.process_time() - c0
+    sample = 20 if quick else 50
+    picks = np.linspace(0, B - 1, sample).astype(int)
+    times, worst = [], 0.0
+    for i in picks:
+        t1 = time.process_time()
+        one = run(i)
+        times.append(time.process_time() - t1)
+        worst = max(worst, float(np.max(np.abs(one.q - runs.q[i]))))
+    loop = statistics.mean(times) * B
+    print(f"batch of {B} engines of 1 s, each its own flywheel (0.004-0.1 kg m^2) and motor torque "
+          f"(models built in {built:.2f} s):")
+    print(f"  batch: {cpu:.2f} s process time on 1 thread; loop of single runs, estimated from "
+          f"{sample}: {loop:.2f} s; ratio {loop / cpu:.2f}x; largest |batch - single| {worst:.1e} rad")
 
 
 if __name__ == "__main__":

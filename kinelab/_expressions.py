@@ -34,6 +34,7 @@ user of expressions (force laws, tables' ``of``, synthesis targets, :func:`to_sy
 from __future__ import annotations
 
 import ast
+import functools
 import io
 import math
 import tokenize
@@ -571,6 +572,7 @@ _PROGRAM_COMPARE = {ast.Lt: OP_LT, ast.LtE: OP_LE, ast.Gt: OP_GT, ast.GtE: OP_GE
                     ast.Eq: OP_EQ, ast.NotEq: OP_NE}
 
 
+@functools.lru_cache(maxsize=256)      # a batch of runs compiles the same law once per run
 def to_program(text: str, M: int, *, where: str = "expression"
                ) -> tuple[np.ndarray, np.ndarray] | None:
     """The expression as a program for a stack machine: a compiled kernel evaluates it
@@ -585,7 +587,7 @@ def to_program(text: str, M: int, *, where: str = "expression"
     -------
     (code, constants) : ndarray (n, 2) of int64, ndarray of float64
         Rows ``(op, argument)`` (the ``OP_*`` codes of this module) and the constants
-        they push; None when the text names ``q`` or ``qd`` in a way that does not fit
+        they push (read-only: the result is kept for the next call); None when the text names ``q`` or ``qd`` in a way that does not fit
         ``M`` inputs (a bare ``q`` with several inputs, an index past the last), which
         :func:`parse_expression` reports when evaluated.
 
@@ -670,7 +672,10 @@ def to_program(text: str, M: int, *, where: str = "expression"
         emit(tree.body)
     except _DoesNotFit:
         return None
-    return np.array(code, np.int64).reshape(-1, 2), np.array(constants, np.float64)
+    program = np.array(code, np.int64).reshape(-1, 2), np.array(constants, np.float64)
+    for a in program:
+        a.flags.writeable = False
+    return program
 
 
 class _DoesNotFit(Exception):

@@ -76,6 +76,25 @@ def compiled_system(system: System, actuators) -> tuple | None:
     return packed, stack
 
 
+# the entries of a packed system that are numbers of one run's model and laws (plan_f, scale,
+# masses, weights, springs, law constants): the runs of a batch may differ in them alone
+PER_RUN = (1, 3, 5, 6, 12, 13, 14, 16)
+
+
+def structure(packed: tuple) -> tuple:
+    """What runs compiled together must share: every entry of ``packed`` but the numbers
+    ``PER_RUN`` (of which only the shapes)."""
+    return tuple(np.shape(a) if i in PER_RUN else
+                 (a.dtype.str, a.shape, a.tobytes()) if isinstance(a, np.ndarray) else a
+                 for i, a in enumerate(packed))
+
+
+def per_run(packs: list[tuple]) -> tuple:
+    """The numbers ``PER_RUN`` of packs of one structure, a row per pack."""
+    return tuple(np.ascontiguousarray(np.stack([np.asarray(p[i], np.float64) for p in packs]))
+                 for i in PER_RUN)
+
+
 def work_arrays(packed: tuple, M: int, stack: int) -> tuple:
     """Scratch space of one run (see ``_kernel._rhs``)."""
     ns = packed[2]
@@ -97,9 +116,9 @@ def warm_up(name: str) -> None:
          Link("arm", ("O", "G"), mass=1.0, center_of_mass="G", inertia=1e-3)),
         (Joint("pivot", "R", ("ground", "arm"), point="O"),), (Input(joint="pivot"),))
     system = build_system(pendulum, Loads(gravity=(0.0, -9.81)), None)
-    actuators = actuator_laws(pendulum, {"pivot": "-0.1*qd"})
-    compiled = compiled_system(system, actuators)
+    case = (system, actuator_laws(pendulum, {"pivot": "-0.1*qd"}))
+    compiled = {id(case): compiled_system(*case)}
     y0 = np.array([[0.5, 0.0, 0.0, 0.0, 0.0], [0.6, 0.0, 0.0, 0.0, 0.0]])
     for runs, t_eval in ((y0[:1], None), (y0, np.array([0.0, 0.01]))):
-        _integrate_compiled(system, actuators, compiled, runs, (0.0, 0.01), t_eval, 1e-8, 1e-10,
-                            np.inf, 1e-6, 1, t_eval is not None)
+        _integrate_compiled([case] * len(runs), compiled, runs, (0.0, 0.01), t_eval, 1e-8, 1e-10,
+                            np.inf, 1e-6, 10 ** 6, 1, t_eval is not None)

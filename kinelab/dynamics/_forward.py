@@ -4,7 +4,8 @@ from __future__ import annotations
 import dataclasses
 import math
 import os
-from collections.abc import Callable, Mapping
+import warnings
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -12,12 +13,14 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab import _compiled
-from kinelab.dynamics._compiled import compiled_system, work_arrays
+from kinelab import _memory as memory
+from kinelab.dynamics._compiled import compiled_system, per_run, structure, work_arrays
 from kinelab.dynamics._loads import Law, Loads
 from kinelab.dynamics._masses import MassProperties
 from kinelab.dynamics._results import MotionResult
 from kinelab.dynamics._terms import System, build_system, evaluate
-from kinelab.errors import AssemblyError, ModelError, SingularityError, check_choice, describe
+from kinelab.errors import (AssemblyError, ModelError, SingularityError, check_choice, describe,
+                            shown)
 from kinelab.kinematics import SINGULAR_TOL, KinematicSolution, analyze, change_points, plan
 from kinelab.kinematics._columns import Columns
 from kinelab.model import Mechanism, Units
@@ -28,6 +31,9 @@ __all__ = ["simulate", "Simulation", "SimulationBatch"]
 SINGULAR_STOP = 2 * SINGULAR_TOL   # singularity measure (a sine) at which the integration
                                    # stops: before the kinematics flags the configuration
 WAIT_FOR_COMPILED_FROM = 32   # runs of a batch from which it waits for the compiled kernel
+MAX_EVALUATIONS = 10 ** 8     # of the equations of motion, per run: minutes compiled, so that a
+                              # t_span or max_step beyond reach ends with a message, not a hang
+RTOL_FLOOR = 100 * np.finfo(float).eps   # below it rounding swamps the error (scipy's floor)
 _ACROSS = 0.02         # half-width (rad, or sizes for a slide) of the interval across a change
                        # point over which K and L are interpolated
 
@@ -267,15 +273,15 @@ def drift(sol: KinematicSolution) -> np.ndarray:
     return worst
 
 
-def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: ArrayLike = 0.0, *,
+def simulate(model: Mechanism | Sequence[Mechanism], t_span: tuple[float, float], q0: ArrayLike, qd0: ArrayLike = 0.0, *,
              inputs=None, loads: Loads | None = None,
              masses: MassProperties | None = None, t_eval: ArrayLike | None = None,
              method: Literal["DOP853", "RK45", "Radau", "LSODA", "BDF"] = "DOP853",
              rtol: float = 1e-10, atol: float = 1e-12, max_step: float = np.inf,
-             singular_stop: float = SINGULAR_STOP, threads: int | None = None
-             ) -> Simulation | SimulationBatch:
+             singular_stop: float = SINGULAR_STOP, threads: int | None = None,
+             max_evaluations: int = MAX_EVALUATIONS) -> Simulation | SimulationBatch:
     """Integrate the motion of a mechanism under actuator laws and loads: one run, or a
-    batch of runs from different initial states.
+    batch of runs from different initial states, dimensions, masses or laws.
 
     The state is the independent coordinates q and their rates; at every evaluation the
     position problem is solved by the kinematics engine (so the loops always close) and
@@ -294,7 +300,11 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
 
     Parameters
     ----------
-    model : Mechanism
+    model : Mechanism, or a sequence of B of them
+        A sequence gives each run of a batch its own mechanism: one structure (points,
+        links, joints, inputs), different lengths, masses, inertias or model-file
+        ``[dynamics]`` sections, e.g. built by one catalogue function.  Runs whose
+        models compile alike go through the compiled kernel together.
     t_span : (float, float)
         Start and end time, s.
     q0, qd0 : float or array_like, shape () or (M,); (B, M) for a batch
@@ -303,7 +313,8 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
     inputs : mapping of str to law, sequence of laws, or callable, optional
         Actuator effort at each input, by input name: a number, an expression of
         ``t, q, qd``, a table or a callable ``f(t, q, qd)`` (see :class:`Law`); a torque
-        for an angle input, a force for a slide.  Inputs not named are free (no effort).
+        for an angle input, a force for a slide; or a *list* of B such laws, one per run
+        of a batch.  Inputs not named are free (no effort).
         Also accepted: a sequence of M laws in the order of the inputs (None: free), or
         one callable ``f(t, q, qd)`` returning every effort, shape (M,) or (N, M).
         Default: the model file's ``[dynamics.actuators]``, else every input free.
@@ -318,7 +329,8 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
         A :func:`scipy.integrate.solve_ivp` method; DOP853 (default) for accuracy, Radau
         or BDF for stiff springs and dampers.
     rtol, atol : float
-        Integration tolerances, on q and q'.
+        Integration tolerances, on q and q'.  An rtol below 100 machine epsilons
+        (2.2e-14) is raised to it, with a warning, as :func:`scipy.integrate.solve_ivp` does.
     max_step : float
         Largest step, s.
     singular_stop : float
@@ -328,6 +340,9 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
         the branch that continues smoothly, as :func:`kinelab.kinematics.analyze` does.
     threads : int, optional
         Threads sharing the runs of a compiled batch (default: one per processor).
+    max_evaluations : int
+        The most evaluations of the equations of motion a run may take (default 10^8:
+        minutes with the compiled kernel); a run that needs more stops with a ModelError.
 
     Returns
     -------
@@ -342,7 +357,7 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
     ModelError
         Bad model data, a law for a joint that is not an input, a mass matrix that
         cannot be inverted (a coordinate without inertia), initial states of shapes that
-        do not match.
+        do not match, a motion that diverges or needs more than ``max_evaluations``.
     AssemblyError
         The motion runs into a position where the loops cannot close.
 
@@ -369,68 +384,163 @@ def simulate(model: Mechanism, t_span: tuple[float, float], q0: ArrayLike, qd0: 
     ((3, 3, 1), (3, 3))
     >>> bool(abs(runs.q[0, -1, 0] - sim.q[-1, 0]) < 1e-12)
     True
+
+    Three arms of different masses, and three motor laws, one run each:
+
+    >>> import dataclasses
+    >>> arms = [dataclasses.replace(pendulum, links=(pendulum.links[0],
+    ...         dataclasses.replace(pendulum.links[1], mass=m))) for m in (1.0, 2.0, 4.0)]
+    >>> runs = simulate(arms, (0.0, 1.0), q0=0.0, inputs={"pivot": ["1", "2", "4"]},
+    ...                 loads=Loads(gravity=(0.0, -9.81)), t_eval=[0.0, 0.5, 1.0])
+    >>> runs.q.shape, [m.links[1].mass for m in runs.mechanisms]
+    ((3, 3, 1), [1.0, 2.0, 4.0])
     """
-    if inputs is None and isinstance(model, Mechanism):
-        # the model file's [dynamics] section: actuators, and loads and masses not given
-        from kinelab.dynamics._setup import DynamicsSetup
-        setup = DynamicsSetup.from_model(model)
-        inputs = setup.inputs() or None
-        loads = setup.loads if loads is None else loads
-        masses = setup.masses(model) if masses is None else masses
-    system = build_system(model, loads, masses)
-    M = system.M
-    actuators = actuator_laws(model, inputs)
+    models = _run_models(model)
+    run_inputs = _run_inputs(inputs)
+    first = _case(models[0], run_inputs[0] if run_inputs else inputs, loads, masses)
+    M = first[0].M
     try:
         t0, t1 = (float(v) for v in t_span)
     except (TypeError, ValueError):
         raise ModelError(f"t_span: expected (start, end) in s, got {describe(t_span)}") from None
     if not (math.isfinite(t0) and math.isfinite(t1) and t1 > t0):
         raise ModelError(f"t_span: expected finite start < end, got {describe(t_span)}")
-    q_init, qd_init, batch = _initial_states(q0, qd0, M)
+    counts = {name: len(v) for name, v in (("model", models), ("inputs", run_inputs)) if len(v) > 1}
+    q_init, qd_init, batch = _initial_states(q0, qd0, M, counts)
+    B = len(q_init)
     if t_eval is not None:
         t_eval = np.asarray(t_eval, dtype=float).ravel()
         if t_eval.size == 0 or np.any(t_eval < t0) or np.any(t_eval > t1) or np.any(np.diff(t_eval) <= 0):
             raise ModelError(f"t_eval: expected increasing times within t_span [{t0}, {t1}] s")
     elif batch:
-        raise ModelError(f"t_eval: a batch of {len(q_init)} runs (q0, qd0 of shape (B, M)) needs "
-                         "output times shared by every run; give t_eval")
+        raise ModelError(f"t_eval: a batch of {B} runs (q0, qd0 of shape (B, M), or a model or "
+                         "law per run) needs output times shared by every run; give t_eval")
+    if t_eval is not None:      # the states, efforts and energies at every output of every run
+        memory.require(8 * B * len(t_eval) * (3 * (2 * M + 3) + 4 * M + 6),
+                       f"{B:,} run(s) at {len(t_eval):,} output times", "give fewer output times "
+                       "(t_eval), or split the runs into several batches")
     check_choice("method", method, ("DOP853", "RK45", "Radau", "LSODA", "BDF"))
     for name, v in (("rtol", rtol), ("atol", atol)):
         if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
             raise ModelError(f"{name}: expected a positive number, got {describe(v)}")
+    if rtol < RTOL_FLOOR:
+        warnings.warn(f"rtol: {rtol:g} is below 100 machine epsilons; using {RTOL_FLOOR:.3g}",
+                      stacklevel=2)
+        rtol = RTOL_FLOOR
+    if not (isinstance(max_step, (int, float)) and max_step > 0):        # inf allowed
+        raise ModelError(f"max_step: expected a positive number of s (or inf), got {describe(max_step)}")
+    if not (isinstance(max_evaluations, (int, np.integer)) and not isinstance(max_evaluations, bool)
+            and max_evaluations > 0):
+        raise ModelError(f"max_evaluations: expected a positive whole number, got "
+                         f"{describe(max_evaluations)}")
+    if (t1 - t0) / max_step > max_evaluations:
+        raise ModelError(f"max_step: {max_step:g} s over t_span of {t1 - t0:g} s takes more than "
+                         f"max_evaluations = {max_evaluations:,} evaluations; raise max_step, "
+                         "shorten t_span or raise max_evaluations")
+    cases = _run_cases(models, run_inputs, inputs, loads, masses, B, first)
     # the compiled kernel once it is ready in this process (see kinelab._compiled); a large
     # batch waits for it, as its runs in Python would take far longer than compiling
-    compiled = compiled_system(system, actuators) if method == "DOP853" else None
-    large = batch and len(q_init) >= WAIT_FOR_COMPILED_FROM
+    compiled = None
+    if method == "DOP853":
+        compiled = {id(case): compiled_system(*case) for case in cases}
+        if any(c is None for c in compiled.values()):
+            compiled = None
+    large = batch and B >= WAIT_FOR_COMPILED_FROM
     if compiled is not None and not (_compiled.ready("dynamics")
                                      or (large and _compiled.wait_for("dynamics"))):
         compiled = None
-    y0 = np.concatenate([q_init, qd_init, np.zeros((len(q_init), 3))], axis=1)
+    y0 = np.concatenate([q_init, qd_init, np.zeros((B, 3))], axis=1)
     if compiled is not None:
-        runs = _integrate_compiled(system, actuators, compiled, y0, (t0, t1), t_eval, rtol, atol,
-                                   max_step, singular_stop, threads, batch)
+        runs = _integrate_compiled(cases, compiled, y0, (t0, t1), t_eval, rtol, atol, max_step,
+                                   singular_stop, max_evaluations, threads, batch)
     else:
-        runs = [_integrate_scipy(system, actuators, y, (t0, t1), t_eval, method, rtol, atol,
-                                 max_step, singular_stop, f" (run {i})" if batch else "")
-                for i, y in enumerate(y0)]
+        runs = [_integrate_scipy(*case, y, (t0, t1), t_eval, method, rtol, atol, max_step,
+                                 singular_stop, max_evaluations, f" (run {i})" if batch else "")
+                for i, (case, y) in enumerate(zip(cases, y0))]
     if not batch:
         t, y, status, message, nfev = runs[0]
-        return _simulation(system, actuators, t, y, status, message, nfev)
-    return _batch(system, actuators, t_eval, runs)
+        return _simulation(*cases[0], t, y, status, message, nfev)
+    return _batch(cases, t_eval, runs)
 
 
-def _initial_states(q0, qd0, M: int) -> tuple[np.ndarray, np.ndarray, bool]:
-    """q0 and q'0 as (B, M) arrays, and whether they make a batch."""
+def _run_models(model) -> tuple:
+    """The mechanism of every run: (model,) for one shared, else one per run."""
+    if isinstance(model, Mechanism):
+        return (model,)
+    if isinstance(model, (list, tuple)) and model and all(isinstance(m, Mechanism) for m in model):
+        return tuple(model)
+    raise ModelError(f"model: expected a kinelab Mechanism, or a non-empty sequence of them (one "
+                     f"per run of a batch), got {describe(model)}")
+
+
+def _run_inputs(inputs) -> tuple:
+    """The actuator laws of each run when ``inputs`` maps an input to a list of laws, one
+    per run (a list is not a law, so this reads unambiguously); else ()."""
+    if not isinstance(inputs, Mapping):
+        return ()
+    lists = {k: v for k, v in inputs.items() if isinstance(v, (list, tuple))}
+    if not lists:
+        return ()
+    sizes = {len(v) for v in lists.values()}
+    if len(sizes) > 1 or 0 in sizes:
+        raise ModelError("inputs: a list of laws gives one law per run of a batch, and every list "
+                         "must have the same, non-zero length; got lengths "
+                         f"{', '.join(f'{shown(k)}: {len(v)}' for k, v in lists.items())}")
+    B = sizes.pop()
+    return tuple({k: (v[i] if k in lists else v) for k, v in inputs.items()} for i in range(B))
+
+
+def _case(model: Mechanism, inputs, loads, masses) -> tuple[System, Any]:
+    """One run's equations: its system (masses and loads) and actuator laws; without laws,
+    the model file's ``[dynamics]`` section gives them, and the loads and masses not given."""
+    if inputs is None:
+        from kinelab.dynamics._setup import DynamicsSetup
+        setup = DynamicsSetup.from_model(model)
+        inputs = setup.inputs() or None
+        loads = setup.loads if loads is None else loads
+        masses = setup.masses(model) if masses is None else masses
+    return build_system(model, loads, masses), actuator_laws(model, inputs)
+
+
+def _run_cases(models: tuple, run_inputs: tuple, inputs, loads, masses, B: int, first) -> list:
+    """Every run's (system, actuators): one shared object where runs share model and laws."""
+    if len(models) == 1 and not run_inputs:
+        return [first] * B
+    names = models[0].input_names
+    cases: list = []
+    for i in range(B):
+        model = models[i if len(models) > 1 else 0]
+        if i and model.input_names != names:
+            raise ModelError(f"model: run {i}'s mechanism {shown(model.name)} has the inputs "
+                             f"{list(model.input_names)} where run 0's has {list(names)}; the "
+                             "runs of a batch share their inputs")
+        if i and not run_inputs and model is models[i - 1]:
+            cases.append(cases[-1])
+            continue
+        try:
+            cases.append(first if i == 0 else
+                         _case(model, run_inputs[i] if run_inputs else inputs, loads, masses))
+        except ModelError as exc:
+            raise ModelError(exc.problems, source=f"run {i}" + (f", {exc.source}" if exc.source else "")
+                             ) from None
+    return cases
+
+
+def _initial_states(q0, qd0, M: int, counts: Mapping[str, int]) -> tuple[np.ndarray, np.ndarray, bool]:
+    """q0 and q'0 as (B, M) arrays, and whether they make a batch; ``counts`` gives the
+    runs that other arguments ask for (one model or law per run)."""
     q, qd = _values("q0", q0), _values("qd0", qd0)
-    batch = q.ndim == 2 or qd.ndim == 2
+    batch = q.ndim == 2 or qd.ndim == 2 or bool(counts)
     for name, a in (("q0", q), ("qd0", qd)):
         if not (a.ndim == 0 or a.shape == (M,) or (a.ndim == 2 and a.shape[1] == M and len(a))):
             raise ModelError(f"{name}: expected one value per input, shape () or ({M},), got shape "
                              f"{a.shape}; for a batch of B runs give shape (B, {M})")
-    if q.ndim == 2 and qd.ndim == 2 and len(q) != len(qd):
-        raise ModelError(f"q0, qd0: expected the same number of runs, got {len(q)} and {len(qd)}; "
-                         "give both as (B, M), or one as () or (M,) to share it")
-    B = max(len(a) if a.ndim == 2 else 1 for a in (q, qd))
+    sizes = {**{name: len(a) for name, a in (("q0", q), ("qd0", qd)) if a.ndim == 2}, **counts}
+    if len(set(sizes.values())) > 1:
+        raise ModelError(f"{', '.join(sizes)}: expected the same number of runs, got "
+                         f"{' and '.join(str(n) for n in sizes.values())}; give each as one per run "
+                         "(q0, qd0 of shape (B, M)), or shared")
+    B = max(sizes.values(), default=1)
     return np.broadcast_to(q, (B, M)).copy(), np.broadcast_to(qd, (B, M)).copy(), batch
 
 
@@ -444,44 +554,59 @@ def _values(name: str, value) -> np.ndarray:
     return a
 
 
-def _integrate_compiled(system: System, actuators, compiled, y0: np.ndarray, span, t_eval, rtol,
-                        atol, max_step, singular_stop, threads, batch: bool) -> list:
-    """The runs by the compiled kernel: (t, y, status, message, nfev) each."""
+def _integrate_compiled(cases: list, compiled: dict, y0: np.ndarray, span, t_eval, rtol, atol,
+                        max_step, singular_stop, budget, threads, batch: bool) -> list:
+    """The runs by the compiled kernel: (t, y, status, message, nfev) each.  The runs of a
+    batch go to the kernel in groups of one structure, each run with its own numbers."""
     from concurrent.futures import ThreadPoolExecutor
 
     from kinelab.dynamics import _kernel
 
-    packed, stack = compiled
-    M = system.M
+    M = cases[0][0].M
     B, n = y0.shape
     args = (span[0], span[1], np.zeros(0) if t_eval is None else t_eval, float(rtol), float(atol),
-            float(max_step), float(singular_stop), M, packed)
+            float(max_step), float(singular_stop), int(budget), M)
     if not batch:
-        status, nfev, info, t, y = _kernel.integrate_run(y0[0], *args, work_arrays(packed, M, stack))
+        packed, stack = compiled[id(cases[0])]
+        status, nfev, info, t, y = _kernel.integrate_run(y0[0], *args, packed,
+                                                         work_arrays(packed, M, stack))
         statuses, nfevs, infos, counts, ys = [status], [nfev], [info], [len(t)], [y]
     else:
-        N = len(t_eval)
-        o_y = np.full((B, N, n), np.nan)
+        t, N = t_eval, len(t_eval)
+        ys = np.full((B, N, n), np.nan)
         statuses, nfevs = np.zeros(B, np.int64), np.zeros(B, np.int64)
         infos, counts = np.zeros((B, 2 + n)), np.zeros(B, np.int64)
-        chunks = max(1, min(B, threads or os.cpu_count() or 1))
-        edges = np.linspace(0, B, chunks + 1).astype(int)
+        groups: dict = {}
+        for i, case in enumerate(cases):
+            groups.setdefault(structure(compiled[id(case)][0]), []).append(i)
+        for rows in groups.values():
+            rows = np.array(rows)
+            shared = all(cases[i] is cases[rows[0]] for i in rows)
+            packs = [compiled[id(cases[i])][0] for i in (rows[:1] if shared else rows)]
+            packed, stack = compiled[id(cases[rows[0]])][0], max(compiled[id(cases[i])][1] for i in rows)
+            out = (np.full((len(rows), N, n), np.nan), np.zeros(len(rows), np.int64),
+                   np.zeros(len(rows), np.int64), np.zeros((len(rows), 2 + n)),
+                   np.zeros(len(rows), np.int64))
+            numbers, y_rows = per_run(packs), np.ascontiguousarray(y0[rows])
+            chunks = max(1, min(len(rows), threads or os.cpu_count() or 1))
+            edges = np.linspace(0, len(rows), chunks + 1).astype(int)
 
-        def part(c):
-            _kernel.integrate_runs(y0, *args, edges[c], edges[c + 1], o_y, statuses, nfevs, infos,
-                                   counts, stack)
-        if chunks == 1:
-            part(0)
-        else:
-            with ThreadPoolExecutor(chunks) as pool:
-                list(pool.map(part, range(chunks)))
-        t, ys = t_eval, o_y
+            def part(c):
+                _kernel.integrate_runs(y_rows, *args, packed, numbers, edges[c], edges[c + 1], *out,
+                                       stack)
+            if chunks == 1:
+                part(0)
+            else:
+                with ThreadPoolExecutor(chunks) as pool:
+                    list(pool.map(part, range(chunks)))
+            for whole, part_out in zip((ys, statuses, nfevs, infos, counts), out):
+                whole[rows] = part_out
     runs = []
     for i in range(B):
         where = f" (run {i})" if batch else ""
         status, info = int(statuses[i]), infos[i]
         if status not in (_kernel.RUN_FINISHED, _kernel.RUN_SINGULAR):
-            _raise_failure(system, actuators, status, info, where)
+            _raise_failure(*cases[i], status, info, where)
         message = "reached the end of t_span"
         if status == _kernel.RUN_SINGULAR:
             message = _stop_message(info[0], info[2:2 + M], singular_stop)
@@ -506,6 +631,10 @@ def _raise_failure(system: System, actuators, status: int, info: np.ndarray, whe
         raise _halted(model, _Halt(t, q, "singular"), where)
     if status == _kernel.FAIL_MASS:
         raise _singular_mass(model, q, where)
+    if status == _kernel.FAIL_DIVERGED:
+        raise _halted(model, _Halt(t, q, "diverged"), where)
+    if status == _kernel.FAIL_BUDGET:
+        raise _halted(model, _Halt(t, q, "budget"), where)
     if status in (_kernel.FAIL_LAW, _kernel.FAIL_SPRING):
         # the same state through Python: its laws and springs say what is wrong
         tt, qq, qqd = np.array([t]), q[None, :], qd[None, :]
@@ -525,6 +654,14 @@ def _halted(model: Mechanism, h: _Halt, where: str = "") -> Exception:
         return AssemblyError(f"the motion of '{model.name}' reaches a position where its loops "
                              f"cannot close {at}: a limit position; limit the motion or check "
                              "the loads")
+    if h.kind == "diverged":
+        return ModelError(f"the motion of '{model.name}' diverges: q or q' is no longer finite "
+                          f"after t = {h.t:.6g} s{where}; check the laws and loads, or the "
+                          "tolerances (atol, rtol)")
+    if h.kind == "budget":
+        return ModelError(f"the motion of '{model.name}' took max_evaluations evaluations "
+                          f"without reaching the end of t_span, {at}; shorten t_span, loosen "
+                          "rtol and atol, or raise max_evaluations")
     return SingularityError(f"the motion of '{model.name}' reaches a singular configuration {at}; "
                             "raise singular_stop to stop before it")
 
@@ -548,7 +685,7 @@ def _accelerations(system: System, actuators, sol: KinematicSolution, t: np.ndar
 
 
 def _integrate_scipy(system: System, actuators, y0: np.ndarray, span, t_eval, method, rtol, atol,
-                     max_step, singular_stop, where: str):
+                     max_step, singular_stop, budget, where: str):
     """One run by :func:`scipy.integrate.solve_ivp` with the right-hand side in Python."""
     from scipy.integrate import solve_ivp
 
@@ -575,6 +712,11 @@ def _integrate_scipy(system: System, actuators, y0: np.ndarray, span, t_eval, me
         return sol
 
     def rhs(t, y):
+        cache["evaluations"] = cache.get("evaluations", 0) + 1
+        if not np.all(np.isfinite(y[:2 * M])):
+            raise _Halt(t, y[:M], "diverged")
+        if cache["evaluations"] > budget:
+            raise _Halt(t, y[:M], "budget")
         sol = kinematics(t, y)
         qdd, tau, terms = _accelerations(system, actuators, sol, np.array([t]), where)
         return np.concatenate([y[M:2 * M], qdd[0], [tau[0] @ sol.qd[0], terms.applied_power[0],
@@ -591,9 +733,11 @@ def _integrate_scipy(system: System, actuators, y0: np.ndarray, span, t_eval, me
     # over 2M + 3 components equals the norm of q and q' alone.
     shrink = math.sqrt(2 * M / (2 * M + 3))
     atols = np.concatenate([np.full(2 * M, atol * shrink), np.full(3, np.inf)])
-    try:
-        out = solve_ivp(rhs, span, y0, method=method, t_eval=t_eval, rtol=rtol * shrink, atol=atols,
-                        max_step=max_step, events=near_singular if singular_stop > 0 else None)
+    try:    # a state beyond float64 is reported by rhs (diverged), not by numpy's warnings
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            out = solve_ivp(rhs, span, y0, method=method, t_eval=t_eval, rtol=rtol * shrink,
+                            atol=atols, max_step=max_step,
+                            events=near_singular if singular_stop > 0 else None)
     except _Halt as h:
         raise _halted(model, h, where) from None
     if out.status == -1:
@@ -628,7 +772,8 @@ def _simulation(system: System, actuators, t, y, status, message, nfev) -> Simul
 
 @dataclass(frozen=True, eq=False)
 class SimulationBatch:
-    """B runs of one mechanism from different initial states, at shared output times.
+    """B runs of a mechanism, at shared output times: from different initial states, or
+    with a model or actuator laws of their own (one structure, different numbers).
 
     A run stopped near a singular configuration (``status[i] == "singular"``) has NaN
     after the stop, and its ``message`` says where.
@@ -636,6 +781,7 @@ class SimulationBatch:
     Attributes
     ----------
     mechanism : Mechanism
+        The mechanism of the first run (:attr:`mechanisms`: of each).
     t : ndarray, shape (N,)
         Output times, s.
     q, qd, qdd : ndarray, shape (B, N, M)
@@ -665,8 +811,12 @@ class SimulationBatch:
     status: np.ndarray
     message: tuple[str, ...]
     nfev: np.ndarray
-    _system: Any = dataclasses.field(repr=False)
-    _actuators: Any = dataclasses.field(repr=False)
+    _cases: tuple = dataclasses.field(repr=False)     # each run's (system, actuators)
+
+    @property
+    def mechanisms(self) -> tuple[Mechanism, ...]:
+        """The mechanism of each run, (B,)."""
+        return tuple(system.model for system, _ in self._cases)
 
     @property
     def energy(self) -> np.ndarray:
@@ -695,7 +845,7 @@ class SimulationBatch:
         n = int(np.sum(np.isfinite(self.q[i, :, 0])))
         y = np.concatenate([self.q[i, :n], self.qd[i, :n], self.actuator_work[i, :n, None],
                             self.applied_work[i, :n, None], self.dissipated[i, :n, None]], axis=1)
-        return _simulation(self._system, self._actuators, self.t[:n], y, str(self.status[i]),
+        return _simulation(*self._cases[i], self.t[:n], y, str(self.status[i]),
                            self.message[i], int(self.nfev[i]))
 
     def __repr__(self) -> str:
@@ -706,10 +856,10 @@ class SimulationBatch:
 _CHUNK = 50_000      # samples per post-processing pass over a batch: bounded memory
 
 
-def _batch(system: System, actuators, t_eval: np.ndarray, runs: list) -> SimulationBatch:
+def _batch(cases: list, t_eval: np.ndarray, runs: list) -> SimulationBatch:
     """The runs' outputs as one result: efforts and energies from the kinematics of every
-    sample, a chunk of samples at a time."""
-    M, B, N = system.M, len(runs), len(t_eval)
+    sample, a chunk of samples of the runs that share a model and laws at a time."""
+    M, B, N = cases[0][0].M, len(runs), len(t_eval)
     y = np.full((B, N, 2 * M + 3), np.nan)
     for i, (_, yi, *_rest) in enumerate(runs):
         y[i, :len(yi)] = yi
@@ -718,16 +868,21 @@ def _batch(system: System, actuators, t_eval: np.ndarray, runs: list) -> Simulat
     tt = np.broadcast_to(t_eval, (B, N)).ravel()
     qdd, tau = np.full((B * N, M), np.nan), np.full((B * N, M), np.nan)
     kinetic, potential = np.full(B * N, np.nan), np.full(B * N, np.nan)
-    rows = np.flatnonzero(valid)
-    for lo in range(0, len(rows), _CHUNK):
-        r = rows[lo:lo + _CHUNK]
-        sol, tau_r, terms = _motion(system, actuators, tt[r], flat[r])
-        qdd[r], tau[r], kinetic[r], potential[r] = sol.qdd, tau_r, terms.kinetic, terms.potential
+    sharing: dict = {}
+    for i, case in enumerate(cases):
+        sharing.setdefault(id(case), (case, []))[1].append(i)
+    for case, members in sharing.values():
+        rows = (np.array(members)[:, None] * N + np.arange(N)).ravel()
+        rows = rows[valid[rows]]
+        for lo in range(0, len(rows), _CHUNK):
+            r = rows[lo:lo + _CHUNK]
+            sol, tau_r, terms = _motion(*case, tt[r], flat[r])
+            qdd[r], tau[r], kinetic[r], potential[r] = sol.qdd, tau_r, terms.kinetic, terms.potential
     shape = (B, N, M)
     return SimulationBatch(
-        mechanism=system.model, t=t_eval, q=y[:, :, :M], qd=y[:, :, M:2 * M],
+        mechanism=cases[0][0].model, t=t_eval, q=y[:, :, :M], qd=y[:, :, M:2 * M],
         qdd=qdd.reshape(shape), input_forces=tau.reshape(shape),
         kinetic_energy=kinetic.reshape(B, N), potential_energy=potential.reshape(B, N),
         actuator_work=y[:, :, 2 * M], applied_work=y[:, :, 2 * M + 1], dissipated=y[:, :, 2 * M + 2],
         status=np.array([r[2] for r in runs]), message=tuple(r[3] for r in runs),
-        nfev=np.array([r[4] for r in runs], np.int64), _system=system, _actuators=actuators)
+        nfev=np.array([r[4] for r in runs], np.int64), _cases=tuple(cases))

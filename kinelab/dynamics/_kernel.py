@@ -33,6 +33,8 @@ FAIL_LAW = 4            # a law is not finite (info[1]: which)
 FAIL_MASS = 5           # the mass matrix is singular
 FAIL_SPRING = 6         # a spring's or damper's ends meet
 FAIL_STEP = 7           # the step fell below the resolution of t
+FAIL_DIVERGED = 8       # q or q' is no longer finite
+FAIL_BUDGET = 9         # the run took its budget of evaluations before reaching t1
 
 _A = np.ascontiguousarray(DOP853.A, dtype=np.float64)
 _B = np.ascontiguousarray(DOP853.B, dtype=np.float64)
@@ -207,6 +209,9 @@ def _rhs(t, y, dy, M, system, work, info):
     (plan_i, plan_f, ns, scale, mass_rows, mass_w, mass_g, force_rows, force_laws, torque_rows,
      torque_laws, spring_rows, spring_k, spring_l0, spring_c, _, _, _, actuator_laws) = system
     x, out, MM, piv, b, stack = work
+    for m in range(2 * M):
+        if not np.isfinite(y[m]):
+            return FAIL_DIVERGED
     for m in range(M):
         x[0, m] = y[m]
         x[1, m] = y[M + m]
@@ -325,9 +330,9 @@ def _stage(K, s, a, h, y, out):
 
 
 @_jit()
-def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, M, system, work):
-    """One run from y0 at t0 to t1 (or to a stop): the outputs at t_eval (every step when
-    t_eval is empty).
+def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, system, work):
+    """One run from y0 at t0 to t1 (or to a stop) in at most ``budget`` evaluations: the
+    outputs at t_eval (every step when t_eval is empty).
 
     Returns status, nfev, info (t, law, q...), the output times and states (n_out rows).
     """
@@ -364,6 +369,8 @@ def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, M, system, wor
     d0 = _rms(y0, scale, nq)
     d1 = _rms(f, scale, nq)
     h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
+    if not 0.0 < h0 < np.inf:               # both sizes beyond float64 (a tiny atol)
+        h0 = 1e-6
     h0 = min(h0, span)
     for j in range(n):
         ys[j] = y0[j] + h0 * f[j]
@@ -381,6 +388,8 @@ def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, M, system, wor
     else:
         h1 = (0.01 / max(d1, d2)) ** -_ERROR_EXPONENT
     h_abs = min(100 * h0, h1, span, max_step)
+    if h_abs != h_abs:                      # NaN from sizes beyond float64
+        h_abs = h0
     t = t0
     i_eval = 0
     status = RUN_FINISHED
@@ -392,6 +401,10 @@ def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, M, system, wor
             h_abs = min_step
         rejected = False
         while True:
+            if nfev >= budget:
+                info[0] = t
+                info[2:] = y
+                return FAIL_BUDGET, nfev, info, o_t[:n_out], o_y[:n_out]
             if h_abs < min_step:
                 info[0] = t
                 info[2:] = y
@@ -444,7 +457,8 @@ def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, M, system, wor
                     factor = min(1.0, factor)
                 h_abs *= factor
                 break
-            h_abs *= max(_MIN_FACTOR, _SAFETY * err ** _ERROR_EXPONENT)
+            factor = _SAFETY * err ** _ERROR_EXPONENT
+            h_abs *= factor if factor > _MIN_FACTOR else _MIN_FACTOR    # NaN: the smallest
             rejected = True
         singularity = info[0]
         g_new = singularity - stop
@@ -518,17 +532,26 @@ def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, M, system, wor
 
 
 @_jit(nogil=True)
-def integrate_runs(Y0, t0, t1, t_eval, rtol, atol, max_step, stop, M, system, lo, hi,
+def integrate_runs(Y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, system, per_run, lo, hi,
                    o_y, o_status, o_nfev, o_info, o_count, stack_size):
     """Runs lo:hi of a batch (rows of Y0), each by :func:`integrate_run`: outputs at
-    t_eval into o_y (B, N, n), its status, evaluations, info and number of outputs."""
+    t_eval into o_y (B, N, n), its status, evaluations, info and number of outputs.
+
+    ``per_run`` holds the numbers that may differ between the runs' models and laws (the
+    entries ``PER_RUN`` of ``system``), a row per run, or one row that every run shares.
+    """
+    plan_f, scale, mass_w, mass_g, spring_k, spring_l0, spring_c, constants = per_run
     ns = system[2]
     w = 1 + M + M * M
     for r in range(lo, hi):
+        k = 0 if plan_f.shape[0] == 1 else r
+        own = (system[0], plan_f[k], ns, scale[k], system[4], mass_w[k], mass_g[k], system[7],
+               system[8], system[9], system[10], system[11], spring_k[k], spring_l0[k],
+               spring_c[k], system[15], constants[k], system[17], system[18])
         work = (np.zeros((3, M)), np.zeros(ns * w + 2 * ns + 5), np.zeros((M, M)),
                 np.zeros(M, np.int64), np.zeros(M), np.zeros(stack_size))
-        st, nfev, info, _, ys = integrate_run(Y0[r], t0, t1, t_eval, rtol, atol, max_step, stop, M,
-                                              system, work)
+        st, nfev, info, _, ys = integrate_run(Y0[r], t0, t1, t_eval, rtol, atol, max_step, stop,
+                                              budget, M, own, work)
         o_y[r, :ys.shape[0]] = ys
         o_status[r] = st
         o_nfev[r] = nfev

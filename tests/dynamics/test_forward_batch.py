@@ -1,5 +1,7 @@
 """The compiled forward dynamics against the Python right-hand side, a closed form and
 single runs; batches of runs: shapes, equality with single runs, messages."""
+import dataclasses
+
 import numpy as np
 import pytest
 from scipy.special import ellipk
@@ -8,7 +10,7 @@ import kinelab as kl
 from kinelab._expressions import parse_expression, to_program
 from kinelab.dynamics import Damper, Loads, PointForce, Spring, Torque, simulate
 from kinelab.dynamics._kernel import run_law
-from kinelab.errors import ModelError, SingularityError
+from kinelab.errors import MemoryBudgetError, ModelError, SingularityError
 from tests.dynamics.models import engine, fourbar, pendulum, rp_robot
 
 g = (0.0, -9.81)
@@ -197,3 +199,137 @@ def test_compiled_failure_names_the_run():
 def test_law_not_finite_in_the_kernel_is_reported_by_the_law():
     with pytest.raises(ModelError, match=r"inputs\['jO2'\]: .*gives inf"):
         simulate(engine(), (0.0, 1.0), 0.0, 1.0, inputs={"jO2": "1 / (qd - 1)"}, t_eval=[0.0, 1.0])
+
+
+def _engines():
+    """Three engines of one structure: crank length, flywheel inertia and piston mass differ."""
+    return [engine(), engine(crank=0.06, crank_inertia=0.02), engine(piston_mass=1.5, rod=0.2)]
+
+
+@pytest.mark.parametrize("motor", [MOTOR, {"jO2": lambda t, q, qd: 20 - 0.2 * qd}],
+                         ids=["compiled", "python"])
+def test_batch_of_different_models_equals_each_model_alone(motor):
+    """A model per run: each run of the batch is the run of its model alone, and keeps
+    its mechanism (the runs' motions differ, so each got its own numbers)."""
+    models = _engines()
+    q0 = np.array([[0.0], [0.5], [1.0]])
+    t_eval = np.linspace(0.0, 0.4, 9)
+    runs = simulate(models, (0.0, 0.4), q0, 5.0, inputs=motor, loads=ENGINE_LOADS, rtol=1e-9,
+                    atol=1e-11, t_eval=t_eval)
+    assert runs.q.shape == (3, 9, 1) and runs.mechanisms == tuple(models)
+    assert np.all(np.abs(np.diff(runs.q[:, -1, 0])) > 1e-3)
+    for i, m in enumerate(models):
+        one = simulate(m, (0.0, 0.4), q0[i], 5.0, inputs=motor, loads=ENGINE_LOADS, rtol=1e-9,
+                       atol=1e-11, t_eval=t_eval)
+        np.testing.assert_array_equal(runs.q[i], one.q)
+        np.testing.assert_array_equal(runs.qd[i], one.qd)
+        np.testing.assert_allclose(runs.energy[i], one.energy, rtol=1e-12, atol=1e-12)
+        np.testing.assert_allclose(runs.input_forces[i], one.input_forces, rtol=1e-12, atol=1e-12)
+        assert runs.nfev[i] == one.nfev and runs[i].mechanism is m
+        np.testing.assert_array_equal(runs[i].energy, one.energy)
+
+
+def test_flywheel_inertia_slows_the_speed_up():
+    """The same motor on engines with growing flywheels: less speed gained in 0.5 s, and
+    at the start q'' = torque / inertia exactly where the crank angle keeps the piston's
+    speed zero (q = 0, from rest)."""
+    inertias = np.array([0.004, 0.02, 0.1])
+    models = [engine(crank_inertia=j) for j in inertias]
+    runs = simulate(models, (0.0, 0.5), 0.0, 0.0, inputs={"jO2": "20"}, rtol=1e-10, atol=1e-12,
+                    t_eval=[0.0, 0.5])
+    assert np.all(np.diff(runs.qd[:, -1, 0]) < 0)
+    for i, m in enumerate(models):
+        crank, rod = m.link("crank"), m.link("rod")
+        G2, G3 = np.array(m.point("G2").xy), np.array(m.point("G3").xy)
+        A, B = np.array(m.point("A").xy), np.array(m.point("B").xy)
+        # at q = 0 (dead centre) the piston and rod's translation do not move with q: the
+        # inertia is the crank's about O2, plus the rod's turning at rate r/l about B
+        r, l = np.linalg.norm(A), np.linalg.norm(B - A)
+        rod_G = np.linalg.norm(G3 - B)
+        inertia = (crank.inertia + crank.mass * G2 @ G2 + (rod.inertia + rod.mass * rod_G ** 2)
+                   * (r / l) ** 2)
+        np.testing.assert_allclose(runs.qdd[i, 0, 0], 20.0 / inertia, rtol=1e-9)
+
+
+def test_batch_of_laws_one_per_run():
+    """inputs maps an input to a list of laws: run i gets law i (numbers, expressions)."""
+    laws = [5.0, "10", "20 - 0.2 * qd"]
+    t_eval = np.linspace(0.0, 0.3, 4)
+    runs = simulate(engine(), (0.0, 0.3), 0.0, 1.0, inputs={"jO2": laws}, loads=ENGINE_LOADS,
+                    t_eval=t_eval)
+    for i, law in enumerate(laws):
+        one = simulate(engine(), (0.0, 0.3), 0.0, 1.0, inputs={"jO2": law}, loads=ENGINE_LOADS,
+                       t_eval=t_eval)
+        np.testing.assert_array_equal(runs.q[i], one.q)
+    np.testing.assert_allclose(runs.input_forces[:2, :, 0], [[5.0] * 4, [10.0] * 4], rtol=0, atol=0)
+
+
+def test_runs_of_different_structures_each_compile_apart():
+    """A point mass in one model's [dynamics] section changes what the kernel carries: the
+    runs go in two groups, each still equal to its model alone."""
+    e = engine()
+    lumped = dataclasses.replace(e, parameters={"dynamics": {"point_masses": {"A": 0.5}}})
+    models = [e, lumped, engine(crank=0.055)]
+    t_eval = [0.0, 0.1, 0.2]
+    runs = simulate(models, (0.0, 0.2), 0.3, 2.0, inputs=MOTOR, t_eval=t_eval)
+    for i, m in enumerate(models):
+        one = simulate(m, (0.0, 0.2), 0.3, 2.0, inputs=MOTOR, t_eval=t_eval)
+        np.testing.assert_array_equal(runs.q[i], one.q)
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(model=[engine(), engine()], q0=np.zeros((3, 1))),
+     r"q0, model: expected the same number of runs, got 3 and 2"),
+    (dict(inputs={"jO2": ["1", "2"]}, qd0=np.zeros((3, 1))),
+     r"qd0, inputs: expected the same number of runs, got 3 and 2"),
+    (dict(inputs={"jO2": ["1", "2"], "x": []}), r"inputs: a list of laws gives one law per run"),
+    (dict(model=[]), r"model: expected a kinelab Mechanism, or a non-empty sequence"),
+    (dict(model=[engine(), "engine"]), r"model: expected a kinelab Mechanism, or a non-empty sequence"),
+    (dict(model=[engine(), pendulum()]), r"model: run 1's mechanism 'pendulum' has the inputs \['pivot'\]"),
+    (dict(inputs={"jO2": ["1", "1 +"]}), r"run 1.*inputs\['jO2'\]"),
+    (dict(model=[engine(), dataclasses.replace(engine(), parameters={"dynamics": {"massless": ["rod"]}})]),
+     r"run 1, mechanism 'engine': .*rod"),
+    (dict(model=[engine(), engine()], t_eval=None), r"t_eval: a batch of 2 runs"),
+])
+def test_batch_of_models_or_laws_bad_arguments(kw, message):
+    kw = {"model": engine(), "t_span": (0.0, 1.0), "q0": 0.0, "qd0": 0.0, "t_eval": [0.0, 1.0],
+          "inputs": MOTOR, **kw}
+    with pytest.raises(ModelError, match=message):
+        simulate(**kw)
+
+
+@pytest.mark.parametrize("method", ["DOP853", "RK45"])
+@pytest.mark.parametrize("kw, error, message", [
+    (dict(max_step=1e-12), ModelError, r"max_step: 1e-12 s over t_span of 1 s takes more than "
+                                       r"max_evaluations = 100,000,000"),
+    (dict(max_step=0.0), ModelError, r"max_step: expected a positive number"),
+    (dict(max_step=float("nan")), ModelError, r"max_step: expected a positive number"),
+    (dict(max_evaluations=0), ModelError, r"max_evaluations: expected a positive whole number"),
+    (dict(t_span=(0.0, 1e12), t_eval=[0.0, 1e12], max_evaluations=2000), ModelError,
+     r"took max_evaluations evaluations without reaching the end of t_span, at t = "),
+    (dict(q0=np.zeros((10 ** 5, 1)), t_eval=np.linspace(0.0, 1.0, 10 ** 6)), MemoryBudgetError,
+     r"100,000 run\(s\) at 1,000,000 output times would take about 18.2 TiB"),
+])
+def test_requests_beyond_reach_end_with_a_message(method, kw, error, message):
+    """Nothing hangs or runs out of memory: a step too small for t_span, a t_span too long
+    for the budget of evaluations, outputs beyond the memory budget."""
+    kw = {"t_span": (0.0, 1.0), "q0": 0.5, "t_eval": [0.0, 1.0], **kw}
+    with pytest.raises(error, match=message):
+        simulate(pendulum(), inputs={"pivot": "-0.1 * qd"}, loads=Loads(gravity=g), method=method, **kw)
+
+
+def test_a_diverging_motion_is_named_as_such():
+    """A law that drives q' past float64 within a step: the state, not the law, is at fault
+    (the Python right-hand side meets the infinite state first)."""
+    with pytest.raises(ModelError, match=r"diverges: q or q' is no longer finite after t = "):
+        simulate(pendulum(), (0.0, 1.0), 0.5, 0.0, inputs={"pivot": "1e300 * exp(qd)"},
+                 t_eval=[0.0, 1.0], method="RK45")
+
+
+def test_a_tolerance_below_rounding_is_raised_to_scipys_floor():
+    with pytest.warns(UserWarning, match=r"rtol: 1e-20 is below 100 machine epsilons; using 2.22e-14"):
+        sim = simulate(pendulum(), (0.0, 0.1), 0.5, 0.0, loads=Loads(gravity=g), rtol=1e-20,
+                       atol=1e-14, t_eval=[0.0, 0.1])
+    floor = simulate(pendulum(), (0.0, 0.1), 0.5, 0.0, loads=Loads(gravity=g), rtol=2.220446049250313e-14,
+                     atol=1e-14, t_eval=[0.0, 0.1])
+    np.testing.assert_array_equal(sim.q, floor.q)
