@@ -403,15 +403,16 @@ def simulate(model: Mechanism | Sequence[Mechanism], t_span: tuple[float, float]
         t0, t1 = (float(v) for v in t_span)
     except (TypeError, ValueError):
         raise ModelError(f"t_span: expected (start, end) in s, got {describe(t_span)}") from None
-    if not (math.isfinite(t0) and math.isfinite(t1) and t1 > t0):
+    if not (math.isfinite(t0) and math.isfinite(t1) and t1 > t0 and math.isfinite(t1 - t0)):
         raise ModelError(f"t_span: expected finite start < end, got {describe(t_span)}")
     counts = {name: len(v) for name, v in (("model", models), ("inputs", run_inputs)) if len(v) > 1}
     q_init, qd_init, batch = _initial_states(q0, qd0, M, counts)
     B = len(q_init)
     if t_eval is not None:
         t_eval = np.asarray(t_eval, dtype=float).ravel()
-        if t_eval.size == 0 or np.any(t_eval < t0) or np.any(t_eval > t1) or np.any(np.diff(t_eval) <= 0):
-            raise ModelError(f"t_eval: expected increasing times within t_span [{t0}, {t1}] s")
+        if (t_eval.size == 0 or not np.all(np.isfinite(t_eval)) or np.any(t_eval < t0)
+                or np.any(t_eval > t1) or np.any(np.diff(t_eval) <= 0)):
+            raise ModelError(f"t_eval: expected increasing times within t_span [{t0}, {t1}] s, all finite")
     elif batch:
         raise ModelError(f"t_eval: a batch of {B} runs (q0, qd0 of shape (B, M), or a model or "
                          "law per run) needs output times shared by every run; give t_eval")
@@ -427,6 +428,13 @@ def simulate(model: Mechanism | Sequence[Mechanism], t_span: tuple[float, float]
         warnings.warn(f"rtol: {rtol:g} is below 100 machine epsilons; using {RTOL_FLOOR:.3g}",
                       stacklevel=2)
         rtol = RTOL_FLOOR
+    if not (isinstance(singular_stop, (int, float)) and 0 <= singular_stop < 1):
+        raise ModelError(f"singular_stop: expected a number from 0 (no stop) to below 1 (a sine), "
+                         f"got {describe(singular_stop)}")
+    if threads is not None and not (isinstance(threads, (int, np.integer))
+                                    and not isinstance(threads, bool) and threads > 0):
+        raise ModelError(f"threads: expected a positive whole number or None (one per processor), "
+                         f"got {describe(threads)}")
     if not (isinstance(max_step, (int, float)) and max_step > 0):        # inf allowed
         raise ModelError(f"max_step: expected a positive number of s (or inf), got {describe(max_step)}")
     if not (isinstance(max_evaluations, (int, np.integer)) and not isinstance(max_evaluations, bool)

@@ -307,6 +307,13 @@ def test_batch_of_models_or_laws_bad_arguments(kw, message):
     (dict(max_evaluations=0), ModelError, r"max_evaluations: expected a positive whole number"),
     (dict(t_span=(0.0, 1e12), t_eval=[0.0, 1e12], max_evaluations=2000), ModelError,
      r"took max_evaluations evaluations without reaching the end of t_span, at t = "),
+    (dict(t_eval=[0.0, float("nan")]), ModelError,
+     r"t_eval: expected increasing times within t_span \[0.0, 1.0\] s, all finite"),
+    (dict(t_span=(-1e308, 1e308)), ModelError, r"t_span: expected finite start < end"),
+    (dict(singular_stop=float("nan")), ModelError, r"singular_stop: expected a number from 0"),
+    (dict(singular_stop="x"), ModelError, r"singular_stop: expected a number from 0"),
+    (dict(q0=[[0.0], [1.0]], threads=0), ModelError, r"threads: expected a positive whole number"),
+    (dict(q0=[[0.0], [1.0]], threads="2"), ModelError, r"threads: expected a positive whole number"),
     (dict(q0=np.zeros((10 ** 5, 1)), t_eval=np.linspace(0.0, 1.0, 10 ** 6)), MemoryBudgetError,
      r"100,000 run\(s\) at 1,000,000 output times would take about 18.2 TiB"),
 ])
