@@ -162,14 +162,7 @@ def forward(m, loads, quick=False):
         runs = batch()
         wall, cpu = time.perf_counter() - t0, time.process_time() - c0
         sample = 20 if quick else 50
-        picks = np.linspace(0, B - 1, sample).astype(int)
-        times, worst = [], 0.0
-        for i in picks:
-            t1 = time.process_time()
-            one = single(i)
-            times.append(time.process_time() - t1)
-            worst = max(worst, float(np.max(np.abs(one.q - runs.q[i]))))
-        loop = statistics.mean(times) * B
+        picks, times, loop, worst = loop_of_single_runs(single, runs, sample)
         c0 = time.process_time()
         simulate(m, (0.0, t_end), q0, qd0, inputs=inputs, loads=loads, rtol=1e-8, atol=1e-10,
                  t_eval=te, threads=1)
@@ -190,6 +183,21 @@ def forward(m, loads, quick=False):
                   f"solve_ivp), estimated from 3: {python_loop:.0f} s; ratio to the batch "
                   f"{python_loop / cpu_1:.0f}x")
     designs(B, quick)
+
+
+def loop_of_single_runs(single, runs, sample):
+    """A loop of single runs over the batch ``runs``, estimated from ``sample`` of them:
+    the runs timed, their process times, the loop's estimated time and the largest
+    difference from the batch (rad)."""
+    B = len(runs)
+    picks = np.linspace(0, B - 1, sample).astype(int)
+    times, worst = [], 0.0
+    for i in picks:
+        t1 = time.process_time()
+        one = single(i)
+        times.append(time.process_time() - t1)
+        worst = max(worst, float(np.max(np.abs(one.q - runs.q[i]))))
+    return picks, times, statistics.mean(times) * B, worst
 
 
 def designs(B, quick):
@@ -213,14 +221,7 @@ def designs(B, quick):
                     atol=1e-10, t_eval=te, threads=1)
     cpu = time.process_time() - c0
     sample = 20 if quick else 50
-    picks = np.linspace(0, B - 1, sample).astype(int)
-    times, worst = [], 0.0
-    for i in picks:
-        t1 = time.process_time()
-        one = run(i)
-        times.append(time.process_time() - t1)
-        worst = max(worst, float(np.max(np.abs(one.q - runs.q[i]))))
-    loop = statistics.mean(times) * B
+    _, _, loop, worst = loop_of_single_runs(run, runs, sample)
     print(f"batch of {B} engines of 1 s, each its own flywheel (0.004-0.1 kg m^2) and motor torque "
           f"(models built in {built:.2f} s):")
     print(f"  batch: {cpu:.2f} s process time on 1 thread; loop of single runs, estimated from "

@@ -273,7 +273,8 @@ def drift(sol: KinematicSolution) -> np.ndarray:
     return worst
 
 
-def simulate(model: Mechanism | Sequence[Mechanism], t_span: tuple[float, float], q0: ArrayLike, qd0: ArrayLike = 0.0, *,
+def simulate(model: Mechanism | Sequence[Mechanism], t_span: tuple[float, float], q0: ArrayLike,
+             qd0: ArrayLike = 0.0, *,
              inputs=None, loads: Loads | None = None,
              masses: MassProperties | None = None, t_eval: ArrayLike | None = None,
              method: Literal["DOP853", "RK45", "Radau", "LSODA", "BDF"] = "DOP853",
@@ -450,7 +451,8 @@ def simulate(model: Mechanism | Sequence[Mechanism], t_span: tuple[float, float]
     # batch waits for it, as its runs in Python would take far longer than compiling
     compiled = None
     if method == "DOP853":
-        compiled = {id(case): compiled_system(*case) for case in cases}
+        distinct = {id(case): case for case in cases}
+        compiled = {key: compiled_system(*case) for key, case in distinct.items()}
         if any(c is None for c in compiled.values()):
             compiled = None
     large = batch and B >= WAIT_FOR_COMPILED_FROM
@@ -585,13 +587,15 @@ def _integrate_compiled(cases: list, compiled: dict, y0: np.ndarray, span, t_eva
         statuses, nfevs = np.zeros(B, np.int64), np.zeros(B, np.int64)
         infos, counts = np.zeros((B, 2 + n)), np.zeros(B, np.int64)
         groups: dict = {}
+        kinds = {key: structure(packed) for key, (packed, _) in compiled.items()}
         for i, case in enumerate(cases):
-            groups.setdefault(structure(compiled[id(case)][0]), []).append(i)
+            groups.setdefault(kinds[id(case)], []).append(i)
         for rows in groups.values():
             rows = np.array(rows)
             shared = all(cases[i] is cases[rows[0]] for i in rows)
             packs = [compiled[id(cases[i])][0] for i in (rows[:1] if shared else rows)]
-            packed, stack = compiled[id(cases[rows[0]])][0], max(compiled[id(cases[i])][1] for i in rows)
+            packed = compiled[id(cases[rows[0]])][0]
+            stack = max(compiled[id(cases[i])][1] for i in rows)
             out = (np.full((len(rows), N, n), np.nan), np.zeros(len(rows), np.int64),
                    np.zeros(len(rows), np.int64), np.zeros((len(rows), 2 + n)),
                    np.zeros(len(rows), np.int64))
