@@ -213,9 +213,9 @@ def designs(B, quick):
     laws = [f"{tq:.6g} - 0.2 * qd" for tq in torques]
     built = time.process_time() - t0
 
-    def run(i):
-        return simulate(models[i], (0.0, 1.0), 0.0, 0.0, inputs={"jO2": laws[i]}, loads=loads,
-                        rtol=1e-8, atol=1e-10, t_eval=te)
+    def run(i):     # a model of its own, as a loop would build it (a model keeps its plan)
+        return simulate(engine_of(crank_inertia=inertias[i]), (0.0, 1.0), 0.0, 0.0,
+                        inputs={"jO2": laws[i]}, loads=loads, rtol=1e-8, atol=1e-10, t_eval=te)
     c0 = time.process_time()
     runs = simulate(models, (0.0, 1.0), 0.0, 0.0, inputs={"jO2": laws}, loads=loads, rtol=1e-8,
                     atol=1e-10, t_eval=te, threads=1)

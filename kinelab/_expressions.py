@@ -572,7 +572,7 @@ _PROGRAM_COMPARE = {ast.Lt: OP_LT, ast.LtE: OP_LE, ast.Gt: OP_GT, ast.GtE: OP_GE
                     ast.Eq: OP_EQ, ast.NotEq: OP_NE}
 
 
-@functools.lru_cache(maxsize=256)      # a batch of runs compiles the same law once per run
+@functools.lru_cache(maxsize=256)   # a batch with a model per run asks for each law once a run
 def to_program(text: str, M: int, *, where: str = "expression"
                ) -> tuple[np.ndarray, np.ndarray] | None:
     """The expression as a program for a stack machine: a compiled kernel evaluates it
@@ -587,9 +587,10 @@ def to_program(text: str, M: int, *, where: str = "expression"
     -------
     (code, constants) : ndarray (n, 2) of int64, ndarray of float64
         Rows ``(op, argument)`` (the ``OP_*`` codes of this module) and the constants
-        they push (read-only: the result is kept for the next call); None when the text names ``q`` or ``qd`` in a way that does not fit
-        ``M`` inputs (a bare ``q`` with several inputs, an index past the last), which
-        :func:`parse_expression` reports when evaluated.
+        they push (read-only: the result is kept for the next call); None when the text
+        names ``q`` or ``qd`` in a way that does not fit ``M`` inputs (a bare ``q`` with
+        several inputs, an index past the last), which :func:`parse_expression` reports
+        when evaluated.
 
     Examples
     --------

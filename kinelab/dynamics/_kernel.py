@@ -532,8 +532,8 @@ def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, sys
 
 
 @_jit(nogil=True)
-def integrate_runs(Y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, system, per_run, lo, hi,
-                   o_y, o_status, o_nfev, o_info, o_count, stack_size):
+def integrate_runs(Y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, system, per_run, lo,
+                   hi, o_y, o_status, o_nfev, o_info, o_count, stack_size):
     """Runs lo:hi of a batch (rows of Y0), each by :func:`integrate_run`: outputs at
     t_eval into o_y (B, N, n), its status, evaluations, info and number of outputs.
 
