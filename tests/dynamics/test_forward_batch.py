@@ -315,7 +315,8 @@ def test_batch_of_models_or_laws_bad_arguments(kw, message):
     (dict(q0=[[0.0], [1.0]], threads=0), ModelError, r"threads: expected a positive whole number"),
     (dict(q0=[[0.0], [1.0]], threads="2"), ModelError, r"threads: expected a positive whole number"),
     (dict(q0=np.zeros((10 ** 5, 1)), t_eval=np.linspace(0.0, 1.0, 10 ** 6)), MemoryBudgetError,
-     r"100,000 run\(s\) at 1,000,000 output times would take about 18.2 TiB"),
+     r"100,000 run\(s\) at 1,000,000 output times would take about [\d.]+ TiB, more than the "
+     r"memory budget"),
 ])
 def test_requests_beyond_reach_end_with_a_message(method, kw, error, message):
     """Nothing hangs or runs out of memory: a step too small for t_span, a t_span too long
