@@ -575,11 +575,14 @@ def _integrate_compiled(cases: list, compiled: dict, y0: np.ndarray, span, t_eva
     M = cases[0][0].M
     B, n = y0.shape
     args = (span[0], span[1], np.zeros(0) if t_eval is None else t_eval, float(rtol), float(atol),
-            float(max_step), float(singular_stop), int(budget), M)
+            float(max_step), float(singular_stop), int(budget)) + (() if M == 1 else (M,))
+    integrate_run, integrate_runs = ((_kernel.integrate_run_one_input,
+                                      _kernel.integrate_runs_one_input) if M == 1 else
+                                     (_kernel.integrate_run, _kernel.integrate_runs))
     if not batch:
         packed, stack = compiled[id(cases[0])]
-        status, nfev, info, t, y = _kernel.integrate_run(y0[0], *args, packed,
-                                                         work_arrays(packed, M, stack))
+        work = work_arrays(packed, M, stack)
+        status, nfev, info, t, y = integrate_run(y0[0], *args, packed, work)
         statuses, nfevs, infos, counts, ys = [status], [nfev], [info], [len(t)], [y]
     else:
         t, N = t_eval, len(t_eval)
@@ -604,8 +607,7 @@ def _integrate_compiled(cases: list, compiled: dict, y0: np.ndarray, span, t_eva
             edges = np.linspace(0, len(rows), chunks + 1).astype(int)
 
             def part(c):
-                _kernel.integrate_runs(y_rows, *args, packed, numbers, edges[c], edges[c + 1], *out,
-                                       stack)
+                integrate_runs(y_rows, *args, packed, numbers, edges[c], edges[c + 1], *out, stack)
             if chunks == 1:
                 part(0)
             else:

@@ -2,7 +2,7 @@
 Dormand and Prince's 8(5,3) method one run after another, without Python in the loop.
 
 The right-hand side of one run at (t, q, q') runs the kinematics kernel on the plan
-(``run_one_sample``: every item's value, K and the velocity terms ``q'^T L q'``), forms
+(``evaluate_one_sample``: every item's value, K and the velocity terms ``q'^T L q'``), forms
 the mass matrix ``sum w K^T K`` and the bias ``sum w K^T (q'^T L q')`` over the
 coordinates with inertia, adds the generalised forces of gravity, point forces, torques,
 springs and dampers (``K^T F``), evaluates the actuator laws, and solves for q''.  Laws
@@ -22,7 +22,8 @@ from scipy.integrate import DOP853
 from kinelab import _expressions as ex
 from kinelab.kinematics import SINGULAR_TOL
 from kinelab.kinematics import _kernel as kin
-from kinelab.kinematics._kernel import _jit, _lu_factor, _lu_solve, run_one_sample
+from kinelab.kinematics._kernel import (_jit, _lu_factor, _lu_solve, evaluate_one_sample,
+                                        one_sample_scratch)
 
 # what a run ends with (its status); the info row says where: t, then details
 RUN_FINISHED = 0
@@ -191,11 +192,12 @@ def run_law(code, constants, lo, hi, t, q, qd, stack):
 
 
 @_jit()
-def _law(system, k, t, q, qd, stack, info):
-    """Law k of the system (0.0 for k < 0); a value that is not finite fails the run."""
+def _law(code, constants, starts, k, t, q, qd, stack, info):
+    """Law k of a system's programs (0.0 for k < 0); a value that is not finite fails the
+    run.  (The programs come as three arrays, not in the system's tuple: each array passed
+    costs the call its reference counting.)"""
     if k < 0:
         return 0.0
-    code, constants, starts = system[15], system[16], system[17]
     v = run_law(code, constants, starts[k], starts[k + 1], t, q, qd, stack)
     if not np.isfinite(v):
         info[1] = k
@@ -203,11 +205,13 @@ def _law(system, k, t, q, qd, stack, info):
 
 
 @_jit()
-def _rhs(t, y, dy, M, system, work, info):
+def _rhs(t, y, dy, M, system, work, sample, info):
     """dy/dt of one run at (t, y), y = (q, q', actuator work, applied work, dissipated);
-    returns a status (0: fine).  ``info[0]`` gets the singularity measure."""
-    (plan_i, plan_f, ns, scale, mass_rows, mass_w, mass_g, force_rows, force_laws, torque_rows,
-     torque_laws, spring_rows, spring_k, spring_l0, spring_c, _, _, _, actuator_laws) = system
+    returns a status (0: fine).  ``info[0]`` gets the singularity measure.  ``sample`` is
+    the kinematics' scratch (``one_sample_scratch``), made once per run."""
+    (_, _, ns, scale, mass_rows, mass_w, mass_g, force_rows, force_laws, torque_rows,
+     torque_laws, spring_rows, spring_k, spring_l0, spring_c, code, constants, starts,
+     actuator_laws) = system
     x, out, MM, piv, b, stack = work
     for m in range(2 * M):
         if not np.isfinite(y[m]):
@@ -216,7 +220,7 @@ def _rhs(t, y, dy, M, system, work, info):
         x[0, m] = y[m]
         x[1, m] = y[M + m]
         x[2, m] = 0.0
-    status = run_one_sample(x, plan_i, plan_f, out)
+    status = evaluate_one_sample(x, sample, out, M)
     w = 1 + M + M * M
     r = ns * w                                      # rates start here, then diag
     info[0] = out[r + 2 * ns + 1]
@@ -244,12 +248,12 @@ def _rhs(t, y, dy, M, system, work, info):
     for f in range(force_rows.shape[0]):
         row = force_rows[f]
         for d in range(2):
-            F = _law(system, force_laws[f, d], t, q, qd, stack, info)
+            F = _law(code, constants, starts, force_laws[f, d], t, q, qd, stack, info)
             power += F * out[r + 2 * (row + d)]
             for i in range(M):
                 b[i] += F * out[(row + d) * w + 1 + i]
     for k in range(torque_rows.shape[0]):
-        T = _law(system, torque_laws[k], t, q, qd, stack, info)
+        T = _law(code, constants, starts, torque_laws[k], t, q, qd, stack, info)
         own, other = torque_rows[k, 0], torque_rows[k, 1]
         power += T * out[r + 2 * own]
         for i in range(M):
@@ -277,7 +281,7 @@ def _rhs(t, y, dy, M, system, work, info):
             b[i] -= tension * dl
     actuator_power = 0.0
     for i in range(M):
-        tau = _law(system, actuator_laws[i], t, q, qd, stack, info)
+        tau = _law(code, constants, starts, actuator_laws[i], t, q, qd, stack, info)
         b[i] += tau
         actuator_power += tau * qd[i]
     if info[1] >= 0:
@@ -339,6 +343,7 @@ def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, sys
     n = y0.shape[0]
     nq = 2 * M
     info = np.zeros(2 + n)
+    sample = one_sample_scratch(system[0], system[1], M)
     K = np.zeros((_STAGES + 4, n))
     y = y0.copy()
     f = np.zeros(n)
@@ -355,7 +360,7 @@ def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, sys
         o_t[0] = t0
         o_y[0] = y0
         n_out = 1
-    st = _rhs(t0, y, f, M, system, work, info)
+    st = _rhs(t0, y, f, M, system, work, sample, info)
     nfev = 1
     if st != 0:
         info[0] = t0
@@ -374,7 +379,7 @@ def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, sys
     h0 = min(h0, span)
     for j in range(n):
         ys[j] = y0[j] + h0 * f[j]
-    st = _rhs(t0 + h0, ys, K[1], M, system, work, info)
+    st = _rhs(t0 + h0, ys, K[1], M, system, work, sample, info)
     nfev += 1
     if st != 0:
         info[0] = t0 + h0
@@ -419,14 +424,14 @@ def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, sys
                 K[0, j] = f[j]
             for s in range(1, _STAGES):
                 _stage(K, s, _A[s], h, y, ys)
-                st = _rhs(t + _C[s] * h, ys, K[s], M, system, work, info)
+                st = _rhs(t + _C[s] * h, ys, K[s], M, system, work, sample, info)
                 nfev += 1
                 if st != 0:
                     info[0] = t + _C[s] * h
                     info[2:] = ys
                     return st, nfev, info, o_t[:n_out], o_y[:n_out]
             _stage(K, _STAGES, _B, h, y, y_new)
-            st = _rhs(t + h, y_new, K[_STAGES], M, system, work, info)
+            st = _rhs(t + h, y_new, K[_STAGES], M, system, work, sample, info)
             nfev += 1
             if st != 0:
                 info[0] = t + h
@@ -469,7 +474,8 @@ def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, sys
             # the interpolant (scipy's _dense_output_impl): three more stages
             for s in range(_STAGES + 1, _STAGES + 4):
                 _stage(K, s, _A_EXTRA[s - _STAGES - 1], h, y, ys)
-                st = _rhs(t + _C_EXTRA[s - _STAGES - 1] * h, ys, K[s], M, system, work, info)
+                st = _rhs(t + _C_EXTRA[s - _STAGES - 1] * h, ys, K[s], M, system, work, sample,
+                          info)
                 nfev += 1
                 if st != 0:
                     info[0] = t + _C_EXTRA[s - _STAGES - 1] * h
@@ -493,7 +499,7 @@ def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, sys
                     if mid <= lo or mid >= hi:
                         break
                     _dense(F, y, t, h, mid, ys)
-                    st = _rhs(mid, ys, K[_STAGES + 3], M, system, work, info)
+                    st = _rhs(mid, ys, K[_STAGES + 3], M, system, work, sample, info)
                     if st != FAIL_ASSEMBLY and info[0] - stop > 0:
                         lo = mid
                     else:
@@ -557,3 +563,21 @@ def integrate_runs(Y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, sy
         o_nfev[r] = nfev
         o_info[r] = info
         o_count[r] = ys.shape[0]
+
+
+# Each entry point comes twice, as in the kinematics kernel: for any number of inputs M, and
+# with M = 1 compiled in as a constant (the common case), which lets the loops over inputs
+# unroll (about a fifth of an evaluation).
+
+@_jit(nogil=True)
+def integrate_run_one_input(y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, system, work):
+    """:func:`integrate_run` for one input."""
+    return integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, 1, system, work)
+
+
+@_jit(nogil=True)
+def integrate_runs_one_input(Y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, system,
+                             per_run, lo, hi, o_y, o_status, o_nfev, o_info, o_count, stack_size):
+    """:func:`integrate_runs` for one input."""
+    integrate_runs(Y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, 1, system, per_run, lo,
+                   hi, o_y, o_status, o_nfev, o_info, o_count, stack_size)

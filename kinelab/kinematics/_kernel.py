@@ -1061,14 +1061,11 @@ def run_closed_form_one_input(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, con
                  n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail, 1)
 
 
-@_jit(nogil=True)
-def run_one_sample(x, plan_i, plan_f, out):
-    """Evaluate one sample of a plan without Newton groups: x (3, M) holds q, q' and q''.
-
-    plan_i and plan_f come from :func:`pack_plan`; ``out`` is laid out as
-    :func:`one_sample_layout` says.  Returns the status.
-    """
-    M = x.shape[1]
+@_jit()
+def one_sample_scratch(plan_i, plan_f, M):
+    """What :func:`evaluate_one_sample` needs of a plan packed by :func:`pack_plan` (views of
+    plan_i and plan_f) and the scratch space of its samples: made once for a run of samples
+    one at a time, so that each sample allocates nothing."""
     n_items, n_angles, n_ops, wi, wf, nc, ns = plan_i[0], plan_i[1], plan_i[2], plan_i[3], \
         plan_i[4], plan_i[5], plan_i[6]
     a = HEADER + n_ops * wi
@@ -1077,31 +1074,43 @@ def run_one_sample(x, plan_i, plan_f, out):
     stored = plan_i[a + nc:a + nc + ns]
     ops_f = plan_f[:n_ops * wf].reshape((n_ops, wf))
     const_values = plan_f[n_ops * wf:n_ops * wf + nc]
+    jet = _new_jet(1, n_items, M, const_items, const_values)
+    return (ops_i, ops_f, stored, n_angles, jet, np.zeros(M), np.zeros(M), np.zeros((M, M)),
+            np.zeros(4), np.zeros((3, 1)), np.zeros((2, 1), np.int64),
+            np.zeros((1, 8), np.int64), np.zeros((1, 8)), np.zeros(1), np.zeros((1, M)),
+            np.zeros((1, M, M)), np.zeros(1, np.int64), np.zeros(1, np.int8))
+
+
+@_jit(inline="always")
+def evaluate_one_sample(x, scratch, out, M):
+    """Evaluate one sample of a plan without Newton groups: x (3, M) holds q, q' and q'';
+    ``scratch`` comes from :func:`one_sample_scratch`, ``out`` is laid out as
+    :func:`one_sample_layout` says.  Returns the status."""
+    (ops_i, ops_f, stored, n_angles, jet, Kt, Kt2, Lt, res, lane_f, lane_i, gi, gf, g1, g2, g3,
+     piv, o_status) = scratch
+    ns = stored.shape[0]
     w = 1 + M + M * M
     r = ns * w
     o_jet = out[:r].reshape((1, ns, w))
     o_rate = out[r:r + 2 * ns].reshape((1, ns, 2))
     o_diag = out[r + 2 * ns:r + 2 * ns + 2].reshape((1, 2))
     o_fail = out[r + 2 * ns + 2:r + 2 * ns + 4].reshape((1, 2))
-    o_status = np.zeros(1, np.int8)
-    jet = _new_jet(1, n_items, M, const_items, const_values)
-    Kt = np.zeros(M)
-    Kt2 = np.zeros(M)
-    Lt = np.zeros((M, M))
-    res = np.zeros(4)
-    lane_f = np.zeros((3, 1))
-    lane_i = np.zeros((2, 1), np.int64)
-    gi = np.zeros((1, 8), np.int64)      # no Newton group: empty stand-ins
-    gf = np.zeros((1, 8))
-    g1 = np.zeros(1)
-    g2 = np.zeros((1, M))
-    g3 = np.zeros((1, M, M))
-    piv = np.zeros(1, np.int64)
     st = _evaluate(x[0:1], x[1:2], x[2:3], 0, 1, True, ops_i, ops_f, jet, M, Kt, Kt2, Lt, gi,
                    gi, gf, 1.0, g1, g2, g3, g2, g1, g1, piv, res, lane_f, lane_i, n_angles,
                    stored, o_jet, o_rate, o_diag, o_status, o_fail)
     out[r + 2 * ns + 4] = st
     return st
+
+
+@_jit(nogil=True)
+def run_one_sample(x, plan_i, plan_f, out):
+    """Evaluate one sample of a plan without Newton groups: x (3, M) holds q, q' and q''.
+
+    plan_i and plan_f come from :func:`pack_plan`; ``out`` is laid out as
+    :func:`one_sample_layout` says.  Returns the status.
+    """
+    M = x.shape[1]
+    return evaluate_one_sample(x, one_sample_scratch(plan_i, plan_f, M), out, M)
 
 
 @_jit()
