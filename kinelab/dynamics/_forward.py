@@ -744,12 +744,13 @@ def _integrate_scipy(system: System, actuators, y0: np.ndarray, span, t_eval, me
 
     # The works are quadratures: an infinite atol keeps them out of the error norm, and
     # the tolerances of q and q' shrink by sqrt(2M / (2M + 3)) so that solve_ivp's RMS norm
-    # over 2M + 3 components equals the norm of q and q' alone.
+    # over 2M + 3 components equals the norm of q and q' alone (an rtol at the floor stays
+    # there: scipy would raise it to the floor with a second warning).
     shrink = math.sqrt(2 * M / (2 * M + 3))
     atols = np.concatenate([np.full(2 * M, atol * shrink), np.full(3, np.inf)])
     try:    # a state beyond float64 is reported by rhs (diverged), not by numpy's warnings
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            out = solve_ivp(rhs, span, y0, method=method, t_eval=t_eval, rtol=rtol * shrink,
+            out = solve_ivp(rhs, span, y0, method=method, t_eval=t_eval, rtol=max(rtol * shrink, RTOL_FLOOR),
                             atol=atols, max_step=max_step,
                             events=near_singular if singular_stop > 0 else None)
     except _Halt as h:

@@ -341,3 +341,15 @@ def test_a_tolerance_below_rounding_is_raised_to_scipys_floor():
     floor = simulate(pendulum(), (0.0, 0.1), 0.5, 0.0, loads=Loads(gravity=g), rtol=2.220446049250313e-14,
                      atol=1e-14, t_eval=[0.0, 0.1])
     np.testing.assert_array_equal(sim.q, floor.q)
+
+
+def test_a_tolerance_at_the_floor_warns_once_on_the_solve_ivp_path():
+    """The Python path scales rtol for its norm over q and q' alone; at the floor it stays
+    at the floor, so that scipy does not raise it again with a warning of its own."""
+    import warnings
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        simulate(pendulum(), (0.0, 0.1), 0.5, 0.0, loads=Loads(gravity=g), rtol=1e-20,
+                 atol=1e-14, t_eval=[0.0, 0.1], method="RK45")
+    assert [str(w.message) for w in caught] == [
+        "rtol: 1e-20 is below 100 machine epsilons; using 2.22e-14"]
