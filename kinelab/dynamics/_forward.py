@@ -141,16 +141,16 @@ def actuator_laws(model: Mechanism, inputs) -> Callable[[np.ndarray, np.ndarray,
         for key, law in inputs.items():
             if key in names:
                 try:
-                    laws[names.index(key)] = Law(law, f"inputs['{key}']")
+                    laws[names.index(key)] = Law(law, f"inputs[{shown(key)}]")
                 except ModelError as exc:
                     problems.extend(exc.problems)
             elif key in model.joint_names:
-                problems.append(f"inputs: joint '{key}' is not an input of '{model.name}', so no actuator "
+                problems.append(f"inputs: joint {shown(key)} is not an input of '{model.name}', so no actuator "
                                 f"can drive it; the inputs are {', '.join(map(repr, names))}; add an input "
-                                f"for '{key}' to the model, or apply its effort as a load (Torque, PointForce)")
+                                f"for {shown(key)} to the model, or apply its effort as a load (Torque, PointForce)")
             else:
                 problems.append(f"inputs: expected an input name, one of {', '.join(map(repr, names))}, "
-                                f"got '{key}'")
+                                f"got {shown(key)}")
     elif isinstance(inputs, (list, tuple)):
         if len(inputs) != M:
             problems.append(f"inputs: expected {M} law(s), one per input ({', '.join(map(repr, names))}), "

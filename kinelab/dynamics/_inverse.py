@@ -10,7 +10,7 @@ from kinelab.dynamics._loads import Loads, default_carrier
 from kinelab.dynamics._masses import MassProperties
 from kinelab.dynamics._results import MotionResult
 from kinelab.dynamics._terms import System, Terms, build_system, evaluate, point_block, times
-from kinelab.errors import ModelError, quoted, suggest
+from kinelab.errors import ModelError, quoted, shown, suggest
 from kinelab.kinematics import KinematicSolution, analyze, plan
 from kinelab.kinematics._columns import Columns
 from kinelab.model import Units
@@ -21,7 +21,7 @@ __all__ = ["inverse", "InverseDynamics"]
 def _pick(names: tuple[str, ...], name: str, kind: str) -> int:
     if name in names:
         return names.index(name)
-    raise ModelError(f"{kind}: expected one of {quoted(names)}, got '{name}'{suggest(name, names)}")
+    raise ModelError(f"{kind}: expected one of {quoted(names)}, got {shown(name)}{suggest(name, names)}")
 
 
 @dataclass(frozen=True, eq=False)

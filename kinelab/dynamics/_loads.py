@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from kinelab._expressions import OP_CONST, not_finite, parse_expression, parse_table, to_program
-from kinelab.errors import ModelError, describe
+from kinelab.errors import ModelError, describe, shown, shown_key
 from kinelab.model import MAX_RATE, Mechanism, is_real
 
 __all__ = ["Law", "PointForce", "Torque", "Spring", "Damper", "Loads", "STANDARD_GRAVITY"]
@@ -168,7 +168,7 @@ class PointForce:
     name: str | None = None
 
     def __post_init__(self):
-        object.__setattr__(self, "_law", _laws(self.force, f"force at '{self.point}'", 2))
+        object.__setattr__(self, "_law", _laws(self.force, f"force at {shown(self.point)}", 2))
 
     def value(self, t, q, qd) -> np.ndarray:
         """The force at N samples, shape (N, 2)."""
@@ -200,7 +200,7 @@ class Torque:
     name: str | None = None
 
     def __post_init__(self):
-        object.__setattr__(self, "_law", Law(self.torque, f"torque on '{self.link}'"))
+        object.__setattr__(self, "_law", Law(self.torque, f"torque on {shown(self.link)}"))
 
     def value(self, t, q, qd) -> np.ndarray:
         return self._law(t, q, qd)
@@ -264,7 +264,7 @@ class Damper:
 
 
 def _label(item, kind: str) -> str:
-    return f"{kind} '{item.name}'" if item.name else f"{kind} {'-'.join(map(str, item.points))}"
+    return f"{kind} {shown(item.name)}" if item.name else f"{kind} {'-'.join(map(shown_key, item.points))}"
 
 
 def _check_pair(item, kind: str) -> None:
@@ -275,7 +275,7 @@ def _check_pair(item, kind: str) -> None:
         raise ModelError(f"{kind}: points: expected two point names, got {describe(pts)}")
     if pts[0] == pts[1]:
         raise ModelError(f"{_label(item, kind)}: points: its two ends are the same point "
-                         f"'{pts[0]}'; a {kind} joins two different points")
+                         f"{shown(pts[0])}; a {kind} joins two different points")
     if len(item.links) != 2:
         raise ModelError(f"{_label(item, kind)}: links: expected two entries (or None), got "
                          f"{describe(item.links)}")
@@ -335,7 +335,7 @@ class Loads:
 
         def point(p, where):
             if p not in points:
-                out.append(f"{where}: point: expected a point of '{model.name}', got '{p}'; "
+                out.append(f"{where}: point: expected a point of '{model.name}', got {shown(p)}; "
                            f"its points are {', '.join(map(repr, model.point_names))}")
                 return False
             return True
@@ -344,22 +344,22 @@ class Loads:
             if n is None:
                 return
             if n not in links:
-                out.append(f"{where}: link: expected a link of '{model.name}', got '{n}'; "
+                out.append(f"{where}: link: expected a link of '{model.name}', got {shown(n)}; "
                            f"its links are {', '.join(map(repr, model.link_names))}")
             elif carrying is not None and carrying not in model.link(n).points:
-                out.append(f"{where}: link '{n}' does not carry point '{carrying}'; name a link "
+                out.append(f"{where}: link {shown(n)} does not carry point {shown(carrying)}; name a link "
                            f"that does ({', '.join(map(repr, model.links_carrying(carrying)))})")
         for i, f in enumerate(self.forces):
-            where = f"forces[{i}]" + (f" '{f.name}'" if f.name else "")
+            where = f"forces[{i}]" + (f" {shown(f.name)}" if f.name else "")
             if point(f.point, where):
                 link(f.link, where, f.point)
         for i, tq in enumerate(self.torques):
-            where = f"torques[{i}]" + (f" '{tq.name}'" if tq.name else "")
+            where = f"torques[{i}]" + (f" {shown(tq.name)}" if tq.name else "")
             link(tq.link, where)
             link(tq.reacting, where + ".reacting")
         for kind, items in (("springs", self.springs), ("dampers", self.dampers)):
             for i, s in enumerate(items):
-                where = f"{kind}[{i}]" + (f" '{s.name}'" if s.name else "")
+                where = f"{kind}[{i}]" + (f" {shown(s.name)}" if s.name else "")
                 for p, n in zip(s.points, s.links):
                     if point(p, where):
                         link(n, where, p)

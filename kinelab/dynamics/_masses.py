@@ -5,7 +5,7 @@ import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
-from kinelab.errors import ModelError, describe
+from kinelab.errors import ModelError, describe, shown
 from kinelab.model import MAX_INERTIA, MAX_MASS, Mechanism, is_real
 
 __all__ = ["LinkMass", "PointMass", "MassProperties"]
@@ -68,7 +68,7 @@ class PointMass:
 
     def __post_init__(self):
         if not _positive(self.mass):
-            raise ModelError(f"point mass at '{self.point}': mass: expected a positive number (kg) "
+            raise ModelError(f"point mass at {shown(self.point)}: mass: expected a positive number (kg) "
                              f"up to {MAX_MASS:g}, got {describe(self.mass)}")
 
 
@@ -137,15 +137,7 @@ class MassProperties:
             non-positive mass at once.
         """
         massless = tuple(massless)
-        problems: list[str] = []
-        links = set(model.link_names)
-        for n in massless:
-            if n not in links:
-                problems.append(f"massless: expected a link of '{model.name}', got '{n}'; its links "
-                                f"are {', '.join(map(repr, model.link_names))}")
-            elif model.link(n).mass is not None:
-                problems.append(f"link '{n}': declared massless but has mass {model.link(n).mass} kg; "
-                                "remove it from massless or remove its mass")
+        problems = declaration_problems(model, massless, None)
         fixed = _non_turning(model)
         bodies = []
         for link in model.links:
@@ -168,36 +160,32 @@ class MassProperties:
                 continue
             bodies.append(LinkMass(link.name, float(link.mass), link.center_of_mass,
                                    float(link.inertia or 0.0)))
-        lumps = []
-        for p, mass in (point_masses or {}).items():
-            if p not in set(model.point_names):
-                problems.append(f"point_masses: expected a point of '{model.name}', got '{p}'")
-                continue
-            try:
-                lumps.append(PointMass(p, mass))
-            except ModelError as exc:
-                problems.extend(exc.problems)
+        problems += declaration_problems(model, (), point_masses)
         if problems:
             raise ModelError(problems, source=f"mechanism '{model.name}'")
-        return cls(tuple(bodies), tuple(lumps))
+        return cls(tuple(bodies), tuple(PointMass(p, m) for p, m in (point_masses or {}).items()))
 
     def problems(self, model: Mechanism) -> list[str]:
         """Every name the model does not have, or a centre of mass off its link."""
         out = []
         for b in self.links:
             if b.link not in model.link_names:
-                out.append(f"masses: link '{b.link}' is not a link of '{model.name}'")
+                out.append(f"masses: link {shown(b.link)} is not a link of '{model.name}'")
             elif b.center_of_mass not in model.link(b.link).points:
                 out.append(f"link '{b.link}': center_of_mass: expected one of its points "
-                           f"{', '.join(map(repr, model.link(b.link).points))}, got '{b.center_of_mass}'")
+                           f"{', '.join(map(repr, model.link(b.link).points))}, got {shown(b.center_of_mass)}")
             elif model.link(b.link).ground:
                 out.append(f"masses: link '{b.link}' is the ground; it has no motion to give it mass")
         for p in self.points:
             if p.point not in model.point_names:
-                out.append(f"masses: point mass at '{p.point}': not a point of '{model.name}'")
+                out.append(f"masses: point mass at {shown(p.point)}: not a point of '{model.name}'")
+            elif p.link is not None and p.link not in model.link_names:
+                out.append(f"masses: point mass at '{p.point}': link: expected a link of "
+                           f"'{model.name}', got {shown(p.link)}")
             elif p.link is not None and p.point not in model.link(p.link).points:
                 out.append(f"masses: point mass at '{p.point}': link '{p.link}' does not carry it")
         return out
+
 
     def lumped(self, model: Mechanism, links: Iterable[str]) -> MassProperties:
         """Replace binary links by two statically equivalent point masses at their joints.
@@ -227,13 +215,13 @@ class MassProperties:
         xy = {p.name: (p.x, p.y) for p in model.points}
         for name in links:
             if name not in by_link:
-                problems.append(f"lumped: link '{name}' has no mass here; lump links that have one")
+                problems.append(f"lumped: link {shown(name)} has no mass here; lump links that have one")
                 continue
             b = by_link[name]
             hinges = [j for j in model.joints_of(name) if j.type == "R"]
             ends = list(dict.fromkeys(j.point for j in hinges))
             if len(ends) != 2 or len(model.joints_of(name)) != len(hinges):
-                problems.append(f"lumped: link '{name}' has {len(ends)} hinge point(s) "
+                problems.append(f"lumped: link {shown(name)} has {len(ends)} hinge point(s) "
                                 f"and {len(model.joints_of(name)) - len(hinges)} slide(s); only a "
                                 "binary link hinged at two points can be lumped")
                 continue
@@ -241,7 +229,7 @@ class MassProperties:
             ab = math.dist(a, c)
             ag, gb = math.dist(a, g), math.dist(g, c)
             if abs(ag + gb - ab) > _ON_LINE * ab:
-                problems.append(f"lumped: link '{name}': its centre of mass '{b.center_of_mass}' is "
+                problems.append(f"lumped: link {shown(name)}: its centre of mass {shown(b.center_of_mass)} is "
                                 f"not on the segment {ends[0]}-{ends[1]}, so two masses there cannot "
                                 "keep it; add a third point or keep the link whole")
                 continue
@@ -273,3 +261,28 @@ def _non_turning(model: Mechanism) -> set[str]:
                         fixed.add(y)
                         grew = True
     return fixed - {model.ground.name}
+
+
+def declaration_problems(model: Mechanism, massless: Iterable[str],
+                         point_masses: Mapping[str, float] | None) -> list[str]:
+    """What is wrong with the links declared massless and the point masses of a
+    ``[dynamics]`` section, for ``model``: names it does not have, a massless link that has
+    a mass, a mass that is not a positive number.  (Links that lack mass data are a matter
+    for the dynamics alone: :meth:`MassProperties.from_model`.)"""
+    problems = []
+    for n in massless:
+        if n not in model.link_names:
+            problems.append(f"massless: expected a link of '{model.name}', got {shown(n)}; its links "
+                            f"are {', '.join(map(repr, model.link_names))}")
+        elif model.link(n).mass is not None:
+            problems.append(f"link '{n}': declared massless but has mass {model.link(n).mass} kg; "
+                            "remove it from massless or remove its mass")
+    for p, mass in (point_masses or {}).items():
+        if p not in model.point_names:
+            problems.append(f"point_masses: expected a point of '{model.name}', got {shown(p)}")
+            continue
+        try:
+            PointMass(p, mass)
+        except ModelError as exc:
+            problems.extend(exc.problems)
+    return problems

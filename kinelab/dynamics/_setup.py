@@ -6,8 +6,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from kinelab.dynamics._loads import Law, Loads
-from kinelab.dynamics._masses import MassProperties, _positive
-from kinelab.errors import ModelError, describe
+from kinelab.dynamics._masses import MassProperties, _positive, declaration_problems
+from kinelab.errors import ModelError, describe, shown, shown_key
 from kinelab.model import Mechanism
 
 __all__ = ["DynamicsSetup"]
@@ -93,7 +93,7 @@ class DynamicsSetup:
         else:
             for name, law in raw.items():
                 try:
-                    actuators[str(name)] = Law(law, f"{where}.actuators.{name}")
+                    actuators[str(name)] = Law(law, f"{where}.actuators.{shown_key(name)}")
                 except ModelError as exc:
                     problems.extend(exc.problems)
         massless = data.get("massless", ())
@@ -106,7 +106,7 @@ class DynamicsSetup:
             lumps = {}
         for p, mass in lumps.items():
             if not _positive(mass):
-                problems.append(f"{where}.point_masses.{p}: expected a positive mass (kg), got {describe(mass)}")
+                problems.append(f"{where}.point_masses.{shown_key(p)}: expected a positive mass (kg), got {describe(mass)}")
         if problems:
             raise ModelError(problems)
         return cls(loads=loads, actuators=actuators, massless=tuple(massless),
@@ -119,13 +119,15 @@ class DynamicsSetup:
         return cls.from_dict(model.parameters.get("dynamics"), where="dynamics")
 
     def check(self, model: Mechanism) -> None:
-        """Raise a ModelError listing every name the model does not have."""
-        problems = self.loads.problems(model)
+        """Raise a ModelError listing every name the model does not have (and a massless
+        link that has a mass, or a point mass that is not positive)."""
+        problems = self.loads.problems(model) + declaration_problems(model, self.massless,
+                                                                      self.point_masses)
         for name in self.actuators:
             if name not in model.input_names:
                 what = ("is a joint but not an input" if name in model.joint_names
                         else "is not an input")
-                problems.append(f"dynamics.actuators: '{name}' {what}; the inputs are "
+                problems.append(f"dynamics.actuators: {shown(name)} {what}; the inputs are "
                                 f"{', '.join(map(repr, model.input_names))}")
         if problems:
             raise ModelError(problems, source=f"mechanism '{model.name}'")

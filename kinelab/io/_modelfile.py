@@ -24,7 +24,7 @@ import numpy as np
 from kinelab import mechanisms as catalogue
 from kinelab import _memory as memory
 from kinelab._files import atomic_write
-from kinelab.errors import AssemblyError, KinelabError, ModelError
+from kinelab.errors import AssemblyError, KinelabError, ModelError, shown
 from kinelab.io import _toml
 from kinelab.io._fields import Reader, describe, quoted, shown, shown_key
 from kinelab.io._text import loads, read_text
@@ -173,7 +173,7 @@ class ModelFile:
         """Write TOML or JSON, by the suffix of ``path`` (to a temporary file, then renamed)."""
         suffix = Path(path).suffix.lower()
         if suffix not in (".toml", ".json"):
-            raise ModelError(f"path: expected a .toml or .json file name, got '{Path(path).name}'")
+            raise ModelError(f"path: expected a .toml or .json file name, got {shown(Path(path).name)}")
         text = self.to_toml() if suffix == ".toml" else self.to_json()
         return atomic_write(path, lambda f: f.write(text))
 

@@ -9,7 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab import _memory as memory
-from kinelab.errors import AssemblyError, ModelError, SingularityError, check_choice, describe
+from kinelab.errors import AssemblyError, ModelError, SingularityError, check_choice, describe, shown
 from kinelab.kinematics import _codes as k
 from kinelab.kinematics._assemble import check_assembled
 from kinelab.kinematics._branches import BranchMap, ChangePoint, branch_map, branched_ops
@@ -457,10 +457,10 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
     p = plan(mechanism, method=method)
     M = len(mechanism.inputs)
     if unreachable not in ("raise", "mask"):
-        raise ModelError(f"unreachable: expected one of 'raise', 'mask', got '{unreachable}'")
+        raise ModelError(f"unreachable: expected one of 'raise', 'mask', got {shown(unreachable)}")
     check_choice("at_change_point", at_change_point, ("smooth", "switch"))
     if at_singular not in ("auto", "raise", "flag"):
-        raise ModelError(f"at_singular: expected one of 'auto', 'raise', 'flag', got '{at_singular}'")
+        raise ModelError(f"at_singular: expected one of 'auto', 'raise', 'flag', got {shown(at_singular)}")
     _require_results(p, np.shape(q), M)          # before anything of that size is made
     q2, qd2, qdd2, single = _normalise_q(q, qd, qdd, M)
     resume = None

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinelab.errors import AssemblyError, ModelError, describe
+from kinelab.errors import AssemblyError, ModelError, describe, shown
 from kinelab.kinematics._geometry import sketch_angle
 from kinelab.model import Mechanism, Point, Units
 
@@ -111,7 +111,7 @@ def assemble(mechanism: Mechanism, *, units: Units | None = None) -> Assembly:
     if not isinstance(mechanism, Mechanism):
         raise ModelError(f"mechanism: expected a kinelab Mechanism, got {type(mechanism).__name__}")
     if mechanism.space != "planar":
-        raise ModelError(f"space: assembly is for planar mechanisms, got '{mechanism.space}'")
+        raise ModelError(f"space: assembly is for planar mechanisms, got {shown(mechanism.space)}")
     system = _Constraints(mechanism, units or Units())
     x0 = system.x0
     x = _nearest(system, x0)

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinelab.errors import ModelError, describe, quoted, suggest
+from kinelab.errors import ModelError, describe, quoted, shown, suggest
 from kinelab.kinematics._geometry import k_cross
 from kinelab.kinematics._solution import KinematicSolution
 
@@ -154,7 +154,7 @@ def _model_order(sol: KinematicSolution, a: str, b: str) -> tuple[str, str]:
             raise ModelError(f"link: expected one of {quoted(order)}, got {describe(name)}"
                              f"{suggest(str(name), order)}")
     if a == b:
-        raise ModelError(f"links: expected two different links, got '{a}' twice; a link has "
+        raise ModelError(f"links: expected two different links, got {shown(a)} twice; a link has "
                          "no instant centre with itself")
     return (a, b) if order.index(a) < order.index(b) else (b, a)
 

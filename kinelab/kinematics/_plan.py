@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, shown
 from kinelab.kinematics import _codes as k
 from kinelab.kinematics._geometry import sketch_angle
 from kinelab.model import Joint, Mechanism
@@ -171,11 +171,11 @@ class _Builder:
     def __init__(self, m: Mechanism):
         if m.space != "planar":
             raise ModelError(f"space: the planar kinematics engine needs a planar mechanism, "
-                             f"got '{m.space}'; see kinelab.spatial for spatial ones")
+                             f"got {shown(m.space)}; see kinelab.spatial for spatial ones")
         for j in m.joints:
             if j.type not in ("R", "P"):
                 raise ModelError(f"joint '{j.name}': the planar kinematics engine handles R and P "
-                                 f"joints, got '{j.type}'; kinelab.structure counts its mobility")
+                                 f"joints, got {shown(j.type)}; kinelab.structure counts its mobility")
         if not m.inputs:
             raise ModelError("inputs: the mechanism has no input; add one (an R joint angle, "
                              "a P joint slide or the angle between two links)")
@@ -833,5 +833,5 @@ def build_plan(m: Mechanism, *, method: str = "auto") -> Plan:
         b._place_single = lambda: False  # type: ignore[method-assign]
         b._propagate_angles = lambda: False  # type: ignore[method-assign]
     elif method != "auto":
-        raise ModelError(f"method: expected one of 'auto', 'newton', got '{method}'")
+        raise ModelError(f"method: expected one of 'auto', 'newton', got {shown(method)}")
     return b.build()

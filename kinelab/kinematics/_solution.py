@@ -9,7 +9,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from kinelab.errors import ModelError, quoted, suggest
+from kinelab.errors import ModelError, quoted, shown, suggest
 from kinelab.kinematics._columns import TableExport, solution_columns
 from kinelab.kinematics._geometry import k_cross
 from kinelab.kinematics._plan import Plan
@@ -280,7 +280,7 @@ class KinematicSolution(TableExport):
         names = [n for kind in kinds for n in tables[kind][0]]
         label = " or ".join(tables[kind][2] for kind in kinds)
         raise ModelError(f"{label}: expected one of {quoted(names)}, "
-                         f"got '{name}'{suggest(name, names)}")
+                         f"got {shown(name)}{suggest(name, names)}")
 
     def _value(self, name: str, kinds: str, column: int, source: str = "jets") -> np.ndarray:
         i, w = self._find(name, kinds)

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, shown
 from kinelab.kinematics import KinematicSolution
 from kinelab.model import Units
 from kinelab.plot._figures import SINGULAR_LABEL, _regular, _singular_samples, mechanism
@@ -70,7 +70,7 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in (".gif", ".mp4"):
-        raise ModelError(f"path: expected a .gif or .mp4 file name, got '{path.name}'")
+        raise ModelError(f"path: expected a .gif or .mp4 file name, got {shown(path.name)}")
     if suffix == ".mp4" and not can_write_mp4():
         raise ModelError("path: MP4 needs ffmpeg, which is not installed; write a .gif instead")
     if sol.single or sol.N < 2:

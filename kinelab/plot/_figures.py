@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from kinelab._files import atomic_write
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, shown
 from kinelab.kinematics import KinematicSolution
 from kinelab.kinematics._columns import INPUT_SI_UNITS
 from kinelab.model import Units
@@ -120,7 +120,7 @@ def _split(sol: KinematicSolution, outputs):
         else:
             known = list(sol.link_item) + list(sol.slide_item) + list(sol.point_item)
             raise ModelError(f"outputs: expected links, slides or points of the mechanism, got "
-                             f"'{name}'; they are {', '.join(repr(n) for n in known)}")
+                             f"{shown(name)}; they are {', '.join(repr(n) for n in known)}")
     return links, slides, points
 
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, shown
 from kinelab.model import Mechanism
 from kinelab.structure._count import pair_freedoms
 from kinelab.structure._groups import DisplacementGroup, generated_group
@@ -156,7 +156,7 @@ def _check_links(model: Mechanism, *names: str) -> None:
     for n in names:
         model.link(n)  # raises a ModelError naming the link and the choices
     if len(set(names)) < len(names):
-        raise ModelError(f"links: expected two different links, got '{names[0]}' twice")
+        raise ModelError(f"links: expected two different links, got {shown(names[0])} twice")
 
 
 def connectivity(model: Mechanism, a: str, b: str) -> Connectivity:

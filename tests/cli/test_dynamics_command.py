@@ -171,3 +171,34 @@ def test_a_law_that_is_not_finite_on_the_sweep_is_found(tmp_path, command):
     ends_with_one_error_line(CliRunner().invoke(main, args),
                              r"the expression '1 / sin\(q\)' gives inf \(an overflow or a division by "
                              r"zero\) at t = 0 s, q = 0, qd = 31.4159; expected a finite value")
+
+
+@pytest.mark.parametrize("section, message", [
+    ('[dynamics.actuators]\n"j\\u001b[31mX\\nY" = 1.0\n',
+     r"dynamics\.actuators: 'j\\x1b\[31mX\\nY' is not an input; the inputs are 'crank angle'"),
+    ('[dynamics]\nmassless = ["a\\u001b[31mb\\nc"]\n',
+     r"massless: expected a link of 'engine', got 'a\\x1b\[31mb\\nc'; its links are"),
+    ('[dynamics]\npoint_masses = {"P\\nQ" = 1.0}\n',
+     r"point_masses: expected a point of 'engine', got 'P\\nQ'"),
+    ('[[dynamics.torques]]\nlink = "c\\nd"\ntorque = 1.0\n',
+     r"torques\[0\]: link: expected a link of 'engine', got 'c\\nd'"),
+])
+@pytest.mark.parametrize("command", ["check", "dynamics"])
+def test_names_in_the_dynamics_section_are_shown_escaped_on_one_line(tmp_path, section, message,
+                                                                     command):
+    """A name the model does not have is quoted in the error as Python would write it: a
+    newline or an escape sequence in it cannot split the error or reach the terminal."""
+    text = ENGINE.read_text()
+    if section.startswith("[dynamics]"):        # the example's own section, with one more key
+        text = text.replace("[dynamics]", section.rstrip("\n"), 1)
+    else:
+        text += "\n" + section
+    path = tmp_path / "engine.toml"
+    path.write_text(text)
+    args = [command, str(path)] + (["--out", str(tmp_path), "--no-plots"] if command == "dynamics" else [])
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 2, result.output
+    lines = result.output.strip().splitlines()
+    assert len([line for line in lines if line.startswith("kinelab: error:")]) == 1, result.output
+    assert "\x1b" not in result.output
+    assert re.search(message, lines[-1]), lines[-1]

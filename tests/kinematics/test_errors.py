@@ -66,6 +66,10 @@ def test_bad_option_and_names():
     sol = kl.analyze(sc, q=0.1)
     with pytest.raises(ModelError, match=r"got 'rdo' \(did you mean 'rod'\?\)"):
         sol.angle("rdo")
+    with pytest.raises(ModelError, match=r"got 'r\\nod\\x1b\[0m'$"):   # escaped, on one line
+        sol.angle("r\nod\x1b[0m")
+    with pytest.raises(ModelError, match=r"got 'a\\nb'$"):
+        kl.analyze(sc, q=0.1, at_singular="a\nb")
     with pytest.raises(ModelError, match="expected the point of a prismatic joint"):
         sol.acceleration_components("A")
     with pytest.raises(TypeError):
