@@ -41,7 +41,7 @@ class ModelError(KinelabError, ValueError):
             problems = [problems]
         self.problems = tuple(problems)
         self.source = source
-        prefix = f"{source}: " if source else ""
+        prefix = f"{shown_path(source)}: " if source else ""
         lines = [prefix + p for p in self.problems[:PROBLEMS_SHOWN]]
         if len(self.problems) > PROBLEMS_SHOWN:
             lines.append(f"{prefix}and {len(self.problems) - PROBLEMS_SHOWN:,} more problems; "
@@ -93,6 +93,7 @@ class SingularityError(KinelabError, ValueError):
 NAME_SHOWN = 60       # characters of a name (or value) a message shows, quotes included
 NAMES_SHOWN = 20      # names a list of choices shows before "... and N more"
 PROBLEMS_SHOWN = 20   # problems a ModelError's message shows before "... and N more problems"
+PATH_SHOWN = 400      # characters of a file's path a message shows
 SUGGEST_AMONG = 1000  # "did you mean" looks for a close name among at most this many: it
                       # compares the name with each choice, and a message must stay cheap
 _ESCAPES = {"\n": "\\n", "\t": "\\t", "\r": "\\r"}
@@ -129,6 +130,19 @@ def shown(name: object) -> str:
 
 
 _BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
+
+
+def shown_path(path: object) -> str:
+    """A file's path as a message shows it: as given, unquoted, with unprintable characters
+    escaped and cut (a path is the user's own text, but a newline in it would split a
+    one-line message).
+
+    Examples
+    --------
+    >>> shown_path("out/engine.csv"), shown_path("a\\nb.toml")
+    ('out/engine.csv', 'a\\\\nb.toml')
+    """
+    return _escaped(str(path), PATH_SHOWN)
 
 
 def shown_key(key: object) -> str:

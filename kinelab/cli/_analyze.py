@@ -12,7 +12,7 @@ from kinelab.cli._format import configuration_text, summary_text
 from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, errors_from, output_path, output_units, parse_inputs,
                                read_model, stem, sweep)
 from kinelab.io._modelfile import MAX_SAMPLES
-from kinelab.errors import AssemblyError, KinelabError, ModelError
+from kinelab.errors import AssemblyError, KinelabError, ModelError, shown_path
 from kinelab.kinematics import KinematicSolution
 from kinelab.kinematics._columns import INPUT_SI_UNITS
 
@@ -98,7 +98,7 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
             click.echo(note)
     told = f"{kind.upper()} as --format says, whatever the name; " if (
         written.suffix.lower() != f".{kind}") else ""
-    click.echo(f"wrote {written} ({told}{sol.N} rows, {len(sol.columns())} columns)")
+    click.echo(f"wrote {shown_path(written)} ({told}{sol.N} rows, {len(sol.columns())} columns)")
 
 
 def configuration(mf: io.ModelFile, at: str, change_points: str = "smooth") -> KinematicSolution:
@@ -134,7 +134,7 @@ def check(model, si, degrees):
     units = output_units(mf.units, si, degrees)
     with errors_from(mf):
         p = kinematics.plan(m)
-    click.echo(f"{model}: {m.name}: {len(m.points)} points, {len(m.links)} links, "
+    click.echo(f"{shown_path(model)}: {m.name}: {len(m.points)} points, {len(m.links)} links, "
                f"{len(m.joints)} joints, {len(m.inputs)} input(s); units {mf.units.length}, "
                f"{mf.units.angle}")
     mobility = _mobility(m)

@@ -12,6 +12,7 @@ from kinelab._files import atomic_write
 from kinelab.cli._main import errors_from, output_path, parse_inputs, read_model, stem
 from kinelab.derive import LANGUAGES, derive
 from kinelab.derive._document import write_pdf
+from kinelab.errors import shown_path
 
 __all__ = ["derive_command"]
 
@@ -48,4 +49,4 @@ def derive_command(model, at, lang, fmt, out):
         write_pdf(text, path)
     else:
         atomic_write(path, lambda f: f.write(text))
-    click.echo(f"wrote {path}")
+    click.echo(f"wrote {shown_path(path)}")

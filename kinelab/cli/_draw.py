@@ -9,7 +9,7 @@ from kinelab import io
 from kinelab.cli._analyze import MODEL, SAMPLES
 from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, errors_from, output_path, output_units, read_model,
                                stem, sweep)
-from kinelab.errors import ModelError, quoted, shown, suggest
+from kinelab.errors import ModelError, quoted, shown, shown_path, suggest
 
 __all__ = ["plot", "animate"]
 
@@ -86,7 +86,7 @@ def plot(model, out, formats, outputs, samples, si, degrees, change_points):
             written.append(kplot.save(fig, Path(out) / f"{base}_{kind}.{fmt}"))
         plt.close(fig)
     for path in written:
-        click.echo(f"wrote {path}")
+        click.echo(f"wrote {shown_path(path)}")
 
 
 @click.command()
@@ -123,4 +123,4 @@ def animate(model, out, fmt, trace, frames, fps, centers, velocities, samples, s
     with errors_from(mf, "--trace" if trace else ""):
         written = kplot.animate(sol, path, trace=_names(trace), frames=frames, fps=fps,
                                 units=units, centers=centers, velocities=velocities)
-    click.echo(f"wrote {written}")
+    click.echo(f"wrote {shown_path(written)}")

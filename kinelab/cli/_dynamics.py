@@ -16,7 +16,7 @@ from kinelab.cli._main import DEGREES, SI, errors_from, output_units, read_model
 from kinelab.io import ModelFile
 from kinelab.io._modelfile import MAX_SAMPLES
 from kinelab.model import Units
-from kinelab.errors import describe
+from kinelab.errors import describe, shown_path
 
 __all__ = ["dynamics_command", "run", "times"]
 
@@ -114,4 +114,4 @@ def dynamics_command(model, out, samples, si, degrees, gravity, no_plots):
     if res.singular.any():
         click.echo(f"{int(res.singular.sum())} singular sample(s): forces undefined there (NaN)")
     for path in written:
-        click.echo(f"wrote {path}")
+        click.echo(f"wrote {shown_path(path)}")

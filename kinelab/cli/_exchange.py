@@ -9,7 +9,7 @@ import click
 from kinelab import io
 from kinelab.cli._analyze import MODEL
 from kinelab.cli._main import errors_from, output_path, read_model, stem, sweep
-from kinelab.errors import ModelError, shown
+from kinelab.errors import ModelError, shown, shown_path
 from kinelab.io._text import read_text
 
 __all__ = ["export", "import_"]
@@ -58,7 +58,7 @@ def export(model, target, out, unit, layout, width, hole, ground):
     else:
         import dataclasses
         written = io.save(dataclasses.replace(mf, units=io.Units(unit, mf.units.angle)), path)
-    click.echo(f"wrote {written}")
+    click.echo(f"wrote {shown_path(written)}")
 
 
 @click.command("import")
@@ -100,7 +100,7 @@ def import_(source, out, fmt, unit, inputs, input_joint):
         description = _speed_note(path.name, unit)
     written = io.save(io.ModelFile(mechanism=m, units=io.Units(unit, "deg"),
                                    description=description), out)
-    click.echo(f"wrote {written}: {len(m.links)} links, {len(m.joints)} joints, inputs "
+    click.echo(f"wrote {shown_path(written)}: {len(m.links)} links, {len(m.joints)} joints, inputs "
                f"{', '.join(m.input_names) or 'none (add one under [[inputs]])'}")
 
 

@@ -14,7 +14,7 @@ from kinelab.cli._draw import FIGURE_FORMATS, _agg
 from kinelab.cli._format import _num
 from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, errors_from, output_units, parse_inputs,
                                read_model, stem, sweep)
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, shown_path
 from kinelab.model import Units
 
 __all__ = ["polygons", "centres", "differentiate_command"]
@@ -113,7 +113,7 @@ def polygons(model, at, speed, out, formats, velocity_scale, acceleration_scale,
     written += _save(kplot.acceleration_polygon(sol, units=units, scale=acceleration_scale), out,
                      f"{base}_acceleration_polygon", formats)
     for path in written:
-        click.echo(f"wrote {path}")
+        click.echo(f"wrote {shown_path(path)}")
 
 
 @click.command()
@@ -176,7 +176,7 @@ def centres(model, at, out, formats, with_centrodes, samples, si, change_points)
                 ax = kplot.centrodes(swept, lk, near, units=units)
             written += _save(ax.figure, out, f"{base}_centrodes_{lk}", formats)
     for path in written:
-        click.echo(f"wrote {path}")
+        click.echo(f"wrote {shown_path(path)}")
 
 
 @click.command("differentiate")
@@ -223,9 +223,9 @@ def differentiate_command(data, x_column, y_column, window, out, formats):
     written += _save(fig, out, f"{base}_derivatives", formats)
     how = ("as --window says" if window is not None else
            f"0.7 of the {d.window_gcv} generalised cross-validation chose")
-    click.echo(f"{Path(data).name}: {len(d.x)} samples of {yn} against {xn}; noise about "
+    click.echo(f"{shown_path(Path(data).name)}: {len(d.x)} samples of {yn} against {xn}; noise about "
                f"{_num(d.noise, 3)} {yu}; local fits of degree 5 over {d.window} samples "
                f"({how}); median error band on the velocity "
                f"{_num(float(np.median(d.velocity_error)), 3)} {rate}".replace(" ;", ";"))
     for path in written:
-        click.echo(f"wrote {path}")
+        click.echo(f"wrote {shown_path(path)}")

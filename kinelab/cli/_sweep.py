@@ -14,7 +14,7 @@ import numpy as np
 
 from kinelab import sweep as sw
 from kinelab._files import atomic_write
-from kinelab.errors import ModelError, describe
+from kinelab.errors import ModelError, describe, shown_path
 
 __all__ = ["sweep_command", "atlas_command"]
 
@@ -27,14 +27,14 @@ def _read_table(path: str):
 
     p = Path(path)
     if not p.is_file():
-        raise ModelError(f"{path}: no such file; give a CSV or Parquet table of designs")
+        raise ModelError(f"{shown_path(path)}: no such file; give a CSV or Parquet table of designs")
     try:
         if p.suffix.lower() in (".parquet", ".pq"):
             return pandas.read_parquet(p)
         return pandas.read_csv(p)
     except (OSError, ValueError, ImportError) as exc:
         line = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        raise ModelError(f"{path}: cannot read a table: {line}") from None
+        raise ModelError(f"{shown_path(path)}: cannot read a table: {line}") from None
 
 
 def _range(text: str):
@@ -176,7 +176,7 @@ def sweep_command(family_spec, table, sobol, random_n, grid, ranges, seed, sched
     _write(_labelled(df, degrees, fam.output_is_slide), path)
     _report_problems(df)
     assembles = f", {int(df['assembles'].sum()):,} assemble over the turn" if "assembles" in df else ""
-    click.echo(f"{len(df):,} designs in {seconds:.3g} s{assembles}; wrote {path}")
+    click.echo(f"{len(df):,} designs in {seconds:.3g} s{assembles}; wrote {shown_path(path)}")
 
 
 @click.group("atlas")
@@ -196,7 +196,7 @@ def atlas_build(table, sobol, random_n, grid, ranges, seed, scheduler, chunk_siz
     designs = designs_from(table, sobol, random_n, grid, ranges, seed)
     a = sw.atlas(designs, branch=branch, samples=samples, client=scheduler, chunk_size=chunk_size)
     a.to_parquet(out)
-    click.echo(f"{len(a):,} of {len(designs):,} designs turn their crank fully; wrote {out}")
+    click.echo(f"{len(a):,} of {len(designs):,} designs turn their crank fully; wrote {shown_path(out)}")
 
 
 @atlas_command.command("find")

@@ -19,6 +19,7 @@ import click
 import numpy as np
 
 from kinelab.cli._main import DEGREES, SI, output_units
+from kinelab.errors import shown_path
 from kinelab.io import Task, load_task, solve_task, task_summary
 from kinelab.model import Units
 
@@ -126,7 +127,7 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si:
             head += f"max structural error {row['max_structural_error']:.3g}, "
         head += f"{s.grashof.kind}, {s.state}"
         click.echo(head)
-    click.echo(f"wrote {len(files)} file(s) to {out}")
+    click.echo(f"wrote {len(files)} file(s) to {shown_path(out)}")
 
 
 def _design_line(row: dict[str, Any], u: Units) -> str:

@@ -466,3 +466,19 @@ def test_imported_files_are_refused_in_one_line(name, text, message, tmp_path):
     assert result.exit_code == 2, result.output
     assert result.stderr == f"kinelab: error: {message}\n"
     assert not (tmp_path / "m.toml").exists()
+
+
+def test_file_paths_are_shown_escaped_on_one_line(tmp_path):
+    """A newline or an escape sequence in a file's name cannot split a message or reach the
+    terminal: the path is shown as given, with those characters escaped."""
+    odd = tmp_path / "a\nb\x1b[31m.toml"
+    result = run("check", odd)
+    assert result.exit_code == 2
+    assert result.stderr == f"kinelab: error: {tmp_path}/a\\nb\\x1b[31m.toml: no such file; check the path\n"
+    odd.write_text((EX / "crank_rocker.toml").read_text())
+    result = run("check", odd)
+    assert result.exit_code == 0, result.output
+    assert result.output.startswith(f"{tmp_path}/a\\nb\\x1b[31m.toml: crank-rocker: ")
+    result = run("analyze", odd, "--out", tmp_path / "out\nput")
+    assert result.exit_code == 0, result.output
+    assert f"wrote {tmp_path}/out\\nput/" in result.output and "\x1b" not in result.output
