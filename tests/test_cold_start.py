@@ -127,7 +127,7 @@ def test_a_large_batch_runs_compiled_in_a_fresh_process(tmp_path):
         q0 = np.linspace(-1.0, 1.0, WAIT_FOR_COMPILED_FROM)[:, None]
         runs = simulate(pendulum, (0.0, 0.5), q0, 0.0, loads=Loads(gravity=(0.0, -9.81)),
                         t_eval=[0.0, 0.5])
-        print(json.dumps({"compiled": _compiled._ready["dynamics"].is_set(),
+        print(json.dumps({"compiled": _compiled._ready["dynamics_one_input"].is_set(),
                           "shape": list(runs.q.shape)}))
     """))
     env = {**os.environ, "KINELAB_KERNEL": "auto"}

@@ -103,9 +103,9 @@ def work_arrays(packed: tuple, M: int, stack: int) -> tuple:
 
 
 def warm_up(name: str) -> None:
-    """Run the compiled forward dynamics once, one run and a batch, on a pendulum (one
-    input) and a double pendulum (two inputs) with laws written as expressions (see
-    ``kinelab._compiled``)."""
+    """Run the compiled forward dynamics once, one run and a batch, with laws written as
+    expressions: on a pendulum for ``dynamics_one_input``, on a double pendulum (two
+    inputs) for ``dynamics`` (see ``kinelab._compiled``)."""
     from kinelab.dynamics._forward import _integrate_compiled, actuator_laws
     from kinelab.dynamics._loads import Loads
     from kinelab.dynamics._terms import build_system
@@ -113,22 +113,22 @@ def warm_up(name: str) -> None:
 
     def arm(name, a, b):
         return Link(name, (a, b), mass=1.0, center_of_mass=b, inertia=1e-3)
-    pendulum = Mechanism(
+    model = Mechanism(
         "double pendulum", (Point("O", 0.0, 0.0), Point("A", 1.0, 0.0), Point("B", 2.0, 0.0)),
         (Link("ground", ("O",), ground=True), arm("upper", "O", "A"), arm("lower", "A", "B")),
         (Joint("shoulder", "R", ("ground", "upper"), point="O"),
          Joint("elbow", "R", ("upper", "lower"), point="A")),
         (Input(joint="shoulder"), Input(joint="elbow")))
-    single = Mechanism("pendulum", pendulum.points[:2], pendulum.links[:2], pendulum.joints[:1],
-                       pendulum.inputs[:1])
-    for model in (single, pendulum):
-        M = len(model.inputs)
-        system = build_system(model, Loads(gravity=(0.0, -9.81)), None)
-        laws = ["-0.1*qd"] if M == 1 else [f"-0.1*qd[{m}]" for m in range(M)]
-        case = (system, actuator_laws(model, dict(zip((j.joint for j in model.inputs), laws))))
-        compiled = {id(case): compiled_system(*case)}
-        y0 = np.zeros((2, 2 * M + 3))
-        y0[:, 0] = 0.5, 0.6
-        for runs, t_eval in ((y0[:1], None), (y0, np.array([0.0, 0.01]))):
-            _integrate_compiled([case] * len(runs), compiled, runs, (0.0, 0.01), t_eval, 1e-8,
-                                1e-10, np.inf, 1e-6, 10 ** 6, 1, t_eval is not None)
+    if name == "dynamics_one_input":
+        model = Mechanism("pendulum", model.points[:2], model.links[:2], model.joints[:1],
+                          model.inputs[:1])
+    M = len(model.inputs)
+    system = build_system(model, Loads(gravity=(0.0, -9.81)), None)
+    laws = ["-0.1*qd"] if M == 1 else [f"-0.1*qd[{m}]" for m in range(M)]
+    case = (system, actuator_laws(model, dict(zip((j.joint for j in model.inputs), laws))))
+    compiled = {id(case): compiled_system(*case)}
+    y0 = np.zeros((2, 2 * M + 3))
+    y0[:, 0] = 0.5, 0.6
+    for runs, t_eval in ((y0[:1], None), (y0, np.array([0.0, 0.01]))):
+        _integrate_compiled([case] * len(runs), compiled, runs, (0.0, 0.01), t_eval, 1e-8, 1e-10,
+                            np.inf, 1e-6, 10 ** 6, 1, t_eval is not None)

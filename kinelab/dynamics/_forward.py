@@ -456,8 +456,9 @@ def simulate(model: Mechanism | Sequence[Mechanism], t_span: tuple[float, float]
         if any(c is None for c in compiled.values()):
             compiled = None
     large = batch and B >= WAIT_FOR_COMPILED_FROM
-    if compiled is not None and not (_compiled.ready("dynamics")
-                                     or (large and _compiled.wait_for("dynamics"))):
+    entry = "dynamics_one_input" if M == 1 else "dynamics"
+    if compiled is not None and not (_compiled.ready(entry)
+                                     or (large and _compiled.wait_for(entry))):
         compiled = None
     y0 = np.concatenate([q_init, qd_init, np.zeros((B, 3))], axis=1)
     if compiled is not None:
