@@ -125,9 +125,9 @@ def parse_size(text: str, where: str) -> int:
         value = float(number)
     except ValueError:
         value = math.nan
-    if not (math.isfinite(value) and value > 0):
-        raise ModelError(f"{where}: expected a size such as 8G, 512M or a number of bytes, got "
-                         f"{describe(str(text)[:40])}")
+    if not (math.isfinite(value) and value * _UNITS[unit] >= 1):
+        raise ModelError(f"{where}: expected a size such as 8G, 512M or a number of bytes (at "
+                         f"least 1), got {describe(str(text)[:40])}")
     return int(value * _UNITS[unit])
 
 

@@ -145,6 +145,18 @@ def shown_path(path: object) -> str:
     return _escaped(str(path), PATH_SHOWN)
 
 
+def one_line(text: object, limit: int = 2000) -> str:
+    """A message from elsewhere (a library, the command-line parser) made one line: every
+    unprintable character escaped, cut to ``limit`` characters.
+
+    Examples
+    --------
+    >>> one_line("Invalid value for 'MODEL':\\n  File 'a' does not exist.")
+    "Invalid value for 'MODEL':\\\\n  File 'a' does not exist."
+    """
+    return _escaped(str(text), limit)
+
+
 def shown_key(key: object) -> str:
     """A key of a file as a field name shows it (``points.A``): bare when it is a short
     word, else as :func:`shown` shows a name (``points.'my point'``)."""

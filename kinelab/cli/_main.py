@@ -12,7 +12,7 @@ import click
 import numpy as np
 
 from kinelab import kinematics
-from kinelab.errors import KinelabError, ModelError, quoted, shown
+from kinelab.errors import KinelabError, ModelError, one_line, quoted, shown
 from kinelab.io import ModelFile
 from kinelab.io._modelfile import errors_from
 from kinelab.kinematics import KinematicSolution
@@ -27,7 +27,27 @@ BAD_INPUT = 2      # exit status for a bad file, option or input value
 class _Group(click.Group):
     """A click group whose commands report kinelab errors in one line each, no traceback:
     exit status 2 for bad input (the errors that are also ValueErrors, and outputs that
-    cannot be written), 1 otherwise."""
+    cannot be written, and options the command line cannot parse), 1 otherwise."""
+
+    def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
+        """click's main, with its usage errors (an unknown option, a value of the wrong
+        type, a missing file) on one line like every other error, pointing to --help."""
+        if not standalone_mode:
+            return super().main(args, prog_name, complete_var, False, **extra)
+        try:
+            code = super().main(args, prog_name, complete_var, False, **extra)
+        except click.exceptions.NoArgsIsHelpError as exc:     # a bare 'kinelab': the help
+            exc.show()
+            sys.exit(exc.exit_code)
+        except click.ClickException as exc:
+            ctx = getattr(exc, "ctx", None)
+            hint = f" (see '{ctx.command_path} --help')" if ctx is not None else ""
+            click.echo(f"kinelab: error: {one_line(exc.format_message())}{hint}", err=True)
+            sys.exit(exc.exit_code)
+        except click.Abort:
+            click.echo("Aborted!", err=True)
+            sys.exit(1)
+        sys.exit(code if isinstance(code, int) else 0)
 
     def invoke(self, ctx: click.Context):
         try:
@@ -47,16 +67,21 @@ class _Group(click.Group):
 
 
 def _set_budget(ctx, param, value):
+    from kinelab._memory import memory_budget
     if value is not None:
-        from kinelab._memory import memory_budget
         try:
             memory_budget(value)
         except KinelabError as exc:
             raise click.BadParameter(str(exc).removeprefix("max_bytes: ")) from None
+    else:       # the environment's budget, read now: a bad one is said before any work
+        try:
+            memory_budget()
+        except KinelabError as exc:
+            raise click.UsageError(str(exc)) from None
     return value
 
 
-@click.group(cls=_Group, context_settings={"help_option_names": ["-h", "--help"]})
+@click.group("kinelab", cls=_Group, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="kinelab")
 @click.option("--memory-budget", metavar="SIZE", default=None, expose_value=False, is_eager=True,
               callback=_set_budget,

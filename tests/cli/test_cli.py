@@ -482,3 +482,32 @@ def test_file_paths_are_shown_escaped_on_one_line(tmp_path):
     result = run("analyze", odd, "--out", tmp_path / "out\nput")
     assert result.exit_code == 0, result.output
     assert f"wrote {tmp_path}/out\\nput/" in result.output and "\x1b" not in result.output
+
+
+@pytest.mark.parametrize("args, message", [
+    (["types", "--space", "planar", "--mobility", "abc"],
+     "Invalid value for '--mobility': 'abc' is not a valid integer. (see 'kinelab types --help')"),
+    (["check"], "Missing argument 'MODEL'. (see 'kinelab check --help')"),
+    (["nosuch"], "No such command 'nosuch'. (see 'kinelab --help')"),
+    (["--memory-budget", "0.0000001", "check", "x.toml"],
+     "Invalid value for '--memory-budget': expected a size such as 8G, 512M or a number of bytes "
+     "(at least 1), got '0.0000001' (see 'kinelab --help')"),
+    (["dynamics", "no\nsuch.toml"],
+     "Invalid value for 'MODEL': File 'no\\nsuch.toml' does not exist. (see 'kinelab dynamics --help')"),
+])
+def test_usage_errors_are_one_line(args, message):
+    """What the command line cannot parse is said like every other error: one line, exit
+    status 2, pointing to --help."""
+    result = run(*args)
+    assert result.exit_code == 2
+    assert result.stderr == f"kinelab: error: {message}\n"
+
+
+def test_a_bad_memory_budget_in_the_environment_is_said_before_any_work(monkeypatch):
+    from kinelab import _memory
+    monkeypatch.setenv("KINELAB_MEMORY_BUDGET", "abc")
+    monkeypatch.setattr(_memory, "_budget", None)
+    result = run("check", EX / "crank_rocker.toml")
+    assert result.exit_code == 2 and result.stdout == ""
+    assert result.stderr == ("kinelab: error: KINELAB_MEMORY_BUDGET: expected a size such as 8G, "
+                             "512M or a number of bytes (at least 1), got 'abc' (see 'kinelab --help')\n")
