@@ -42,6 +42,10 @@ __all__ = ["Inversion", "KinematicChain", "chain_of", "count_chains", "planar_ch
 
 
 # -- checks on the counts ---------------------------------------------------------------------
+MAX_CHAIN_LINKS = 12   # chains enumerated: every (N, F) within these takes seconds at most
+MAX_CHAIN_LOOPS = 4    # independent loops, (N - F - 1) / 2
+
+
 def _joints_for(links, mobility) -> int:
     n, f = whole(links, "links", 4), whole(mobility, "mobility", 1)
     if (3 * n - 3 - f) % 2:
@@ -53,6 +57,12 @@ def _joints_for(links, mobility) -> int:
         raise ModelError(f"mobility {f} is impossible with {n} links: a chain in which every "
                          f"link carries two joints has at most N - 3 = {n - 3} freedoms (a "
                          f"single loop); use at least {f + 3} links")
+    loops = (n - f - 1) // 2
+    if n > MAX_CHAIN_LINKS or loops > MAX_CHAIN_LOOPS:
+        raise ModelError(f"links: {n} links with mobility {f} ({loops} independent loops) are "
+                         f"beyond what is enumerated: at most {MAX_CHAIN_LINKS} links and "
+                         f"{MAX_CHAIN_LOOPS} loops (12 links with mobility 1 alone make 6,856 "
+                         "chains of 5 loops, minutes of work); use fewer links or more mobility")
     return (3 * n - 3 - f) // 2
 
 
@@ -406,7 +416,8 @@ def planar_chains(links: int, mobility: int = 1) -> tuple[KinematicChain, ...]:
     Raises
     ------
     ModelError
-        When no chain can have these numbers.
+        When no chain can have these numbers, or beyond 12 links or 4 independent loops
+        (``(N - F - 1) / 2``), where the chains number thousands and take minutes to list.
 
     Examples
     --------

@@ -85,6 +85,10 @@ def test_types_chains():
     (["--space", "planar", "--mobility", "1", "--links", "5"], "mobility 1 is impossible with 5 links"),
     (["--space", "spatial", "--links", "6"], "--links lists planar kinematic chains"),
     (["--space", "moon", "--mobility", "1"], "Invalid value for '--space'"),
+    (["--space", "planar", "--mobility", "1", "--links", "12"],
+     "links: 12 links with mobility 1 (5 independent loops) are beyond what is enumerated: at most "
+     "12 links and 4 loops"),
+    (["--space", "planar", "--mobility", "1", "--links", "1000000"], "(499999 independent loops)"),
 ])
 def test_types_errors(args, message):
     out = CliRunner().invoke(main, ["types", *args])
