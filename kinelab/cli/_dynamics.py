@@ -106,8 +106,9 @@ def dynamics_command(model, out, samples, si, degrees, gravity, no_plots):
         if not ok.any():
             click.echo(f"{name}: no effort defined (every sample singular or unassembled)")
             continue
-        click.echo(f"{name}: peak |effort| {np.max(np.abs(col[ok])):.6g} {unit}, "
-                   f"rms {np.sqrt(np.mean(col[ok] ** 2)):.6g} {unit}")
+        peak = np.max(np.abs(col[ok]))
+        rms = peak * np.sqrt(np.mean((col[ok] / peak) ** 2)) if peak > 0 else 0.0  # no overflow
+        click.echo(f"{name}: peak |effort| {peak:.6g} {unit}, rms {rms:.6g} {unit}")
     F = np.hypot(*res.shaking_force.T)
     click.echo(f"shaking force: peak {np.nanmax(F):.6g} N; shaking moment: peak "
                f"{np.nanmax(np.abs(res.shaking_moment)):.6g} N m")

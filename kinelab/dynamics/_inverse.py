@@ -212,14 +212,19 @@ def inverse(model, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayLike = 0.0, *,
     system = build_system(model, loads, masses)
     sol = analyze(model, q, qd, qdd)
     tt = times(t, sol.N)
-    terms = evaluate(system, sol, tt)
-    tau = terms.inertia - terms.applied
-    ne = newton_euler(system, sol, terms) if reactions else None
+    with np.errstate(over="ignore", invalid="ignore"):      # overflow is reported below
+        terms = evaluate(system, sol, tt)
+        tau = terms.inertia - terms.applied
+        power = np.einsum("nm,nm->n", tau, sol.qd)
+        ne = newton_euler(system, sol, terms) if reactions else None
+    _check_finite(model, sol, tt, (tau, power, terms.kinetic, terms.potential, terms.energy_rate,
+                                   terms.applied_power, terms.dissipation)
+                  + ((ne["forces"], ne["shaking_force"], ne["shaking_moment"]) if ne else ()))
     return InverseDynamics(
         kinematics=sol, t=tt, input_forces=tau, inertia_forces=terms.inertia,
         load_forces=terms.applied, kinetic_energy=terms.kinetic,
         potential_energy=terms.potential, energy_rate=terms.energy_rate,
-        actuator_power=np.einsum("nm,nm->n", tau, sol.qd), applied_power=terms.applied_power,
+        actuator_power=power, applied_power=terms.applied_power,
         dissipation=terms.dissipation,
         shaking_force=ne["shaking_force"] if ne else None,
         shaking_moment=ne["shaking_moment"] if ne else None,
@@ -228,6 +233,25 @@ def inverse(model, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayLike = 0.0, *,
         reaction_moments=ne["moments"] if ne else None,
         reactions_unique=ne["unique"] if ne else True,
         newton_euler_efforts=ne["efforts"] if ne else None)
+
+
+def _check_finite(model, sol: KinematicSolution, t: np.ndarray, arrays) -> None:
+    """Raise when a result is not finite at a sample where the motion is defined (assembled,
+    not singular): loads or masses beyond float64, which would otherwise reach a table as
+    inf or NaN."""
+    defined = np.atleast_1d(sol.assembled & ~sol.singular)
+    bad = np.zeros(defined.shape, bool)
+    for a in arrays:
+        a = np.asarray(a)
+        bad |= ~np.isfinite(a.reshape(len(defined), -1)).all(axis=1)
+    bad &= defined
+    if bad.any():
+        i = int(np.argmax(bad))
+        q = np.round(np.atleast_2d(sol.q)[i], 6).tolist()
+        raise ModelError(f"the efforts of '{model.name}' overflow at t = {t[i]:.6g} s, q = {q}: "
+                         "a load, speed or mass is too large for the forces and powers to be "
+                         "numbers; check the loads (forces, torques, springs, dampers) and the "
+                         "masses")
 
 
 def _cross(r: np.ndarray, f: np.ndarray) -> np.ndarray:

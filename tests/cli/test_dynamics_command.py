@@ -202,3 +202,23 @@ def test_names_in_the_dynamics_section_are_shown_escaped_on_one_line(tmp_path, s
     assert len([line for line in lines if line.startswith("kinelab: error:")]) == 1, result.output
     assert "\x1b" not in result.output
     assert re.search(message, lines[-1]), lines[-1]
+
+
+def test_efforts_that_overflow_are_refused_not_written_as_inf(tmp_path):
+    """Each value of the law 1e307 q is finite, but the efforts and powers it makes are not:
+    an error, not inf in the table."""
+    path = engine_with_torque(tmp_path, "1e307*q")
+    result = CliRunner().invoke(main, ["dynamics", path, "--out", str(tmp_path), "--no-plots"])
+    assert result.exit_code == 2, result.output
+    assert re.search(r"kinelab: error: engine\.toml: the efforts of 'engine' overflow at t = \S+ s, "
+                     r"q = \[\S+\]: a load, speed or mass is too large", result.output.splitlines()[-1])
+    assert not (tmp_path / "engine_dynamics.csv").exists()
+
+
+def test_huge_but_finite_efforts_are_summarised_without_overflow(tmp_path):
+    """1e300 q' N m at 1800 deg/s (10 pi rad/s): peak and rms are pi 1e301 N m (the rms of
+    huge numbers is taken without squaring them into inf)."""
+    path = engine_with_torque(tmp_path, "1e300*qd")
+    result = CliRunner().invoke(main, ["dynamics", path, "--out", str(tmp_path), "--no-plots"])
+    assert result.exit_code == 0, result.output
+    assert "crank angle: peak |effort| 3.14159e+301 N m, rms 3.14159e+301 N m" in result.output
