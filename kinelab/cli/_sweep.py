@@ -13,8 +13,10 @@ import click
 import numpy as np
 
 from kinelab import sweep as sw
+from kinelab.sweep._family import DesignOffModel
 from kinelab._files import atomic_write
 from kinelab.errors import ModelError, describe, shown_path
+from kinelab.sweep._run import MAX_SAMPLES
 
 __all__ = ["sweep_command", "atlas_command"]
 
@@ -47,6 +49,9 @@ def _range(text: str):
     if not sep or not name or len(values) not in (2, 3):
         raise ModelError(f"--range: expected NAME=LOW:HIGH (or NAME=LOW:HIGH:COUNT for --grid), "
                          f"got {describe(text)}")
+    if not all(np.isfinite(values)):       # nan, inf, and 1e400 (read as inf)
+        raise ModelError(f"--range: expected finite numbers in NAME=LOW:HIGH[:COUNT], got "
+                         f"{describe(text)}")
     return name.strip(), values
 
 
@@ -66,12 +71,26 @@ def designs_from(table: str | None, sobol: int | None, random: int | None, grid:
         axes = {}
         for name, v in parsed.items():
             if len(v) != 3 or v[2] != int(v[2]) or v[2] < 1:
-                raise ModelError(f"--range {name}: --grid needs NAME=LOW:HIGH:COUNT with a whole COUNT")
+                raise ModelError(f"--range {describe(name)}: --grid needs NAME=LOW:HIGH:COUNT with a "
+                                 "whole COUNT >= 1")
             axes[name] = (v[0], v[1], int(v[2]))
-        return sw.grid(**axes)
+        return sw.grid(**axes)      # refuses a grid beyond the memory budget before building it
     bounds = {name: tuple(v[:2]) for name, v in parsed.items()}
     return (sw.sobol(sobol, seed=seed, **bounds) if sobol is not None
             else sw.random(random, seed=seed, **bounds))
+
+
+_WRITES = {"sweep": (".parquet", ".csv"), "atlas": (".parquet",)}
+
+
+def _check_out(path: str, command: str) -> Path:
+    """The output path, refused (before any work) unless its suffix is one the command writes."""
+    accepted = _WRITES[command]
+    p = Path(path)
+    if p.suffix.lower() not in accepted:
+        raise ModelError(f"--out: expected a file name ending in {' or '.join(accepted)}, got "
+                         f"{shown_path(path)}")
+    return p
 
 
 def _family_of(spec: str, branch: str | None, output: str | None):
@@ -103,7 +122,7 @@ def _labelled(df, degrees: bool, output_is_slide: bool):
 
 
 def _write(df, path: Path) -> None:
-    if path.suffix.lower() == ".csv":
+    if path.suffix.lower() == ".csv":      # else .parquet (checked by _check_out)
         atomic_write(path, lambda f: df.to_csv(f, index=False))
     else:
         sw.write_parquet(df, path)
@@ -120,7 +139,8 @@ def _report_problems(df) -> None:
 
 DESIGNS_OPTIONS = [
     click.option("--sobol", type=click.IntRange(min=1), default=None, metavar="N",
-                 help="N designs of a scrambled Sobol sequence in the --range bounds."),
+                 help="N designs of a scrambled Sobol sequence in the --range bounds (a power "
+                      "of 2 keeps the sequence balanced)."),
     click.option("--random", "random_n", type=click.IntRange(min=1), default=None, metavar="N",
                  help="N designs drawn uniformly in the --range bounds."),
     click.option("--grid", is_flag=True, help="Every combination of --range NAME=LOW:HIGH:COUNT."),
@@ -132,8 +152,8 @@ DESIGNS_OPTIONS = [
                  help="Run on the Dask cluster of this scheduler (tcp://host:8786)."),
     click.option("--chunk-size", type=click.IntRange(min=1), default=None,
                  help="Designs per chunk (default: what fits in 32 MiB)."),
-    click.option("--samples", type=click.IntRange(min=4), default=72, show_default=True,
-                 help="Input samples over a full turn."),
+    click.option("--samples", type=click.IntRange(4, MAX_SAMPLES), default=72, show_default=True,
+                 help=f"Input samples over a full turn (at most {MAX_SAMPLES:,})."),
 ]
 
 
@@ -150,11 +170,12 @@ def _designs_options(f):
 @click.option("--metrics", default=None, metavar="NAMES",
               help="Comma-separated: " + ", ".join(sw.METRICS) + " (default: the family's "
                    "standard ones).")
-@click.option("--branch", default=None, help="Assembly mode of a catalogue family (open/crossed ...).")
+@click.option("--branch", default=None,
+              help="Assembly mode of a catalogue family (fourbar: open or crossed ...).")
 @click.option("--output", "output_name", default=None,
               help="Link or prismatic joint whose swing and time ratio are measured.")
 @click.option("--speed", type=float, default=1.0, show_default=True,
-              help="Input speed for peak_torque, rad/s.")
+              help="Input speed for peak_torque, rad/s (at most 1e100 in size).")
 @click.option("--degrees", is_flag=True, help="Angles in degrees in the table.")
 @click.option("--out", "-o", "out", default="sweep.parquet", show_default=True, metavar="PATH",
               help="Result table: .parquet or .csv.")
@@ -165,14 +186,21 @@ def sweep_command(family_spec, table, sobol, random_n, grid, ranges, seed, sched
     --random or --grid; on a Dask cluster with --scheduler."""
     import time
 
+    path = _check_out(out, "sweep")
     fam = _family_of(family_spec, branch, output_name)
     designs = designs_from(table, sobol, random_n, grid, ranges, seed)
     names = None if metrics is None else tuple(m.strip() for m in metrics.split(",") if m.strip())
     start = time.perf_counter()
-    df = sw.run(fam, designs, samples=samples, metrics=names, client=scheduler,
-                chunk_size=chunk_size, speed=speed)
+    try:
+        df = sw.run(fam, designs, samples=samples, metrics=names, client=scheduler,
+                    chunk_size=chunk_size, speed=speed)
+    except DesignOffModel as exc:
+        raise ModelError(f"designs: the design {exc.design} moves points off the places the file "
+                         f"declares ({exc.detail}); vary (--range, DESIGNS columns) only points "
+                         "that no declaration fixes, or remove that declaration (a link's local "
+                         "place, a joint's offset) from the file and run kinelab check "
+                         f"{shown_path(family_spec)}", source=family_spec) from None
     seconds = time.perf_counter() - start
-    path = Path(out)
     _write(_labelled(df, degrees, fam.output_is_slide), path)
     _report_problems(df)
     assembles = f", {int(df['assembles'].sum()):,} assemble over the turn" if "assembles" in df else ""
@@ -187,16 +215,19 @@ def atlas_command():
 @atlas_command.command("build")
 @click.argument("table", metavar="[DESIGNS]", required=False)
 @_designs_options
-@click.option("--branch", type=click.Choice(("open", "crossed")), default="open", show_default=True)
-@click.option("--out", "-o", "out", default="atlas.parquet", show_default=True, metavar="PATH")
+@click.option("--branch", default="open", show_default=True, help="Assembly mode: open or crossed.")
+@click.option("--out", "-o", "out", default="atlas.parquet", show_default=True, metavar="PATH",
+              help="The atlas: .parquet.")
 def atlas_build(table, sobol, random_n, grid, ranges, seed, scheduler, chunk_size, samples,
                 branch, out):
     """Build an atlas from four-bar designs (columns ground, crank, coupler, rocker,
     coupler_point_along, coupler_point_perpendicular, m)."""
+    path = _check_out(out, "atlas")
+    sw.family("fourbar", branch=branch)       # the branch checked before the designs are made
     designs = designs_from(table, sobol, random_n, grid, ranges, seed)
     a = sw.atlas(designs, branch=branch, samples=samples, client=scheduler, chunk_size=chunk_size)
-    a.to_parquet(out)
-    click.echo(f"{len(a):,} of {len(designs):,} designs turn their crank fully; wrote {shown_path(out)}")
+    a.to_parquet(path)
+    click.echo(f"{len(a):,} of {len(designs):,} designs turn their crank fully; wrote {shown_path(path)}")
 
 
 @atlas_command.command("find")
@@ -212,11 +243,11 @@ def atlas_find(atlas_path, path_file, k, refine):
     a = sw.Atlas.from_parquet(atlas_path)
     points = _read_table(path_file).select_dtypes("number").to_numpy()[:, :2]
     near = a.nearest(points, k)
+    sols = a.refine(points, k=min(k, 3)) if refine else None    # refused before anything is printed
+    if sols is not None and not len(sols):
+        raise ModelError(f"refine: {sols.reason}")
     click.echo(near.to_string(float_format=lambda v: f"{v:.6g}"))
-    if refine:
-        sols = a.refine(points, k=min(k, 3))
-        if not len(sols):
-            raise ModelError(f"refine: {sols.reason}")
+    if sols is not None:
         best = sols[0]
         click.echo(f"refined: A0 = ({best.A0[0]:.6g}, {best.A0[1]:.6g}) m, B0 = ({best.B0[0]:.6g}, "
                    f"{best.B0[1]:.6g}) m, largest error {best.max_error:.3g} m")

@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError, describe
+from kinelab.model import MAX_LENGTH, MIN_LENGTH
 from kinelab.sweep._metrics import (DEFAULT_HARMONICS, descriptor_names, descriptors,
                                     resample_closed)
 from kinelab.sweep._run import run, write_parquet
@@ -108,7 +109,9 @@ class Atlas:
         Parameters
         ----------
         path : array_like, shape (n, 2)
-            Points along the path, in order (n > 2 * harmonics), m.
+            Points along the path, in order (n > 2 * harmonics), m, at least 1e-9 m across.
+            Only its shape counts: it is moved and scaled to a unit size first, so any size
+            finds the same designs.
 
         Returns
         -------
@@ -123,7 +126,7 @@ class Atlas:
         if len(self) == 0:
             raise ModelError("atlas: it holds no design that turns its crank fully; build it "
                              "from more or other designs")
-        fd = descriptors(P, self.harmonics)
+        fd = descriptors(_normalised(P), self.harmonics)
         swapped = fd.reshape(-1, 2)[:, ::-1].ravel()
         k = min(int(k), len(self))
         found = {}
@@ -142,7 +145,7 @@ class Atlas:
         """The ``k`` nearest designs moved, turned and scaled onto the path: (k, 10) in the
         form of :func:`kinelab.synthesis.coupler_curves` (pivots A0, B0, lengths, coupler
         point, branch)."""
-        P = _path(path, self.harmonics)
+        P = _path(path, self.harmonics, placed=True)
         near = self.nearest(P, k)
         sigma = 1.0 if self.branch == "open" else -1.0
         target = _resampled(P[None], _CURVE_SAMPLES)[0]
@@ -172,7 +175,7 @@ class Atlas:
         """Linkages through ``points`` points of the path, polished from the ``k`` nearest
         designs by :func:`kinelab.synthesis.path_generation` (its ``options``: runs,
         maxiter, seed, tolerance ...; by default one run)."""
-        P = _path(path, self.harmonics)
+        P = _path(path, self.harmonics, placed=True)
         if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or points < 3:
             raise ModelError(f"points: expected a whole number >= 3, got {describe(points)}")
         targets = _resampled(P[None], int(points))[0]
@@ -200,13 +203,33 @@ class Atlas:
         return cls(df, int(attrs["harmonics"]), str(attrs["branch"]))
 
 
-def _path(path, harmonics: int) -> np.ndarray:
+def _path(path, harmonics: int, placed: bool = False) -> np.ndarray:
+    """The path as an array (n, 2), refused when it has no extent, or (``placed``: a linkage
+    is to go through it) when it lies beyond the model's lengths."""
     P = np.asarray(path, float) if not isinstance(path, (str, bytes)) else None
     if P is None or P.ndim != 2 or P.shape[1] != 2 or len(P) <= 2 * harmonics \
             or not np.isfinite(P).all():
         raise ModelError(f"path: expected more than {2 * harmonics} finite points, shape (n, 2), "
                          f"got {describe(path)}")
+    scale = float(np.abs(P).max())
+    # measured on the path scaled to 1, so that neither a huge nor a tiny one over- or underflows
+    extent = scale * float(np.ptp(P / scale, axis=0).max()) if scale > 0 else 0.0
+    if not extent >= MIN_LENGTH:
+        raise ModelError(f"path: its points span {extent:.3g} m, expected a closed path at least "
+                         f"{MIN_LENGTH:g} m across (points that do not all coincide)")
+    if placed and scale > MAX_LENGTH:
+        raise ModelError(f"path: a linkage through it needs points within {MAX_LENGTH:g} m of the "
+                         f"origin, got one {scale:.3g} m away; scale the path down (its shape "
+                         "alone finds the same designs)")
     return P
+
+
+def _normalised(P: np.ndarray) -> np.ndarray:
+    """The path moved to its centroid and scaled to a largest coordinate of 1: its shape,
+    in numbers that neither overflow nor underflow whatever its size."""
+    unit = P / np.abs(P).max()
+    unit = unit - unit.mean(axis=0)
+    return unit / np.abs(unit).max()
 
 
 def _resampled(P: np.ndarray, n: int) -> np.ndarray:

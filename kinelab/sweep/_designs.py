@@ -7,12 +7,13 @@ columns are the family's parameters in order; :func:`grid`, :func:`random` and
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Mapping
 
 import numpy as np
 
 from kinelab import _memory as memory
-from kinelab.errors import ModelError, describe, expected_one_of
+from kinelab.errors import MemoryBudgetError, ModelError, describe, expected_one_of
 from kinelab.model import MAX_LENGTH, MIN_LENGTH, length_problem
 
 __all__ = ["grid", "random", "sobol", "DesignTable"]
@@ -39,17 +40,32 @@ def _count(n, what: str) -> int:
     return int(n)
 
 
+def _many(n: int) -> str:
+    """A count as a message shows it: in full, or to 3 digits past a quadrillion (a grid's
+    product of counts may have more digits than a float, or a str, can hold)."""
+    if n < 10 ** 15:
+        return f"{n:,}"
+    e = int(math.log10(n))
+    return f"{n // 10 ** (e - 2) / 100:.3g}e+{e}"
+
+
 def _fits(rows: int, columns: int, what: str) -> None:
     """Refuse a generated table beyond the memory budget (its draws, the scaled table and
     pandas' copy of it)."""
-    memory.require(3 * 8 * rows * columns, f"{what} of {rows:,} designs",
-                   "generate fewer designs, or study them in several tables")
+    nbytes, what, instead = (3 * 8 * rows * columns, f"{what} of {_many(rows)} designs",
+                             "generate fewer designs, or study them in several tables")
+    if nbytes > 10 ** 300:      # more than a float holds: no estimate to show
+        raise MemoryBudgetError(f"{what} would take more bytes than a float can count, far beyond "
+                                f"the memory budget; {instead}")
+    memory.require(nbytes, what, instead)
 
 
 def grid(**axes) -> "pandas.DataFrame":
     """Every combination of the values of each parameter (the first varies slowest).
 
-    Each axis is a list of values, or ``(low, high, count)`` for evenly spaced ones.
+    Each axis is a list of values, or ``(low, high, count)`` for evenly spaced ones.  A grid
+    whose table (the product of the counts) is beyond :func:`kinelab.memory_budget` is
+    refused before any axis is built.
 
     Examples
     --------
@@ -60,19 +76,23 @@ def grid(**axes) -> "pandas.DataFrame":
 
     if not axes:
         raise ModelError("grid: expected at least one parameter, e.g. crank=(0.5, 1.5, 11)")
-    values = {}
+    spaced, values = {}, {}
     for name, axis in axes.items():
         if isinstance(axis, tuple) and len(axis) == 3:
             lo, hi = _ranges({name: axis[:2]}, "grid")[name]
-            count = _count(axis[2], f"{name}: count")
-            _fits(count, 1, f"the axis {name!r} of a grid")
-            values[name] = np.linspace(lo, hi, count)
+            spaced[name] = (lo, hi, _count(axis[2], f"{name}: count"))
         else:
-            v = np.asarray(axis, float).ravel()
+            try:
+                v = np.asarray(axis, float).ravel()
+            except (TypeError, ValueError):
+                raise ModelError(f"{name}: expected values or (low, high, count), got "
+                                 f"{describe(axis)}") from None
             if v.size == 0:
                 raise ModelError(f"{name}: expected values or (low, high, count), got none")
             values[name] = v
-    _fits(math.prod(len(v) for v in values.values()), len(values), "a grid")
+    counts = [spaced[n][2] if n in spaced else len(values[n]) for n in axes]
+    _fits(math.prod(counts), len(axes), "a grid")
+    values = {n: np.linspace(*spaced[n]) if n in spaced else values[n] for n in axes}
     mesh = np.meshgrid(*values.values(), indexing="ij")
     return pandas.DataFrame({name: m.ravel() for name, m in zip(values, mesh)})
 
@@ -103,8 +123,9 @@ def random(n: int, *, seed: int | None = 0, **ranges) -> "pandas.DataFrame":
 
 def sobol(n: int, *, seed: int | None = 0, **ranges) -> "pandas.DataFrame":
     """``n`` designs of a scrambled Sobol sequence in the given ranges (scipy.stats.qmc):
-    they fill the ranges more evenly than random ones; ``n`` a power of 2 keeps the
-    sequence's balance.
+    they fill the ranges more evenly than random ones.  ``n`` a power of 2 keeps the
+    sequence's balance; any other ``n`` is the first ``n`` points of the sequence, as
+    asked (without scipy's warning that they are not balanced).
 
     Examples
     --------
@@ -116,7 +137,10 @@ def sobol(n: int, *, seed: int | None = 0, **ranges) -> "pandas.DataFrame":
     ranges = _ranges(ranges, "sobol")
     n = _count(n, "n")
     _fits(n, len(ranges), "a Sobol table")
-    unit = qmc.Sobol(d=len(ranges), scramble=True, seed=seed).random(n)
+    with warnings.catch_warnings():
+        # scipy warns that n is not a power of 2: the docstring says what that means
+        warnings.filterwarnings("ignore", "The balance properties of Sobol", UserWarning)
+        unit = qmc.Sobol(d=len(ranges), scramble=True, seed=seed).random(n)
     return _scaled(unit, ranges)
 
 

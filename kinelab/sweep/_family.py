@@ -9,19 +9,21 @@ from __future__ import annotations
 import dataclasses
 import inspect
 import math
+import types
+import typing
 from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
 
 from kinelab import mechanisms
-from kinelab.errors import KinelabError, ModelError, describe, expected_one_of
-from kinelab.kinematics import analyze
+from kinelab.errors import KinelabError, ModelError, check_choice, describe, expected_one_of
+from kinelab.kinematics import analyze, plan
 from kinelab.model import Mechanism, Point
 from kinelab.solvers import wrap_angle
 from kinelab.sweep._batch import Batch, EngineBatch, FourbarBatch
 
-__all__ = ["Family", "Designs", "family", "CATALOGUE"]
+__all__ = ["Family", "Designs", "family", "CATALOGUE", "DesignOffModel"]
 
 CATALOGUE = ("fourbar", "slider_crank", "inverted_slider_crank", "slotted_link", "whitworth",
              "fivebar", "watt6", "stephenson6", "triad6")
@@ -199,6 +201,39 @@ class _FourbarDesigns(Designs):
             self.point = tuple(v[rows] for v in self.point)
 
 
+class DesignOffModel(ModelError):
+    """A design of a model's family that moves points off the lengths, places or offsets the
+    model declares (a link's ``local`` place, a joint's ``offset``): ``detail`` says which
+    and by how much, ``design`` the parameters that moved."""
+
+    def __init__(self, detail: str, design: str):
+        self.detail, self.design = detail, design
+        super().__init__(f"designs: the design {design} moves points off the places the model "
+                         f"declares ({detail}); vary only points that no declaration fixes, or "
+                         "remove that declaration (a link's local place, a joint's offset) from "
+                         "the model")
+
+
+_NOT_ASSEMBLED = "the sketch is not assembled: "    # kinelab.kinematics' words for it
+
+
+def _check_design(mech: Mechanism, row: Mapping[str, float], base: Mechanism) -> None:
+    """Plan a design's mechanism (the plan is cached on it), saying in the sweep's terms
+    when the design breaks what its model declares."""
+    try:
+        plan(mech)
+    except ModelError as exc:
+        line = str(exc).splitlines()[0] if str(exc) else ""
+        if not line.startswith(_NOT_ASSEMBLED):
+            raise
+        # the engine's advice (assemble the sketch in Python) would move the design itself
+        detail = line.removeprefix(_NOT_ASSEMBLED).split("; assemble it first")[0]
+        sketch = {f"{p.name}.{c}": getattr(p, c) for p in base.points for c in "xy"}
+        moved = {p: v for p, v in row.items() if v != sketch.get(p)}
+        design = ", ".join(f"{p} = {v:g} m" for p, v in list(moved.items())[:4]) or "as drawn"
+        raise DesignOffModel(detail, f"({design}{', ...' if len(moved) > 4 else ''})") from None
+
+
 class _EngineDesigns(Designs):
     """One engine call per design (the engine is vectorised over the design's samples)."""
 
@@ -208,10 +243,13 @@ class _EngineDesigns(Designs):
         for d, problem in enumerate(problems):
             mech = None
             if not problem:
+                row = {p: float(v[d]) for p, v in columns.items()}
                 try:
-                    mech = fam.build({p: float(v[d]) for p, v in columns.items()})
+                    mech = fam.build(row)
                 except KinelabError as exc:
                     problems[d] = str(exc).splitlines()[0]
+                if mech is not None and fam.base is not None:
+                    _check_design(mech, row, fam.base)
             self.mechanisms.append(mech)
 
     def _take(self, rows):
@@ -256,7 +294,12 @@ class _EngineDesigns(Designs):
                 continue
             sol = analyze(mech, q[d], unreachable="mask", at_singular="flag")
             if sol.assembled.all() and not sol.singular.any():
-                out[d] = np.abs(inverse(mech, q[d], qd=speed, reactions=False).input_forces).max()
+                with np.errstate(over="ignore", invalid="ignore"):
+                    out[d] = np.abs(inverse(mech, q[d], qd=speed, reactions=False).input_forces).max()
+                if not np.isfinite(out[d]):       # an overflow: said, never a silent NaN
+                    self.problems[d] = self.problems[d] or (
+                        f"peak_torque: the input torque overflows at {speed:g} rad/s; lower the "
+                        "speed or the masses")
         return out
 
 
@@ -279,6 +322,9 @@ def _catalogue_family(kind: str, options: Mapping[str, Any], defaults: Mapping[s
                          + (expected_one_of(unknown[0], fixed) if fixed else
                             f"'{kind}' takes no options beyond its design columns "
                             f"{', '.join(numeric)}"))
+    hints = typing.get_type_hints(make)
+    for name, value in options.items():
+        _check_option(name, value, hints.get(name))
     given = {k: v for k, v in defaults.items() if k in numeric and v is not None}
     if make is mechanisms.fourbar and defaults.get("coupler_point") is not None:
         given.update(zip(_POINT_COLUMNS, defaults["coupler_point"]))
@@ -293,6 +339,28 @@ def _catalogue_family(kind: str, options: Mapping[str, Any], defaults: Mapping[s
     return Family(kind, tuple(numeric), {**base, **given}, lengths, output, transmission, point,
                   make=make, options={**{k: defaults[k] for k in fixed if k in defaults},
                                       **options})
+
+
+def _check_option(name: str, value, hint) -> None:
+    """Refuse an option outside the choices its constructor's annotation lists, as the
+    constructor would (the closed-form four-bar never calls it): ``Literal[...]``, or a
+    tuple of them (the six-bars' assembly modes); None where the default is None."""
+    if typing.get_origin(hint) in (typing.Union, types.UnionType):
+        args = [a for a in typing.get_args(hint) if a is not type(None)]
+        if value is None and len(args) < len(typing.get_args(hint)):
+            return
+        hint = args[0] if len(args) == 1 else hint
+    if typing.get_origin(hint) is typing.Literal:
+        check_choice(name, value, typing.get_args(hint))
+    elif typing.get_origin(hint) is tuple and all(typing.get_origin(a) is typing.Literal
+                                                  for a in typing.get_args(hint)):
+        parts = typing.get_args(hint)
+        if not isinstance(value, (tuple, list)) or len(value) != len(parts):
+            raise ModelError(f"{name}: expected {len(parts)} values, one of "
+                             f"{', '.join(map(repr, typing.get_args(parts[0])))} each, got "
+                             f"{describe(value)}")
+        for k, (v, part) in enumerate(zip(value, parts)):
+            check_choice(f"{name}[{k}]", v, typing.get_args(part))
 
 
 def family(spec: str | Mechanism | Family, *, output: str | None = None,

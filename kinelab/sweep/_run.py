@@ -13,12 +13,13 @@ import numpy as np
 from kinelab import _memory as memory
 from kinelab._files import atomic_write
 from kinelab.errors import KinelabError, ModelError, describe
+from kinelab.model import rate_problem
 from kinelab.sweep._designs import DesignTable
 from kinelab.sweep._family import Family, family as make_family
 from kinelab.sweep._metrics import (DEFAULT_HARMONICS, check_metrics, evaluate_chunk,
                                     metric_columns)
 
-__all__ = ["run", "connect", "chunk_size_for", "STANDARD_METRICS"]
+__all__ = ["run", "connect", "chunk_size_for", "STANDARD_METRICS", "MAX_SAMPLES"]
 
 STANDARD_METRICS = ("assembles", "grashof", "transmission_min", "transmission_max",
                     "time_ratio", "swing")
@@ -27,6 +28,7 @@ _CHUNK_BYTES = 32 << 20      # a chunk's working arrays: large enough that numpy
 _DASK_CHUNKS = 16           # a Dask task holds this many local chunks by default
 _ARRAYS_PER_SAMPLE = 48      # float arrays (D, S) a chunk holds at once, at most (estimate)
 _CONNECT_TIMEOUT = 5.0       # s to reach a scheduler before saying it cannot be reached
+MAX_SAMPLES = 1_000_000      # samples per turn, at most: as a model file's sweep (kinelab.io)
 
 
 def chunk_size_for(samples: int, requested: int | None = None, *, distributed: bool = False) -> int:
@@ -42,14 +44,25 @@ def chunk_size_for(samples: int, requested: int | None = None, *, distributed: b
 
 def _check_samples(samples):
     if isinstance(samples, (int, np.integer)) and not isinstance(samples, bool):
-        if samples < 4:
-            raise ModelError(f"samples: expected at least 4 samples per turn, got {samples}")
+        if not 4 <= samples <= MAX_SAMPLES:
+            raise ModelError(f"samples: expected at least 4 and at most {MAX_SAMPLES:,} samples per "
+                             f"turn, got {describe(int(samples))}")
         return int(samples)
     a = np.asarray(samples, float) if not isinstance(samples, (str, bytes)) else None
-    if a is None or a.ndim != 1 or a.size < 1 or not np.isfinite(a).all():
+    if a is None or a.ndim != 1 or not 1 <= a.size <= MAX_SAMPLES or not np.isfinite(a).all():
         raise ModelError(f"samples: expected a number of samples over a turn, or a 1-D array of "
-                         f"finite input values (rad), got {describe(samples)}")
+                         f"at most {MAX_SAMPLES:,} finite input values (rad), got {describe(samples)}")
     return a
+
+
+def _check_speed(speed) -> float:
+    if isinstance(speed, bool) or not isinstance(speed, (int, float, np.integer, np.floating)) \
+            or not math.isfinite(speed):
+        raise ModelError(f"speed: expected a finite input speed (rad/s), got {describe(speed)}")
+    why = rate_problem(float(speed), "rad/s")
+    if why:
+        raise ModelError(f"speed: {why}, got {float(speed):g}")
+    return float(speed)
 
 
 def _progress_bar(total: int) -> Callable[[int], None] | None:
@@ -129,7 +142,8 @@ def run(family: str | Family, designs, *, samples=72, metrics=None, client=None,
     designs : DataFrame, mapping of columns, or array (D, P)
         One row per design (see :func:`grid`, :func:`random`, :func:`sobol`).
     samples : int or array_like, shape (S,)
-        Samples of the input over a full turn (evenly from 0), or the input values, rad.
+        Samples of the input over a full turn (evenly from 0; 4 to :data:`MAX_SAMPLES`), or
+        the input values, rad.
     metrics : sequence or mapping, optional
         Names among :data:`METRICS`, and functions of the kinematics (a :class:`Batch`,
         arrays (D, S)) returning one value per design, named by their ``__name__`` or by the
@@ -144,7 +158,8 @@ def run(family: str | Family, designs, *, samples=72, metrics=None, client=None,
     progress : bool or callable, optional
         A bar on stderr (default: when it is a terminal), or ``progress(done, total)``.
     speed : float
-        Constant input speed for ``peak_torque``, rad/s.
+        Constant input speed for ``peak_torque``, rad/s, at most
+        :data:`kinelab.model.MAX_RATE` (1e100) in size.
     harmonics : int
         Harmonics of the coupler-curve ``descriptors`` (columns ``fd+1, fd-1, ...``).
     path : str or path, optional
@@ -168,7 +183,10 @@ def run(family: str | Family, designs, *, samples=72, metrics=None, client=None,
     Raises
     ------
     ModelError
-        Unknown family, metric or column; an unreachable scheduler.
+        Unknown family, metric or column; an unreachable scheduler; more samples than
+        :data:`MAX_SAMPLES` or a speed beyond ``MAX_RATE``.
+    MemoryBudgetError
+        One chunk's working arrays (designs x samples) beyond :func:`kinelab.memory_budget`.
 
     Examples
     --------
@@ -185,8 +203,7 @@ def run(family: str | Family, designs, *, samples=72, metrics=None, client=None,
     samples = _check_samples(samples)
     if isinstance(harmonics, bool) or not isinstance(harmonics, (int, np.integer)) or harmonics < 1:
         raise ModelError(f"harmonics: expected a whole number >= 1, got {describe(harmonics)}")
-    if not (isinstance(speed, (int, float)) and math.isfinite(speed)):
-        raise ModelError(f"speed: expected a finite input speed (rad/s), got {describe(speed)}")
+    speed = _check_speed(speed)
     if metrics is None:
         metrics = [m for m in STANDARD_METRICS
                    if _available(fam, m, isinstance(samples, int))]
@@ -200,13 +217,18 @@ def run(family: str | Family, designs, *, samples=72, metrics=None, client=None,
                                    or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1):
         raise ModelError(f"chunk_size: expected a whole number >= 1, got {describe(chunk_size)}")
     size = chunk_size_for(S, chunk_size, distributed=client is not None)
+    # a chunk holds its designs' arrays (D, S); one design's alone may exceed the budget
+    held = min(size, max(table.size, 1))
+    memory.require(8 * _ARRAYS_PER_SAMPLE * S * held,
+                   f"the working arrays of {held:,} design(s) at {S:,} samples each",
+                   "ask for fewer samples per turn")
     bounds = list(range(0, table.size, size)) + [table.size]
     chunks = list(zip(bounds[:-1], bounds[1:]))
     if progress is None:
         progress = True if sys.stderr.isatty() else False
     report = (_progress_bar(table.size) if progress is True else
               (lambda done: progress(done, table.size)) if callable(progress) else None)
-    options = dict(samples=samples, metrics=checked, speed=float(speed), harmonics=int(harmonics))
+    options = dict(samples=samples, metrics=checked, speed=speed, harmonics=int(harmonics))
     if client is None:
         parts = []
         for lo, hi in chunks:

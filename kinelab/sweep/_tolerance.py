@@ -13,7 +13,7 @@ from kinelab.errors import ModelError, check_choice, describe
 from kinelab.solvers import wrap_angle
 from kinelab.sweep._designs import DesignTable
 from kinelab.sweep._family import Family, family as make_family
-from kinelab.sweep._run import chunk_size_for
+from kinelab.sweep._run import MAX_SAMPLES, chunk_size_for
 
 __all__ = ["ToleranceStudy", "tolerance"]
 
@@ -109,8 +109,10 @@ def tolerance(family: str | Family, nominal: Mapping[str, float],
     check_choice("distribution", distribution, ("uniform", "normal"))
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise ModelError(f"n: expected a whole number >= 1, got {describe(n)}")
-    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 4:
-        raise ModelError(f"samples: expected a whole number >= 4, got {describe(samples)}")
+    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) \
+            or not 4 <= samples <= MAX_SAMPLES:
+        raise ModelError(f"samples: expected a whole number from 4 to {MAX_SAMPLES:,}, got "
+                         f"{describe(samples)}")
     output = output if output is not None else fam.output
     if output is None:
         raise ModelError(f"output: family {fam.name!r} has no default output; name a link or a "
