@@ -19,7 +19,7 @@ import numpy as np
 from kinelab._files import atomic_write
 from kinelab.errors import ModelError, check_choice, describe
 from kinelab.io._modelfile import LENGTH_UNITS
-from kinelab.model import Mechanism, is_real
+from kinelab.model import Mechanism, is_real, length_problem
 
 __all__ = ["Outline", "outlines", "to_svg", "to_dxf"]
 
@@ -129,6 +129,10 @@ def outlines(model: Mechanism, *, width: float | None = None, hole: float | None
     if not (is_real(w) and is_real(d) and 0 < d < w):
         raise ModelError(f"width, hole: expected 0 < hole < width, got width {describe(w)} m and "
                          f"hole {describe(d)} m")
+    for name, value in (("width", w), ("hole", d)):
+        why = length_problem(float(value))      # a drawing's numbers stay finite
+        if why:
+            raise ModelError(f"{name}: {why}, got {float(value):g} m")
     xy = {p.name: np.array(p.xy) for p in model.points}
     parts = []
     for link in model.links:

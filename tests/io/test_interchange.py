@@ -336,6 +336,9 @@ def test_pyslvs_inputs_get_the_import_speeds():
     ({"width": "5"}, r"^width, hole: expected 0 < hole < width, got width '5' m"),
     ({"unit": ["mm"]}, r"^unit: expected one of 'm', 'cm', 'mm', 'in', got \['mm'\]$"),
     ({"layout": {}}, r"^layout: expected one of 'parts', 'assembly', got a table$"),
+    ({"width": 1e305}, r"^width: expected a length from 1e-09 m to 1e\+09 m, got 1e\+305 m$"),
+    ({"width": 1e-303}, r"^width: expected a length from 1e-09 m to 1e\+09 m, got 1e-303 m$"),
+    ({"width": 0.02, "hole": 1e-300}, r"^hole: expected a length from 1e-09 m"),
 ])
 def test_outline_options_of_the_wrong_kind_are_refused(options, message, tmp_path):
     fb = kl.mechanisms.fourbar(ground=0.3, crank=0.1, coupler=0.3, rocker=0.25)
