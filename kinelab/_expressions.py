@@ -464,9 +464,10 @@ class _Compiler:
     def power(self, node: ast.BinOp) -> Callable[[_Env], Any]:
         if isinstance(_exponent(node), ast.BinOp) and isinstance(_exponent(node).op, ast.Pow):
             raise ModelError(f"{self.where}: {self.part(node, 'the power tower')} is not "
-                             "allowed (a ** b ** c); expected a number, a name or a bracketed "
-                             "term as the exponent; write the exponent b ** c out as a number, or "
-                             "bracket the base if (a ** b) ** c was meant")
+                             "allowed (a ** b ** c, also with the exponent bracketed); expected "
+                             "a number, a name or a bracketed term with no power in it as the "
+                             "exponent; write the exponent b ** c out as a number, bracket the "
+                             "base if (a ** b) ** c was meant, or write exp(log(a) * b ** c)")
         base, exponent = self.compile(node.left), self.compile(node.right)
         if isinstance(exponent, _Const) and not abs(exponent.value) <= MAX_EXPONENT:
             raise ModelError(f"{self.where}: the exponent {exponent.value:g} of "

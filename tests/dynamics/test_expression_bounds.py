@@ -86,8 +86,11 @@ def test_nesting_is_bounded():
     ("sqrt(-1) + t", r"the part 'sqrt\(-1\)' .* evaluates to nan \(an undefined result"),
     ("1e400 * q", r"the number '1e400' in the expression '1e400 \* q' is beyond float64"),
     ("1" + "0" * 400, r"the number '10000.* is beyond float64"),
-    ("9**9**9", r"the power tower '9\*\*9\*\*9' is not allowed \(a \*\* b \*\* c\); expected a "
-                r"number, a name or a bracketed term as the exponent"),
+    ("9**9**9", r"the power tower '9\*\*9\*\*9' is not allowed \(a \*\* b \*\* c, also with the "
+                r"exponent bracketed\); expected a number, a name or a bracketed term with no power "
+                r"in it as the exponent"),
+    ("(qd**2)**(qd**2)", r"the power tower '\(qd\*\*2\)\*\*\(qd\*\*2\)' is not allowed .* or write "
+                         r"exp\(log\(a\) \* b \*\* c\)$"),
     ("2 ** -(q ** 2)", r"the power tower '2 \*\* -\(q \*\* 2\)' is not allowed"),
     ("q ** 1000.5", rf"the exponent 1000.5 of the power 'q \*\* 1000.5' is too large; expected a "
                     rf"constant exponent of at most {MAX_EXPONENT} in size"),
