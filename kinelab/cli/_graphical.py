@@ -3,6 +3,8 @@ methods of Flores & Claro, *Cinemática de Mecanismos — 4. Análise de Velocid
 as tables and figures."""
 from __future__ import annotations
 
+import dataclasses
+import re
 from pathlib import Path
 
 import click
@@ -14,8 +16,9 @@ from kinelab.cli._draw import FIGURE_FORMATS, _agg
 from kinelab.cli._format import _num
 from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, errors_from, output_units, parse_inputs,
                                read_model, stem, sweep)
-from kinelab.errors import ModelError, shown_path
+from kinelab.errors import ModelError, shown, shown_path
 from kinelab.model import Units
+from kinelab.solvers._differentiate import MAX_SAMPLES
 
 __all__ = ["polygons", "centres", "differentiate_command"]
 
@@ -179,6 +182,43 @@ def centres(model, at, out, formats, with_centrodes, samples, si, change_points)
         click.echo(f"wrote {shown_path(path)}")
 
 
+PLOTTED = 20_000     # samples a figure of derivatives draws at most (every k-th beyond):
+                     # it is about 1,000 pixels wide, and matplotlib slows down past that
+_NOT_A_SAMPLE = re.compile(rb"^[ \t]*(#.*)?\r?$", re.M)     # blank or comment lines
+
+
+def _samples_at_most(path: str, limit: int) -> None:
+    """Refuse a curve file with more than ``limit`` samples before it is read (reading
+    takes a while), counting its lines by chunks, in bounded memory."""
+    lines, tail = 0, b""
+    try:
+        with open(path, "rb") as f:
+            while chunk := f.read(1 << 20):
+                chunk = tail + chunk
+                cut = chunk.rfind(b"\n") + 1
+                whole, tail = chunk[:cut], chunk[cut:]
+                lines += whole.count(b"\n") - len(_NOT_A_SAMPLE.findall(whole)) + \
+                    whole.endswith(b"\n")       # the regex also matches after the last newline
+                if lines - 1 > limit:             # the first line is the header
+                    raise ModelError(f"expected at most {limit:,} samples, got more; cut the "
+                                     "curve into pieces, or keep every k-th sample",
+                                     source=path)
+    except OSError:
+        pass                                      # read_curve says why
+
+
+def _printable(curve) -> None:
+    """Refuse a header whose names or units hold unprintable characters (an escape
+    sequence would reach the table, the figure and the terminal)."""
+    for name, unit in ((curve.x_name, curve.x_unit), (curve.y_name, curve.y_unit)):
+        bad = next((c for c in name + unit if not c.isprintable()), None)
+        if bad is not None:
+            full = f"{name} [{unit}]" if unit else name
+            raise ModelError(f"header: column {shown(full)}: expected printable characters in "
+                             f"a column's name and unit, got {shown(bad)}; remove it",
+                             source=curve.source)
+
+
 @click.command("differentiate")
 @click.argument("data", type=click.Path(dir_okay=False))
 @click.option("--x", "x_column", default=None, metavar="COLUMN",
@@ -198,7 +238,9 @@ def differentiate_command(data, x_column, y_column, window, out, formats):
     figure) and prints how the smoothing was chosen."""
     from kinelab import plot as kplot
     _agg()
+    _samples_at_most(data, MAX_SAMPLES)
     curve = io.read_curve(data, x=x_column, y=y_column)
+    _printable(curve)
     try:
         d = solvers.differentiate(curve.x, curve.y, window=window)
     except ModelError as exc:           # name the file in the message
@@ -209,7 +251,7 @@ def differentiate_command(data, x_column, y_column, window, out, formats):
     def unit(text):
         return f" [{text}]" if text else ""
     rate = f"{yu or '1'}/{xu or '1'}"
-    columns = {f"{xn}{unit(xu)}": d.x, f"{yn}{unit(yu)}": d.y + d.residual,
+    columns = {f"{xn}{unit(xu)}": d.x, f"{yn}{unit(yu)}": curve.y,
                f"{yn}.smoothed{unit(yu)}": d.y,
                f"d{yn}/d{xn}{unit(rate)}": d.velocity,
                f"d{yn}/d{xn}.error{unit(rate)}": d.velocity_error,
@@ -218,7 +260,11 @@ def differentiate_command(data, x_column, y_column, window, out, formats):
     from kinelab._files import write_csv
     base = Path(data).stem
     written = [write_csv(columns, Path(out) / f"{base}_derivatives.csv")]
-    fig = kplot.derivatives(d, x_label=f"{xn}{unit(xu)}", y_label=yn, y_unit=yu or "1",
+    k = -(-len(d.x) // PLOTTED)
+    drawn = d if k == 1 else dataclasses.replace(d, **{
+        f: getattr(d, f)[::k] for f in ("x", "y", "velocity", "acceleration", "velocity_error",
+                                       "acceleration_error", "residual")})
+    fig = kplot.derivatives(drawn, x_label=f"{xn}{unit(xu)}", y_label=yn, y_unit=yu or "1",
                             x_unit=xu or "1")
     written += _save(fig, out, f"{base}_derivatives", formats)
     how = ("as --window says" if window is not None else

@@ -11,6 +11,7 @@ also reached as ``kinelab.kinematics.differentiate``.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -19,19 +20,29 @@ from numpy.typing import ArrayLike
 from kinelab.errors import ModelError, describe
 from kinelab.model._values import real_array
 
-__all__ = ["Derivatives", "differentiate", "DEGREE", "MIN_WINDOW", "MIN_SAMPLES"]
+__all__ = ["Derivatives", "differentiate", "DEGREE", "MIN_WINDOW", "MIN_SAMPLES",
+           "MAX_SAMPLES", "MAX_UNEVEN"]
 
 DEGREE = 5          # of the local polynomials: their bias is small enough for the second
                     # derivative, and they leave the ends free (no boundary condition)
 MIN_WINDOW = 11     # samples per fit: the degree DEGREE + 2 fit of the error estimate keeps
                     # a few degrees of freedom
 MIN_SAMPLES = 15    # so that cross-validation has at least three windows to choose from
+MAX_SAMPLES = 1_000_000  # about 5 s of work, evenly spaced (N log N, by FFT)
+MAX_UNEVEN = 10_000  # unevenly spaced samples: each of their fits is a least-squares problem
+                    # of its own, window x N work, where evenly spaced ones share one filter
 UNDERSMOOTH = 0.7   # the window used is this fraction of the cross-validated one (below)
 SPREAD = 4.0        # standard errors in an error band
 BIAS = 2.0          # times the change with a degree DEGREE + 2 fit, added to the band
 GCV_WINDOWS = 40    # candidate windows, on a geometric grid from MIN_WINDOW to N
 GCV_SAMPLES = 500   # cross-validation scores are summed over at most this many samples
 BLOCK = 2_000_000   # numbers per block of fits (samples x window): bounds the memory
+EVEN = 1e-9         # steps equal to this fraction of their mean count as evenly spaced
+DISTINCT = 1e-12    # the smallest step, as a fraction of the range of x
+RESOLVED = 1000     # the smallest step, in units of float64's spacing at the largest |x|:
+                    # the rounding of x is then at most 0.1 % of a step
+CONDITION = 1e12    # of a fit's normal equations (degree DEGREE + 2): beyond it, too few of
+                    # the window's samples are apart to determine the polynomial
 
 
 @dataclass(frozen=True)
@@ -96,6 +107,9 @@ def _check(x: ArrayLike, y: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     x, y = _samples("x", x), _samples("y", y)
     if len(x) != len(y):
         raise ModelError(f"y: expected as many samples as x ({len(x)}), got {len(y)}")
+    if len(x) > MAX_SAMPLES:
+        raise ModelError(f"x: expected at most {MAX_SAMPLES:,} samples, got {len(x):,}; cut "
+                         "the curve into pieces, or keep every k-th sample")
     if len(x) < MIN_SAMPLES:
         raise ModelError(f"x: expected at least {MIN_SAMPLES} samples, got {len(x)}; a "
                          f"local fit takes {MIN_WINDOW} samples, and cross-validation "
@@ -106,91 +120,204 @@ def _check(x: ArrayLike, y: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         k = int(bad[0]) + 1
         raise ModelError(f"x[{k}]: expected abscissae that increase, got {float(x[k])!r} after "
                          f"x[{k - 1}] = {float(x[k - 1])!r}; sort the samples and merge repeated ones")
-    if not np.all(np.isfinite(step / np.ptp(x))) or np.min(step) <= np.ptp(x) * 1e-12:
-        raise ModelError("x: expected distinct abscissae, got samples closer than 1e-12 of "
-                         "the range; merge them")
     return x, y
 
 
-class _Fits:
-    """Local polynomial fits over ``window`` samples, at given samples, of each degree in
-    ``degrees``: for each, the weights that turn the window's y into the fitted value, first
-    and second derivative at that sample (``weights[degree]``, shape (rows, window, 3): rows
-    of the least-squares solution, evaluated there).
+def _binary_scaled(a: np.ndarray) -> tuple[np.ndarray, int]:
+    """``a / 2**e`` and ``e``, with the largest magnitude in [0.5, 1).  Dividing by a power
+    of two is exact, and nothing overflows on the way: the units come back at the end, in
+    :func:`_restored`, where an overflow can be named."""
+    top = float(np.max(np.abs(a)))
+    e = math.frexp(top)[1] if top > 0 else 0
+    return np.ldexp(a, -e), e
 
-    The polynomials are written in Legendre polynomials of u, the window mapped onto
-    [-1, 1], which keeps the normal equations well conditioned; a lower degree's system is
-    a corner of the higher one's."""
 
-    def __init__(self, x: np.ndarray, rows: np.ndarray, window: int, degrees=(DEGREE,),
-                 even: bool = False):
-        from numpy.polynomial import legendre
-        n, top = len(x), max(degrees)
-        start = np.clip(rows - window // 2, 0, n - window)   # centred; at the ends, the first or last
-        self.index = start[:, None] + np.arange(window)
-        every = rows
-        if even:
-            # evenly spaced: the weights depend only on where the sample sits in its window,
-            # so they are computed once for each place and shared
-            _, first, shared = np.unique(rows - start, return_index=True, return_inverse=True)
-            rows, start = rows[first], start[first]
-        xw = x[start[:, None] + np.arange(window)]
-        mid, half = 0.5 * (xw[:, -1] + xw[:, 0]), 0.5 * (xw[:, -1] - xw[:, 0])
-        V = legendre.legvander((xw - mid[:, None]) / half[:, None], top)   # (rows, window, top + 1)
-        gram = np.swapaxes(V, 1, 2) @ V
-        at = legendre.legvander((x[rows] - mid) / half, top)                # (rows, top + 1)
-        # value, d/du and d2/du2 of each basis polynomial at the sample
-        derivative = [np.array([np.pad(legendre.legder(e, nu), (0, nu)) for e in np.eye(top + 1)]).T
-                      for nu in (0, 1, 2)]
-        basis = np.stack([at @ d for d in derivative], axis=2)             # (rows, top + 1, 3)
-        scale = np.stack([np.ones_like(half), 1.0 / half, 1.0 / half ** 2], axis=1)[:, None, :]
-        self.weights = {}
+def _abscissae(x: np.ndarray) -> tuple[np.ndarray, float, int]:
+    """x mapped onto [0, 1] (u = (x - x[0]) / (range of x)), with the range of x / 2**e and
+    e; refuses steps too small for float64 to tell the samples apart."""
+    x1, e = _binary_scaled(x)
+    span = float(x1[-1] - x1[0])
+    step = np.diff(x1)
+    k = int(np.argmin(step))
+    pair = f"x[{k + 1}] = {float(x[k + 1])!r} after x[{k}] = {float(x[k])!r}"
+    if step[k] <= DISTINCT * span:
+        raise ModelError(f"x[{k + 1}]: expected samples apart by more than {DISTINCT:g} of the "
+                         f"range of x, got {pair}; merge samples this close")
+    spacings = float(step[k] / np.spacing(np.max(np.abs(x1))))
+    if spacings < RESOLVED:
+        raise ModelError(f"x[{k + 1}]: expected steps that float64 resolves (at least {RESOLVED} "
+                         f"times its spacing at the largest |x|), got {pair}, {spacings:.0f} "
+                         "times; subtract a reference from x (such as its first value) so that "
+                         "it starts near 0")
+    return (x1 - x1[0]) / span, span, e
+
+
+# value, first and second derivative of each Legendre polynomial up to a degree, as matrices
+# that turn its values (legvander) into theirs
+_DERIVATIVES = {top: [np.array([np.pad(np.polynomial.legendre.legder(c, nu), (0, nu))
+                                for c in np.eye(top + 1)]).T for nu in (0, 1, 2)]
+                for top in (DEGREE, DEGREE + 2)}
+
+
+def _uneven_fits(u: np.ndarray, v: np.ndarray, rows: np.ndarray, window: int,
+                 degrees: tuple[int, ...]) -> tuple[dict, np.ndarray]:
+    """Local least-squares polynomials over ``window`` samples, at ``rows`` (centred; at the
+    ends, over the first or last ``window``), each a problem of its own.
+
+    Returns ``{degree: (fit, norm2)}``, both (rows, 3): the fitted value, first and second
+    derivative (in u) at the sample, and the squared norms of their weights on the data,
+    c^T G^-1 c (G the normal equations, c the basis evaluated there), which scale the noise
+    into each estimate; and a (rows,) mask of the fits too ill-conditioned to trust.
+
+    The polynomials are written in Legendre polynomials of the window mapped onto [-1, 1],
+    which keeps the normal equations well conditioned; a lower degree's system is a corner
+    of the higher one's."""
+    from numpy.polynomial import legendre
+    n, top = len(u), max(degrees)
+    start = np.clip(rows - window // 2, 0, n - window)
+    index = start[:, None] + np.arange(window)
+    uw = u[index]
+    mid, half = 0.5 * (uw[:, -1] + uw[:, 0]), 0.5 * (uw[:, -1] - uw[:, 0])
+    V = legendre.legvander((uw - mid[:, None]) / half[:, None], top)   # (rows, window, top + 1)
+    gram = np.swapaxes(V, 1, 2) @ V
+    # the top degree's system bounds the condition of every corner of it (interlacing)
+    eig = np.linalg.eigvalsh(gram)
+    bad = ~(eig[:, 0] > eig[:, -1] / CONDITION)
+    gram[bad] = np.eye(top + 1)                     # refused by the caller, solved harmlessly
+    at = legendre.legvander((u[rows] - mid) / half, top)               # (rows, top + 1)
+    basis = np.stack([at @ d for d in _DERIVATIVES[top]], axis=2)      # (rows, top + 1, 3)
+    moments = np.einsum("rwt,rw->rt", V, v[index])
+    scale = np.stack([np.ones_like(half), 1.0 / half, 1.0 / half ** 2], axis=1)
+    out = {}
+    for d in degrees:
+        c = basis[:, :d + 1]
+        solved = np.linalg.solve(gram[:, :d + 1, :d + 1],
+                                 np.concatenate([moments[:, :d + 1, None], c], axis=2))
+        out[d] = (np.einsum("rt,rtk->rk", solved[:, :, 0], c) * scale,
+                  np.einsum("rtk,rtk->rk", c, solved[:, :, 1:]) * scale ** 2)
+    return out, bad
+
+
+def _correlated(v: np.ndarray, kernel: np.ndarray, starts: np.ndarray) -> np.ndarray:
+    """(starts, m): sum over j of kernel[j] v[start + j], directly for a few starts, else
+    for every start at once by FFT (N log N, whatever the window)."""
+    n, w = len(v), len(kernel)
+    if len(starts) * w <= 2 * (n + w) * np.log2(n + w):
+        view = np.lib.stride_tricks.sliding_window_view(v, w)
+        parts = np.array_split(starts, max(1, len(starts) * w // BLOCK))
+        return np.concatenate([view[p] @ kernel for p in parts])
+    from scipy.signal import fftconvolve
+    return fftconvolve(v[:, None], kernel[::-1], mode="valid", axes=0)[starts]
+
+
+def _even_fits(v: np.ndarray, rows: np.ndarray, window: int, degrees: tuple[int, ...],
+               derivatives: bool = True) -> dict:
+    """As :func:`_uneven_fits`, for evenly spaced samples on [0, 1]: the weights depend only
+    on a sample's place in its window, so one system serves every window; the centred fits
+    are one filter (Savitzky-Golay), applied by :func:`_correlated`, and the fits at the
+    ends are the first and last window's polynomials.  Without ``derivatives``, the centred
+    fits' derivatives are left out (NaN): cross-validation needs only the values."""
+    from numpy.polynomial import legendre
+    n, top = len(v), max(degrees)
+    columns = 3 if derivatives else 1
+    s = np.linspace(-1.0, 1.0, window)
+    V = legendre.legvander(s, top)                                     # (window, top + 1)
+    half = 0.5 * (window - 1) / (n - 1)
+    scale = np.array([1.0, 1.0 / half, 1.0 / half ** 2])
+    start = np.clip(rows - window // 2, 0, n - window)
+    place = rows - start
+    ends = [(start == 0, 0), (start == n - window, n - window)]
+    centred = ~(ends[0][0] | ends[1][0])
+    gram = {d: V[:, :d + 1].T @ V[:, :d + 1] for d in degrees}
+    places, which = np.unique(place, return_inverse=True)
+    out = {}
+    for d in degrees:
+        coef = [np.linalg.solve(gram[d], V[:, :d + 1].T @ v[s0:s0 + window]) for _, s0 in ends]
+        # the basis at each place a sample has, by blocks: a window may hold every sample
+        norm2 = np.empty((len(places), 3))
+        for block in np.array_split(np.arange(len(places)), max(1, len(places) * 24 // BLOCK)):
+            at = legendre.legvander(s[places[block]], d)
+            c = np.stack([at @ m[:d + 1, :d + 1] for m in _DERIVATIVES[top]], axis=2)
+            norm2[block] = np.einsum("ptk,ptk->pk", c, np.linalg.solve(gram[d], c)) * scale ** 2
+        fit = np.empty((len(rows), 3))
+        for (mask, _), co in zip(ends, coef):
+            fit[mask] = np.stack([legendre.legval(s[place[mask]], legendre.legder(co, k))
+                                  for k in (0, 1, 2)], axis=1) * scale
+        if centred.any():
+            at = legendre.legvander(s[window // 2:window // 2 + 1], d)[0]
+            centre = np.stack([at @ m[:d + 1, :d + 1] for m in _DERIVATIVES[top]], axis=1)
+            kernel = (V[:, :d + 1] @ np.linalg.solve(gram[d], centre)) * scale   # (window, 3)
+            fit[centred] = np.nan
+            fit[centred, :columns] = _correlated(v, kernel[:, :columns], start[centred])
+        out[d] = (fit, norm2[which])
+    return out
+
+
+def _fits(u: np.ndarray, v: np.ndarray, rows: np.ndarray, window: int, degrees: tuple[int, ...],
+          even: bool, derivatives: bool = True) -> tuple[dict, np.ndarray]:
+    """The local fits at ``rows``, by blocks of at most BLOCK numbers when uneven: see
+    :func:`_uneven_fits`."""
+    if even:
+        return _even_fits(v, rows, window, degrees, derivatives), np.zeros(len(rows), bool)
+    out = {d: (np.empty((len(rows), 3)), np.empty((len(rows), 3))) for d in degrees}
+    bad = np.empty(len(rows), bool)
+    for block in np.array_split(np.arange(len(rows)),
+                                max(1, len(rows) * window * (DEGREE + 3) // BLOCK)):
+        part, bad[block] = _uneven_fits(u, v, rows[block], window, degrees)
         for d in degrees:
-            coef = np.linalg.solve(gram[:, :d + 1, :d + 1], basis[:, :d + 1])
-            self.weights[d] = (V[:, :, :d + 1] @ coef) * scale
-            if even:
-                self.weights[d] = self.weights[d][shared]
-        rows, start = every, self.index[:, 0]
-        self.self_weight = self.weights[degrees[0]][np.arange(len(rows)), rows - start, 0]
-
-    def apply(self, degree: int, y: np.ndarray) -> np.ndarray:
-        """(rows, 3): the value, first and second derivative of the fit of ``degree``."""
-        return np.einsum("rwn,rw->rn", self.weights[degree], y[self.index])
-
-    def norms(self, degree: int) -> np.ndarray:
-        """(rows, 3): the norms of the weights, which scale the noise into each estimate."""
-        return np.sqrt(np.einsum("rwn,rwn->rn", self.weights[degree], self.weights[degree]))
+            out[d][0][block], out[d][1][block] = part[d]
+    return out, bad
 
 
-def _blocks(rows: np.ndarray, window: int):
-    """``rows`` in blocks of at most BLOCK numbers of fits each."""
-    return np.array_split(rows, max(1, len(rows) * window * (DEGREE + 3) // BLOCK))
+def _refuse_gap(x: np.ndarray, u: np.ndarray, row: int, window: int) -> None:
+    start = int(np.clip(row - window // 2, 0, len(x) - window))
+    g = start + int(np.argmax(np.diff(u[start:start + window])))
+    raise ModelError(f"x[{g + 1}]: expected samples spread over each local fit, got a gap from "
+                     f"x[{g}] = {float(x[g])!r} to x[{g + 1}] = {float(x[g + 1])!r} that leaves "
+                     f"the fit of {window} samples around x[{row}] too few samples on a side "
+                     f"for a polynomial of degree {DEGREE + 2}; fill in the gap, or "
+                     "differentiate the pieces on either side of it separately")
 
 
-def _residuals(x: np.ndarray, y: np.ndarray, rows: np.ndarray, window: int,
-               even: bool = False) -> tuple[float, float]:
-    """The residual sum of squares of the fits at ``rows`` and the sum of their weights on
-    their own sample (the trace of the hat matrix)."""
-    rss = trace = 0.0
-    for block in _blocks(rows, window):
-        f = _Fits(x, block, window, even=even)
-        rss += float(np.sum((y[block] - f.apply(DEGREE, y)[:, 0]) ** 2))
-        trace += float(np.sum(f.self_weight))
-    return rss, trace
+def _residuals(u: np.ndarray, v: np.ndarray, rows: np.ndarray, window: int,
+               even: bool) -> tuple[float, float, np.ndarray]:
+    """The residual sum of squares of the fits at ``rows``, the sum of their weights on
+    their own sample (the trace of the hat matrix) and the mask of ill-conditioned fits."""
+    fits, bad = _fits(u, v, rows, window, (DEGREE,), even, derivatives=False)
+    fit, norm2 = fits[DEGREE]
+    # a value's weight on its own sample is c^T G^-1 c, the squared norm of its weights
+    return float(np.sum((v[rows] - fit[:, 0]) ** 2)), float(np.sum(norm2[:, 0])), bad
 
 
-def _gcv_window(x: np.ndarray, y: np.ndarray, even: bool = False) -> int:
+def _gcv_window(x: np.ndarray, u: np.ndarray, v: np.ndarray, even: bool) -> int:
     """The window that minimises the generalised cross-validation score of the smoothed
-    curve, N RSS / (N - trace H)^2, summed over at most GCV_SAMPLES evenly spread samples."""
-    n = len(x)
+    curve, N RSS / (N - trace H)^2, summed over at most GCV_SAMPLES evenly spread samples;
+    windows with an ill-conditioned fit among them are not candidates."""
+    n = len(u)
     rows = np.unique(np.linspace(0, n - 1, min(n, GCV_SAMPLES)).round().astype(int))
     windows = np.unique(np.geomspace(MIN_WINDOW, n, GCV_WINDOWS).round().astype(int) | 1)
     windows = windows[windows <= n]
-    scores = []
+    scores, first_bad = [], None
     for w in windows:
-        rss, trace = _residuals(x, y, rows, int(w), even)
-        scores.append(len(rows) * rss / max(len(rows) - trace, 1e-300) ** 2)
+        rss, trace, bad = _residuals(u, v, rows, int(w), even)
+        if bad.any():
+            first_bad = first_bad or (int(rows[np.argmax(bad)]), int(w))
+            scores.append(np.inf)
+        else:
+            scores.append(len(rows) * rss / max(len(rows) - trace, 1e-300) ** 2)
+    if not np.isfinite(np.min(scores)):
+        _refuse_gap(x, u, *first_bad)
     return int(windows[int(np.argmin(scores))])
+
+
+def _restored(a: np.ndarray, factor: float, exponent: int, what: str, hint: str) -> np.ndarray:
+    """``a * factor * 2**exponent``, refused when it leaves float64's range."""
+    with np.errstate(over="ignore", under="ignore"):
+        out = np.ldexp(a * factor, exponent)
+    if not np.all(np.isfinite(out)):
+        raise ModelError(f"y: expected {what} within float64's range (up to "
+                         f"{np.finfo(float).max:.3g}), got beyond it; {hint}")
+    return out
 
 
 def differentiate(x: ArrayLike, y: ArrayLike, *, window: int | None = None) -> Derivatives:
@@ -215,6 +342,12 @@ def differentiate(x: ArrayLike, y: ArrayLike, *, window: int | None = None) -> D
     weights on the data) plus twice the change of the estimate when the polynomial's degree
     goes to 7 over the same samples, which measures its truncation error.
 
+    The fits are made on x and y shifted and scaled to order one, so the results do not
+    depend on the units (1e-200 s or 1e200 s alike); the scales are applied at the end, and
+    a result beyond float64's range is refused rather than returned as inf.  Evenly spaced
+    samples share one filter, applied by FFT (10^5 samples take a second or two); unevenly
+    spaced ones need a fit each, and are limited to ``MAX_UNEVEN`` (10,000).
+
     Parameters
     ----------
     x : array_like, shape (N,)
@@ -233,8 +366,11 @@ def differentiate(x: ArrayLike, y: ArrayLike, *, window: int | None = None) -> D
     Raises
     ------
     ModelError
-        Fewer than 15 samples, abscissae that do not increase, numbers that are not finite
-        (the message names the index), or a window out of range.
+        Fewer than 15 samples or more than ``MAX_SAMPLES`` (1,000,000; ``MAX_UNEVEN``,
+        10,000, unevenly spaced), abscissae that do not increase, numbers that are not
+        finite (the message names the index), a window out of range; steps too small for
+        float64 to resolve beside |x|, a gap that leaves a local fit too few samples on a
+        side, or derivatives, error bands or residuals beyond float64's range.
 
     Examples
     --------
@@ -261,27 +397,39 @@ def differentiate(x: ArrayLike, y: ArrayLike, *, window: int | None = None) -> D
                 not MIN_WINDOW <= window <= n:
             raise ModelError(f"window: expected a whole number of samples from {MIN_WINDOW} to "
                              f"{n}, got {describe(window)}")
-    # x and y at a unit scale: the fits are scale-free, and the errors come out in y's unit
-    xs = float(np.ptp(x))
-    y0 = float(np.mean(y))
-    ys = float(np.max(np.abs(y - y0))) or 1.0
-    u, v = (x - x[0]) / xs, (y - y0) / ys
+    # x and y shifted and scaled to [0, 1] and [-1, 1]: the fits are scale-free, and the
+    # scales come back at the end, as powers of two apart (so nothing overflows before)
+    u, span, e = _abscissae(x)
+    y1, f = _binary_scaled(y)
+    y0 = float(np.mean(y1))
+    ys = float(np.max(np.abs(y1 - y0))) or 1.0
+    v = (y1 - y0) / ys
     step = np.diff(u)
-    even = bool(np.ptp(step) <= 1e-9 * np.mean(step))
-    gcv = _gcv_window(u, v, even) if window is None else int(window)
+    even = bool(np.ptp(step) <= EVEN * np.mean(step))
+    if not even and n > MAX_UNEVEN:
+        raise ModelError(f"x: expected at most {MAX_UNEVEN:,} unevenly spaced samples, got "
+                         f"{n:,}; resample the curve at a constant step (evenly spaced samples "
+                         "have no limit) or cut it into pieces")
+    gcv = _gcv_window(x, u, v, even) if window is None else int(window)
     used = int(window) if window is not None else max(MIN_WINDOW, int(round(UNDERSMOOTH * gcv)) | 1)
-    rss, trace = _residuals(u, v, np.arange(n), gcv, even)
+    rss, trace, bad = _residuals(u, v, np.arange(n), gcv, even)
+    if bad.any():
+        _refuse_gap(x, u, int(np.argmax(bad)), gcv)
     sigma = np.sqrt(rss / max(n - trace, 1.0))
-    fit, norm, change = np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3))
-    for rows in _blocks(np.arange(n), used):
-        f = _Fits(u, rows, used, (DEGREE, DEGREE + 2), even)
-        fit[rows] = f.apply(DEGREE, v)
-        norm[rows] = f.norms(DEGREE)
-        change[rows] = fit[rows] - f.apply(DEGREE + 2, v)
-    scale = np.array([ys, ys / xs, ys / xs ** 2])
-    error = (SPREAD * sigma * norm + BIAS * np.abs(change)) * scale
-    fit = fit * scale
-    smooth = y0 + fit[:, 0]
-    return Derivatives(x=x.copy(), y=smooth, velocity=fit[:, 1], acceleration=fit[:, 2],
-                       velocity_error=error[:, 1], acceleration_error=error[:, 2],
-                       noise=float(sigma * ys), window=used, window_gcv=gcv, residual=y - smooth)
+    fits, bad = _fits(u, v, np.arange(n), used, (DEGREE, DEGREE + 2), even)
+    if bad.any():
+        _refuse_gap(x, u, int(np.argmax(bad)), used)
+    fit, norm2 = fits[DEGREE]
+    error = SPREAD * sigma * np.sqrt(norm2) + BIAS * np.abs(fit - fits[DEGREE + 2][0])
+    larger = "express y in a larger unit"
+    smaller = larger + " or x in a smaller one"
+    smooth = _restored(y0 + ys * fit[:, 0], 1.0, f, "the smoothed curve", larger)
+    residual = _restored((y1 - y0) - ys * fit[:, 0], 1.0, f, "the residuals", larger)
+    noise = float(_restored(np.array(sigma), ys, f, "the noise", larger))
+    rates = [_restored(a[:, k], ys / span ** k, f - k * e, f"{what}", smaller)
+             for k, what in ((1, "the velocity dy/dx"), (1, "the velocity's error band"),
+                             (2, "the acceleration d2y/dx2"), (2, "the acceleration's error band"))
+             for a in [fit if "band" not in what else error]]
+    return Derivatives(x=x.copy(), y=smooth, velocity=rates[0], acceleration=rates[2],
+                       velocity_error=rates[1], acceleration_error=rates[3], noise=noise,
+                       window=used, window_gcv=gcv, residual=residual)

@@ -133,6 +133,79 @@ def test_differentiate_unknown_column(tmp_path):
         in result.output
 
 
+def _rows(pairs):
+    return "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in pairs)
+
+
+@pytest.mark.parametrize("text, match", [
+    ("t [s],x [mm]\n" + _rows((k * 1e-200, k) for k in range(15)),
+     r"y: expected the acceleration d2y/dx2 within float64's range \(up to 1.8e\+308\), got "
+     r"beyond it; express y in a larger unit or x in a smaller one$"),
+    ("t [s],x [mm]\n" + _rows((k if k < 8 else 1e9 + k, k) for k in range(15)),
+     r"x\[8\]: expected samples spread over each local fit, got a gap from x\[7\] = 7.0 to "
+     r"x\[8\] = 1000000008.0"),
+    ("t [s],x [mm]\n" + _rows((k, 1e308 * (-1) ** k) for k in range(30)),
+     r"y: expected the velocity's error band within float64's range"),
+    ("t [s],x [mm]\n" + _rows((k, 1e308 * (-1) ** k) for k in range(15)),
+     r"y: expected the velocity's error band within float64's range"),
+    ("t [parsec],x [\x1b[31mfoo]\n" + _rows((k, k * k) for k in range(20)),
+     r"header: column 'x \[\\x1b\[31mfoo\]': expected printable characters in a column's name "
+     r"and unit, got '\\x1b'; remove it$"),
+    ("t\x07 [s],x\n" + _rows((k, k * k) for k in range(20)),
+     r"header: column 't\\x07 \[s\]': expected printable characters"),
+])
+def test_differentiate_refuses_what_float64_cannot_hold_in_one_line(tmp_path, text, match):
+    import re
+    data = tmp_path / "bad.csv"
+    data.write_text(text)
+    result = run("differentiate", data, "--out", tmp_path)
+    assert result.exit_code == 2, result.output
+    lines = result.output.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("kinelab: error: ") and "bad.csv" in lines[0]
+    assert re.search(match, lines[0]), lines[0]
+    assert "\x1b" not in result.output and "\x07" not in result.output
+    assert not list(tmp_path.glob("bad_derivatives*"))
+
+
+def test_differentiate_at_any_scale_writes_finite_right_numbers(tmp_path):
+    """t = 1e200 k, x = k: dx/dt = 1e-200 exactly; the data column is the file's."""
+    import pandas as pd
+    data = write_curve(tmp_path / "far.csv", 1e200 * np.arange(15.0), np.arange(15.0))
+    result = run("differentiate", data, "--out", tmp_path)
+    assert result.exit_code == 0, result.output
+    table = pd.read_csv(tmp_path / "far_derivatives.csv")
+    assert np.all(np.isfinite(table.to_numpy()))
+    np.testing.assert_allclose(table["dx/dt [mm/s]"], 1e-200, rtol=1e-12)
+    assert list(table["x [mm]"]) == list(np.arange(15.0))
+
+
+def test_differentiate_scaled_sine(tmp_path):
+    """x = 1e-3 sin(t / 1e6) mm, t up to 2e6 s: the velocity and acceleration against
+    1e-9 cos(t / 1e6) and -1e-15 sin(t / 1e6), to the fit's own error (evenly sampled, 401
+    samples, no noise: well under 1e-4 of each amplitude)."""
+    import pandas as pd
+    t = np.linspace(0.0, 2e6, 401)
+    data = write_curve(tmp_path / "slow.csv", t, 1e-3 * np.sin(t / 1e6))
+    result = run("differentiate", data, "--out", tmp_path, "--window", "21")
+    assert result.exit_code == 0, result.output
+    table = pd.read_csv(tmp_path / "slow_derivatives.csv")
+    assert np.max(np.abs(table["dx/dt [mm/s]"] - 1e-9 * np.cos(t / 1e6))) < 1e-4 * 1e-9
+    assert np.max(np.abs(table["d2x/dt2 [mm/s^2]"] + 1e-15 * np.sin(t / 1e6))) < 1e-4 * 1e-15
+
+
+def test_differentiate_refuses_too_many_rows_before_reading(tmp_path, monkeypatch):
+    from kinelab.cli import _graphical
+    monkeypatch.setattr(_graphical, "MAX_SAMPLES", 100)
+    data = tmp_path / "long.csv"
+    data.write_text("# logged\nt [s],x [mm]\n\n" + _rows((k, k) for k in range(100)))
+    assert run("differentiate", data, "--out", tmp_path).exit_code == 0
+    data.write_text("t [s],x [mm]\n" + _rows((k, k) for k in range(101)))
+    result = run("differentiate", data, "--out", tmp_path)
+    assert result.exit_code == 2
+    assert result.output.strip() == (f"kinelab: error: {data}: expected at most 100 samples, got "
+                                     "more; cut the curve into pieces, or keep every k-th sample")
+
+
 @pytest.mark.parametrize("command", ["polygons", "centres"])
 def test_singular_input_is_refused_in_one_line(tmp_path, command):
     model = tmp_path / "toggle.toml"
