@@ -20,3 +20,13 @@ def _doctest_namespace(doctest_namespace):
     import kinelab as kl
     doctest_namespace["np"] = np
     doctest_namespace["kl"] = kl
+
+
+@pytest.fixture(autouse=True)
+def _memory_budget_restored():
+    """The memory budget a test sets (``kinelab --memory-budget`` through CliRunner sets it
+    for the process) ends with the test."""
+    import kinelab as kl
+    old = kl.memory_budget()
+    yield
+    kl.memory_budget(old)

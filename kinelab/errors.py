@@ -166,7 +166,19 @@ def shown_key(key: object) -> str:
 
 
 def describe(value: object, _depth: int = 0) -> str:
-    """A short, one-line rendering of a value found in a file or given by a caller."""
+    """A short, one-line rendering of a value found in a file or given by a caller.
+
+    Examples
+    --------
+    >>> describe([1.5, "a\\nb", {"k": 1}]), describe(np.array([[1.0, 2.0], [3.0, 4.0]]))
+    ("[1.5, 'a\\\\nb', a table]", '[[1.0, 2.0], [3.0, 4.0]]')
+    >>> describe(np.arange(10**6)), describe(np.float64(0.5))
+    ('[0, 1, 2, 3, ...]', '0.5')
+    """
+    if type(value).__module__ == "numpy" and hasattr(value, "tolist"):
+        # an array or a numpy number: its plain numbers, as few as are shown (not a repr)
+        ndim = getattr(value, "ndim", 0)
+        value = value[(slice(0, 5),) * ndim].tolist() if ndim else value.item()
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, str):

@@ -95,7 +95,8 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si:
     files: dict[str, bytes | str] = {}
     for i, s in enumerate(sols, 1):
         files[f"solution_{i}.toml"] = to_toml(s.model, units=u)
-    files["summary.json"] = json.dumps(summary, indent=2)
+    # the summary holds no inf or NaN (task_summary writes null): allow_nan=False keeps it so
+    files["summary.json"] = json.dumps(summary, indent=2, allow_nan=False)
     if figures and sols:
         files.update(_figures(task, sols, extra, u))
     out = Path(out_dir) if out_dir else Path(task_file).with_name(Path(task_file).stem + "_solutions")
@@ -103,7 +104,7 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si:
         binary = isinstance(content, bytes)
         atomic_write(out / name, lambda f, c=content: f.write(c), binary=binary)
     if as_json:
-        click.echo(json.dumps(summary, indent=2))
+        click.echo(files["summary.json"])
         return
     what = task.kind if task.kind in ("crank-rocker", "quick-return") else f"{task.kind} generation"
     click.echo(f"{task.name}: {what}, {len(sols)} linkage(s)"
@@ -122,12 +123,20 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si:
         if "min_transmission_angle" in row:
             head += f"min transmission {row['min_transmission_angle']:.3g} {u.angle}, "
         if "rms_error" in row:
-            head += f"rms error {row['rms_error']:.3g} {u.length}, "
+            head += f"rms error {_error(row['rms_error'], u.length)}, "
         if "max_structural_error" in row:
-            head += f"max structural error {row['max_structural_error']:.3g}, "
+            head += f"max structural error {_error(row['max_structural_error'])}, "
         head += f"{s.grashof.kind}, {s.state}"
         click.echo(head)
     click.echo(f"wrote {len(files)} file(s) to {shown_path(out)}")
+
+
+def _error(value: float | None, unit: str = "") -> str:
+    """An error for the table; None (null in the summary) where the linkage cannot close at
+    some sample, so that the error there has no bound."""
+    if value is None:
+        return "unbounded (the linkage does not close everywhere)"
+    return f"{value:.3g}" + (f" {unit}" if unit else "")
 
 
 def _design_line(row: dict[str, Any], u: Units) -> str:

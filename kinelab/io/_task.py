@@ -18,6 +18,8 @@ from kinelab.errors import ModelError, describe, expected_one_of, quoted, shown_
 from kinelab.io._text import loads, read_text
 from kinelab.model import (ANGLE_UNITS, LENGTH_UNITS, Units, is_real, length_problem, name_problem,
                            real_array)
+from kinelab.synthesis._path import MAX_PATH_POINTS, MAX_PATH_SAMPLES
+from kinelab.synthesis._positions import check_not_one_turn
 
 __all__ = ["Task", "TASK_KINDS", "load_task", "read_task", "solve_task", "task_summary"]
 
@@ -27,8 +29,10 @@ MECHANISMS = ("offset slider-crank", "slotted lever", "whitworth")
 # memory than a machine has; each is far above what a synthesis needs.
 MAX_SAMPLES = 1_000_000
 MAX_PRECISION_POINTS = 100
+MAX_POSITIONS = 1000        # a motion task's positions (least squares beyond five)
+# (a path task's targets are at most MAX_PATH_POINTS, checked before anything is computed)
 _SEARCH_BOUNDS = {"runs": (1, 1000), "maxiter": (1, 1_000_000), "popsize": (5, 10_000),
-                  "samples": (2, MAX_SAMPLES), "seed": (0, 2 ** 32 - 1)}
+                  "samples": (24, MAX_PATH_SAMPLES), "seed": (0, 2 ** 32 - 1)}
 _SECTIONS = {"task", "name", "units", "positions", "pivots", "function", "search", "crank_rocker",
              "quick_return"}
 # the keys of a design task's section: whether each is a length, an angle or a number
@@ -205,7 +209,13 @@ def read_task(data: Any, *, source: str | None = None, name: str = "task") -> Ta
 def _motion_task(r: _Reader, task: Task, L: float, A: float) -> None:
     r.unknown("positions", {"points", "angles", "second_points"})
     r.unknown("pivots", {"A0", "B0", "A1", "B1", "a0x", "b0x", "s", "t"})
-    pts = r.lengths("positions.points", r.get("positions", "points"), (None, 2), L)
+    pts = r.get("positions", "points")
+    if isinstance(pts, list) and len(pts) > MAX_POSITIONS:
+        # counted before any work: checks and fits grow with the number of positions
+        r.problems.append(f"positions.points: expected at most {MAX_POSITIONS:,} positions, got "
+                          f"{len(pts):,}; keep the positions that matter or space them out")
+        return
+    pts = r.lengths("positions.points", pts, (None, 2), L)
     angles, second = r.get("positions", "angles"), r.get("positions", "second_points")
     if (angles is None) == (second is None):
         r.problems.append("positions: give either angles (orientations, or rotations from "
@@ -229,6 +239,12 @@ def _motion_task(r: _Reader, task: Task, L: float, A: float) -> None:
         r.problems.extend(f"positions.{p}" for p in exc.problems)
         return
     n = task.positions.n
+    if n >= 3:
+        try:
+            check_not_one_turn(task.positions, unit=task.length_unit, scale=L)
+        except ModelError as exc:
+            r.problems.extend(exc.problems)
+            return
     piv = {k: r.get("pivots", k) for k in ("A0", "B0", "A1", "B1", "a0x", "b0x", "s", "t")}
     given = {k for k, v in piv.items() if v is not None}
     allowed = {2: {"A1", "B1", "s", "t"}, 3: {"A0", "B0", "A1", "B1"}, 4: {"a0x", "b0x"}}
@@ -281,9 +297,15 @@ def _function_task(r: _Reader, task: Task, L: float, A: float) -> None:
             task.function["f"] = _formula(expr)
         except ModelError as exc:
             r.problems.extend(exc.problems)
-    task.function["x_range"] = r.array("function.x_range", f.get("x_range"), (2,))
-    task.function["input_range"] = r.array("function.input_range", f.get("input_range"), (2,), A)
-    task.function["output_range"] = r.array("function.output_range", f.get("output_range"), (2,), A)
+    for key, scale, unit in (("x_range", 1.0, ""), ("input_range", A, task.angle_unit),
+                             ("output_range", A, task.angle_unit)):
+        value = r.array(f"function.{key}", f.get(key), (2,), scale)
+        if value is not None and value[0] == value[1]:
+            # in the file's units: the SI values would show radians where degrees were written
+            r.problems.append(f"function.{key}: expected two different numbers (start, end), "
+                              f"got {describe(f[key])}{' ' + unit if unit else ''}")
+            value = None
+        task.function[key] = value
     if "points" in f:
         p = f["points"]
         task.function["points"] = (r.integer("function.points", p, 2, MAX_PRECISION_POINTS)
@@ -309,7 +331,14 @@ def _path_task(r: _Reader, task: Task, L: float, A: float) -> None:
     r.unknown("positions", {"points"})
     r.unknown("search", {"runs", "maxiter", "popsize", "samples", "seed",
                          "min_transmission_angle", "refine", "tolerance"})
-    task.targets = r.lengths("positions.points", r.get("positions", "points"), (None, 2), L)
+    pts = r.get("positions", "points")
+    if isinstance(pts, list) and not 3 <= len(pts) <= MAX_PATH_POINTS:
+        # counted before any work: the search's time and memory grow with the number of points
+        r.problems.append(f"positions.points: expected 3 to {MAX_PATH_POINTS} points (x, y), got "
+                          f"{len(pts):,}; a path is given by 5 to 20 points as a rule, so "
+                          "keep the points that matter or space them out")
+    else:
+        task.targets = r.lengths("positions.points", pts, (None, 2), L)
     s = dict(r.data.get("search", {})) if isinstance(r.data.get("search"), dict) else {}
     if "min_transmission_angle" in s:
         s["min_transmission_angle"] = r.number("search.min_transmission_angle",
@@ -387,12 +416,42 @@ def _design(task: Task) -> list:
         raise ModelError([f"{section}.{p}" for p in exc.problems], source=task.source or None) from None
 
 
+# the task file's field of each argument named in the messages of function and path generation
+_FUNCTION_FIELDS = {"f": "function.expression", "theta2, theta4": "function.points",
+                    **{k: f"function.{k}" for k in ("x_range", "input_range", "output_range",
+                                                    "points", "ground", "samples")}}
+_PATH_FIELDS = {"points": "positions.points",
+                **{k: f"search.{k}" for k in ("runs", "maxiter", "popsize", "samples", "seed",
+                                              "min_transmission_angle", "refine", "tolerance")}}
+
+
+def _fields_named(task: Task, exc: ModelError, fields: dict[str, str]) -> ModelError:
+    """A synthesis function's ModelError with each problem naming the task file's field."""
+    section = task.kind
+    problems = []
+    for p in exc.problems:
+        key, sep, rest = p.partition(": ")
+        if sep and key in fields:
+            problems.append(f"{fields[key]}: {rest}")
+        elif p.startswith(tuple(f"{v.split('.')[0]}." for v in fields.values())):
+            problems.append(p)                  # already named so
+        else:
+            problems.append(f"{section}: {p}")
+    return ModelError(problems, source=task.source or None)
+
+
 def solve_task(task: Task) -> tuple[list, dict[str, Any]]:
     """Run a task: its solutions, and the extra results worth drawing."""
     if task.kind == "function":
-        return [synthesis.function_generation(**task.function)], {}
+        try:
+            return [synthesis.function_generation(**task.function)], {}
+        except ModelError as exc:
+            raise _fields_named(task, exc, _FUNCTION_FIELDS) from None
     if task.kind == "path":
-        sols = synthesis.path_generation(task.targets, **task.search)
+        try:
+            sols = synthesis.path_generation(task.targets, **task.search)
+        except ModelError as exc:
+            raise _fields_named(task, exc, _PATH_FIELDS) from None
         return list(sols), {"reason": sols.reason}
     if task.kind in ("crank-rocker", "quick-return"):
         return _design(task), {}
@@ -470,4 +529,17 @@ def task_summary(task: Task, solutions: list, extra: dict[str, Any],
     u = units or task.units
     return {"task": task.kind, "name": task.name,
             "units": {"length": u.length, "angle": u.angle},
-            "reason": extra.get("reason", ""), "solutions": _rows(solutions, u)}
+            "reason": extra.get("reason", ""), "solutions": _finite(_rows(solutions, u))}
+
+
+def _finite(value):
+    """``value`` with every number that is not finite (an error where a linkage cannot close:
+    +inf) turned into None, so that the summary is valid JSON (null, never Infinity or
+    NaN)."""
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_finite(v) for v in value]
+    if isinstance(value, (float, np.floating)):
+        return float(value) if math.isfinite(value) else None
+    return value

@@ -30,7 +30,7 @@ from kinelab.synthesis._function import (FunctionSolution, chebyshev_points, fre
 from kinelab.synthesis._linkage import fourbar_model
 from kinelab.synthesis._motion import (MotionSolution, TwoPositions, three_positions,
                                        two_positions)
-from kinelab.synthesis._path import PathSolution, coupler_curves, path_generation
+from kinelab.synthesis._path import MAX_PATH_POINTS, PathSolution, coupler_curves, path_generation
 from kinelab.synthesis._pivots import fixed_pivot, moving_pivot
 from kinelab.synthesis._positions import Poles, Positions, pole, poles
 from kinelab.synthesis._quick_return import (CrankRocker, QuickReturn, crank_rocker, crank_rockers,
@@ -46,4 +46,4 @@ __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "coupler_curves", "fourbar_model", "five_positions", "burmester_points",
            "approximate_positions", "fit_dyads", "crank_rocker", "crank_rockers", "CrankRocker",
            "offset_slider_crank", "slotted_lever", "whitworth", "QuickReturn",
-           "imbalance_angle", "max_time_ratio"]
+           "imbalance_angle", "max_time_ratio", "MAX_PATH_POINTS"]

@@ -22,7 +22,8 @@ import numpy as np
 from kinelab.errors import ModelError, describe
 from kinelab.synthesis._burmester import _normalised
 from kinelab.synthesis._motion import motion_solution
-from kinelab.synthesis._positions import Positions, as_positions, fmt, rotation
+from kinelab.synthesis._positions import (Positions, as_positions, check_not_one_turn, fmt,
+                                          rotation)
 from kinelab.synthesis._results import SolutionList
 
 __all__ = ["approximate_positions", "fit_dyads"]
@@ -114,6 +115,7 @@ def fit_dyads(points, angles=None, *, dyads: int = 4, degrees: bool = False):
         raise ModelError(f"points: expected at least five positions for a least-squares fit, "
                          f"got {pos.n}; fewer are met exactly (two_positions, three_positions, "
                          "four_positions)")
+    check_not_one_turn(pos)
     if isinstance(dyads, bool) or not isinstance(dyads, (int, np.integer)) or not 2 <= dyads <= 100:
         raise ModelError(f"dyads: expected a whole number from 2 to 100, got {describe(dyads)}")
     npos, origin, L = _normalised(pos)

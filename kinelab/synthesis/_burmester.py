@@ -30,7 +30,7 @@ from kinelab.errors import ModelError, describe
 from kinelab.model import is_real, length_problem
 from kinelab.synthesis._motion import motion_solution
 from kinelab.synthesis._pivots import solve_rows, suh_radcliffe_rows
-from kinelab.synthesis._positions import Positions, as_positions, fmt
+from kinelab.synthesis._positions import Positions, as_positions, check_not_one_turn, fmt
 from kinelab.synthesis._results import SolutionList
 
 __all__ = ["center_points", "center_point_cubic", "BurmesterCurves", "burmester_curves",
@@ -45,6 +45,7 @@ def _four(points, angles, degrees) -> Positions:
     if pos.n != 4:
         raise ModelError(f"points: expected four positions, got {pos.n}"
                          + ("; use three_positions" if pos.n == 3 else ""))
+    check_not_one_turn(pos)
     return pos
 
 
@@ -159,7 +160,7 @@ def _center_points(pos: Positions, xs: np.ndarray) -> list[np.ndarray]:
     out = []
     for x, r in zip(xs, roots):
         if r is None:
-            raise ModelError(f"a0x = {x}: every point of this vertical line is a centre point "
+            raise ModelError(f"a0x = {float(x):.9g}: every point of this vertical line is a centre point "
                              "(the centre-point curve contains the line); choose any a0y")
         y = np.sort(origin[1] + L * r)
         out.append(np.column_stack([np.full(y.shape, x), y]))

@@ -26,7 +26,8 @@ from kinelab.errors import ModelError
 from kinelab.synthesis._burmester import _cubic, _normalised
 from kinelab.synthesis._motion import motion_solution
 from kinelab.synthesis._pivots import suh_radcliffe_rows
-from kinelab.synthesis._positions import Positions, as_positions, fmt, rotation
+from kinelab.synthesis._positions import (Positions, as_positions, check_not_one_turn, fmt,
+                                          rotation)
 from kinelab.synthesis._results import SolutionList
 
 __all__ = ["burmester_points", "five_positions"]
@@ -45,6 +46,7 @@ def _five(points, angles, degrees) -> Positions:
         if pos.n > 5:
             hint = "; use approximate_positions for more than five"
         raise ModelError(f"points: expected five positions, got {pos.n}{hint}")
+    check_not_one_turn(pos)
     return pos
 
 

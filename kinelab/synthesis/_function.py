@@ -32,6 +32,9 @@ from kinelab.synthesis._linkage import CheckedLinkage, fourbar_model, model_gras
 __all__ = ["chebyshev_points", "freudenstein", "FunctionSolution", "function_generation"]
 
 _REACHED = 1e-9   # rad: the engine's rocker angle at a precision point must match to this
+_GRID = 4096      # intervals of x_range in which f is looked at for a pole or a jump
+_STEEPEST = 8     # of them, those where f changes most, halved _HALVINGS times each:
+_HALVINGS = 30    # f's change over a halved interval shrinks unless f jumps there
 
 
 def chebyshev_points(x_range: tuple[float, float], n: int) -> np.ndarray:
@@ -155,13 +158,14 @@ class FunctionSolution(CheckedLinkage):
                 f"{state})")
 
 
-def _range(name, r) -> tuple[float, float]:
+def _range(name, r, unit: str = "") -> tuple[float, float]:
     try:
         a, b = (float(v) for v in r)
     except (TypeError, ValueError):
         raise ModelError(f"{name}: expected (start, end), got {describe(r)}") from None
     if not (np.isfinite(a) and np.isfinite(b)) or a == b:
-        raise ModelError(f"{name}: expected two different finite numbers, got {describe(r)}")
+        raise ModelError(f"{name}: expected two different finite numbers, got "
+                         f"{describe(r)}{' ' + unit if unit else ''}")
     return a, b
 
 
@@ -201,7 +205,8 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
     Raises
     ------
     ModelError
-        Bad ranges, f(x0) = f(xf), or no four-bar (an infinite link, or a coupler whose
+        Bad ranges, an f that is not finite or not continuous over x_range (a pole, a
+        jump), f(x0) = f(xf), or no four-bar (an infinite link, or a coupler whose
         squared length comes out negative).
 
     Examples
@@ -218,8 +223,9 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
     if not callable(f):
         raise ModelError(f"f: expected a function of x, got {describe(f)}")
     x0, xf = _range("x_range", x_range)
-    t2s, t2e = _range("input_range", input_range)
-    t4s, t4e = _range("output_range", output_range)
+    unit = "deg" if degrees else "rad"
+    t2s, t2e = _range("input_range", input_range, unit)
+    t4s, t4e = _range("output_range", output_range, unit)
     if degrees:
         t2s, t2e, t4s, t4e = np.radians([t2s, t2e, t4s, t4e])
     if abs(t2e - t2s) >= 2 * np.pi:
@@ -229,8 +235,9 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
         raise ModelError(f"ground: expected a positive length (m), got {describe(ground)}")
     if not (isinstance(samples, (int, np.integer)) and samples >= 2):
         raise ModelError(f"samples: expected an integer >= 2, got {describe(samples)}")
-    y0, yf = (float(v) for v in np.asarray(f(np.array([x0, xf])), float))
-    if not (np.isfinite(y0) and np.isfinite(yf)) or y0 == yf:
+    _check_continuous(f, x0, xf)
+    y0, yf = (float(v) for v in _values(f, np.array([x0, xf])))
+    if y0 == yf:
         raise ModelError(f"f: f(x0) = {y0:.6g} and f(xf) = {yf:.6g} must be different finite "
                          "numbers to scale the output; choose another x_range")
     if np.ndim(points) == 0:
@@ -305,6 +312,54 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
         grashof=model_grashof(model),
         min_transmission_angle=float(mu.min()) if mu.size else float("nan"),
         branch_defect=bool(defects), defects=tuple(defects))
+
+
+def _values(f: Callable, x: np.ndarray) -> np.ndarray:
+    """f at x (n,), checked finite."""
+    try:
+        y = np.broadcast_to(np.asarray(f(x), float), x.shape)
+    except ModelError:
+        raise                   # the function's own message (a parsed formula's, say)
+    except (TypeError, ValueError):
+        raise ModelError("f: expected a function of x that gives one number for each x") from None
+    if not np.all(np.isfinite(y)):
+        bad = float(x[np.flatnonzero(~np.isfinite(y))[0]])
+        raise ModelError(f"f: expected finite values over x_range, got {float(y[~np.isfinite(y)][0])} "
+                         f"at x = {bad:.9g}; choose an x_range where f is finite")
+    return y
+
+
+def _check_continuous(f: Callable, x0: float, xf: float) -> None:
+    """Refuse an f that is not finite, or not continuous (a pole, a jump), over [x0, xf].
+
+    f is sampled on a fine grid, and the intervals where it changes most are halved again
+    and again, keeping the half where it changes more: for a continuous f that change
+    shrinks towards zero; across a jump it stays, and across a pole it grows.  (A linkage
+    generates only a continuous function, and between two samples a pole would pass
+    unseen: the structural error would be measured on either side of it.)"""
+    x = np.linspace(x0, xf, _GRID + 1)
+    y = _values(f, x)
+    change = np.abs(np.diff(y))
+    k = np.argsort(change)[-_STEEPEST:]
+    a, b, ya, yb = x[k], x[k + 1], y[k], y[k + 1]
+    start = change[k]
+    for _ in range(_HALVINGS):
+        m = 0.5 * (a + b)
+        ym = _values(f, m)
+        left = np.abs(ym - ya) >= np.abs(yb - ym)
+        a, ya = np.where(left, a, m), np.where(left, ya, ym)
+        b, yb = np.where(left, m, b), np.where(left, ym, yb)
+    end = np.abs(yb - ya)
+    scale = float(np.abs(y).max())
+    jumps = (end > 0.25 * start) & (end > 1e-9 * scale)
+    if jumps.any():
+        i = int(np.argmax(np.where(jumps, end, -np.inf)))
+        at = float(0.5 * (a[i] + b[i]))
+        what = ("has a pole (it grows without bound)" if end[i] > 1e3 * start[i]
+                else f"jumps by {end[i]:.6g}")
+        raise ModelError(f"f: expected a function continuous over x_range [{x0:g}, {xf:g}], "
+                         f"but it {what} near x = {at:.9g}; a linkage generates only a continuous "
+                         "function, so choose an x_range that leaves that point out")
 
 
 def _assembled(A: np.ndarray, O4: np.ndarray, coupler: float, rocker: float,

@@ -18,7 +18,8 @@ from kinelab.solvers import wrap_angle
 from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, circuits, finite_or_inf,
                                         fourbar_model, model_grashof, nearer_branch, travel)
 from kinelab.synthesis._pivots import fixed_pivot, moving_pivot
-from kinelab.synthesis._positions import Positions, as_positions, as_xy, cross, poles
+from kinelab.synthesis._positions import (Positions, as_positions, as_xy, check_not_one_turn,
+                                          cross, poles)
 
 __all__ = ["MotionSolution", "TwoPositions", "two_positions", "three_positions", "motion_solution"]
 
@@ -342,6 +343,7 @@ def three_positions(points, angles=None, A0: ArrayLike | None = None, B0: ArrayL
     if pos.n != 3:
         raise ModelError(f"points: expected three positions, got {pos.n}"
                          + ("; use four_positions" if pos.n == 4 else ""))
+    check_not_one_turn(pos)
     pivots = {}
     problems = []
     for side, fixed, moving in (("A", A0, A1), ("B", B0, B1)):

@@ -27,7 +27,15 @@ from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, finite_or_inf
                                         model_grashof, travel)
 from kinelab.synthesis._results import SolutionList
 
-__all__ = ["coupler_curves", "PathSolution", "path_generation"]
+__all__ = ["coupler_curves", "PathSolution", "path_generation", "MAX_PATH_POINTS"]
+
+# The most targets and crank samples a search takes.  A path is given by 5 to 20 points as a
+# rule (9 + n unknowns: at most nine are met exactly); each round's work grows with both
+# (at 30 points and the default 180 samples a round takes about 0.3 s), and the
+# screen holds arrays of designs x targets x samples.
+MAX_PATH_POINTS = 30
+MAX_PATH_SAMPLES = 10_000
+_SCREENED = 2_000_000  # designs x targets x samples screened at once: bounds the memory
 
 _INFEASIBLE = 1.0      # added to the objective (task normalised to unit size) of a design
                        # whose points are not met in order on one branch
@@ -458,13 +466,14 @@ class _Search:
         (D, n), a chunk at a time."""
         f = np.empty(len(designs))
         q = np.empty((len(designs), self.obj.T.shape[0]))
-        for i in range(0, len(designs), _CHUNK):
-            k, dist2, penalty = self.obj.match(designs[i:i + _CHUNK])
+        chunk = max(1, min(_CHUNK, _SCREENED // (self.obj.T.shape[0] * self.obj.q.size)))
+        for i in range(0, len(designs), chunk):
+            k, dist2, penalty = self.obj.match(designs[i:i + chunk])
             rms = np.sqrt(np.mean(dist2, axis=1))
-            f[i:i + _CHUNK] = np.where(np.isfinite(rms),
-                                       rms + np.where(penalty > 0, _INFEASIBLE + penalty, 0.0),
-                                       _NOWHERE)
-            q[i:i + _CHUNK] = k * (2 * np.pi / self.obj.q.size)
+            f[i:i + chunk] = np.where(np.isfinite(rms),
+                                      rms + np.where(penalty > 0, _INFEASIBLE + penalty, 0.0),
+                                      _NOWHERE)
+            q[i:i + chunk] = k * (2 * np.pi / self.obj.q.size)
         return f, q
 
     def round(self, refine: bool):
@@ -546,8 +555,9 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
 
     Parameters
     ----------
-    points : array_like, shape (n, 2), n >= 3 (5 to 10 is typical)
-        The target points, m, in the order the coupler point is to meet them.
+    points : array_like, shape (n, 2), 3 <= n <= 30 (5 to 20 is typical)
+        The target points, m, in the order the coupler point is to meet them
+        (``MAX_PATH_POINTS``).
     runs : int
         Independent runs (seeds ``seed, seed + 1, ...``); each gives at most one linkage.
     maxiter : int
@@ -556,7 +566,7 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
         Size of a round: ``popsize * 32`` designs screened, least squares from
         ``popsize * 8`` of them.
     samples : int
-        Crank angles per coupler curve when designs are screened.
+        Crank angles per coupler curve when designs are screened, 24 to 10,000.
     min_transmission_angle : float
         Designs whose transmission angle drops below this (rad) between the first and
         last target are penalised like defective ones.
@@ -584,7 +594,7 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
     Raises
     ------
     ModelError
-        Fewer than three points, coincident points, or a bad budget.
+        Fewer than three points or more than 30, coincident points, or a bad budget.
 
     Examples
     --------
@@ -599,20 +609,23 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
     (True, True)
     """
     T = np.asarray(points, float)
-    if T.ndim != 2 or T.shape[1] != 2 or T.shape[0] < 3 or not np.all(np.isfinite(T)):
-        raise ModelError(f"points: expected at least three finite points, shape (n, 2), got "
-                         f"{T.shape}")
+    if T.ndim != 2 or T.shape[1] != 2 or not 3 <= T.shape[0] <= MAX_PATH_POINTS \
+            or not np.all(np.isfinite(T)):
+        raise ModelError(f"points: expected 3 to {MAX_PATH_POINTS} finite points (x, y), got "
+                         f"shape {T.shape}; a path is given by 5 to 20 points as a rule")
     size = float(np.ptp(T, axis=0).max())
-    gaps = np.linalg.norm(T[:, None] - T[None, :], axis=-1)
-    np.fill_diagonal(gaps, np.inf)
-    if size == 0 or gaps.min() <= 1e-12 * size:
-        i, j = np.unravel_index(np.argmin(gaps), gaps.shape)
-        raise ModelError(f"points: points {min(i, j) + 1} and {max(i, j) + 1} coincide; give "
-                         "distinct points")
-    for name, v, low in (("runs", runs, 1), ("maxiter", maxiter, 1), ("popsize", popsize, 5),
-                         ("samples", samples, 24)):
-        if not (isinstance(v, (int, np.integer)) and v >= low):
-            raise ModelError(f"{name}: expected an integer >= {low}, got {describe(v)}")
+    for i in range(T.shape[0] - 1):      # a row at a time: no n x n array
+        gaps = np.hypot(*(T[i + 1:] - T[i]).T)
+        if size == 0 or gaps.min() <= 1e-12 * size:
+            j = i + 1 + int(np.argmin(gaps))
+            raise ModelError(f"points: points {i + 1} and {j + 1} coincide; give distinct points")
+    for name, v, low, high in (("runs", runs, 1, None), ("maxiter", maxiter, 1, None),
+                               ("popsize", popsize, 5, None),
+                               ("samples", samples, 24, MAX_PATH_SAMPLES)):
+        if not (isinstance(v, (int, np.integer)) and not isinstance(v, bool) and v >= low
+                and (high is None or v <= high)):
+            span = f">= {low}" if high is None else f"from {low} to {high:,}"
+            raise ModelError(f"{name}: expected an integer {span}, got {describe(v)}")
     mu = min_transmission_angle
     if not (isinstance(mu, (int, float)) and 0.0 <= mu < np.pi / 2):
         raise ModelError(f"min_transmission_angle: expected an angle in [0, pi/2) rad, got {describe(mu)}")

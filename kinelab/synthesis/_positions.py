@@ -131,12 +131,13 @@ class Positions:
         object.__setattr__(self, "points", p)
         object.__setattr__(self, "alpha", a)
         scale = self.size
-        for i in range(n):
-            for j in range(i + 1, n):
-                if (np.linalg.norm(p[i] - p[j]) <= _COINCIDENT * scale
-                        and abs(wrap_angle(a[j] - a[i])) <= _COINCIDENT):
-                    raise ModelError(f"positions {i + 1} and {j + 1} coincide (same point "
-                                     f"{fmt(p[i])} and same orientation); remove one of them")
+        for i in range(n - 1):          # a row at a time: no n x n array
+            same = ((np.hypot(*(p[i + 1:] - p[i]).T) <= _COINCIDENT * scale)
+                    & (np.abs(wrap_angle(a[i + 1:] - a[i])) <= _COINCIDENT))
+            if same.any():
+                j = i + 1 + int(np.argmax(same))
+                raise ModelError(f"positions {i + 1} and {j + 1} coincide (same point "
+                                 f"{fmt(p[i])} and same orientation); remove one of them")
         p.setflags(write=False)
         a.setflags(write=False)
 
@@ -210,6 +211,28 @@ class Positions:
 
     def __repr__(self) -> str:
         return f"Positions(n={self.n}, alpha={np.round(np.degrees(self.alpha), 6).tolist()} deg)"
+
+
+def check_not_one_turn(pos: Positions, *, unit: str = "m", scale: float = 1.0) -> None:
+    """Refuse three positions or more that are all turns of the plane about one point.
+
+    Every point of the plane then stays on a circle about that point (every pole P_ij is
+    there), so every crank's fixed pivot would be that same point: a single link pivoted
+    there gives the motion, and no four-bar with two distinct fixed pivots does.  (The
+    synthesis would otherwise divide by zero-length links or fit circles to nothing.)
+    The message gives that point in ``unit``, ``scale`` m each."""
+    alpha = wrap_angle(pos.alpha)
+    j = int(np.argmax(np.abs(alpha)))
+    if pos.n < 3 or abs(alpha[j]) <= _COINCIDENT:
+        return              # two positions always have a pole; pure translation has none
+    P = _pole_of(pos.points[0], pos.points[j], alpha[j])
+    size = max(pos.size, float(np.linalg.norm(P - pos.points[0])))
+    if np.all(np.linalg.norm(pos.carry(P) - P, axis=1) <= 1e-9 * size):
+        raise ModelError(f"positions: every position is a turn of the plane about the same point "
+                         f"{fmt(P / scale)} {unit} (all the poles are there), so every crank "
+                         "would be pivoted at that point and no four-bar is singled out (one link "
+                         "pivoted there gives this motion); give positions that are not all turns "
+                         "about one point")
 
 
 def as_positions(points, angles, degrees: bool) -> Positions:

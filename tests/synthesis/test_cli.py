@@ -1,6 +1,7 @@
 """`kinelab synth TASK`."""
 import json
 import re
+import warnings
 
 import numpy as np
 import pytest
@@ -212,7 +213,7 @@ def test_answers_in_the_tasks_units_or_si(tmp_path):
     ('task = "path"\n[search]\nruns = 1000000000\n',
      "search.runs: expected a whole number from 1 to 1,000, got 1000000000"),
     ('task = "path"\n[search]\nsamples = "x"\nrefine = 1\n',
-     "search.samples: expected a whole number from 2 to 1,000,000, got 'x'"),
+     "search.samples: expected a whole number from 24 to 10,000, got 'x'"),
     ('task = "path"\n[search]\nrefine = 1\n', "search.refine: expected true or false, got 1"),
     ('task = "path"\n[search]\ntolerance = "1e-3"\n',
      "search.tolerance: expected a positive number, got '1e-3'"),
@@ -340,3 +341,114 @@ def test_five_and_more_positions(tmp_path):
     res = run(tmp_path, FIVE.format(points=P[:5].tolist(), angles=th[:5].tolist())
               + "[search]\ndyads = 2\n")
     assert res.exit_code == 2 and "search: not used with 5 positions" in res.stderr
+
+
+def _strict_json(text):
+    """JSON as the standard has it: no Infinity or NaN."""
+    def refuse(name):
+        raise AssertionError(f"{name} in the JSON output")
+    return json.loads(text, parse_constant=refuse)
+
+
+def _path_task(points):
+    return f'task = "path"\n[positions]\npoints = {points}\n[search]\nruns = 1\nmaxiter = 5\n'
+
+
+def test_a_path_task_takes_at_most_thirty_points(tmp_path):
+    """100 points took a minute and 600 ran out of memory; 8 million (a 48 MB file) asked for
+    931 TiB: now refused in one line, before any work."""
+    t = np.linspace(0, 2 * np.pi, 31, endpoint=False)
+    res = run(tmp_path, _path_task(np.column_stack([np.cos(t), np.sin(t)]).tolist()))
+    assert res.exit_code == 2
+    assert res.stderr == ("kinelab: error: " + str(tmp_path / "task.toml") + ": positions.points: "
+                          "expected 3 to 30 points (x, y), got 31; a path is given by 5 to 20 "
+                          "points as a rule, so keep the points that matter or space them out\n")
+    with pytest.raises(kl.errors.ModelError, match=r"^positions.points: expected 3 to 30 points \(x, y\), "
+                                            r"got 8,000,000;"):
+        kl.io.read_task({"task": "path", "positions": {"points": [[1, 2]] * 8_000_000}})
+    task = kl.io.read_task({"task": "path", "positions": {"points": t[:30, None].repeat(2, 1).tolist()}})
+    assert task.targets.shape == (30, 2)
+    # coincident points are named by the task's field
+    res = run(tmp_path, _path_task([[1, 2]] * 5))
+    assert res.exit_code == 2
+    assert res.stderr.endswith("task.toml: positions.points: points 1 and 2 coincide; give "
+                               "distinct points\n"), res.stderr
+
+
+FUNCTION = """
+task = "function"
+units = {{ angle = "deg" }}
+[function]
+expression = "{expression}"
+x_range = [{x_range}]
+input_range = [90, 150]
+output_range = [{output_range}]
+points = 3
+ground = 1.0
+"""
+
+
+def test_a_function_with_a_pole_in_x_range_is_refused(tmp_path):
+    res = run(tmp_path, FUNCTION.format(expression="1/(x-1.2345678901)", x_range="1, 2",
+                                        output_range="0, 90"), "--json")
+    assert res.exit_code == 2 and res.stdout == ""
+    assert res.stderr.endswith(
+        "task.toml: function.expression: expected a function continuous over x_range [1, 2], but "
+        "it has a pole (it grows without bound) near x = 1.23456789; a linkage generates only a "
+        "continuous function, so choose an x_range that leaves that point out\n"), res.stderr
+    assert res.stderr.count("\n") == 1 and not (tmp_path / "out").exists()
+
+
+def test_an_unbounded_structural_error_is_null_in_the_summary(tmp_path):
+    """tan(x) over [0, 1.5] (continuous): the linkage does not close over the whole range, so
+    its structural error has no bound; the summary says null, never Infinity."""
+    text = FUNCTION.format(expression="tan(x)", x_range="0, 1.5", output_range="0, 90")
+    res = run(tmp_path, text, "--json")
+    assert res.exit_code == 0, res.output
+    row = _strict_json(res.stdout)["solutions"][0]
+    assert row["max_structural_error"] is None and not row["valid"]
+    same = kl.synthesis.function_generation(np.tan, (0, 1.5), (90, 150), (0, 90), degrees=True)
+    assert not np.isfinite(same.max_structural_error)          # the library keeps +inf
+    np.testing.assert_allclose(row["precision_errors"], same.precision_errors, rtol=1e-12,
+                               atol=1e-15)
+    assert _strict_json((tmp_path / "out" / "summary.json").read_text()) == _strict_json(res.stdout)
+    res = run(tmp_path, text, "--no-figures")
+    assert "max structural error unbounded (the linkage does not close everywhere)" in res.output
+
+
+def test_a_range_of_two_equal_angles_is_shown_in_the_tasks_units(tmp_path):
+    res = run(tmp_path, FUNCTION.format(expression="x", x_range="2, 1", output_range="90, 90"))
+    assert res.exit_code == 2
+    assert res.stderr.endswith("task.toml: function.output_range: expected two different numbers "
+                               "(start, end), got [90, 90] deg\n"), res.stderr
+    res = run(tmp_path, FUNCTION.format(expression="x", x_range="2, 2", output_range="0, 90"))
+    assert res.stderr.endswith("task.toml: function.x_range: expected two different numbers "
+                               "(start, end), got [2, 2]\n"), res.stderr
+
+
+@pytest.mark.parametrize("n", [3, 4, 5, 6])
+def test_positions_that_all_turn_about_one_point_are_refused(tmp_path, n):
+    """Six identical points at different angles printed numpy RuntimeWarnings and pivots of
+    1e-317 m: every position is a turn about that point, so no four-bar is singled out."""
+    pivots = {3: "[pivots]\nA0 = [5, 0]\nB0 = [0, 5]\n", 4: "[pivots]\na0x = 1\nb0x = 2\n"}
+    text = (f'task = "motion"\nunits = {{ length = "cm", angle = "deg" }}\n[positions]\n'
+            f'points = {[[10, 20]] * n}\nangles = {list(range(0, 10 * n, 10))}\n'
+            + pivots.get(n, ""))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")          # a library warning would end in a traceback
+        res = run(tmp_path, text)
+    assert res.exit_code == 2, res.output
+    assert res.stderr.endswith(
+        "task.toml: positions: every position is a turn of the plane about the same point "
+        "(10, 20) cm (all the poles are there), so every crank would be pivoted at that point and "
+        "no four-bar is singled out (one link pivoted there gives this motion); give positions "
+        "that are not all turns about one point\n"), res.stderr
+    assert res.stderr.count("\n") == 1
+
+
+def test_a_motion_task_takes_at_most_a_thousand_positions():
+    """Counted before the positions are read (their coincidence check is by rows)."""
+    with pytest.raises(kl.errors.ModelError, match=r"^positions.points: expected at most 1,000 "
+                                                   r"positions, got 1,000,000; keep the positions"):
+        kl.io.read_task({"task": "motion", "positions": {"points": [[0, 0]] * 1_000_000,
+                                                         "angles": [0] * 1_000_000}})

@@ -117,8 +117,44 @@ def test_branch_defect_flagged():
     (dict(input_range=(0.0, 400.0)), r"input_range: the crank would turn a full circle or more"),
     (dict(points=2), r"points: expected at least 3 precision points, got 2"),
     (dict(x_range=(1.0, 1.0)), r"x_range: expected two different finite numbers"),
+    (dict(output_range=np.radians([90.0, 90.0]), degrees=False),
+     r"^output_range: expected two different finite numbers, got \[1.5707963267948966, "
+     r"1.5707963267948966\] rad$"),
+    (dict(output_range=(90.0, 90.0)),
+     r"^output_range: expected two different finite numbers, got \(90.0, 90.0\) deg$"),
     (dict(ground=-1.0), r"ground: expected a positive length \(m\), got -1.0"),
 ])
 def test_bad_function_tasks(kwargs, message):
     with pytest.raises(ModelError, match=message):
         function_generation(**(LOG | kwargs))
+
+
+@pytest.mark.parametrize("f, where, what", [
+    (lambda x: 1 / (x - 1.2345678901), "1.23456789", "has a pole"),        # between samples
+    (np.tan, "1.57079633", "has a pole"),
+    (lambda x: np.floor(1.5 * x), "1.33333333", "jumps by 1 "),
+    (lambda x: np.where(x < 1.7, x, x + 0.01), "1.7", "jumps by 0.01 "),
+])
+def test_a_function_not_continuous_over_x_range_is_refused(f, where, what):
+    """A pole between the samples used to give an infinite structural error (and Infinity in
+    the summary); a linkage generates only a continuous function."""
+    with pytest.raises(ModelError, match=rf"^f: expected a function continuous over x_range "
+                                         rf"\[1, 2\], but it {what}.*near x = {where}; .* "
+                                         r"choose an x_range that leaves that point out$"):
+        function_generation(**(LOG | dict(f=f)))
+
+
+def test_a_function_not_finite_over_x_range_is_refused():
+    with pytest.raises(ModelError, match=r"^f: expected finite values over x_range, got nan at "
+                                         r"x = 1.5; choose an x_range where f is finite$"):
+        function_generation(**(LOG | dict(f=lambda x: np.where(x == 1.5, np.nan, x))))
+
+
+@pytest.mark.parametrize("f", [np.sqrt, lambda x: np.tanh(1000 * (x - 1.5)),
+                               lambda x: 1 / (x - 0.999)])
+def test_continuous_functions_steep_or_not_are_kept(f):
+    """Steep but continuous (a pole just outside x_range, a steep step): generated, with the
+    structural error checked at the precision points (three: met exactly)."""
+    sol = function_generation(**(LOG | dict(f=f)))
+    assert sol.valid and np.all(np.isfinite(sol.structural_error))
+    assert np.abs(sol.precision_errors).max() < 1e-9

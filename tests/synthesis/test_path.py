@@ -133,7 +133,10 @@ def test_transmission_angle_bound_is_kept():
 
 
 @pytest.mark.parametrize("points, kwargs, message", [
-    ([(0, 0), (1, 1)], {}, r"points: expected at least three finite points"),
+    ([(0, 0), (1, 1)], {}, r"points: expected 3 to 30 finite points \(x, y\), got shape \(2, 2\)"),
+    (np.ones((31, 2)), {}, r"points: expected 3 to 30 finite points \(x, y\), got shape \(31, 2\)"),
+    ([(0, 0), (1, 1), (2, 0)], dict(samples=10_001),
+     r"samples: expected an integer from 24 to 10,000, got 10001"),
     ([(0, 0), (1, 1), (0, 0)], {}, r"points: points 1 and 3 coincide"),
     ([(0, 0), (1, 1), (2, 0)], dict(runs=0), r"runs: expected an integer >= 1, got 0"),
     ([(0, 0), (1, 1), (2, 0)], dict(popsize=2), r"popsize: expected an integer >= 5, got 2"),
@@ -147,3 +150,30 @@ def test_transmission_angle_bound_is_kept():
 def test_bad_path_tasks(points, kwargs, message):
     with pytest.raises(ModelError, match=message):
         path_generation(points, **kwargs)
+
+
+def test_thirty_points_the_most_a_path_takes():
+    """30 points (MAX_PATH_POINTS) of the catalogue's coupler curve, over 290 deg of crank:
+    the exact linkage is found again (about 3 s of one core)."""
+    from kinelab.synthesis._path import MAX_PATH_POINTS
+    assert MAX_PATH_POINTS == 30
+    pts = kl.analyze(CATALOGUE, q=np.radians(np.linspace(0, 290, 30))).position("P")
+    best = path_generation(pts, runs=1, seed=0)[0]
+    assert best.valid and best.q.shape == (30,)
+    # exact algebra through the engine: the targets lie on the curve
+    assert best.max_error < 1e-9
+    P = kl.analyze(best.model, q=best.q).position("P")
+    np.testing.assert_allclose(np.linalg.norm(P - pts, axis=1), best.errors, atol=1e-12)
+
+
+def test_many_points_are_refused_before_any_work():
+    """8 million points (a 48 MB task file) are refused at once: no n x n array of gaps
+    (931 TiB), no search; the same for 5 identical points, by rows."""
+    many = np.broadcast_to([1.0, 2.0], (8_000_000, 2))
+    with pytest.raises(ModelError, match=r"^points: expected 3 to 30 finite points .* got shape "
+                                         r"\(8000000, 2\); a path is given by 5 to 20 points"):
+        path_generation(many)
+    with pytest.raises(ModelError, match=r"^points: points 1 and 2 coincide; give distinct points$"):
+        path_generation(np.broadcast_to([1.0, 2.0], (5, 2)))
+    with pytest.raises(ModelError, match=r"^points: points 2 and 5 coincide"):
+        path_generation([(0, 0), (1, 0), (2, 1), (3, 0), (1, 1e-13)])

@@ -1,4 +1,7 @@
 """Positions of a moving plane and their poles (*Mecanismos*, §6.1)."""
+import re
+import warnings
+
 import numpy as np
 import pytest
 from hypothesis import assume, given
@@ -83,3 +86,28 @@ def test_bad_positions(points, angles, message):
 def test_two_points_must_keep_their_distance():
     with pytest.raises(ModelError, match=r"the distance between the two points changes"):
         Positions.from_two_points([(0, 0), (1, 0)], [(1, 0), (1, 2)])
+
+
+@pytest.mark.parametrize("n", [3, 4, 5, 6, 7])
+@pytest.mark.parametrize("center, radius", [((0.0, 0.0), 0.0), ((1.0, 2.0), 0.0), ((2.0, 1.0), 1.0)])
+def test_positions_that_all_turn_about_one_point_are_refused(n, center, radius):
+    """The plane turning about one point (identical points at different angles, or points on
+    a circle turning with it): every pole is that point, so is every crank's fixed pivot.
+    This gave RuntimeWarnings (divide by zero) and pivots of 1e-317 m; now one message."""
+    t = np.radians(15.0 * np.arange(n))
+    P = np.asarray(center) + radius * np.column_stack([np.cos(t), np.sin(t)])
+    pos = kl.synthesis.Positions(P, t)
+    calls = {3: [lambda: kl.synthesis.three_positions(pos, A0=(5, 0), B0=(0, 5))],
+             4: [lambda: kl.synthesis.four_positions(pos, a0x=0.5, b0x=-0.5),
+                 lambda: kl.synthesis.burmester_curves(pos)],
+             5: [lambda: kl.synthesis.five_positions(pos), lambda: kl.synthesis.burmester_points(pos)],
+             6: [lambda: kl.synthesis.approximate_positions(pos)],
+             7: [lambda: kl.synthesis.fit_dyads(pos)]}[n]
+    where = "(" + ", ".join(f"{c:.9g}" for c in center) + ")"
+    for call in calls:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            with pytest.raises(ModelError, match=rf"^positions: every position is a turn of the "
+                                                 rf"plane about the same point {re.escape(where)} m "
+                                                 r"\(all the poles are there\)"):
+                call()
