@@ -25,6 +25,7 @@ from kinelab.io import ModelFile
 from kinelab.io._modelfile import errors_from
 from kinelab.kinematics import KinematicSolution, Tracker
 from kinelab.kinematics._columns import INPUT_SI_UNITS
+from kinelab.model import is_real
 
 __all__ = ["MAX_SAMPLES", "DEFAULT_SAMPLES", "read_model", "analyze", "study", "configuration",
            "drag", "flip", "catalogue", "example", "load", "save", "derivation", "synthesize",
@@ -266,9 +267,7 @@ def _input(body: dict, mf: ModelFile, key: str = "q"):
     value = body.get(key)
     kinds = kinematics.plan(mf.mechanism).input_kinds
     values = value if isinstance(value, list) else [value]
-    if len(values) != len(kinds) or not all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-            for v in values):
+    if len(values) != len(kinds) or not all(is_real(v) for v in values):
         raise ModelError(f"{key}: expected {len(kinds)} finite number(s), one per input "
                          f"({quoted(mf.mechanism.input_names)}), got {describe(value)}")
     u = mf.units
@@ -371,8 +370,7 @@ def drag(body: dict) -> dict:
     if point not in m.point_names:
         raise ModelError(f"point: expected one of {quoted(m.point_names)}, got {describe(point)}")
     to = body.get("to")
-    if not (isinstance(to, list) and len(to) == 2 and all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in to)):
+    if not (isinstance(to, list) and len(to) == 2 and all(is_real(v) for v in to)):
         raise ModelError(f"to: expected [x, y], two finite numbers, got {describe(to)}")
     target = np.array(to, float) * mf.units.length_scale
     path = sol.position(point)
@@ -425,8 +423,8 @@ def flip(body: dict) -> dict:
     m = mf.mechanism
     steps = {b["step"]: b for b in _branches(mf)}
     step = body.get("step")
-    if step not in steps:
-        raise ModelError(f"step: expected one of {quoted(list(steps)) or 'none (no RRR dyad)'}, "
+    if not isinstance(step, (str, int)) or isinstance(step, bool) or step not in steps:
+        raise ModelError(f"step: expected one of {quoted(list(steps)) if steps else 'none (no RRR dyad)'}, "
                          f"got {describe(step)}")
     X, Y, Z = steps[step]["points"]
     xy = {p.name: np.array(p.xy) for p in m.points}

@@ -13,7 +13,7 @@ from starlette.responses import FileResponse, JSONResponse, Response
 from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
-from kinelab.errors import KinelabError
+from kinelab.errors import KinelabError, shown_path
 from kinelab.web import _api, _export
 
 __all__ = ["create_app", "MAX_BODY"]
@@ -76,7 +76,12 @@ def _route(call, *, raw: bool = False):
             if isinstance(result, Response):
                 return result
             return Response(result, media_type="application/json")
-        return JSONResponse(result)
+        try:        # strict JSON: a number that is not finite is kinelab's fault, said as such
+            return Response(json.dumps(result, allow_nan=False), media_type="application/json")
+        except ValueError:
+            _log.exception("request %s gave a value that is not finite", request.url.path)
+            return _error("internal error: the result holds a value that is not a finite "
+                          "number; the server's log has the details", 500)
     return endpoint
 
 
@@ -99,11 +104,12 @@ async def _start(request: Request) -> Response:
 
 
 async def _not_found(request: Request, exc: HTTPException) -> Response:
+    path = shown_path(request.url.path)
     if exc.status_code == 404:
-        return _error(f"{request.url.path}: no such page or API route; the API is under /api/ "
+        return _error(f"{path}: no such page or API route; the API is under /api/ "
                       "(see docs/web.md)", 404)
     if exc.status_code == 405:
-        return _error(f"{request.url.path}: method {request.method} not allowed here", 405)
+        return _error(f"{path}: method {request.method} not allowed here", 405)
     return _error(exc.detail, exc.status_code)
 
 

@@ -27,12 +27,12 @@ dxf`` / ``svg``)."""
 def export(body: dict) -> Response:
     """The file ``body["kind"]`` of ``body["model"]``, as an attachment named after it."""
     kind = body.get("kind")
-    if kind not in KINDS:
+    if not isinstance(kind, str) or kind not in KINDS:
         raise ModelError(f"kind: expected one of {quoted(list(KINDS))}, got {describe(kind)}")
     mf = _api.read_model(body)
     stem = Path(mf.source).stem if mf.source else (mf.mechanism.name or "model")
     with tempfile.TemporaryDirectory(prefix="kinelab-web-") as folder:
-        path = Path(folder) / f"{stem}.{kind}"
+        path = Path(folder) / f"result.{kind}"      # the name the user sees is in the header
         if kind in ("csv", "json"):
             sol = mf.analyze(_api.samples_of(body, mf))
             io.write_results(sol, path, format=kind, units=mf.units)
@@ -50,4 +50,20 @@ def export(body: dict) -> Response:
                 write(mf.mechanism, path, unit=mf.units.length, sol=sol)
         content = path.read_bytes()
     return Response(content, media_type=KINDS[kind],
-                    headers={"Content-Disposition": f'attachment; filename="{path.name}"'})
+                    headers={"Content-Disposition": attachment(f"{stem}.{kind}")})
+
+
+def attachment(name: str) -> str:
+    """A Content-Disposition header for a download named ``name``, whatever its characters:
+    an ASCII ``filename`` for old clients (other characters, quotes, backslashes and
+    controls as ``_``) and the exact name as RFC 6266's ``filename*`` (UTF-8, percent-encoded).
+
+    Examples
+    --------
+    >>> print(attachment('crank "rocker".csv'))
+    attachment; filename="crank _rocker_.csv"; filename*=UTF-8''crank%20%22rocker%22.csv
+    """
+    from urllib.parse import quote
+    plain = "".join(c if " " <= c <= "~" and c not in '"\\' else "_" for c in name)
+    exact = quote(name.encode("utf-8", "surrogatepass"), safe="")
+    return f'attachment; filename="{plain}"; filename*=UTF-8\'\'{exact}'

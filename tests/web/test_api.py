@@ -217,7 +217,13 @@ def test_the_export_is_the_command_lines_csv(client, tmp_path):
     (("post", "/api/flip", {"model": "M", "step": "x"}), 400, r"step: expected one of"),
     (("post", "/api/derive", {"model": "M", "lang": "fr"}), 400, r"lang: expected one of 'en', 'pt'"),
     (("post", "/api/export", {"model": "M", "kind": "exe"}), 400, r"kind: expected one of"),
+    (("post", "/api/export", {"model": "M", "kind": []}), 400, r"kind: expected one of .*, got \[\]"),
+    (("post", "/api/flip", {"model": "M", "step": {}}), 400, r"step: expected one of .*, got a table"),
+    (("post", "/api/configuration", {"model": "M", "q": 10 ** 400}), 400,
+     r"q: expected 1 finite number\(s\), one per input .*, got a whole number of 401 digits"),
+    (("post", "/api/drag", {"model": "M", "point": "P", "to": [10 ** 400, 0]}), 400, r"to: expected \[x, y\]"),
     (("get", "/api/nothing", None), 404, r"no such page or API route"),
+    (("get", "/api/%1b%5b31mx%07", None), 404, r"^/api/\\x1b\[31mx\\x07: no such page"),
     (("get", "/api/analyze", None), 405, r"method GET not allowed"),
 ])
 def test_bad_requests_get_a_clear_message_and_status(client, request_, status, match):
@@ -266,3 +272,34 @@ def test_serving_elsewhere_than_loopback_warns(monkeypatch):
     monkeypatch.setattr(uvicorn.Server, "run", lambda self: None)
     with pytest.warns(UserWarning, match="anyone who can reach this address"):
         serve(host="0.0.0.0", port=0)
+
+
+@pytest.mark.parametrize("source, plain, exact", [
+    ("a\nb.toml", "a_b.csv", "a%0Ab.csv"),
+    ("\u66f2\u67c4.toml", "__.csv", "%E6%9B%B2%E6%9F%84.csv"),
+    ('a".toml', "a_.csv", "a%22.csv"),
+    ("a\u0000b.toml", "a_b.csv", "a%00b.csv"),
+])
+def test_a_download_is_named_after_its_source_whatever_its_characters(client, source, plain, exact):
+    """The header carries an ASCII name and the exact one (RFC 6266), never a raw newline,
+    quote or non-Latin-1 character (which the server could not send)."""
+    _, model = model_of("crank_rocker")
+    r = client.post("/api/export", json={"model": model, "kind": "csv", "samples": 5, "source": source})
+    assert r.status_code == 200, r.text
+    assert r.headers["content-disposition"] == (f'attachment; filename="{plain}"; '
+                                                f"filename*=UTF-8''{exact}")
+
+
+def test_a_flip_without_a_dyad_says_so(client):
+    _, model = model_of("engine")
+    r = client.post("/api/flip", json={"model": model, "step": "x"})
+    assert r.status_code == 400
+    assert r.json()["error"] == "step: expected one of none (no RRR dyad), got 'x'"
+
+
+def test_a_huge_time_ratio_is_answered(client):
+    task = {"task": "quick-return", "quick_return": {"mechanism": "whitworth", "time_ratio": 1e308,
+                                                     "stroke": 0.1, "distance": 0.04}}
+    r = client.post("/api/synthesize", json={"task": task})
+    assert r.status_code in (200, 400), r.text
+    json.loads(r.text)          # strict JSON either way
