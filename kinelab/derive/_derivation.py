@@ -17,6 +17,9 @@ from kinelab.model import Mechanism
 __all__ = ["derive", "Derivation", "DerivationValues", "Singularity", "LANGUAGES"]
 
 LANGUAGES = ("en", "pt")
+MAX_UNKNOWNS = 8
+"""The most unknown coordinates a derivation takes: J's determinant and adjugate grow so fast
+in closed form that eight (four dyads) take seconds, ten about twenty and twelve over a minute."""
 
 
 @dataclass(frozen=True)
@@ -309,6 +312,12 @@ def derive(model: Mechanism, lang: Literal["en", "pt"] = "en", *, dynamics: bool
     eq = loop_equations(model, notation_of(model), points=bodies.points if bodies else ())
     S, q = sp.Matrix(eq.S), sp.Matrix(eq.q)
     n, M = len(eq.S), len(eq.q)
+    if n > MAX_UNKNOWNS:
+        raise ModelError(f"model: '{model.name}' has {n} unknown coordinates; the derivation in "
+                         f"closed form (det J and the adjugate of J, symbolic) is written for at "
+                         f"most {MAX_UNKNOWNS} (four dyads): beyond, it takes minutes and pages; "
+                         "analyse the mechanism numerically (kinelab analyze), or derive a part "
+                         "of it")
     Phi = sp.Matrix([eq.rows[i] for i in eq.independent]) if n else sp.zeros(0, 1)
     J = Phi.jacobian(S) if n else sp.zeros(0, 0)
     Q = Phi.jacobian(q) if n else sp.zeros(0, M)

@@ -62,3 +62,24 @@ def test_simplification_gives_up_beyond_its_bounds():
     assert (out, done) == (slow, False)
     # and what it simplifies it simplifies
     assert simplified(sp.sin(x) * sp.cos(y) + sp.cos(x) * sp.sin(y)) == (sp.sin(x + y), True)
+
+
+def test_a_model_beyond_the_closed_forms_size_is_refused_at_once():
+    """A crank driving five RRR dyads side by side: 10 unknowns, refused before any algebra
+    (it took about 20 s; six dyads over a minute)."""
+    from kinelab.model import Link, Point
+    pts, links, joints = [Point("O2", 0.0, 0.0), Point("A", 0.0, 0.1)], [], []
+    ground, dyads = ["O2"], 5
+    for i in range(dyads):
+        pts += [Point(f"C{i}", 0.3 + 0.05 * i, 0.3), Point(f"G{i}", 0.4 + 0.05 * i, 0.0)]
+        ground.append(f"G{i}")
+        links += [Link(f"a{i}", ("A", f"C{i}")), Link(f"b{i}", (f"C{i}", f"G{i}"))]
+        joints += [Joint(f"jA{i}", "R", ("crank", f"a{i}"), point="A"),
+                   Joint(f"jC{i}", "R", (f"a{i}", f"b{i}"), point=f"C{i}"),
+                   Joint(f"jG{i}", "R", ("ground", f"b{i}"), point=f"G{i}")]
+    m = Mechanism("five dyads", tuple(pts),
+                  (Link("ground", tuple(ground), ground=True), Link("crank", ("O2", "A")), *links),
+                  (Joint("jO2", "R", ("ground", "crank"), point="O2"), *joints), (Input(joint="jO2"),))
+    with pytest.raises(ModelError, match=r"^model: 'five dyads' has 10 unknown coordinates; the "
+                                         r"derivation in closed form .* at most 8 \(four dyads\)"):
+        derive(m)
