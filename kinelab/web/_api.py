@@ -481,9 +481,10 @@ def _explicit(mf: ModelFile) -> dict:
 
 
 # -- synthesis ------------------------------------------------------------------------------
-MAX_SEARCH_EFFORT = 4 * (3 * 300 * 15 * 180)
+MAX_SEARCH_EFFORT = 4 * (3 * 300 * 15 * 180 * 10)
 """The most work a path-generation search may ask of the server (runs x maxiter x popsize x
-samples): four times the default search; the command line has no such cap."""
+samples x target points): four times the default search of ten points (a round's work grows
+with each); the command line has no such cap."""
 _SEARCH_DEFAULTS = {"runs": 3, "maxiter": 300, "popsize": 15, "samples": 180}
 
 
@@ -499,11 +500,13 @@ def synthesize(body: dict) -> dict:
     task = io.read_task(body.get("task"), source=source,
                         name=Path(source).stem if source else "task")
     if task.kind == "path":
-        effort = math.prod(task.search.get(k, v) for k, v in _SEARCH_DEFAULTS.items())
+        effort = len(task.targets) * math.prod(task.search.get(k, v)
+                                               for k, v in _SEARCH_DEFAULTS.items())
         if effort > MAX_SEARCH_EFFORT:
-            raise ModelError(f"search: runs x maxiter x popsize x samples is {effort:,}; the page "
-                             f"searches at most {MAX_SEARCH_EFFORT:,} (four times the default "
-                             "search): ask for less, or run kinelab synth", source=source)
+            raise ModelError(f"search: runs x maxiter x popsize x samples x points is {effort:,}; "
+                             f"the page searches at most {MAX_SEARCH_EFFORT:,} (four times the "
+                             "default search of ten points): ask for less, or run kinelab synth",
+                             source=source)
     solutions, extra = io.solve_task(task)
     summary = io.task_summary(task, solutions, extra)
     summary["models"] = [ModelFile(mechanism=s.model, units=task.units).to_dict()

@@ -113,6 +113,9 @@ def test_a_malformed_task_gets_the_command_lines_message(client, tmp_path):
      "pivots.A1: missing; 2 positions need 'A1', 'B1'"),
     ({"task": "path", "positions": {"points": [[0, 0], [1, 1], [2, 0]]},
       "search": {"runs": 1000, "maxiter": 1000}}, f"the page searches at most {MAX_SEARCH_EFFORT:,}"),
+    # 30 points and four times the default search: the points count (it ran for minutes)
+    ({"task": "path", "positions": {"points": [[np.cos(a), np.sin(a)] for a in np.linspace(0, 6, 30)]},
+      "search": {"runs": 12}}, "search: runs x maxiter x popsize x samples x points is 291,600,000; the page searches at most 97,200,000"),
 ])
 def test_bad_tasks_are_refused_in_one_line(client, task, message):
     answer = client.post("/api/synthesize", json={"task": task})
