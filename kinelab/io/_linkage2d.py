@@ -19,7 +19,7 @@ import numpy as np
 from kinelab.errors import ModelError
 from kinelab.io._fields import Reader, describe, quoted, shown
 from kinelab.io._text import loads, read_text
-from kinelab.model import Input, Joint, Link, Mechanism, Point
+from kinelab.model import MAX_JOINTS, MAX_LINKS, Input, Joint, Link, Mechanism, Point
 
 __all__ = ["from_linkage2d_json"]
 
@@ -99,6 +99,10 @@ def from_linkage2d_json(source: str | os.PathLike | Mapping[str, Any], *,
         raise ModelError(r.problems, source=where)
     unit = r.string(top.get("unit_length", "m"), "unit_length", choices=_UNITS)
     angle_unit = r.string(top.get("unit_angle", "rad"), "unit_angle", choices=("deg", "rad"))
+    for key, most in (("links", MAX_LINKS), ("joints", MAX_JOINTS)):
+        if isinstance(top[key], list) and len(top[key]) > most:    # before the drawing is solved
+            r.problems.append(f"{key}: expected at most {most:,}, got {len(top[key]):,}; a model "
+                              "that large takes minutes to plan: model the mechanism in parts")
     if r.problems:
         raise ModelError(r.problems, source=where)
     ls = _UNITS[unit]
@@ -247,6 +251,28 @@ def _bodies(links: dict[str, dict], joints: list[dict], ls: float,
     return frame
 
 
+_ROWS = {"revolute": 2, "prismatic": 2, "pin-in-slot": 1}   # residuals a joint adds
+
+
+def _sparsity(joints, frame, slot, ground, bodies: int):
+    """Which poses (x, y, angle of each moving body) each residual of ``_build`` depends on:
+    a joint's rows on its two bodies alone.  With it the solver differentiates a few
+    columns at a time and solves sparsely, instead of one residual per pose (a drawing of
+    a hundred links took minutes)."""
+    from scipy.sparse import lil_matrix
+    rows = sum(_ROWS.get(j["kind"], 0) for j in joints)
+    A = lil_matrix((max(rows, 1), 3 * bodies), dtype=np.int8)
+    r = 0
+    for j in joints:
+        k = _ROWS.get(j["kind"], 0)
+        for link in (j["parent"], j["child"]):
+            body = frame[link][0]
+            if k and body != ground:
+                A[r:r + k, 3 * slot[body]:3 * slot[body] + 3] = 1
+        r += k
+    return A
+
+
 def _build(top, links, joints, ls, deg, input_name) -> Mechanism:
     from scipy.optimize import least_squares
 
@@ -300,7 +326,8 @@ def _build(top, links, joints, ls, deg, input_name) -> Mechanism:
     x0 = np.concatenate([np.r_[links[b]["position"], links[b]["angle"]] for b in moving]) if moving else np.zeros(0)
     if moving:
         sol = least_squares(residual, x0, method="trf", xtol=1e-15, ftol=1e-15, gtol=1e-15,
-                            x_scale=np.tile([scale, scale, 1.0], len(moving)))
+                            x_scale=np.tile([scale, scale, 1.0], len(moving)),
+                            jac_sparsity=_sparsity(joints, frame, slot, ground, len(moving)))
         x = sol.x
     else:
         x = x0

@@ -30,6 +30,12 @@ MAX_TURNS = 1000
 # Masses (kg) and moments of inertia (kg m^2): with the lengths and rates above, momenta,
 # forces and energies (m v^2 <= 1e30 x (1e100 x 1e9)^2) stay finite; gravity is bounded
 # like a rate.
+# A model's size: its mobility check and plan take dense SVDs of its constraint Jacobian
+# (about 3 unknowns a link), which grow as the cube of the size: 200 links take about a
+# second, 800 about a minute.
+MAX_LINKS = 200
+MAX_JOINTS = 400
+MAX_POINTS = 2000
 MAX_MASS = 1e30
 MAX_INERTIA = MAX_MASS * MAX_LENGTH ** 2
 

@@ -264,6 +264,7 @@ def test_reading_and_checking_is_linear_in_the_size_of_the_file():
     # 20,000 links carrying 100,000 points, each pinned to the ground, which carries 20,001:
     # a walk through a list of names for each name read is 1e9 steps (minutes, hours on a
     # slow machine); with dictionaries it is seconds.  60 s leaves room for a slow machine.
+    # The model is far beyond the size kinelab plans (MAX_LINKS): it is read, then refused.
     points, links, joints = {"g": [-1.0, 0.0]}, [], []
     for k in range(20_000):
         names = [f"p{k}_{i}" for i in range(5)]
@@ -274,9 +275,42 @@ def test_reading_and_checking_is_linear_in_the_size_of_the_file():
     text = json.dumps({"schema": 1, "units": {"length": "m", "angle": "rad"}, "points": points,
                        "links": links, "joints": joints})
     start = time.perf_counter()
-    mf = ModelFile.from_json(text, source="big.json")
-    assert len(mf.mechanism.points) == 100_001
+    with pytest.raises(ModelError) as info:
+        ModelFile.from_json(text, source="big.json")
     assert time.perf_counter() - start < 60.0
+    assert str(info.value).splitlines() == [
+        "big.json: links: expected at most 200, got 20,001; a model that large takes minutes to "
+        "plan (its constraint Jacobian grows as the cube of the size): model the mechanism in parts",
+        "big.json: joints: expected at most 400, got 20,000; a model that large takes minutes to "
+        "plan (its constraint Jacobian grows as the cube of the size): model the mechanism in parts",
+        "big.json: points: expected at most 2,000, got 100,001; a model that large takes minutes "
+        "to plan (its constraint Jacobian grows as the cube of the size): model the mechanism in "
+        "parts"]
+
+
+def test_a_model_at_the_size_limit_is_planned():
+    """A crank driving 99 RRR dyads side by side: 200 links, the most a model may have."""
+    from kinelab.model import MAX_LINKS
+    points, links, joints = {"O": [0.0, 0.0], "A": [0.0, 0.1]}, [], []
+    ground = ["O"]
+    for i in range((MAX_LINKS - 2) // 2):
+        a = 2 * np.pi * i / 99
+        points[f"G{i}"] = [np.cos(a), np.sin(a)]
+        points[f"C{i}"] = [0.5 * np.cos(a) - 0.3 * np.sin(a), 0.05 + 0.5 * np.sin(a) + 0.3 * np.cos(a)]
+        ground.append(f"G{i}")
+        links += [{"name": f"a{i}", "points": ["A", f"C{i}"]}, {"name": f"b{i}", "points": [f"C{i}", f"G{i}"]}]
+        joints += [{"name": f"jA{i}", "type": "R", "links": ["crank", f"a{i}"], "point": "A"},
+                   {"name": f"jC{i}", "type": "R", "links": [f"a{i}", f"b{i}"], "point": f"C{i}"},
+                   {"name": f"jG{i}", "type": "R", "links": ["ground", f"b{i}"], "point": f"G{i}"}]
+    links = [{"name": "ground", "points": ground, "ground": True},
+             {"name": "crank", "points": ["O", "A"]}] + links
+    joints.insert(0, {"name": "jO", "type": "R", "links": ["ground", "crank"], "point": "O"})
+    text = json.dumps({"schema": 1, "units": {"length": "m", "angle": "rad"}, "points": points,
+                       "links": links, "joints": joints, "inputs": [{"joint": "jO"}]})
+    m = ModelFile.from_json(text, source="limit.json").mechanism
+    assert len(m.links) == MAX_LINKS
+    sol = kl.analyze(m, [0.0, 0.1])
+    assert sol.assembled.all()
 
 
 def test_missing_file(tmp_path):
