@@ -511,3 +511,16 @@ def test_a_bad_memory_budget_in_the_environment_is_said_before_any_work(monkeypa
     assert result.exit_code == 2 and result.stdout == ""
     assert result.stderr == ("kinelab: error: KINELAB_MEMORY_BUDGET: expected a size such as 8G, "
                              "512M or a number of bytes (at least 1), got 'abc' (see 'kinelab --help')\n")
+
+
+def test_an_import_that_check_would_refuse_writes_nothing(tmp_path):
+    """Three inputs on a four-bar: the written file would fail 'kinelab check'; the import
+    says why instead, and writes no file."""
+    source = tmp_path / "cr.pyslvs"
+    assert run("export", EX / "crank_rocker.toml", "--to", "pyslvs", "--out", source).exit_code == 0
+    result = run("import", source, "--out", tmp_path / "m.toml", "--inputs", "0,1;1,2;2,3")
+    assert result.exit_code == 2
+    assert result.stderr == ("kinelab: error: cr.pyslvs: inputs: the linkage has 1 degree(s) of "
+                             "freedom at the sketch (exact mobility; Kutzbach-Gruebler counts 1) but 3 "
+                             "input(s); give it 1 input(s), or fewer joints\n")
+    assert not (tmp_path / "m.toml").exists()
