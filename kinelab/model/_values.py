@@ -77,8 +77,9 @@ def length_problem(value: float, *, positive: bool = True) -> str | None:
 def rate_problem(value: float, unit: str) -> str | None:
     """Why ``value`` (SI, per s or per s^2) cannot be an input's speed or acceleration."""
     if abs(value) > MAX_RATE:
-        return (f"expected at most {MAX_RATE:g} {unit} in size (accelerations take its "
-                "square)")
+        why = ("times a length it must stay far from overflow" if unit.endswith("^2")
+               else "accelerations take its square")
+        return f"expected at most {MAX_RATE:g} {unit} in size ({why})"
     return None
 
 

@@ -42,7 +42,10 @@ async def _body(request: Request) -> dict:
         chunks.append(chunk)
     try:
         data = json.loads(b"".join(chunks) or b"{}")
-    except (ValueError, RecursionError):
+    except (ValueError, RecursionError) as exc:
+        if "digits" in str(exc):        # Python's limit on the digits of an integer
+            raise KinelabError("body: a whole number of more than 4,300 digits; send numbers "
+                               "a float can hold") from None
         raise KinelabError("body: expected a JSON object; send the request as JSON") from None
     if not isinstance(data, dict):
         raise KinelabError("body: expected a JSON object; send the request as JSON")

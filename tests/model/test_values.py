@@ -58,6 +58,10 @@ def test_input_rates_whose_squares_overflow_are_refused():
                                          r"size \(accelerations take its square\), got 1e\+300 rad/s"):
         dataclasses.replace(fourbar(), inputs=(Input(joint="jO2", speed=1e300),))
     dataclasses.replace(fourbar(), inputs=(Input(joint="jO2", speed=MAX_RATE),))
+    with pytest.raises(ModelError, match=r"inputs\[0\]: acceleration: expected at most 1e\+100 "
+                                         r"rad/s\^2 in size \(times a length it must stay far "
+                                         r"from overflow\), got 1e\+300 rad/s\^2"):
+        dataclasses.replace(fourbar(), inputs=(Input(joint="jO2", acceleration=1e300),))
 
 
 def test_an_angle_range_is_within_max_turns():

@@ -240,6 +240,10 @@ def test_oversize_and_malformed_bodies_are_refused(client):
     assert r.status_code == 413 and "larger than" in r.json()["error"]
     r = client.post("/api/analyze", content=b"{not json", headers={"content-type": "application/json"})
     assert r.status_code == 400 and r.json()["error"].startswith("body: expected a JSON object")
+    r = client.post("/api/analyze", content=b'{"samples": ' + b"9" * 5000 + b"}",
+                    headers={"content-type": "application/json"})
+    assert r.status_code == 400 and r.json()["error"].startswith("body: a whole number of more "
+                                                                 "than 4,300 digits")
 
 
 def test_a_model_that_cannot_assemble_is_refused_with_the_reason(client):
