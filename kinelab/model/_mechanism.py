@@ -15,9 +15,8 @@ from typing import Any, Literal
 
 from kinelab.errors import PROBLEMS_SHOWN, ModelError, describe, quoted, shown, suggest
 from kinelab.model._joints import JOINT_TYPES
-from kinelab.model._values import (MAX_INERTIA, MAX_JOINTS, MAX_LINKS, MAX_MASS, MAX_POINTS,
-                                   is_real, length_problem, name_problem, range_problem,
-                                   rate_problem)
+from kinelab.model._values import (MAX_INERTIA, MAX_JOINTS, MAX_LINKS, MAX_MASS, is_real,
+                                   length_problem, name_problem, range_problem, rate_problem)
 
 __all__ = ["Point", "Link", "Joint", "Input", "Mechanism", "SPACES"]
 
@@ -340,8 +339,7 @@ def _validate(m: Mechanism) -> list[str]:
         add(f"space: expected one of {quoted(SPACES)}, got {describe(m.space)}")
     if not isinstance(m.name, str) or not m.name.isprintable():
         add(f"name: expected a text of printable characters, got {describe(m.name)}")
-    for kind, items, most in (("links", m.links, MAX_LINKS), ("joints", m.joints, MAX_JOINTS),
-                              ("points", m.points, MAX_POINTS)):
+    for kind, items, most in (("links", m.links, MAX_LINKS), ("joints", m.joints, MAX_JOINTS)):
         if len(items) > most:
             add(f"{kind}: expected at most {most:,}, got {len(items):,}; a model that large "
                 "takes minutes to plan (its constraint Jacobian grows as the cube of the "

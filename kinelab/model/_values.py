@@ -31,11 +31,10 @@ MAX_TURNS = 1000
 # forces and energies (m v^2 <= 1e30 x (1e100 x 1e9)^2) stay finite; gravity is bounded
 # like a rate.
 # A model's size: its mobility check and plan take dense SVDs of its constraint Jacobian
-# (about 3 unknowns a link), which grow as the cube of the size: 200 links take about a
-# second, 800 about a minute.
+# (3 unknowns a link, a few rows a joint), which grow as the cube of the size: 200 links
+# take about a second, 800 about a minute.  Points carried by a link cost next to nothing.
 MAX_LINKS = 200
 MAX_JOINTS = 400
-MAX_POINTS = 2000
 MAX_MASS = 1e30
 MAX_INERTIA = MAX_MASS * MAX_LENGTH ** 2
 
