@@ -5,16 +5,14 @@ import pytest
 
 import kinelab as kl
 from kinelab.errors import ModelError
+from tests.sweep.atlases import sobol_atlas
 
 COLUMNS = ("ground", "crank", "coupler", "rocker", "coupler_point_along", "coupler_point_perpendicular")
 
 
 @pytest.fixture(scope="module")
 def atlas():
-    designs = kl.sweep.sobol(1024, seed=1, ground=(1, 4), crank=(0.3, 1), coupler=(1, 4),
-                             rocker=(1, 4), coupler_point_along=(-1, 2),
-                             coupler_point_perpendicular=(-1, 1))
-    return kl.sweep.atlas(designs)
+    return sobol_atlas(1024)
 
 
 def curve_of(row, n=120):

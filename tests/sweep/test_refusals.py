@@ -7,6 +7,7 @@ import pytest
 
 import kinelab as kl
 from kinelab.errors import MemoryBudgetError, ModelError
+from tests.sweep.atlases import sobol_atlas
 
 FOURBAR = {"ground": [3.0, 1.0], "crank": [1.0, 2.0], "coupler": [3.0, 1.0], "rocker": [2.5, 1.5]}
 
@@ -96,10 +97,7 @@ def test_a_design_off_the_models_places_is_one_error_without_python_advice():
 
 @pytest.fixture(scope="module")
 def atlas():
-    designs = kl.sweep.sobol(256, seed=1, ground=(1, 4), crank=(0.3, 1), coupler=(1, 4),
-                             rocker=(1, 4), coupler_point_along=(-1, 2),
-                             coupler_point_perpendicular=(-1, 1))
-    return kl.sweep.atlas(designs)
+    return sobol_atlas(256)
 
 
 def ellipse(n=60):
