@@ -107,7 +107,7 @@ def read_curve(path: str | os.PathLike, *, x: str | None = None, y: str | None =
         size = 0
     # text, rows of Python strings and the arrays: about 20 times the file's size
     require(20.0 * size, f"reading {Path(path).name}", "cut the file into pieces")
-    text = read_text(path)
+    text = read_text(path, max_bytes=None)      # bounded by the memory budget above
     rows = [(line_no, row) for line_no, row in enumerate(csv.reader(text.splitlines()), 1)
             if row and any(c.strip() for c in row) and not row[0].lstrip().startswith("#")]
     if not rows:

@@ -20,16 +20,23 @@ from typing import Any
 
 from kinelab.errors import ModelError, shown, shown_key
 
-__all__ = ["MAX_DEPTH", "read_text", "loads"]
+__all__ = ["MAX_DEPTH", "MAX_BYTES", "read_text", "loads"]
 
 MAX_DEPTH = 32     # tables and lists inside each other; a model file needs about 6
+MAX_BYTES = 8 << 20  # a file's size: a model, task or drawing is a few kilobytes, and a TOML
+                     # parser reads about a megabyte in a few seconds
 _SURROGATE = re.compile("[\ud800-\udfff]")
 
 
-def read_text(path: str | os.PathLike) -> str:
-    """The UTF-8 text of a file (a byte-order mark is allowed)."""
+def read_text(path: str | os.PathLike, *, max_bytes: int | None = MAX_BYTES) -> str:
+    """The UTF-8 text of a file (a byte-order mark is allowed), refused beyond ``max_bytes``
+    (None: any size, for data such as measured curves, bounded by their reader)."""
     path = Path(path)
     try:
+        if max_bytes is not None and path.stat().st_size > max_bytes:   # before reading it
+            raise ModelError(f"the file is {path.stat().st_size / 2**20:,.1f} MiB; expected at "
+                             f"most {max_bytes >> 20} MiB (a model, task or drawing file is a few "
+                             "kilobytes)", source=str(path))
         raw = path.read_bytes()
     except FileNotFoundError:
         raise ModelError("no such file; check the path", source=str(path)) from None

@@ -392,3 +392,12 @@ def test_one_corrupted_field_raises_only_model_error(name, section, index, key, 
         ModelFile.from_dict(data, source="f")
     except ModelError:
         pass
+
+
+def test_a_file_far_larger_than_any_model_is_refused_before_it_is_read(tmp_path):
+    from kinelab.io._text import MAX_BYTES
+    path = tmp_path / "huge.toml"
+    path.write_text("schema = 1\n# " + "x" * MAX_BYTES + "\n")
+    with pytest.raises(ModelError, match=r"huge\.toml: the file is 8\.0 MiB; expected at most 8 MiB "
+                                         r"\(a model, task or drawing file is a few kilobytes\)$"):
+        kl.load(path)
