@@ -23,7 +23,7 @@ from kinelab.model import MAX_LENGTH, MIN_LENGTH
 from kinelab.sweep._metrics import (DEFAULT_HARMONICS, descriptor_names, descriptors,
                                     resample_closed)
 from kinelab.sweep._run import run, write_parquet
-from kinelab.synthesis import coupler_curves, path_generation
+from kinelab.synthesis import MAX_PATH_POINTS, coupler_curves, path_generation
 
 __all__ = ["Atlas", "atlas"]
 
@@ -176,8 +176,10 @@ class Atlas:
         designs by :func:`kinelab.synthesis.path_generation` (its ``options``: runs,
         maxiter, seed, tolerance ...; by default one run)."""
         P = _path(path, self.harmonics, placed=True)
-        if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or points < 3:
-            raise ModelError(f"points: expected a whole number >= 3, got {describe(points)}")
+        if isinstance(points, bool) or not isinstance(points, (int, np.integer)) \
+                or not 3 <= points <= MAX_PATH_POINTS:
+            raise ModelError(f"points: expected a whole number from 3 to {MAX_PATH_POINTS}, got "
+                             f"{describe(points)}")
         targets = _resampled(P[None], int(points))[0]
         options = {"runs": 1, **options}
         return path_generation(targets, initial=self.placed(P, k), **options)

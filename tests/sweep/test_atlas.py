@@ -47,6 +47,10 @@ def test_refined_linkage_passes_through_the_path(atlas):
     target = curve_of(atlas.table.iloc[5]) * 2.0 + [1.0, 1.0]
     sols = atlas.refine(target, k=2)
     assert len(sols) >= 1 and sols[0].valid and sols[0].max_error < 1e-6 * np.ptp(target)
+    for points in (2, 31):          # path synthesis takes 3 to MAX_PATH_POINTS targets
+        with pytest.raises(ModelError, match=rf"^points: expected a whole number from 3 to 30, "
+                                             rf"got {points}$"):
+            atlas.refine(target, points=points)
 
 
 def test_atlas_round_trip_and_errors(atlas, tmp_path):
