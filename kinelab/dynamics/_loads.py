@@ -17,11 +17,14 @@ import numpy as np
 
 from kinelab._expressions import OP_CONST, not_finite, parse_expression, parse_table, to_program
 from kinelab.errors import ModelError, describe, shown, shown_key
-from kinelab.model import MAX_RATE, Mechanism, is_real
+from kinelab.model import MAX_LENGTH, MAX_RATE, Mechanism, is_real
 
 __all__ = ["Law", "PointForce", "Torque", "Spring", "Damper", "Loads", "STANDARD_GRAVITY"]
 
 STANDARD_GRAVITY = 9.80665   # m/s^2
+MAX_COEFFICIENT = 1e30       # a spring's stiffness (N/m) or a damper's damping (N s/m), as the
+                             # largest mass (kinelab.model.MAX_MASS): no machine goes beyond, and
+                             # its forces stay far from overflow
 
 
 def _number(v) -> bool:
@@ -231,10 +234,12 @@ class Spring:
 
     def __post_init__(self):
         _check_pair(self, "spring")
-        for label in ("stiffness", "free_length"):
+        for label, unit, most in (("stiffness", "N/m", MAX_COEFFICIENT),
+                                  ("free_length", "m", MAX_LENGTH)):
             v = getattr(self, label)
-            if not (is_real(v) and v >= 0):
-                raise ModelError(f"{_label(self, 'spring')}: {label}: expected a number >= 0, got {describe(v)}")
+            if not (is_real(v) and 0 <= v <= most):
+                raise ModelError(f"{_label(self, 'spring')}: {label}: expected a number >= 0 "
+                                 f"({unit}) up to {most:g}, got {describe(v)}")
 
 
 @dataclass(frozen=True)
@@ -259,8 +264,9 @@ class Damper:
     def __post_init__(self):
         _check_pair(self, "damper")
         v = self.damping
-        if not (is_real(v) and v >= 0):
-            raise ModelError(f"{_label(self, 'damper')}: damping: expected a number >= 0, got {describe(v)}")
+        if not (is_real(v) and 0 <= v <= MAX_COEFFICIENT):
+            raise ModelError(f"{_label(self, 'damper')}: damping: expected a number >= 0 (N s/m) "
+                             f"up to {MAX_COEFFICIENT:g}, got {describe(v)}")
 
 
 def _label(item, kind: str) -> str:

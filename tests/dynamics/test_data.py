@@ -81,8 +81,11 @@ def test_loads_naming_unknown_items_are_all_reported():
 
 @pytest.mark.parametrize("build, message", [
     (lambda: Spring(("A", "A"), 1.0), r"spring A-A: points: its two ends are the same point 'A'"),
-    (lambda: Spring(("A", "B"), -1.0), r"spring A-B: stiffness: expected a number >= 0, got -1.0"),
+    (lambda: Spring(("A", "B"), -1.0), r"spring A-B: stiffness: expected a number >= 0 \(N/m\) up to 1e\+30, got -1.0"),
     (lambda: Damper(("A", "B"), float("inf"), name="shock"), r"damper 'shock': damping: expected a number >= 0"),
+    (lambda: Damper(("A", "B"), 1e308), r"damper A-B: damping: expected a number >= 0 \(N s/m\) up to 1e\+30, got 1e\+308"),
+    (lambda: Spring(("A", "B"), 1e31), r"spring A-B: stiffness: expected a number >= 0 \(N/m\) up to 1e\+30"),
+    (lambda: Spring(("A", "B"), 1.0, 1e10), r"spring A-B: free_length: expected a number >= 0 \(m\) up to 1e\+09"),
     (lambda: Loads(gravity=9.81), r"gravity: expected two finite numbers \(gx, gy\) in m/s\^2, got 9.81"),
     (lambda: Loads(forces=[Torque("crank", 1.0)]), r"forces\[0\]: expected a kinelab.dynamics.PointForce, got Torque"),
     (lambda: PointForce("B", 5.0), r"force at 'B': expected 2 components \(fx, fy\)"),
