@@ -15,7 +15,7 @@ from kinelab.errors import ModelError, check_choice, describe, shown
 from kinelab.kinematics import KinematicSolution
 from kinelab.model import Units
 
-__all__ = ["RESULT_FORMATS", "write_results", "result_format", "results_json"]
+__all__ = ["RESULT_FORMATS", "write_results", "result_format", "results_json", "json_ready"]
 
 RESULT_FORMATS = ("csv", "json", "parquet")
 
@@ -117,18 +117,44 @@ def results_json(sol: KinematicSolution, *, degrees: bool = False,
     return buffer.getvalue()
 
 
+def json_ready(value):
+    """``value`` as plain data for strict JSON: a number that is not finite becomes None
+    (null, never Infinity or NaN), numpy arrays and numbers become lists and Python numbers,
+    and mappings, lists and tuples are walked.
+
+    Examples
+    --------
+    >>> json_ready({"error": np.float64(np.inf), "q": np.array([0.5, np.nan]), "ok": np.True_})
+    {'error': None, 'q': [0.5, None], 'ok': True}
+    """
+    if isinstance(value, dict):
+        return {k: json_ready(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [json_ready(v) for v in value]
+    if isinstance(value, np.ndarray):
+        if value.dtype == bool:
+            return value.tolist()
+        a = np.asarray(value, float)
+        finite = np.isfinite(a)
+        if finite.all():
+            return a.tolist()
+        out = a.astype(object)
+        out[~finite] = None
+        return out.tolist()
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, (float, np.floating, np.integer)):
+        x = float(value) if isinstance(value, (float, np.floating)) else int(value)
+        return x if math.isfinite(x) else None
+    return value
+
+
 def _write_json(columns: dict[str, np.ndarray], f) -> None:
     names = list(columns)
     data = [np.asarray(columns[n]) for n in names]
-
-    def cell(v):
-        if isinstance(v, (bool, np.bool_)):
-            return bool(v)
-        x = float(v)
-        return x if math.isfinite(x) else None
     f.write("[\n")
     n = len(data[0]) if data else 0
     for i in range(n):
-        row = {name: cell(col[i]) for name, col in zip(names, data)}
+        row = {name: json_ready(col[i]) for name, col in zip(names, data)}
         f.write("  " + json.dumps(row, allow_nan=False) + (",\n" if i < n - 1 else "\n"))
     f.write("]\n")

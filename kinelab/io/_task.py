@@ -15,6 +15,7 @@ import numpy as np
 
 from kinelab import synthesis
 from kinelab.errors import ModelError, describe, expected_one_of, quoted, shown_key
+from kinelab.io._results import json_ready
 from kinelab.io._text import loads, read_text
 from kinelab.model import (ANGLE_UNITS, LENGTH_UNITS, Units, is_real, length_problem, name_problem,
                            real_array)
@@ -529,17 +530,5 @@ def task_summary(task: Task, solutions: list, extra: dict[str, Any],
     u = units or task.units
     return {"task": task.kind, "name": task.name,
             "units": {"length": u.length, "angle": u.angle},
-            "reason": extra.get("reason", ""), "solutions": _finite(_rows(solutions, u))}
+            "reason": extra.get("reason", ""), "solutions": json_ready(_rows(solutions, u))}
 
-
-def _finite(value):
-    """``value`` with every number that is not finite (an error where a linkage cannot close:
-    +inf) turned into None, so that the summary is valid JSON (null, never Infinity or
-    NaN)."""
-    if isinstance(value, dict):
-        return {k: _finite(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_finite(v) for v in value]
-    if isinstance(value, (float, np.floating)):
-        return float(value) if math.isfinite(value) else None
-    return value

@@ -23,6 +23,7 @@ from kinelab import io, kinematics
 from kinelab.errors import AssemblyError, KinelabError, ModelError, describe, quoted, shown
 from kinelab.io import ModelFile
 from kinelab.io._modelfile import errors_from
+from kinelab.io._results import json_ready
 from kinelab.kinematics import KinematicSolution, Tracker
 from kinelab.kinematics._columns import INPUT_SI_UNITS
 from kinelab.model import is_real
@@ -180,13 +181,7 @@ def prepare(body: dict) -> _Prepared:
 
 def _finite(values) -> list:
     """Numbers for JSON: ``None`` where a value is not finite."""
-    a = np.asarray(values, float)
-    finite = np.isfinite(a)
-    if finite.all():
-        return a.tolist()
-    out = a.astype(object)
-    out[~finite] = None
-    return out.tolist()
+    return json_ready(np.asarray(values, float))
 
 
 def study(body: dict) -> dict:
