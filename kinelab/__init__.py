@@ -6,7 +6,7 @@
 >>> sol.angle("coupler").shape, sol.position("B").shape
 ((720,), (720, 2))
 """
-import importlib
+from importlib import import_module as _import_module
 
 from kinelab import errors, io, kinematics, mechanisms, model, solvers
 from kinelab._memory import memory_budget, reuse_result_memory
@@ -26,9 +26,9 @@ _ON_FIRST_USE = ("derive", "dynamics", "plot", "spatial", "structure", "sweep", 
 
 def __getattr__(name):
     if name in _ON_FIRST_USE:
-        return importlib.import_module(f"kinelab.{name}")
+        return _import_module(f"kinelab.{name}")
     raise AttributeError(f"module 'kinelab' has no attribute {name!r}")
 
 
 def __dir__():
-    return sorted(set(globals()) | set(_ON_FIRST_USE))
+    return sorted({n for n in globals() if not n.startswith("_")} | set(_ON_FIRST_USE))

@@ -26,7 +26,8 @@ from kinelab.errors import AssemblyError, ModelError, describe, shown
 from kinelab.kinematics._geometry import sketch_angle
 from kinelab.model import Mechanism, Point, Units
 
-__all__ = ["Assembly", "assemble", "pose", "needs_assembly", "check_assembled", "assembly_miss"]
+__all__ = ["Assembly", "assemble", "pose", "needs_assembly", "check_assembled", "assembly_miss",
+           "SketchNotAssembled"]
 
 _TOL = 1e-14          # relative to the mechanism's size: assembled
 _ITERATIONS = 60
@@ -159,17 +160,25 @@ def assembly_miss(m: Mechanism) -> float:
     return system.worst(system.x0)[1] / system.scale
 
 
+class SketchNotAssembled(ModelError):
+    """A model whose sketch misses the lengths, places or offsets it declares (a rough
+    sketch that was not assembled): ``miss`` says which, and by how much."""
+
+    def __init__(self, part: str, by: float):
+        self.miss = f"{describe(part)} misses its declared length or place by {by:.6g} m"
+        super().__init__(f"the sketch is not assembled: {self.miss}; assemble it first, with "
+                         "kl.kinematics.assemble(mechanism).mechanism")
+
+
 def check_assembled(m: Mechanism) -> None:
-    """Raise a ModelError when a model's sketch does not have the lengths, places and
-    offsets it declares (a rough sketch that was not assembled)."""
+    """Raise SketchNotAssembled when a model's sketch does not have the lengths, places
+    and offsets it declares."""
     if not needs_assembly(m) or m.space != "planar":
         return
     system = _Constraints(m)
     name, miss = system.worst(system.x0)
     if miss > 1e-9 * system.scale:
-        raise ModelError(f"the sketch is not assembled: {describe(name)} misses its declared length or "
-                         f"place by {miss:.6g} m; assemble it first, with "
-                         "kl.kinematics.assemble(mechanism).mechanism")
+        raise SketchNotAssembled(name, miss)
 
 
 def _min_norm(J, b: np.ndarray) -> np.ndarray:

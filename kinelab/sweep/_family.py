@@ -18,7 +18,7 @@ import numpy as np
 
 from kinelab import mechanisms
 from kinelab.errors import KinelabError, ModelError, check_choice, describe, expected_one_of
-from kinelab.kinematics import analyze, plan
+from kinelab.kinematics import SketchNotAssembled, analyze, plan
 from kinelab.model import Mechanism, Point
 from kinelab.solvers import wrap_angle
 from kinelab.sweep._batch import Batch, EngineBatch, FourbarBatch
@@ -214,24 +214,17 @@ class DesignOffModel(ModelError):
                          "the model")
 
 
-_NOT_ASSEMBLED = "the sketch is not assembled: "    # kinelab.kinematics' words for it
-
-
 def _check_design(mech: Mechanism, row: Mapping[str, float], base: Mechanism) -> None:
     """Plan a design's mechanism (the plan is cached on it), saying in the sweep's terms
     when the design breaks what its model declares."""
     try:
         plan(mech)
-    except ModelError as exc:
-        line = str(exc).splitlines()[0] if str(exc) else ""
-        if not line.startswith(_NOT_ASSEMBLED):
-            raise
+    except SketchNotAssembled as exc:
         # the engine's advice (assemble the sketch in Python) would move the design itself
-        detail = line.removeprefix(_NOT_ASSEMBLED).split("; assemble it first")[0]
         sketch = {f"{p.name}.{c}": getattr(p, c) for p in base.points for c in "xy"}
         moved = {p: v for p, v in row.items() if v != sketch.get(p)}
         design = ", ".join(f"{p} = {v:g} m" for p, v in list(moved.items())[:4]) or "as drawn"
-        raise DesignOffModel(detail, f"({design}{', ...' if len(moved) > 4 else ''})") from None
+        raise DesignOffModel(exc.miss, f"({design}{', ...' if len(moved) > 4 else ''})") from None
 
 
 class _EngineDesigns(Designs):

@@ -118,9 +118,12 @@ def test_the_ground_is_the_frame():
 
 
 def test_a_rough_sketch_is_not_analysed_as_it_is():
-    with pytest.raises(ModelError, match=r"the sketch is not assembled: '\w+' misses .* assemble it "
-                                         r"first, with kl.kinematics.assemble"):
+    with pytest.raises(kl.kinematics.SketchNotAssembled,
+                       match=r"the sketch is not assembled: '\w+' misses .* assemble it "
+                             r"first, with kl.kinematics.assemble") as info:
         kl.analyze(rough_fourbar(), 0.5)
+    assert isinstance(info.value, ModelError)
+    assert info.value.miss in str(info.value) and info.value.miss.endswith(" m")
 
 
 def test_a_slider_crank_with_an_exact_offset():

@@ -1,5 +1,6 @@
 """The library's side of the sweep's refusals: samples, speed, grids, options, paths, and
 no library warning on the way."""
+import re
 import warnings
 
 import numpy as np
@@ -92,6 +93,7 @@ def test_a_design_off_the_models_places_is_one_error_without_python_advice():
                        match=r"^designs: the design \(B\.x = 1\.5 m\) moves points off") as info:
         kl.sweep.run(fam, {"B.x": [1.5]})
     assert "kl." not in str(info.value)
+    assert re.search(r"\('\w+' misses its declared length or place by [0-9.e+-]+ m\)", str(info.value))
     assert kl.sweep.run(fam, {"A.y": [fam.defaults["A.y"]]}, samples=8)["assembles"].tolist() == [True]
 
 
