@@ -28,6 +28,18 @@ __all__ = [
 class KinelabError(Exception):
     """Base class of every kinelab error."""
 
+    def __reduce__(self):
+        # pickled as its state, not as arguments to __init__ again (the errors that carry
+        # data take other arguments than their message): Dask's workers send them back
+        return _rebuilt, (type(self), self.args, self.__dict__)
+
+
+def _rebuilt(cls: type[KinelabError], args: tuple, state: dict) -> KinelabError:
+    exc = cls.__new__(cls)
+    exc.args = args
+    exc.__dict__.update(state)
+    return exc
+
 
 class ModelError(KinelabError, ValueError):
     """An invalid model, model file or argument.

@@ -57,3 +57,39 @@ def test_a_model_error_shows_a_bounded_number_of_problems():
     lines = str(exc).splitlines()
     assert len(lines) == PROBLEMS_SHOWN + 1 and len(exc.problems) == 1000
     assert lines[-1] == f"big.toml: and {1000 - PROBLEMS_SHOWN} more problems; fix these first"
+
+
+def test_errors_that_carry_data_survive_pickling():
+    """Dask's workers send errors back pickled: the data and the message must come through."""
+    import pickle
+
+    import kinelab as kl
+    from kinelab.errors import AssemblyError
+
+    rocker = kl.mechanisms.fourbar(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)  # non-Grashof
+    with pytest.raises(kl.kinematics.UnreachableInput) as info:
+        kl.analyze(rocker, 2.0)
+    for exc in (info.value, ModelError(["a: b", "c: d"], source="m.toml"),
+                AssemblyError("open", loop="dyad", gap=0.5, reachable=[(0.0, 1.0)]),
+                kl.sweep._family.DesignOffModel("B.x misses by 1 m", "(B.x = 1 m)")):
+        back = pickle.loads(pickle.dumps(exc))
+        assert type(back) is type(exc) and str(back) == str(exc)
+        assert vars(back) == vars(exc)
+    assert back.design == "(B.x = 1 m)"
+    assert pickle.loads(pickle.dumps(info.value)).q == (2.0,)
+
+
+def test_an_input_out_of_reach_is_said_in_a_files_units_and_names():
+    import kinelab as kl
+    from kinelab.model import Units
+
+    rocker = kl.mechanisms.fourbar(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)  # non-Grashof
+    with pytest.raises(kl.kinematics.UnreachableInput) as info:
+        kl.analyze(rocker, 2.0)
+    exc = info.value
+    # cos q >= -0.3125 reaches 108.2100...deg; the gap is said in mm, 1000 times the metres
+    text = exc.saying(Units("mm", "deg"), ("crank angle",))
+    assert text.startswith("dyad 'coupler'-'rocker' (RRR A-B-O4) cannot close at 'crank angle' = "
+                           f"{2.0 * 180 / 3.141592653589793:.6g} deg: it misses by "
+                           f"{exc.gap * 1000:.6g} mm; 'crank angle' reaches [-108.21, 108.21] deg")
+    assert exc.saying() + "; narrow the input range (or pass unreachable='mask')" == str(exc)

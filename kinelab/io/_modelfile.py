@@ -256,16 +256,29 @@ class ModelFile:
         return q, np.array(qd), np.array(qdd)
 
 
+# what to do about input values out of reach, by the field that gave them
+_REACH_ADVICE = {"inputs": "narrow the range of the file's inputs",
+                 "--at": "give --at a value within reach", "q": "choose a value within reach"}
+
+
 @contextmanager
 def errors_from(mf: ModelFile, field: str = ""):
     """Name the file (and a field) in the errors raised inside: ``crank_rocker.toml:
-    inputs: ...`` (``model: ...`` when the file has no name)."""
+    inputs: ...`` (``model: ...`` when the file has no name).  Input values out of reach
+    are said in the file's units and with its inputs' names."""
+    from kinelab.kinematics import UnreachableInput
+
     try:
         yield
     except KinelabError as exc:
         prefix = f"{mf.source or 'model'}: {field + ': ' if field else ''}"
         if isinstance(exc, ModelError):
             raise ModelError([prefix + p for p in exc.problems]) from None
+        if isinstance(exc, UnreachableInput):
+            advice = _REACH_ADVICE.get(field, "choose input values within reach")
+            raise AssemblyError(f"{prefix}{exc.saying(mf.units, mf.mechanism.input_names)}; "
+                                f"{advice}", loop=exc.loop, gap=exc.gap,
+                                reachable=exc.reachable) from None
         raise type(exc)("\n".join(prefix + line for line in str(exc).splitlines())) from None
 
 

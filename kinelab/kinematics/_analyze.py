@@ -13,14 +13,15 @@ from kinelab.errors import AssemblyError, ModelError, SingularityError, check_ch
 from kinelab.kinematics import _codes as k
 from kinelab.kinematics._assemble import check_assembled
 from kinelab.kinematics._branches import BranchMap, ChangePoint, branch_map, branched_ops
+from kinelab.kinematics._columns import INPUT_SI_UNITS
 from kinelab.kinematics._evaluate import run as _run
 from kinelab.kinematics._plan import Plan, build_plan
 from kinelab.kinematics._solution import KinematicSolution
-from kinelab.model import Mechanism, real_array
+from kinelab.model import Mechanism, Units, real_array
 from kinelab.solvers import bisect, wrap_angle
 
 __all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "change_points",
-           "assembly_status", "AssemblyStatus"]
+           "assembly_status", "AssemblyStatus", "UnreachableInput"]
 
 _NOTHING = np.empty(0, np.int64)   # items written out where only the status matters
 
@@ -236,16 +237,60 @@ def _a_turn_away(p: Plan, out, q, qd, qdd, stored=None) -> None:
         out[key][rows[good]] = again[key][good]
 
 
-def _describe_failure(p: Plan, out, q, bad: np.ndarray) -> str:
+class UnreachableInput(AssemblyError):
+    """Input values where the loops do not close, or where the motion cannot follow from
+    the sketch: ``q`` the first such values (SI, one per input), ``kinds`` the inputs'
+    kinds ('angle' or 'slide'), ``stalled`` whether the motion stopped at a limit position
+    or a singular configuration (else ``loop`` misses by ``gap`` metres), ``reachable`` the
+    intervals of a single input that do assemble.  :meth:`saying` words it in a model
+    file's units and input names."""
+
+    __module__ = "kinelab.kinematics"      # where users find it
+
+    def __init__(self, loop: str, q, kinds, *, stalled: bool, gap: float,
+                 reachable: list[tuple[float, float]] | None):
+        self.q, self.kinds, self.stalled = tuple(float(v) for v in q), tuple(kinds), stalled
+        super().__init__("", loop=loop, gap=gap, reachable=reachable)
+        self.args = (self.saying() + "; narrow the input range (or pass unreachable='mask')",)
+
+    def saying(self, units: Units | None = None, names: tuple[str, ...] = ()) -> str:
+        """The failure, input values and lengths in ``units`` (default SI); with the
+        inputs' ``names``, each value is named (``jO2 = 30 deg``), else written ``q = ...``."""
+        u = units or Units()
+
+        def value(v: float, kind: str) -> str:
+            si = INPUT_SI_UNITS[kind]
+            return f"{float(u.convert(v, si)):.6g} {u.unit(si)}"
+
+        shown_q = [value(v, kind) for v, kind in zip(self.q, self.kinds)]
+        if names:
+            at = ", ".join(f"{describe(n)} = {v}" for n, v in zip(names, shown_q))
+        else:
+            at = "q = " + (shown_q[0] if len(shown_q) == 1 else f"({', '.join(shown_q)})")
+        if self.stalled:
+            text = (f"{self.loop} cannot follow the motion to {at}: the continuation stopped at "
+                    "a limit position or a singular configuration")
+        else:
+            text = f"{self.loop} cannot close at {at}: it misses by {value(self.gap, 'slide')}"
+        if self.reachable is not None:
+            si = INPUT_SI_UNITS[self.kinds[0]]
+            spans = ", ".join(f"[{float(u.convert(lo, si)):.6g}, {float(u.convert(hi, si)):.6g}]"
+                              for lo, hi in self.reachable)
+            who = f"{describe(names[0])} reaches" if names else "reachable q is"
+            text += (f"; {who} {spans} {u.unit(si)}" if self.reachable else
+                     "; it assembles nowhere near the sketch")
+        return text
+
+
+def _unreachable(p: Plan, mechanism: Mechanism, method: str, out, q, bad: np.ndarray) -> UnreachableInput:
+    """The error of an analysis whose samples ``bad`` do not assemble (or cannot be reached)."""
     i = int(bad[0])
-    op = int(out["fail"][i, 1])
-    step = p.step_of_op(op)
-    where = step.label if step is not None else f"operation {op}"
-    qtxt = _format_q(p, q[i])
-    if out["status"][i] == k.ST_NO_ASSEMBLY:
-        return f"{where} cannot close at q = {qtxt}: it misses by {out['fail'][i, 0]:.6g} m"
-    return (f"{where} cannot follow the motion to q = {qtxt}: the continuation stopped at a limit "
-            "position or a singular configuration")
+    gap, op = out["fail"][i]
+    step = p.step_of_op(int(op))
+    reach = reachable_ranges(mechanism, method=method) if len(p.input_kinds) == 1 else None
+    return UnreachableInput(step.label if step is not None else f"operation {int(op)}", q[i],
+                            p.input_kinds, stalled=out["status"][i] != k.ST_NO_ASSEMBLY,
+                            gap=float(gap), reachable=reach)
 
 
 def _format_q(p: Plan, qrow) -> str:
@@ -481,19 +526,7 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
     if not ok.all():
         bad = np.flatnonzero(~ok)
         if unreachable == "raise":
-            msg = _describe_failure(p, out, q2, bad)
-            reach = None
-            if M == 1:
-                reach = reachable_ranges(mechanism, method=method)
-                unit = "rad" if p.input_kinds[0] == "angle" else "m"
-                spans = ", ".join(f"[{lo:.6g}, {hi:.6g}]" for lo, hi in reach)
-                msg += (f"; reachable q is {spans} {unit}" if reach else
-                        "; it assembles nowhere near the sketch")
-                msg += "; narrow the input range (or pass unreachable='mask')"
-            gap, op = out["fail"][bad[0]]
-            step = p.step_of_op(int(op))
-            raise AssemblyError(msg, loop=step.label if step else "", gap=float(gap),
-                                reachable=reach)
+            raise _unreachable(p, mechanism, method, out, q2, bad)
         jets[bad] = np.nan
         rates[bad] = np.nan
         diag[bad] = np.nan

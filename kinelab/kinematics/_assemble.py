@@ -164,6 +164,8 @@ class SketchNotAssembled(ModelError):
     """A model whose sketch misses the lengths, places or offsets it declares (a rough
     sketch that was not assembled): ``miss`` says which, and by how much."""
 
+    __module__ = "kinelab.kinematics"      # where users find it
+
     def __init__(self, part: str, by: float):
         self.miss = f"{describe(part)} misses its declared length or place by {by:.6g} m"
         super().__init__(f"the sketch is not assembled: {self.miss}; assemble it first, with "

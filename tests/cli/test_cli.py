@@ -253,9 +253,11 @@ def test_unreachable_input_range_names_file_and_field(tmp_path):
                                     "[-108.21, 108.21] deg; narrow the range")
     result = run("analyze", model, "--out", tmp_path / "out")
     assert result.exit_code == 2
-    assert result.stderr.startswith("kinelab: error: nongrashof.toml: inputs: dyad 'coupler'-'rocker' "
-                                    "(RRR A-B-O4) cannot close at q = ")
-    assert "narrow the input range" in result.stderr
+    # in the file's units and names, with the file's advice
+    assert re.fullmatch(r"kinelab: error: nongrashof\.toml: inputs: dyad 'coupler'-'rocker' \(RRR "
+                        r"A-B-O4\) cannot close at 'jO2' = [0-9.]+ deg: it misses by [0-9.]+ "
+                        r"mm; 'jO2' reaches \[-108\.21\d*, 108\.21\d*\] deg; narrow the "
+                        r"range of the file's inputs\n", result.stderr)
     assert not (tmp_path / "out").exists()
 
 
