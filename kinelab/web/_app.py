@@ -13,7 +13,7 @@ from starlette.responses import FileResponse, JSONResponse, Response
 from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
-from kinelab.errors import KinelabError, shown_path
+from kinelab.errors import KinelabError, ModelError, shown_path
 from kinelab.web import _api, _export
 
 __all__ = ["create_app", "MAX_BODY"]
@@ -52,8 +52,10 @@ async def _body(request: Request) -> dict:
     return data
 
 
-def _error(message: str, status: int) -> JSONResponse:
-    return JSONResponse({"error": message}, status_code=status)
+def _error(message: str, status: int, problems: tuple[str, ...] = ()) -> JSONResponse:
+    """``{"error": message}``, with ``problems`` one by one when a model has several."""
+    return JSONResponse({"error": message, **({"problems": list(problems)} if problems else {})},
+                        status_code=status)
 
 
 def _route(call, *, raw: bool = False):
@@ -70,7 +72,8 @@ def _route(call, *, raw: bool = False):
                           "kilobytes: send less", 413)
         except KinelabError as exc:
             return _error(str(exc), 400 if isinstance(exc, ValueError) or
-                          type(exc) is KinelabError else 422)
+                          type(exc) is KinelabError else 422,
+                          exc.problems if isinstance(exc, ModelError) else ())
         except Exception:            # a fault of kinelab's: logged, never a traceback sent
             _log.exception("request %s failed", request.url.path)
             return _error("internal error: the server could not answer this request; "

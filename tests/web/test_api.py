@@ -58,7 +58,8 @@ def test_a_malformed_model_gets_the_command_lines_message(client, tmp_path):
     lines = [line.removeprefix("kinelab: error: ") for line in r.output.strip().splitlines()]
     answer = client.post("/api/analyze", json={"model": model, "source": "bad.json"})
     assert answer.status_code == 400
-    assert answer.json() == {"error": "\n".join(lines)}
+    assert answer.json() == {"error": "\n".join(lines),
+                             "problems": [line.removeprefix("bad.json: ") for line in lines]}
     assert "links[2].points" in answer.json()["error"]
 
 
