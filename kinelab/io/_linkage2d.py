@@ -19,7 +19,8 @@ import numpy as np
 from kinelab.errors import ModelError
 from kinelab.io._fields import Reader, describe, quoted, shown
 from kinelab.io._text import loads, read_text
-from kinelab.model import MAX_JOINTS, MAX_LINKS, Input, Joint, Link, Mechanism, Point
+from kinelab.model import (MAX_JOINTS, MAX_LINKS, Input, Joint, Link, Mechanism, Point, angle_problem,
+                           coordinate_problem)
 
 __all__ = ["from_linkage2d_json"]
 
@@ -108,7 +109,7 @@ def from_linkage2d_json(source: str | os.PathLike | Mapping[str, Any], *,
     ls = _UNITS[unit]
     deg = math.pi / 180 if angle_unit == "deg" else 1.0
     links = _links(r, top["links"], ls, deg)
-    joints = _joints(r, top["joints"], links)
+    joints = _joints(r, top["joints"], links, ls, deg)
     if r.problems:
         raise ModelError(r.problems, source=where)
     try:
@@ -128,23 +129,25 @@ def _links(r: Reader, value, ls: float, deg: float) -> dict[str, dict]:
         lid = r.name(t["id"], f"{w}.id") if "id" in t else None
         pose = r.table(t.get("pose", {"position": [0, 0], "angle": 0}), f"{w}.pose",
                        ("position", "angle")) or {}
-        position = r.numbers(pose.get("position", [0, 0]), f"{w}.pose.position", 2, scale=ls)
-        angle = r.number(pose.get("angle", 0), f"{w}.pose.angle", scale=deg)
+        position = r.numbers(pose.get("position", [0, 0]), f"{w}.pose.position", 2, scale=ls,
+                             check=coordinate_problem)
+        angle = r.number(pose.get("angle", 0), f"{w}.pose.angle", scale=deg, check=angle_problem)
         points = {}
         for k, p in enumerate(r.array(t.get("points", []), f"{w}.points", "points") or []):
             p = r.table(p, f"{w}.points[{k}]", ("id", "name", "position"), required=("id", "position"))
             if p is not None and "id" in p and "position" in p:
                 pid = r.name(p["id"], f"{w}.points[{k}].id")
-                xy = r.numbers(p["position"], f"{w}.points[{k}].position", 2, scale=ls)
-                if pid is not None and xy is not None:
-                    points[pid] = np.array(xy)
+                xy = r.numbers(p["position"], f"{w}.points[{k}].position", 2, scale=ls,
+                               check=coordinate_problem)
+                if pid is not None:         # a bad position is already a problem
+                    points[pid] = np.array(xy or (0.0, 0.0))
         directions = {}
         for k, d in enumerate(r.array(t.get("directions", []), f"{w}.directions", "directions") or []):
             d = r.table(d, f"{w}.directions[{k}]", ("id", "name", "angle"), required=("id", "angle"))
             if d is not None and "id" in d and "angle" in d:
-                a = r.number(d["angle"], f"{w}.directions[{k}].angle", scale=deg)
-                if a is not None and isinstance(d["id"], str):
-                    directions[d["id"]] = a
+                a = r.number(d["angle"], f"{w}.directions[{k}].angle", scale=deg, check=angle_problem)
+                if isinstance(d["id"], str):        # a bad angle is already a problem
+                    directions[d["id"]] = 0.0 if a is None else a
         lines = {}
         for k, ln in enumerate(r.array(t.get("lines", []), f"{w}.lines", "lines") or []):
             ln = r.table(ln, f"{w}.lines[{k}]", ("id", "name", "point_ids"), required=("id", "point_ids"))
@@ -154,8 +157,10 @@ def _links(r: Reader, value, ls: float, deg: float) -> dict[str, dict]:
                     lines[ln["id"]] = ids
         grounded = r.boolean(t.get("isGrounded", False), f"{w}.isGrounded")
         name = t.get("name", lid)
-        if lid is None or position is None or angle is None:
+        if lid is None:
             continue
+        # a bad pose is already a problem: the link is kept, so that joints do not call it unknown
+        position, angle = position or (0.0, 0.0), 0.0 if angle is None else angle
         if lid in out:
             r.fail(f"{w}.id", f"{shown(lid)} is already the id of another link")
             continue
@@ -168,7 +173,7 @@ def _links(r: Reader, value, ls: float, deg: float) -> dict[str, dict]:
     return out
 
 
-def _joints(r: Reader, value, links: dict[str, dict]) -> list[dict]:
+def _joints(r: Reader, value, links: dict[str, dict], ls: float, deg: float) -> list[dict]:
     kinds = {"revolute": ("parent", "child", "point_id_parent", "point_id_child"),
              "prismatic": ("parent", "child", "axis_parent", "axis_child"),
              "pin-in-slot": ("parent", "child", "line_id_parent", "point_id_child"),
@@ -213,15 +218,16 @@ def _joints(r: Reader, value, links: dict[str, dict]) -> list[dict]:
             j["line"] = r.name(t["line_id_parent"], f"{w}.line_id_parent", P["lines"], "line")
             j["c"] = r.name(t["point_id_child"], f"{w}.point_id_child", C["points"], "point")
         else:
-            j["rel"] = r.numbers(t["relative_pos"], f"{w}.relative_pos", 2)
-            j["rel_angle"] = r.number(t["relative_angle"], f"{w}.relative_angle")
+            j["rel"] = r.numbers(t["relative_pos"], f"{w}.relative_pos", 2, scale=ls,
+                                 check=coordinate_problem)
+            j["rel_angle"] = r.number(t["relative_angle"], f"{w}.relative_angle", scale=deg,
+                                      check=angle_problem)
         if all(v is not None for v in j.values()):
             out.append(j)
     return out
 
 
-def _bodies(links: dict[str, dict], joints: list[dict], ls: float,
-            deg: float) -> dict[str, tuple[str, np.ndarray, float]]:
+def _bodies(links: dict[str, dict], joints: list[dict]) -> dict[str, tuple[str, np.ndarray, float]]:
     """Each link's body (its root link) and the link's frame in the body's: (root, offset, angle)."""
     frame = {}
     welds: dict[str, list[tuple[dict, str, int]]] = {}    # link -> (weld, other link, sign)
@@ -239,8 +245,7 @@ def _bodies(links: dict[str, dict], joints: list[dict], ls: float,
             for j, y, sign in welds.get(a, ()):
                 if y not in frame:
                     _, off, ang = frame[a]
-                    rel = np.array(j["rel"]) * ls
-                    rel_angle = j["rel_angle"] * deg
+                    rel, rel_angle = np.array(j["rel"]), j["rel_angle"]
                     if sign > 0:     # child frame = parent frame + (rel, rel_angle)
                         o, t = off + _rot(ang) @ rel, ang + rel_angle
                     else:
@@ -276,7 +281,7 @@ def _sparsity(joints, frame, slot, ground, bodies: int):
 def _build(top, links, joints, ls, deg, input_name) -> Mechanism:
     from scipy.optimize import least_squares
 
-    frame = _bodies(links, joints, ls, deg)
+    frame = _bodies(links, joints)
     roots = list(dict.fromkeys(f[0] for f in frame.values()))
     grounded = {frame[k][0] for k, v in links.items() if v["grounded"]}
     if len(grounded) != 1:

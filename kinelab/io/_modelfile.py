@@ -31,8 +31,8 @@ from kinelab.io._text import loads, read_text
 from kinelab.kinematics import Assembly, assemble
 from kinelab.kinematics._assemble import assembly_miss, needs_assembly
 from kinelab.model import (ANGLE_UNITS, JOINT_TYPES, LENGTH_UNITS, SPACES, Input, Joint, Link,
-                           Mechanism, Point, Units, length_problem, name_problem, range_problem,
-                           rate_problem)
+                           Mechanism, Point, Units, angle_problem, coordinate_problem,
+                           length_problem, name_problem, range_problem, rate_problem)
 
 __all__ = ["SCHEMA", "LENGTH_UNITS", "ANGLE_UNITS", "Units", "Outputs", "ModelFile", "load",
            "save", "from_toml", "to_toml", "from_json", "to_json", "errors_from"]
@@ -396,7 +396,7 @@ class _Parser:
             point_names = dict.fromkeys(raw_points)
         for pname, xy in raw_points.items():
             v = r.numbers(xy, f"points.{shown_key(pname)}", dim, scale=ls, what="coordinates",
-                          unit=units.length, check=_coordinate)
+                          unit=units.length, check=coordinate_problem)
             if v is not None:
                 points[pname] = v
         raw_links = list(self.items(top.get("links", []), "links", _LINK, ("name", "points")))
@@ -515,7 +515,7 @@ class _Parser:
 
     def axis(self, value, where, units: Units, dim: int):
         if isinstance(value, (int, float)) and not isinstance(value, bool) and dim == 2:
-            a = self.r.number(value, where, scale=units.angle_scale)
+            a = self.r.number(value, where, scale=units.angle_scale, check=angle_problem)
             return None if a is None else (math.cos(a), math.sin(a))
         v = self.r.numbers(value, where, dim)
         if v is not None and math.hypot(*v) == 0.0:
@@ -748,7 +748,7 @@ class _Parser:
                             f"after its first two ({quoted(pts[2:])}), got {shown(name)}")
                 continue
             xy = self.r.numbers(v, f"{where}.{shown_key(name)}", 2, scale=scale,
-                                what="a place [along, left]", check=_coordinate)
+                                what="a place [along, left]", check=coordinate_problem)
             if xy is not None:
                 out[name] = xy
         return out if len(out) == len(value) else None
@@ -760,10 +760,6 @@ def _file_lengths(problem: str, units: Units) -> str:
         return problem
     return re.sub(r"(?<![\w.])(-?\d+(?:\.\d*)?(?:e[-+]?\d+)?) m\b",
                   lambda g: f"{float(g.group(1)) / units.length_scale:.6g} {units.length}", problem)
-
-
-def _coordinate(v: float) -> str | None:
-    return length_problem(v, positive=False)
 
 
 def _joint_name(t: Mapping[str, Any]) -> Any:

@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 __all__ = ["MIN_LENGTH", "MAX_LENGTH", "MAX_RATE", "MAX_TURNS", "is_real", "real", "real_array",
+           "coordinate_problem", "angle_problem",
            "length_problem", "rate_problem", "range_problem", "name_problem"]
 
 # Sizes kinelab computes with, in SI.  Lengths: a nanometre to a million kilometres; with
@@ -73,6 +74,19 @@ def length_problem(value: float, *, positive: bool = True) -> str | None:
     return None
 
 
+def coordinate_problem(value: float) -> str | None:
+    """Why ``value`` (m) cannot be a coordinate or an offset, or None."""
+    return length_problem(value, positive=False)
+
+
+def angle_problem(value: float) -> str | None:
+    """Why ``value`` (rad) cannot be an angle of a drawing or a range, or None: far beyond a
+    turn, its sine and cosine lose every digit."""
+    if abs(value) > MAX_TURNS * 2 * math.pi:
+        return f"expected angles within {MAX_TURNS} turns of 0 either way"
+    return None
+
+
 def rate_problem(value: float, unit: str) -> str | None:
     """Why ``value`` (SI, per s or per s^2) cannot be an input's speed or acceleration."""
     if abs(value) > MAX_RATE:
@@ -85,8 +99,8 @@ def rate_problem(value: float, unit: str) -> str | None:
 def range_problem(start: float, stop: float, angle: bool) -> str | None:
     """Why ``(start, stop)`` (rad, or m) cannot be an input's range (other than being
     empty), or None."""
-    if angle and max(abs(start), abs(stop)) > MAX_TURNS * 2 * math.pi:
-        return f"expected angles within {MAX_TURNS} turns of 0 either way"
+    if angle:
+        return angle_problem(max(abs(start), abs(stop)))
     if not angle and max(abs(start), abs(stop)) > MAX_LENGTH:
         return f"expected a slide within {MAX_LENGTH:g} m of 0"
     return None

@@ -169,6 +169,8 @@ CASES = [
      "fb.toml: joints[5].axis: a P joint needs an axis"),
     ("zero axis", _replace('[[inputs]]', _SLIDER + 'axis = [0, 0]\n\n[[inputs]]'),
      "fb.toml: joints[5].axis: expected a direction, got the zero vector"),
+    ("axis angle beyond the turns", _replace('[[inputs]]', _SLIDER + 'axis = 1e300\n\n[[inputs]]'),
+     "fb.toml: joints[5].axis: expected angles within 1000 turns of 0 either way, got 1e+300"),
     ("axis as text", _replace('[[inputs]]', _SLIDER + 'axis = "x"\n\n[[inputs]]'),
      "fb.toml: joints[5].axis: expected an angle (deg) or a direction [x, y], got 'x'"),
     ("input range of one number", _replace('range = [0, 360]', 'range = [0]'),

@@ -194,6 +194,15 @@ def test_linkage2d_pin_in_slot_and_weld():
      "t.json: joints[0].point_id_child: expected a declared point, got 'Q'; declared points are 'O2', 'A'"),
     (lambda d: d["links"][0]["points"][1].update(position=[0, 500]),   # slide out of reach
      "t.json: joints: the links cannot be assembled"),
+    # beyond the model's limits, one problem each (the link stays known to its joints)
+    (lambda d: d["links"][2]["pose"].update(position=[1e300, 0]),
+     "t.json: links[2].pose.position: expected at most 1e+09 m in size, got [1e+300, 0]"),
+    (lambda d: d["links"][2]["points"][1].update(position=[0, 2e12]),    # mm
+     "t.json: links[2].points[1].position: expected at most 1e+09 m in size, got [0, 2000000000000.0]"),
+    (lambda d: d["links"][1]["pose"].update(angle=1e300),
+     "t.json: links[1].pose.angle: expected angles within 1000 turns of 0 either way, got 1e+300"),
+    (lambda d: d["links"][3]["directions"][0].update(angle=-4e5),
+     "t.json: links[3].directions[0].angle: expected angles within 1000 turns of 0 either way"),
 ])
 def test_bad_linkage2d_files(change, message, tmp_path):
     import copy
@@ -204,6 +213,7 @@ def test_bad_linkage2d_files(change, message, tmp_path):
     with pytest.raises(ModelError) as info:
         kl.io.from_linkage2d_json(tmp_path / "t.json")
     assert str(info.value).startswith(message)
+    assert len(info.value.problems) == 1
 
 
 # -- outlines ----------------------------------------------------------------------------
@@ -296,7 +306,7 @@ def test_export_and_import_commands(tmp_path):
 
 
 _l2d_values = st.recursive(
-    st.one_of(st.none(), st.booleans(), st.integers(-5, 5), st.floats(-1e3, 1e3),
+    st.one_of(st.none(), st.booleans(), st.integers(-5, 5), st.floats(-1e3, 1e3), st.floats(),
               st.sampled_from(["L1", "L2", "L3", "L4", "O", "A", "B", "G", "x", "revolute",
                                "prismatic", "pin-in-slot", "weld", "gear", "mm"])),
     lambda inner: st.one_of(st.lists(inner, max_size=3), st.dictionaries(st.sampled_from(
