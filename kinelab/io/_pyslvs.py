@@ -24,7 +24,7 @@ from collections.abc import Sequence
 
 from kinelab.errors import ModelError, describe, expected_one_of, shown
 from kinelab.io._modelfile import LENGTH_UNITS
-from kinelab.model import Input, Joint, Link, Mechanism, Point
+from kinelab.model import Input, Joint, Link, Mechanism, Point, angle_problem
 
 __all__ = ["from_pyslvs", "to_pyslvs", "IMPORT_SPEEDS"]
 
@@ -98,6 +98,9 @@ def _parse(text: str) -> list[tuple[str, float, float, float, tuple[str, ...]]]:
         angle = 0.0
         if t.accept("open", "A["):
             angle = float(t.take("number", what="the slot angle, deg"))
+            if why := angle_problem(math.radians(angle)):
+                raise ModelError(f"expression: joint {len(joints)}: the slot angle: {why}, got "
+                                 f"{angle:g} deg")
             t.take("close")
             t.take("comma")
         elif kind != "R":

@@ -78,6 +78,8 @@ def test_pyslvs_round_trip_of_every_catalogue_mechanism(name):
     ("M[J[Q, P[0, 0], L[a]]]", "expression: joint 0: type: expected one of 'R', 'P', 'RP', got 'Q'"),
     ("M[J[R, P[0, 0] L[a]]]", "expression: character 16: expected ',', got 'L['"),
     ("M[J[P, P[0, 0], L[ground, a]]]", "expression: joint 0: a P joint needs its slot angle, A[degrees]"),
+    ("M[J[P, A[1e300], P[0, 0], L[ground, a]]]", "expression: joint 0: the slot angle: expected "
+     "angles within 1000 turns of 0 either way, got 1e+300 deg"),
     ("M[J[R, P[0, x], L[a]]]", "expression: character 13: expected a number (y), got 'x'"),
     ("M[J[R, P[0, 0], L[]]]", "expression: joint 0: it joins no link; attach it or delete it"),
     ("M[J[R, P[0, 0], L[a, b]]]", "expression: no joint is on the ground link; name the fixed link 'ground'"),
