@@ -93,3 +93,19 @@ def test_an_input_out_of_reach_is_said_in_a_files_units_and_names():
                            f"{2.0 * 180 / 3.141592653589793:.6g} deg: it misses by "
                            f"{exc.gap * 1000:.6g} mm; 'crank angle' reaches [-108.21, 108.21] deg")
     assert exc.saying() + "; narrow the input range (or pass unreachable='mask')" == str(exc)
+
+
+def test_an_input_just_past_a_limit_position_does_not_read_as_the_limit():
+    import math
+
+    import kinelab as kl
+    from kinelab.model import Units
+
+    rocker = kl.mechanisms.fourbar(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)  # non-Grashof
+    limit = math.acos(-0.3125)                 # 108.2099569 deg
+    with pytest.raises(kl.kinematics.UnreachableInput) as info:
+        kl.analyze(rocker, limit + 1e-8)
+    text = info.value.saying(Units("m", "deg"))
+    # 6 digits would print both as 108.21; 10 tell them apart (1e-8 rad is 5.7e-7 deg)
+    assert "cannot close at q = 108.2099574 deg" in text
+    assert "reachable q is [-108.2099569, 108.2099569] deg" in text

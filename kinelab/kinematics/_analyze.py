@@ -257,12 +257,12 @@ class UnreachableInput(AssemblyError):
         """The failure, input values and lengths in ``units`` (default SI); with the
         inputs' ``names``, each value is named (``jO2 = 30 deg``), else written ``q = ...``."""
         u = units or Units()
-
-        def value(v: float, kind: str) -> str:
-            si = INPUT_SI_UNITS[kind]
-            return f"{float(u.convert(v, si)):.6g} {u.unit(si)}"
-
-        shown_q = [value(v, kind) for v, kind in zip(self.q, self.kinds)]
+        bounds = [float(u.convert(b, INPUT_SI_UNITS[self.kinds[0]]))
+                  for span in self.reachable or () for b in span]
+        q_here = [float(u.convert(v, INPUT_SI_UNITS[kind])) for v, kind in zip(self.q, self.kinds)]
+        digits = _telling_digits(q_here[0], bounds) if len(q_here) == 1 else 6
+        shown_q = [f"{v:.{digits}g} {u.unit(INPUT_SI_UNITS[kind])}"
+                   for v, kind in zip(q_here, self.kinds)]
         if names:
             at = ", ".join(f"{describe(n)} = {v}" for n, v in zip(names, shown_q))
         else:
@@ -271,15 +271,25 @@ class UnreachableInput(AssemblyError):
             text = (f"{self.loop} cannot follow the motion to {at}: the continuation stopped at "
                     "a limit position or a singular configuration")
         else:
-            text = f"{self.loop} cannot close at {at}: it misses by {value(self.gap, 'slide')}"
+            text = (f"{self.loop} cannot close at {at}: it misses by "
+                    f"{float(u.convert(self.gap, 'm')):.6g} {u.length}")
         if self.reachable is not None:
-            si = INPUT_SI_UNITS[self.kinds[0]]
-            spans = ", ".join(f"[{float(u.convert(lo, si)):.6g}, {float(u.convert(hi, si)):.6g}]"
-                              for lo, hi in self.reachable)
+            spans = ", ".join(f"[{lo:.{digits}g}, {hi:.{digits}g}]"
+                              for lo, hi in zip(bounds[::2], bounds[1::2]))
             who = f"{describe(names[0])} reaches" if names else "reachable q is"
-            text += (f"; {who} {spans} {u.unit(si)}" if self.reachable else
-                     "; it assembles nowhere near the sketch")
+            text += (f"; {who} {spans} {u.unit(INPUT_SI_UNITS[self.kinds[0]])}" if self.reachable
+                     else "; it assembles nowhere near the sketch")
         return text
+
+
+def _telling_digits(value: float, bounds: list[float]) -> int:
+    """Significant digits (6 or more) that tell ``value`` apart from each of ``bounds`` in
+    print: an input just past a limit position must not read as the limit itself."""
+    digits = 6
+    while digits < 17 and any(b != value and f"{b:.{digits}g}" == f"{value:.{digits}g}"
+                              for b in bounds):
+        digits += 1
+    return digits
 
 
 def _unreachable(p: Plan, mechanism: Mechanism, method: str, out, q, bad: np.ndarray) -> UnreachableInput:
