@@ -7,6 +7,7 @@ Every problem of a file is collected and raised together as one
 """
 from __future__ import annotations
 
+import copy
 import dataclasses
 import inspect
 import json
@@ -256,17 +257,18 @@ class ModelFile:
         return q, np.array(qd), np.array(qdd)
 
 
-# what to do about input values out of reach, by the field that gave them
-_REACH_ADVICE = {"inputs": "narrow the range of the file's inputs",
-                 "--at": "give --at a value within reach", "q": "choose a value within reach"}
+# what a model file's user is asked for instead of input values that will not do, by the
+# field that gave them ({} is the error's ``instead``: a value within reach, off it, ...)
+_INSTEAD = {"inputs": "narrow the range of the file's inputs", "--at": "give --at {}",
+            "q": "choose {}"}
 
 
 @contextmanager
 def errors_from(mf: ModelFile, field: str = ""):
     """Name the file (and a field) in the errors raised inside: ``crank_rocker.toml:
-    inputs: ...`` (``model: ...`` when the file has no name).  Input values out of reach
-    are said in the file's units and with its inputs' names."""
-    from kinelab.kinematics import UnreachableInput
+    inputs: ...`` (``model: ...`` when the file has no name).  Input values that will not
+    do are said in the file's units and with its inputs' names."""
+    from kinelab.kinematics import SingularInput, UnreachableInput
 
     try:
         yield
@@ -274,11 +276,11 @@ def errors_from(mf: ModelFile, field: str = ""):
         prefix = f"{mf.source or 'model'}: {field + ': ' if field else ''}"
         if isinstance(exc, ModelError):
             raise ModelError([prefix + p for p in exc.problems]) from None
-        if isinstance(exc, UnreachableInput):
-            advice = _REACH_ADVICE.get(field, "choose input values within reach")
-            raise AssemblyError(f"{prefix}{exc.saying(mf.units, mf.mechanism.input_names)}; "
-                                f"{advice}", loop=exc.loop, gap=exc.gap,
-                                reachable=exc.reachable) from None
+        if isinstance(exc, (UnreachableInput, SingularInput)):
+            said = copy.copy(exc)          # the same error, with its data, in the file's words
+            advice = _INSTEAD.get(field, "choose {}").format(exc.instead)
+            said.args = (f"{prefix}{exc.saying(mf.units, mf.mechanism.input_names)}; {advice}",)
+            raise said from None
         raise type(exc)("\n".join(prefix + line for line in str(exc).splitlines())) from None
 
 

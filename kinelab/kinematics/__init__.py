@@ -11,13 +11,13 @@ Velocidades*, §4.6; Badan (IFG), *Análise de aceleração*) as data:
 :func:`acceleration_polygon`, :func:`kennedy_construction`, :func:`centrodes`,
 :func:`velocity_ratio`, and :func:`differentiate` for measured curves.
 """
-from kinelab.kinematics._analyze import (SINGULAR_TOL, AssemblyStatus, UnreachableInput, analyze,
-                                         assembly_status, change_points, plan, reachable_ranges,
-                                         turns_fully)
+from kinelab.kinematics._analyze import (SINGULAR_TOL, AssemblyStatus, analyze, assembly_status,
+                                         change_points, plan, reachable_ranges, turns_fully)
 from kinelab.kinematics._assemble import Assembly, SketchNotAssembled, assemble, pose
 from kinelab.kinematics._branches import ChangePoint
 from kinelab.kinematics._centrodes import (Centrodes, KennedyConstruction, KennedyStep, centrodes,
                                           kennedy_construction, velocity_ratio)
+from kinelab.kinematics._input_errors import SingularInput, UnreachableInput
 from kinelab.kinematics._instant_centers import (InstantCenter, InstantCenters, instant_center,
                                                  instant_centers)
 from kinelab.kinematics._measures import TimeRatio, time_ratio, transmission_angle
@@ -35,7 +35,7 @@ __all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "KinematicSolut
            "Plan", "Step", "SINGULAR_TOL", "transmission_angle", "time_ratio", "TimeRatio",
            "instant_center", "instant_centers", "InstantCenter", "InstantCenters", "change_points",
            "ChangePoint", "assemble", "Assembly", "SketchNotAssembled", "pose", "assembly_status",
-           "AssemblyStatus", "UnreachableInput",
+           "AssemblyStatus", "UnreachableInput", "SingularInput",
            "Tracker", "acceleration_difference", "AccelerationDifference", "relative_acceleration",
            "RelativeAcceleration", "velocity_polygon", "VelocityPolygon", "acceleration_polygon",
            "AccelerationPolygon", "Side", "LinkImage", "kennedy_construction",

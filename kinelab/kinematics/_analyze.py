@@ -9,19 +9,19 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab import _memory as memory
-from kinelab.errors import AssemblyError, ModelError, SingularityError, check_choice, describe, shown
+from kinelab.errors import AssemblyError, ModelError, check_choice, describe, shown
 from kinelab.kinematics import _codes as k
 from kinelab.kinematics._assemble import check_assembled
 from kinelab.kinematics._branches import BranchMap, ChangePoint, branch_map, branched_ops
-from kinelab.kinematics._columns import INPUT_SI_UNITS
+from kinelab.kinematics._input_errors import SingularInput, UnreachableInput
 from kinelab.kinematics._evaluate import run as _run
 from kinelab.kinematics._plan import Plan, build_plan
 from kinelab.kinematics._solution import KinematicSolution
-from kinelab.model import Mechanism, Units, real_array
+from kinelab.model import Mechanism, real_array
 from kinelab.solvers import bisect, wrap_angle
 
 __all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "change_points",
-           "assembly_status", "AssemblyStatus", "UnreachableInput"]
+           "assembly_status", "AssemblyStatus"]
 
 _NOTHING = np.empty(0, np.int64)   # items written out where only the status matters
 
@@ -237,61 +237,6 @@ def _a_turn_away(p: Plan, out, q, qd, qdd, stored=None) -> None:
         out[key][rows[good]] = again[key][good]
 
 
-class UnreachableInput(AssemblyError):
-    """Input values where the loops do not close, or where the motion cannot follow from
-    the sketch: ``q`` the first such values (SI, one per input), ``kinds`` the inputs'
-    kinds ('angle' or 'slide'), ``stalled`` whether the motion stopped at a limit position
-    or a singular configuration (else ``loop`` misses by ``gap`` metres), ``reachable`` the
-    intervals of a single input that do assemble.  :meth:`saying` words it in a model
-    file's units and input names."""
-
-    __module__ = "kinelab.kinematics"      # where users find it
-
-    def __init__(self, loop: str, q, kinds, *, stalled: bool, gap: float,
-                 reachable: list[tuple[float, float]] | None):
-        self.q, self.kinds, self.stalled = tuple(float(v) for v in q), tuple(kinds), stalled
-        super().__init__("", loop=loop, gap=gap, reachable=reachable)
-        self.args = (self.saying() + "; narrow the input range (or pass unreachable='mask')",)
-
-    def saying(self, units: Units | None = None, names: tuple[str, ...] = ()) -> str:
-        """The failure, input values and lengths in ``units`` (default SI); with the
-        inputs' ``names``, each value is named (``jO2 = 30 deg``), else written ``q = ...``."""
-        u = units or Units()
-        bounds = [float(u.convert(b, INPUT_SI_UNITS[self.kinds[0]]))
-                  for span in self.reachable or () for b in span]
-        q_here = [float(u.convert(v, INPUT_SI_UNITS[kind])) for v, kind in zip(self.q, self.kinds)]
-        digits = _telling_digits(q_here[0], bounds) if len(q_here) == 1 else 6
-        shown_q = [f"{v:.{digits}g} {u.unit(INPUT_SI_UNITS[kind])}"
-                   for v, kind in zip(q_here, self.kinds)]
-        if names:
-            at = ", ".join(f"{describe(n)} = {v}" for n, v in zip(names, shown_q))
-        else:
-            at = "q = " + (shown_q[0] if len(shown_q) == 1 else f"({', '.join(shown_q)})")
-        if self.stalled:
-            text = (f"{self.loop} cannot follow the motion to {at}: the continuation stopped at "
-                    "a limit position or a singular configuration")
-        else:
-            text = (f"{self.loop} cannot close at {at}: it misses by "
-                    f"{float(u.convert(self.gap, 'm')):.6g} {u.length}")
-        if self.reachable is not None:
-            spans = ", ".join(f"[{lo:.{digits}g}, {hi:.{digits}g}]"
-                              for lo, hi in zip(bounds[::2], bounds[1::2]))
-            who = f"{describe(names[0])} reaches" if names else "reachable q is"
-            text += (f"; {who} {spans} {u.unit(INPUT_SI_UNITS[self.kinds[0]])}" if self.reachable
-                     else "; it assembles nowhere near the sketch")
-        return text
-
-
-def _telling_digits(value: float, bounds: list[float]) -> int:
-    """Significant digits (6 or more) that tell ``value`` apart from each of ``bounds`` in
-    print: an input just past a limit position must not read as the limit itself."""
-    digits = 6
-    while digits < 17 and any(b != value and f"{b:.{digits}g}" == f"{value:.{digits}g}"
-                              for b in bounds):
-        digits += 1
-    return digits
-
-
 def _unreachable(p: Plan, mechanism: Mechanism, method: str, out, q, bad: np.ndarray) -> UnreachableInput:
     """The error of an analysis whose samples ``bad`` do not assemble (or cannot be reached)."""
     i = int(bad[0])
@@ -301,11 +246,6 @@ def _unreachable(p: Plan, mechanism: Mechanism, method: str, out, q, bad: np.nda
     return UnreachableInput(step.label if step is not None else f"operation {int(op)}", q[i],
                             p.input_kinds, stalled=out["status"][i] != k.ST_NO_ASSEMBLY,
                             gap=float(gap), reachable=reach)
-
-
-def _format_q(p: Plan, qrow) -> str:
-    parts = [f"{v:.6g} {'rad' if kind == 'angle' else 'm'}" for v, kind in zip(qrow, p.input_kinds)]
-    return parts[0] if len(parts) == 1 else "(" + ", ".join(parts) + ")"
 
 
 def reachable_ranges(mechanism: Mechanism, *, samples: int = 1441,
@@ -545,11 +485,7 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
         policy = at_singular if at_singular != "auto" else ("raise" if single else "flag")
         if policy == "raise":
             i = int(np.flatnonzero(singular)[0])
-            raise SingularityError(
-                f"q = {_format_q(p, q2[i])} is a singular configuration (det J = "
-                f"{diag[i, 0]:.3g}): positions exist but velocities and accelerations are not "
-                "defined there; move the input off it, or pass at_singular='flag' to get the "
-                "positions with the sample flagged")
+            raise SingularInput(q2[i], p.input_kinds, det=float(diag[i, 0]))
         jets[singular, :, 1:] = np.nan
         rates[singular] = np.nan
     sol = KinematicSolution(

@@ -24,6 +24,7 @@ import numpy as np
 
 from kinelab.errors import AssemblyError, ModelError, SingularityError, describe, quoted, shown
 from kinelab.kinematics._geometry import k_cross
+from kinelab.kinematics._input_errors import SingularInput
 from kinelab.kinematics._solution import KinematicSolution
 
 __all__ = ["AccelerationDifference", "RelativeAcceleration", "Side", "LinkImage",
@@ -270,9 +271,8 @@ def sample_index(sol: KinematicSolution, sample: int) -> int:
         raise AssemblyError(f"sample {i}: the loops do not close at {_q_text(sol, i)}; choose "
                             "a sample where the mechanism assembles")
     if sol.singular[i]:
-        raise SingularityError(f"sample {i}: singular configuration at {_q_text(sol, i)} "
-                               "(det J = 0): velocities and accelerations are not defined "
-                               "there; choose another sample")
+        raise SingularInput(sol.q[i], sol.plan.input_kinds, sample=i if n > 1 else None,
+                            advice="choose another sample")
     return i
 
 
