@@ -132,6 +132,7 @@ def _prepare_all() -> None:
             if line.strip() in _ready:
                 _load(line.strip())
         helper.stdout.close()
+        helper.wait()                         # it is ending: reaped here, not left a zombie
     for name in ENTRIES:
         if not _ready[name].is_set():
             _load(name)
