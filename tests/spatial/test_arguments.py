@@ -178,3 +178,92 @@ def test_tiny_directions_are_not_called_zero():
         sp.rotation([0.0, -0.0, 0.0], 1.0)
     with pytest.raises(ModelError, match=r"q: expected Euler parameters not all zero"):
         sp.rotation_from_euler_parameters([0.0, 0.0, 0.0, 0.0])
+
+
+# -- Cardan joints, RSSR, Stewart platform --------------------------------------------------
+
+RSSR_ARGS = dict(H1=1.0, L1=0.0, L0=1.0, L2=1.0, H3=1.0, L3=0.0)
+
+
+def ring(radius, degrees):
+    t = np.radians(degrees)
+    return radius * np.c_[np.cos(t), np.sin(t), np.zeros(6)]
+
+
+BASE = ring(1.0, [-15, 15, 105, 135, 225, 255])
+TOP = ring(0.5, [-45, 45, 75, 165, 195, 285])
+I = Rotation.identity()
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: sp.cardan_output(np.nan, 0.3), r"phi1: " + FINITE),
+    (lambda: sp.cardan_output(None, 0.3), r"phi1: " + REAL + r", got None"),
+    (lambda: sp.cardan_output(np.zeros(3), np.zeros(2)),
+     r"phi1, beta: shapes \(3,\), \(2,\) do not go together"),
+    (lambda: sp.cardan_velocity_ratio(np.inf, 0.3), r"phi1: " + FINITE + r", got inf"),
+    (lambda: sp.cardan_velocity_ratio("a", 0.3), r"phi1: " + REAL),
+    (lambda: sp.cardan_output(0.3, "a"), r"beta: " + REAL),
+    (lambda: sp.cardan_motion(0.3, 0.3, np.nan), r"phi1_dot: " + FINITE),
+    (lambda: sp.cardan_motion(0.3, 0.3, 1e308), r"phi1_dot: expected at most 1e\+100 rad/s"),
+    (lambda: sp.cardan_motion(0.3, 0.3, 0.0, 10**400), r"phi1_ddot: " + REAL),
+    (lambda: sp.cardan_motion(np.zeros(3), np.zeros(2)), r"phi1, beta, .* do not go together"),
+    (lambda: sp.double_cardan(1e308, 0.3, 0.3), r"phi1: expected angles within 1000 turns"),
+    (lambda: sp.double_cardan(0.3, 0.3, 0.3, phase=np.nan), r"phase: " + FINITE),
+    (lambda: sp.double_cardan(0.3, 0.3, 0.3, phase=None), r"phase: " + REAL + r", got None"),
+    (lambda: sp.double_cardan(0.3, 0.3, 0.3, plane_angle="a"), r"plane_angle: " + REAL),
+    (lambda: sp.double_cardan(0.3, 0.3, 0.3, phi1_dot=np.nan), r"phi1_dot: " + FINITE),
+    (lambda: sp.double_cardan(0.3, [0.3, 0.2], 0.3), r"beta1: expected shape \(\), got \(2,\)"),
+    (lambda: sp.double_cardan(np.zeros(3), 0.3, 0.3, phi1_dot=[1, 2]),
+     r"phi1, phi1_dot, phi1_ddot: shapes \(3,\), \(2,\), \(\) do not go together"),
+    (lambda: sp.RSSR(**RSSR_ARGS).analyze(0.1, np.nan), r"theta1_dot: " + FINITE),
+    (lambda: sp.RSSR(**RSSR_ARGS).analyze(0.1, "a"), r"theta1_dot: " + REAL),
+    (lambda: sp.RSSR(**RSSR_ARGS).analyze(0.1, 0.0, 1e300), r"theta1_ddot: expected at most"),
+    (lambda: sp.RSSR(**RSSR_ARGS).analyze([0.1, 0.2], [1, 2, 3]),
+     r"theta1, theta1_dot, theta1_ddot: shapes \(2,\), \(3,\), \(\) do not go together"),
+    (lambda: sp.RSSR(**RSSR_ARGS).positions(1e300), r"theta1: expected angles within 1000"),
+    (lambda: sp.RSSR(**RSSR_ARGS).analyze(0.1, branch=True), r"branch: expected one of 1, -1, "
+                                                             r"got true"),
+    (lambda: sp.RSSR(**dict(RSSR_ARGS, H1=10**400)), r"H1: expected a finite length in m, got "
+                                                     r"a whole number of 401 digits"),
+    (lambda: sp.RSSR(**dict(RSSR_ARGS, L0=1e300)), r"L0: expected at most 1e\+09 m in size"),
+    (lambda: sp.RSSR(**dict(RSSR_ARGS, L2=1e-300)), r"L2: expected a length from 1e-09 m"),
+    (lambda: sp.RSSR(**dict(RSSR_ARGS, L3="1")), r"L3: expected a finite length in m, got '1'"),
+    (lambda: sp.stewart_leg_lengths(BASE, TOP, [1e300, 0, 1], I),
+     r"position: expected at most 1e\+09 m in size, got 1e\+300 at index \(0,\)"),
+    (lambda: sp.stewart_leg_lengths(BASE, TOP, [10**400, 0, 1], I), r"position: " + REAL),
+    (lambda: sp.stewart_leg_lengths(BASE * 1e300, TOP, [0, 0, 1], I),
+     r"base_points: expected at most 1e\+09 m"),
+    (lambda: sp.stewart_leg_lengths(BASE, TOP, [0, 0, np.nan], I), r"position: " + FINITE),
+    (lambda: sp.stewart_forward(BASE, TOP, [1e300] * 6, [0, 0, 1], I),
+     r"leg_lengths: expected a length from 1e-09 m to 1e\+09 m, got 1e\+300"),
+    (lambda: sp.stewart_forward(BASE, TOP, [-1.2] * 6, [0, 0, 1], I),
+     r"leg_lengths: expected a length from .* got -1.2 at index \(0,\)"),
+    (lambda: sp.stewart_forward(BASE, TOP, [1.2] * 5 + [0.0], [0, 0, 1], I),
+     r"leg_lengths: .* got 0.0 at index \(5,\)"),
+    (lambda: sp.stewart_forward(BASE, TOP, [[1.2] * 6] * 3, np.zeros((2, 3)) + [0, 0, 1], I),
+     r"leg_lengths and position: 3 sets of leg lengths and 2 poses"),
+    (lambda: sp.stewart_forward(BASE, TOP, [1.2] * 6, [0, 0, 1], I, max_iter=-1),
+     r"max_iter: expected a whole number from 1 to 10,000, got -1"),
+    (lambda: sp.stewart_forward(BASE, TOP, [1.2] * 6, [0, 0, 1], I, max_iter="a"),
+     r"max_iter: expected a whole number .* got 'a'"),
+    (lambda: sp.stewart_forward(BASE, TOP, [1.2] * 6, [0, 0, 1], I, max_iter=1.5),
+     r"max_iter: expected a whole number .* got 1.5"),
+    (lambda: sp.stewart_forward(BASE, TOP, [1.2] * 6, [0, 0, 1], I, max_iter=True),
+     r"max_iter: expected a whole number .* got true"),
+])
+def test_mechanisms_refuse_bad_arguments(call, message):
+    with pytest.raises(ModelError, match=message):
+        call()
+
+
+def test_double_cardan_at_large_legitimate_angles():
+    # 999 turns and 45°: the output of a Z arrangement with equal bends follows the input
+    phi1 = 999 * 2 * np.pi + np.pi / 4
+    m = sp.double_cardan(phi1, 0.3, 0.3, phi1_dot=1e100)
+    assert float(m.phi3) == pytest.approx(phi1, rel=0, abs=1e-9)
+    assert float(m.phi3_dot) == pytest.approx(1e100, rel=1e-12)
+
+
+def test_stewart_forward_with_no_samples_returns_no_poses():
+    pose = sp.stewart_forward(BASE, TOP, np.zeros((0, 6)), [0, 0, 1], I)
+    assert pose.position.shape == (0, 3) and pose.residual.shape == (0,)
