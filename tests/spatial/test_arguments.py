@@ -267,3 +267,141 @@ def test_double_cardan_at_large_legitimate_angles():
 def test_stewart_forward_with_no_samples_returns_no_poses():
     pose = sp.stewart_forward(BASE, TOP, np.zeros((0, 6)), [0, 0, 1], I)
     assert pose.position.shape == (0, 3) and pose.residual.shape == (0,)
+
+
+# -- serial robots --------------------------------------------------------------------------
+
+R_Z = sp.RobotJoint("R", (0, 0, 1))
+
+
+def rr_by_hand(l1=1.0, l2=1.0):
+    """The RR robot joint by joint: no closed form, so inverse() uses Newton."""
+    return sp.SerialRobot("RR by hand", (R_Z, sp.RobotJoint("R", (0, 0, 1), (l1, 0, 0))),
+                          tool=(l2, 0.0, 0.0), planar=True)
+
+
+def chain(n):
+    """A planar chain of n revolute joints, links of 0.1 m."""
+    joints = [sp.RobotJoint("R", (0, 0, 1), (0.1 if i else 0.0, 0, 0)) for i in range(n)]
+    return sp.SerialRobot("chain", joints, (0.1, 0.0, 0.0), planar=True)
+
+
+@pytest.mark.parametrize("scale", [1e308, 1e-200, 5e-324])
+def test_joint_axis_of_any_size_is_normalised(scale):
+    joint = sp.RobotJoint("R", (scale, scale, 0.0))
+    np.testing.assert_allclose(joint.axis, [np.sqrt(0.5), np.sqrt(0.5), 0.0], rtol=0,
+                               atol=EXACT)
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: sp.SerialRobot("x", None, (0, 0, 0)), r"robot 'x': joints: expected one or more "
+                                                  r"RobotJoint, got None"),
+    (lambda: sp.SerialRobot("x", 5, (0, 0, 0)), r"joints: expected one or more RobotJoint, "
+                                               r"got 5"),
+    (lambda: sp.SerialRobot(object(), [R_Z], (1, 0, 0)), r"name: expected a non-empty name, "
+                                                         r"got an object$"),
+    (lambda: sp.SerialRobot("x", [R_Z], (1, 0, 0), planar="yes"),
+     r"planar: expected True or False, got 'yes'"),
+    (lambda: sp.SerialRobot("x", [R_Z], (1e300, 0, 0)), r"tool: expected at most 1e\+09 m"),
+    (lambda: sp.RobotJoint("R", (0, 0, 0)), r"axis: expected a nonzero direction"),
+    (lambda: sp.RobotJoint("R", (0, 0, 1), ("a", 0, 0)), r"offset: " + REAL),
+    (lambda: sp.RobotJoint("R", (np.nan, 0, 1)), r"axis: " + FINITE),
+    (lambda: sp.rr(10**400, 1), r"l1: expected a positive length in m, got a whole number"),
+    (lambda: sp.rr(1e-300, 1e-300), r"l1: expected a length from 1e-09 m to 1e\+09 m, got "
+                                     r"1e-300 m"),
+    (lambda: sp.pr(1e10), r"L: expected a length from 1e-09 m to 1e\+09 m"),
+    (lambda: sp.prr(1, 1, D=np.inf), r"D: expected a finite length in m, got inf"),
+    (lambda: sp.rr(1, 1).forward([10**400, 0]), r"q: " + REAL),
+    (lambda: sp.rr(1, 1).forward([1e300, 0]), r"q: expected angles within 1000 turns"),
+    (lambda: sp.prr(1, 1).forward([1e300, 0, 0]), r"q: expected at most 1e\+09 m in size, got "
+                                                  r"1e\+300 at index \(0,\)"),
+    (lambda: sp.rr(1, 1).inverse([1e155, 1e155]), r"point: expected at most 1e\+09 m"),
+    (lambda: sp.rr(1, 1).motion([0, 0], [np.nan, 0]), r"qd: " + FINITE),
+    (lambda: sp.rr(1, 1).motion([0, 0], 0.0, 1e300), r"qdd: expected at most 1e\+100"),
+    (lambda: sp.rr(1, 1).motion([0, 0], "a"), r"qd: " + REAL),
+    (lambda: sp.rr(1, 1).inverse_rates([0, 1], [np.nan, 0]), r"velocity: " + FINITE),
+    (lambda: sp.rr(1, 1).inverse_rates([0, 1], [1e300, 1e300]),
+     r"velocity: expected at most 1e\+100 m/s"),
+    (lambda: sp.rr(1, 1).inverse_rates([0, 1], "ab"), r"velocity: " + REAL),
+    (lambda: sp.rr(1, 1).inverse_rates([0, 1], np.ones((3, 2))),
+     r"velocity: expected shape \(2,\) or \(1, 2\) like q, got \(3, 2\)"),
+    (lambda: sp.rr(1, 1).inverse_rates([0, 1], [0, 0], np.ones((1, 3))),
+     r"acceleration: expected shape \(\.\.\., 2\), got \(1, 3\)"),
+    (lambda: sp.rr(1, 1).inverse(np.ones((3, 2)), guess=np.zeros((2, 2))),
+     r"guess: 2 guesses for 3 points"),
+    (lambda: sp.rr(1, 1).inverse([1, 1], guess=[np.nan, 0]), r"guess: " + FINITE),
+])
+def test_robots_refuse_bad_arguments(call, message):
+    with pytest.raises(ModelError, match=message):
+        call()
+
+
+def test_a_guess_follows_each_point():
+    robot = sp.rr(1.0, 1.0)
+    points = np.array([[1.0, 1.0], [0.0, 1.5], [1.2, -0.3]])
+    q = robot.inverse(points, guess=[0.1, 1.2])
+    assert q.shape == (3, 2)
+    np.testing.assert_allclose(robot.forward(q), points, rtol=0, atol=1e-12)
+    q = robot.inverse([1.0, 1.0], guess=[[0.1, 1.2], [1.5, -1.5]])    # one point, two guesses
+    np.testing.assert_allclose(np.degrees(q), [[0.0, 90.0], [90.0, -90.0]], rtol=0, atol=1e-9)
+
+
+def test_newton_finds_the_closed_form_solutions():
+    point = [np.sqrt(3) / 2, 1.5]                       # Ex. 4.1: θ = (30°, 60°) or (90°, -60°)
+    found = rr_by_hand().inverse(point)
+    assert len(found) == 2
+    expected = np.radians([[90.0, -60.0], [30.0, 60.0]])
+    np.testing.assert_allclose(found[np.argsort(found[:, 1])], expected, rtol=0, atol=1e-10)
+
+
+@pytest.mark.parametrize("n", [3, 7, 12])
+def test_redundant_robot_without_a_guess_is_refused(n):
+    with pytest.raises(ModelError, match=rf"robot 'chain': inverse: {n} joints for 2 tool "
+                                         r"coordinates, so the solutions form a continuum.*"
+                                         r"pass guess="):
+        chain(n).inverse([0.3, 0.2])
+
+
+def test_redundant_robot_with_a_guess_reaches_the_point():
+    robot = chain(7)
+    q = robot.inverse([0.3, 0.2], guess=np.full(7, 0.3))
+    np.testing.assert_allclose(robot.forward(q), [0.3, 0.2], rtol=0, atol=1e-12)
+
+
+def test_robot_whose_joints_do_not_move_the_tool_is_refused():
+    zero = sp.SerialRobot("zero", (R_Z, R_Z), (0, 0, 0), planar=True)
+    with pytest.raises(ModelError, match=r"robot 'zero': inverse: no joint moves the tool"):
+        zero.inverse([0.0, 0.0])
+    slides = sp.SerialRobot("slides", (sp.RobotJoint("P", (1, 0, 0)),
+                                       sp.RobotJoint("P", (2, 0, 0))), (0, 0, 0), planar=True)
+    with pytest.raises(ModelError, match=r"its 2 joints do not move the tool independently "
+                                         r"\(the Jacobian has rank 1 at every start\)"):
+        slides.inverse([1.0, 0.0])
+
+
+def test_point_on_a_joint_axis_has_infinitely_many_solutions():
+    with pytest.raises(SingularityError, match=r"robot 'RR by hand': point \[0.0, 0.0\] has "
+                                               r"infinitely many solutions: it lies on the "
+                                               r"axis of joints\[0\]"):
+        rr_by_hand().inverse([0.0, 0.0])
+
+
+def test_unreachable_point_without_a_closed_form():
+    with pytest.raises(AssemblyError, match=r"Newton reached no solution .* from 9 starts"):
+        rr_by_hand().inverse([3.0, 0.0])
+
+
+def test_solutions_a_turn_apart_are_one():
+    robot = rr_by_hand()
+    q = np.array([[np.pi - 1e-9, 0.5], [-np.pi + 1e-9, 0.5], [np.pi - 1e-9, -0.5]])
+    np.testing.assert_array_equal(robot._distinct(q), q[[0, 2]])
+
+
+def test_many_repeated_solutions_are_sorted_out():
+    robot = sp.rrr(1.0, 1.0)                              # three revolute joints
+    rng = np.random.default_rng(1)
+    roots = np.array([[0.1, 0.2, 0.3], [-2.0, 1.0, 3.1], [3.14159, -1.0, 0.0]])
+    q = roots[rng.integers(0, 3, 3000)] + rng.uniform(-1e-9, 1e-9, (3000, 3))
+    kept = robot._distinct(q)
+    assert len(kept) == 3
+    np.testing.assert_allclose(np.sort(kept[:, 0]), np.sort(roots[:, 0]), rtol=0, atol=1e-8)
