@@ -8,7 +8,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError, check_choice
-from kinelab.spatial._common import as_array
+from kinelab.spatial._common import ANGLE, as_angles, as_array, as_number, rate, reals, together
 from kinelab.spatial._transforms import rotation
 
 __all__ = ["CardanMotion", "DoubleCardanMotion", "cardan_output", "cardan_velocity_ratio",
@@ -42,7 +42,7 @@ def _rate_slope(phi: np.ndarray, k: np.ndarray) -> np.ndarray:
 
 
 def _bend(name: str, beta: ArrayLike) -> np.ndarray:
-    beta = np.asarray(beta, dtype=float)
+    beta = reals(name, beta)
     bad = ~(np.abs(beta) < np.pi / 2)                   # also catches NaN
     if bad.any():
         raise ModelError(f"{name}: expected |β| < π/2 rad (the joint locks at 90°; practice "
@@ -104,8 +104,9 @@ def cardan_output(phi1: ArrayLike, beta: ArrayLike) -> np.ndarray:
     >>> np.degrees(phi2).round(6)
     array([  0.      ,  40.893395,  90.      , 139.106605, 720.      ])
     """
-    phi1 = np.asarray(phi1, dtype=float)
-    return _follow(phi1, np.cos(_bend("beta", beta)))
+    phi1, k = together(("phi1", as_angles("phi1", phi1, batch="any"), 0),
+                       ("beta", np.cos(_bend("beta", beta)), 0))
+    return _follow(phi1, k)
 
 
 def cardan_velocity_ratio(phi1: ArrayLike, beta: ArrayLike) -> np.ndarray:
@@ -119,8 +120,9 @@ def cardan_velocity_ratio(phi1: ArrayLike, beta: ArrayLike) -> np.ndarray:
     >>> kl.spatial.cardan_velocity_ratio(np.radians([0.0, 90.0]), np.radians(60.0))
     array([0.5, 2. ])
     """
-    phi1 = np.asarray(phi1, dtype=float)
-    return _rate(phi1, np.cos(_bend("beta", beta)))
+    phi1, k = together(("phi1", as_angles("phi1", phi1, batch="any"), 0),
+                       ("beta", np.cos(_bend("beta", beta)), 0))
+    return _rate(phi1, k)
 
 
 def cardan_motion(phi1: ArrayLike, beta: ArrayLike, phi1_dot: ArrayLike = 0.0,
@@ -141,10 +143,12 @@ def cardan_motion(phi1: ArrayLike, beta: ArrayLike, phi1_dot: ArrayLike = 0.0,
     >>> float(m.phi2_dot), float(m.phi2_ddot)
     (9.89743318610787, 28.278380531736758)
     """
-    phi1 = np.asarray(phi1, dtype=float)
+    phi1 = as_angles("phi1", phi1, batch="any")
     k = np.cos(_bend("beta", beta))
-    w, a = np.asarray(phi1_dot, dtype=float), np.asarray(phi1_ddot, dtype=float)
-    phi1, k, w, a = np.broadcast_arrays(phi1, k, w, a)
+    w = as_array("phi1_dot", phi1_dot, batch="any", limit=rate("rad/s"))
+    a = as_array("phi1_ddot", phi1_ddot, batch="any", limit=rate("rad/s^2"))
+    phi1, k, w, a = together(("phi1", phi1, 0), ("beta", k, 0), ("phi1_dot", w, 0),
+                             ("phi1_ddot", a, 0))
     ratio = _rate(phi1, k)
     return CardanMotion(phi1=phi1, phi1_dot=w, phi1_ddot=a, phi2=_follow(phi1, k),
                         phi2_dot=ratio * w, phi2_ddot=ratio * a + _rate_slope(phi1, k) * w**2,
@@ -236,11 +240,14 @@ def double_cardan(phi1: ArrayLike, beta1: float, beta2: float, *,
     (False, np.float64(0.9216), np.float64(1.0851))
     """
     check_choice("arrangement", arrangement, ("Z", "W"))
-    phi1 = as_array("phi1", phi1)
-    k1, k2 = np.cos(_bend("beta1", beta1)), np.cos(_bend("beta2", beta2))
-    phase, plane = float(phase), float(plane_angle)
-    w = np.broadcast_to(np.asarray(phi1_dot, dtype=float), phi1.shape)
-    a = np.broadcast_to(np.asarray(phi1_ddot, dtype=float), phi1.shape)
+    phi1 = as_angles("phi1", phi1)
+    beta1, beta2 = as_number("beta1", beta1), as_number("beta2", beta2)
+    k1, k2 = float(np.cos(_bend("beta1", beta1))), float(np.cos(_bend("beta2", beta2)))
+    phase, plane = as_number("phase", phase, limit=ANGLE), as_number("plane_angle", plane_angle,
+                                                                     limit=ANGLE)
+    w = as_array("phi1_dot", phi1_dot, limit=rate("rad/s"))
+    a = as_array("phi1_ddot", phi1_ddot, limit=rate("rad/s^2"))
+    phi1, w, a = together(("phi1", phi1, 0), ("phi1_dot", w, 0), ("phi1_ddot", a, 0))
     phi2 = _follow(phi1, k1)
     at_b = phi2 + phase - plane                  # joint B's input angle
     phi3 = _follow(at_b, 1.0 / k2)
@@ -249,8 +256,8 @@ def double_cardan(phi1: ArrayLike, beta1: float, beta2: float, *,
     slope = _rate_slope(at_b, 1.0 / k2) * r1**2 + r2 * _rate_slope(phi1, k1)
     uniform = bool(abs(k1 - k2) <= _SAME and abs(np.sin(phase - plane)) <= _SAME)
     second = -1.0 if arrangement == "Z" else 1.0
-    axis = (rotation("z", abs(float(beta1))) * rotation("x", plane)
-            * rotation("z", second * abs(float(beta2)))).apply([1.0, 0.0, 0.0])
+    axis = (rotation("z", abs(beta1)) * rotation("x", plane)
+            * rotation("z", second * abs(beta2))).apply([1.0, 0.0, 0.0])
     return DoubleCardanMotion(phi1=phi1, phi2=phi2, phi3=phi3, phi3_dot=ratio * w,
                               phi3_ddot=ratio * a + slope * w**2, ratio=ratio,
                               uniform=uniform, output_axis=axis)

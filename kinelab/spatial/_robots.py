@@ -19,10 +19,11 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import describe
 from kinelab.errors import (AssemblyError, ConvergenceError, ModelError, SingularityError,
-                            check_choice)
-from kinelab.spatial._common import as_array, as_length, as_vectors, indices
+                            check_choice, shown)
+from kinelab.spatial._common import (ANGLE, LENGTH, as_array, as_directions, as_flag,
+                                     as_length, as_vectors, check_size, given, indices, rate,
+                                     reals, robot_name)
 from kinelab.solvers import half_angle, wrap_angle
 from kinelab.spatial._transforms import rotation
 
@@ -36,6 +37,12 @@ __all__ = ["RobotJoint", "SerialRobot", "ToolMotion", "JointRates",
 _SINGULAR = 1e-10
 _FREE = 1e-12
 _NEWTON_TOL = 1e-12
+# Newton solutions (rad, or scale-m) closer than this are one solution: a regular root is
+# reached to about 1e-12 from every start, a double root (edge of the workspace) to 1e-6.
+_SAME = 1e-5
+# A Newton solution whose tool point is closer than this (relative to the robot's size) to
+# a revolute joint's axis leaves that joint's angle arbitrary.
+_ON_AXIS = 1e-9
 
 
 @dataclass(frozen=True)
@@ -60,12 +67,9 @@ class RobotJoint:
 
     def __post_init__(self):
         check_choice("kind", self.kind, ("R", "P"))
-        axis = as_array("axis", self.axis, (3,), batch=False)
-        norm = float(np.linalg.norm(axis))
-        if norm == 0.0:
-            raise ModelError("axis: expected a nonzero direction, got (0, 0, 0)")
-        object.__setattr__(self, "axis", tuple(float(a) for a in axis / norm))
-        offset = as_array("offset", self.offset, (3,), batch=False)
+        axis = as_directions("axis", self.axis, batch=False)
+        object.__setattr__(self, "axis", tuple(float(a) for a in axis))
+        offset = as_array("offset", self.offset, (3,), batch=False, limit=LENGTH)
         object.__setattr__(self, "offset", tuple(float(o) for o in offset))
 
 
@@ -164,12 +168,18 @@ class SerialRobot:
         default=None, repr=False, compare=False)
 
     def __post_init__(self):
-        object.__setattr__(self, "joints", tuple(self.joints))
-        if not self.joints or not all(isinstance(j, RobotJoint) for j in self.joints):
-            raise ModelError(f"robot '{self.name}': joints: expected one or more "
-                             f"RobotJoint, got {describe(self.joints)}")
-        tool = as_array("tool", self.tool, (3,), batch=False)
+        who = robot_name(self.name)
+        try:
+            joints = tuple(self.joints)
+        except TypeError:
+            joints = None
+        if not joints or not all(isinstance(j, RobotJoint) for j in joints):
+            raise ModelError(f"robot {who}: joints: expected one or more RobotJoint, got "
+                             f"{given(self.joints)}")
+        object.__setattr__(self, "joints", joints)
+        tool = as_array("tool", self.tool, (3,), batch=False, limit=LENGTH)
         object.__setattr__(self, "tool", tuple(float(t) for t in tool))
+        object.__setattr__(self, "planar", as_flag("planar", self.planar))
         if self.planar:
             problems = [f"joints[{i}]: a planar robot turns about z and slides in the "
                         f"xy plane, got a {j.kind} joint with axis {j.axis}"
@@ -180,7 +190,7 @@ class SerialRobot:
             if self.tool[2]:
                 problems.append(f"tool: expected z = 0 in a planar robot, got {self.tool}")
             if problems:
-                raise ModelError(problems, source=f"robot '{self.name}'")
+                raise ModelError(problems, source=f"robot {who}")
 
     # -- sizes ------------------------------------------------------------------------------
     @property
@@ -324,12 +334,11 @@ class SerialRobot:
         """
         check_choice("on_singular", on_singular, ("raise", "flag"))
         if self.n != self.dim:
-            raise ModelError(f"robot '{self.name}': inverse_rates needs as many joints as "
+            raise ModelError(f"robot {shown(self.name)}: inverse_rates needs as many joints as "
                              f"tool coordinates, got {self.n} joints for {self.dim}")
         q, single = self._joint_array("q", q)
-        shape = q.shape[:1] + (self.dim,)
-        v = np.broadcast_to(as_vectors("velocity", velocity, self.dim), shape)
-        a = np.broadcast_to(as_vectors("acceleration", acceleration, self.dim), shape)
+        v = self._tool_rates("velocity", velocity, q, "m/s")
+        a = self._tool_rates("acceleration", acceleration, q, "m/s^2")
         chain = self._chain(q)
         J = self._jacobian(*chain)
         sv = np.linalg.svd(J, compute_uv=False)
@@ -337,7 +346,7 @@ class SerialRobot:
         if singular.any() and on_singular == "raise":
             first = int(np.flatnonzero(singular)[0])
             raise SingularityError(
-                f"robot '{self.name}': the Jacobian is singular at sample(s) "
+                f"robot {shown(self.name)}: the Jacobian is singular at sample(s) "
                 f"{indices(singular)} (q = {np.round(q[first], 6).tolist()}): the tool "
                 f"cannot move in every direction there, so no joint rates give an arbitrary "
                 f"tool velocity; move off that pose, or pass on_singular='flag' for "
@@ -371,7 +380,9 @@ class SerialRobot:
               earlier one, at the edge of the workspace, is left out).  For N points,
               shape (N, B, n) with every branch, repeats included.
             - A robot without a closed form and no guess: Newton from a grid of 3ⁿ starts
-              keeps every distinct solution it reaches (one point only).
+              keeps every distinct solution it reaches (one point only).  This needs
+              isolated solutions: no more joints than tool coordinates, joints that move
+              the tool independently, and a point off every revolute axis.
 
             Revolute coordinates are in (-π, π].
 
@@ -383,6 +394,10 @@ class SerialRobot:
             A point with infinitely many solutions (a joint angle is arbitrary there).
         ConvergenceError
             Newton did not converge from ``guess``.
+        ModelError
+            Without a closed form and a guess, a robot whose solutions form a continuum
+            (more joints than tool coordinates, or joints that do not move the tool
+            independently).
 
         Examples
         --------
@@ -397,21 +412,26 @@ class SerialRobot:
         if guess is not None:
             if branch is not None:
                 raise ModelError("inverse: give branch or guess, not both")
-            q0 = np.broadcast_to(self._joint_array("guess", guess)[0],
-                                 (points.shape[0], self.n))
-            q, ok, residual = self._newton(points, q0)
+            q0, single_guess = self._joint_array("guess", guess)
+            if len(q0) != len(points) and 1 not in (len(q0), len(points)):
+                raise ModelError(f"guess: {len(q0)} guesses for {len(points)} points; give "
+                                 f"one guess, or one for each point")
+            single = single and single_guess
+            N = len(points) if len(q0) == 1 else len(q0)
+            points = np.broadcast_to(points, (N, self.dim))
+            q, ok, residual = self._newton(points, np.broadcast_to(q0, (N, self.n)))
             if not ok.all():
                 raise ConvergenceError(
-                    f"robot '{self.name}': Newton did not converge for sample(s) "
+                    f"robot {shown(self.name)}: Newton did not converge for sample(s) "
                     f"{indices(~ok)} (residual {residual[~ok].max():.3g} m); the point may "
                     f"be out of reach, or start nearer a solution")
             return q[0] if single else q
         if self._solver is None:
             if branch is not None:
-                raise ModelError(f"robot '{self.name}': branch: this robot has no closed-form "
+                raise ModelError(f"robot {shown(self.name)}: branch: this robot has no closed-form "
                                  f"branches; pass guess= to follow one solution")
             if not single:
-                raise ModelError(f"robot '{self.name}': point: without a closed form, give "
+                raise ModelError(f"robot {shown(self.name)}: point: without a closed form, give "
                                  f"one point (shape ({self.dim},)) or a guess for N points")
             return self._newton_all(points[0])
         if branch is not None:
@@ -437,18 +457,29 @@ class SerialRobot:
         """
         points, single = self._point_array(point)
         if self._solver is None:
-            raise ModelError(f"robot '{self.name}': reachable needs a closed-form robot")
+            raise ModelError(f"robot {shown(self.name)}: reachable needs a closed-form robot")
         gap = self._solver(points).gap
         return gap[0] == 0.0 if single else gap == 0.0
 
     # -- internals --------------------------------------------------------------------------
     def _joint_array(self, name: str, q: ArrayLike) -> tuple[np.ndarray, bool]:
         q = as_array(name, q, (self.n,))
+        revolute = self.revolute
+        check_size(name, np.where(revolute, q, 0.0), ANGLE)
+        check_size(name, np.where(revolute, 0.0, q), LENGTH)
         return np.atleast_2d(q), q.ndim == 1
 
     def _point_array(self, point: ArrayLike) -> tuple[np.ndarray, bool]:
-        p = as_array("point", point, (self.dim,))
+        p = as_array("point", point, (self.dim,), limit=LENGTH)
         return np.atleast_2d(p), p.ndim == 1
+
+    def _tool_rates(self, name: str, value: ArrayLike, q: np.ndarray, unit: str) -> np.ndarray:
+        """A tool velocity or acceleration, shape (d,) or (N, d), as (N, d) like ``q``."""
+        v = as_vectors(name, value, self.dim, limit=rate(unit))
+        if v.ndim > 2 or (v.ndim == 2 and len(v) != len(q)):
+            raise ModelError(f"{name}: expected shape ({self.dim},) or ({len(q)}, {self.dim}) "
+                             f"like q, got {v.shape}")
+        return np.broadcast_to(v, (len(q), self.dim))
 
     def _chain(self, q: np.ndarray):
         """World axes (n, N, 3), joint centres (n, N, 3) and tool point (N, 3)."""
@@ -524,29 +555,81 @@ class SerialRobot:
         return q, error <= tol, error
 
     def _newton_all(self, target: np.ndarray) -> np.ndarray:
-        """Distinct Newton solutions from a 3ⁿ grid of starts (one target)."""
+        """Distinct Newton solutions from a 3ⁿ grid of starts (one target).
+
+        Only isolated solutions can be listed, so this refuses a robot with more joints
+        than tool coordinates, or whose joints do not move the tool independently anywhere
+        on the grid (its Jacobian loses rank at every start); n <= 3 then, and the grid
+        has at most 27 starts."""
+        who = f"robot {shown(self.name)}"
+        advice = ("pass guess= to get the solution Newton reaches from it")
+        if self.n > self.dim:
+            raise ModelError(f"{who}: inverse: {self.n} joints for {self.dim} tool coordinates, "
+                             f"so the solutions form a continuum, not a list; {advice}, or "
+                             f"use a robot with at most {self.dim} joints")
         values = [(-2 * np.pi / 3, 0.0, 2 * np.pi / 3) if j.kind == "R"
                   else (-0.5 * self.scale, 0.0, 0.5 * self.scale) for j in self.joints]
         starts = np.array(list(itertools.product(*values)))
+        sv = np.linalg.svd(self._jacobian(*self._chain(starts)), compute_uv=False)
+        rank = int(((sv > _SINGULAR * sv[:, :1]) & (sv > 0.0)).sum(axis=1).max())
+        if rank == 0:
+            raise ModelError(f"{who}: inverse: no joint moves the tool (it lies on every "
+                             f"joint axis), so every joint angle is arbitrary; give the "
+                             f"robot links, or a tool point off its axes")
+        if rank < self.n:
+            raise ModelError(f"{who}: inverse: its {self.n} joints do not move the tool "
+                             f"independently (the Jacobian has rank {rank} at every start), "
+                             f"so the solutions form a continuum, not a list; {advice}, or "
+                             f"remove a joint that repeats another's motion")
         q, ok, _ = self._newton(np.broadcast_to(target, (len(starts), self.dim)), starts)
-        revolute = self.revolute
-        found: list[np.ndarray] = []
-        for candidate in q[ok]:
-            differs = [np.where(revolute, wrap_angle(candidate - f), candidate - f) for f in found]
-            if not any(np.abs(d).max() < 1e-8 for d in differs):
-                found.append(candidate)
-        if not found:
-            raise AssemblyError(f"robot '{self.name}': Newton reached no solution for point "
+        if not ok.any():
+            raise AssemblyError(f"{who}: Newton reached no solution for point "
                                 f"{target.tolist()} from {len(starts)} starts; the point is "
                                 f"probably out of reach")
-        return np.array(found)
+        q = q[ok]
+        columns = self._jacobian(*self._chain(q))               # (K, d, n)
+        on_axis = (np.linalg.norm(columns, axis=1) <= _ON_AXIS * self.scale) & self.revolute
+        if on_axis.any():
+            joint = int(np.flatnonzero(on_axis.any(axis=0))[0])
+            raise SingularityError(
+                f"{who}: point {np.round(target, 6).tolist()} has infinitely many solutions: "
+                f"it lies on the axis of joints[{joint}], so that joint's angle is arbitrary; "
+                f"move the point off it, or {advice}")
+        return self._distinct(q)
+
+    def _distinct(self, q: np.ndarray) -> np.ndarray:
+        """The rows of ``q`` that differ (by more than _SAME, revolute coordinates modulo a
+        turn) from every earlier row.  Rows are filed by cell of side _SAME, so each row is
+        compared only with the rows of its own and the neighbouring cells: linear work."""
+        revolute = self.revolute
+        unit = np.where(revolute, 1.0, self.scale) * _SAME
+        turn = np.where(revolute, 2.0 * np.pi, 0.0)
+        cells: dict[tuple[int, ...], list[int]] = {}
+        kept: list[np.ndarray] = []
+        near_offsets = list(itertools.product((-1, 0, 1), repeat=self.n))
+        for row in q:
+            # a revolute angle near ±π is also looked for a turn away
+            shifts = [(0.0,) if not r or abs(x) < np.pi - 2 * u else (0.0, -t, t)
+                      for r, x, u, t in zip(revolute, row, unit, turn)]
+            known = False
+            for shift in itertools.product(*shifts):
+                home = np.floor((row + np.array(shift)) / unit).astype(np.int64)
+                for offset in near_offsets:
+                    for k in cells.get(tuple((home + offset).tolist()), ()):
+                        gap = np.where(revolute, wrap_angle(row - kept[k]), row - kept[k])
+                        known = known or bool((np.abs(gap) <= unit).all())
+            if not known:
+                cells.setdefault(tuple(np.floor(row / unit).astype(np.int64).tolist()),
+                                 []).append(len(kept))
+                kept.append(row)
+        return np.array(kept)
 
     def _check_reach(self, points: np.ndarray, solved: _Branches) -> None:
         out = solved.gap > 0.0
         if out.any():
             first = int(np.flatnonzero(out)[0])
             raise AssemblyError(
-                f"robot '{self.name}': point(s) at index {indices(out)} out of reach: "
+                f"robot {shown(self.name)}: point(s) at index {indices(out)} out of reach: "
                 f"{np.round(points[first], 6).tolist()} lies {solved.gap[first]:.6g} m "
                 f"outside the workspace ({solved.workspace}); choose points inside it "
                 f"(robot.reachable(points) tells which are)", loop=self.name,
@@ -554,7 +637,7 @@ class SerialRobot:
         if solved.free.any():
             first = int(np.flatnonzero(solved.free)[0])
             raise SingularityError(
-                f"robot '{self.name}': point(s) at index {indices(solved.free)} have "
+                f"robot {shown(self.name)}: point(s) at index {indices(solved.free)} have "
                 f"infinitely many solutions: {np.round(points[first], 6).tolist()} lies "
                 f"{solved.free_reason}; move the point off it, or pass guess= to pick one "
                 f"solution by Newton")
@@ -562,11 +645,14 @@ class SerialRobot:
 
 def _like(q: np.ndarray, name: str, value: ArrayLike) -> np.ndarray:
     """Joint rates broadcast to the shape of ``q`` (N, n)."""
+    rates = reals(name, value)
     try:
-        return np.broadcast_to(np.asarray(value, dtype=float), q.shape)
+        rates = np.broadcast_to(rates, q.shape)
     except ValueError:
         raise ModelError(f"{name}: expected a number or shape ({q.shape[1]},) or "
-                         f"({q.shape[0]}, {q.shape[1]}) like q, got {np.shape(value)}") from None
+                         f"({q.shape[0]}, {q.shape[1]}) like q, got {rates.shape}") from None
+    unit = "per s" if name == "qd" else "per s^2"
+    return as_array(name, rates, (q.shape[1],), limit=rate(unit))
 
 
 def _joint_rotation(joint: RobotJoint, angle: np.ndarray) -> np.ndarray:

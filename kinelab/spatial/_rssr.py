@@ -8,8 +8,8 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import AssemblyError, ModelError, SingularityError, check_choice
-from kinelab.spatial._common import as_array, as_length, indices
+from kinelab.errors import AssemblyError, ModelError, SingularityError, check_choice, describe
+from kinelab.spatial._common import as_angles, as_array, as_length, indices, rate, together
 from kinelab.solvers import half_angle
 
 __all__ = ["RSSR", "RSSRPositions", "RSSRSolution"]
@@ -175,7 +175,7 @@ class RSSR:
         -------
         RSSRPositions
         """
-        theta1 = as_array("theta1", theta1)
+        theta1 = as_angles("theta1", theta1)
         E, F, G = self._coefficients(theta1)
         _roots = half_angle(E, F, G)
         theta3, count, gap = _roots.theta, _roots.count, _roots.gap
@@ -250,7 +250,14 @@ class RSSR:
         >>> sol.theta3.round(12) + 0.0, sol.K.round(12) + 0.0
         (array([0.        , 0.13021469]), array([0.        , 0.54167751]))
         """
+        if isinstance(branch, bool):       # True == 1, but it is not a branch's name
+            raise ModelError(f"branch: expected one of 1, -1, got {describe(branch)}")
         check_choice("branch", branch, (1, -1))
+        w = as_array("theta1_dot", theta1_dot, limit=rate("rad/s"))
+        a = as_array("theta1_ddot", theta1_ddot, limit=rate("rad/s^2"))
+        theta1 = as_angles("theta1", theta1)
+        theta1, w, a = together(("theta1", theta1, 0), ("theta1_dot", w, 0),
+                                ("theta1_ddot", a, 0))
         pos = self.positions(theta1)
         theta1 = pos.theta1
         if not pos.feasible.all():
@@ -281,8 +288,6 @@ class RSSR:
         phi_11, phi_13, phi_33 = Edd * c3 + Fdd * s3, Fd * c3 - Ed * s3, -E * c3 - F * s3
         K = -phi_1 / phi_3
         L = -(phi_11 + 2 * phi_13 * K + phi_33 * K**2) / phi_3
-        w = np.broadcast_to(np.asarray(theta1_dot, dtype=float), theta1.shape)
-        a = np.broadcast_to(np.asarray(theta1_ddot, dtype=float), theta1.shape)
         return RSSRSolution(theta1=theta1, theta1_dot=w, theta1_ddot=a, theta3=theta3,
                             theta3_dot=K * w, theta3_ddot=K * a + L * w**2, K=K, L=L,
                             branch=branch)

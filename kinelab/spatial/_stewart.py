@@ -8,13 +8,16 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.spatial.transform import Rotation
 
-from kinelab.errors import ConvergenceError, ModelError, SingularityError
-from kinelab.spatial._common import as_array, indices
+from kinelab.errors import ConvergenceError, ModelError, SingularityError, describe
+from kinelab.model import MAX_LENGTH, MIN_LENGTH, length_problem
+from kinelab.spatial._common import LENGTH, as_array, as_count, as_rotation, indices
 
 __all__ = ["StewartPose", "stewart_leg_lengths", "stewart_inverse_jacobian", "stewart_forward"]
 
 _NEWTON_TOL = 1e-12      # leg-length residual, relative to the size of the base
 _SINGULAR = 1e-12        # smallest/largest singular value of the Jacobian
+_MAX_ITER = 10_000       # Newton converges in a few steps or not at all
+_FAR = 1e3 * MAX_LENGTH  # an iterate this far out has left every platform of the limits
 
 
 @dataclass(frozen=True)
@@ -40,19 +43,16 @@ class StewartPose:
 
 
 def _geometry(base_points: ArrayLike, platform_points: ArrayLike):
-    a = as_array("base_points", base_points, (None, 3), batch=False)
-    b = as_array("platform_points", platform_points, (a.shape[0], 3), batch=False)
+    a = as_array("base_points", base_points, (None, 3), batch=False, limit=LENGTH)
+    b = as_array("platform_points", platform_points, (a.shape[0], 3), batch=False,
+                 limit=LENGTH)
     return a, b
 
 
 def _pose(position: ArrayLike, rotation: Rotation) -> tuple[np.ndarray, np.ndarray, bool]:
     """Positions (N, 3) and rotation matrices (N, 3, 3), and whether one pose was given."""
-    if not isinstance(rotation, Rotation):
-        raise ModelError(f"rotation: expected a scipy.spatial.transform.Rotation, got "
-                         f"{type(rotation).__name__}; build one with Rotation.from_matrix, "
-                         f"from_euler or kinelab.spatial.euler_rotation")
-    p = as_array("position", position, (3,))
-    R = rotation.as_matrix()
+    p = as_array("position", position, (3,), limit=LENGTH)
+    R = as_rotation("rotation", rotation).as_matrix()
     single = p.ndim == 1 and R.ndim == 2
     p, R = np.atleast_2d(p), R.reshape(-1, 3, 3)
     if len(p) != len(R) and 1 not in (len(p), len(R)):
@@ -158,10 +158,11 @@ def stewart_forward(base_points: ArrayLike, platform_points: ArrayLike,
     ----------
     base_points, platform_points : array_like, shape (6, 3)
     leg_lengths : array_like, shape (6,) or (N, 6)
-        m.
+        m, each from 1e-9 m to 1e9 m.
     position, rotation
         The guess: shape (3,) or (N, 3), and one Rotation or N.
     max_iter : int
+        From 1 to 10,000 Newton steps.
 
     Returns
     -------
@@ -203,10 +204,20 @@ def stewart_forward(base_points: ArrayLike, platform_points: ArrayLike,
     if a.shape[0] != 6:
         raise ModelError(f"base_points: forward kinematics needs 6 legs, got {a.shape[0]}")
     target = as_array("leg_lengths", leg_lengths, (6,))
+    bad = ~((target >= MIN_LENGTH) & (target <= MAX_LENGTH))
+    if bad.any():
+        where = tuple(int(i) for i in np.argwhere(bad)[0])
+        raise ModelError(f"leg_lengths: {length_problem(float(target[where]))}, got "
+                         f"{describe(target[where])} at index {where}; a leg's length is "
+                         f"the distance between its joints")
+    max_iter = as_count("max_iter", max_iter, 1, _MAX_ITER)
     p, R, single = _pose(position, rotation)
     single = single and target.ndim == 1
     target = np.atleast_2d(target)
-    N = max(len(p), len(target))
+    if len(p) != len(target) and 1 not in (len(p), len(target)):
+        raise ModelError(f"leg_lengths and position: {len(target)} sets of leg lengths and "
+                         f"{len(p)} poses; give one of each, N of each, or one of either")
+    N = len(p) if len(target) == 1 else len(target)
     p, R = np.array(np.broadcast_to(p, (N, 3))), np.array(np.broadcast_to(R, (N, 3, 3)))
     target = np.broadcast_to(target, (N, 6))
     tol = _NEWTON_TOL * max(1.0, float(np.ptp(a, axis=0).max()))
@@ -228,6 +239,11 @@ def stewart_forward(base_points: ArrayLike, platform_points: ArrayLike,
         step = np.linalg.solve(Ja, (target - lengths)[active][..., None])[..., 0]
         p[active] += step[:, :3]
         R[active] = Rotation.from_rotvec(step[:, 3:]).as_matrix() @ R[active]
+        if not np.abs(p).max(initial=0.0) <= _FAR:
+            far = ~(np.abs(p).max(axis=-1) <= _FAR)
+            raise ConvergenceError(
+                f"stewart_forward: Newton diverged at sample(s) {indices(far)} (the platform "
+                f"went beyond {_FAR:g} m); start nearer the pose")
     if active.any():
         raise ConvergenceError(
             f"stewart_forward: no convergence in {max_iter} steps at sample(s) "

@@ -16,7 +16,9 @@ from numpy.typing import ArrayLike
 from scipy.spatial.transform import Rotation
 
 from kinelab.errors import ModelError, check_choice, describe
-from kinelab.spatial._common import as_array, as_vectors
+from kinelab.spatial._common import (LENGTH, as_angles, as_array, as_directions, as_flag,
+                                     as_rotation, as_rotation_matrix, as_transform,
+                                     as_transform_rate, as_vectors, rate, reals, together)
 
 __all__ = [
     "AxisAngle", "TransformRates", "PointMotion", "AngularMotion",
@@ -66,7 +68,8 @@ def rotation(axis: str | ArrayLike, angle: ArrayLike, *, degrees: bool = False) 
     Raises
     ------
     ModelError
-        For an unknown axis name, a zero direction, or shapes that do not agree.
+        For an unknown axis name, a zero direction, shapes that do not agree, or an angle
+        beyond 1000 turns.
 
     Examples
     --------
@@ -83,23 +86,13 @@ def rotation(axis: str | ArrayLike, angle: ArrayLike, *, degrees: bool = False) 
            [1., 0., 0.],
            [0., 1., 0.]])
     """
-    angle = as_array("angle", angle)
-    if degrees:
-        angle = np.radians(angle)
+    angle = as_angles("angle", angle, degrees=as_flag("degrees", degrees))
     if isinstance(axis, str):
         check_choice("axis", axis, ("x", "y", "z"))
         return Rotation.from_euler(axis, angle[..., None])   # one angle per rotation
-    direction = as_array("axis", axis, (3,))
-    norm = np.linalg.norm(direction, axis=-1, keepdims=True)
-    if (norm == 0.0).any():
-        raise ModelError("axis: expected a nonzero direction, got (0, 0, 0); give the "
-                         "direction of the rotation axis")
-    try:
-        rotvec = direction / norm * angle[..., None]
-    except ValueError:
-        raise ModelError(f"axis and angle: shapes {direction.shape} and {angle.shape} do "
-                         f"not agree; give N axes with N angles, or one of either") from None
-    return Rotation.from_rotvec(rotvec)
+    direction, angle = together(("axis", as_directions("axis", axis), 1),
+                                ("angle", angle, 0))
+    return Rotation.from_rotvec(direction * angle[..., None])
 
 
 def axis_angle(rotation: Rotation) -> AxisAngle:
@@ -111,7 +104,7 @@ def axis_angle(rotation: Rotation) -> AxisAngle:
     >>> aa.axis.round(12) + 0.0, float(aa.angle)
     (array([ 0.,  0., -1.]), 0.5)
     """
-    rotvec = rotation.as_rotvec()
+    rotvec = as_rotation("rotation", rotation).as_rotvec()
     angle = np.linalg.norm(rotvec, axis=-1)
     safe = np.where(angle > 0.0, angle, 1.0)[..., None]
     axis = np.where(angle[..., None] > 0.0, rotvec / safe, np.array([0.0, 0.0, 1.0]))
@@ -124,6 +117,10 @@ def _scipy_sequence(sequence: str, axes: str) -> str:
             and set(sequence.lower()) <= set("xyz")):
         raise ModelError(f"sequence: expected 1 to 3 of the letters x, y, z such as 'zyx' or "
                          f"'zxz', got {describe(sequence)}")
+    if any(a == b for a, b in zip(sequence.lower(), sequence.lower()[1:])):
+        raise ModelError(f"sequence: expected consecutive axes to differ, such as 'zyx' or "
+                         f"'zxz', got {describe(sequence)}; two turns in a row about one axis "
+                         f"are one turn by their sum")
     # scipy: lower case = extrinsic (fixed axes), upper case = intrinsic (moving axes).
     return sequence.lower() if axes == "fixed" else sequence.upper()
 
@@ -169,9 +166,7 @@ def euler_rotation(sequence: str, angles: ArrayLike, *,
     True
     """
     seq = _scipy_sequence(sequence, axes)
-    angles = as_array("angles", angles, (len(seq),))
-    if degrees:
-        angles = np.radians(angles)
+    angles = as_angles("angles", angles, (len(seq),), degrees=as_flag("degrees", degrees))
     return Rotation.from_euler(seq, angles)
 
 
@@ -200,11 +195,12 @@ def euler_angles(rotation: Rotation, sequence: str, *,
     >>> kl.spatial.euler_angles(R, "zxz", axes="moving", degrees=True).round(9)
     array([30., 40., 50.])
     """
+    rotation = as_rotation("rotation", rotation)
     seq = _scipy_sequence(sequence, axes)
     if len(seq) != 3:
         raise ModelError(f"sequence: expected 3 letters to recover angles from a rotation, "
                          f"got {describe(sequence)}")
-    return rotation.as_euler(seq, degrees=degrees)
+    return rotation.as_euler(seq, degrees=as_flag("degrees", degrees))
 
 
 def euler_parameters(rotation: Rotation) -> np.ndarray:
@@ -224,7 +220,7 @@ def euler_parameters(rotation: Rotation) -> np.ndarray:
     >>> q.round(12) + 0.0
     array([0.70710678, 0.        , 0.70710678, 0.        ])
     """
-    return rotation.as_quat(canonical=True, scalar_first=True)
+    return as_rotation("rotation", rotation).as_quat(canonical=True, scalar_first=True)
 
 
 def rotation_from_euler_parameters(q: ArrayLike) -> Rotation:
@@ -232,7 +228,8 @@ def rotation_from_euler_parameters(q: ArrayLike) -> Rotation:
     :func:`euler_parameters`.
 
     ``q`` need not be of unit length: as in the notes' matrix, whose entries are divided
-    by ``Δ = q0² + q1² + q2² + q3²``, it is normalised.
+    by ``Δ = q0² + q1² + q2² + q3²``, it is normalised (after dividing it by its largest
+    entry, so that neither a huge nor a tiny ``q`` overflows or vanishes on the way).
 
     Parameters
     ----------
@@ -245,9 +242,11 @@ def rotation_from_euler_parameters(q: ArrayLike) -> Rotation:
     array([0., 1., 0.])
     """
     q = as_array("q", q, (4,))
-    if (np.linalg.norm(q, axis=-1) == 0.0).any():
-        raise ModelError("q: expected Euler parameters not all zero, got (0, 0, 0, 0)")
-    return Rotation.from_quat(q, scalar_first=True)
+    biggest = np.abs(q).max(axis=-1, keepdims=True)
+    if (biggest == 0.0).any():
+        raise ModelError("q: expected Euler parameters not all zero, got (0, 0, 0, 0); "
+                         "(1, 0, 0, 0) is no rotation")
+    return Rotation.from_quat(q / biggest, scalar_first=True)
 
 
 # -- homogeneous transforms -----------------------------------------------------------------
@@ -255,11 +254,7 @@ def rotation_from_euler_parameters(q: ArrayLike) -> Rotation:
 def _matrix(rotation: Rotation | ArrayLike) -> np.ndarray:
     if isinstance(rotation, Rotation):
         return rotation.as_matrix()
-    R = np.asarray(rotation, dtype=float)
-    if R.ndim < 2 or R.shape[-1] != R.shape[-2] or R.shape[-1] not in (2, 3):
-        raise ModelError(f"rotation: expected a Rotation or matrices of shape (..., 2, 2) "
-                         f"or (..., 3, 3), got shape {R.shape}")
-    return R
+    return as_rotation_matrix("rotation", rotation)
 
 
 def homogeneous(rotation: Rotation | ArrayLike, translation: ArrayLike) -> np.ndarray:
@@ -268,9 +263,11 @@ def homogeneous(rotation: Rotation | ArrayLike, translation: ArrayLike) -> np.nd
     Parameters
     ----------
     rotation : scipy Rotation, or array_like of shape (..., 2, 2) or (..., 3, 3)
-        ``A_R_B``, whose columns are B's unit vectors written in A.
+        ``A_R_B``, whose columns are B's unit vectors written in A: orthonormal (to 1e-9),
+        with determinant +1.
     translation : array_like, shape (..., d)
-        ``A_r_OB``, the origin of B in A, in m; d = 2 or 3 as the rotation.
+        ``A_r_OB``, the origin of B in A, in m (at most 1e9 m in size); d = 2 or 3 as the
+        rotation.
 
     Returns
     -------
@@ -287,11 +284,8 @@ def homogeneous(rotation: Rotation | ArrayLike, translation: ArrayLike) -> np.nd
     """
     R = _matrix(rotation)
     d = R.shape[-1]
-    p = np.asarray(translation, dtype=float)
-    if p.ndim == 0 or p.shape[-1] != d:
-        raise ModelError(f"translation: expected shape (..., {d}) to go with a {d}x{d} "
-                         f"rotation, got {p.shape}")
-    return _block(R, p, 1.0)
+    p = as_array("translation", translation, (d,), batch="any", limit=LENGTH)
+    return _block(*together(("rotation", R, 2), ("translation", p, 1)), 1.0)
 
 
 def _block(R: np.ndarray, p: np.ndarray, corner: float) -> np.ndarray:
@@ -329,7 +323,7 @@ def planar_transform(angle: ArrayLike, translation: ArrayLike = (0.0, 0.0)) -> n
     >>> kl.spatial.transform_points(kl.spatial.compose(T01, T12), [1.0, 0.0])
     array([0.8660254, 1.5      ])
     """
-    angle = np.asarray(angle, dtype=float)
+    angle = as_angles("angle", angle, batch="any")
     c, s = np.cos(angle), np.sin(angle)
     R = np.stack([np.stack([c, -s], axis=-1), np.stack([s, c], axis=-1)], axis=-2)
     return homogeneous(R, translation)
@@ -343,17 +337,19 @@ def translation(vector: ArrayLike) -> np.ndarray:
     >>> kl.spatial.translation([0.2, 0.0, 0.866])[:3, 3]
     array([0.2  , 0.   , 0.866])
     """
-    p = np.asarray(vector, dtype=float)
+    p = reals("vector", vector)
     d = p.shape[-1] if p.ndim else 0
     if d not in (2, 3):
         raise ModelError(f"vector: expected shape (..., 2) or (..., 3), got {p.shape}")
-    return homogeneous(np.eye(d), p)
+    p = as_array("vector", p, (d,), batch="any", limit=LENGTH)
+    return _block(np.eye(d), p, 1.0)
 
 
 def compose(*transforms: ArrayLike) -> np.ndarray:
     """``T1 T2 ... Tk``: the frame chain ``0_T_k = 0_T_1 1_T_2 ... (k-1)_T_k``.
 
-    Each argument has shape (..., d + 1, d + 1); leading dimensions broadcast.
+    Each argument is a rigid transform of shape (..., d + 1, d + 1), all of one d;
+    leading dimensions broadcast.
 
     Examples
     --------
@@ -364,24 +360,23 @@ def compose(*transforms: ArrayLike) -> np.ndarray:
     """
     if not transforms:
         raise ModelError("compose: expected at least one transform, got none")
-    result = np.asarray(transforms[0], dtype=float)
-    for T in transforms[1:]:
-        result = result @ np.asarray(T, dtype=float)
-    return result
-
-
-def _dimension(T: np.ndarray, name: str = "transform") -> int:
-    if T.ndim < 2 or T.shape[-1] != T.shape[-2] or T.shape[-1] not in (3, 4):
-        raise ModelError(f"{name}: expected homogeneous transforms of shape (..., 3, 3) or "
-                         f"(..., 4, 4), got shape {T.shape}")
-    return T.shape[-1] - 1
+    first = as_transform("transforms[0]", transforms[0])
+    d = first.shape[-1] - 1
+    checked = [("transforms[0]", first, 2)] + [
+        (f"transforms[{i}]", as_transform(f"transforms[{i}]", T, d), 2)
+        for i, T in enumerate(transforms[1:], start=1)]
+    result, *rest = together(*checked)
+    for T in rest:
+        result = result @ T
+    return np.array(result)
 
 
 def invert(transform: ArrayLike) -> np.ndarray:
     """``B_T_A = (A_T_B)⁻¹`` by the transpose form of *Mecanismos*, eq. 20.
 
     ``[[R, p], [0, 1]]⁻¹ = [[Rᵀ, -Rᵀ p], [0, 1]]``: no matrix inversion, exact for a
-    rigid transform (R orthonormal), which every transform built here is.
+    rigid transform (R orthonormal), which every transform built here is; any other
+    matrix is refused.
 
     Examples
     --------
@@ -389,10 +384,10 @@ def invert(transform: ArrayLike) -> np.ndarray:
     >>> bool(np.allclose(kl.spatial.invert(T) @ T, np.eye(4), rtol=0, atol=1e-15))
     True
     """
-    T = np.asarray(transform, dtype=float)
-    d = _dimension(T)
+    T = as_transform("transform", transform)
+    d = T.shape[-1] - 1
     Rt = np.swapaxes(T[..., :d, :d], -1, -2)
-    return homogeneous(Rt, -np.einsum("...ij,...j->...i", Rt, T[..., :d, d]))
+    return _block(Rt, -np.einsum("...ij,...j->...i", Rt, T[..., :d, d]), 1.0)
 
 
 def transform_points(transform: ArrayLike, points: ArrayLike) -> np.ndarray:
@@ -415,12 +410,10 @@ def transform_points(transform: ArrayLike, points: ArrayLike) -> np.ndarray:
     array([[1., 1., 0.],
            [1., 0., 2.]])
     """
-    T = np.asarray(transform, dtype=float)
-    d = _dimension(T)
-    r = np.asarray(points, dtype=float)
-    if r.ndim == 0 or r.shape[-1] != d:
-        raise ModelError(f"points: expected shape (..., {d}) for a transform of shape "
-                         f"{T.shape}, got {r.shape}")
+    T = as_transform("transform", transform)
+    d = T.shape[-1] - 1
+    r = as_array("points", points, (d,), batch="any", limit=LENGTH)
+    T, r = together(("transform", T, 2), ("points", r, 1))
     return np.einsum("...ij,...j->...i", T[..., :d, :d], r) + T[..., :d, d]
 
 
@@ -442,20 +435,18 @@ def skew(vector: ArrayLike) -> np.ndarray:
     >>> kl.spatial.skew([1.0, 2.0, 3.0]) @ [4.0, 5.0, 6.0]
     array([-3.,  6., -3.])
     """
-    w = np.asarray(vector, dtype=float)
-    if w.ndim == 0 or w.shape[-1] != 3:
-        raise ModelError(f"vector: expected shape (..., 3), got {w.shape}")
+    w = as_array("vector", vector, (3,), batch="any")
     x, y, z = np.moveaxis(w, -1, 0)
     zero = np.zeros_like(x)
     return np.stack([np.stack([zero, -z, y], -1), np.stack([z, zero, -x], -1),
                      np.stack([-y, x, zero], -1)], -2)
 
 
-def _spin(omega: ArrayLike, d: int) -> np.ndarray:
-    """``[ω]×`` in 3-D (ω shape (..., 3)), or ``ω [[0, -1], [1, 0]]`` in 2-D (ω shape (...))."""
+def _spin(name: str, omega: ArrayLike, d: int, unit: str) -> np.ndarray:
+    """``[ω]×`` in 3-D (ω of shape (..., 3)), or ``ω [[0, -1], [1, 0]]`` in 2-D (ω (...))."""
     if d == 3:
-        return skew(omega)
-    w = np.asarray(omega, dtype=float)
+        return skew(as_vectors(name, omega, 3, limit=rate(unit)))
+    w = as_array(name, omega, (), batch="any", limit=rate(unit))
     return w[..., None, None] * np.array([[0.0, -1.0], [1.0, 0.0]])
 
 
@@ -509,13 +500,14 @@ def transform_rates(transform: ArrayLike, omega: ArrayLike, velocity: ArrayLike,
            [ 0., -4.,  0.],
            [ 0.,  0.,  0.]])
     """
-    T = np.asarray(transform, dtype=float)
-    d = _dimension(T)
+    T = as_transform("transform", transform)
+    d = T.shape[-1] - 1
+    W, A = _spin("omega", omega, d, "rad/s"), _spin("alpha", alpha, d, "rad/s^2")
+    v = as_vectors("velocity", velocity, d, limit=rate("m/s"))
+    a = as_vectors("acceleration", acceleration, d, limit=rate("m/s^2"))
+    T, W, A, v, a = together(("transform", T, 2), ("omega", W, 2), ("alpha", A, 2),
+                             ("velocity", v, 1), ("acceleration", a, 1))
     R = T[..., :d, :d]
-    if d == 3:
-        omega, alpha = as_vectors("omega", omega, 3), as_vectors("alpha", alpha, 3)
-    W, A = _spin(omega, d), _spin(alpha, d)
-    v, a = as_vectors("velocity", velocity, d), as_vectors("acceleration", acceleration, d)
     return TransformRates(Td=_block(W @ R, v, 0.0), Tdd=_block((A + W @ W) @ R, a, 0.0))
 
 
@@ -579,15 +571,15 @@ def point_motion(transform: ArrayLike, Td: ArrayLike, Tdd: ArrayLike, point: Arr
     >>> m.coriolis_acceleration
     array([0., 4., 0.])
     """
-    T, Td, Tdd = (np.asarray(M, dtype=float) for M in (transform, Td, Tdd))
-    d = _dimension(T)
-    for name, M in (("Td", Td), ("Tdd", Tdd)):
-        if _dimension(M, name) != d:
-            raise ModelError(f"{name}: expected the shape of transform, {T.shape[-2:]}, got "
-                             f"{M.shape[-2:]}")
-    r = as_vectors("point", point, d)
-    rd = np.broadcast_to(as_vectors("point_velocity", point_velocity, d), r.shape)
-    rdd = np.broadcast_to(as_vectors("point_acceleration", point_acceleration, d), r.shape)
+    T = as_transform("transform", transform)
+    d = T.shape[-1] - 1
+    Td, Tdd = as_transform_rate("Td", Td, d), as_transform_rate("Tdd", Tdd, d)
+    r = as_vectors("point", point, d, limit=LENGTH)
+    rd = as_vectors("point_velocity", point_velocity, d, limit=rate("m/s"))
+    rdd = as_vectors("point_acceleration", point_acceleration, d, limit=rate("m/s^2"))
+    T, Td, Tdd, r, rd, rdd = together(
+        ("transform", T, 2), ("Td", Td, 2), ("Tdd", Tdd, 2), ("point", r, 1),
+        ("point_velocity", rd, 1), ("point_acceleration", rdd, 1))
 
     def times(M, x):
         return np.einsum("...ij,...j->...i", M[..., :d, :d], x)
@@ -650,9 +642,14 @@ def euler_rates(sequence: str, angles: ArrayLike, rates: ArrayLike,
     """
     seq = _scipy_sequence(sequence, axes)
     k = len(seq)
-    angles = as_array("angles", angles, (k,))
-    rates = np.broadcast_to(as_array("rates", rates, (k,)), angles.shape)
-    accelerations = np.broadcast_to(np.asarray(accelerations, dtype=float), angles.shape)
+    angles = as_angles("angles", angles, (k,))
+    rates = as_array("rates", rates, (k,), limit=rate("rad/s"))
+    accelerations = reals("accelerations", accelerations)
+    if accelerations.ndim == 0 and accelerations == 0.0:
+        accelerations = np.zeros(k)
+    accelerations = as_array("accelerations", accelerations, (k,), limit=rate("rad/s^2"))
+    angles, rates, accelerations = together(("angles", angles, 1), ("rates", rates, 1),
+                                            ("accelerations", accelerations, 1))
     letters = seq.lower()
     order = range(k) if axes == "moving" else range(k - 1, -1, -1)
     lead = angles.shape[:-1]
