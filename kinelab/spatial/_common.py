@@ -48,9 +48,11 @@ def _derivative(value: float) -> str | None:
     return None
 
 
-# A rotation matrix is orthonormal to this (products of thousands of rotations stay far
-# inside it; a matrix typed with a few digits does not, and invert() would be wrong).
-ORTHONORMAL = 1e-9
+# A rotation matrix is orthonormal to this: a matrix typed from a book with two or three
+# digits (0.866, 0.5; 0.71, 0.71) is a rotation to its own precision, and a scaled or sheared
+# one (a factor of 2, a matrix of ones) is not.  invert() takes R's transpose, which inverts
+# such a matrix to the precision it was typed with.
+ORTHONORMAL = 1e-2
 
 
 def given(value: object) -> str:

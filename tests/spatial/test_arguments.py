@@ -405,3 +405,14 @@ def test_many_repeated_solutions_are_sorted_out():
     kept = robot._distinct(q)
     assert len(kept) == 3
     np.testing.assert_allclose(np.sort(kept[:, 0]), np.sort(roots[:, 0]), rtol=0, atol=1e-8)
+
+
+def test_a_rotation_typed_with_three_digits_is_taken_as_it_is():
+    """A book's 30 deg turn about z, typed 0.866 and 0.5: a rotation to its own precision."""
+    typed = np.array([[0.866, -0.5, 0.0, 1.0], [0.5, 0.866, 0.0, 2.0], [0.0, 0.0, 1.0, 3.0],
+                      [0.0, 0.0, 0.0, 1.0]])
+    exact = sp.homogeneous(sp.rotation("z", 30.0, degrees=True), [1.0, 2.0, 3.0])
+    np.testing.assert_allclose(sp.invert(typed) @ exact, np.eye(4), rtol=0, atol=1e-3)
+    np.testing.assert_allclose(sp.compose(typed, typed), exact @ exact, rtol=0, atol=1e-3)
+    with pytest.raises(ModelError, match="rotation part: expected orthonormal"):
+        sp.invert(np.diag([1.05, 1.05, 1.0, 1.0]))          # scaled by 5 %: not a rotation
