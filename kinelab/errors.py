@@ -184,8 +184,8 @@ def describe(value: object, _depth: int = 0) -> str:
     --------
     >>> describe([1.5, "a\\nb", {"k": 1}]), describe(np.array([[1.0, 2.0], [3.0, 4.0]]))
     ("[1.5, 'a\\\\nb', a table]", '[[1.0, 2.0], [3.0, 4.0]]')
-    >>> describe(np.arange(10**6)), describe(np.float64(0.5))
-    ('[0, 1, 2, 3, ...]', '0.5')
+    >>> describe(np.arange(10**6)), describe(np.float64(0.5)), describe(object())
+    ('[0, 1, 2, 3, ...]', '0.5', 'an object')
     """
     if type(value).__module__ == "numpy" and hasattr(value, "tolist"):
         # an array or a numpy number: its plain numbers, as few as are shown (not a repr)
@@ -208,10 +208,14 @@ def describe(value: object, _depth: int = 0) -> str:
         inner = ", ".join(describe(v, _depth + 1) for v in value[:4])
         left, right = "()" if isinstance(value, tuple) else "[]"
         return f"{left}{inner}{', ...' if len(value) > 4 else ''}{right}"
+    kind = type(value).__name__
+    by_type = f"{'an' if kind[:1].lower() in 'aeiou' else 'a'} {kind}"
+    if type(value).__repr__ is object.__repr__:     # no repr of its own: an address, no value
+        return _escaped(by_type, NAME_SHOWN)
     try:
         text = repr(value)
     except Exception:       # a caller's object whose repr fails: name its type
-        text = f"a {type(value).__name__}"
+        text = by_type
     return _escaped(text, NAME_SHOWN)
 
 

@@ -20,7 +20,7 @@ from kinelab.errors import ModelError, describe, shown
 from kinelab.model import (MAX_LENGTH, MIN_LENGTH, angle_problem, coordinate_problem,
                            length_problem, name_problem, rate_problem, real_array)
 
-__all__ = ["LENGTH", "ANGLE", "MAX_LENGTH", "MIN_LENGTH", "rate", "given", "check_size",
+__all__ = ["LENGTH", "ANGLE", "MAX_LENGTH", "MIN_LENGTH", "rate", "check_size",
            "reals", "as_array", "as_vectors", "as_number", "as_angles", "as_length",
            "as_directions", "as_flag", "as_count", "as_rotation", "as_rotation_matrix",
            "as_transform", "as_transform_rate", "transform_dimension", "together", "indices",
@@ -55,16 +55,6 @@ def _derivative(value: float) -> str | None:
 ORTHONORMAL = 1e-2
 
 
-def given(value: object) -> str:
-    """A value a caller gave, as a message shows it: numbers, text and lists as they are,
-    any other object by its type (not its repr, with an address in it)."""
-    if value is None or isinstance(value, (str, numbers.Number, list, tuple, np.ndarray,
-                                           np.generic, Mapping)):
-        return describe(value)
-    kind = type(value).__name__
-    return f"{'an' if kind[:1].lower() in 'aeiou' else 'a'} {kind}"
-
-
 def _shape_text(shape, batch="") -> str:
     parts = (["..."] if batch == "any" else ["N"] if batch else []) + \
         ["N" if s is None else str(s) for s in shape]
@@ -76,7 +66,7 @@ def reals(name: str, value: ArrayLike) -> np.ndarray:
     with np.errstate(over="ignore", invalid="ignore"):     # a long double beyond floats
         array = real_array(value)
     if array is None:
-        raise ModelError(f"{name}: expected real numbers, got {given(value)}")
+        raise ModelError(f"{name}: expected real numbers, got {describe(value)}")
     return array
 
 
@@ -150,7 +140,7 @@ def as_length(name: str, value: float, *, positive: bool = False) -> float:
         value = value[()]
     number = None if isinstance(value, bool) else _real_number(value)
     if number is None or (positive and number <= 0.0):
-        raise ModelError(f"{name}: expected {kind} in m, got {given(value)}")
+        raise ModelError(f"{name}: expected {kind} in m, got {describe(value)}")
     problem = length_problem(number, positive=positive)
     if problem:
         raise ModelError(f"{name}: {problem}, got {describe(number)} m")
@@ -183,7 +173,7 @@ def as_directions(name: str, value: ArrayLike, *, batch: bool = True) -> np.ndar
 def as_flag(name: str, value: object) -> bool:
     """``value`` as a bool: True or False, not something that merely has a truth value."""
     if not isinstance(value, (bool, np.bool_)):
-        raise ModelError(f"{name}: expected True or False, got {given(value)}")
+        raise ModelError(f"{name}: expected True or False, got {describe(value)}")
     return bool(value)
 
 
@@ -192,7 +182,7 @@ def as_count(name: str, value: object, low: int, high: int) -> int:
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral) \
             or not low <= value <= high:
         raise ModelError(f"{name}: expected a whole number from {low} to {high:,}, got "
-                         f"{given(value)}")
+                         f"{describe(value)}")
     return int(value)
 
 
@@ -304,7 +294,7 @@ def robot_name(name: object) -> str:
     """``'name'`` for a message, after checking it is a name."""
     problem = name_problem(name)
     if problem:
-        raise ModelError(f"name: {problem}, got {given(name)}")
+        raise ModelError(f"name: {problem}, got {describe(name)}")
     return shown(name)
 
 

@@ -20,9 +20,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import (AssemblyError, ConvergenceError, ModelError, SingularityError,
-                            check_choice, shown)
+                            check_choice, describe, shown)
 from kinelab.spatial._common import (ANGLE, LENGTH, as_array, as_directions, as_flag,
-                                     as_length, as_vectors, check_size, given, indices, rate,
+                                     as_length, as_vectors, check_size, indices, rate,
                                      reals, robot_name)
 from kinelab.solvers import half_angle, wrap_angle
 from kinelab.spatial._transforms import rotation
@@ -175,7 +175,7 @@ class SerialRobot:
             joints = None
         if not joints or not all(isinstance(j, RobotJoint) for j in joints):
             raise ModelError(f"robot {who}: joints: expected one or more RobotJoint, got "
-                             f"{given(self.joints)}")
+                             f"{describe(self.joints)}")
         object.__setattr__(self, "joints", joints)
         tool = as_array("tool", self.tool, (3,), batch=False, limit=LENGTH)
         object.__setattr__(self, "tool", tuple(float(t) for t in tool))
