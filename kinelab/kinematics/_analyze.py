@@ -13,11 +13,12 @@ from kinelab.errors import AssemblyError, ModelError, check_choice, describe, sh
 from kinelab.kinematics import _codes as k
 from kinelab.kinematics._assemble import check_assembled
 from kinelab.kinematics._branches import BranchMap, ChangePoint, branch_map, branched_ops
+from kinelab.kinematics._columns import INPUT_SI_UNITS
 from kinelab.kinematics._input_errors import SingularInput, UnreachableInput
 from kinelab.kinematics._evaluate import run as _run
 from kinelab.kinematics._plan import Plan, build_plan
 from kinelab.kinematics._solution import KinematicSolution
-from kinelab.model import Mechanism, real_array
+from kinelab.model import MAX_LENGTH, MAX_RATE, Mechanism, real_array
 from kinelab.solvers import bisect, wrap_angle
 
 __all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "change_points",
@@ -81,8 +82,34 @@ def _rates(name: str, value: ArrayLike, M: int, shape: tuple[int, ...]) -> np.nd
     return np.array(b[:1] if b.strides[0] == 0 else b, dtype=float, order="C")
 
 
-def _normalise_q(q, qd, qdd, M):
-    """q (N, M), qd and qdd (N, M) or (1, M), all new arrays, and whether q was one sample."""
+# The largest input values: an angle within a million turns of 0, where float64 still
+# resolves it to 1e-9 rad (a sweep's range in a model file keeps to MAX_TURNS; a long motion
+# goes further); a slide within MAX_LENGTH; rates within MAX_RATE (accelerations take the
+# square of a speed).
+INPUT_TURNS = 1_000_000
+Q_LIMITS = {"angle": INPUT_TURNS * 2 * math.pi, "slide": MAX_LENGTH}
+
+
+def _within_limits(p: Plan, q2: np.ndarray, qd2: np.ndarray, qdd2: np.ndarray) -> None:
+    """Refuse input values beyond the model's limits (q by each input's kind)."""
+    kinds = p.input_kinds
+    for name, a, limits in (("q", q2, [Q_LIMITS[k] for k in kinds]),
+                            ("qd", qd2, [MAX_RATE] * len(kinds)),
+                            ("qdd", qdd2, [MAX_RATE] * len(kinds))):
+        over = ~(np.abs(a) <= limits)
+        if over.any():
+            i, k = np.argwhere(over)[0]
+            unit = INPUT_SI_UNITS[kinds[k]] + ("" if name == "q" else "/s" if name == "qd" else "/s^2")
+            what = (f"angles within {INPUT_TURNS:,} turns of 0 either way (beyond, float64 "
+                    "resolves them to worse than 1e-9 rad)" if name == "q" and kinds[k] == "angle"
+                    else f"at most {limits[k]:g} {unit} in size")
+            where = f" at index {[int(i), int(k)] if len(kinds) > 1 else int(i)}" if a.size > 1 else ""
+            raise ModelError(f"{name}: expected {what}, got {a[i, k]:g}{where}")
+
+
+def _normalise_q(q, qd, qdd, M: int, p: Plan):
+    """q (N, M), qd and qdd (N, M) or (1, M), all new arrays within the limits of the
+    plan ``p``'s inputs, and whether q was one sample."""
     qa = _finite("q", q)
     if M == 1:
         if qa.ndim > 1:
@@ -93,8 +120,9 @@ def _normalise_q(q, qd, qdd, M):
             raise ModelError(f"q: expected shape ({M},) or (N, {M}) for a mechanism with {M} "
                              f"inputs, got {qa.shape}")
         single = qa.ndim == 1
-    return (qa.reshape(-1, M), _rates("qd", qd, M, qa.shape), _rates("qdd", qdd, M, qa.shape),
-            single)
+    q2, qd2, qdd2 = qa.reshape(-1, M), _rates("qd", qd, M, qa.shape), _rates("qdd", qdd, M, qa.shape)
+    _within_limits(p, q2, qd2, qdd2)
+    return q2, qd2, qdd2, single
 
 
 def _per_sample(rates: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
@@ -156,7 +184,7 @@ def assembly_status(mechanism: Mechanism, q: ArrayLike, *, method: Literal["auto
     p = plan(mechanism, method=method)
     M = len(mechanism.inputs)
     check_choice("at_change_point", at_change_point, ("smooth", "switch"))
-    q2, qd2, qdd2, _ = _normalise_q(q, 0.0, 0.0, M)
+    q2, qd2, qdd2, _ = _normalise_q(q, 0.0, 0.0, M, p)
     out = _solve(p, _branch_map(p, M, at_change_point), q2, qd2, qdd2, stored=_NOTHING)
     ok = out["status"] == k.ST_OK
     measure = np.where(ok, out["diag"][:, 1], np.nan)
@@ -406,9 +434,10 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
     ----------
     mechanism : Mechanism
     q : float or array_like, shape () or (N,); (M,) or (N, M) when M > 1
-        Input coordinates, rad (angle inputs) or m (slides).
+        Input coordinates, rad (angle inputs, within a million turns of 0) or m (slides,
+        within 1e9 m).
     qd, qdd : float or array_like, broadcast to the shape of q
-        Input velocities (rad/s or m/s) and accelerations.
+        Input velocities (rad/s or m/s) and accelerations, each at most 1e100 in size.
     unreachable : {"raise", "mask"}
         Where the loops cannot close: raise :class:`~kinelab.errors.AssemblyError` (naming
         the group, the gap and, for one input, the reachable range) or mark the sample in
@@ -457,7 +486,7 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
     if at_singular not in ("auto", "raise", "flag"):
         raise ModelError(f"at_singular: expected one of 'auto', 'raise', 'flag', got {shown(at_singular)}")
     _require_results(p, np.shape(q), M)          # before anything of that size is made
-    q2, qd2, qdd2, single = _normalise_q(q, qd, qdd, M)
+    q2, qd2, qdd2, single = _normalise_q(q, qd, qdd, M, p)
     resume = None
     if start is not None:
         if not isinstance(start, KinematicSolution) or start.mechanism != mechanism:

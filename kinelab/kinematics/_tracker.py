@@ -11,10 +11,10 @@ from numpy.typing import ArrayLike
 from kinelab.errors import ModelError, check_choice
 from kinelab.kinematics import _codes as k
 from kinelab import _compiled
-from kinelab.kinematics._analyze import (SINGULAR_TOL, _branch_map, _check_redundant,
+from kinelab.kinematics._analyze import (Q_LIMITS, SINGULAR_TOL, _branch_map, _check_redundant,
                                          _normalise_q, analyze, plan)
 from kinelab.kinematics._solution import KinematicSolution
-from kinelab.model import Mechanism
+from kinelab.model import MAX_RATE, Mechanism
 
 __all__ = ["Tracker"]
 
@@ -65,6 +65,7 @@ class Tracker:
         self._options = dict(method=method, at_change_point=at_change_point,
                              unreachable=unreachable, at_singular=at_singular)
         self.M = M = len(mechanism.inputs)
+        self._q_limit = Q_LIMITS[p.input_kinds[0]]        # of the fast path's one input
         self._bmap = _branch_map(p, M, at_change_point)
         self._last: KinematicSolution | None = None       # where Newton groups go on from
         self._closed_form = p.groups is None
@@ -130,13 +131,13 @@ class Tracker:
         if not self._closed_form:
             return None
         if self.M == 1 and type(q) is float and type(qd) is float and type(qdd) is float:
-            if math.isfinite(q) and math.isfinite(qd) and math.isfinite(qdd):
+            if abs(q) <= self._q_limit and abs(qd) <= MAX_RATE and abs(qdd) <= MAX_RATE:
                 x = np.empty((3, 1))
                 x[0, 0] = q
                 x[1, 0] = qd
                 x[2, 0] = qdd
                 return x
-        q2, qd2, qdd2, single = _normalise_q(q, qd, qdd, self.M)
+        q2, qd2, qdd2, single = _normalise_q(q, qd, qdd, self.M, self.plan)
         if not single:
             return None
         return np.concatenate([q2, qd2, qdd2])

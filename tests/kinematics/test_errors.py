@@ -141,3 +141,31 @@ def test_extra_link_off_the_parallelogram_locks_the_linkage():
     with pytest.raises(ModelError, match=r"the linkage has 0 degree\(s\) of freedom at the sketch "
                                          r"\(exact mobility; Kutzbach-Gruebler counts 0\) but 1 input"):
         kl.analyze(_parallelogram(dx_extra=0.3), q=np.linspace(0.5, 2.5, 9))
+
+
+@pytest.mark.parametrize("q, qd, qdd, message", [
+    (0.3, 1e200, 0.0, r"^qd: expected at most 1e\+100 rad/s in size, got 1e\+200$"),
+    (0.3, 1.0, -1e101, r"^qdd: expected at most 1e\+100 rad/s\^2 in size, got -1e\+101$"),
+    (2 * np.pi * 1e15 + 0.5, 0.0, 0.0,
+     r"^q: expected angles within 1,000,000 turns of 0 either way \(beyond, float64 resolves "
+     r"them to worse than 1e-9 rad\), got 6\.28319e\+15$"),
+    ([0.1, -1e308], 0.0, 0.0, r"^q: expected angles within .* got -1e\+308 at index 1$"),
+])
+def test_input_values_beyond_the_limits_are_refused(q, qd, qdd, message):
+    """Beyond them an acceleration overflows to inf, or an angle's sine keeps no digit (a
+    parallelogram at 1e15 turns put its rocker 2.48 rad off its crank)."""
+    fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
+    with pytest.raises(ModelError, match=message):
+        kl.analyze(fb, q, qd, qdd)
+    if np.ndim(q) == 0:
+        with pytest.raises(ModelError, match=message):
+            kl.kinematics.Tracker(fb)(q, qd, qdd)
+
+
+def test_a_long_motion_within_the_limits_stays_exact():
+    """A parallelogram's rocker follows its crank a hundred thousand turns on."""
+    pg = kl.mechanisms.fourbar(100, 60, 100, 60)
+    q = 2 * np.pi * 1e5 + np.array([0.5, 2.0])
+    sol = kl.analyze(pg, q)
+    np.testing.assert_allclose(sol.position("B") - sol.position("A"), [[100, 0], [100, 0]],
+                               rtol=0, atol=1e-6)
