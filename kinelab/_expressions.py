@@ -43,7 +43,7 @@ from typing import Any
 
 import numpy as np
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe, one_line, quoted
 
 __all__ = ["parse_expression", "parse_function", "parse_table", "to_sympy", "to_program", "FUNCTIONS",
            "MAX_LENGTH", "MAX_PARTS", "MAX_DEPTH", "MAX_EXPONENT"]
@@ -106,6 +106,36 @@ class _Const:
 def _float(value):
     """numpy's float64 of a result: booleans become 1.0 and 0.0."""
     return np.asarray(value, dtype=np.float64)[()]
+
+
+def _place(where: Any) -> str:
+    """Where a text comes from, as a message shows it: one line, of bounded length."""
+    return one_line(where, 200)
+
+
+def _states(where: str, t, q, qd) -> _Env:
+    """The state a law is evaluated at, checked: t of shape () or (N,), q and qd of shape
+    (N, M), real numbers."""
+    arrays = [a if a is None else _real(a) for a in (t, q, qd)]
+    ok = (all(a is not None for a in arrays) and arrays[0].ndim <= 1
+          and arrays[1].ndim == 2 and arrays[1].shape == arrays[2].shape
+          and (arrays[0].ndim == 0 or arrays[0].shape[0] == arrays[1].shape[0]))
+    if not ok:
+        got = ", ".join(f"{n} = {describe(v)}" if a is None else f"{n} of shape {a.shape}"
+                        for n, v, a in zip(("t", "q", "qd"), (t, q, qd), arrays))
+        raise ModelError(f"{where}: expected real numbers, t of shape () or (N,), q and qd of "
+                         f"shape (N, M) (N samples, M inputs), got {got}")
+    return _Env(*arrays)
+
+
+def _real(value) -> np.ndarray | None:
+    """``value`` as a float64 array when it holds real numbers only, else None (as
+    :func:`kinelab.model.real_array`, which this module sits below)."""
+    try:
+        a = np.asarray(value)
+    except (TypeError, ValueError, OverflowError):
+        return None
+    return a.astype(np.float64) if a.dtype.kind in "iuf" else None
 
 
 def _shown(text: str) -> str:
@@ -185,12 +215,12 @@ def parse_expression(text: str, *, where: str = "expression") -> Callable[[Any, 
     ...
     kinelab.errors.ModelError: expression: the expression '1 / q' gives inf (an overflow or a division by zero) at t = 0 s, q = 0, qd = 0; expected a finite value; guard it there, for example with where(...) or clip(...)
     """
+    where = _place(where)
     _, node = _checked(text, where)
     what = f"the expression {_shown(text)}"
 
     def law(t, q, qd):
-        env = _Env(np.asarray(t, dtype=np.float64), np.asarray(q, dtype=np.float64),
-                   np.asarray(qd, dtype=np.float64))
+        env = _states(where, t, q, qd)
         with np.errstate(all="ignore"):
             out = _float(node(env))
         if not np.all(np.isfinite(out)):
@@ -213,11 +243,15 @@ def parse_function(text: str, variable: str = "x", *, where: str = "expression"
     >>> f(np.array([1.0, 10.0]))
     array([  1., 101.])
     """
+    where = _place(where)
     _, node = _checked(text, where, variable)
     what = f"the expression {_shown(text)}"
 
     def function(x):
-        x = np.asarray(x, dtype=np.float64)
+        a = _real(x)
+        if a is None:
+            raise ModelError(f"{where}: expected real numbers for {variable}, got {describe(x)}")
+        x = a
         with np.errstate(all="ignore"):
             out = np.broadcast_to(_float(node(_Env(x, None, None))), x.shape)
         if not np.all(np.isfinite(out)):
@@ -232,7 +266,7 @@ def _checked(text: str, where: str, variable: str | None = None):
     are checked: what :func:`parse_expression`, :func:`parse_function` and
     :func:`to_sympy` all refuse."""
     if not isinstance(text, str):
-        raise ModelError(f"{where}: expected an expression (text) or a number, got {text!r}")
+        raise ModelError(f"{where}: expected an expression (text) or a number, got {describe(text)}")
     if len(text) > MAX_LENGTH:
         raise ModelError(f"{where}: the expression is {len(text)} characters long; expected at "
                          f"most {MAX_LENGTH}; use a table for a long law")
@@ -513,18 +547,18 @@ def parse_table(spec: Mapping[str, Any], *, where: str = "table") -> Callable[[A
     >>> f(np.zeros(2), np.array([[0.5], [1.5]]), np.zeros((2, 1)))
     array([5., 5.])
     """
+    where = _place(where)
     if not isinstance(spec, Mapping):
-        raise ModelError(f"{where}: expected a table {{of, x, y, period}}, got {spec!r}")
+        raise ModelError(f"{where}: expected a table {{of, x, y, period}}, got {describe(spec)}")
     unknown = set(spec) - {"of", "x", "y", "period"}
     if unknown:
-        raise ModelError(f"{where}: unknown key(s) {', '.join(sorted(map(repr, unknown)))}; a table "
+        raise ModelError(f"{where}: unknown key(s) {quoted(sorted(unknown, key=str))}; a table "
                          "has 'of', 'x', 'y' and optionally 'period'")
     problems = []
-    try:
-        x = np.asarray(spec.get("x"), dtype=float)
-        y = np.asarray(spec.get("y"), dtype=float)
-    except (TypeError, ValueError):
-        raise ModelError(f"{where}: x and y: expected lists of numbers") from None
+    x, y = _real(spec.get("x")), _real(spec.get("y"))
+    if x is None or y is None:
+        raise ModelError(f"{where}: x and y: expected lists of real numbers, got "
+                         f"{describe(spec.get('x'))} and {describe(spec.get('y'))}")
     if x.ndim != 1 or y.ndim != 1 or x.size != y.size or x.size < 2:
         problems.append(f"{where}: x and y: expected two lists of the same length (at least 2), "
                         f"got {x.size if x.ndim == 1 else x.shape} and {y.size if y.ndim == 1 else y.shape}")
@@ -535,9 +569,9 @@ def parse_table(spec: Mapping[str, Any], *, where: str = "table") -> Callable[[A
         problems.append(f"{where}: x: expected strictly increasing values, got x[{i}] = {x[i]} "
                         f"then x[{i + 1}] = {x[i + 1]}")
     period = spec.get("period")
-    if period is not None and not (isinstance(period, (int, float)) and not isinstance(period, bool)
-                                   and math.isfinite(period) and period > 0):
-        problems.append(f"{where}: period: expected a positive number, got {period!r}")
+    p = None if isinstance(period, bool) else _real(period)
+    if period is not None and not (p is not None and p.ndim == 0 and math.isfinite(p) and p > 0):
+        problems.append(f"{where}: period: expected a positive number, got {describe(period)}")
     if problems:
         raise ModelError(problems)
     of_text = spec.get("of", "q")
@@ -599,6 +633,7 @@ def to_program(text: str, M: int, *, where: str = "expression"
     >>> code.tolist(), constants.tolist()
     ([[0, 0], [2, 0], [6, 0], [0, 1], [4, 0]], [2.0, 1.0])
     """
+    where = _place(where)
     tree, _ = _checked(text, where)
     compiler = _Compiler(where, text, text.strip(), None)
     code: list[tuple[int, int]] = []
@@ -703,6 +738,7 @@ def to_sympy(text: str, t, q, qd, *, where: str = "expression"):
     -500*Piecewise((1, q1 > 0), (0, True))
     """
     import sympy as sp
+    where = _place(where)
 
     tree, _ = _checked(text, where)
     shown = _shown(text)

@@ -11,8 +11,9 @@ from numpy.typing import ArrayLike
 from kinelab.derive._loops import Loop, LoopEquations, _Names, loop_equations
 from kinelab.derive._notation import notation_of
 from kinelab.derive._simplify import READABLE_OPS, factors, simplified, size
-from kinelab.errors import ModelError, check_choice
-from kinelab.model import Mechanism
+from kinelab.dynamics._terms import flag
+from kinelab.errors import ModelError, check_choice, describe
+from kinelab.model import Mechanism, real_array
 
 __all__ = ["derive", "Derivation", "DerivationValues", "Singularity", "LANGUAGES"]
 
@@ -204,12 +205,13 @@ class Derivation:
         """The derivation's matrices at inputs ``q`` (shape () or (N,) for one input, (M,) or
         (N, M) for M), with S from :func:`kinelab.analyze` and its K and L beside them.
 
-        Raises what :func:`kinelab.analyze` raises where the model does not assemble.
+        Raises what :func:`kinelab.analyze` raises where the model does not assemble, and a
+        ModelError for ``q`` that is not real numbers of those shapes.
         """
         from kinelab.kinematics import analyze
         m = self.model
         M, n = len(self.q), len(self.S)
-        q2 = np.reshape(np.asarray(q, float), (-1, M))
+        q2 = inputs(q, M, "q")
         sol = analyze(m, q2 if M > 1 else q2[:, 0])
         N = q2.shape[0]
         S = np.zeros((N, n))
@@ -252,6 +254,24 @@ class Derivation:
     def __repr__(self) -> str:
         return (f"Derivation('{self.model.name}', q={list(self.q)}, S={list(self.S)}, "
                 f"{len(self.loops)} loop(s))")
+
+
+def inputs(q, M: int, name: str, *, one: bool = False) -> np.ndarray:
+    """``q`` as an (N, M) array of real numbers, N >= 1: shape () or (N,) for one input,
+    (M,) or (N, M) for M; with ``one``, a single configuration (() or (M,)), as (1, M)."""
+    a = real_array(q)
+    shapes = ("()" if M == 1 else f"({M},)") + ("" if one else " or (N,)" if M == 1 else f" or (N, {M})")
+    if a is None:
+        raise ModelError(f"{name}: expected real numbers (rad or m), shape {shapes}, got {describe(q)}")
+    fits = ((a.ndim == 0 and M == 1) or a.shape == (M,)
+            or (not one and ((M == 1 and a.ndim == 1) or (a.ndim == 2 and a.shape[1] == M))))
+    if not fits or a.size == 0:
+        what = "one configuration" if one else "configurations"
+        raise ModelError(f"{name}: expected {what} of {M} input(s), shape {shapes}, got shape "
+                         f"{a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise ModelError(f"{name}: expected finite numbers, got {describe(q)}")
+    return a.reshape(-1, M)
 
 
 def derive(model: Mechanism, lang: Literal["en", "pt"] = "en", *, dynamics: bool = True,
@@ -302,6 +322,7 @@ def derive(model: Mechanism, lang: Literal["en", "pt"] = "en", *, dynamics: bool
     """
     import sympy as sp
     check_choice("lang", lang, LANGUAGES)
+    dynamics = flag(dynamics, "dynamics")
     if not isinstance(model, Mechanism):
         raise ModelError(f"model: expected a kinelab Mechanism, got {type(model).__name__}; "
                          "build one with kinelab.mechanisms or kinelab.load")

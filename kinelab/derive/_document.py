@@ -478,7 +478,8 @@ def _numbers(d, w, T, N, tex, at) -> None:
     if at is None:
         q = np.array([eq.sketch[s] for s in eq.q])
     else:
-        q = np.reshape(np.asarray(at, float), (M,))
+        from kinelab.derive._derivation import inputs
+        q = inputs(at, M, "at", one=True)[0]
     kinds = [("slide" if inp.joint is not None and m.joint(inp.joint).type == "P" else "angle")
              for inp in m.inputs]
     def value(s, v, kind):

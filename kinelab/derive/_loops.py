@@ -22,9 +22,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinelab.errors import ModelError
+from collections.abc import Iterable, Mapping
+
+from kinelab.errors import ModelError, describe, expected_one_of
 from kinelab.kinematics import plan as engine_plan
-from kinelab.model import Joint, Mechanism
+from kinelab.model import Joint, Mechanism, name_problem
 from kinelab.solvers import wrap_angle
 
 __all__ = ["LoopEquations", "Loop", "loop_equations"]
@@ -114,9 +116,40 @@ def loop_equations(model: Mechanism, notation: dict | None = None,
     Raises
     ------
     ModelError
-        What :func:`kinelab.analyze` raises for a model it cannot analyse.
+        What :func:`kinelab.analyze` raises for a model it cannot analyse; a ``notation``
+        that is not a mapping of keys to names, or ``points`` the model does not have.
     """
-    return _Builder(model, notation or {}).build(tuple(points))
+    builder = _Builder(model, _notation(notation))
+    return builder.build(_points(model, points))
+
+
+def _notation(notation) -> dict:
+    """``notation`` as a dict of key to symbol name, checked."""
+    if notation is None:
+        return {}
+    if not isinstance(notation, Mapping):
+        raise ModelError(f"notation: expected a mapping of keys such as ('angle', 'coupler') to "
+                         f"symbol names, or None, got {describe(notation)}")
+    for key, name in notation.items():
+        problem = name_problem(name)
+        if problem:
+            raise ModelError(f"notation[{describe(key)}]: {problem} for the symbol, got "
+                             f"{describe(name)}")
+    return dict(notation)
+
+
+def _points(model: Mechanism, points) -> tuple[str, ...]:
+    """``points`` (a name, or names) as a tuple of the model's point names."""
+    if isinstance(points, str):
+        points = (points,)
+    if not isinstance(points, Iterable) or isinstance(points, Mapping):
+        raise ModelError(f"points: expected a sequence of point names, got {describe(points)}")
+    points = tuple(points)
+    known = model.point_names
+    for p in points:
+        if p not in known:
+            raise ModelError(f"points: {expected_one_of(p, known)}")
+    return points
 
 
 class _Builder:

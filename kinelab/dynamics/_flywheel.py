@@ -1,13 +1,13 @@
 """Flywheel sizing from the torque curve of a machine cycle."""
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError, describe
+from kinelab.model import MAX_RATE, is_real, real_array
 
 __all__ = ["flywheel", "Flywheel"]
 
@@ -77,7 +77,8 @@ def flywheel(theta: ArrayLike, torque: ArrayLike, *, speed: float, fluctuation: 
     speed : float
         Mean crank speed, rad/s.
     fluctuation : float
-        Allowed coefficient of speed fluctuation, e.g. 0.002 for an alternator, 0.2 for a
+        Allowed coefficient of speed fluctuation ``(w_max - w_min) / w_mean``, above 0 and
+        below 2 (where the crank would stop), e.g. 0.002 for an alternator, 0.2 for a
         crusher.
 
     Returns
@@ -93,11 +94,10 @@ def flywheel(theta: ArrayLike, torque: ArrayLike, *, speed: float, fluctuation: 
     >>> round(fw.mean_torque, 9), round(fw.energy_fluctuation, 5), round(fw.inertia, 6)
     (10.0, 4.0, 0.02)
     """
-    try:
-        th = np.asarray(theta, dtype=float)
-        tq = np.asarray(torque, dtype=float)
-    except (TypeError, ValueError):
-        raise ModelError("theta, torque: expected arrays of numbers") from None
+    th, tq = real_array(theta), real_array(torque)
+    if th is None or tq is None:
+        raise ModelError(f"theta, torque: expected arrays of real numbers, got {describe(theta)} "
+                         f"and {describe(torque)}")
     problems = []
     if th.ndim != 1 or th.shape != tq.shape or th.size < 3:
         problems.append(f"theta, torque: expected two arrays of the same shape (N,), N >= 3, got "
@@ -107,9 +107,14 @@ def flywheel(theta: ArrayLike, torque: ArrayLike, *, speed: float, fluctuation: 
                         "torques; sweep around it)")
     elif np.any(np.diff(th) <= 0):
         problems.append("theta: expected increasing crank angles over one cycle")
-    for name, v in (("speed", speed), ("fluctuation", fluctuation)):
-        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
-            problems.append(f"{name}: expected a positive number, got {describe(v)}")
+    if not (is_real(speed) and 0 < speed <= MAX_RATE):
+        problems.append(f"speed: expected a positive number of rad/s up to {MAX_RATE:g}, got "
+                        f"{describe(speed)}")
+    # (w_max - w_min) / w_mean with w_mean = (w_max + w_min) / 2 reaches 2 where w_min = 0
+    if not (is_real(fluctuation) and 0 < fluctuation < 2):
+        problems.append(f"fluctuation: expected a positive number below 2 (the coefficient of "
+                        f"speed fluctuation (w_max - w_min) / w_mean, 2 when the crank stops), "
+                        f"got {describe(fluctuation)}")
     if problems:
         raise ModelError(problems)
     span = th[-1] - th[0]

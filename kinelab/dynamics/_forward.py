@@ -23,7 +23,7 @@ from kinelab.errors import (AssemblyError, ModelError, SingularityError, check_c
                             shown)
 from kinelab.kinematics import SINGULAR_TOL, KinematicSolution, analyze, change_points, plan
 from kinelab.kinematics._columns import Columns
-from kinelab.model import Mechanism, Units
+from kinelab.model import Mechanism, Units, is_real, real, real_array
 from kinelab.solvers import wrap_angle
 
 __all__ = ["simulate", "Simulation", "SimulationBatch"]
@@ -33,7 +33,13 @@ SINGULAR_STOP = 2 * SINGULAR_TOL   # singularity measure (a sine) at which the i
 WAIT_FOR_COMPILED_FROM = 32   # runs of a batch from which it waits for the compiled kernel
 MAX_EVALUATIONS = 10 ** 8     # of the equations of motion, per run: minutes compiled, so that a
                               # t_span or max_step beyond reach ends with a message, not a hang
+MAX_EVALUATIONS_PYTHON = 2 * 10 ** 5   # the same with the right-hand side in Python, about
+                                       # 0.4 ms an evaluation: a minute or two
 RTOL_FLOOR = 100 * np.finfo(float).eps   # below it rounding swamps the error (scipy's floor)
+TRIAL_EVALUATIONS = 2_000     # a run first goes this far (about a second in Python); one that
+                              # needs more estimates its whole span from the time it reached and
+                              # is refused at once when the estimate is beyond max_evaluations
+MAX_THREADS = 1024            # threads a batch may ask for: far beyond any machine's processors
 _ACROSS = 0.02         # half-width (rad, or sizes for a slide) of the interval across a change
                        # point over which K and L are interpolated
 
@@ -280,7 +286,7 @@ def simulate(model: Mechanism | Sequence[Mechanism], t_span: tuple[float, float]
              method: Literal["DOP853", "RK45", "Radau", "LSODA", "BDF"] = "DOP853",
              rtol: float = 1e-10, atol: float = 1e-12, max_step: float = np.inf,
              singular_stop: float = SINGULAR_STOP, threads: int | None = None,
-             max_evaluations: int = MAX_EVALUATIONS) -> Simulation | SimulationBatch:
+             max_evaluations: int | None = None) -> Simulation | SimulationBatch:
     """Integrate the motion of a mechanism under actuator laws and loads: one run, or a
     batch of runs from different initial states, dimensions, masses or laws.
 
@@ -341,9 +347,14 @@ def simulate(model: Mechanism | Sequence[Mechanism], t_span: tuple[float, float]
         the branch that continues smoothly, as :func:`kinelab.kinematics.analyze` does.
     threads : int, optional
         Threads sharing the runs of a compiled batch (default: one per processor).
-    max_evaluations : int
-        The most evaluations of the equations of motion a run may take (default 10^8:
-        minutes with the compiled kernel); a run that needs more stops with a ModelError.
+    max_evaluations : int, optional
+        The most evaluations of the equations of motion a run may take; default 10^8 with
+        the compiled kernel (minutes), 2 x 10^5 with the right-hand side in Python (about
+        0.4 ms each: a minute or two).  A run first takes up to 2000 evaluations; if that
+        does not reach the end of ``t_span``, the evaluations of the whole span are
+        estimated from the time reached, and a run estimated beyond ``max_evaluations`` is
+        refused at once with the estimate.  A run that needs more than estimated stops
+        when it has taken ``max_evaluations``.  Either way a ModelError says so.
 
     Returns
     -------
@@ -400,17 +411,21 @@ def simulate(model: Mechanism | Sequence[Mechanism], t_span: tuple[float, float]
     run_inputs = _run_inputs(inputs)
     first = _case(models[0], run_inputs[0] if run_inputs else inputs, loads, masses)
     M = first[0].M
-    try:
-        t0, t1 = (float(v) for v in t_span)
-    except (TypeError, ValueError):
-        raise ModelError(f"t_span: expected (start, end) in s, got {describe(t_span)}") from None
-    if not (math.isfinite(t0) and math.isfinite(t1) and t1 > t0 and math.isfinite(t1 - t0)):
+    ends = ([real(v) for v in t_span] if isinstance(t_span, (Sequence, np.ndarray))
+            and not isinstance(t_span, str) and len(t_span) == 2 else None)
+    if ends is None:
+        raise ModelError(f"t_span: expected (start, end) in s, got {describe(t_span)}")
+    t0, t1 = ends
+    if not (t0 is not None and t1 is not None and t1 > t0 and math.isfinite(t1 - t0)):
         raise ModelError(f"t_span: expected finite start < end, got {describe(t_span)}")
     counts = {name: len(v) for name, v in (("model", models), ("inputs", run_inputs)) if len(v) > 1}
     q_init, qd_init, batch = _initial_states(q0, qd0, M, counts)
     B = len(q_init)
     if t_eval is not None:
-        t_eval = np.asarray(t_eval, dtype=float).ravel()
+        given, t_eval = t_eval, real_array(t_eval)
+        if t_eval is None or t_eval.ndim != 1:
+            raise ModelError(f"t_eval: expected output times in s, shape (N,), got "
+                             f"{describe(given)}")
         if (t_eval.size == 0 or not np.all(np.isfinite(t_eval)) or np.any(t_eval < t0)
                 or np.any(t_eval > t1) or np.any(np.diff(t_eval) <= 0)):
             raise ModelError(f"t_eval: expected increasing times within t_span [{t0}, {t1}] s, all finite")
@@ -422,9 +437,10 @@ def simulate(model: Mechanism | Sequence[Mechanism], t_span: tuple[float, float]
                        f"{B:,} run(s) at {len(t_eval):,} output times", "give fewer output times "
                        "(t_eval), or split the runs into several batches")
     check_choice("method", method, ("DOP853", "RK45", "Radau", "LSODA", "BDF"))
-    for name, v in (("rtol", rtol), ("atol", atol)):
-        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
-            raise ModelError(f"{name}: expected a positive number, got {describe(v)}")
+    for name, v, high in (("rtol", rtol, 1.0), ("atol", atol, math.inf)):
+        if not (is_real(v) and 0 < v < high):
+            below = "" if high == math.inf else f" below {high:g} (a relative error of 100 %)"
+            raise ModelError(f"{name}: expected a positive number{below}, got {describe(v)}")
     if rtol < RTOL_FLOOR:
         warnings.warn(f"rtol: {rtol:g} is below 100 machine epsilons; using {RTOL_FLOOR:.3g}",
                       stacklevel=2)
@@ -433,41 +449,66 @@ def simulate(model: Mechanism | Sequence[Mechanism], t_span: tuple[float, float]
         raise ModelError(f"singular_stop: expected a number from 0 (no stop) to below 1 (a sine), "
                          f"got {describe(singular_stop)}")
     if threads is not None and not (isinstance(threads, (int, np.integer))
-                                    and not isinstance(threads, bool) and threads > 0):
-        raise ModelError(f"threads: expected a positive whole number or None (one per processor), "
-                         f"got {describe(threads)}")
-    if not (isinstance(max_step, (int, float)) and max_step > 0):        # inf allowed
+                                    and not isinstance(threads, bool) and 0 < threads <= MAX_THREADS):
+        raise ModelError(f"threads: expected a positive whole number up to {MAX_THREADS} or None "
+                         f"(one per processor), got {describe(threads)}")
+    if not ((is_real(max_step) or max_step == math.inf) and max_step > 0):        # inf allowed
         raise ModelError(f"max_step: expected a positive number of s (or inf), got {describe(max_step)}")
-    if not (isinstance(max_evaluations, (int, np.integer)) and not isinstance(max_evaluations, bool)
+    if max_evaluations is not None and not (
+            isinstance(max_evaluations, (int, np.integer)) and not isinstance(max_evaluations, bool)
             and max_evaluations > 0):
-        raise ModelError(f"max_evaluations: expected a positive whole number, got "
-                         f"{describe(max_evaluations)}")
-    if (t1 - t0) / max_step > max_evaluations:
+        raise ModelError(f"max_evaluations: expected a positive whole number or None (the "
+                         f"default), got {describe(max_evaluations)}")
+    most = MAX_EVALUATIONS if max_evaluations is None else int(max_evaluations)
+    if (t1 - t0) / max_step > most:
         raise ModelError(f"max_step: {max_step:g} s over t_span of {t1 - t0:g} s takes more than "
-                         f"max_evaluations = {max_evaluations:,} evaluations; raise max_step, "
+                         f"max_evaluations = {most:,} evaluations; raise max_step, "
                          "shorten t_span or raise max_evaluations")
     cases = _run_cases(models, run_inputs, inputs, loads, masses, B, first)
     # the compiled kernel once it is ready in this process (see kinelab._compiled); a large
     # batch waits for it, as its runs in Python would take far longer than compiling
-    compiled = None
+    compilable = None
     if method == "DOP853":
         distinct = {id(case): case for case in cases}
-        compiled = {key: compiled_system(*case) for key, case in distinct.items()}
-        if any(c is None for c in compiled.values()):
-            compiled = None
+        compilable = {key: compiled_system(*case) for key, case in distinct.items()}
+        if any(c is None for c in compilable.values()):
+            compilable = None
     large = batch and B >= WAIT_FOR_COMPILED_FROM
     entry = "dynamics_one_input" if M == 1 else "dynamics"
-    if compiled is not None and not (_compiled.ready(entry)
-                                     or (large and _compiled.wait_for(entry))):
-        compiled = None
+    compiled = compilable if compilable is not None and (
+        _compiled.ready(entry) or (large and _compiled.wait_for(entry))) else None
     y0 = np.concatenate([q_init, qd_init, np.zeros((B, 3))], axis=1)
-    if compiled is not None:
-        runs = _integrate_compiled(cases, compiled, y0, (t0, t1), t_eval, rtol, atol, max_step,
-                                   singular_stop, max_evaluations, threads, batch)
-    else:
-        runs = [_integrate_scipy(*case, y, (t0, t1), t_eval, method, rtol, atol, max_step,
-                                 singular_stop, max_evaluations, f" (run {i})" if batch else "")
+
+    def integrate(budget: int) -> list:
+        if compiled is not None:
+            return _integrate_compiled(cases, compiled, y0, (t0, t1), t_eval, rtol, atol, max_step,
+                                       singular_stop, budget, threads, batch)
+        return [_integrate_scipy(*case, y, (t0, t1), t_eval, method, rtol, atol, max_step,
+                                 singular_stop, budget, f" (run {i})" if batch else "")
                 for i, (case, y) in enumerate(zip(cases, y0))]
+    def budget() -> int:
+        if max_evaluations is not None:
+            return int(max_evaluations)
+        return MAX_EVALUATIONS if compiled is not None else MAX_EVALUATIONS_PYTHON
+    # A trial first: most runs end within it; one that does not tells how far it got, so a
+    # span far beyond the budget is refused in a second, not after minutes or hours of work.
+    trial = min(budget(), TRIAL_EVALUATIONS)
+    try:
+        runs = integrate(trial)
+    except _OverBudget as over:
+        if trial == budget():
+            raise over.error() from None
+        estimate = over.estimate(trial, t0, t1)
+        if (estimate > budget() and compiled is None and compilable is not None
+                and _compiled.wait_for(entry)):
+            compiled = compilable     # too long in Python: compiling first is the shorter way
+        if estimate > budget():
+            raise over.refusal(trial, estimate, budget(), max_evaluations is None,
+                               compiled is not None, t0, t1) from None
+        try:
+            runs = integrate(budget())
+        except _OverBudget as over:
+            raise over.error() from None
     if not batch:
         t, y, status, message, nfev = runs[0]
         return _simulation(*cases[0], t, y, status, message, nfev)
@@ -556,10 +597,9 @@ def _initial_states(q0, qd0, M: int, counts: Mapping[str, int]) -> tuple[np.ndar
 
 
 def _values(name: str, value) -> np.ndarray:
-    try:
-        a = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ModelError(f"{name}: expected numbers, got {describe(value)}") from None
+    a = real_array(value)
+    if a is None:
+        raise ModelError(f"{name}: expected real numbers, got {describe(value)}")
     if not np.all(np.isfinite(a)):
         raise ModelError(f"{name}: expected finite numbers, got {describe(value)}")
     return a
@@ -649,7 +689,7 @@ def _raise_failure(system: System, actuators, status: int, info: np.ndarray, whe
     if status == _kernel.FAIL_DIVERGED:
         raise _halted(model, _Halt(t, q, "diverged"), where)
     if status == _kernel.FAIL_BUDGET:
-        raise _halted(model, _Halt(t, q, "budget"), where)
+        raise _OverBudget(model, _Halt(t, q, "budget"), where)
     if status in (_kernel.FAIL_LAW, _kernel.FAIL_SPRING):
         # the same state through Python: its laws and springs say what is wrong
         tt, qq, qqd = np.array([t]), q[None, :], qd[None, :]
@@ -679,6 +719,33 @@ def _halted(model: Mechanism, h: _Halt, where: str = "") -> Exception:
                           "rtol and atol, or raise max_evaluations")
     return SingularityError(f"the motion of '{model.name}' reaches a singular configuration {at}; "
                             "raise singular_stop to stop before it")
+
+
+class _OverBudget(Exception):
+    """A run that used its budget of evaluations before the end of t_span."""
+
+    def __init__(self, model: Mechanism, halt: _Halt, where: str):
+        super().__init__(halt.t)
+        self.model, self.halt, self.where = model, halt, where
+
+    def error(self) -> ModelError:
+        return _halted(self.model, self.halt, self.where)
+
+    def estimate(self, used: int, t0: float, t1: float) -> float:
+        """Evaluations the whole span would take at the pace of the first ``used``."""
+        reached = float(self.halt.t) - t0     # Python floats: an overflow is inf, silently
+        return math.inf if not reached > 0 else used * ((t1 - t0) / reached)
+
+    def refusal(self, used: int, estimate: float, budget: int, default: bool, compiled: bool,
+                t0: float, t1: float) -> ModelError:
+        about = "more than 1e308" if math.isinf(estimate) else f"about {estimate:.2g}"
+        whose = ("" if not default else " (the default with the compiled kernel)" if compiled
+                 else " (the default with the right-hand side in Python)")
+        return ModelError(
+            f"t_span: the motion of '{self.model.name}' from {t0:g} to {t1:g} s would take "
+            f"{about} evaluations of the equations of motion{self.where} (the first {used:,} "
+            f"reached t = {float(self.halt.t):.6g} s), more than max_evaluations = {budget:,}"
+            f"{whose}; shorten t_span, loosen rtol and atol, or raise max_evaluations")
 
 
 def _singular_mass(model: Mechanism, q, where: str = "") -> ModelError:
@@ -755,6 +822,8 @@ def _integrate_scipy(system: System, actuators, y0: np.ndarray, span, t_eval, me
                             atol=atols, max_step=max_step,
                             events=near_singular if singular_stop > 0 else None)
     except _Halt as h:
+        if h.kind == "budget":
+            raise _OverBudget(model, h, where) from None
         raise _halted(model, h, where) from None
     if out.status == -1:
         raise ModelError(f"the integration of '{model.name}' failed{where}: {out.message}; try "

@@ -9,7 +9,7 @@ from numpy.typing import ArrayLike
 from kinelab.dynamics._loads import Loads, default_carrier
 from kinelab.dynamics._masses import MassProperties
 from kinelab.dynamics._results import MotionResult
-from kinelab.dynamics._terms import System, Terms, build_system, evaluate, point_block, times
+from kinelab.dynamics._terms import System, Terms, build_system, evaluate, flag, point_block, times
 from kinelab.errors import ModelError, quoted, shown, suggest
 from kinelab.kinematics import KinematicSolution, analyze, plan
 from kinelab.kinematics._columns import Columns
@@ -209,8 +209,12 @@ def inverse(model, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayLike = 0.0, *,
     array([[ 0., 20.],
            [ 0., 20.]])
     """
+    reactions = flag(reactions, "reactions")
     system = build_system(model, loads, masses)
     sol = analyze(model, q, qd, qdd)
+    if sol.N == 0:
+        raise ModelError("q: expected at least one configuration, got none; give q as a number "
+                         "or an array of shape (N,) or (N, M) with N >= 1")
     tt = times(t, sol.N)
     with np.errstate(over="ignore", invalid="ignore"):      # overflow is reported below
         terms = evaluate(system, sol, tt)

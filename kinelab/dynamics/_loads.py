@@ -16,7 +16,8 @@ from typing import Any
 import numpy as np
 
 from kinelab._expressions import OP_CONST, not_finite, parse_expression, parse_table, to_program
-from kinelab.errors import ModelError, describe, shown, shown_key
+from kinelab.dynamics._masses import items_of
+from kinelab.errors import ModelError, describe, one_line, shown, shown_key
 from kinelab.model import MAX_LENGTH, MAX_RATE, Mechanism, is_real
 
 __all__ = ["Law", "PointForce", "Torque", "Spring", "Damper", "Loads", "STANDARD_GRAVITY"]
@@ -75,8 +76,9 @@ class Law:
         elif callable(s):
             fn = None
         else:
+            got = describe(s) if s is None or isinstance(s, (Iterable, bool)) else f"a {type(s).__name__}"
             raise ModelError(f"{self.where}: expected a number, an expression (text), a table "
-                             f"or a callable f(t, q, qd), got {describe(s)}")
+                             f"or a callable f(t, q, qd), got {got}")
         object.__setattr__(self, "_fn", fn)
 
     @property
@@ -96,7 +98,13 @@ class Law:
                 out = self._fn(t, q, qd)
         else:
             qa, qda = (q[:, 0], qd[:, 0]) if q.shape[1] == 1 else (q, qd)
-            out = self.source(t, qa, qda)
+            try:
+                out = self.source(t, qa, qda)
+            except Exception as exc:    # the caller's code: say which law, keep its traceback
+                at = f" at t = {float(t[0]):.6g} s" if n else ""
+                raise ModelError(f"{self.where}: the callable raised {type(exc).__name__}: "
+                                 f"{one_line(exc, 300)}{at}; fix the function or guard its "
+                                 "domain") from exc
         return _finite(self.where, out, shape, t, q, qd)
 
     def program(self, M: int):
@@ -327,12 +335,7 @@ class Loads:
         object.__setattr__(self, "gravity", tuple(float(c) for c in g))
         for attr, kind in (("forces", PointForce), ("torques", Torque), ("springs", Spring),
                            ("dampers", Damper)):
-            items = tuple(getattr(self, attr))
-            for i, item in enumerate(items):
-                if not isinstance(item, kind):
-                    raise ModelError(f"{attr}[{i}]: expected a kinelab.dynamics.{kind.__name__}, "
-                                     f"got {type(item).__name__}")
-            object.__setattr__(self, attr, items)
+            object.__setattr__(self, attr, items_of(getattr(self, attr), attr, kind))
 
     def problems(self, model: Mechanism) -> list[str]:
         """Every reference to a point or link that the model does not have."""

@@ -5,12 +5,26 @@ import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
-from kinelab.errors import ModelError, describe, shown
+from kinelab.errors import ModelError, describe, quoted, shown
 from kinelab.model import MAX_INERTIA, MAX_MASS, Mechanism, is_real
 
 __all__ = ["LinkMass", "PointMass", "MassProperties"]
 
 _ON_LINE = 1e-9   # relative distance of a centre of mass off the line of a lumped link's ends
+
+
+def items_of(value, name: str, kind: type) -> tuple:
+    """``value`` as a tuple of ``kind``, or a :class:`ModelError` naming ``name`` (and the
+    first entry that is not one)."""
+    if isinstance(value, (str, bytes, Mapping)) or not isinstance(value, Iterable):
+        raise ModelError(f"{name}: expected a sequence of kinelab.dynamics.{kind.__name__}, got "
+                         f"{describe(value)}")
+    items = tuple(value)
+    for i, item in enumerate(items):
+        if not isinstance(item, kind):
+            raise ModelError(f"{name}[{i}]: expected a kinelab.dynamics.{kind.__name__}, got "
+                             f"{describe(item)}")
+    return items
 
 
 def _positive(v, limit: float = MAX_MASS) -> bool:
@@ -100,12 +114,12 @@ class MassProperties:
     points: tuple[PointMass, ...] = ()
 
     def __post_init__(self):
-        object.__setattr__(self, "links", tuple(self.links))
-        object.__setattr__(self, "points", tuple(self.points))
+        object.__setattr__(self, "links", items_of(self.links, "links", LinkMass))
+        object.__setattr__(self, "points", items_of(self.points, "points", PointMass))
         names = [b.link for b in self.links]
         twice = sorted({n for n in names if names.count(n) > 1})
         if twice:
-            raise ModelError(f"links: {', '.join(map(repr, twice))} listed more than once; give each "
+            raise ModelError(f"links: {quoted(twice)} listed more than once; give each "
                              "link one LinkMass (add point masses for extra lumps)")
 
     @property

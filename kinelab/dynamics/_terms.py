@@ -19,9 +19,9 @@ import numpy as np
 
 from kinelab.dynamics._loads import Loads, default_carrier
 from kinelab.dynamics._masses import MassProperties
-from kinelab.errors import ModelError, SingularityError
+from kinelab.errors import ModelError, SingularityError, describe
 from kinelab.kinematics import KinematicSolution, plan
-from kinelab.model import Mechanism
+from kinelab.model import Mechanism, real_array
 
 
 @dataclass(frozen=True, eq=False)
@@ -193,13 +193,24 @@ def evaluate(system: System, sol: KinematicSolution, t: np.ndarray, *,
                  directions=directions)
 
 
+def flag(value, name: str) -> bool:
+    """``value`` as a bool, or a :class:`ModelError` naming ``name`` unless it is True or
+    False (a text such as 'no' would otherwise count as true)."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise ModelError(f"{name}: expected True or False, got {describe(value)}")
+    return bool(value)
+
+
 def times(t, N: int) -> np.ndarray:
     """``t`` broadcast to (N,), checked finite."""
+    a = real_array(t)
     try:
-        a = np.broadcast_to(np.asarray(t, dtype=float), (N,))
-    except (TypeError, ValueError):
+        a = np.broadcast_to(a, (N,)) if a is not None else None
+    except ValueError:
+        a = None
+    if a is None:
         raise ModelError(f"t: expected a time (s) or one per sample, shape () or ({N},), "
-                         f"got {np.shape(t)}") from None
+                         f"got {describe(t)}")
     if not np.all(np.isfinite(a)):
         raise ModelError("t: expected finite times")
     return np.array(a)

@@ -31,10 +31,10 @@ from numbers import Integral
 
 import numpy as np
 
-from kinelab.errors import ModelError, describe
+from kinelab.errors import ModelError, describe, quoted
 from kinelab.model import Input, Joint, Link, Mechanism, Point
 from kinelab.structure._canon import canonical_form, orbits
-from kinelab.structure._count import whole
+from kinelab.structure._count import checked_model, whole
 from kinelab.structure._screws import rank
 from kinelab.structure._system import ConstraintSystem
 
@@ -44,10 +44,16 @@ __all__ = ["Inversion", "KinematicChain", "chain_of", "count_chains", "planar_ch
 # -- checks on the counts ---------------------------------------------------------------------
 MAX_CHAIN_LINKS = 12   # chains enumerated: every (N, F) within these takes seconds at most
 MAX_CHAIN_LOOPS = 4    # independent loops, (N - F - 1) / 2
+_WRITTEN_OUT = 10 ** 15  # counts the messages write out in full (and as floats, J = 5.5)
 
 
 def _joints_for(links, mobility) -> int:
     n, f = whole(links, "links", 4), whole(mobility, "mobility", 1)
+    if max(n, f) > _WRITTEN_OUT:     # too long to write out in the messages below
+        what, v, fewer = (("links", n, "fewer links") if n > _WRITTEN_OUT
+                          else ("mobility", f, "less mobility"))
+        raise ModelError(f"{what}: {describe(v)} is beyond what is enumerated: at most "
+                         f"{MAX_CHAIN_LINKS} links and {MAX_CHAIN_LOOPS} loops; use {fewer}")
     if (3 * n - 3 - f) % 2:
         raise ModelError(f"mobility {f} is impossible with {n} links: J = (3N - 3 - F) / 2 = "
                          f"{(3 * n - 3 - f) / 2} joints is not a whole number; with simple "
@@ -332,10 +338,10 @@ class KinematicChain:
         >>> m.ground.name, len(m.links), len(m.joints), mobility(m).exact
         ('link1', 6, 7, 1)
         """
-        if not isinstance(ground, Integral) or not 0 <= ground < self.links:
+        if isinstance(ground, bool) or not isinstance(ground, Integral) or not 0 <= ground < self.links:
             raise ModelError(f"ground: expected a link of the chain, 0 to {self.links - 1}, "
                              f"got {describe(ground)}")
-        return _sketch(self, int(ground), name, seed)
+        return _sketch(self, int(ground), name, whole(seed, "seed", 0))
 
     def __repr__(self) -> str:
         a = ", ".join(f"{n} {_kind(d)}" for d, n in self.assortment.items())
@@ -460,10 +466,10 @@ def chain_of(model: Mechanism) -> KinematicChain:
     >>> chain_of(planar_chains(6)[1].to_mechanism(ground=2)).name
     'Stephenson'
     """
-    other = [j.name for j in model.joints if j.type != "R"]
+    other = [j.name for j in checked_model(model).joints if j.type != "R"]
     if other:
-        raise ModelError(f"joints {', '.join(map(repr, other))}: a kinematic chain here has "
-                         "revolute joints only")
+        raise ModelError(f"joints {quoted(other)}: a kinematic chain here has revolute joints "
+                         "only")
     names = list(model.link_names)
     edges = [tuple(sorted(names.index(x) for x in j.links)) for j in model.joints]
     if len(set(edges)) < len(edges):

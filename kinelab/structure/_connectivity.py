@@ -16,7 +16,7 @@ import numpy as np
 
 from kinelab.errors import ModelError, shown
 from kinelab.model import Mechanism
-from kinelab.structure._count import pair_freedoms
+from kinelab.structure._count import checked_model, pair_freedoms
 from kinelab.structure._groups import DisplacementGroup, generated_group
 from kinelab.structure._screws import null_basis, rank
 from kinelab.structure._system import ConstraintSystem
@@ -186,7 +186,7 @@ def connectivity(model: Mechanism, a: str, b: str) -> Connectivity:
     >>> c.overall
     1
     """
-    _check_links(model, a, b)
+    _check_links(checked_model(model), a, b)
     system = ConstraintSystem.of(model)
     chains = tuple(_chain(system, links, joints) for links, joints in _paths(model, a, b))
     motions = null_basis(system.matrix()) if system.unknowns else np.zeros((0, 0))
@@ -231,7 +231,7 @@ def lie_mobility(model: Mechanism, end: str, *, base: str | None = None) -> LieM
     >>> [leg.group.label for leg in r.legs], r.group.label, r.mobility
     (['{Tx, Tz, Ry}', '{Ty, Tz, Rx}'], '{Tz}', 1)
     """
-    base = model.ground.name if base is None else base
+    base = checked_model(model).ground.name if base is None else base
     _check_links(model, base, end)
     system = ConstraintSystem.of(model)
     legs = tuple(_chain(system, links, joints) for links, joints in _paths(model, base, end))

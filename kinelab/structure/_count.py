@@ -178,6 +178,7 @@ def pair_counts(model: Mechanism) -> dict[int, int]:
     >>> pair_counts(m)
     {1: 1}
     """
+    model = checked_model(model)
     counts: dict[int, int] = {}
     problems = []
     for j in model.joints:
@@ -190,6 +191,14 @@ def pair_counts(model: Mechanism) -> dict[int, int]:
     if problems:
         raise ModelError(problems, source=f"mechanism '{model.name}'")
     return dict(sorted(counts.items()))
+
+
+def checked_model(model, name: str = "model") -> Mechanism:
+    """``model``, or a :class:`ModelError` unless it is a :class:`kinelab.model.Mechanism`."""
+    if not isinstance(model, Mechanism):
+        raise ModelError(f"{name}: expected a kinelab.model.Mechanism, got {describe(model)}; "
+                         "build one with kinelab.mechanisms, kinelab.load or kinelab.model")
+    return model
 
 
 def whole(value, what: str, low: int, high: int | None = None, hint: str = "") -> int:

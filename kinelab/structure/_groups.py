@@ -26,7 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError
-from kinelab.structure._screws import RTOL, null_basis, rank, row_basis
+from kinelab.structure._screws import RTOL, checked_rtol, null_basis, rank, row_basis
 
 __all__ = ["DisplacementGroup", "displacement_group", "generated_group"]
 
@@ -195,6 +195,7 @@ def generated_group(screws: ArrayLike, *, length: float = 1.0,
     >>> generated_group([[1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0]]).kind
     'S'
     """
+    rtol = checked_rtol(rtol)
     basis = np.asarray(screws, dtype=float).reshape(-1, 6)
     basis = row_basis(basis, rtol) if len(basis) else basis
     while True:

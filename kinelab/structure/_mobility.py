@@ -8,9 +8,9 @@ import numpy as np
 
 from kinelab.errors import ModelError
 from kinelab.model import Mechanism
-from kinelab.structure._count import kutzbach_gruebler, pair_counts, space_dimension
+from kinelab.structure._count import checked_model, kutzbach_gruebler, pair_counts, space_dimension
 from kinelab.structure._motion import moved
-from kinelab.structure._screws import RTOL, _threshold, null_basis, rank
+from kinelab.structure._screws import MAX_RTOL, MIN_RTOL, RTOL, _threshold, checked_rtol, null_basis, rank
 from kinelab.structure._system import ConstraintSystem
 
 __all__ = ["Mobility", "mobility"]
@@ -233,7 +233,9 @@ def mobility(model: Mechanism, *, rtol: float = RTOL) -> Mobility:
         (``singular``).  Cam, gear and rolling contacts need profiles the model does not
         hold: draw such mechanisms in a general position.
     rtol : float, optional
-        Relative tolerance on the singular values of the dimensionless ``C``.
+        Relative tolerance on the singular values of the dimensionless ``C``, from
+        ``1e-13`` (above the roundings of the sketch) to ``1e-3`` (a geometry that far from
+        special is not taken as special); default ``1e-9``.
 
     Returns
     -------
@@ -243,7 +245,8 @@ def mobility(model: Mechanism, *, rtol: float = RTOL) -> Mobility:
     Raises
     ------
     ModelError
-        If a joint's pair has no meaning in the model's space.
+        If a joint's pair has no meaning in the model's space, or ``rtol`` is outside
+        ``[1e-13, 1e-3]``.
 
     Notes
     -----
@@ -264,8 +267,7 @@ def mobility(model: Mechanism, *, rtol: float = RTOL) -> Mobility:
     Kutzbach-Gruebler (planar, λ = 3): M = 3(4 − 1) − 2·4 = 1.
     Exact (rank of the constraint Jacobian at the sketch): M = 1, as counted: no constraint repeats another and no freedom is passive.
     """
-    if not isinstance(model, Mechanism):
-        raise ModelError(f"model: expected a kinelab.model.Mechanism, got {type(model).__name__}")
+    model, rtol = checked_model(model), checked_rtol(rtol)
     lam = space_dimension(model.space)
     pairs = pair_counts(model)
     ne = len(model.links)

@@ -18,10 +18,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinelab.errors import ModelError
-from kinelab.model import Joint, Mechanism
+from kinelab.errors import ModelError, describe
+from kinelab.model import Joint, Mechanism, real
 
-__all__ = ["RTOL", "Frame", "annihilator", "joint_screws", "null_basis", "rank", "row_basis"]
+__all__ = ["RTOL", "MIN_RTOL", "MAX_RTOL", "Frame", "annihilator", "checked_rtol",
+           "joint_screws", "null_basis", "rank", "row_basis"]
 
 RTOL = 1e-9
 """Relative tolerance on singular values.  A sketch typed or computed in double precision
@@ -31,6 +32,23 @@ dependent row leaves a singular value of about 1e-14 of the largest.  A geometry
 *not* special but close to it (an axis 1e-6 rad off parallel) leaves one of about its
 distance from the special case.  1e-9 sits between the two with five orders of margin
 each side."""
+MIN_RTOL = 1e-13
+"""The smallest ``rtol`` a caller may choose: below it the roundings of the sketch (about
+1e-14 of the largest singular value) count as independent constraints, and special geometry
+goes unseen."""
+MAX_RTOL = 1e-3
+"""The largest: beyond it a geometry a thousandth away from special is taken as special,
+and the rank loses constraints that are there (a cam contact at 0.1; every one at 1)."""
+
+
+def checked_rtol(value, name: str = "rtol") -> float:
+    """``value`` as a float, or a :class:`ModelError` unless it is a real number from
+    :data:`MIN_RTOL` to :data:`MAX_RTOL` (the default :data:`RTOL` sits in between)."""
+    v = real(value)
+    if v is None or not MIN_RTOL <= v <= MAX_RTOL:
+        raise ModelError(f"{name}: expected a relative tolerance from {MIN_RTOL:g} to {MAX_RTOL:g} "
+                         f"(default {RTOL:g}), got {describe(value)}; leave it out for the default")
+    return v
 
 
 def _threshold(s: np.ndarray, rtol: float, scale: float | None) -> float:

@@ -140,7 +140,7 @@ def test_spatial_r_axis_wrong_length_is_an_error():
 
 
 def test_not_a_model():
-    with pytest.raises(ModelError, match="model: expected a kinelab.model.Mechanism, got dict"):
+    with pytest.raises(ModelError, match="model: expected a kinelab.model.Mechanism, got a table"):
         mobility({"links": 4})
 
 
