@@ -46,6 +46,7 @@ def plan(mechanism: Mechanism, *, method: Literal["auto", "newton"] = "auto") ->
     if not isinstance(mechanism, Mechanism):
         raise ModelError(f"mechanism: expected a kinelab Mechanism, got {type(mechanism).__name__}; "
                          "build one with kinelab.mechanisms or kinelab.load")
+    check_choice("method", method, ("auto", "newton"))
     cache = mechanism.__dict__.setdefault("_plans", {})
     if method not in cache:
         check_assembled(mechanism)

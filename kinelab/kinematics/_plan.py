@@ -37,6 +37,14 @@ SIGN_FIELDS = {k.OP_RRR: 2, k.OP_RRP: 2, k.OP_RPR: 4}   # where a dyad's assembl
                                                         # sits in its row of ops_f
 
 
+class Names(dict):
+    """Items by name: a key that cannot be a name (a list, say) is simply not among them,
+    so that a lookup says "expected one of ..." instead of raising TypeError."""
+
+    def __contains__(self, key) -> bool:
+        return isinstance(key, str) and dict.__contains__(self, key)
+
+
 @dataclass(frozen=True)
 class Step:
     """One group of the decomposition, for people: what it solves and how."""
@@ -63,9 +71,9 @@ class Plan:
     """
 
     mechanism: Mechanism
-    link_item: dict[str, int]
-    point_item: dict[str, int]
-    slide_item: dict[str, int]
+    link_item: Names
+    point_item: Names
+    slide_item: Names
     n_items: int
     n_out: int
     ops_i: np.ndarray
@@ -360,9 +368,9 @@ class _Builder:
         driven = {int(row[1]): (int(row[3]), float(f[0])) for row, f in zip(ops_i, self.ops_f)
                   if row[0] == k.OP_DRIVE_ANGLE and row[2] == -1}
         return Plan(
-            mechanism=m, link_item=dict(self.L),
-            point_item={name: item(i) for name, i in self.P.items()},
-            slide_item={name: nl + 2 * npn + i for name, i in self.slides.items()},
+            mechanism=m, link_item=Names(self.L),
+            point_item=Names({name: item(i) for name, i in self.P.items()}),
+            slide_item=Names({name: nl + 2 * npn + i for name, i in self.slides.items()}),
             n_items=nl + 2 * self.n_all + ns, n_out=nl + 2 * npn + ns,
             ops_i=ops_i, ops_f=np.array(self.ops_f, float).reshape(-1, 8),
             const_items=np.array(const_items, np.int64),

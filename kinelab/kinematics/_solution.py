@@ -9,7 +9,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from kinelab.errors import ModelError, quoted, shown, suggest
+from kinelab.errors import ModelError, expected_one_of, quoted, shown
 from kinelab.kinematics._columns import TableExport, solution_columns
 from kinelab.kinematics._geometry import k_cross
 from kinelab.kinematics._plan import Plan
@@ -279,8 +279,9 @@ class KinematicSolution(TableExport):
                 return items[name], width
         names = [n for kind in kinds for n in tables[kind][0]]
         label = " or ".join(tables[kind][2] for kind in kinds)
-        raise ModelError(f"{label}: expected one of {quoted(names)}, "
-                         f"got {shown(name)}{suggest(name, names)}")
+        if not names:
+            raise ModelError(f"{label}: got {shown(name)}, but the mechanism has no {label}")
+        raise ModelError(f"{label}: {expected_one_of(name, names)}")
 
     def _value(self, name: str, kinds: str, column: int, source: str = "jets") -> np.ndarray:
         i, w = self._find(name, kinds)
@@ -383,13 +384,15 @@ class KinematicSolution(TableExport):
         joints = [j for j in m.joints if j.type == "P" and j.point == point
                   and (joint is None or j.name == joint)]
         if not joints:
-            names = ", ".join(repr(j.name) for j in m.joints if j.type == "P") or "none"
-            raise ModelError(f"point '{point}': expected the point of a prismatic joint"
-                             + (f" '{joint}'" if joint else "") + f"; prismatic joints are {names}; "
-                             "for the normal and tangential parts of a point of a pinned link, "
-                             "use kinelab.kinematics.acceleration_difference(sol, point, reference)")
+            names = quoted([j.name for j in m.joints if j.type == "P"])
+            raise ModelError(f"point {shown(point)}: expected the point of a prismatic joint"
+                             + (f" {shown(joint)}" if joint else "") + f"; prismatic joints are "
+                             f"{names}; for the normal and tangential parts of a point of a "
+                             "pinned link, use kinelab.kinematics.acceleration_difference(sol, "
+                             "point, reference)")
         if len(joints) > 1:
-            raise ModelError(f"point '{point}' slides in {len(joints)} joints; name one with joint=")
+            raise ModelError(f"point {shown(point)} slides in {len(joints)} joints; name one with "
+                             "joint=")
         s = self._slide_motion(joints[0].name)
         parts = dict(origin=s.a_origin, tangential=s.tangential, normal=s.normal,
                      coriolis=2.0 * s.omega * k_cross(s.sd * s.u), sliding=s.sdd * s.u)

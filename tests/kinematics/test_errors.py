@@ -169,3 +169,22 @@ def test_a_long_motion_within_the_limits_stays_exact():
     sol = kl.analyze(pg, q)
     np.testing.assert_allclose(sol.position("B") - sol.position("A"), [[100, 0], [100, 0]],
                                rtol=0, atol=1e-6)
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda s: s.angle(["crank"]), r"^link: expected one of 'ground', 'crank', 'coupler', "
+                                   r"'rocker', got \['crank'\]$"),
+    (lambda s: s.position({"P": 1}), r"^point: expected one of .* got a table$"),
+    (lambda s: s.slide("x"), r"^prismatic joint: got 'x', but the mechanism has no prismatic joint$"),
+    (lambda s: kl.kinematics.velocity_ratio(s, ["crank"], "rocker"), r"^link_i: expected one of"),
+    (lambda s: kl.kinematics.acceleration_difference(s, ["a"], "B"), r"^point: expected one of"),
+    (lambda s: kl.kinematics.transmission_angle(s, (["coupler"], "rocker")), r"^link: expected one of"),
+    (lambda s: kl.analyze(s.mechanism, 0.1, method=["raise"]),
+     r"^method: expected one of 'auto', 'newton', got \['raise'\]$"),
+    (lambda s: s.acceleration_components("P\n" + "x" * 1000),
+     r"^point 'P\\nx+\u2026': expected the point of a prismatic joint; prismatic joints are none;"),
+])
+def test_a_name_that_is_not_a_name_is_one_unknown_name(call, message):
+    fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
+    with pytest.raises(ModelError, match=message):
+        call(kl.analyze(fb, [0.1, 0.2]))
