@@ -36,9 +36,6 @@ MAX_EVALUATIONS = 10 ** 8     # of the equations of motion, per run: minutes com
 MAX_EVALUATIONS_PYTHON = 2 * 10 ** 5   # the same with the right-hand side in Python, about
                                        # 0.4 ms an evaluation: a minute or two
 RTOL_FLOOR = 100 * np.finfo(float).eps   # below it rounding swamps the error (scipy's floor)
-TRIAL_EVALUATIONS = 2_000     # a run first goes this far (about a second in Python); one that
-                              # needs more estimates its whole span from the time it reached and
-                              # is refused at once when the estimate is beyond max_evaluations
 MAX_THREADS = 1024            # threads a batch may ask for: far beyond any machine's processors
 _ACROSS = 0.02         # half-width (rad, or sizes for a slide) of the interval across a change
                        # point over which K and L are interpolated
@@ -350,11 +347,10 @@ def simulate(model: Mechanism | Sequence[Mechanism], t_span: tuple[float, float]
     max_evaluations : int, optional
         The most evaluations of the equations of motion a run may take; default 10^8 with
         the compiled kernel (minutes), 2 x 10^5 with the right-hand side in Python (about
-        0.4 ms each: a minute or two).  A run first takes up to 2000 evaluations; if that
-        does not reach the end of ``t_span``, the evaluations of the whole span are
-        estimated from the time reached, and a run estimated beyond ``max_evaluations`` is
-        refused at once with the estimate.  A run that needs more than estimated stops
-        when it has taken ``max_evaluations``.  Either way a ModelError says so.
+        0.4 ms each: a minute or two).  After 2000 evaluations a run checks its pace: one
+        that at that pace would take more than ten times ``max_evaluations`` to reach the
+        end of ``t_span`` stops there, with the estimate; any other stops when it has taken
+        ``max_evaluations``.  Either way a ModelError says so.
 
     Returns
     -------
@@ -479,36 +475,33 @@ def simulate(model: Mechanism | Sequence[Mechanism], t_span: tuple[float, float]
         _compiled.ready(entry) or (large and _compiled.wait_for(entry))) else None
     y0 = np.concatenate([q_init, qd_init, np.zeros((B, 3))], axis=1)
 
-    def integrate(budget: int) -> list:
-        if compiled is not None:
-            return _integrate_compiled(cases, compiled, y0, (t0, t1), t_eval, rtol, atol, max_step,
-                                       singular_stop, budget, threads, batch)
-        return [_integrate_scipy(*case, y, (t0, t1), t_eval, method, rtol, atol, max_step,
-                                 singular_stop, budget, f" (run {i})" if batch else "")
-                for i, (case, y) in enumerate(zip(cases, y0))]
-    def budget() -> int:
-        if max_evaluations is not None:
-            return int(max_evaluations)
-        return MAX_EVALUATIONS if compiled is not None else MAX_EVALUATIONS_PYTHON
-    # A trial first: most runs end within it; one that does not tells how far it got, so a
-    # span far beyond the budget is refused in a second, not after minutes or hours of work.
-    trial = min(budget(), TRIAL_EVALUATIONS)
+    def integrate() -> list:
+        most = max_evaluations or (MAX_EVALUATIONS if compiled is not None else MAX_EVALUATIONS_PYTHON)
+        try:
+            if compiled is not None:
+                return _integrate_compiled(cases, compiled, y0, (t0, t1), t_eval, rtol, atol,
+                                           max_step, singular_stop, most, threads, batch)
+            return [_integrate_scipy(*case, y, (t0, t1), t_eval, method, rtol, atol, max_step,
+                                     singular_stop, most, f" (run {i})" if batch else "")
+                    for i, (case, y) in enumerate(zip(cases, y0))]
+        except _OverBudget as over:
+            over.budget = most
+            raise
+    # A run checks its pace after 2000 evaluations (PACE_CHECK): one that at that pace would
+    # take ten times its budget (PACE_MARGIN) to reach the end of t_span is refused then, not
+    # after minutes or hours.
     try:
-        runs = integrate(trial)
+        runs = integrate()
     except _OverBudget as over:
-        if trial == budget():
-            raise over.error() from None
-        estimate = over.estimate(trial, t0, t1)
-        if (estimate > budget() and compiled is None and compilable is not None
+        if (over.early and compiled is None and compilable is not None
                 and _compiled.wait_for(entry)):
             compiled = compilable     # too long in Python: compiling first is the shorter way
-        if estimate > budget():
-            raise over.refusal(trial, estimate, budget(), max_evaluations is None,
-                               compiled is not None, t0, t1) from None
-        try:
-            runs = integrate(budget())
-        except _OverBudget as over:
-            raise over.error() from None
+            try:
+                runs = integrate()
+            except _OverBudget as again:
+                raise again.error(t0, t1, max_evaluations is None, True) from None
+        else:
+            raise over.error(t0, t1, max_evaluations is None, compiled is not None) from None
     if not batch:
         t, y, status, message, nfev = runs[0]
         return _simulation(*cases[0], t, y, status, message, nfev)
@@ -661,7 +654,7 @@ def _integrate_compiled(cases: list, compiled: dict, y0: np.ndarray, span, t_eva
         where = f" (run {i})" if batch else ""
         status, info = int(statuses[i]), infos[i]
         if status not in (_kernel.RUN_FINISHED, _kernel.RUN_SINGULAR):
-            _raise_failure(*cases[i], status, info, where)
+            _raise_failure(*cases[i], status, info, where, int(nfevs[i]))
         message = "reached the end of t_span"
         if status == _kernel.RUN_SINGULAR:
             message = _stop_message(info[0], info[2:2 + M], singular_stop)
@@ -675,7 +668,8 @@ def _stop_message(t: float, q, singular_stop: float) -> str:
             f"(q = {np.round(np.asarray(q, float), 6).tolist()})")
 
 
-def _raise_failure(system: System, actuators, status: int, info: np.ndarray, where: str):
+def _raise_failure(system: System, actuators, status: int, info: np.ndarray, where: str,
+                   used: int):
     """The error of a compiled run that failed, as the Python right-hand side says it."""
     from kinelab.dynamics import _kernel
     model, M = system.model, system.M
@@ -688,8 +682,9 @@ def _raise_failure(system: System, actuators, status: int, info: np.ndarray, whe
         raise _singular_mass(model, q, where)
     if status == _kernel.FAIL_DIVERGED:
         raise _halted(model, _Halt(t, q, "diverged"), where)
-    if status == _kernel.FAIL_BUDGET:
-        raise _OverBudget(model, _Halt(t, q, "budget"), where)
+    if status in (_kernel.FAIL_BUDGET, _kernel.FAIL_PACE):
+        raise _OverBudget(model, _Halt(t, q, "budget"), where, used,
+                          early=status == _kernel.FAIL_PACE)
     if status in (_kernel.FAIL_LAW, _kernel.FAIL_SPRING):
         # the same state through Python: its laws and springs say what is wrong
         tt, qq, qqd = np.array([t]), q[None, :], qd[None, :]
@@ -722,30 +717,29 @@ def _halted(model: Mechanism, h: _Halt, where: str = "") -> Exception:
 
 
 class _OverBudget(Exception):
-    """A run that used its budget of evaluations before the end of t_span."""
+    """A run that used its budget of evaluations before the end of t_span (``used`` of
+    ``budget``), or that at PACE_CHECK evaluations had gone too short a way to reach it
+    (``early``)."""
 
-    def __init__(self, model: Mechanism, halt: _Halt, where: str):
+    def __init__(self, model: Mechanism, halt: _Halt, where: str, used: int, early: bool):
         super().__init__(halt.t)
-        self.model, self.halt, self.where = model, halt, where
+        self.model, self.halt, self.where, self.used, self.early = model, halt, where, used, early
+        self.budget = used
 
-    def error(self) -> ModelError:
-        return _halted(self.model, self.halt, self.where)
-
-    def estimate(self, used: int, t0: float, t1: float) -> float:
-        """Evaluations the whole span would take at the pace of the first ``used``."""
+    def error(self, t0: float, t1: float, default: bool, compiled: bool) -> ModelError:
+        if not self.early:
+            return _halted(self.model, self.halt, self.where)
         reached = float(self.halt.t) - t0     # Python floats: an overflow is inf, silently
-        return math.inf if not reached > 0 else used * ((t1 - t0) / reached)
-
-    def refusal(self, used: int, estimate: float, budget: int, default: bool, compiled: bool,
-                t0: float, t1: float) -> ModelError:
+        estimate = math.inf if not reached > 0 else self.used * ((t1 - t0) / reached)
         about = "more than 1e308" if math.isinf(estimate) else f"about {estimate:.2g}"
         whose = ("" if not default else " (the default with the compiled kernel)" if compiled
                  else " (the default with the right-hand side in Python)")
         return ModelError(
             f"t_span: the motion of '{self.model.name}' from {t0:g} to {t1:g} s would take "
-            f"{about} evaluations of the equations of motion{self.where} (the first {used:,} "
-            f"reached t = {float(self.halt.t):.6g} s), more than max_evaluations = {budget:,}"
-            f"{whose}; shorten t_span, loosen rtol and atol, or raise max_evaluations")
+            f"{about} evaluations of the equations of motion{self.where} (the first "
+            f"{self.used:,} reached t = {float(self.halt.t):.6g} s), more than max_evaluations "
+            f"= {self.budget:,}{whose}; shorten t_span, loosen rtol and atol, or raise "
+            "max_evaluations")
 
 
 def _singular_mass(model: Mechanism, q, where: str = "") -> ModelError:
@@ -770,6 +764,10 @@ def _integrate_scipy(system: System, actuators, y0: np.ndarray, span, t_eval, me
                      max_step, singular_stop, budget, where: str):
     """One run by :func:`scipy.integrate.solve_ivp` with the right-hand side in Python."""
     from scipy.integrate import solve_ivp
+
+    from kinelab.dynamics._kernel import PACE_CHECK, PACE_MARGIN
+
+    t0, t1 = span
 
     model, M = system.model, system.M
     cache: dict[str, Any] = {}
@@ -797,8 +795,11 @@ def _integrate_scipy(system: System, actuators, y0: np.ndarray, span, t_eval, me
         cache["evaluations"] = cache.get("evaluations", 0) + 1
         if not np.all(np.isfinite(y[:2 * M])):
             raise _Halt(t, y[:M], "diverged")
-        if cache["evaluations"] > budget:
+        n = cache["evaluations"]
+        if n > budget:
             raise _Halt(t, y[:M], "budget")
+        if n == PACE_CHECK < budget and (t - t0) * PACE_MARGIN * budget < n * (t1 - t0):
+            raise _Halt(t, y[:M], "pace")           # at this pace it would take far too long
         sol = kinematics(t, y)
         qdd, tau, terms = _accelerations(system, actuators, sol, np.array([t]), where)
         return np.concatenate([y[M:2 * M], qdd[0], [tau[0] @ sol.qd[0], terms.applied_power[0],
@@ -822,8 +823,8 @@ def _integrate_scipy(system: System, actuators, y0: np.ndarray, span, t_eval, me
                             atol=atols, max_step=max_step,
                             events=near_singular if singular_stop > 0 else None)
     except _Halt as h:
-        if h.kind == "budget":
-            raise _OverBudget(model, h, where) from None
+        if h.kind in ("budget", "pace"):
+            raise _OverBudget(model, h, where, cache["evaluations"], early=h.kind == "pace") from None
         raise _halted(model, h, where) from None
     if out.status == -1:
         raise ModelError(f"the integration of '{model.name}' failed{where}: {out.message}; try "

@@ -36,6 +36,11 @@ FAIL_SPRING = 6         # a spring's or damper's ends meet
 FAIL_STEP = 7           # the step fell below the resolution of t
 FAIL_DIVERGED = 8       # q or q' is no longer finite
 FAIL_BUDGET = 9         # the run took its budget of evaluations before reaching t1
+FAIL_PACE = 10          # at PACE_CHECK evaluations the run had gone too short a way to reach t1
+                        # within PACE_MARGIN times its budget at that pace
+PACE_CHECK = 2000       # evaluations after which a run's pace is checked against its budget:
+PACE_MARGIN = 10        # it stops when that pace would take this many times its budget (a run
+                        # starts slower than it goes on, while its first steps find their size)
 
 _A = np.ascontiguousarray(DOP853.A, dtype=np.float64)
 _B = np.ascontiguousarray(DOP853.B, dtype=np.float64)
@@ -398,6 +403,7 @@ def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, sys
     t = t0
     i_eval = 0
     status = RUN_FINISHED
+    paced = False
     while t < t1:
         min_step = 10 * abs(np.nextafter(t, np.inf) - t)
         if h_abs > max_step:
@@ -410,6 +416,12 @@ def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, sys
                 info[0] = t
                 info[2:] = y
                 return FAIL_BUDGET, nfev, info, o_t[:n_out], o_y[:n_out]
+            if not paced and nfev >= PACE_CHECK:     # at this pace, can it reach t1?
+                paced = True
+                if (t - t0) * PACE_MARGIN * budget < nfev * (t1 - t0):
+                    info[0] = t
+                    info[2:] = y
+                    return FAIL_PACE, nfev, info, o_t[:n_out], o_y[:n_out]
             if h_abs < min_step:
                 info[0] = t
                 info[2:] = y
