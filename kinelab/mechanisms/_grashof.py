@@ -1,15 +1,27 @@
 """Grashof's criterion and Barker's classification of four-bar linkages."""
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError, describe
+from kinelab.mechanisms._catalogue import _positive
+from kinelab.model import MAX_LENGTH, MIN_LENGTH, real, real_array
 
 __all__ = ["Grashof", "grashof", "grashof_kinds"]
+
+# Lengths are equal within rtol times their sum: beyond 1% a crank-rocker would pass for a
+# change-point linkage.
+MAX_RTOL = 1e-2
+
+
+def _rtol(value: object) -> float:
+    x = real(value)
+    if x is None or not 0.0 <= x <= MAX_RTOL:
+        raise ModelError(f"rtol: expected a number from 0 to {MAX_RTOL:g}, got {describe(value)}")
+    return x
 
 
 @dataclass(frozen=True)
@@ -85,10 +97,11 @@ def grashof(ground: float, crank: float, coupler: float, rocker: float, *,
     Parameters
     ----------
     ground, crank, coupler, rocker : float
-        Link lengths O2O4, O2A, AB, O4B, m.
+        Link lengths O2O4, O2A, AB, O4B, m (from 1e-9 m to 1e9 m, as every length of a
+        model).
     rtol : float
         Lengths, and s + l against p + q, are taken as equal within ``rtol`` times the sum
-        of the four lengths.
+        of the four lengths; from 0 to 0.01.
 
     Returns
     -------
@@ -109,11 +122,10 @@ def grashof(ground: float, crank: float, coupler: float, rocker: float, *,
     >>> g.kind, g.barker, g.form, g.crank_rotates, g.rocker_rotates
     ('change-point', 'S2X', 'parallelogram', True, True)
     """
-    lengths = {"ground": ground, "crank": crank, "coupler": coupler, "rocker": rocker}
-    bad = [f"{k}: expected a positive length (m), got {describe(v)}" for k, v in lengths.items()
-           if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0)]
-    if bad:
-        raise ModelError(bad)
+    _positive(ground=ground, crank=crank, coupler=coupler, rocker=rocker)
+    rtol = _rtol(rtol)
+    lengths = {"ground": float(ground), "crank": float(crank), "coupler": float(coupler),
+               "rocker": float(rocker)}
     values = list(lengths.values())
     s, l_ = min(values), max(values)
     margin = (sum(values) - s - l_) - (s + l_)
@@ -153,15 +165,30 @@ def grashof_kinds(ground: ArrayLike, crank: ArrayLike, coupler: ArrayLike, rocke
                   rtol: float = 1e-12) -> np.ndarray:
     """:attr:`Grashof.kind` of many four-bars at once: arrays of link lengths (broadcast
     together, m) in, an object array of the class names out (None where a length is not a
-    positive number).
+    positive number from 1e-9 m to 1e9 m, as NaN).  Anything but real numbers, or arrays
+    that do not broadcast together, raise a ModelError.
 
     Examples
     --------
     >>> kl.mechanisms.grashof_kinds([3.0, 1.0, 1.0], 1.0, [3.0, 1.0, 2.0], [2.5, 1.0, 1.5]).tolist()
     ['crank-rocker', 'change-point', 'triple-rocker']
     """
-    r = np.broadcast_arrays(*(np.asarray(v, float) for v in (ground, crank, coupler, rocker)))
-    lengths = np.stack(r)                                           # (4, ...)
+    rtol = _rtol(rtol)
+    arrays = {}
+    for name, value in (("ground", ground), ("crank", crank), ("coupler", coupler),
+                        ("rocker", rocker)):
+        arrays[name] = real_array(value)
+        if arrays[name] is None:
+            raise ModelError(f"{name}: expected real numbers (lengths, m), got {describe(value)}")
+    try:
+        lengths = np.stack(np.broadcast_arrays(*arrays.values()))    # (4, ...)
+    except ValueError:
+        shapes = ", ".join(f"{k} {v.shape}" for k, v in arrays.items())
+        raise ModelError(f"ground, crank, coupler, rocker: expected arrays of shapes that "
+                         f"broadcast together, got {shapes}") from None
+    with np.errstate(invalid="ignore"):
+        good = ((lengths >= MIN_LENGTH) & (lengths <= MAX_LENGTH)).all(axis=0)
+    lengths = np.where(good, lengths, 1.0)                          # None there, below
     total = lengths.sum(axis=0)
     s, l_ = lengths.min(axis=0), lengths.max(axis=0)
     margin = (total - s - l_) - (s + l_)
@@ -175,6 +202,5 @@ def grashof_kinds(ground: ArrayLike, crank: ArrayLike, coupler: ArrayLike, rocke
     kinds = np.where(change, "change-point",
                      np.where(margin > 0, _GRASHOF_BY_SHORTEST[np.argmin(lengths, axis=0)],
                               "triple-rocker")).astype(object)
-    good = np.isfinite(lengths).all(axis=0) & (lengths > 0).all(axis=0)
     kinds[~good] = None
     return kinds

@@ -7,21 +7,45 @@ every link's geometry and the assembly mode (branch) the analysis follows.
 from __future__ import annotations
 
 import math
+import numbers
 from collections import Counter
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any, Literal
 
+import numpy as np
+
 from kinelab.errors import PROBLEMS_SHOWN, ModelError, describe, quoted, shown, suggest
 from kinelab.model._joints import JOINT_TYPES
 from kinelab.model._values import (MAX_INERTIA, MAX_JOINTS, MAX_LINKS, MAX_MASS, is_real,
-                                   length_problem, name_problem, range_problem, rate_problem)
+                                   length_problem, name_problem, range_problem, rate_problem,
+                                   real)
 
 __all__ = ["Point", "Link", "Joint", "Input", "Mechanism", "SPACES"]
 
 SPACES = ("planar", "spherical", "spatial")
 _LENGTH_TOL = 1e-12  # two sketch points closer than this (m) are the same place
+
+
+# A model keeps its numbers as Python floats, whatever they were given as (an int, a
+# Fraction, a numpy number): the engine computes with floats, and a Fraction or an object
+# array would reach numpy's linear algebra.  What is not a real number is kept as given, for
+# the model's check to name it.
+def _float(value: Any) -> Any:
+    x = real(value)
+    return value if x is None else x
+
+
+def _floats(value: Any) -> Any:
+    if isinstance(value, (tuple, list)) and all(is_real(v) for v in value):
+        return tuple(float(v) for v in value)
+    return value
+
+
+def _set(item: Any, **values: Any) -> None:
+    for attr, value in values.items():
+        object.__setattr__(item, attr, value)
 
 
 @dataclass(frozen=True)
@@ -35,6 +59,9 @@ class Point:
     x: float
     y: float
     z: float = 0.0
+
+    def __post_init__(self):
+        _set(self, x=_float(self.x), y=_float(self.y), z=_float(self.z))
 
     @property
     def xy(self) -> tuple[float, float]:
@@ -85,8 +112,11 @@ class Link:
 
     def __post_init__(self):
         if self.local is not None and isinstance(self.local, Mapping):
-            object.__setattr__(self, "local", {k: tuple(v) if isinstance(v, (list, tuple)) else v
-                                               for k, v in self.local.items()})
+            object.__setattr__(self, "local", {k: _floats(tuple(v)) if isinstance(v, (list, tuple))
+                                               else v for k, v in self.local.items()})
+        _set(self, mass=_float(self.mass), inertia=_float(self.inertia),
+             length=_float(self.length),
+             ground=bool(self.ground) if isinstance(self.ground, np.bool_) else self.ground)
 
 
 @dataclass(frozen=True)
@@ -132,6 +162,10 @@ class Joint:
     pitch: float | None = None
     offset: float | None = None
 
+    def __post_init__(self):
+        _set(self, axis=_floats(self.axis), axis2=_floats(self.axis2), pitch=_float(self.pitch),
+             offset=_float(self.offset))
+
 
 @dataclass(frozen=True)
 class Input:
@@ -154,6 +188,10 @@ class Input:
     speed: float = 0.0
     acceleration: float = 0.0
     name: str | None = None
+
+    def __post_init__(self):
+        _set(self, range=_floats(self.range), speed=_float(self.speed),
+             acceleration=_float(self.acceleration))
 
     @property
     def label(self) -> str:
@@ -196,10 +234,23 @@ class Mechanism:
     parameters: Mapping[str, Any] = field(default_factory=dict, compare=False)
 
     def __post_init__(self):
-        for attr in ("points", "links", "joints", "inputs"):
-            object.__setattr__(self, attr, tuple(getattr(self, attr)))
-        object.__setattr__(self, "parameters", dict(self.parameters))
-        problems = _validate(self)
+        problems = []
+        for attr, cls in (("points", "Point"), ("links", "Link"), ("joints", "Joint"),
+                          ("inputs", "Input")):
+            value = getattr(self, attr)
+            if isinstance(value, (str, bytes, Mapping)) or not isinstance(value, Iterable):
+                problems.append(f"{attr}: expected a sequence of {cls} objects, got "
+                                f"{describe(value)}")
+                value = ()
+            object.__setattr__(self, attr, tuple(value))
+        if not isinstance(self.parameters, Mapping):
+            problems.append(f"parameters: expected a mapping of name = value, got "
+                            f"{describe(self.parameters)}")
+            object.__setattr__(self, "parameters", {})
+        object.__setattr__(self, "parameters", {
+            k: float(v) if isinstance(v, numbers.Real) and not isinstance(v, numbers.Integral)
+            and is_real(v) else v for k, v in self.parameters.items()})
+        problems = problems or _validate(self)
         if problems:
             raise ModelError(problems, source=f"mechanism {shown(self.name)}")
 
@@ -337,8 +388,8 @@ def _validate(m: Mechanism) -> list[str]:
 
     if not isinstance(m.space, str) or m.space not in SPACES:
         add(f"space: expected one of {quoted(SPACES)}, got {describe(m.space)}")
-    if not isinstance(m.name, str) or not m.name.isprintable():
-        add(f"name: expected a text of printable characters, got {describe(m.name)}")
+    if (why := name_problem(m.name)) is not None:
+        add(f"name: {why}, got {describe(m.name)}")
     for kind, items, most in (("links", m.links, MAX_LINKS), ("joints", m.joints, MAX_JOINTS)):
         if len(items) > most:
             add(f"{kind}: expected at most {most:,}, got {len(items):,}; a model that large "
@@ -376,12 +427,17 @@ def _validate(m: Mechanism) -> list[str]:
             add(f"point {shown(p.name)}: coordinates: {why}, got ({p.x:g}, {p.y:g}, {p.z:g}) m")
         else:
             placed.add(p.name)
+            if m.space == "planar" and p.z != 0.0:
+                add(f"point {shown(p.name)}: z: expected 0 in a planar mechanism, got {p.z:g} m; "
+                    "remove z, or use space = 'spatial'")
     # -- links ---------------------------------------------------------------------------
     grounds = [link.name for link in m.links if link.ground is True]
     if len(grounds) != 1:
         add(f"links: expected exactly one ground link, got {len(grounds)}"
             + (f" ({quoted(grounds)})" if grounds else "") + "; mark one link ground = true")
-    sliding_links = {n for j in m.joints if j.type == "P" for n in j.links}
+    # the links of prismatic joints, of those whose links are well formed (checked below)
+    sliding_links = {n for j in m.joints if j.type == "P" and isinstance(j.links, (tuple, list))
+                     for n in j.links if isinstance(n, str)}
     carriers: dict[str, list[str]] = {}      # point -> the links that carry it
     carried: set[tuple[str, str]] = set()     # (point, link) for each point a link carries
     for link in m.links:

@@ -4,17 +4,24 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
+from kinelab.errors import ModelError, describe
+from kinelab.solvers._arguments import number, reals
+
 
 def wrap_angle(angle: ArrayLike) -> np.ndarray | float:
     """Angles (rad) wrapped into (-pi, pi]; a float for a scalar, else an array.  Angles
-    already in that range are returned unchanged, to the bit.
+    already in that range are returned unchanged, to the bit; NaN (a sample with no value)
+    stays NaN.  Infinities, and anything but real numbers, raise a ModelError.
 
     Examples
     --------
     >>> kl.solvers.wrap_angle([3 * np.pi / 2, -np.pi, np.pi, 0.5]).round(6).tolist()
     [-1.570796, 3.141593, 3.141593, 0.5]
     """
-    a = np.asarray(angle, dtype=float)
+    a = reals("angle", angle)
+    if np.isinf(a).any():
+        raise ModelError(f"angle: expected finite angles (rad), got {describe(a[np.isinf(a)][0])}; "
+                         f"an infinite angle has no direction")
     inside = (a > -np.pi) & (a <= np.pi)
     if inside.all():
         wrapped = np.array(a)
@@ -39,9 +46,22 @@ def turn_intervals(intervals, around: float = 0.0) -> list[tuple[float, float]]:
     >>> [(round(a, 9), round(b, 9)) for a, b in kl.solvers.turn_intervals([(0.3, 0.5)], around=turn)]
     [(6.583185307, 6.783185307)]
     """
+    around = number("around", around)
+    if isinstance(intervals, (str, bytes)):
+        raise ModelError(f"intervals: expected (start, stop) pairs of angles, got "
+                         f"{describe(intervals)}")
+    spans = reals("intervals", intervals)
+    if spans.size == 0:
+        return []
+    if spans.ndim != 2 or spans.shape[1] != 2:
+        raise ModelError(f"intervals: expected (start, stop) pairs of angles, shape (k, 2), "
+                         f"got shape {spans.shape}")
+    if not np.isfinite(spans).all():
+        raise ModelError(f"intervals: expected finite angles, got "
+                         f"{describe(spans[~np.isfinite(spans).all(axis=1)][0])}")
     turn = 2.0 * np.pi
     out = []
-    for a, b in intervals:
+    for a, b in spans.tolist():
         k = np.floor((0.5 * (a + b) - around) / turn + 0.5)
         out.append((float(a - k * turn), float(b - k * turn)))
     return sorted(out)

@@ -8,10 +8,17 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ConvergenceError, ModelError, describe
-from kinelab.solvers._newton import newton
+from kinelab.errors import ConvergenceError, ModelError, check_choice
+from kinelab.solvers._arguments import finite, function, reals, tolerance, whole
+from kinelab.solvers._newton import MAX_ITER, _evaluate, newton
 
 __all__ = ["ContinuationResult", "continuation"]
+
+# Halvings of one step: past about 50 the step is below the resolution of p itself.
+MAX_HALVINGS = 50
+# Parameter values of one path: each is a Python-level step (a few Newton solves), so a path
+# of a million values takes minutes; sweep a long range with the planar engine instead.
+MAX_PARAMS = 100_000
 
 
 @dataclass(frozen=True)
@@ -65,13 +72,14 @@ def continuation(fun: Callable, jac: Callable, x0: ArrayLike, params: ArrayLike,
     x0 : array_like, shape (n,) or (N, n)
         A (rough) solution at ``params[0]``; it is corrected first.
     params : array_like, shape (M,)
-        Parameter values, in order (increasing or decreasing).
+        Parameter values, in order (increasing or decreasing); at most 100,000 of them.
     dfun_dp : callable, optional
         ``dfun_dp(x, p)`` returns ``∂Φ/∂p``, shape (N, n), for the tangent predictor.
     tol, max_iter :
         Passed to :func:`newton` for each correction.
     max_halvings : int, default 12
-        Halvings of one step before giving up (the step is then ``Δp / 2**12``).
+        Halvings of one step before giving up (the step is then ``Δp / 2**12``), from 0 to
+        50.  A step halved below the resolution of p counts as a step that cannot advance.
     on_failure : {'raise', 'mask'}, default 'raise'
         Raise :class:`~kinelab.errors.ConvergenceError` where the path cannot advance, or
         return with ``reached`` False from there on.
@@ -105,17 +113,31 @@ def continuation(fun: Callable, jac: Callable, x0: ArrayLike, params: ArrayLike,
     >>> bool(path.reached.all()), bool(np.allclose(path.x[:, 0], -th2, atol=1e-12))
     (True, True)
     """
-    if on_failure not in ("raise", "mask"):
-        raise ModelError(f"on_failure: expected one of 'raise', 'mask', got {describe(on_failure)}")
-    params = np.asarray(params, dtype=float)
-    if params.ndim != 1 or params.size == 0 or not np.all(np.isfinite(params)):
+    check_choice("on_failure", on_failure, ("raise", "mask"))
+    function("fun", fun)
+    function("jac", jac)
+    if dfun_dp is not None:
+        function("dfun_dp", dfun_dp)
+    tolerance("tol", tol)
+    whole("max_iter", max_iter, 1, MAX_ITER)
+    max_halvings = whole("max_halvings", max_halvings, 0, MAX_HALVINGS)
+    params = reals("params", params)
+    if params.ndim != 1 or params.size == 0:
         raise ModelError(f"params: expected a 1-D array of finite values, got shape "
                          f"{params.shape}")
+    if params.size > MAX_PARAMS:
+        raise ModelError(f"params: expected at most {MAX_PARAMS:,} values, got "
+                         f"{params.size:,}; each is one step of a Python loop: take fewer, "
+                         f"or sweep a mechanism with kinelab.analyze")
+    finite("params", params)
     steps = np.diff(params)
     if params.size > 1 and not (np.all(steps > 0) or np.all(steps < 0)):
         raise ModelError("params: expected strictly increasing or strictly decreasing "
                          "values; sort them, and drop repeats")
-    x = np.array(x0, dtype=float)
+    x = np.array(reals("x0", x0))
+    if x.ndim not in (1, 2) or x.shape[-1] == 0:
+        raise ModelError(f"x0: expected shape (n,) or (N, n) with n >= 1, got {x.shape}")
+    finite("x0", x, "give a starting solution")
     batched = x.ndim == 2
     x = np.atleast_2d(x)
 
@@ -150,7 +172,7 @@ def continuation(fun: Callable, jac: Callable, x0: ArrayLike, params: ArrayLike,
                     break
                 p_to = params[i]
                 slope = _slope(jac, dfun_dp, x_from, p_from, previous)
-            elif halvings[i] < max_halvings:
+            elif halvings[i] < max_halvings and p_from + dp / 2 != p_from:
                 halvings[i] += 1
                 p_to = p_from + dp / 2
             else:
@@ -169,7 +191,7 @@ def continuation(fun: Callable, jac: Callable, x0: ArrayLike, params: ArrayLike,
         p_fail, result = failure
         error = ConvergenceError(
             f"continuation could not advance past p = {params[max(last, 0)]:.6g} toward "
-            f"p = {p_fail:.6g} (step halved {max_halvings} times; last residual max|Φ| = "
+            f"p = {p_fail:.6g} (step halved {int(halvings[min(last + 1, M - 1)])} times; last residual max|Φ| = "
             f"{np.max(result.residual_norm):.3g}); a limit position (the input cannot go "
             f"further) or a singular configuration lies there; stop the range before it, "
             f"or pass on_failure='mask' to keep the part reached")
@@ -183,8 +205,9 @@ def _slope(jac, dfun_dp, x, p, previous) -> np.ndarray:
     else the secant through the last two solutions, else zero (the first step without
     ∂Φ/∂p stays at the last solution)."""
     if dfun_dp is not None:
-        J = np.asarray(jac(x, p), dtype=float)
-        rhs = -np.asarray(dfun_dp(x, p), dtype=float)[..., None]
+        N, n = x.shape
+        J = _evaluate(lambda z: jac(z, p), x, (N, n, n), "jac")
+        rhs = -_evaluate(lambda z: dfun_dp(z, p), x, (N, n), "dfun_dp")[..., None]
         try:
             return np.linalg.solve(J, rhs)[..., 0]
         except np.linalg.LinAlgError:     # singular here: fall back to the secant

@@ -11,7 +11,9 @@ import sympy as sp
 from sympy.polys.matrices import DomainMatrix
 from sympy.polys.polyerrors import CoercionFailed
 
-from kinelab.errors import ModelError, describe
+from kinelab.errors import ModelError, describe, one_line
+from kinelab.model import MAX_RATE
+from kinelab.solvers._arguments import tolerance
 from kinelab.solvers._newton import newton
 
 __all__ = ["DialyticSolution", "dialytic"]
@@ -21,6 +23,14 @@ Polynomial = Union[sp.Expr, sp.Eq, Mapping[tuple[int, int], complex]]
 # Two roots of the eliminant closer than this (relative) are one x of several solutions:
 # a double root comes out of the companion matrix split by ~sqrt(eps) ≈ 1.5e-8.
 _SAME_X = 1e-6
+# The largest eliminant: its degree is at most m deg_x(q) + n deg_x(p) (m, n the degrees in
+# y), and both the exact determinant and the roots grow fast with it (degree 64 takes about a
+# second, 300 minutes).  Mechanism problems stay far below: the four-bar's is 4, the
+# Stewart platform's forward kinematics 40.
+MAX_DEGREE = 64
+# Coefficients at most this size: the eliminant multiplies up to 2 MAX_DEGREE of them, and
+# its coefficients, roots and residuals must stay floats.
+MAX_COEFFICIENT = MAX_RATE
 
 
 @dataclass(frozen=True)
@@ -100,7 +110,7 @@ def dialytic(p: Polynomial, q: Polynomial, variables: tuple | None = None, *,
         hold other than two symbols; by default, their two symbols in alphabetical order.
         With dicts, the symbols to show the eliminant in (default ``x, y``).
     imag_tol : float, default 1e-8
-        A solution is real when ``|Im x| <= imag_tol max(1, |x|)`` and the same for y.
+        A number from 0 to below 1: a solution is real when ``|Im x| <= imag_tol max(1, |x|)`` and the same for y.
         (Repeated roots of an exact eliminant are separated out before the numerical
         root finding, which would split a double root by ~1e-8.)
 
@@ -113,8 +123,9 @@ def dialytic(p: Polynomial, q: Polynomial, variables: tuple | None = None, *,
     Raises
     ------
     ModelError
-        If p or q is not a polynomial with numeric coefficients, neither contains y, or the
-        two share a factor (their solutions then form a curve, not isolated points).
+        If p or q is not a polynomial with finite numeric coefficients (at most 1e100 in
+        size), neither contains y, the two share a factor (their solutions then form a
+        curve, not isolated points), or the eliminant's degree could exceed 64.
 
     References
     ----------
@@ -145,6 +156,11 @@ def dialytic(p: Polynomial, q: Polynomial, variables: tuple | None = None, *,
     >>> kl.solvers.dialytic(p, q).coefficients
     array([ -36.,   72., -100.,  160.,  -64.])
     """
+    for name, f in (("p", p), ("q", q)):
+        if not isinstance(f, (Mapping, sp.Basic, numbers.Number)) or isinstance(f, bool):
+            raise ModelError(f"{name}: expected a sympy expression or equation, or a dict "
+                             f"{{(i, j): c}} of coefficients, got {describe(f)}")
+    imag_tol = tolerance("imag_tol", imag_tol, zero=True)
     x, y = _variables(p, q, variables)
     P, inexact_p = _poly(p, "p", x, y)
     Q, inexact_q = _poly(q, "q", x, y)
@@ -153,6 +169,13 @@ def dialytic(p: Polynomial, q: Polynomial, variables: tuple | None = None, *,
     if m <= 0 and n <= 0:
         raise ModelError(f"p, q: expected at least one equation containing {y}, got neither; "
                          f"pass variables=(x, y) with y the unknown to eliminate")
+    degree = max(m, 0) * max(Q.degree(x), 0) + max(n, 0) * max(P.degree(x), 0)
+    if max(m, n, degree) > MAX_DEGREE:
+        raise ModelError(f"p, q: expected an eliminant of degree at most {MAX_DEGREE}, got "
+                         f"degrees {max(m, 0)} and {max(n, 0)} in {y} and {P.degree(x)} and "
+                         f"{Q.degree(x)} in {x}, an eliminant of degree up to "
+                         f"{max(degree, m + n)}; solve a smaller system, or use newton from "
+                         f"starting guesses")
 
     common = sp.gcd(P, Q)
     if common.total_degree() > 0:
@@ -162,11 +185,20 @@ def dialytic(p: Polynomial, q: Polynomial, variables: tuple | None = None, *,
     # Exact arithmetic (floats enter as the rationals they are), so that terms which cancel
     # in the determinant cancel exactly instead of leaving a 1e-16 x⁴ with roots at 1e16.
     M = _dialytic_matrix(P, Q, y)
+    rational = all(f.domain in (sp.ZZ, sp.QQ) for f in (P, Q))
     try:                                      # det over Q[x]: exact and fast
+        if not rational:
+            raise CoercionFailed("irrational or complex coefficients")
         det = DomainMatrix.from_Matrix(M).convert_to(sp.QQ[x]).det()
         eliminant = sp.Poly(sp.QQ[x].to_sympy(det), x)
     except CoercionFailed:                    # irrational or complex coefficients
         eliminant = sp.Poly(M.det(method="berkowitz"), x)
+    try:
+        _numeric(eliminant.all_coeffs())
+    except (OverflowError, ValueError):
+        raise ModelError("p, q: the eliminant's coefficients exceed the range of floats; "
+                         "scale the equations (divide each by its largest coefficient)") \
+            from None
     xs = _roots(eliminant)
     if inexact:                               # show floats as floats
         M = M.evalf()
@@ -213,8 +245,14 @@ def _poly(f, name: str, x: sp.Symbol, y: sp.Symbol) -> tuple[sp.Poly, bool]:
                     and all(isinstance(e, numbers.Integral) and e >= 0 for e in key)):
                 raise ModelError(f"{name}: expected keys (i, j), the non-negative powers of "
                                  f"x and y, got {describe(key)}")
-            if not isinstance(c, numbers.Number):
+            if key[0] > MAX_DEGREE or key[1] > MAX_DEGREE:
+                raise ModelError(f"{name}: expected powers of at most {MAX_DEGREE}, got "
+                                 f"{describe(key)}; solve a smaller system")
+            if not isinstance(c, numbers.Number) or isinstance(c, bool):
                 raise ModelError(f"{name}[{key}]: expected a number, got {describe(c)}")
+            if _size(c) is None:
+                raise ModelError(f"{name}[{key}]: expected a finite number at most "
+                                 f"{MAX_COEFFICIENT:g} in size, got {describe(c)}")
             terms.append(sp.sympify(c) * x**key[0] * y**key[1])
         f = sp.Add(*terms)
     f = sp.sympify(f)
@@ -230,10 +268,23 @@ def _poly(f, name: str, x: sp.Symbol, y: sp.Symbol) -> tuple[sp.Poly, bool]:
         raise ModelError(f"{name}: expected numeric coefficients, got {f}; substitute "
                          f"numbers for {', '.join(sorted(map(str, P.free_symbols - {x, y})))}"
                          f" first (expr.subs)")
+    for c in P.coeffs():
+        if _size(c) is None:
+            raise ModelError(f"{name}: expected finite coefficients at most "
+                             f"{MAX_COEFFICIENT:g} in size, got {one_line(c, 60)}")
     floats = P.as_expr().atoms(sp.Float)
     if floats:
         P = sp.Poly(P.as_expr().xreplace({v: sp.Rational(v) for v in floats}), x, y)
     return P, bool(floats)
+
+
+def _size(c) -> float | None:
+    """``|c|`` when ``c`` is a finite number at most ``MAX_COEFFICIENT`` in size, else None."""
+    try:
+        size = abs(complex(c))
+    except (OverflowError, TypeError, ValueError):
+        return None
+    return size if size <= MAX_COEFFICIENT else None     # NaN compares False
 
 
 def _dialytic_matrix(P: sp.Poly, Q: sp.Poly, y: sp.Symbol) -> sp.Matrix:
@@ -263,6 +314,8 @@ def _coefficients_in(P: sp.Poly, y: sp.Symbol, degree: int) -> list[sp.Expr]:
 
 def _numeric(coeffs) -> np.ndarray:
     values = np.array([complex(c) for c in coeffs])
+    if not np.isfinite(values).all():
+        raise OverflowError("a coefficient beyond the range of floats")
     return values.real if np.all(values.imag == 0) else values
 
 

@@ -8,6 +8,7 @@ from numpy.typing import ArrayLike
 
 from kinelab.errors import AssemblyError, ModelError
 from kinelab.solvers._angles import wrap_angle
+from kinelab.solvers._arguments import finite, flag, reals, tolerance
 
 __all__ = ["HalfAngleSolution", "half_angle"]
 
@@ -16,6 +17,8 @@ __all__ = ["HalfAngleSolution", "half_angle"]
 # out of a mechanism's geometry at a toggle, narrow enough that the two merged roots lie
 # within ~1.4e-7 rad of each other (separation ~ 2 sqrt(2 tol)).
 _TANGENT_TOL = 1e-14
+# A larger tolerance would merge roots that are visibly apart (about 2 sqrt(2 tol) rad).
+_MAX_TOL = 1e-3
 
 
 @dataclass(frozen=True)
@@ -82,7 +85,7 @@ def half_angle(E: ArrayLike, F: ArrayLike, G: ArrayLike, *, strict: bool = False
         Raise :class:`~kinelab.errors.AssemblyError` if any element has no real root,
         instead of reporting it in ``count`` and ``gap``.
     tol : float, default 1e-14
-        Relative tolerance (to ``sqrt(E² + F² + G²)``) within which ``|G|`` and
+        Relative tolerance, from 0 to below 1e-3, (to ``sqrt(E² + F² + G²)``) within which ``|G|`` and
         ``sqrt(E² + F²)`` count as equal: a double root (``count == 1``).
 
     Returns
@@ -122,17 +125,17 @@ def half_angle(E: ArrayLike, F: ArrayLike, G: ArrayLike, *, strict: bool = False
     >>> sol.theta, sol.count, sol.gap
     (array([[0., 0.], [0., 0.]]), array([1, 0]), array([0. , 0.5]))
     """
+    strict = flag("strict", strict)
+    tol = tolerance("tol", tol, zero=True, below=_MAX_TOL)
+    coefficients = {name: reals(name, c) for name, c in (("E", E), ("F", F), ("G", G))}
     try:
-        E, F, G = np.broadcast_arrays(*(np.asarray(c, dtype=float) for c in (E, F, G)))
-    except (ValueError, TypeError) as exc:
-        raise ModelError(f"E, F, G: expected real numbers or arrays of broadcastable "
-                         f"shapes, got {exc}; pass arrays of one common shape") from None
-    bad = ~(np.isfinite(E) & np.isfinite(F) & np.isfinite(G))
-    if bad.any():
-        where = tuple(int(i) for i in np.argwhere(bad)[0])
-        raise ModelError(f"E, F, G: expected finite numbers, got E={E[where]}, F={F[where]}, "
-                         f"G={G[where]} at index {where}; check the geometry that produced "
-                         f"them")
+        E, F, G = np.broadcast_arrays(*coefficients.values())
+    except ValueError:
+        shapes = ", ".join(f"{name} {c.shape}" for name, c in coefficients.items())
+        raise ModelError(f"E, F, G: expected arrays of shapes that broadcast together, got "
+                         f"{shapes}; pass arrays of one common shape") from None
+    for name, c in zip("EFG", (E, F, G)):
+        finite(name, c, "check the geometry that produced them")
 
     R = np.hypot(E, F)
     scale = np.hypot(R, G)                     # no under- or overflow in squares

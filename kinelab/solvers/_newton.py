@@ -8,12 +8,18 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ConvergenceError, ModelError, SingularityError, describe
+from kinelab.errors import ConvergenceError, ModelError, SingularityError, check_choice, describe
+from kinelab.model import name_problem
+from kinelab.solvers._arguments import finite as check_finite, flag, function, reals, tolerance, whole
 
 __all__ = ["NewtonHistory", "NewtonResult", "iteration_table", "newton"]
 
 _ON_FAILURE = ("raise", "mask")
 _SHOWN = 10  # failing samples named in a message
+MAX_ITER = 10_000     # Newton steps a sample may be allowed: quadratic convergence needs few
+# The rounding of Φ: a change of one unit in the last place of each unknown moves row i of Φ
+# by about eps Σ_j |J_ij| |x_j|; a residual within a few dozen times that is zero for Φ.
+_ROUNDING = 64 * np.finfo(float).eps
 
 
 @dataclass(frozen=True)
@@ -44,6 +50,8 @@ class NewtonHistory:
 
     def sample(self, index: int = 0) -> NewtonHistory:
         """The rows of one sample, while it was iterated: arrays of shape (k, n)."""
+        if isinstance(index, (bool, np.bool_)) or not isinstance(index, (int, np.integer)):
+            raise ModelError(f"sample: expected the index of a sample, got {describe(index)}")
         if not self.batched:
             if index != 0:
                 raise ModelError(f"sample: expected 0 for an unbatched solve, got {index}")
@@ -122,9 +130,13 @@ def newton(fun: Callable[[np.ndarray], ArrayLike], jac: Callable[[np.ndarray], A
 
     Each iteration evaluates ``Φ`` and its Jacobian ``J = ∂Φ/∂x`` for the whole batch,
     solves ``J Δx = -Φ`` for every sample with one batched ``numpy.linalg.solve`` and sets
-    ``x ← x + Δx``.  A sample has converged when its step is small,
-    ``max |Δx| <= tol (1 + max |x|)`` (the notes' criterion, "increments below a
-    tolerance", made relative for large unknowns); from then on it is held fixed.
+    ``x ← x + Δx``.  A sample has converged when the step of every unknown is small,
+    ``|Δx_j| <= tol (1 + |x_j|)`` (the notes' criterion, "increments below a tolerance",
+    made relative for large unknowns, each unknown on its own scale), and the residual it
+    leaves is small too: ``|Φ_i(x)| <= sqrt(tol) max(1, max |Φ(x0)|)`` or within the
+    rounding of Φ, ``|Φ_i(x)| <= 64 eps Σ_j |J_ij| |x_j|``.  From then on it is held fixed.
+    The residual check keeps a small step that left a large residual, in unknowns of very
+    different sizes, from passing for a root.
 
     Parameters
     ----------
@@ -140,17 +152,18 @@ def newton(fun: Callable[[np.ndarray], ArrayLike], jac: Callable[[np.ndarray], A
         ``jac`` get N = 1 and the result drops the sample axis.  A complex ``x0`` makes
         the iteration complex (for complex roots of polynomial systems).
     tol : float, default 1e-12
-        Step tolerance (above).
+        Step tolerance (above), a positive number below 1.
     max_iter : int, default 50
-        Newton steps allowed per sample.
+        Newton steps allowed per sample, from 1 to 10,000.
     history : bool, default False
         Keep every iterate in ``result.history`` (see :func:`iteration_table`).
     on_failure : {'raise', 'mask'}, default 'raise'
         What to do with samples that did not converge: raise (after finishing the others)
         or report them in ``result.converged`` and ``result.singular``.
     rcond : float, default 1e-13
-        A Jacobian whose smallest to largest singular value ratio is below this is
-        singular: the sample stops there instead of taking a meaningless step.
+        A Jacobian whose smallest to largest singular value ratio is below this (a number
+        from 0 to below 1) is singular: the sample stops there instead of taking a
+        meaningless step.
 
     Returns
     -------
@@ -167,7 +180,8 @@ def newton(fun: Callable[[np.ndarray], ArrayLike], jac: Callable[[np.ndarray], A
         diverged to non-finite values; the message names them with their last residual.
         ``err.result`` holds the whole result.
     ModelError
-        Bad arguments, or ``fun`` / ``jac`` returning arrays of the wrong shape.
+        Bad arguments, or ``fun`` / ``jac`` returning anything but numbers in arrays of
+        the right shape.
 
     References
     ----------
@@ -205,19 +219,18 @@ def newton(fun: Callable[[np.ndarray], ArrayLike], jac: Callable[[np.ndarray], A
     >>> sol.x.shape, bool(sol.converged.all()), bool(np.allclose(sol.x[:, 0], -th2))
     ((1000, 2), True, True)
     """
-    if on_failure not in _ON_FAILURE:
-        raise ModelError(f"on_failure: expected one of 'raise', 'mask', got {describe(on_failure)}")
-    if not (isinstance(max_iter, (int, np.integer)) and max_iter >= 1):
-        raise ModelError(f"max_iter: expected a positive integer, got {describe(max_iter)}")
-    if not tol > 0:
-        raise ModelError(f"tol: expected a positive number, got {describe(tol)}")
-    x = np.array(x0)
-    x = x.astype(np.result_type(x.dtype, float))     # complex x0 stays complex
+    function("fun", fun)
+    function("jac", jac)
+    check_choice("on_failure", on_failure, _ON_FAILURE)
+    max_iter = whole("max_iter", max_iter, 1, MAX_ITER)
+    tol = tolerance("tol", tol)
+    rcond = tolerance("rcond", rcond, zero=True)
+    history = flag("history", history)
+    x = np.array(reals("x0", x0, complex_ok=True))      # complex x0 stays complex
     batched = x.ndim == 2
     if x.ndim not in (1, 2) or x.shape[-1] == 0:
         raise ModelError(f"x0: expected shape (n,) or (N, n) with n >= 1, got {x.shape}")
-    if not np.all(np.isfinite(x)):
-        raise ModelError("x0: expected finite numbers, got NaN or inf; give a starting guess")
+    check_finite("x0", x, "give a starting guess")
     x = np.atleast_2d(x)
     N, n = x.shape
 
@@ -231,6 +244,8 @@ def newton(fun: Callable[[np.ndarray], ArrayLike], jac: Callable[[np.ndarray], A
     rows: list[tuple[np.ndarray, ...]] = []
 
     phi = _evaluate(fun, x, (N, n), "fun")
+    with np.errstate(invalid="ignore"):      # NaN in Φ(x0): that sample diverges below
+        phi_scale = np.sqrt(tol) * np.maximum(1.0, np.max(np.abs(phi), axis=1))
     for k in range(max_iter):
         if not active.any():
             break
@@ -238,7 +253,8 @@ def newton(fun: Callable[[np.ndarray], ArrayLike], jac: Callable[[np.ndarray], A
         finite = np.all(np.isfinite(phi), axis=1) & np.all(np.isfinite(J), axis=(1, 2))
         diverged |= active & ~finite
         active &= finite
-        sv = np.linalg.svd(np.where(finite[:, None, None], J, 0.0), compute_uv=False)
+        J = np.where(finite[:, None, None], J, 0.0)
+        sv = np.linalg.svd(J, compute_uv=False)
         bad = active & ~(sv[:, -1] > rcond * sv[:, 0])
         for s in np.flatnonzero(bad):
             stopped_at[int(s)] = (k, x[s].copy(), sv[s, -1] / sv[s, 0] if sv[s, 0] else 0.0)
@@ -252,14 +268,20 @@ def newton(fun: Callable[[np.ndarray], ArrayLike], jac: Callable[[np.ndarray], A
         step = np.linalg.solve(A, b[..., None])[..., 0]
         if history:
             rows.append((x.copy(), phi.copy(), step, active.copy()))
-        x = x + step
+        with np.errstate(over="ignore"):      # a step to beyond floats: diverged below
+            x = x + step
         iterations += active
         size = np.max(np.abs(step), axis=1)
         last_step = np.where(active, size, last_step)
-        done = active & (size <= tol * (1.0 + np.max(np.abs(x), axis=1)))
+        phi = _evaluate(fun, x, (N, n), "fun")
+        with np.errstate(over="ignore", invalid="ignore"):
+            small_step = np.all(np.abs(step) <= tol * (1.0 + np.abs(x)), axis=1)
+            rounding = _ROUNDING * np.einsum("sij,sj->si", np.abs(J), np.abs(x))
+            small_residual = np.all(np.abs(phi) <= np.maximum(phi_scale[:, None], rounding),
+                                    axis=1)
+        done = active & small_step & small_residual
         converged |= done
         active &= ~done
-        phi = _evaluate(fun, x, (N, n), "fun")
 
     residual_norm = np.max(np.abs(phi), axis=1)
     diverged |= active & ~np.all(np.isfinite(x), axis=1)
@@ -296,6 +318,10 @@ def iteration_table(history: NewtonHistory, *, sample: int = 0,
     --------
     See :func:`newton`.
     """
+    if not isinstance(history, NewtonHistory):
+        raise ModelError(f"history: expected the history of a solve (newton(..., "
+                         f"history=True).history), got {describe(history)}")
+    digits = whole("digits", digits, 1, 17)
     one = history.sample(sample)
     names = _names(names, one.x.shape[-1])
     header = ["k", *names, *(f"phi{i + 1}" for i in range(len(names))),
@@ -311,14 +337,29 @@ def iteration_table(history: NewtonHistory, *, sample: int = 0,
 def _names(names: Sequence[str] | None, n: int) -> list[str]:
     if names is None:
         return [f"x{i + 1}" for i in range(n)]
-    names = [str(name) for name in names]
+    if isinstance(names, str) or not isinstance(names, Sequence):
+        raise ModelError(f"names: expected a list of {n} names, one per unknown, got "
+                         f"{describe(names)}")
+    for name in names:
+        if (why := name_problem(name)) is not None:
+            raise ModelError(f"names: {why}, got {describe(name)}")
+    names = list(names)
     if len(names) != n:
         raise ModelError(f"names: expected {n} names, one per unknown, got {len(names)}")
     return names
 
 
 def _evaluate(f: Callable, x: np.ndarray, shape: tuple[int, ...], what: str) -> np.ndarray:
-    value = np.asarray(f(x.copy()))
+    """``f(x)`` as an array of ``x``'s dtype and of shape ``shape``, or a ModelError naming
+    ``what`` (shared with :func:`continuation`)."""
+    try:
+        value = np.asarray(f(x.copy()))
+    except (ValueError, OverflowError):     # a ragged list, a whole number beyond floats
+        value = np.array(None, dtype=object)
+    if value.dtype.kind not in "iufc":
+        raise ModelError(f"{what}: expected an array of numbers, got "
+                         f"{describe(value if value.dtype.kind != 'O' else value.tolist())}; "
+                         f"{what} must return numbers vectorised over the N samples")
     if np.iscomplexobj(value) and not np.iscomplexobj(x):
         raise ModelError(f"{what}: expected real values for a real x, got complex ones; pass "
                          f"a complex x0 to iterate in complex arithmetic")

@@ -7,6 +7,7 @@ the other pivot: the rocker turns fully relative to the ground exactly when the 
 four-bar (crank and rocker swapped) can be driven by it through a whole turn.
 """
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -164,3 +165,45 @@ def test_ties_within_rtol():
 def test_bad_lengths_are_named():
     with pytest.raises(ModelError, match=r"^crank: expected a positive length \(m\), got -1$"):
         kl.mechanisms.grashof(1.0, -1, 1.0, 1.0)
+
+
+@pytest.mark.parametrize("lengths, options, message", [
+    ((10**400, 1, 3, 2.5), {}, r"^ground: expected a positive length \(m\), got a whole number of 401 digits$"),
+    ((True, 1, 3, 2.5), {}, r"^ground: expected a positive length \(m\), got true$"),
+    ((3, "1", 3, 2.5), {}, r"^crank: expected a positive length \(m\), got '1'$"),
+    ((3, 1, 3, 2e9), {}, r"^rocker: expected a length from 1e-09 m to 1e\+09 m, got 2e\+09 m$"),
+    ((3, 1, 3, 2.5), {"rtol": "a"}, r"^rtol: expected a number from 0 to 0.01, got 'a'$"),
+    ((3, 1, 3, 2.5), {"rtol": None}, r"^rtol: expected a number from 0 to 0.01, got None$"),
+    ((3, 1, 3, 2.5), {"rtol": np.nan}, r"^rtol: expected a number from 0 to 0.01, got nan$"),
+    ((3, 1, 3, 2.5), {"rtol": -1}, r"^rtol: expected a number from 0 to 0.01, got -1$"),
+    ((3, 1, 3, 2.5), {"rtol": 1}, r"^rtol: expected a number from 0 to 0.01, got 1$"),
+])
+def test_bad_arguments_of_grashof_are_named(lengths, options, message):
+    with pytest.raises(ModelError, match=message):
+        kl.mechanisms.grashof(*lengths, **options)
+
+
+@pytest.mark.parametrize("lengths, options, message", [
+    ((10**400, 1, 3, 2.5), {}, r"^ground: expected real numbers \(lengths, m\), got a whole number of 401 digits$"),
+    (("a", 1, 3, 2.5), {}, r"^ground: expected real numbers \(lengths, m\), got 'a'$"),
+    (("1", 1, 3, 2.5), {}, r"^ground: expected real numbers \(lengths, m\), got '1'$"),
+    ((3, [True], 3, 2.5), {}, r"^crank: expected real numbers \(lengths, m\), got \[true\]$"),
+    (([[1, 2], [3]], 1, 3, 2.5), {}, r"^ground: expected real numbers \(lengths, m\), got \[\[1, 2\], \[3\]\]$"),
+    (([1, 2], [1, 2, 3], 3, 2.5), {}, r"^ground, crank, coupler, rocker: expected arrays of shapes "
+                                      r"that broadcast together, got ground \(2,\), crank \(3,\), "),
+    ((3, 1, 3, 2.5), {"rtol": 1e308}, r"^rtol: expected a number from 0 to 0.01, got 1e\+308$"),
+])
+def test_bad_arguments_of_grashof_kinds_are_named(lengths, options, message):
+    with pytest.raises(ModelError, match=message):
+        kl.mechanisms.grashof_kinds(*lengths, **options)
+
+
+def test_grashof_kinds_marks_lengths_out_of_range_without_overflow():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        kinds = kl.mechanisms.grashof_kinds([3.0, np.nan, 2e9, 1e308, -1.0], 1.0, 3.0, 2.5)
+    assert kinds.tolist() == ["crank-rocker", None, None, None, None]
+
+
+def test_a_large_rtol_does_not_turn_a_crank_rocker_into_a_change_point():
+    assert kl.mechanisms.grashof(3.0, 1.0, 3.0, 2.5, rtol=0.01).kind == "crank-rocker"

@@ -1,3 +1,5 @@
+import warnings
+
 import numpy as np
 import pytest
 
@@ -74,3 +76,49 @@ def test_bad_params(params, message):
     fun, jac, _ = slider_crank(1.0, 2.0)
     with pytest.raises(ModelError, match=message):
         continuation(fun, jac, [0.0, 3.0], params)
+
+
+def _circle():
+    return (lambda x, p: x**2 + p**2 - 1), (lambda x, p: (2 * x)[..., None])
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"max_halvings": 10**6}, r"^max_halvings: expected a whole number from 0 to 50, got 1000000$"),
+    ({"max_halvings": -1}, r"^max_halvings: expected a whole number from 0 to 50, got -1$"),
+    ({"max_halvings": np.nan}, r"^max_halvings: expected a whole number from 0 to 50, got nan$"),
+    ({"x0": ["a"]}, r"^x0: expected real numbers, got \['a'\]$"),
+    ({"x0": [10**400]}, r"^x0: expected real numbers, got \[a whole number of 401 digits\]$"),
+    ({"params": ["a"]}, r"^params: expected real numbers, got \['a'\]$"),
+    ({"params": [0, 10**400]}, r"^params: expected real numbers, got \[0, a whole number of 401"),
+    ({"params": [0.0, np.nan]}, r"^params: expected finite numbers, got nan at index \(1,\)$"),
+    ({"params": np.linspace(0.0, 0.5, 100_001)},
+     r"^params: expected at most 100,000 values, got 100,001; each is one step"),
+    ({"dfun_dp": 1}, r"^dfun_dp: expected a function, got 1$"),
+    ({"fun": None}, r"^fun: expected a function, got None$"),
+    ({"dfun_dp": lambda x, p: np.zeros(5)},
+     r"^dfun_dp: expected an array of shape \(N, n\) = \(1, 1\) for x of shape \(1, 1\), got \(5,\)"),
+    ({"dfun_dp": lambda x, p: np.zeros(x.shape + (1,))},
+     r"^dfun_dp: expected an array of shape \(N, n\) = \(1, 1\) .*got \(1, 1, 1\)"),
+    ({"tol": -1.0}, r"^tol: expected a positive number below 1, got -1.0$"),
+])
+def test_bad_arguments_are_named(change, message):
+    fun, jac = _circle()
+    arguments = {"fun": fun, "jac": jac, "x0": [1.0], "params": [0.0, 0.3, 0.6], **change}
+    with pytest.raises(ModelError, match=message):
+        continuation(**arguments)
+
+
+def test_many_halvings_stop_at_the_resolution_of_p():
+    # x² + p² = 1 has no solution past p = 1: 50 halvings of the step 0.9 -> 1.1 end at a
+    # limit position, with finite values and no warning (the step never reaches zero).
+    fun, jac = _circle()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        path = continuation(fun, jac, [1.0], [0.0, 0.3, 0.6, 0.9, 1.1], max_halvings=50,
+                            on_failure="mask")
+    assert path.reached.tolist() == [True, True, True, True, False]
+    assert path.halvings[4] == 50 and np.all(np.isfinite(path.x))
+    # at p = 1e16 a step of 2 cannot be halved (1e16 + 1 is 1e16): it is a step that fails
+    far = continuation(lambda x, p: x**2 + (p - 1e16)**2 - 1, jac, [1.0], [1e16, 1e16 + 2.0],
+                       max_halvings=50, on_failure="mask")
+    assert far.reached.tolist() == [True, False] and far.halvings.tolist() == [0, 0]

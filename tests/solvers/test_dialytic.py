@@ -1,3 +1,5 @@
+import warnings
+
 import numpy as np
 import pytest
 import sympy as sp
@@ -132,3 +134,41 @@ def test_parameters_must_be_substituted():
     with pytest.raises(ModelError, match=r"p: expected numeric coefficients, got .*; "
                                          r"substitute numbers for a first"):
         dialytic(x + a * y, x - y, variables=(x, y))
+
+
+@pytest.mark.parametrize("p, q, message", [
+    ({(10**6, 0): 1.0, (0, 0): -1}, {(0, 1): 1.0, (0, 0): -1},
+     r"^p: expected powers of at most 64, got \(1000000, 0\); solve a smaller system$"),
+    ({(0, 300): 1.0, (1, 0): 1.0, (0, 0): -1}, {(0, 1): 1.0, (1, 0): -1.0},
+     r"^p: expected powers of at most 64, got \(0, 300\)"),
+    (x**40 + y, y**2 - x**30, r"^p, q: expected an eliminant of degree at most 64, got degrees "
+                              r"1 and 2 in y and 40 and 30 in x, an eliminant of degree up to 110"),
+    ({(1, 0): np.nan}, {(0, 1): 1.0},
+     r"^p\[\(1, 0\)\]: expected a finite number at most 1e\+100 in size, got nan$"),
+    ({(1, 0): np.inf, (0, 0): 1}, {(0, 1): 1.0}, r"^p\[\(1, 0\)\]: expected a finite number"),
+    ({(1, 0): 10**400}, {(0, 1): 1.0},
+     r"^p\[\(1, 0\)\]: expected a finite number .*got a whole number of 401 digits$"),
+    ({(1, 0): True}, {(0, 1): 1.0}, r"^p\[\(1, 0\)\]: expected a number, got true$"),
+    (sp.nan * x + y, x - y, r"^p: expected finite coefficients at most 1e\+100 in size, got nan$"),
+    (x + y, sp.oo * x + y, r"^q: expected finite coefficients at most 1e\+100 in size, got oo$"),
+    (None, {(0, 1): 1.0}, r"^p: expected a sympy expression or equation, or a dict \{\(i, j\): c\} "
+                          r"of coefficients, got None$"),
+    ({(0, 1): 1.0}, "x + y", r"^q: expected a sympy expression .*got 'x \+ y'$"),
+])
+def test_bad_polynomials_are_named(p, q, message):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(ModelError, match=message):
+            dialytic(p, q)
+
+
+def test_complex_coefficients_are_solved_exactly():
+    # (1 + 2i) x + 1 = 0 and y + x = 0: x = -(1 - 2i)/5
+    sol = dialytic({(1, 0): 1 + 2j, (0, 0): 1}, {(0, 1): 1.0, (1, 0): 1})
+    assert sol.x == pytest.approx([-0.2 + 0.4j], abs=1e-15)
+    assert sol.y == pytest.approx([0.2 - 0.4j], abs=1e-15)
+
+
+def test_bad_imag_tol_is_named():
+    with pytest.raises(ModelError, match=r"^imag_tol: expected a number from 0 to below 1, got -1$"):
+        dialytic(x + y, x - y, imag_tol=-1)

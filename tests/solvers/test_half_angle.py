@@ -112,7 +112,34 @@ def test_strict_raises_with_the_gap():
 
 
 def test_bad_coefficients_are_rejected():
-    with pytest.raises(ModelError, match=r"expected finite numbers, got E=nan"):
+    with pytest.raises(ModelError, match=r"^E: expected finite numbers, got nan at index \(1,\)"):
         half_angle([1.0, np.nan], 0.0, 0.0)
-    with pytest.raises(ModelError, match=r"broadcastable"):
+    with pytest.raises(ModelError, match=r"^E, F, G: expected arrays of shapes that broadcast "
+                                         r"together, got E \(2,\), F \(3,\), G \(\)"):
         half_angle(np.ones(2), np.ones(3), 0.0)
+
+
+@pytest.mark.parametrize("E, F, G, message", [
+    (np.array([1.0, None], object), 0.0, 0.0, r"^E: expected real numbers, got \[1.0, None\]$"),
+    (10**400, 0.0, 1.0, r"^E: expected real numbers, got a whole number of 401 digits$"),
+    (1.0, "a", 0.0, r"^F: expected real numbers, got 'a'$"),
+    (1.0, 0.0, True, r"^G: expected real numbers, got true$"),
+    (1.0, 0.0, np.inf, r"^G: expected finite numbers, got inf"),
+])
+def test_coefficients_that_are_not_finite_real_numbers_are_named(E, F, G, message):
+    with pytest.raises(ModelError, match=message):
+        half_angle(E, F, G)
+
+
+@pytest.mark.parametrize("options, message", [
+    ({"tol": None}, r"^tol: expected a number from 0 to below 0.001, got None$"),
+    ({"tol": "a"}, r"^tol: expected a number from 0 to below 0.001, got 'a'$"),
+    ({"tol": np.array([])}, r"^tol: expected a number from 0 to below 0.001, got \[\]$"),
+    ({"tol": 1e308}, r"^tol: expected a number from 0 to below 0.001, got 1e\+308$"),
+    ({"tol": np.nan}, r"^tol: expected a number from 0 to below 0.001, got nan$"),
+    ({"tol": -1}, r"^tol: expected a number from 0 to below 0.001, got -1$"),
+    ({"strict": np.array([True, False])}, r"^strict: expected True or False, got \[true, false\]$"),
+])
+def test_bad_options_are_named(options, message):
+    with pytest.raises(ModelError, match=message):
+        half_angle(2.0, 0.0, 1.0, **options)

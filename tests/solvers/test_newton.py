@@ -141,8 +141,15 @@ def test_batched_history_dataframe_has_sample_column():
 
 @pytest.mark.parametrize("kwargs, message", [
     ({"on_failure": "warn"}, r"on_failure: expected one of 'raise', 'mask', got 'warn'"),
-    ({"max_iter": 0}, r"max_iter: expected a positive integer, got 0"),
-    ({"tol": 0.0}, r"tol: expected a positive number, got 0.0"),
+    ({"max_iter": 0}, r"max_iter: expected a whole number from 1 to 10,000, got 0"),
+    ({"max_iter": 2.5}, r"max_iter: expected a whole number from 1 to 10,000, got 2.5"),
+    ({"tol": 0.0}, r"tol: expected a positive number below 1, got 0.0"),
+    ({"tol": "a"}, r"tol: expected a positive number below 1, got 'a'"),
+    ({"tol": np.nan}, r"tol: expected a positive number below 1, got nan"),
+    ({"rcond": "a"}, r"rcond: expected a number from 0 to below 1, got 'a'"),
+    ({"rcond": np.nan}, r"rcond: expected a number from 0 to below 1, got nan"),
+    ({"rcond": -1}, r"rcond: expected a number from 0 to below 1, got -1"),
+    ({"history": None}, r"history: expected True or False, got None"),
 ])
 def test_bad_options(kwargs, message):
     fun, jac = slider_crank(1.0, 2.0, 0.3)
@@ -171,3 +178,65 @@ def test_complex_start_iterates_in_complex_arithmetic():
     with pytest.raises(ModelError, match=r"fun: expected real values for a real x, got "
                                          r"complex ones; pass a complex x0"):
         newton(lambda x: x + 1j, jac, [1.0])
+
+
+def test_unknowns_of_different_scales_converge_each_on_its_own():
+    # x0 = 1e13 solves the first equation exactly; the first step of x1 (5 -> 2.7) is far
+    # smaller than 1e-12 of the largest unknown, but it is not a converged x1.
+    def fun(x):
+        return np.stack([x[:, 0] - 1e13, x[:, 1] ** 2 - 2], -1)
+
+    def jac(x):
+        one, zero = np.ones(len(x)), np.zeros(len(x))
+        return np.stack([np.stack([one, zero], -1), np.stack([zero, 2 * x[:, 1]], -1)], -2)
+    sol = newton(fun, jac, [1e13, 5.0])
+    assert sol.converged
+    assert sol.x[0] == 1e13
+    assert sol.x[1] == pytest.approx(np.sqrt(2.0), rel=1e-15)
+    assert sol.residual_norm < 1e-14
+    assert sol.iterations > 1
+
+
+def test_a_small_step_that_leaves_a_large_residual_is_not_convergence():
+    # A Jacobian 1e15 times too large (a slip in jac): every step is below tol, but x stays
+    # near 0 where Φ = -1; the old step test alone called that a root.
+    def fun(x):
+        return x - 1.0
+
+    def jac(x):
+        return np.full((len(x), 1, 1), 1e15)
+    with pytest.raises(ConvergenceError, match=r"did not converge in 50 iterations.*"
+                                               r"residual max\|Φ\| = 1"):
+        newton(fun, jac, [0.0])
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"x0": ["a", 1.0]}, r"^x0: expected numbers, got \['a', 1.0\]$"),
+    ({"x0": [10**400, 1.0]}, r"^x0: expected numbers, got \[a whole number of 401 digits, 1.0\]$"),
+    ({"x0": [np.inf, 1.0]}, r"^x0: expected finite numbers, got inf at index \(0,\)"),
+    ({"fun": 1}, r"^fun: expected a function, got 1$"),
+    ({"jac": None}, r"^jac: expected a function, got None$"),
+    ({"fun": lambda x: "abc"}, r"^fun: expected an array of numbers, got 'abc'"),
+    ({"fun": lambda x: [[None, 1.0]]}, r"^fun: expected an array of numbers, got \[\[None, 1.0\]\]"),
+])
+def test_bad_arguments_are_named(change, message):
+    fun, jac = slider_crank(1.0, 2.0, 0.3)
+    arguments = {"fun": fun, "jac": jac, "x0": [0.0, 3.0], **change}
+    with pytest.raises(ModelError, match=message):
+        newton(**arguments)
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"digits": -1}, r"^digits: expected a whole number from 1 to 17, got -1$"),
+    ({"digits": "a"}, r"^digits: expected a whole number from 1 to 17, got 'a'$"),
+    ({"names": ["a\nb", "c"]}, r"^names: expected a name of printable characters .*got 'a\\nb'$"),
+    ({"names": "ab"}, r"^names: expected a list of 2 names, one per unknown, got 'ab'$"),
+    ({"history": None}, r"^history: expected the history of a solve"),
+    ({"sample": "a"}, r"^sample: expected the index of a sample, got 'a'$"),
+])
+def test_bad_table_arguments_are_named(change, message):
+    fun, jac = slider_crank(1.0, 2.0, 0.3)
+    sol = newton(fun, jac, [0.0, 3.0], history=True)
+    arguments = {"history": sol.history, **change}
+    with pytest.raises(ModelError, match=message):
+        iteration_table(**arguments)
