@@ -411,7 +411,6 @@ def _assemble(cols: dict, n: int, M: int):
 
 def _singularities(eq: LoopEquations, det_J) -> tuple[Singularity, ...]:
     """The factors of det J that depend on the configuration, read as the notes read them."""
-    import sympy as sp
     moving = set(eq.q) | set(eq.S)
     _, parts = factors(det_J)
     out = []

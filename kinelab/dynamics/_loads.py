@@ -8,7 +8,6 @@ to interpolate; all four become a :class:`Law`.
 """
 from __future__ import annotations
 
-import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any

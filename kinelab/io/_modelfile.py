@@ -25,7 +25,7 @@ import numpy as np
 from kinelab import mechanisms as catalogue
 from kinelab import _memory as memory
 from kinelab._files import atomic_write
-from kinelab.errors import AssemblyError, KinelabError, ModelError, shown
+from kinelab.errors import AssemblyError, KinelabError, ModelError
 from kinelab.io import _toml
 from kinelab.io._fields import Reader, describe, quoted, shown, shown_key
 from kinelab.io._text import loads, read_text

@@ -17,8 +17,7 @@ from kinelab.kinematics import KinematicSolution
 from kinelab.mechanisms import Grashof, grashof
 from kinelab.model import Mechanism
 
-__all__ = ["Summary", "Extreme", "Transmission", "QuickReturn", "summary", "default_outputs",
-           "reachable"]
+__all__ = ["Summary", "Extreme", "Transmission", "QuickReturn", "summary", "default_outputs"]
 
 
 @dataclass(frozen=True)

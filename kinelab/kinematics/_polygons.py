@@ -22,7 +22,7 @@ from typing import Literal
 
 import numpy as np
 
-from kinelab.errors import AssemblyError, ModelError, SingularityError, describe, quoted, shown
+from kinelab.errors import AssemblyError, ModelError, describe, quoted, shown
 from kinelab.kinematics._geometry import k_cross
 from kinelab.kinematics._input_errors import SingularInput
 from kinelab.kinematics._solution import KinematicSolution

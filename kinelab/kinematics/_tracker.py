@@ -2,13 +2,12 @@
 that steps a simulation."""
 from __future__ import annotations
 
-import math
 from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ModelError, check_choice
+from kinelab.errors import check_choice
 from kinelab.kinematics import _codes as k
 from kinelab import _compiled
 from kinelab.kinematics._analyze import (Q_LIMITS, SINGULAR_TOL, _branch_map, _check_redundant,

@@ -8,7 +8,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError, check_choice
-from kinelab.spatial._common import ANGLE, as_angles, as_array, as_number, rate, reals, together
+from kinelab.solvers._arguments import reals
+from kinelab.spatial._common import ANGLE, as_angles, as_array, as_number, rate, together
 from kinelab.spatial._transforms import rotation
 
 __all__ = ["CardanMotion", "DoubleCardanMotion", "cardan_output", "cardan_velocity_ratio",

@@ -10,7 +10,7 @@ turns, rates within ``MAX_RATE``), past which sines lose every digit and squares
 from __future__ import annotations
 
 import numbers
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -18,11 +18,12 @@ from scipy.spatial.transform import Rotation
 
 from kinelab.errors import ModelError, describe, shown
 from kinelab.model import (MAX_LENGTH, MIN_LENGTH, angle_problem, coordinate_problem,
-                           length_problem, name_problem, rate_problem, real_array)
+                           length_problem, name_problem, rate_problem)
+from kinelab.solvers._arguments import finite, reals
 
 __all__ = ["LENGTH", "ANGLE", "MAX_LENGTH", "MIN_LENGTH", "rate", "check_size",
-           "reals", "as_array", "as_vectors", "as_number", "as_angles", "as_length",
-           "as_directions", "as_flag", "as_count", "as_rotation", "as_rotation_matrix",
+           "as_array", "as_vectors", "as_number", "as_angles", "as_length",
+           "as_directions", "as_rotation", "as_rotation_matrix",
            "as_transform", "as_transform_rate", "transform_dimension", "together", "indices",
            "robot_name"]
 
@@ -62,22 +63,6 @@ def _shape_text(shape, batch="") -> str:
     return f"({inner},)" if len(parts) == 1 else f"({inner})"
 
 
-def reals(name: str, value: ArrayLike) -> np.ndarray:
-    with np.errstate(over="ignore", invalid="ignore"):     # a long double beyond floats
-        array = real_array(value)
-    if array is None:
-        raise ModelError(f"{name}: expected real numbers, got {describe(value)}")
-    return array
-
-
-def _check_finite(name: str, array: np.ndarray) -> None:
-    if not np.isfinite(array).all():
-        where = tuple(int(i) for i in np.argwhere(~np.isfinite(array))[0])
-        at = f" at index {where}" if where else ""
-        raise ModelError(f"{name}: expected finite numbers, got {describe(array[where])}{at}; "
-                         f"NaN and infinity are not positions or angles")
-
-
 def check_size(name: str, array: np.ndarray, limit: Limit | None,
                unit: str = "") -> None:
     """Raise a :class:`ModelError` naming ``name`` when the largest magnitude in ``array``
@@ -112,7 +97,7 @@ def as_array(name: str, value: ArrayLike, tail: tuple[int | None, ...] = (), *,
         wanted = " or ".join(_shape_text(s) for s in shapes)
     if not ok:
         raise ModelError(f"{name}: expected shape {wanted}, got {array.shape}")
-    _check_finite(name, array)
+    finite(name, array, "NaN and infinity are not positions or angles")
     check_size(name, array, limit)
     return array
 
@@ -170,22 +155,6 @@ def as_directions(name: str, value: ArrayLike, *, batch: bool = True) -> np.ndar
     return v / np.linalg.norm(v, axis=-1, keepdims=True)
 
 
-def as_flag(name: str, value: object) -> bool:
-    """``value`` as a bool: True or False, not something that merely has a truth value."""
-    if not isinstance(value, (bool, np.bool_)):
-        raise ModelError(f"{name}: expected True or False, got {describe(value)}")
-    return bool(value)
-
-
-def as_count(name: str, value: object, low: int, high: int) -> int:
-    """``value`` as a whole number from ``low`` to ``high``."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral) \
-            or not low <= value <= high:
-        raise ModelError(f"{name}: expected a whole number from {low} to {high:,}, got "
-                         f"{describe(value)}")
-    return int(value)
-
-
 def as_rotation(name: str, value: object) -> Rotation:
     """``value`` when it is a scipy Rotation, else a :class:`ModelError`."""
     if not isinstance(value, Rotation):
@@ -216,7 +185,7 @@ def as_rotation_matrix(name: str, value: ArrayLike) -> np.ndarray:
     if R.ndim < 2 or R.shape[-1] != R.shape[-2] or R.shape[-1] not in (2, 3):
         raise ModelError(f"{name}: expected a Rotation or matrices of shape (..., 2, 2) "
                          f"or (..., 3, 3), got shape {R.shape}")
-    _check_finite(name, R)
+    finite(name, R, "NaN and infinity are not positions or angles")
     problem = _orthonormal_problem(R)
     if problem:
         raise ModelError(f"{name}: {problem}")
@@ -239,7 +208,7 @@ def as_transform(name: str, value: ArrayLike, d: int | None = None) -> np.ndarra
     if d is not None and k != d:
         raise ModelError(f"{name}: expected shape (..., {d + 1}, {d + 1}) like the other "
                          f"transforms, got shape {T.shape}")
-    _check_finite(name, T)
+    finite(name, T, "NaN and infinity are not positions or angles")
     bottom = np.zeros(k + 1)
     bottom[k] = 1.0
     if not (T[..., k, :] == bottom).all():
@@ -260,7 +229,7 @@ def as_transform_rate(name: str, value: ArrayLike, d: int) -> np.ndarray:
     if transform_dimension(name, M) != d:
         raise ModelError(f"{name}: expected shape (..., {d + 1}, {d + 1}) like the "
                          f"transform, got shape {M.shape}")
-    _check_finite(name, M)
+    finite(name, M, "NaN and infinity are not positions or angles")
     if (M[..., d, :] != 0.0).any():
         raise ModelError(f"{name}: expected the time derivative of a transform, whose last "
                          f"row is zero, got {describe(M.reshape(-1, d + 1, d + 1)[0, d])}; "

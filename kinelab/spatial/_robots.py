@@ -21,10 +21,10 @@ from numpy.typing import ArrayLike
 
 from kinelab.errors import (AssemblyError, ConvergenceError, ModelError, SingularityError,
                             check_choice, describe, shown)
-from kinelab.spatial._common import (ANGLE, LENGTH, as_array, as_directions, as_flag,
-                                     as_length, as_vectors, check_size, indices, rate,
-                                     reals, robot_name)
 from kinelab.solvers import half_angle, wrap_angle
+from kinelab.solvers._arguments import flag, reals
+from kinelab.spatial._common import (ANGLE, LENGTH, as_array, as_directions, as_length,
+                                     as_vectors, check_size, indices, rate, robot_name)
 from kinelab.spatial._transforms import rotation
 
 __all__ = ["RobotJoint", "SerialRobot", "ToolMotion", "JointRates",
@@ -179,7 +179,7 @@ class SerialRobot:
         object.__setattr__(self, "joints", joints)
         tool = as_array("tool", self.tool, (3,), batch=False, limit=LENGTH)
         object.__setattr__(self, "tool", tuple(float(t) for t in tool))
-        object.__setattr__(self, "planar", as_flag("planar", self.planar))
+        object.__setattr__(self, "planar", flag("planar", self.planar))
         if self.planar:
             problems = [f"joints[{i}]: a planar robot turns about z and slides in the "
                         f"xy plane, got a {j.kind} joint with axis {j.axis}"

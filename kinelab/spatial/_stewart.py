@@ -10,7 +10,8 @@ from scipy.spatial.transform import Rotation
 
 from kinelab.errors import ConvergenceError, ModelError, SingularityError, describe
 from kinelab.model import MAX_LENGTH, MIN_LENGTH, length_problem
-from kinelab.spatial._common import LENGTH, as_array, as_count, as_rotation, indices
+from kinelab.solvers._arguments import whole
+from kinelab.spatial._common import LENGTH, as_array, as_rotation, indices
 
 __all__ = ["StewartPose", "stewart_leg_lengths", "stewart_inverse_jacobian", "stewart_forward"]
 
@@ -210,7 +211,7 @@ def stewart_forward(base_points: ArrayLike, platform_points: ArrayLike,
         raise ModelError(f"leg_lengths: {length_problem(float(target[where]))}, got "
                          f"{describe(target[where])} at index {where}; a leg's length is "
                          f"the distance between its joints")
-    max_iter = as_count("max_iter", max_iter, 1, _MAX_ITER)
+    max_iter = whole("max_iter", max_iter, 1, _MAX_ITER)
     p, R, single = _pose(position, rotation)
     single = single and target.ndim == 1
     target = np.atleast_2d(target)

@@ -16,9 +16,10 @@ from numpy.typing import ArrayLike
 from scipy.spatial.transform import Rotation
 
 from kinelab.errors import ModelError, check_choice, describe
-from kinelab.spatial._common import (LENGTH, as_angles, as_array, as_directions, as_flag,
-                                     as_rotation, as_rotation_matrix, as_transform,
-                                     as_transform_rate, as_vectors, rate, reals, together)
+from kinelab.solvers._arguments import flag, reals
+from kinelab.spatial._common import (LENGTH, as_angles, as_array, as_directions, as_rotation,
+                                     as_rotation_matrix, as_transform, as_transform_rate,
+                                     as_vectors, rate, together)
 
 __all__ = [
     "AxisAngle", "TransformRates", "PointMotion", "AngularMotion",
@@ -86,7 +87,7 @@ def rotation(axis: str | ArrayLike, angle: ArrayLike, *, degrees: bool = False) 
            [1., 0., 0.],
            [0., 1., 0.]])
     """
-    angle = as_angles("angle", angle, degrees=as_flag("degrees", degrees))
+    angle = as_angles("angle", angle, degrees=flag("degrees", degrees))
     if isinstance(axis, str):
         check_choice("axis", axis, ("x", "y", "z"))
         return Rotation.from_euler(axis, angle[..., None])   # one angle per rotation
@@ -166,7 +167,7 @@ def euler_rotation(sequence: str, angles: ArrayLike, *,
     True
     """
     seq = _scipy_sequence(sequence, axes)
-    angles = as_angles("angles", angles, (len(seq),), degrees=as_flag("degrees", degrees))
+    angles = as_angles("angles", angles, (len(seq),), degrees=flag("degrees", degrees))
     return Rotation.from_euler(seq, angles)
 
 
@@ -200,7 +201,7 @@ def euler_angles(rotation: Rotation, sequence: str, *,
     if len(seq) != 3:
         raise ModelError(f"sequence: expected 3 letters to recover angles from a rotation, "
                          f"got {describe(sequence)}")
-    return rotation.as_euler(seq, degrees=as_flag("degrees", degrees))
+    return rotation.as_euler(seq, degrees=flag("degrees", degrees))
 
 
 def euler_parameters(rotation: Rotation) -> np.ndarray:

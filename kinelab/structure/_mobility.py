@@ -6,11 +6,10 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from kinelab.errors import ModelError
 from kinelab.model import Mechanism
 from kinelab.structure._count import checked_model, kutzbach_gruebler, pair_counts, space_dimension
 from kinelab.structure._motion import moved
-from kinelab.structure._screws import MAX_RTOL, MIN_RTOL, RTOL, _threshold, checked_rtol, null_basis, rank
+from kinelab.structure._screws import RTOL, _threshold, checked_rtol, null_basis, rank
 from kinelab.structure._system import ConstraintSystem
 
 __all__ = ["Mobility", "mobility"]
