@@ -9,7 +9,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import IO
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 
 
 def atomic_write(path: str | os.PathLike, write: Callable[[IO], None], *, binary: bool = False) -> Path:
@@ -21,6 +21,8 @@ def atomic_write(path: str | os.PathLike, write: Callable[[IO], None], *, binary
         When ``path`` cannot be written (a directory, a place that does not exist or is not
         writable, a full disk): the message names ``path``, not the temporary file.
     """
+    if not isinstance(path, (str, os.PathLike)) or isinstance(path, bytes):
+        raise ModelError(f"path: expected a file name, got {describe(path)}")
     path = Path(path)
     tmp = None
     try:

@@ -12,7 +12,8 @@ from kinelab import _memory as memory
 from kinelab.errors import AssemblyError, ModelError, check_choice, describe, shown
 from kinelab.kinematics import _codes as k
 from kinelab.kinematics._assemble import check_assembled
-from kinelab.kinematics._branches import BranchMap, ChangePoint, branch_map, branched_ops
+from kinelab.kinematics._branches import (MAX_PERIODS, BranchMap, ChangePoint, branch_map,
+                                          branched_ops)
 from kinelab.kinematics._columns import INPUT_SI_UNITS
 from kinelab.kinematics._input_errors import SingularInput, UnreachableInput
 from kinelab.kinematics._evaluate import run as _run
@@ -20,6 +21,7 @@ from kinelab.kinematics._plan import Plan, build_plan
 from kinelab.kinematics._solution import KinematicSolution
 from kinelab.model import MAX_LENGTH, MAX_RATE, Mechanism, real_array
 from kinelab.solvers import bisect, wrap_angle
+from kinelab.solvers._arguments import number, whole
 
 __all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "change_points",
            "assembly_status", "AssemblyStatus"]
@@ -88,6 +90,7 @@ def _rates(name: str, value: ArrayLike, M: int, shape: tuple[int, ...]) -> np.nd
 # goes further); a slide within MAX_LENGTH; rates within MAX_RATE (accelerations take the
 # square of a speed).
 INPUT_TURNS = 1_000_000
+MAX_SEARCH_SAMPLES = 1_000_000    # samples of a turn a search for limit positions may take
 Q_LIMITS = {"angle": INPUT_TURNS * 2 * math.pi, "slide": MAX_LENGTH}
 
 
@@ -149,8 +152,20 @@ def change_points(mechanism: Mechanism, lo: float, hi: float, *,
     """
     p = plan(mechanism)
     check_choice("at_change_point", at_change_point, ("smooth", "switch"))
+    lo, hi = number("lo", lo), number("hi", hi)
+    limit = Q_LIMITS[p.input_kinds[0]]
+    for name, v in (("lo", lo), ("hi", hi)):
+        if abs(v) > limit:
+            raise ModelError(f"{name}: expected an input within {limit:g} "
+                             f"{INPUT_SI_UNITS[p.input_kinds[0]]} of 0, got {v:g}")
     bmap = _branch_map(p, len(mechanism.inputs), at_change_point)
-    return bmap.change_points(float(lo), float(hi)) if bmap is not None else ()
+    if bmap is None:
+        return ()
+    if bmap.periods(lo, hi) > MAX_PERIODS:
+        raise ModelError(f"lo, hi: a range of {bmap.periods(lo, hi):,} turns of the change points' "
+                         f"pattern; ask for at most {MAX_PERIODS:,} at a time (the pattern "
+                         f"repeats every {bmap.period:.6g} {INPUT_SI_UNITS[p.input_kinds[0]]})")
+    return bmap.change_points(lo, hi)
 
 
 @dataclass(frozen=True)
@@ -295,6 +310,7 @@ def reachable_ranges(mechanism: Mechanism, *, samples: int = 1441,
     [(-1.88862, 1.88862)]
     """
     p = plan(mechanism, method=method)
+    samples = whole("samples", samples, 3, MAX_SEARCH_SAMPLES)
     if len(p.input_kinds) != 1:
         raise ModelError("reachable_ranges: the mechanism has "
                          f"{len(p.input_kinds)} inputs; it is defined for one")
@@ -332,8 +348,12 @@ def reachable_ranges(mechanism: Mechanism, *, samples: int = 1441,
 def turns_fully(mechanism: Mechanism, ranges: list[tuple[float, float]]) -> bool:
     """Whether ``ranges`` (from :func:`reachable_ranges`) say that the mechanism's one
     input is an angle that turns a full turn."""
-    return (plan(mechanism).input_kinds == ("angle",) and len(ranges) == 1
-            and ranges[0][1] - ranges[0][0] >= 2 * math.pi - 1e-12)
+    spans = real_array(ranges)
+    if spans is None or spans.ndim != 2 or spans.shape[1] != 2 or not np.isfinite(spans).all():
+        raise ModelError(f"ranges: expected input intervals [(lo, hi), ...] as "
+                         f"reachable_ranges gives them, got {describe(ranges)}")
+    return (plan(mechanism).input_kinds == ("angle",) and len(spans) == 1
+            and spans[0, 1] - spans[0, 0] >= 2 * math.pi - 1e-12)
 
 
 def _continued_range(p: Plan, q0: float, half: float, samples: int) -> tuple[float, float]:
@@ -486,7 +506,10 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
     check_choice("at_change_point", at_change_point, ("smooth", "switch"))
     if at_singular not in ("auto", "raise", "flag"):
         raise ModelError(f"at_singular: expected one of 'auto', 'raise', 'flag', got {shown(at_singular)}")
-    _require_results(p, np.shape(q), M)          # before anything of that size is made
+    try:
+        _require_results(p, np.shape(q), M)      # before anything of that size is made
+    except ValueError:                           # ragged nesting: refused as not numbers
+        pass
     q2, qd2, qdd2, single = _normalise_q(q, qd, qdd, M, p)
     resume = None
     if start is not None:

@@ -565,6 +565,10 @@ def pose(mechanism: Mechanism, q) -> Mechanism:
     from kinelab.kinematics._analyze import analyze
 
     sol = analyze(mechanism, q, at_singular="flag")
+    if not sol.single:
+        M = len(mechanism.inputs)
+        raise ModelError(f"q: expected one configuration, shape {'()' if M == 1 else f'({M},)'}, "
+                         f"got shape {np.shape(q)}; sketch each configuration on its own")
     if bool(np.any(sol.singular)):
         raise SingularityError(f"q: {np.round(sol.q[0], 9).tolist()} is a singular configuration "
                                f"of '{mechanism.name}' (det J = 0): a sketch there cannot show "

@@ -37,6 +37,7 @@ _GRID_STEP = math.pi / 360        # rad (angle inputs); slides: this times the m
 _MEETS = 1e-6                     # a signed measure this small where it touches zero: the
                                   # modes meet (lengths that close to a change-point geometry)
 _MAX_TURNS = 8                    # turns followed before the map must have repeated
+MAX_PERIODS = 10_000              # periods of a map over which its change points are listed
 _SLIDE_REACH = 20.0               # slides are followed this many sizes from the sketch
 
 
@@ -107,15 +108,20 @@ class BranchMap:
         index = np.where(q > self.q0, n_up, np.where(n_down > 0, len(self.up) + n_down, 0))
         return index, tables
 
+    def periods(self, lo: float, hi: float) -> int:
+        """How many periods of the map the inputs from lo to hi span (0 for a map with none)."""
+        return 0 if self.period is None else math.ceil((hi - lo) / self.period)
+
     def change_points(self, lo: float, hi: float) -> tuple[ChangePoint, ...]:
         """The change points with lo <= q <= hi (to 1e-9, as they are located to about
-        1e-12), in increasing q."""
+        1e-12), in increasing q; none over more than MAX_PERIODS periods (a sweep of
+        many thousand turns does not list them: the caller who asks says so)."""
         lo, hi = lo - 1e-9 * (1 + abs(lo)), hi + 1e-9 * (1 + abs(hi))
         found = []
         if self.period is not None:
             first = math.floor((lo - self.q0) / self.period) - 1
             last = math.ceil((hi - self.q0) / self.period) + 1
-            if last - first > 10_000:        # a range of many thousand turns: not listed
+            if self.periods(lo, hi) > MAX_PERIODS:
                 return ()
             for turn in range(first, last + 1):
                 found += [(e.q + turn * self.period, e.op) for e in self.up]

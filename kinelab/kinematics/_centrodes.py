@@ -20,7 +20,7 @@ import numpy as np
 from kinelab.errors import ModelError, SingularityError, describe, quoted, suggest
 from kinelab.kinematics._instant_centers import InstantCenter, InstantCenters, _centers, _model_order
 from kinelab.kinematics._polygons import _q_text, _sweep
-from kinelab.kinematics._solution import KinematicSolution
+from kinelab.kinematics._solution import KinematicSolution, takes_solution
 
 __all__ = ["KennedyStep", "KennedyConstruction", "Centrodes", "kennedy_construction",
            "centrodes", "velocity_ratio"]
@@ -128,6 +128,7 @@ def _size(sol: KinematicSolution) -> float:
     return float(max(np.ptp(xy, axis=0).max(), 1e-300))
 
 
+@takes_solution
 def kennedy_construction(sol: KinematicSolution) -> KennedyConstruction:
     """Every instant centre by the notes' construction: primary centres from the joints,
     secondary ones by Kennedy's theorem in the order of the circle diagram, at every sample.
@@ -260,6 +261,7 @@ def to_link_frame(sol: KinematicSolution, link: str, xy: np.ndarray) -> np.ndarr
     return np.stack([c * d[:, 0] + s * d[:, 1], -s * d[:, 0] + c * d[:, 1]], axis=1)
 
 
+@takes_solution
 def centrodes(sol: KinematicSolution, link: str) -> Centrodes:
     """The fixed and moving centrodes of ``link`` over the sweep of ``sol``.
 
@@ -311,6 +313,7 @@ def centrodes(sol: KinematicSolution, link: str) -> Centrodes:
     return Centrodes(link, fixed, moving, at_infinity.copy(), defined)
 
 
+@takes_solution
 def velocity_ratio(sol: KinematicSolution, link_i: str, link_j: str, *,
                    reference: str | None = None) -> np.ndarray:
     """omega_j / omega_i from the instant centres (the angular-velocity-ratio theorem).

@@ -13,7 +13,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from kinelab import _memory as memory
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, shown_path
 from kinelab.model import Units
 
 __all__ = ["column_name", "Columns", "TableExport", "solution_columns", "INPUT_SI_UNITS"]
@@ -85,6 +85,13 @@ class TableExport:
                units: Units | Mapping[str, str] | None = None) -> None:
         """Write :meth:`columns` as CSV (to a temporary file, then renamed)."""
         from kinelab._files import write_csv
+        other = {".parquet": "Parquet", ".json": "JSON", ".xlsx": "Excel", ".toml": "TOML"}
+        kind = other.get(os.path.splitext(os.fspath(path))[1].lower()) if isinstance(
+            path, (str, os.PathLike)) else None
+        if kind:
+            raise ModelError(f"path: {shown_path(path)} names a {kind} file, and to_csv writes "
+                             "CSV; give a .csv name, or write other formats with "
+                             "kinelab.io.write_results")
         write_csv(self.columns(degrees=degrees, units=units), path)
 
 

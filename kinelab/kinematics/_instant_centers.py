@@ -13,7 +13,7 @@ import numpy as np
 
 from kinelab.errors import ModelError, describe, quoted, shown, suggest
 from kinelab.kinematics._geometry import k_cross
-from kinelab.kinematics._solution import KinematicSolution
+from kinelab.kinematics._solution import KinematicSolution, takes_solution
 
 __all__ = ["InstantCenter", "InstantCenters", "instant_center", "instant_centers"]
 
@@ -92,6 +92,7 @@ class InstantCenters(Mapping):
         return f"InstantCenters({len(self)} pairs: {', '.join('-'.join(p) for p in self)})"
 
 
+@takes_solution
 def instant_center(sol: KinematicSolution, a: str, b: str) -> InstantCenter:
     """Instant centre of links ``a`` and ``b`` at every sample.
 
@@ -130,6 +131,7 @@ def instant_center(sol: KinematicSolution, a: str, b: str) -> InstantCenter:
     return _centers(sol, [pair])[pair]
 
 
+@takes_solution
 def instant_centers(sol: KinematicSolution) -> InstantCenters:
     """Every instant centre, keyed by a pair of link names in either order.
 

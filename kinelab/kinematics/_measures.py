@@ -6,14 +6,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinelab.errors import AssemblyError, ModelError, SingularityError
-from kinelab.kinematics._solution import KinematicSolution
+from kinelab.errors import AssemblyError, ModelError, SingularityError, describe, expected_one_of
+from kinelab.kinematics._solution import KinematicSolution, takes_solution
 from kinelab.model import Mechanism
 from kinelab.solvers import bisect, turn_intervals, wrap_angle
+from kinelab.solvers._arguments import whole
 
 __all__ = ["transmission_angle", "time_ratio", "TimeRatio"]
 
 
+@takes_solution
 def transmission_angle(sol: KinematicSolution, links: tuple[str, str] = ("coupler", "rocker"),
                        *, acute: bool = True) -> np.ndarray:
     """Transmission angle: the angle between the coupler and the output link, rad.
@@ -28,7 +30,13 @@ def transmission_angle(sol: KinematicSolution, links: tuple[str, str] = ("couple
     >>> round(float(np.degrees(kl.kinematics.transmission_angle(kl.analyze(fb, q=0.0)))), 12)  # Ex. 4.2
     60.0
     """
+    if isinstance(links, str) or not isinstance(links, (tuple, list)) or len(links) != 2:
+        raise ModelError(f"links: expected two links, the coupler and the output, got "
+                         f"{describe(links)}")
     a, b = links
+    if a == b:
+        raise ModelError(f"links: expected two different links, got {describe(links)}; the "
+                         "angle between a link and itself is 0")
     mu = np.abs(wrap_angle(sol.angle(a) - sol.angle(b)))
     return np.minimum(mu, np.pi - mu) if acute else mu
 
@@ -65,9 +73,10 @@ def time_ratio(mechanism: Mechanism, output: str, *, samples: int = 3601) -> Tim
     mechanism : Mechanism
         Driven by one crank angle, which must turn a full turn.
     output : str
-        A link or a prismatic joint.
+        A link or a prismatic joint (a slider's reversal is its joint's).
     samples : int
-        Samples over the turn where K's sign changes are looked for (then bisected).
+        Samples over the turn where K's sign changes are looked for (then bisected), from
+        3 to 1,000,000.
 
     Returns
     -------
@@ -94,12 +103,18 @@ def time_ratio(mechanism: Mechanism, output: str, *, samples: int = 3601) -> Tim
     ...
     kinelab.errors.AssemblyError: time_ratio: 'rocker' has no time ratio: its input 'jO2' cannot turn a full turn; it reaches only [-1.88862, 1.88862] rad (its limit positions); ...
     """
-    from kinelab.kinematics._analyze import analyze, plan, reachable_ranges
+    from kinelab.kinematics._analyze import MAX_SEARCH_SAMPLES, analyze, plan, reachable_ranges
 
     p = plan(mechanism)
     if p.input_kinds != ("angle",):
         raise ModelError("time_ratio: expected a mechanism driven by one crank angle, "
                          f"got inputs {list(mechanism.input_names)}")
+    samples = whole("samples", samples, 3, MAX_SEARCH_SAMPLES)
+    if output not in p.link_item and output not in p.slide_item:
+        outputs = list(p.link_item) + list(p.slide_item)
+        hint = ("; a point has no time ratio of its own: give the link or the prismatic joint "
+                "that carries it" if output in p.point_item else "")
+        raise ModelError(f"time_ratio: output: {expected_one_of(output, outputs)}{hint}")
     q0 = float(p.q_sketch[0])
     q = q0 + np.linspace(0.0, 2.0 * math.pi, samples)
 

@@ -25,7 +25,7 @@ import numpy as np
 from kinelab.errors import AssemblyError, ModelError, describe, quoted, shown
 from kinelab.kinematics._geometry import k_cross
 from kinelab.kinematics._input_errors import SingularInput
-from kinelab.kinematics._solution import KinematicSolution
+from kinelab.kinematics._solution import KinematicSolution, takes_solution
 
 __all__ = ["AccelerationDifference", "RelativeAcceleration", "Side", "LinkImage",
            "VelocityPolygon", "AccelerationPolygon", "acceleration_difference",
@@ -148,6 +148,7 @@ def _difference_parts(r: np.ndarray, omega: np.ndarray, alpha: np.ndarray):
     return -(omega[:, None] ** 2) * r, alpha[:, None] * k_cross(r)
 
 
+@takes_solution
 def acceleration_difference(sol: KinematicSolution, point: str, reference: str, *,
                             link: str | None = None) -> AccelerationDifference:
     """The acceleration difference A_PR of two points of one link, with its normal and
@@ -199,6 +200,7 @@ def _prismatic(sol: KinematicSolution, joint: str):
     return sol.mechanism.joint(joint)
 
 
+@takes_solution
 def relative_acceleration(sol: KinematicSolution, joint: str) -> RelativeAcceleration:
     """The acceleration of a prismatic joint's point relative to the coincident point of
     its guide, with its Coriolis and sliding parts, at every sample.
@@ -419,6 +421,7 @@ class AccelerationPolygon(_Polygon):
         return {key: dict(side.parts) for key, side in self.sides.items()}
 
 
+@takes_solution
 def velocity_polygon(sol: KinematicSolution, sample: int = 0) -> VelocityPolygon:
     """The velocity polygon and the velocity images of the links at one sample.
 
@@ -459,6 +462,7 @@ def velocity_polygon(sol: KinematicSolution, sample: int = 0) -> VelocityPolygon
     return _polygon(sol, sample_index(sol, sample), acceleration=False)
 
 
+@takes_solution
 def acceleration_polygon(sol: KinematicSolution, sample: int = 0) -> AccelerationPolygon:
     """The acceleration polygon and the acceleration images of the links at one sample,
     each side split into its normal, tangential, Coriolis and sliding parts.

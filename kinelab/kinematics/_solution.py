@@ -9,7 +9,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from kinelab.errors import ModelError, expected_one_of, quoted, shown
+from kinelab.errors import ModelError, describe, expected_one_of, quoted, shown
 from kinelab.kinematics._columns import TableExport, solution_columns
 from kinelab.kinematics._geometry import k_cross
 from kinelab.kinematics._plan import Plan
@@ -151,7 +151,9 @@ class KinematicSolution(TableExport):
         of such a sample is NaN).
     change_points : tuple of ChangePoint
         The change points between the smallest and the largest input of the sweep, where
-        two assembly modes of a dyad meet (see ``analyze(at_change_point=...)``).
+        two assembly modes of a dyad meet (see ``analyze(at_change_point=...)``); a sweep
+        over more than 10,000 turns lists none (``kinelab.kinematics.change_points`` lists
+        them a part at a time).
     """
 
     plan: Plan
@@ -262,6 +264,12 @@ class KinematicSolution(TableExport):
     @classmethod
     def concatenate(cls, parts: list[KinematicSolution]) -> KinematicSolution:
         """One solution from the analyses of consecutive pieces of a sweep."""
+        if not isinstance(parts, (list, tuple)) or not parts or not all(
+                isinstance(s, KinematicSolution) for s in parts):
+            raise ModelError(f"parts: expected a list of KinematicSolution, got {describe(parts)}")
+        if any(s.plan is not parts[0].plan for s in parts):
+            raise ModelError("parts: expected analyses of one mechanism by one method, got "
+                             "several; concatenate the pieces of each sweep on their own")
         join = {name: np.concatenate([getattr(s, name) for s in parts])
                 for name in ("q", "qd", "qdd", "stored_jets", "stored_rates", "det_J",
                              "singularity", "singular", "assembled")}
@@ -512,3 +520,17 @@ class KinematicSolution(TableExport):
         return (f"KinematicSolution('{self.mechanism.name}', N={self.N}, inputs="
                 f"{list(self.input_names)}, singular samples={sing})")
 
+
+def takes_solution(function):
+    """``function`` with its first argument checked to be a :class:`KinematicSolution` (a
+    mechanism given instead is the usual slip: the message says to analyze it first)."""
+    @functools.wraps(function)
+    def checked(sol, *args, **kwargs):
+        if not isinstance(sol, KinematicSolution):
+            hint = ("; analyze it first: kl.analyze(mechanism, q)" if isinstance(sol, Mechanism)
+                    else "; get one from kinelab.analyze")
+            got = (describe(sol) if sol is None or isinstance(sol, (str, int, float))
+                   else f"a {type(sol).__name__}")
+            raise ModelError(f"sol: expected a KinematicSolution, got {got}{hint}")
+        return function(sol, *args, **kwargs)
+    return checked

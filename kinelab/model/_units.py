@@ -19,6 +19,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Literal
 
+import numpy as np
+
 from kinelab.errors import ModelError, describe, expected_one_of, quoted, suggest
 
 __all__ = ["LENGTH_UNITS", "ANGLE_UNITS", "Units"]
@@ -102,6 +104,8 @@ class Units:
         else:
             raise ModelError(f"units: expected a mapping such as {{'length': 'mm', 'angle': "
                              f"'deg'}} or a kinelab Units, got {type(units).__name__}")
+        if not isinstance(degrees, (bool, np.bool_)):
+            raise ModelError(f"degrees: expected True or False, got {describe(degrees)}")
         if degrees:
             asked = units.get("angle") if isinstance(units, Mapping) else (
                 units.angle if isinstance(units, Units) else None)

@@ -188,3 +188,54 @@ def test_a_name_that_is_not_a_name_is_one_unknown_name(call, message):
     fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
     with pytest.raises(ModelError, match=message):
         call(kl.analyze(fb, [0.1, 0.2]))
+
+
+PARALLELOGRAM = dict(ground=100, crank=60, coupler=100, rocker=60)
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda fb, s: kl.kinematics.instant_centers(None),
+     r"^sol: expected a KinematicSolution, got None; get one from kinelab.analyze$"),
+    (lambda fb, s: kl.kinematics.velocity_ratio(fb, "crank", "rocker"),
+     r"^sol: expected a KinematicSolution, got a Mechanism; analyze it first"),
+    (lambda fb, s: kl.kinematics.velocity_polygon("s"), r"^sol: expected a KinematicSolution"),
+    (lambda fb, s: kl.kinematics.transmission_angle(s, links="coupler"),
+     r"^links: expected two links, the coupler and the output, got 'coupler'$"),
+    (lambda fb, s: kl.kinematics.transmission_angle(s, links=("coupler", "coupler")),
+     r"^links: expected two different links"),
+    (lambda fb, s: kl.kinematics.turns_fully(fb, None), r"^ranges: expected input intervals"),
+    (lambda fb, s: kl.kinematics.reachable_ranges(fb, samples=2),
+     r"^samples: expected a whole number from 3 to 1,000,000, got 2$"),
+    (lambda fb, s: kl.kinematics.time_ratio(fb, "rocker", samples=1.5),
+     r"^samples: expected a whole number from 3 to 1,000,000, got 1.5$"),
+    (lambda fb, s: kl.kinematics.time_ratio(kl.mechanisms.slider_crank(1, 3, offset=0.5), "B"),
+     r"^time_ratio: output: expected one of .* got 'B'; a point has no time ratio of its own"),
+    (lambda fb, s: kl.kinematics.change_points(kl.mechanisms.fourbar(**PARALLELOGRAM), np.nan, 1),
+     r"^lo: expected a finite number, got nan$"),
+    (lambda fb, s: kl.kinematics.change_points(kl.mechanisms.fourbar(**PARALLELOGRAM), 0, 10**400),
+     r"^hi: expected a finite number, got a whole number of 401 digits$"),
+    (lambda fb, s: kl.kinematics.change_points(kl.mechanisms.fourbar(**PARALLELOGRAM), 0, 1e5),
+     r"^lo, hi: a range of 15,916 turns of the change points' pattern; ask for at most 10,000"),
+    (lambda fb, s: kl.analyze(fb, q=[[0.1], [0.2, 0.3]]), r"^q: expected numbers"),
+    (lambda fb, s: kl.kinematics.pose(fb, []), r"^q: expected one configuration, shape \(\), got "
+                                               r"shape \(0,\)"),
+    (lambda fb, s: kl.KinematicSolution.concatenate([]), r"^parts: expected a list of KinematicSolution"),
+    (lambda fb, s: kl.KinematicSolution.concatenate(
+        [s, kl.analyze(kl.mechanisms.slider_crank(1, 3), [0.1])]),
+     r"^parts: expected analyses of one mechanism by one method"),
+    (lambda fb, s: s.to_csv(None), r"^path: expected a file name, got None$"),
+    (lambda fb, s: s.to_csv("results.parquet"), r"^path: results.parquet names a Parquet file"),
+    (lambda fb, s: s.columns(degrees="yes"), r"^degrees: expected True or False, got 'yes'$"),
+])
+def test_arguments_of_the_kinematics_functions_are_checked(call, message):
+    fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
+    with pytest.raises(ModelError, match=message):
+        call(fb, kl.analyze(fb, [0.1, 0.2]))
+
+
+def test_change_points_over_ten_thousand_turns_are_still_listed_exactly():
+    pg = kl.mechanisms.fourbar(**PARALLELOGRAM)
+    cps = kl.kinematics.change_points(pg, 0.0, 2 * np.pi * 9_999)
+    assert len(cps) == 2 * 9_999 + 1          # at 0 and pi each turn, and at the end
+    np.testing.assert_allclose([c.q for c in cps[-3:]], np.pi * np.arange(19_996, 19_999),
+                               rtol=1e-12)
