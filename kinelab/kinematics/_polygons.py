@@ -264,10 +264,12 @@ def sample_index(sol: KinematicSolution, sample: int) -> int:
     if isinstance(sample, bool) or not isinstance(sample, (int, np.integer)):
         raise ModelError(f"sample: expected a whole number, the index of a sample, got "
                          f"{describe(sample)}")
+    if n == 0:
+        raise ModelError("sample: the solution has no samples; analyze at least one input value")
     if not -n <= sample < n:
         span = "0 (one configuration)" if n == 1 else f"0 to {n - 1} (or -{n} to -1 from the end)"
-        raise ModelError(f"sample: expected {span}, got {int(sample)}; the solution has {n} "
-                         f"sample{'s' if n > 1 else ''}")
+        raise ModelError(f"sample: expected {span}, got {describe(int(sample))}; the solution "
+                         f"has {n} sample{'s' if n > 1 else ''}")
     i = int(sample) % n
     if not sol.assembled[i]:
         raise AssemblyError(f"sample {i}: the loops do not close at {_q_text(sol, i)}; choose "

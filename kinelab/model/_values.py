@@ -60,6 +60,9 @@ def real_array(value: Any) -> np.ndarray | None:
     would turn True into 1.0, "3" into 3.0 and drop the imaginary part of a complex number."""
     try:
         a = np.asarray(value)
+        if a.dtype == object and a.size and all(
+                isinstance(v, numbers.Integral) and not isinstance(v, bool) for v in a.flat):
+            a = a.astype(float)         # whole numbers beyond 64 bits (beyond floats: refused)
     except (TypeError, ValueError, OverflowError):
         return None
     return a.astype(float) if a.dtype.kind in "iuf" else None
