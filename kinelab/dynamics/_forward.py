@@ -765,7 +765,7 @@ def _integrate_scipy(system: System, actuators, y0: np.ndarray, span, t_eval, me
     """One run by :func:`scipy.integrate.solve_ivp` with the right-hand side in Python."""
     from scipy.integrate import solve_ivp
 
-    from kinelab.dynamics._kernel import PACE_CHECK, PACE_MARGIN
+    from kinelab.dynamics._codes import PACE_CHECK, PACE_MARGIN
 
     t0, t1 = span
 

@@ -20,27 +20,14 @@ import numpy as np
 from scipy.integrate import DOP853
 
 from kinelab import _expressions as ex
+from kinelab.dynamics._codes import (FAIL_ASSEMBLY, FAIL_BUDGET, FAIL_DIVERGED,  # noqa: F401
+                                     FAIL_LAW, FAIL_MASS, FAIL_PACE, FAIL_SINGULAR, FAIL_SPRING,
+                                     FAIL_STEP, PACE_CHECK, PACE_MARGIN, RUN_FINISHED,
+                                     RUN_SINGULAR)
 from kinelab.kinematics import SINGULAR_TOL
 from kinelab.kinematics import _kernel as kin
 from kinelab.kinematics._kernel import (_jit, _lu_factor, _lu_solve, evaluate_one_sample,
                                         one_sample_scratch)
-
-# what a run ends with (its status); the info row says where: t, then details
-RUN_FINISHED = 0
-RUN_SINGULAR = 1        # stopped within singular_stop of a singular configuration (an event)
-FAIL_ASSEMBLY = 2       # the loops cannot close at a stage
-FAIL_SINGULAR = 3       # a stage lands on a singular configuration
-FAIL_LAW = 4            # a law is not finite (info[1]: which)
-FAIL_MASS = 5           # the mass matrix is singular
-FAIL_SPRING = 6         # a spring's or damper's ends meet
-FAIL_STEP = 7           # the step fell below the resolution of t
-FAIL_DIVERGED = 8       # q or q' is no longer finite
-FAIL_BUDGET = 9         # the run took its budget of evaluations before reaching t1
-FAIL_PACE = 10          # at PACE_CHECK evaluations the run had gone too short a way to reach t1
-                        # within PACE_MARGIN times its budget at that pace
-PACE_CHECK = 2000       # evaluations after which a run's pace is checked against its budget:
-PACE_MARGIN = 10        # it stops when that pace would take this many times its budget (a run
-                        # starts slower than it goes on, while its first steps find their size)
 
 _A = np.ascontiguousarray(DOP853.A, dtype=np.float64)
 _B = np.ascontiguousarray(DOP853.B, dtype=np.float64)

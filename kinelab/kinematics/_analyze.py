@@ -353,7 +353,7 @@ def turns_fully(mechanism: Mechanism, ranges: list[tuple[float, float]]) -> bool
         raise ModelError(f"ranges: expected input intervals [(lo, hi), ...] as "
                          f"reachable_ranges gives them, got {describe(ranges)}")
     return (plan(mechanism).input_kinds == ("angle",) and len(spans) == 1
-            and spans[0, 1] - spans[0, 0] >= 2 * math.pi - 1e-12)
+            and bool(spans[0, 1] - spans[0, 0] >= 2 * math.pi - 1e-12))
 
 
 def _continued_range(p: Plan, q0: float, half: float, samples: int) -> tuple[float, float]:
@@ -507,9 +507,11 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
     if at_singular not in ("auto", "raise", "flag"):
         raise ModelError(f"at_singular: expected one of 'auto', 'raise', 'flag', got {shown(at_singular)}")
     try:
-        _require_results(p, np.shape(q), M)      # before anything of that size is made
-    except ValueError:                           # ragged nesting: refused as not numbers
-        pass
+        shape = np.shape(q)
+    except ValueError:                           # ragged nesting: refused below, not numbers
+        shape = None
+    if shape is not None:
+        _require_results(p, shape, M)            # before anything of that size is made
     q2, qd2, qdd2, single = _normalise_q(q, qd, qdd, M, p)
     resume = None
     if start is not None:

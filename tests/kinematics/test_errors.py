@@ -239,3 +239,11 @@ def test_change_points_over_ten_thousand_turns_are_still_listed_exactly():
     assert len(cps) == 2 * 9_999 + 1          # at 0 and pi each turn, and at the end
     np.testing.assert_allclose([c.q for c in cps[-3:]], np.pi * np.arange(19_996, 19_999),
                                rtol=1e-12)
+
+
+def test_a_ragged_q_is_refused_and_a_huge_one_before_any_copy():
+    """The memory budget is asked before q is copied, whatever else is wrong with it."""
+    from kinelab.errors import MemoryBudgetError
+    fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5)
+    with pytest.raises(MemoryBudgetError, match=r"would take about 284 GiB"):
+        kl.analyze(fb, np.broadcast_to(0.5, (10**9,)), qd=np.broadcast_to(1e300, (10**9,)))
