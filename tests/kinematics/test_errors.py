@@ -241,7 +241,7 @@ def test_change_points_over_ten_thousand_turns_are_still_listed_exactly():
                                rtol=1e-12)
 
 
-def test_a_ragged_q_is_refused_and_a_huge_one_before_any_copy():
+def test_a_huge_q_is_refused_before_any_copy():
     """The memory budget is asked before q is copied, whatever else is wrong with it."""
     from kinelab.errors import MemoryBudgetError
     fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5)
