@@ -22,10 +22,12 @@ from kinelab.synthesis import coupler_curves
 __all__ = ["Batch", "EngineBatch", "FourbarBatch"]
 
 
-def _pick(table: dict[str, np.ndarray], name: str, what: str) -> np.ndarray:
+def _pick(table: dict[str, np.ndarray], name: str, what: str, nan_shape=None) -> np.ndarray:
     try:
         return table[name]
-    except KeyError:
+    except (KeyError, TypeError):
+        if nan_shape is not None:       # no design of the chunk was built: nothing to check
+            return np.full(nan_shape, np.nan)
         raise ModelError(f"{what}: {expected_one_of(name, table)}") from None
 
 
@@ -89,21 +91,23 @@ class EngineBatch(Batch):
     """Arrays gathered from one :func:`kinelab.analyze` per design (NaN where a design could
     not be built or does not assemble)."""
 
-    def __init__(self, q, assembled, angles, K, points, slides, singular):
+    def __init__(self, q, assembled, angles, K, points, slides, singular, *, any_name=False):
         self.q, self.assembled, self.singular = q, assembled, singular
         self._angles, self._K, self._points, self._slides = angles, K, points, slides
+        # no design of the chunk could be built, so its names are unknown: all NaN
+        self._nan = (q.shape, q.shape + (2,)) if any_name else (None, None)
 
     def angle(self, link):
-        return _pick(self._angles, link, "link")
+        return _pick(self._angles, link, "link", self._nan[0])
 
     def K(self, name):
-        return _pick(self._K, name, "link or prismatic joint")
+        return _pick(self._K, name, "link or prismatic joint", self._nan[0])
 
     def position(self, point):
-        return _pick(self._points, point, "point")
+        return _pick(self._points, point, "point", self._nan[1])
 
     def slide(self, joint):
-        return _pick(self._slides, joint, "prismatic joint")
+        return _pick(self._slides, joint, "prismatic joint", self._nan[0])
 
     def value(self, name):
         return self._angles[name] if name in self._angles else self.slide(name)
