@@ -107,13 +107,39 @@ def test_catalogue_round_trip_in_mm_and_degrees(name, tmp_path):
     back = kl.load(path)
     assert back.link_names == m.link_names and back.joints == m.joints
     assert back.parameters.keys() == m.parameters.keys()
-    for p, r in zip(back.points, m.points):
-        # written with 12 significant digits in mm
-        assert p.name == r.name and math.dist(p.xy, r.xy) <= 1e-12 * 10
+    # the digits written in mm and degrees read back as the very same floats
+    assert back == m and back.parameters == m.parameters
     q = _sweep(m)
     a, b = kl.analyze(m, q, 1.0, 0.5), kl.analyze(back, q, 1.0, 0.5)
-    np.testing.assert_allclose(b.jets, a.jets, rtol=0, atol=1e-9)
-    np.testing.assert_allclose(b.rates, a.rates, rtol=0, atol=1e-8)
+    np.testing.assert_array_equal(b.jets, a.jets)
+    np.testing.assert_array_equal(b.rates, a.rates)
+
+
+UNITS = [{"length": length, "angle": angle} for length in ("mm", "cm", "in", "m")
+         for angle in ("deg", "rad")]
+
+
+@pytest.mark.parametrize("units", UNITS, ids=lambda u: f"{u['length']}-{u['angle']}")
+def test_round_trips_in_every_unit_are_exact(units):
+    models = [kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0)),
+              kl.synthesis.fourbar_model((0.1, 0.2), (3.3, -0.7), (1.1, 0.3), (2.9, 1.7))]
+    models += [kl.load(p) for p in EXAMPLES]
+    for m in models:
+        assert kl.io.from_toml(kl.io.to_toml(m, units=units)) == m, m.name
+        assert kl.io.from_json(kl.io.to_json(m, units=units)) == m, m.name
+
+
+@given(st.lists(st.floats(-1e3, 1e3, allow_nan=False).filter(lambda v: abs(v) > 1e-6),
+                min_size=4, max_size=4))
+def test_any_coordinate_round_trips_exactly_in_mm_and_inches(xy):
+    """Of the floats in metres, some are no float in mm times 0.001: the file's digits are
+    read as written (one rounding), and written as the shortest that read back exactly."""
+    from kinelab.io._text import in_si, written
+    for scale in (0.001, 0.01, 0.0254, math.pi / 180):
+        for v in xy:
+            text = kl.io._toml._value(written(v, scale))
+            assert in_si(kl.io._text.Written(text), scale) == v, (v, scale, text)
+            assert float(text) == pytest.approx(v / scale, rel=1e-15)
 
 
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.stem)
