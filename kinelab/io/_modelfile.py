@@ -816,6 +816,18 @@ def _json_text(data: Any) -> str:
     return re.sub(f'"{mark}([^"]*){mark}"', r"\1", text) + "\n"
 
 
+def _catalogue_reads_back(cat: Mapping[str, Any], m: Mechanism, units: Units) -> bool:
+    """Whether a ``[catalogue]`` table, read with the model's points, builds the model."""
+    parser = _Parser(None, None)
+    try:
+        built = parser.catalogue(cat, units)
+        if built is not None:
+            parser.check_catalogue(m, built, units)
+    except KinelabError:
+        return False
+    return built is not None and not parser.r.problems
+
+
 def _dump(mf: ModelFile) -> dict[str, Any]:
     m, u = mf.mechanism, mf.units
     ls, a_s = u.length_scale, u.angle_scale
@@ -871,7 +883,10 @@ def _dump(mf: ModelFile) -> dict[str, Any]:
             return _out(float(v), ls)
         cat: dict[str, Any] = {"kind": params.pop("kind")}
         cat.update((key, file_value(v)) for key, v in params.items() if v is not None)
-        out["catalogue"] = cat
+        if _catalogue_reads_back(cat, m, u):
+            out["catalogue"] = cat
+        # else the points, links and joints alone: a file is written only as it reads back
+        # (parameters the catalogue would refuse, a sketch it would not build)
     if mf.outputs:
         o: dict[str, Any] = {}
         if mf.outputs.report:
@@ -921,7 +936,10 @@ def save(model: Mechanism | ModelFile, path: str | os.PathLike, *,
 
     The sketch (every point's position) is written, so reading the file back gives the
     same mechanism on the same assembly branch; a catalogue mechanism also records its
-    kind and parameters under ``[catalogue]``.
+    kind and parameters under ``[catalogue]``, when they build that mechanism again (a
+    flat four-bar the catalogue refuses, parameters without their lengths: the points,
+    links and joints alone).  Other entries of ``parameters`` than the catalogue's (and
+    the dynamics) have no place in a model file and are not written.
 
     Parameters
     ----------

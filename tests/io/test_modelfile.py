@@ -427,3 +427,18 @@ def test_a_file_far_larger_than_any_model_is_refused_before_it_is_read(tmp_path)
     with pytest.raises(ModelError, match=r"huge\.toml: the file is 8\.0 MiB; expected at most 8 MiB "
                                          r"\(a model, task or drawing file is a few kilobytes\)$"):
         kl.load(path)
+
+
+@pytest.mark.parametrize("units", [None, {"length": "mm", "angle": "deg"}])
+def test_a_catalogue_table_is_written_only_when_it_reads_back(units):
+    flat = kl.synthesis.fourbar_model((0, 0), (3, 0), (1, 0), (2, 0))     # 1 + 1 + 1 = 3
+    assert flat.parameters["kind"] == "fourbar"
+    fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5)
+    no_lengths = dataclasses.replace(fb, parameters={"kind": "fourbar"})
+    for m in (flat, no_lengths):
+        text = kl.io.to_toml(m, units=units)
+        assert "[catalogue]" not in text
+        assert kl.io.from_toml(text) == m
+        assert kl.io.from_json(kl.io.to_json(m, units=units)) == m
+    text = kl.io.to_toml(fb, units=units)
+    assert "[catalogue]" in text and kl.io.from_toml(text).parameters == fb.parameters
