@@ -11,6 +11,7 @@ from collections.abc import Callable, Collection, Iterable, Mapping, Set
 from typing import Any
 
 from kinelab.errors import PROBLEMS_SHOWN, describe, quoted, shown, shown_key, suggest
+from kinelab.io._text import in_si
 from kinelab.model import name_problem
 
 __all__ = ["Reader", "quoted", "suggest", "describe", "shown", "shown_key"]
@@ -21,9 +22,10 @@ def _is_number(value: Any) -> bool:
 
 
 def _scaled(value: int | float, scale: float) -> float:
-    """``value * scale`` as a float; inf when a huge integer does not fit one."""
+    """``value * scale`` as a float, rounded once from the digits written (see
+    :func:`kinelab.io._text.in_si`); inf when a huge integer does not fit one."""
     try:
-        return float(value) * scale
+        return in_si(value, scale)
     except OverflowError:
         return math.inf
 

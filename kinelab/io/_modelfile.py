@@ -28,7 +28,7 @@ from kinelab._files import atomic_write
 from kinelab.errors import AssemblyError, KinelabError, ModelError
 from kinelab.io import _toml
 from kinelab.io._fields import Reader, describe, quoted, shown, shown_key
-from kinelab.io._text import loads, read_text
+from kinelab.io._text import Written, in_si, loads, read_text, written
 from kinelab.kinematics import Assembly, assemble
 from kinelab.kinematics._assemble import assembly_miss, needs_assembly
 from kinelab.model import (ANGLE_UNITS, JOINT_TYPES, LENGTH_UNITS, SPACES, Input, Joint, Link,
@@ -168,7 +168,7 @@ class ModelFile:
 
     def to_json(self) -> str:
         """JSON text of the file."""
-        return json.dumps(self.to_dict(), indent=2, ensure_ascii=False) + "\n"
+        return _json_text(self.to_dict())
 
     def write(self, path: str | os.PathLike) -> Path:
         """Write TOML or JSON, by the suffix of ``path`` (to a temporary file, then renamed)."""
@@ -721,8 +721,7 @@ class _Parser:
         and places and its slides' offsets; what moved is kept in ``self.assembly``.
 
         The assembled coordinates are kept to the digits a model file is written with
-        (:func:`_out`), so that a file written from the model reads back as the same
-        model; a sketch already assembled to those digits is taken as it is."""
+        (:func:`_rounded`); a sketch already assembled to those digits is taken as it is."""
         if assembly_miss(m) <= _ASSEMBLED:
             return m
         try:
@@ -735,8 +734,8 @@ class _Parser:
         ls = units.length_scale
         done = self.assembly.mechanism
         return dataclasses.replace(done, points=tuple(
-            dataclasses.replace(p, x=_out(p.x, ls) * ls if ls != 1.0 else p.x,
-                                y=_out(p.y, ls) * ls if ls != 1.0 else p.y) for p in done.points))
+            dataclasses.replace(p, x=_rounded(p.x, ls) if ls != 1.0 else p.x,
+                                y=_rounded(p.y, ls) if ls != 1.0 else p.y) for p in done.points))
 
     def local(self, value, where: str, pts, scale: float):
         """A link's ``local`` table: point = [along, left], in the file's length unit."""
@@ -785,14 +784,48 @@ def _locate(problem: str, where: Mapping[tuple[str, str], str]) -> str:
 # ------------------------------------------------------------------------------------------
 # writing
 # ------------------------------------------------------------------------------------------
-def _out(v: float, scale: float) -> float | int:
-    """A value in file units, rounded to 14 significant digits when converted: as many as
-    read back to the same value after the conversion's rounding (a 15th digit could change),
-    so that a file written from a model reads back as the same model, and enough that a
-    change-point geometry (a parallelogram) stays one."""
-    if scale == 1.0:
+def _out(v: float, scale: float) -> float:
+    """A value in file units: the shortest digits that read back as exactly ``v`` (SI), so
+    that a file written from a model in any unit reads back as the same model."""
+    return written(v, scale)
+
+
+def _rounded(v: float, scale: float) -> float:
+    """``v`` (SI) as it reads back from 14 significant digits in file units: an assembled
+    sketch keeps the digits a person would write, so that a change-point geometry (a
+    parallelogram) stays one."""
+    return in_si(Written(f"{v / scale:.14g}"), scale)
+
+
+def _json_text(data: Any) -> str:
+    """JSON text of ``data``, numbers in file units with the digits that read back exactly
+    (json writes a float's own repr, so they go through as marked text and are unmarked)."""
+    mark = "\ue000kinelab-number\ue000"
+    if mark in json.dumps(data, ensure_ascii=False):    # never from a model; but be sure
+        return json.dumps(data, indent=2, ensure_ascii=False) + "\n"
+
+    def marked(v):
+        if isinstance(v, Written):
+            return mark + v.text + mark
+        if isinstance(v, Mapping):
+            return {k: marked(x) for k, x in v.items()}
+        if isinstance(v, (list, tuple)):
+            return [marked(x) for x in v]
         return v
-    return float(f"{v / scale:.14g}")
+    text = json.dumps(marked(data), indent=2, ensure_ascii=False)
+    return re.sub(f'"{mark}([^"]*){mark}"', r"\1", text) + "\n"
+
+
+def _catalogue_reads_back(cat: Mapping[str, Any], m: Mechanism, units: Units) -> bool:
+    """Whether a ``[catalogue]`` table, read with the model's points, builds the model."""
+    parser = _Parser(None, None)
+    try:
+        built = parser.catalogue(cat, units)
+        if built is not None:
+            parser.check_catalogue(m, built, units)
+    except KinelabError:
+        return False
+    return built is not None and not parser.r.problems
 
 
 def _dump(mf: ModelFile) -> dict[str, Any]:
@@ -850,7 +883,10 @@ def _dump(mf: ModelFile) -> dict[str, Any]:
             return _out(float(v), ls)
         cat: dict[str, Any] = {"kind": params.pop("kind")}
         cat.update((key, file_value(v)) for key, v in params.items() if v is not None)
-        out["catalogue"] = cat
+        if _catalogue_reads_back(cat, m, u):
+            out["catalogue"] = cat
+        # else the points, links and joints alone: a file is written only as it reads back
+        # (parameters the catalogue would refuse, a sketch it would not build)
     if mf.outputs:
         o: dict[str, Any] = {}
         if mf.outputs.report:
@@ -900,7 +936,10 @@ def save(model: Mechanism | ModelFile, path: str | os.PathLike, *,
 
     The sketch (every point's position) is written, so reading the file back gives the
     same mechanism on the same assembly branch; a catalogue mechanism also records its
-    kind and parameters under ``[catalogue]``.
+    kind and parameters under ``[catalogue]``, when they build that mechanism again (a
+    flat four-bar the catalogue refuses, parameters without their lengths: the points,
+    links and joints alone).  Other entries of ``parameters`` than the catalogue's (and
+    the dynamics) have no place in a model file and are not written.
 
     Parameters
     ----------

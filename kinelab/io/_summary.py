@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from kinelab import kinematics
-from kinelab.errors import KinelabError, ModelError, describe
+from kinelab.errors import KinelabError, ModelError, check_choice, describe
 from kinelab.kinematics import KinematicSolution
 from kinelab.mechanisms import Grashof, grashof
 from kinelab.model import Mechanism
@@ -330,8 +330,22 @@ def summary(sol: KinematicSolution, *, report: tuple[str, ...] | None = None,
     >>> [e.name for e in s.extremes][:3]
     ['coupler.angle', 'coupler.omega', 'coupler.alpha']
     """
+    if not isinstance(sol, KinematicSolution):
+        raise ModelError(f"sol: expected a KinematicSolution (kinelab.analyze(model, q)), got "
+                         f"{describe(sol)}")
+    if sol.N == 0:
+        raise ModelError("sol: expected a sweep of at least one sample, got none; analyze the "
+                         "model at some input values")
     m = sol.mechanism
+    if isinstance(report, str):         # one name, not its letters
+        report = (report,)
     report = tuple(report) if report else default_outputs(m)
+    if time_ratio is not None:
+        # a name the caller gives must be an output that moves; whether it has a time ratio
+        # is the summary's answer (quick_return None when it has none)
+        slides = [j.name for j in m.joints if j.type == "P"]
+        check_choice("time_ratio", time_ratio,
+                     [n for n in m.link_names if n != m.ground.name] + slides)
     spans = full = None
     if len(m.inputs) == 1:
         spans = tuple(kinematics.reachable_ranges(m))

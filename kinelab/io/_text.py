@@ -11,16 +11,19 @@ Python turns into numbers (``sys.get_int_max_str_digits()``), nesting deeper tha
 from __future__ import annotations
 
 import json
+import math
 import os
 import re
 import sys
 import tomllib
+from decimal import Decimal, localcontext
+from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
 from kinelab.errors import ModelError, shown, shown_key
 
-__all__ = ["MAX_DEPTH", "MAX_BYTES", "read_text", "loads"]
+__all__ = ["MAX_DEPTH", "MAX_BYTES", "read_text", "loads", "Written", "written", "in_si"]
 
 MAX_DEPTH = 32     # tables and lists inside each other; a model file needs about 6
 MAX_BYTES = 8 << 20  # a file's size: a model, task or drawing is a few kilobytes, and a TOML
@@ -52,6 +55,60 @@ def read_text(path: str | os.PathLike, *, max_bytes: int | None = MAX_BYTES) -> 
                          source=path.name) from None
 
 
+class Written(float):
+    """A number as a file writes it: its float value, and ``text``, the digits themselves.
+
+    A value in a file's unit (mm, in, deg) converts to SI with one rounding, from the
+    digits (:func:`in_si`), not from the float nearest them (two roundings); and a value
+    written with :func:`written` reads back as exactly the float it was written from.  No
+    float in mm times 0.001 can be every float in m: the digits can.
+    """
+
+    __slots__ = ("text",)
+
+    def __new__(cls, text: str):
+        self = super().__new__(cls, text)
+        self.text = text
+        return self
+
+    def __reduce__(self):
+        return Written, (self.text,)
+
+
+def in_si(value: int | float, scale: float) -> float:
+    """``value`` (a file's number) times ``scale`` (the unit's factor to SI, a float), rounded
+    once: the float nearest the product of the digits written and the factor; inf when it is
+    beyond the floats."""
+    if scale == 1.0 or not math.isfinite(value) or value == 0:
+        return float(value) * scale
+    exact = Fraction(value.text) if isinstance(value, Written) else Fraction(value)
+    try:
+        return float(exact * Fraction(scale))
+    except OverflowError:
+        return math.copysign(math.inf, value)
+
+
+def written(v: float, scale: float) -> float:
+    """``v`` (SI) in a file's unit of ``scale``: the shortest digits that :func:`in_si` reads
+    back as ``v`` exactly (a :class:`Written`; ``v`` itself in SI)."""
+    if scale == 1.0 or not math.isfinite(v) or v == 0:
+        return v / scale if scale != 1.0 else v
+    target = Fraction(v) / Fraction(scale)
+    factor = Fraction(scale)
+    # 17 significant digits always do (an error below half a unit of the float's last place)
+    for digits in range(1, 40):
+        with localcontext() as ctx:
+            ctx.prec = digits
+            d = Decimal(target.numerator) / Decimal(target.denominator)
+        if float(Fraction(d) * factor) == v:
+            break
+    a = abs(d)
+    text = format(d, "f") if Decimal("1e-4") <= a < Decimal("1e16") else format(d, "e")
+    if "." not in text and "e" not in text:
+        text += ".0"
+    return Written(text)
+
+
 class _Twice(dict):
     """A JSON object that had a key more than once (the first such key kept)."""
     twice: str
@@ -70,10 +127,11 @@ def _object(pairs: list[tuple[str, Any]]) -> dict:
 def loads(text: str, language: str, *, source: str | None = None) -> Any:
     """Plain data from ``text`` in ``language`` ("TOML" or "JSON"); see the module."""
     try:
+        # numbers keep their digits (Written): a unit's conversion reads them exactly
         if language == "TOML":
-            data = tomllib.loads(text)
+            data = tomllib.loads(text, parse_float=Written)
         else:
-            data = json.loads(text, object_pairs_hook=_object)
+            data = json.loads(text, object_pairs_hook=_object, parse_float=Written)
     except tomllib.TOMLDecodeError as exc:
         raise ModelError(_toml_syntax(str(exc), text), source=source) from None
     except json.JSONDecodeError as exc:

@@ -33,7 +33,8 @@ def _value(v: Any) -> str:
     if isinstance(v, numbers.Real):
         if not math.isfinite(v):
             raise ValueError(f"TOML model files hold finite numbers only, got {v}")
-        return repr(float(v))
+        # a value in the file's unit keeps the digits that read back as its SI value
+        return getattr(v, "text", None) or repr(float(v))
     if isinstance(v, str):
         return json.dumps(v, ensure_ascii=False)
     if isinstance(v, (list, tuple)):

@@ -26,6 +26,9 @@ _POSITION_COLOURS = "tab:blue tab:orange tab:green tab:red tab:purple tab:brown 
                     "tab:olive tab:cyan tab:gray".split()
 
 
+_POLES_NAMED = 45       # poles named on a figure, at most (those of ten positions)
+
+
 def _axes(ax):
     if ax is not None:
         return ax
@@ -57,7 +60,8 @@ def prescribed_positions(points, angles=None, *, ax=None, show_poles: bool = Tru
         The positions, or a ``Positions`` with ``angles`` omitted.
     ax : matplotlib Axes, optional
     show_poles : bool
-        Mark the finite poles P_ij.
+        Mark the finite poles P_ij (named P12, P13 ... when there are at most 45 of them:
+        ten positions).
     degrees : bool
         The given angles are in degrees.
     units : Units or mapping, optional
@@ -87,9 +91,13 @@ def _poles(ax, pos: Positions, u: Units) -> np.ndarray:
     """Mark the finite poles P_ij of ``pos``; their positions, in ``u``."""
     p = poles(pos)
     finite = u.convert(p.P[p.finite], "m")
-    for (i, j), X in zip([pair for pair, f in zip(p.pairs, p.finite) if f], finite):
-        ax.plot(*X, "kx")
-        ax.annotate(f"P{i}{j}", X, textcoords="offset points", xytext=(4, 4), fontsize=8)
+    # one artist for all the marks: n positions have n (n - 1) / 2 poles, and an artist
+    # each took minutes for a thousand positions; names only where they can be read
+    if len(finite):
+        ax.plot(*finite.T, "kx", linestyle="none")
+    if len(finite) <= _POLES_NAMED:
+        for (i, j), X in zip([pair for pair, f in zip(p.pairs, p.finite) if f], finite):
+            ax.annotate(f"P{i}{j}", X, textcoords="offset points", xytext=(4, 4), fontsize=8)
     return finite
 
 

@@ -18,17 +18,18 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ModelError, describe
+from kinelab.errors import ModelError, describe, one_line, quoted, shown, shown_path
 from kinelab.model import MAX_LENGTH, MIN_LENGTH
 from kinelab.sweep._metrics import (DEFAULT_HARMONICS, descriptor_names, descriptors,
                                     resample_closed)
-from kinelab.sweep._run import run, write_parquet
+from kinelab.sweep._run import file_path as _file, run, write_parquet
 from kinelab.synthesis import MAX_PATH_POINTS, coupler_curves, path_generation
 
 __all__ = ["Atlas", "atlas"]
 
 COLUMNS = ("ground", "crank", "coupler", "rocker", "coupler_point_along",
            "coupler_point_perpendicular")
+_MAX_HARMONICS = 1000       # descriptors per curve (2 per harmonic), at most, in a file
 _CURVE_SAMPLES = 256        # samples of a matched curve when it is fitted onto the target
 
 
@@ -191,18 +192,53 @@ class Atlas:
 
     @classmethod
     def from_parquet(cls, path: str | os.PathLike) -> Atlas:
+        """An atlas written by :meth:`to_parquet` (or ``kinelab atlas``), checked: its
+        metadata (harmonics, branch), its columns and finite numbers in them."""
         import pandas
 
+        path = _file(path)
+        where = shown_path(path)
+        if os.path.isdir(path):      # pyarrow would read the files in it as one table
+            raise ModelError(f"{where}: cannot read an atlas: a directory, not a file; name the "
+                             "atlas's file")
         try:
             df = pandas.read_parquet(path)
-        except (OSError, ValueError) as exc:
-            raise ModelError(f"{os.fspath(path)}: cannot read an atlas: {exc}") from None
+        except FileNotFoundError:
+            raise ModelError(f"{where}: cannot read an atlas: no such file; check the path") from None
+        except OSError as exc:
+            raise ModelError(f"{where}: cannot read an atlas: "
+                             f"{exc.strerror or one_line(exc, 200)}; check the path") from None
+        except Exception as exc:     # pyarrow's own errors: not a Parquet file, damaged
+            raise ModelError(f"{where}: cannot read an atlas: not a Parquet file written by "
+                             f"kinelab ({one_line(type(exc).__name__)}); build one with kinelab "
+                             "atlas") from None
         attrs = dict(df.attrs)
         if "harmonics" not in attrs or "branch" not in attrs:
-            raise ModelError(f"{os.fspath(path)}: not an atlas (no harmonics and branch in its "
+            raise ModelError(f"{where}: not an atlas (no harmonics and branch in its "
                              "metadata); build one with kinelab atlas")
+        harmonics, branch = attrs["harmonics"], attrs["branch"]
+        if isinstance(harmonics, bool) or not isinstance(harmonics, int) \
+                or not 1 <= harmonics <= _MAX_HARMONICS:
+            raise ModelError(f"{where}: harmonics in its metadata: expected a whole number from 1 "
+                             f"to {_MAX_HARMONICS}, got {describe(harmonics)}; rebuild it with "
+                             "kinelab atlas")
+        if branch not in ("open", "crossed"):
+            raise ModelError(f"{where}: branch in its metadata: expected one of 'open', "
+                             f"'crossed', got {describe(branch)}; rebuild it with kinelab atlas")
+        needed = [*COLUMNS, *descriptor_names(harmonics)]
+        missing = [c for c in needed if c not in df.columns]
+        if missing:
+            raise ModelError(f"{where}: not an atlas of {harmonics} harmonics: no column "
+                             f"{quoted(missing, limit=4)}; rebuild it with kinelab atlas")
+        for c in needed:
+            values = df[c].to_numpy()
+            if values.dtype.kind not in "iuf" or not np.isfinite(values).all():
+                bad = np.flatnonzero(~np.isfinite(values)) if values.dtype.kind in "iuf" else [0]
+                raise ModelError(f"{where}: column {shown(c)}: expected finite numbers, got "
+                                 f"{describe(values[bad[0]])} in row {int(bad[0])}; rebuild it "
+                                 "with kinelab atlas")
         df.attrs = {}
-        return cls(df, int(attrs["harmonics"]), str(attrs["branch"]))
+        return cls(df, harmonics, branch)
 
 
 def _path(path, harmonics: int, placed: bool = False) -> np.ndarray:

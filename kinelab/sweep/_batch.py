@@ -12,16 +12,22 @@ import functools
 import numpy as np
 
 from kinelab.errors import ModelError, expected_one_of
+from kinelab.kinematics import SINGULAR_TOL
+# the engine's own tolerances for an RRR dyad at its straight position: the closed form
+# assembles exactly where kinelab.analyze does (change-point four-bars included)
+from kinelab.kinematics._codes import DISC_TOL, FOLDED
 from kinelab.solvers import wrap_angle
 from kinelab.synthesis import coupler_curves
 
 __all__ = ["Batch", "EngineBatch", "FourbarBatch"]
 
 
-def _pick(table: dict[str, np.ndarray], name: str, what: str) -> np.ndarray:
+def _pick(table: dict[str, np.ndarray], name: str, what: str, nan_shape=None) -> np.ndarray:
     try:
         return table[name]
-    except KeyError:
+    except (KeyError, TypeError):
+        if nan_shape is not None:       # no design of the chunk was built: nothing to check
+            return np.full(nan_shape, np.nan)
         raise ModelError(f"{what}: {expected_one_of(name, table)}") from None
 
 
@@ -35,12 +41,15 @@ class Batch:
         The input of each design at each sample, rad.
     assembled : ndarray of bool, shape (D, S)
         Whether the design closes its loops there; elsewhere every value is NaN.
+    singular : ndarray of bool, shape (D, S)
+        Whether it is singular there, as :func:`kinelab.analyze` flags it.
 
     Angles come in (-pi, pi]; ``K`` is the velocity coefficient d(angle or slide)/dq.
     """
 
     q: np.ndarray
     assembled: np.ndarray
+    singular: np.ndarray
 
     def angle(self, link: str) -> np.ndarray:
         """Angle of a link, rad, (D, S)."""
@@ -82,21 +91,23 @@ class EngineBatch(Batch):
     """Arrays gathered from one :func:`kinelab.analyze` per design (NaN where a design could
     not be built or does not assemble)."""
 
-    def __init__(self, q, assembled, angles, K, points, slides, singular):
+    def __init__(self, q, assembled, angles, K, points, slides, singular, *, any_name=False):
         self.q, self.assembled, self.singular = q, assembled, singular
         self._angles, self._K, self._points, self._slides = angles, K, points, slides
+        # no design of the chunk could be built, so its names are unknown: all NaN
+        self._nan = (q.shape, q.shape + (2,)) if any_name else (None, None)
 
     def angle(self, link):
-        return _pick(self._angles, link, "link")
+        return _pick(self._angles, link, "link", self._nan[0])
 
     def K(self, name):
-        return _pick(self._K, name, "link or prismatic joint")
+        return _pick(self._K, name, "link or prismatic joint", self._nan[0])
 
     def position(self, point):
-        return _pick(self._points, point, "point")
+        return _pick(self._points, point, "point", self._nan[1])
 
     def slide(self, joint):
-        return _pick(self._slides, joint, "prismatic joint")
+        return _pick(self._slides, joint, "prismatic joint", self._nan[0])
 
     def value(self, name):
         return self._angles[name] if name in self._angles else self.slide(name)
@@ -120,11 +131,15 @@ class FourbarBatch(Batch):
 
     @functools.cached_property
     def _pivot_distance2(self):
-        """|O4 A|^2, (D, S): every assembly question is a question about it."""
+        """|O4 A|^2, (D, S): every assembly question is a question about it.  Computed as the
+        engine computes it, from A's coordinates, so that a design at a change point
+        (s + l = p + q) assembles, or not, exactly where kinelab.analyze says."""
         q = self.q
-        # the same samples for every design (a broadcast view): one row of cosines
-        cos_q = np.cos(q[:1]) if q.strides[0] == 0 else np.cos(q)
-        return self.r1 ** 2 + self.r2 ** 2 - 2 * self.r1 * self.r2 * cos_q
+        # the same samples for every design (a broadcast view): one row of cosines and sines
+        row = q[:1] if q.strides[0] == 0 else q
+        dx = self.r1 - self.r2 * np.cos(row)
+        dy = self.r2 * np.sin(row)
+        return dx * dx + dy * dy
 
     @functools.cached_property
     def _cos_mu(self):
@@ -133,7 +148,33 @@ class FourbarBatch(Batch):
 
     @functools.cached_property
     def assembled(self):
-        return np.abs(self._cos_mu) <= 1.0
+        # the engine's test (kinelab.kinematics' RRR dyad): the across distance of B over
+        # |O4 A|, squared, may fall below zero by rounding (DISC_TOL) at a straight position
+        lb2, lc2 = self.r3 ** 2, self.r4 ** 2
+        D2 = self._pivot_distance2
+        with np.errstate(divide="ignore", invalid="ignore"):
+            alpha = 0.5 * (lb2 - lc2 + D2) / D2
+            beta2 = lb2 / D2 - alpha * alpha
+            ok = beta2 >= -DISC_TOL * lb2 / D2
+        folded = D2 <= FOLDED * lb2        # A on O4: it closes when coupler = rocker
+        ok = np.where(folded, np.abs(self.r3 - self.r4) <= 1e-12 * self.r3, ok)
+        return ok
+
+    @functools.cached_property
+    def singular(self):
+        """Where the transmission angle's sine falls below SINGULAR_TOL, as the engine flags."""
+        return self.assembled & (np.sqrt(np.maximum(1.0 - self._cos_mu ** 2, 0.0)) < SINGULAR_TOL)
+
+    def passes_singular(self) -> np.ndarray:
+        """Whether the turn of each design passes a singular configuration (D,): the
+        transmission angle's sine (the engine's singularity measure) falls below
+        kinelab.kinematics.SINGULAR_TOL somewhere, as it does at a change point.  |cos mu|
+        is largest at q = 0 or pi, where |O4 A| is smallest or largest."""
+        worst = np.zeros(len(self.r1))
+        for d in (np.abs(self.r1 - self.r2), self.r1 + self.r2):
+            c = (self.r3 ** 2 + self.r4 ** 2 - d * d) / (2 * self.r3 * self.r4)
+            worst = np.maximum(worst, np.abs(c[:, 0]))
+        return np.sqrt(np.maximum(1.0 - worst * worst, 0.0)) < SINGULAR_TOL
 
     @functools.cached_property
     def _curves(self):
@@ -143,7 +184,8 @@ class FourbarBatch(Batch):
         designs = np.column_stack([zeros, zeros, self.r1[:, 0], zeros, self.r2[:, 0], self.r3[:, 0],
                                    self.r4[:, 0], u, v, np.full(D, self.sigma)])
         P, A, B, ok = coupler_curves(designs, self.q)
-        missing = ~ok[..., None]
+        # where the engine closes the dyad at its straight position and rounding does not
+        missing = ~(self.assembled & (self._pivot_distance2 > 0))[..., None]
         return {"A": A, "B": np.where(missing, np.nan, B), "P": np.where(missing, np.nan, P)}
 
     @functools.cached_property

@@ -239,11 +239,18 @@ class _EngineDesigns(Designs):
                 row = {p: float(v[d]) for p, v in columns.items()}
                 try:
                     mech = fam.build(row)
-                except KinelabError as exc:
+                    if fam.base is not None:
+                        _check_design(mech, row, fam.base)
+                    else:
+                        plan(mech)          # cached on the mechanism for the analyses
+                except DesignOffModel:      # the column, not the row: vary another point
+                    raise
+                except KinelabError as exc:     # this design alone cannot be analysed
                     problems[d] = str(exc).splitlines()[0]
-                if mech is not None and fam.base is not None:
-                    _check_design(mech, row, fam.base)
+                    mech = None
             self.mechanisms.append(mech)
+        # the names of the kinematics, for a chunk where no design could be built too
+        self.template = fam.base or next((m for m in self.mechanisms if m is not None), None)
 
     def _take(self, rows):
         self.mechanisms = [self.mechanisms[r] for r in rows]
@@ -273,8 +280,16 @@ class _EngineDesigns(Designs):
                 if j.type == "P":
                     column("slide", j.name)[d] = sol.slide(j.name)
                     column("K", j.name)[d] = sol.K(j.name)
+        if self.template is not None:       # every name, NaN where no design gave a value
+            for link in self.template.link_names:
+                column("angle", link), column("K", link)
+            for p in self.template.point_names:
+                column("point", p, (D, S, 2))
+            for j in self.template.joints:
+                if j.type == "P":
+                    column("slide", j.name), column("K", j.name)
         return EngineBatch(q, assembled, tables["angle"], tables["K"], tables["point"],
-                           tables["slide"], singular)
+                           tables["slide"], singular, any_name=self.template is None)
 
     def peak_torque(self, q: np.ndarray, speed: float) -> np.ndarray:
         """Largest |input torque| over ``q`` (D, S) at constant input ``speed`` (rad/s), (D,);
@@ -398,8 +413,33 @@ def family(spec: str | Mechanism | Family, *, output: str | None = None,
             raise ModelError(f"{name}: expected a name, got {describe(value)}")
     changes = {k: v for k, v in (("output", output), ("point", point)) if v is not None}
     if transmission is not None:
+        if not (isinstance(transmission, (tuple, list)) and len(transmission) == 2
+                and all(isinstance(n, str) for n in transmission)
+                and transmission[0] != transmission[1]):
+            raise ModelError(f"transmission: expected two different links (a coupler and an "
+                             f"output), got {describe(transmission)}")
         changes["transmission"] = tuple(transmission)
+    names = _names(fam)
+    if names is not None:           # the names are known: refuse a misspelt one now
+        links, slides, points = names
+        if output is not None:
+            check_choice("output", output, [*links, *slides])
+        for k, link in enumerate(transmission or ()):
+            check_choice(f"transmission[{k}]", link, links)
+        if point is not None:
+            check_choice("point", point, points)
     return dataclasses.replace(fam, **changes) if changes else fam
+
+
+def _names(fam: Family) -> tuple[list[str], list[str], list[str]] | None:
+    """The links, prismatic joints and points of a family's mechanisms, when known without
+    building one: a model's, or the catalogue four-bar's."""
+    if fam.base is not None:
+        m = fam.base
+        return list(m.link_names), [j.name for j in m.joints if j.type == "P"], list(m.point_names)
+    if fam.make is mechanisms.fourbar:
+        return ["ground", "crank", "coupler", "rocker"], [], ["O2", "A", "B", "O4", "P"]
+    return None
 
 
 def _mechanism_family(mech: Mechanism, options) -> Family:

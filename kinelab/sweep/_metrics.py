@@ -193,9 +193,11 @@ def _dead_centres(fam: Family, designs: Designs, batch: Batch, assembled: np.nda
     an output angle that never reverses turns fully (swing 2 pi, no time ratio)."""
     D, S = batch.shape
     if fam.closed_form and fam.output == "rocker":
-        return _fourbar_dead_centres(designs, assembled)
+        # a turn through a singular configuration (a change point) has no time ratio or
+        # swing, as kinelab.kinematics.time_ratio says: the output's K is not defined there
+        return _fourbar_dead_centres(designs, assembled & ~batch.passes_singular())
     K = batch.K(fam.output)
-    valid = assembled & np.isfinite(K).all(axis=1)
+    valid = assembled & np.isfinite(K).all(axis=1) & ~batch.singular.any(axis=1)
     positive = K > 0
     flips = positive != np.roll(positive, -1, axis=1)        # between sample j and j + 1
     count = flips.sum(axis=1)

@@ -200,6 +200,8 @@ def run(family: str | Family, designs, *, samples=72, metrics=None, client=None,
     import pandas
 
     fam = make_family(family)
+    if path is not None:        # checked before the study, not after it
+        path = file_path(path)
     samples = _check_samples(samples)
     if isinstance(harmonics, bool) or not isinstance(harmonics, (int, np.integer)) or harmonics < 1:
         raise ModelError(f"harmonics: expected a whole number >= 1, got {describe(harmonics)}")
@@ -286,8 +288,23 @@ def _on_dask(client, fam, table, chunks, options, report):
             f.release()
 
 
+def file_path(path) -> str:
+    """A file's path (text or path-like), else a ModelError naming ``path``."""
+    if isinstance(path, bytes) or not isinstance(path, (str, os.PathLike)):
+        raise ModelError(f"path: expected a file's path (text or pathlib.Path), got {describe(path)}")
+    text = os.fspath(path)
+    if not isinstance(text, str) or not text:
+        raise ModelError(f"path: expected a file's path, got {describe(text)}")
+    return text
+
+
 def write_parquet(df, path) -> None:
     """Write a study's table as Parquet, atomically (never a half-written file)."""
+    import pandas
+
+    if not isinstance(df, pandas.DataFrame):
+        raise ModelError(f"df: expected a pandas DataFrame (a study's table), got {describe(df)}")
+    path = file_path(path)
     try:
         import pyarrow  # noqa: F401
     except ImportError:

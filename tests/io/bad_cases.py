@@ -126,7 +126,7 @@ CASES = [
     # by hand: 1000 > 300 + 250 + 300, the sketch's other bars
     ("lengths that cannot close", _replace('length = 100', 'length = 1000'),
      "fb.toml: links[1].length: no assembly near the sketch: the loop A-O2-O4-B cannot close; it "
-     "misses by 214.243 mm at link 'coupler'; its longest bar is longer than the others together: "
+     "misses by 250.919 mm at link 'coupler'; its longest bar is longer than the others together: "
      "crank 1000 mm > ground 300 + rocker 250 + coupler 300 = 850 mm; check the lengths, or draw "
      "the sketch closer to an assembly"),
     ("a place for the link's first point", _replace('length = 100', 'length = 100\nlocal = { O2 = [1, 2] }'),

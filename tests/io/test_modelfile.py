@@ -107,13 +107,39 @@ def test_catalogue_round_trip_in_mm_and_degrees(name, tmp_path):
     back = kl.load(path)
     assert back.link_names == m.link_names and back.joints == m.joints
     assert back.parameters.keys() == m.parameters.keys()
-    for p, r in zip(back.points, m.points):
-        # written with 12 significant digits in mm
-        assert p.name == r.name and math.dist(p.xy, r.xy) <= 1e-12 * 10
+    # the digits written in mm and degrees read back as the very same floats
+    assert back == m and back.parameters == m.parameters
     q = _sweep(m)
     a, b = kl.analyze(m, q, 1.0, 0.5), kl.analyze(back, q, 1.0, 0.5)
-    np.testing.assert_allclose(b.jets, a.jets, rtol=0, atol=1e-9)
-    np.testing.assert_allclose(b.rates, a.rates, rtol=0, atol=1e-8)
+    np.testing.assert_array_equal(b.jets, a.jets)
+    np.testing.assert_array_equal(b.rates, a.rates)
+
+
+UNITS = [{"length": length, "angle": angle} for length in ("mm", "cm", "in", "m")
+         for angle in ("deg", "rad")]
+
+
+@pytest.mark.parametrize("units", UNITS, ids=lambda u: f"{u['length']}-{u['angle']}")
+def test_round_trips_in_every_unit_are_exact(units):
+    models = [kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0)),
+              kl.synthesis.fourbar_model((0.1, 0.2), (3.3, -0.7), (1.1, 0.3), (2.9, 1.7))]
+    models += [kl.load(p) for p in EXAMPLES]
+    for m in models:
+        assert kl.io.from_toml(kl.io.to_toml(m, units=units)) == m, m.name
+        assert kl.io.from_json(kl.io.to_json(m, units=units)) == m, m.name
+
+
+@given(st.lists(st.floats(-1e3, 1e3, allow_nan=False).filter(lambda v: abs(v) > 1e-6),
+                min_size=4, max_size=4))
+def test_any_coordinate_round_trips_exactly_in_mm_and_inches(xy):
+    """Of the floats in metres, some are no float in mm times 0.001: the file's digits are
+    read as written (one rounding), and written as the shortest that read back exactly."""
+    from kinelab.io._text import in_si, written
+    for scale in (0.001, 0.01, 0.0254, math.pi / 180):
+        for v in xy:
+            text = kl.io._toml._value(written(v, scale))
+            assert in_si(kl.io._text.Written(text), scale) == v, (v, scale, text)
+            assert float(text) == pytest.approx(v / scale, rel=1e-15)
 
 
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.stem)
@@ -401,3 +427,18 @@ def test_a_file_far_larger_than_any_model_is_refused_before_it_is_read(tmp_path)
     with pytest.raises(ModelError, match=r"huge\.toml: the file is 8\.0 MiB; expected at most 8 MiB "
                                          r"\(a model, task or drawing file is a few kilobytes\)$"):
         kl.load(path)
+
+
+@pytest.mark.parametrize("units", [None, {"length": "mm", "angle": "deg"}])
+def test_a_catalogue_table_is_written_only_when_it_reads_back(units):
+    flat = kl.synthesis.fourbar_model((0, 0), (3, 0), (1, 0), (2, 0))     # 1 + 1 + 1 = 3
+    assert flat.parameters["kind"] == "fourbar"
+    fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5)
+    no_lengths = dataclasses.replace(fb, parameters={"kind": "fourbar"})
+    for m in (flat, no_lengths):
+        text = kl.io.to_toml(m, units=units)
+        assert "[catalogue]" not in text
+        assert kl.io.from_toml(text) == m
+        assert kl.io.from_json(kl.io.to_json(m, units=units)) == m
+    text = kl.io.to_toml(fb, units=units)
+    assert "[catalogue]" in text and kl.io.from_toml(text).parameters == fb.parameters

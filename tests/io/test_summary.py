@@ -143,3 +143,41 @@ def test_extremes_leave_the_singular_samples_out():
     # the singular positions are still listed
     assert s.singular == (pytest.approx((math.pi / 2,), abs=1e-12),
                           pytest.approx((3 * math.pi / 2,), abs=1e-12))
+
+
+@pytest.fixture(scope="module")
+def fourbar_sweep():
+    fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
+    return kl.analyze(fb, q=np.radians(np.arange(0.0, 360.0, 5.0)))
+
+
+@pytest.mark.parametrize("name", ["bogus", 5, "P", "ground", 2.5])
+def test_a_time_ratio_output_that_is_not_a_moving_link_is_refused(fourbar_sweep, name):
+    with pytest.raises(kl.errors.ModelError,
+                       match=r"^time_ratio: expected one of 'crank', 'coupler', 'rocker', got "):
+        summary(fourbar_sweep, time_ratio=name)
+
+
+def test_a_time_ratio_output_without_one_is_none_not_an_error(fourbar_sweep):
+    assert summary(fourbar_sweep, time_ratio="rocker").quick_return.output == "rocker"
+    assert summary(fourbar_sweep, time_ratio="crank").quick_return is None   # it never reverses
+
+
+def test_one_name_to_report_is_a_name_not_its_letters(fourbar_sweep):
+    names = [e.name for e in summary(fourbar_sweep, report="rocker").extremes]
+    assert names == ["rocker.angle", "rocker.omega", "rocker.alpha"]
+
+
+@pytest.mark.parametrize("sol, message", [
+    (None, r"^sol: expected a KinematicSolution .*got None$"),
+    (kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5), r"^sol: expected a KinematicSolution .*got Mechanism"),
+])
+def test_summary_of_something_else_is_refused(sol, message):
+    with pytest.raises(kl.errors.ModelError, match=message):
+        summary(sol)
+
+
+def test_summary_of_no_samples_is_refused():
+    sol = kl.analyze(kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5), q=np.array([]))
+    with pytest.raises(kl.errors.ModelError, match=r"^sol: expected a sweep of at least one sample, got none"):
+        summary(sol)

@@ -189,3 +189,29 @@ def test_plot_command_refuses_unknown_outputs(tmp_path):
     assert r.stderr.startswith("kinelab: error: --outputs: expected links, slides or points of "
                                "'crank-rocker', got 'nope'; they are 'ground', 'crank'")
     assert list(tmp_path.iterdir()) == []
+
+
+def _circle_positions(n):
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    return np.column_stack([2 * np.cos(t), np.sin(t)]), 0.3 * t
+
+
+def test_poles_of_many_positions_are_one_artist_and_unnamed():
+    """n positions have n (n - 1) / 2 poles: one artist for their marks, so that a figure
+    of hundreds of positions takes a second, not minutes."""
+    points, angles = _circle_positions(300)
+    ax = kl.plot.prescribed_positions(points, angles)
+    poles = kl.synthesis.poles(kl.synthesis.Positions(points, angles))
+    marks = [line for line in ax.lines if line.get_marker() == "x"]
+    assert len(marks) == 1 and len(marks[0].get_xdata()) == int(poles.finite.sum()) > 40_000
+    assert not any(t.get_text().startswith("P") for t in ax.texts)
+    assert len(ax.lines) == 301
+
+
+def test_poles_of_few_positions_are_named():
+    points, angles = _circle_positions(4)
+    ax = kl.plot.prescribed_positions(points, angles)
+    names = sorted(t.get_text() for t in ax.texts if t.get_text().startswith("P"))
+    assert names == ["P12", "P13", "P14", "P23", "P24", "P34"]
+    marks = [line for line in ax.lines if line.get_marker() == "x"]
+    assert len(marks) == 1 and len(marks[0].get_xdata()) == 6

@@ -62,3 +62,61 @@ def test_atlas_round_trip_and_errors(atlas, tmp_path):
         atlas.nearest(np.zeros((5, 2)))
     with pytest.raises(ModelError, match=r"descriptors. needs the family.s coupler point: add the columns"):
         kl.sweep.atlas({"ground": [3.0], "crank": [1.0], "coupler": [3.0], "rocker": [2.5]})
+
+
+@pytest.fixture(scope="module")
+def small_atlas_file(tmp_path_factory):
+    path = tmp_path_factory.mktemp("atlas") / "a.parquet"
+    sobol_atlas(64).to_parquet(path)
+    return path
+
+
+def _rewritten(source, tmp_path, name, attrs=None, change=None):
+    import pandas as pd
+    df = pd.read_parquet(source)
+    original = dict(df.attrs)
+    df = change(df) if change else df
+    df.attrs = {**original, **(attrs or {})}
+    df.to_parquet(tmp_path / name)
+    return tmp_path / name
+
+
+@pytest.mark.parametrize("name, attrs, change, message", [
+    ("branch.parquet", {"branch": "weird"}, None,
+     r"branch in its metadata: expected one of 'open', 'crossed', got 'weird'"),
+    ("harmonics.parquet", {"harmonics": "abc"}, None,
+     r"harmonics in its metadata: expected a whole number from 1 to 1000, got 'abc'"),
+    ("column.parquet", None, lambda df: df.drop(columns=["crank"]),
+     r"not an atlas of 8 harmonics: no column 'crank'"),
+    ("nan.parquet", None, lambda df: df.assign(**{"fd+1": np.nan}),
+     r"column 'fd\+1': expected finite numbers, got nan in row 0"),
+])
+def test_an_atlas_file_is_checked_when_read(small_atlas_file, tmp_path, name, attrs, change, message):
+    bad = _rewritten(small_atlas_file, tmp_path, name, attrs, change)
+    with pytest.raises(ModelError, match=message + r"; rebuild it with kinelab atlas$"):
+        kl.sweep.Atlas.from_parquet(bad)
+
+
+def test_an_atlas_file_that_is_not_one(small_atlas_file, tmp_path):
+    assert len(kl.sweep.Atlas.from_parquet(small_atlas_file)) > 0
+    with pytest.raises(ModelError, match=r"missing\.parquet: cannot read an atlas: no such file; check the path$"):
+        kl.sweep.Atlas.from_parquet(tmp_path / "missing.parquet")
+    with pytest.raises(ModelError, match=r"cannot read an atlas: a directory, not a file"):
+        kl.sweep.Atlas.from_parquet(small_atlas_file.parent)
+    (tmp_path / "text.parquet").write_text("not parquet")
+    with pytest.raises(ModelError, match=r"text\.parquet: cannot read an atlas: not a Parquet file"):
+        kl.sweep.Atlas.from_parquet(tmp_path / "text.parquet")
+    for path in (None, 5, b"a.parquet"):
+        with pytest.raises(ModelError, match=r"^path: expected a file's path"):
+            kl.sweep.Atlas.from_parquet(path)
+
+
+@pytest.mark.parametrize("path", [5, b"x.parquet", ""])
+def test_a_study_path_is_checked_before_the_study(path):
+    d = {"ground": [3.0], "crank": [1.0], "coupler": [3.0], "rocker": [2.5]}
+    with pytest.raises(ModelError, match=r"^path: expected a file's path"):
+        kl.sweep.run("fourbar", d, path=path)
+    with pytest.raises(ModelError, match=r"^path: expected a file's path"):
+        kl.sweep._run.write_parquet(kl.sweep.run("fourbar", d), path)
+    with pytest.raises(ModelError, match=r"^df: expected a pandas DataFrame"):
+        kl.sweep._run.write_parquet(d, "x.parquet")

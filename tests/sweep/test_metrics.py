@@ -161,3 +161,50 @@ def test_descriptors_are_invariant_and_tell_curves_apart():
     circle = np.column_stack([np.cos(t), np.sin(t)])
     c = kl.sweep.descriptors(circle)
     assert c[0] == pytest.approx(1.0, abs=1e-12) and np.linalg.norm(a - c) > 0.1
+
+
+def _engine_time_ratio(fb):
+    """The engine's time ratio and swing, NaN where it says they are not defined."""
+    try:
+        tr = kl.kinematics.time_ratio(fb, "rocker")
+    except (kl.errors.SingularityError, kl.errors.AssemblyError, kl.errors.ModelError):
+        return math.nan, math.nan
+    rocker = kl.analyze(fb, q=tr.dead_centres).angle("rocker")
+    return tr.ratio, abs(kl.solvers.wrap_angle(rocker[1] - rocker[0]))
+
+
+def change_point_designs(n=40, seed=8):
+    """Change-point four-bars (s + l = p + q in floats, or to rounding), crank shortest and
+    ground, coupler or rocker longest, with a few plain crank-rockers among them."""
+    rng = np.random.default_rng(seed)
+    rows = [(2.0, 1.0, 2.0, 3.0), (2.853353864439476, 1.1688947331595825, 4.797067308933343,
+                                   3.1126081776534495), (3.0, 1.0, 3.0, 1.0), (3.0, 1.0, 3.0, 2.5)]
+    for _ in range(n):
+        a = rng.uniform(0.5, 1.5)
+        g, b = rng.uniform(a + 0.5, 5.0, 2)
+        rows.append((g, a, b, a + b - g) if a + b - g > a else (g, a, b, g + 0.3))
+    return {k: [r[i] for r in rows] for i, k in enumerate(LINKS)}
+
+
+def test_change_points_against_the_engine():
+    """A change point is singular (the engine's measure, the transmission angle's sine, below
+    SINGULAR_TOL): the sweep assembles where the engine does, and gives no time ratio or
+    swing where the engine's time_ratio says they are not defined."""
+    d = change_point_designs()
+    df = kl.sweep.run("fourbar", d, metrics=("grashof", "assembles", "reachable", "time_ratio", "swing"))
+    q = np.linspace(0, 2 * np.pi, 72, endpoint=False)
+    singular = 0
+    for i in df.index:
+        fb = kl.mechanisms.fourbar(*(d[k][i] for k in LINKS))
+        status = kl.kinematics.assembly_status(fb, q)
+        assert bool(df["assembles"][i]) == bool(status.assembled.all()), i
+        if df["assembles"][i]:
+            assert df["reachable_to"][i] - df["reachable_from"][i] == 2 * np.pi
+        ratio, swing = _engine_time_ratio(fb)
+        singular += math.isnan(ratio)
+        if math.isnan(ratio):
+            assert math.isnan(df["time_ratio"][i]) and math.isnan(df["swing"][i]), i
+        else:
+            assert df["time_ratio"][i] == pytest.approx(ratio, rel=1e-9)
+            assert df["swing"][i] == pytest.approx(swing, abs=1e-9)
+    assert singular >= 10 and df["time_ratio"].notna().sum() >= 3

@@ -128,3 +128,23 @@ def test_tolerance_samples_are_capped_too(samples):
     with pytest.raises(ModelError, match="samples: expected a whole number from 4 to 1,000,000"):
         kl.sweep.tolerance("fourbar", dict(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5),
                            {"crank": 1e-3}, n=10, samples=samples)
+
+
+@pytest.mark.parametrize("transmission, message", [
+    (("coupler", "coupler"), r"^transmission: expected two different links .* got \('coupler', 'coupler'\)$"),
+    (5, r"^transmission: expected two different links .* got 5$"),
+    (("coupler",), r"^transmission: expected two different links"),
+    (("coupler", "rokker"), r"^transmission\[1\]: expected one of .*'rocker', got 'rokker' \(did you mean 'rocker'\?\)$"),
+])
+def test_a_transmission_pair_is_two_different_links(transmission, message):
+    with pytest.raises(ModelError, match=message):
+        kl.sweep.family("fourbar", transmission=transmission)
+
+
+def test_a_models_output_and_point_are_its_own():
+    m = kl.load("examples/engine.toml")
+    with pytest.raises(ModelError, match=r"^output: expected one of .*'slide', got 'slid'"):
+        kl.sweep.family(m, output="slid")
+    with pytest.raises(ModelError, match=r"^point: expected one of .*'G3', got 'Q'$"):
+        kl.sweep.family(m, point="Q")
+    assert kl.sweep.family(m, output="slide", point="G3").point == "G3"

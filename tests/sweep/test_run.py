@@ -37,6 +37,33 @@ def test_bad_rows_are_reported_not_fatal():
     pd.testing.assert_frame_equal(df.drop(index=[1, 4]), good)
 
 
+
+@pytest.mark.parametrize("chunk_size", [None, 1])
+def test_a_models_bad_rows_are_reported_not_fatal(chunk_size):
+    """A design of a model's family that cannot be built or planned (a straight dyad in its
+    sketch, a link of no length, a NaN) is its row's problem, even in a chunk where no
+    design can be built."""
+    fam = kl.sweep.family(kl.load("examples/engine.toml"), output="slide")
+    d = {"A.y": [0.05, 1e9, 0.0, math.nan, 0.06]}
+    df = kl.sweep.run(fam, d, metrics=("assembles", "time_ratio", "swing"), chunk_size=chunk_size)
+    problems = df.attrs["problems"]
+    assert set(problems) == {1, 2, 3}
+    assert "singular (straight) position" in problems[1]
+    assert "'O2' and 'A' coincide" in problems[2]
+    assert problems[3] == "A.y: expected a finite number, got nan"
+    assert df["assembles"].tolist() == [True, False, False, False, True]
+    assert df.loc[[1, 2, 3], ["time_ratio", "swing"]].isna().all().all()
+    assert df["swing"][4] == pytest.approx(0.12, abs=1e-10)      # crank 60 mm: stroke 120 mm
+    for row in ([0.0], [math.nan]):                           # every row bad
+        alone = kl.sweep.run(fam, {"A.y": row}, metrics=("assembles", "swing"))
+        assert alone["assembles"].tolist() == [False] and set(alone.attrs["problems"]) == {0}
+
+
+def test_a_catalogue_familys_chunk_of_bad_rows_only():
+    df = kl.sweep.run("slider_crank", {"crank": [math.nan, 1.0], "rod": [3.0, 3.0]}, chunk_size=1)
+    assert df["assembles"].tolist() == [False, True] and set(df.attrs["problems"]) == {0}
+    assert math.isnan(df["swing"][0]) and df["swing"][1] == pytest.approx(2.0, abs=1e-10)
+
 def test_order_and_index_are_kept():
     t = table(9).set_index(pd.Index(list("abcdefghi")))
     df = kl.sweep.run("fourbar", t.iloc[::-1], metrics=("grashof",))
