@@ -81,7 +81,9 @@ def in_si(value: int | float, scale: float) -> float:
     beyond the floats."""
     if scale == 1.0 or not math.isfinite(value) or value == 0:
         return float(value) * scale
-    exact = Fraction(value.text) if isinstance(value, Written) else Fraction(value)
+    # the digits written; a float given as a number stands for the digits it prints as
+    exact = Fraction(value.text if isinstance(value, Written) else repr(float(value))) \
+        if isinstance(value, float) else Fraction(value)
     try:
         return float(exact * Fraction(scale))
     except OverflowError:
@@ -102,6 +104,11 @@ def written(v: float, scale: float) -> float:
             d = Decimal(target.numerator) / Decimal(target.denominator)
         if float(Fraction(d) * factor) == v:
             break
+    shortest = repr(float(d))
+    if float(Fraction(shortest) * factor) == v:
+        # the digits a float prints as, where they do: a JSON reader, the browser, or a
+        # caller's dict gives back those same digits
+        return Written(shortest)
     a = abs(d)
     text = format(d, "f") if Decimal("1e-4") <= a < Decimal("1e16") else format(d, "e")
     if "." not in text and "e" not in text:

@@ -442,3 +442,11 @@ def test_a_catalogue_table_is_written_only_when_it_reads_back(units):
         assert kl.io.from_json(kl.io.to_json(m, units=units)) == m
     text = kl.io.to_toml(fb, units=units)
     assert "[catalogue]" in text and kl.io.from_toml(text).parameters == fb.parameters
+
+
+@pytest.mark.parametrize("name", ["crank_rocker", "offset_slider_crank", "stephenson6", "whitworth"])
+def test_a_model_through_json_numbers_is_the_same_model(name):
+    """A float stands for the digits it prints as: the JSON form of a file in mm and degrees,
+    sent as plain JSON numbers (as the web page does), reads back as the file itself."""
+    mf = ModelFile.read(f"examples/{name}.toml")
+    assert ModelFile.from_dict(json.loads(json.dumps(mf.to_dict()))) == mf

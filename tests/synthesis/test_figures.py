@@ -28,9 +28,10 @@ def _written(ax, path):
 
 def test_positions_and_poles(tmp_path):
     ax = plot.prescribed_positions(POS7)
-    # one marker per position and one per pole (six of them, all finite here)
-    markers = [line for line in ax.lines if line.get_marker() in ("o", "x")]
-    assert len(markers) == 4 + 6
+    # one marker per position, and the poles (six of them, all finite here) as one set
+    positions = [line for line in ax.lines if line.get_marker() == "o"]
+    poles = [line for line in ax.lines if line.get_marker() == "x"]
+    assert len(positions) == 4 and [len(line.get_xdata()) for line in poles] == [6]
     _written(ax, tmp_path / "positions.png")
 
 

@@ -12,6 +12,7 @@ import kinelab as kl
 from kinelab.cli import main
 from kinelab.io import ModelFile
 from kinelab.web import create_app
+from tests.web.models import assert_same_model
 from kinelab.web._api import MAX_SEARCH_EFFORT
 from tests.synthesis.test_cli import CRANK_ROCKER, NOTES_6_5, NOTES_6_7
 
@@ -77,8 +78,7 @@ def test_the_server_answers_what_kinelab_synth_prints_and_writes(client, tmp_pat
     assert len(models) == len(printed["solutions"]) >= 1
     for i, model in enumerate(models, 1):
         written = ModelFile.read(tmp_path / "out" / f"solution_{i}.toml")
-        assert ModelFile.from_dict(model) == written
-        assert model == written.to_dict()
+        assert_same_model(ModelFile.from_dict(model), written)
 
 
 def test_the_crank_rocker_opened_swings_its_rocker_by_the_task(client):
