@@ -23,6 +23,7 @@ from numpy.typing import ArrayLike
 from kinelab.errors import ModelError, describe
 from kinelab.mechanisms import Grashof
 from kinelab.model import Mechanism
+from kinelab.solvers import wrap_angle
 from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, finite_or_inf, fourbar_model,
                                         model_grashof, travel)
 from kinelab.synthesis._results import SolutionList
@@ -42,6 +43,7 @@ _INFEASIBLE = 1.0      # added to the objective (task normalised to unit size) o
 _NOWHERE = 100.0       # objective of a design that assembles at no sample
 _MU_FLOOR = np.radians(1.0)   # least squares keep the transmission angle above this at least
 _REACHED = 1e-8        # relative distance engine vs closed form at a matched crank angle
+_MU_SLACK = 1e-9       # rad: least squares meet the transmission angle's bound to about this
 
 
 def coupler_curves(designs: ArrayLike, q: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray,
@@ -188,7 +190,8 @@ class PathSolution(CheckedLinkage):
     model : Mechanism
         The four-bar (catalogue names), sketched at the first target's crank angle.
     q : ndarray, shape (n,)
-        Crank angle at which the coupler point is nearest each target, rad.
+        Crank angle at which the coupler point is nearest each target, rad: ``q[0]`` in
+        (-pi, pi], the others following it in the sense ``direction``, less than a turn on.
     errors : ndarray, shape (n,)
         Distance from each target to the engine's coupler point at ``q``, m.
     coupler_point : (float, float)
@@ -200,6 +203,8 @@ class PathSolution(CheckedLinkage):
     direction : int
         +1 / -1: the crank turns counter-clockwise / clockwise through the targets.
     defects : tuple of str
+        Branch and order defects, and a transmission angle below the task's
+        ``min_transmission_angle`` on the way.
     """
 
     A0: np.ndarray
@@ -300,8 +305,10 @@ def _travel_residuals(Z: np.ndarray, sense: np.ndarray, cos_floor: float):
     return 10.0 * np.column_stack([gap, np.maximum(ahead, 0)]), 10.0 * J
 
 
-def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray) -> PathSolution:
-    """Build and check the linkage of a design (physical units) through its crank angles."""
+def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray,
+              mu_min: float = 0.0) -> PathSolution:
+    """Build and check the linkage of a design (physical units) through its crank angles;
+    a transmission angle below ``mu_min`` on the way is a defect."""
     P, A, B, ok = coupler_curves(design[None, :], q[None, :])
     if not ok[0, 0]:
         raise ModelError("the linkage does not close at the first target")
@@ -313,6 +320,17 @@ def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray) -> PathSol
         return np.linalg.norm(sol.position("P")[idx] - P[0], axis=-1) <= _REACHED * scale
 
     t = travel(model, q, reached)
+    defects = t.defects
+    if t.direction:
+        # the angles as the crank meets them, the travel's own sense, each less than a turn
+        # after the first (least squares may leave whole turns between them)
+        q0 = float(wrap_angle(q[0]))
+        q = q0 + t.direction * np.mod(t.direction * (q - q[0]), 2 * np.pi)
+        q[0] = q0
+    if t.min_transmission_angle < mu_min - _MU_SLACK:
+        defects += (f"transmission angle defect: the transmission angle drops to "
+                    f"{t.min_transmission_angle:.6g} rad between the first target and the last, "
+                    f"below min_transmission_angle = {mu_min:.6g} rad",)
     engine = at_inputs(model, q).position("P")
     errors = np.linalg.norm(engine - targets, axis=-1)
     errors = finite_or_inf(errors)
@@ -323,7 +341,7 @@ def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray) -> PathSol
         model=model, q=q, errors=errors, coupler_point=(float(design[7]), float(design[8])),
         grashof=model_grashof(model), min_transmission_angle=t.min_transmission_angle,
         branch_defect=t.branch_defect, order_defect=t.order_defect, direction=t.direction,
-        defects=t.defects)
+        defects=defects)
 
 
 
@@ -569,7 +587,8 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
         Crank angles per coupler curve when designs are screened, 24 to 10,000.
     min_transmission_angle : float
         Designs whose transmission angle drops below this (rad) between the first and
-        last target are penalised like defective ones.
+        last target are penalised like defective ones while searching, and left out of the
+        result (the engine's check flags them with a transmission angle defect).
     seed : int
         Seed of the first run: the result is reproducible.
     refine : bool
@@ -588,7 +607,8 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
     Returns
     -------
     SolutionList of PathSolution
-        The linkages free of branch and order defects, best (lowest RMS error) first;
+        The linkages free of branch and order defects whose transmission angle stays at
+        least ``min_transmission_angle``, best (lowest RMS error) first;
         ``reason`` says why a run gave none.
 
     Raises
@@ -661,7 +681,7 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
                 phys[0:4] = (center + scale * design[0:4].reshape(2, 2)).ravel()
                 phys[4:9] *= scale
                 try:
-                    s = _solution(T, phys, np.asarray(q, float).copy())
+                    s = _solution(T, phys, np.asarray(q, float).copy(), mu)
                 except ModelError:
                     continue
                 if s.valid and (sol is None or s.rms_error < sol.rms_error):
@@ -669,8 +689,9 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
             if sol is not None and sol.rms_error <= goal:
                 break
         if sol is None:
+            bound = (f" with a transmission angle of at least {mu:.6g} rad" if mu > 0 else "")
             reasons.append(f"run {r + 1} (seed {seed + r}) found no linkage free of branch and "
-                           "order defects; raise maxiter or popsize")
+                           f"order defects{bound}; raise maxiter or popsize")
         else:
             found.append(sol)
     found.sort(key=lambda s: s.rms_error)
