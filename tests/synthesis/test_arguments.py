@@ -1,0 +1,98 @@
+"""Bad arguments of the synthesis functions: one-line ModelErrors naming the argument, never a
+raw numpy or Python error, a warning, or a silent NaN."""
+import warnings
+
+import numpy as np
+import pytest
+
+import kinelab as kl
+from kinelab.errors import MemoryBudgetError, ModelError
+from kinelab.synthesis import Positions, poles, three_positions
+
+S = kl.synthesis
+TRIANGLE = np.array([(1.0, 0.0), (-1.0, 0.0), (0.0, 1.0)])
+
+
+def refused(call, message, error=ModelError):
+    """call() raises ``error`` with a one-line message matching ``message``, and no warning."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(error, match=message) as info:
+            call()
+    assert "\n" not in str(info.value)
+    return info.value
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: poles([(1e308, 0), (-1e308, 0)], [0, 1]),
+     r"^points\[0\]: expected coordinates at most 1e\+09 m in size, got \[1e\+308, 0\.0\]"),
+    (lambda: poles([(10 ** 400, 0), (0, 0)], [0, 1]),
+     r"^points: expected real numbers, got .*whole number of 401 digits"),
+    (lambda: poles([(1, 0), (0, 0)], [0, 10 ** 400]), r"^angles: expected real numbers"),
+    (lambda: poles([(1, 0), (0, 0)], [0, 1e20]),
+     r"^angles\[1\]: expected an angle within 1000 turns of 0 \(6283\.19 rad\), got 1e\+20"),
+    (lambda: Positions([(1, 0), (0, 0)], [0, 1], degrees="no"),
+     r"^degrees: expected True or False, got 'no'"),
+    (lambda: Positions(np.zeros((1001, 2)), np.zeros(1001)),
+     r"^points: expected at most 1,000 positions, got 1,001"),
+    (lambda: Positions([(1, 0), (0, 0)], ["a", "b"]), r"^angles: expected real numbers"),
+])
+def test_positions_are_bounded(call, message):
+    refused(call, message)
+
+
+@pytest.mark.parametrize("key", [(1,), (1, 2, 3), 5, None, "ab", (True, 2), (1, 1), (1, 4),
+                                 (1.0, 2)])
+def test_a_pole_is_asked_for_by_two_positions(key):
+    p = poles(TRIANGLE, [0, 1, 2])
+    refused(lambda: p[key], r"^pole: expected two different positions i, j from 1 to 3 \(as in "
+                            r"poles\[1, 2\]\), got ")
+    assert p[2, 1] is p[1, 2] or np.array_equal(p[2, 1], p[1, 2])
+
+
+@pytest.mark.parametrize("xy, message", [
+    ("x", r"^xy1: expected real numbers, got 'x'"),
+    (np.zeros((2, 2, 2)), r"^xy1: expected points \(x, y\) of shape \(2,\) or \(k, 2\), got "
+                          r"shape \(2, 2, 2\)"),
+    (np.zeros(3), r"^xy1: expected points \(x, y\) of shape \(2,\) or \(k, 2\), got shape \(3,\)"),
+    ([np.inf, 0], r"^xy1: expected coordinates of finite numbers"),
+])
+def test_carry_takes_points(xy, message):
+    refused(lambda: Positions(TRIANGLE, [0, 1, 2]).carry(xy), message)
+
+
+@pytest.mark.parametrize("first, second, message", [
+    (np.zeros((0, 2)), np.zeros((0, 2)), r"^first, second: expected two arrays of the same shape "
+                                         r"\(n, 2\), n at least 2, got \(0, 2\) and \(0, 2\)"),
+    ([(0, 0), (np.inf, 0)], [(1, 0), (1, 1)], r"^first\[1\]: expected coordinates of finite"),
+    ([(0, 0), (np.nan, 0)], [(1, 0), (1, 1)], r"^first\[1\]: expected coordinates of finite"),
+    ([(0, 0), (1, 0)], [(1, 0), (1e308, 1)], r"^second\[1\]: expected coordinates .* at most "
+                                             r"1e\+09 m"),
+])
+def test_two_points_per_position_are_checked(first, second, message):
+    refused(lambda: Positions.from_two_points(first, second), message)
+
+
+@pytest.mark.parametrize("scale", [1e-300, 1e-200, 1e-12])
+def test_positions_too_close_together_are_refused_as_such(scale):
+    refused(lambda: three_positions(TRIANGLE * scale, [0, .3, .6], A0=(0, 0), B0=(0.1 * scale, 0)),
+            r"^points: the positions are at most .* apart, less than the smallest length kinelab "
+            r"computes with \(1e-09 m\); give the task in smaller units")
+
+
+@pytest.mark.parametrize("scale", [1e100, 1e160, 1e308])
+def test_positions_far_away_are_refused_as_such(scale):
+    refused(lambda: three_positions(TRIANGLE * scale, [0, .3, .6], A0=(0, 0), B0=(0.1 * scale, 0)),
+            r"^points\[0\]: expected coordinates at most 1e\+09 m in size")
+
+
+def test_a_linkage_outside_the_model_limits_is_named_once():
+    refused(lambda: three_positions(TRIANGLE * 1e-9, [0, .3, .6], A0=(0, 0), B0=(1e-10, 0)),
+            r"^the four-bar found has links \(ground 1e-10 m, .*\) outside the sizes kinelab "
+            r"computes with")
+
+
+@pytest.mark.parametrize("scale", [1.0, 1e-8, 1e8])
+def test_three_positions_at_any_scale_within_the_limits(scale):
+    sol = three_positions(TRIANGLE * scale, [0, .3, .6], A0=(0, 0), B0=(0.1 * scale, 0))
+    assert np.all(sol.position_errors <= 1e-6 * scale)
