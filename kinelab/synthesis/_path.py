@@ -22,7 +22,10 @@ from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError, describe
 from kinelab.mechanisms import Grashof
-from kinelab.model import Mechanism
+from kinelab.model import MAX_LENGTH, MIN_LENGTH, Mechanism, is_real
+from kinelab.solvers._arguments import flag, reals, whole
+from kinelab.synthesis._arguments import point_array
+from kinelab.synthesis._arguments import seed as check_seed
 from kinelab.solvers import wrap_angle
 from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, finite_or_inf, fourbar_model,
                                         model_grashof, travel)
@@ -36,6 +39,8 @@ __all__ = ["coupler_curves", "PathSolution", "path_generation", "MAX_PATH_POINTS
 # screen holds arrays of designs x targets x samples.
 MAX_PATH_POINTS = 30
 MAX_PATH_SAMPLES = 10_000
+# the most runs, rounds and size of a round, as a task file takes them
+MAX_RUNS, MAX_ROUNDS, MAX_POPSIZE = 1000, 1_000_000, 10_000
 _SCREENED = 2_000_000  # designs x targets x samples screened at once: bounds the memory
 
 _INFEASIBLE = 1.0      # added to the objective (task normalised to unit size) of a design
@@ -577,11 +582,12 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
         The target points, m, in the order the coupler point is to meet them
         (``MAX_PATH_POINTS``).
     runs : int
-        Independent runs (seeds ``seed, seed + 1, ...``); each gives at most one linkage.
+        Independent runs (seeds ``seed, seed + 1, ...``), 1 to 1000; each gives at most one
+        linkage.
     maxiter : int
-        The most rounds of each run.
+        The most rounds of each run, 1 to 1,000,000.
     popsize : int
-        Size of a round: ``popsize * 32`` designs screened, least squares from
+        Size of a round, 5 to 10,000: ``popsize * 32`` designs screened, least squares from
         ``popsize * 8`` of them.
     samples : int
         Crank angles per coupler curve when designs are screened, 24 to 10,000.
@@ -590,7 +596,7 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
         last target are penalised like defective ones while searching, and left out of the
         result (the engine's check flags them with a transmission angle defect).
     seed : int
-        Seed of the first run: the result is reproducible.
+        Seed of the first run, 0 to 2**32 - 1: the result is reproducible.
     refine : bool
         Least squares from the screened designs (False: each round keeps only its best
         screened design, the sampled curve's accuracy).
@@ -628,40 +634,49 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
     >>> best.valid, bool(best.max_error < 1e-6)
     (True, True)
     """
-    T = np.asarray(points, float)
+    T = reals("points", points)
     if T.ndim != 2 or T.shape[1] != 2 or not 3 <= T.shape[0] <= MAX_PATH_POINTS \
             or not np.all(np.isfinite(T)):
         raise ModelError(f"points: expected 3 to {MAX_PATH_POINTS} finite points (x, y), got "
                          f"shape {T.shape}; a path is given by 5 to 20 points as a rule")
+    T = point_array("points", T)
     size = float(np.ptp(T, axis=0).max())
+    if 0.0 < size < MIN_LENGTH:
+        raise ModelError(f"points: the points are at most {size:.3g} m apart, less than the "
+                         f"smallest length kinelab computes with ({MIN_LENGTH:g} m); give the "
+                         "path in smaller units")
     for i in range(T.shape[0] - 1):      # a row at a time: no n x n array
         gaps = np.hypot(*(T[i + 1:] - T[i]).T)
         if size == 0 or gaps.min() <= 1e-12 * size:
             j = i + 1 + int(np.argmin(gaps))
             raise ModelError(f"points: points {i + 1} and {j + 1} coincide; give distinct points")
-    for name, v, low, high in (("runs", runs, 1, None), ("maxiter", maxiter, 1, None),
-                               ("popsize", popsize, 5, None),
-                               ("samples", samples, 24, MAX_PATH_SAMPLES)):
-        if not (isinstance(v, (int, np.integer)) and not isinstance(v, bool) and v >= low
-                and (high is None or v <= high)):
-            span = f">= {low}" if high is None else f"from {low} to {high:,}"
-            raise ModelError(f"{name}: expected an integer {span}, got {describe(v)}")
+    # the bounds of the task files' search section: a typo cannot ask for days of search
+    runs = whole("runs", runs, 1, MAX_RUNS)
+    maxiter = whole("maxiter", maxiter, 1, MAX_ROUNDS)
+    popsize = whole("popsize", popsize, 5, MAX_POPSIZE)
+    samples = whole("samples", samples, 24, MAX_PATH_SAMPLES)
+    seed = check_seed(seed)
+    refine = flag("refine", refine)
     mu = min_transmission_angle
-    if not (isinstance(mu, (int, float)) and 0.0 <= mu < np.pi / 2):
+    if not (is_real(mu) and 0.0 <= mu < np.pi / 2):
         raise ModelError(f"min_transmission_angle: expected an angle in [0, pi/2) rad, got {describe(mu)}")
-    if not (isinstance(tolerance, (int, float)) and 0.0 <= tolerance < 1.0):
+    mu = float(mu)
+    if not (is_real(tolerance) and 0.0 <= tolerance < 1.0):
         raise ModelError(f"tolerance: expected a fraction of the path's size in [0, 1), got "
                          f"{describe(tolerance)}")
     center = T.mean(axis=0)
     scale = float(np.linalg.norm(T - center, axis=1).max())
-    obj = _Objective((T - center) / scale, samples, float(min_transmission_angle))
+    obj = _Objective((T - center) / scale, samples, mu)
     goal = tolerance * float(np.hypot(*np.ptp(T, axis=0)))
     bounds, starts = _BOUNDS, None
     if initial is not None:
-        starts = np.array(initial, float, ndmin=2)
+        starts = np.array(reals("initial", initial), float, ndmin=2)
         if starts.ndim != 2 or starts.shape[1] != 10 or not np.all(np.isfinite(starts)):
             raise ModelError(f"initial: expected finite designs of shape (k, 10), got "
                              f"{describe(initial)}")
+        if np.abs(starts[:, :9]).max() > MAX_LENGTH:
+            raise ModelError(f"initial: expected pivots, lengths and coupler points at most "
+                             f"{MAX_LENGTH:g} m in size, got {np.abs(starts[:, :9]).max():g} m")
         starts[:, 0:4] = ((starts[:, 0:4].reshape(-1, 2, 2) - center) / scale).reshape(-1, 4)
         starts[:, 4:9] /= scale
         starts[:, 9] = np.where(starts[:, 9] >= 0, 0.5, -0.5)

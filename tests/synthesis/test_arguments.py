@@ -96,3 +96,40 @@ def test_a_linkage_outside_the_model_limits_is_named_once():
 def test_three_positions_at_any_scale_within_the_limits(scale):
     sol = three_positions(TRIANGLE * scale, [0, .3, .6], A0=(0, 0), B0=(0.1 * scale, 0))
     assert np.all(sol.position_errors <= 1e-6 * scale)
+
+
+PATH = [(0, 0), (1, 1), (2, 0)]
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(seed=-1), r"^seed: expected a whole number from 0 to 4,294,967,295, got -1"),
+    (dict(seed=2.5), r"^seed: expected a whole number .* got 2\.5"),
+    (dict(seed=np.nan), r"^seed: expected a whole number .* got nan"),
+    (dict(seed="a"), r"^seed: expected a whole number .* got 'a'"),
+    (dict(seed=None), r"^seed: expected a whole number .* got None"),
+    (dict(runs=10 ** 400), r"^runs: expected a whole number from 1 to 1,000, got a whole number"),
+    (dict(popsize=10 ** 6), r"^popsize: expected a whole number from 5 to 10,000, got 1000000"),
+    (dict(maxiter=10 ** 7), r"^maxiter: expected a whole number from 1 to 1,000,000"),
+    (dict(maxiter=True), r"^maxiter: expected a whole number from 1 to 1,000,000, got true"),
+    (dict(refine="no"), r"^refine: expected True or False, got 'no'"),
+    (dict(min_transmission_angle=True), r"^min_transmission_angle: expected an angle in "
+                                        r"\[0, pi/2\) rad, got true"),
+    (dict(tolerance=np.nan), r"^tolerance: expected a fraction"),
+    (dict(initial=[[1e300] * 10]), r"^initial: expected pivots, lengths and coupler points at "
+                                   r"most 1e\+09 m in size"),
+    (dict(initial=[["a"] * 10]), r"^initial: expected real numbers"),
+])
+def test_path_generation_budgets_and_seeds(kwargs, message):
+    refused(lambda: S.path_generation(PATH, **kwargs), message)
+
+
+@pytest.mark.parametrize("points, message", [
+    ([[1e308, 0], [-1e308, 0], [0, 1e308]], r"^points\[0\]: expected coordinates .* at most "
+                                            r"1e\+09 m in size, got 1e\+308"),
+    ([[1e200, 0], [-1e200, 0], [0, 1e200]], r"^points\[0\]: expected coordinates"),
+    ([[1e-200, 0], [-1e-200, 0], [0, 1e-200]], r"^points: the points are at most 2e-200 m apart, "
+                                               r"less than the smallest length"),
+    ([[1, 0], ["2", 0], [0, 1]], r"^points: expected real numbers"),
+])
+def test_path_points_are_bounded(points, message):
+    refused(lambda: S.path_generation(points), message)
