@@ -133,3 +133,67 @@ def test_path_generation_budgets_and_seeds(kwargs, message):
 ])
 def test_path_points_are_bounded(points, message):
     refused(lambda: S.path_generation(points), message)
+
+
+def _log_generator(**kwargs):
+    args = dict(f=np.log10, x_range=(1, 2), input_range=(90, 150), output_range=(0, 90),
+                degrees=True)
+    return S.function_generation(**{**args, **kwargs})
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(points=3.9), r"^points: expected a whole number from 3 to 100, got 3\.9"),
+    (dict(points="5"), r"^points: expected a whole number from 3 to 100, got '5'"),
+    (dict(points=np.nan), r"^points: expected a whole number from 3 to 100, got nan"),
+    (dict(points=None), r"^points: expected a whole number from 3 to 100, got None"),
+    (dict(points=10 ** 9), r"^points: expected a whole number from 3 to 100"),
+    (dict(points=np.linspace(1, 2, 101)), r"^points: expected at most 100 precision points"),
+    (dict(samples=10 ** 9), r"^samples: expected a whole number from 2 to 1,000,000"),
+    (dict(output_range=(0, 360)), r"^output_range: the rocker would turn a full circle or more"),
+    (dict(output_range=(0, 3600)), r"^output_range: the rocker would turn a full circle or more"),
+    (dict(output_range=(0, 1e20), degrees=False), r"^output_range: expected angles within 1000 "
+                                                  r"turns of 0 \(6283\.19 rad\)"),
+    (dict(x_range=(1, 10 ** 400)), r"^x_range: expected two different finite numbers"),
+    (dict(x_range=(1, 1 + 1e-15)), r"^x_range: expected a range wider than 1e-09 of its values"),
+    (dict(x_range=(-1e308, 1e308), f=lambda x: x), r"^x_range: expected numbers at most 1e\+300"),
+    (dict(ground=10 ** 400), r"^ground: expected a positive length \(m\), got a whole number"),
+    (dict(ground=1e308), r"^ground: expected a length from 1e-09 m to 1e\+09 m, got 1e\+308 m"),
+    (dict(ground=1e-12), r"^ground: expected a length from 1e-09 m to 1e\+09 m, got 1e-12 m"),
+    (dict(ground=1e12), r"^ground: expected a length from 1e-09 m to 1e\+09 m, got 1e\+12 m"),
+    (dict(f=lambda x: x + 0j), r"^f: expected real numbers, one for each x"),
+    (dict(degrees="no"), r"^degrees: expected True or False, got 'no'"),
+])
+def test_function_generation_arguments(kwargs, message):
+    refused(lambda: _log_generator(**kwargs), message)
+
+
+def test_function_generation_at_the_edges_of_the_limits():
+    assert _log_generator(ground=1e-6).valid and _log_generator(ground=1e6).valid
+    assert _log_generator(points=100).x.size == 100
+
+
+@pytest.mark.parametrize("call, message, error", [
+    (lambda: S.chebyshev_points((0, 1), 10 ** 9), r"^n = 1,000,000,000 Chebyshev points would take "
+                                                  r"about .* GiB, more than the memory budget",
+     MemoryBudgetError),
+    (lambda: S.chebyshev_points((0, 1), 10 ** 20), r"^n: expected a whole number from 1 to ",
+     ModelError),
+    (lambda: S.chebyshev_points((0, 1), 2.0), r"^n: expected a whole number", ModelError),
+    (lambda: S.chebyshev_points((-1e308, 1e308), 3), r"^x_range: expected numbers at most 1e\+300",
+     ModelError),
+    (lambda: S.freudenstein([0, 1, 2], [np.nan, 1, 2]), r"^theta4\[0\]: expected finite angles",
+     ModelError),
+    (lambda: S.freudenstein([0, 1, 2], [np.inf, 1, 2]), r"^theta4\[0\]: expected finite angles",
+     ModelError),
+    (lambda: S.freudenstein([0, 1, 2], [1j, 1, 2]), r"^theta4: expected real numbers", ModelError),
+    (lambda: S.freudenstein([0, 1, 10 ** 400], [0, 1, 2]), r"^theta2: expected real numbers",
+     ModelError),
+])
+def test_chebyshev_points_and_freudenstein_arguments(call, message, error):
+    refused(call, message, error)
+
+
+def test_chebyshev_points_over_a_wide_range_are_finite():
+    x = S.chebyshev_points((-1e300, 1e300), 3)
+    assert np.all(np.isfinite(x)) and abs(x[1]) < 1e-15 * 1e300     # cos(pi / 2) is 6e-17
+    np.testing.assert_allclose(x[[0, 2]], [-np.sqrt(3) / 2 * 1e300, np.sqrt(3) / 2 * 1e300], rtol=1e-15)
