@@ -197,3 +197,36 @@ def test_chebyshev_points_over_a_wide_range_are_finite():
     x = S.chebyshev_points((-1e300, 1e300), 3)
     assert np.all(np.isfinite(x)) and abs(x[1]) < 1e-15 * 1e300     # cos(pi / 2) is 6e-17
     np.testing.assert_allclose(x[[0, 2]], [-np.sqrt(3) / 2 * 1e300, np.sqrt(3) / 2 * 1e300], rtol=1e-15)
+
+
+P4, ALPHA4 = [(0, 0), (1, 0.2), (2, 0.1), (2.5, 1)], [0, .3, .5, .9]
+
+
+@pytest.mark.parametrize("value", [np.nan, np.inf, 1e308, "x", None, 1j, 10 ** 400])
+def test_the_vertical_line_of_centre_points_is_checked(value):
+    refused(lambda: S.center_points(P4, ALPHA4, a0x=value), r"^a0x: expected ")
+    refused(lambda: S.center_point_cubic(P4, ALPHA4, a0x=value), r"^a0x: expected ")
+
+
+def test_burmester_curves_within_the_memory_budget():
+    refused(lambda: S.burmester_curves(P4, ALPHA4, samples=10 ** 9),
+            r"^samples = 1,000,000,000 points of the Burmester curves would take about .* more "
+            r"than the memory budget", MemoryBudgetError)
+    refused(lambda: S.burmester_curves(P4, ALPHA4, samples=2.5), r"^samples: expected a whole")
+
+
+@pytest.mark.parametrize("s, message", [
+    (1e308, r"^s: expected at most 1e\+09 m in size, got 1e\+308 m"),
+    (10 ** 400, r"^s: expected a finite number \(m\), got a whole number of 401 digits"),
+    ("a", r"^s: expected a finite number \(m\), got 'a'"),
+    (1j, r"^s: expected a finite number \(m\), got 1j"),
+])
+def test_a_fixed_pivot_on_its_bisector_is_checked(s, message):
+    two = S.two_positions([(0, 0), (1, 1)], [0, 90], A1=(0, -1), B1=(1, -1), degrees=True)
+    refused(lambda: two.solution(s, 1), message)
+
+
+@pytest.mark.parametrize("value", [-1, 0.5, "2", np.nan, np.inf, None])
+def test_imbalance_angle_takes_a_time_ratio(value):
+    refused(lambda: S.imbalance_angle(value), r"^time_ratio: expected the slow stroke's time over "
+                                              r"the fast one's, at least 1, got ")
