@@ -27,7 +27,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError, describe
-from kinelab.model import is_real, length_problem
+from kinelab._memory import require
+from kinelab.model import MAX_LENGTH, is_real, length_problem
+from kinelab.solvers._arguments import reals, whole
+from kinelab.synthesis._arguments import coordinate
 from kinelab.synthesis._motion import motion_solution
 from kinelab.synthesis._pivots import solve_rows, suh_radcliffe_rows
 from kinelab.synthesis._positions import Positions, as_positions, check_not_one_turn, fmt
@@ -82,8 +85,19 @@ def center_point_cubic(points, angles=None, a0x: ArrayLike = 0.0, *,
     True
     """
     pos = _four(points, angles, degrees)
-    x = np.asarray(a0x, float)
+    x = _abscissas(a0x)
     return _cubic(pos, x.reshape(-1)).reshape(x.shape + (4,))
+
+
+def _abscissas(a0x: ArrayLike) -> np.ndarray:
+    """x of vertical lines (m): real, finite, within the model's coordinates."""
+    x = reals("a0x", a0x)
+    bad = ~np.isfinite(x) | (np.abs(np.where(np.isfinite(x), x, 0.0)) > MAX_LENGTH)
+    if bad.any():
+        where = tuple(int(i) for i in np.argwhere(bad)[0])
+        raise ModelError(f"a0x: expected finite numbers at most {MAX_LENGTH:g} m in size, got "
+                         f"{describe(x[where])}")
+    return x
 
 
 def _cubic(pos: Positions, x: np.ndarray, rows: tuple[int, int, int] = (0, 1, 2)) -> np.ndarray:
@@ -151,7 +165,7 @@ def center_points(points, angles=None, a0x: float = 0.0, *, degrees: bool = Fals
     array([-49.678,  25.565,  54.167])
     """
     pos = _four(points, angles, degrees)
-    return _center_points(pos, np.array([float(a0x)]))[0]
+    return _center_points(pos, np.array([coordinate("a0x", a0x)]))[0]
 
 
 def _center_points(pos: Positions, xs: np.ndarray) -> list[np.ndarray]:
@@ -194,6 +208,9 @@ class BurmesterCurves:
         return f"BurmesterCurves(samples={self.beta2.size}, points={int(self.valid.sum())})"
 
 
+MAX_SAMPLES = 10 ** 12      # samples of the Burmester curves (beyond the memory budget anyway)
+
+
 def burmester_curves(points, angles=None, *, samples: int = 1441,
                      degrees: bool = False) -> BurmesterCurves:
     """Trace the centre-point and circle-point curves of four positions.
@@ -217,8 +234,10 @@ def burmester_curves(points, angles=None, *, samples: int = 1441,
     ((2, 361, 2), True)
     """
     pos = _four(points, angles, degrees)
-    if not (isinstance(samples, (int, np.integer)) and samples >= 3):
-        raise ModelError(f"samples: expected an integer >= 3, got {describe(samples)}")
+    samples = whole("samples", samples, 3, MAX_SAMPLES)
+    # the curves and their work arrays: about 30 floats a sample
+    require(30 * 8 * samples, f"samples = {samples:,} points of the Burmester curves",
+            "ask for fewer samples")
     npos, origin, L = _normalised(pos)
     delta = (npos.points[1:] - npos.points[0]) @ np.array([1.0, 1j])      # (3,) complex
     ea = np.exp(1j * npos.alpha[1:]) - 1.0

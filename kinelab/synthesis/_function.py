@@ -25,13 +25,22 @@ from numpy.typing import ArrayLike
 from kinelab.errors import ModelError, describe
 from kinelab.kinematics import analyze, transmission_angle
 from kinelab.mechanisms import Grashof
-from kinelab.model import Mechanism
+from kinelab._memory import require
+from kinelab.model import MAX_TURNS, Mechanism, is_real, length_problem
 from kinelab.solvers import wrap_angle
+from kinelab.solvers._arguments import flag, reals, whole
+from kinelab.synthesis._arguments import angle_array
 from kinelab.synthesis._linkage import CheckedLinkage, fourbar_model, model_grashof
 
 __all__ = ["chebyshev_points", "freudenstein", "FunctionSolution", "function_generation"]
 
 _REACHED = 1e-9   # rad: the engine's rocker angle at a precision point must match to this
+_WIDEST = 1e300    # x values beyond it: their differences overflow
+_NARROWEST = 1e-9  # an x_range narrower than this, relative to its values, is refused
+# the most precision points and Chebyshev nodes (a task file's bound on precision points)
+MAX_PRECISION_POINTS = 100
+MAX_NODES = 10 ** 12
+MAX_SAMPLES = 1_000_000
 _GRID = 4096      # intervals of x_range in which f is looked at for a pole or a jump
 _STEEPEST = 8     # of them, those where f changes most, halved _HALVINGS times each:
 _HALVINGS = 30    # f's change over a halved interval shrinks unless f jumps there
@@ -49,10 +58,11 @@ def chebyshev_points(x_range: tuple[float, float], n: int) -> np.ndarray:
     array([0.066987, 0.5     , 0.933013])
     """
     x0, xf = _range("x_range", x_range)
-    if not (isinstance(n, (int, np.integer)) and n >= 1):
-        raise ModelError(f"n: expected a positive integer, got {describe(n)}")
+    n = whole("n", n, 1, MAX_NODES)
+    require(3 * 8 * n, f"n = {n:,} Chebyshev points", "ask for fewer points")
     j = np.arange(1, n + 1)
-    return 0.5 * (x0 + xf) - 0.5 * (xf - x0) * np.cos((2 * j - 1) * np.pi / (2 * n))
+    # halves first: no overflow for a range as wide as the floats
+    return (0.5 * x0 + 0.5 * xf) - (0.5 * xf - 0.5 * x0) * np.cos((2 * j - 1) * np.pi / (2 * n))
 
 
 def freudenstein(theta2: ArrayLike, theta4: ArrayLike) -> np.ndarray:
@@ -82,7 +92,7 @@ def freudenstein(theta2: ArrayLike, theta4: ArrayLike) -> np.ndarray:
     >>> kl.synthesis.freudenstein(q, kl.analyze(fb, q=q).angle("rocker")).round(12) + 0.0
     array([2. , 2. , 2.5])
     """
-    t2, t4 = np.asarray(theta2, float), np.asarray(theta4, float)
+    t2, t4 = angle_array("theta2", theta2), angle_array("theta4", theta4)
     if t2.shape != t4.shape or t2.ndim != 1 or t2.size < 3:
         raise ModelError(f"theta2, theta4: expected two arrays of the same shape (n,), n >= 3, "
                          f"got {t2.shape} and {t4.shape}")
@@ -159,13 +169,29 @@ class FunctionSolution(CheckedLinkage):
 
 
 def _range(name, r, unit: str = "") -> tuple[float, float]:
+    """(start, end): two different real numbers; angles (with a ``unit``) within
+    ``MAX_TURNS`` turns, x values far enough apart for floats to tell the x between them
+    apart."""
     try:
-        a, b = (float(v) for v in r)
+        a, b = r
     except (TypeError, ValueError):
         raise ModelError(f"{name}: expected (start, end), got {describe(r)}") from None
-    if not (np.isfinite(a) and np.isfinite(b)) or a == b:
+    if not (is_real(a) and is_real(b)) or float(a) == float(b):
         raise ModelError(f"{name}: expected two different finite numbers, got "
                          f"{describe(r)}{' ' + unit if unit else ''}")
+    a, b = float(a), float(b)
+    if unit:
+        limit = MAX_TURNS * (360.0 if unit == "deg" else 2 * np.pi)
+        if max(abs(a), abs(b)) > limit:
+            raise ModelError(f"{name}: expected angles within {MAX_TURNS} turns of 0 "
+                             f"({limit:g} {unit}), got {describe(r)} {unit}")
+    elif max(abs(a), abs(b)) > _WIDEST:
+        raise ModelError(f"{name}: expected numbers at most {_WIDEST:g} in size (their "
+                         f"differences must stay finite), got {describe(r)}; scale x")
+    elif abs(0.5 * b - 0.5 * a) <= _NARROWEST * max(abs(a), abs(b)):
+        raise ModelError(f"{name}: expected a range wider than {_NARROWEST:g} of its values "
+                         f"(floats cannot tell the x within it apart), got {describe(r)}; "
+                         "shift or scale x")
     return a, b
 
 
@@ -223,6 +249,7 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
     if not callable(f):
         raise ModelError(f"f: expected a function of x, got {describe(f)}")
     x0, xf = _range("x_range", x_range)
+    degrees = flag("degrees", degrees)
     unit = "deg" if degrees else "rad"
     t2s, t2e = _range("input_range", input_range, unit)
     t4s, t4e = _range("output_range", output_range, unit)
@@ -231,17 +258,28 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
     if abs(t2e - t2s) >= 2 * np.pi:
         raise ModelError("input_range: the crank would turn a full circle or more, so an input "
                          "angle would stand for two values of x; use less than one turn")
-    if not (isinstance(ground, (int, float)) and np.isfinite(ground) and ground > 0):
+    if abs(t4e - t4s) >= 2 * np.pi:
+        raise ModelError("output_range: the rocker would turn a full circle or more, so an "
+                         "output angle would stand for two values of y; use less than one turn")
+    if not (is_real(ground) and ground > 0):
         raise ModelError(f"ground: expected a positive length (m), got {describe(ground)}")
-    if not (isinstance(samples, (int, np.integer)) and samples >= 2):
-        raise ModelError(f"samples: expected an integer >= 2, got {describe(samples)}")
+    if why := length_problem(float(ground)):
+        raise ModelError(f"ground: {why}, got {float(ground):g} m")
+    samples = whole("samples", samples, 2, MAX_SAMPLES)
+    if np.ndim(points) == 0:
+        points = whole("points", points, 3, MAX_PRECISION_POINTS)
+    else:
+        points = reals("points", points)
+        if points.size > MAX_PRECISION_POINTS:
+            raise ModelError(f"points: expected at most {MAX_PRECISION_POINTS} precision points, "
+                             f"got {points.size:,}")
     _check_continuous(f, x0, xf)
     y0, yf = (float(v) for v in _values(f, np.array([x0, xf])))
     if y0 == yf:
         raise ModelError(f"f: f(x0) = {y0:.6g} and f(xf) = {yf:.6g} must be different finite "
                          "numbers to scale the output; choose another x_range")
     if np.ndim(points) == 0:
-        x = chebyshev_points((x0, xf), int(points))
+        x = chebyshev_points((x0, xf), points)
     else:
         x = np.sort(np.asarray(points, float))
         if x.ndim != 1 or not np.all((x >= min(x0, xf)) & (x <= max(x0, xf))):
@@ -317,10 +355,13 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
 def _values(f: Callable, x: np.ndarray) -> np.ndarray:
     """f at x (n,), checked finite."""
     try:
-        y = np.broadcast_to(np.asarray(f(x), float), x.shape)
+        y = np.asarray(f(x))
+        if y.dtype.kind not in "iuf":
+            raise ModelError(f"f: expected real numbers, one for each x, got {describe(y)}")
+        y = np.broadcast_to(y.astype(float), x.shape)
     except ModelError:
         raise                   # the function's own message (a parsed formula's, say)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise ModelError("f: expected a function of x that gives one number for each x") from None
     if not np.all(np.isfinite(y)):
         bad = float(x[np.flatnonzero(~np.isfinite(y))[0]])

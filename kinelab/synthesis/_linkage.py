@@ -25,7 +25,8 @@ from numpy.typing import ArrayLike
 from kinelab.errors import ModelError
 from kinelab.kinematics import KinematicSolution, analyze, transmission_angle
 from kinelab.mechanisms import Grashof, grashof
-from kinelab.model import Input, Joint, Link, Mechanism, Point
+from kinelab.model import (MAX_LENGTH, MIN_LENGTH, Input, Joint, Link, Mechanism, Point,
+                           length_problem)
 from kinelab.synthesis._positions import as_xy, cross, fmt
 
 __all__ = ["fourbar_model", "CheckedLinkage", "Travel", "travel", "circuits", "nearer_branch"]
@@ -81,12 +82,22 @@ def fourbar_model(A0: ArrayLike, B0: ArrayLike, A1: ArrayLike, B1: ArrayLike,
     value = {}
     problems = []
     for link, (a, b, what) in lengths.items():
-        value[link] = float(np.linalg.norm(a - b))
+        value[link] = float(np.hypot(*(a - b)))      # hypot: no underflow at small scales
         if value[link] <= _DEGENERATE * size:
             problems.append(f"{link}: {what} coincide at {fmt(a)}, so the "
                             f"{link} has no length; choose another pivot")
     if problems:
         raise ModelError(problems)
+    # a linkage outside the sizes kinelab computes with (a task given at the scale of atoms
+    # or of planets): one line for the task, not one per link
+    out = [f"{link} {value[link]:.3g} m" for link in lengths if length_problem(value[link])]
+    far = max(float(np.abs(np.array(pts)).max()), 0.0)
+    if out or far > MAX_LENGTH:
+        what = (f"links ({', '.join(out)})" if out else f"pivots (up to {far:.3g} m from the "
+                "origin)")
+        raise ModelError(f"the four-bar found has {what} outside the sizes kinelab computes with "
+                         f"(lengths from {MIN_LENGTH:g} m to {MAX_LENGTH:g} m, coordinates up to "
+                         f"{MAX_LENGTH:g} m); give the task in other units, near the origin")
     e = (B1 - A1) / value["coupler"]
     side = float(cross(B0 - A1, B1 - A1))
     points = [Point("O2", *map(float, A0)), Point("A", *map(float, A1)),

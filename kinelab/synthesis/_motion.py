@@ -13,13 +13,14 @@ from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError
 from kinelab.mechanisms import Grashof
-from kinelab.model import Mechanism
+from kinelab.model import MAX_LENGTH, Mechanism
 from kinelab.solvers import wrap_angle
 from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, circuits, finite_or_inf,
                                         fourbar_model, model_grashof, nearer_branch, travel)
+from kinelab.synthesis._arguments import coordinate
 from kinelab.synthesis._pivots import fixed_pivot, moving_pivot
 from kinelab.synthesis._positions import (Positions, as_positions, as_xy, check_not_one_turn,
-                                          cross, poles)
+                                          cross, fmt, poles)
 
 __all__ = ["MotionSolution", "TwoPositions", "two_positions", "three_positions", "motion_solution"]
 
@@ -224,8 +225,16 @@ class TwoPositions:
         return self.B0_origin + np.multiply.outer(np.asarray(t, float), self.B0_direction)
 
     def solution(self, s: float, t: float) -> MotionSolution:
-        """The four-bar with fixed pivots ``A0(s)`` and ``B0(t)``, checked."""
-        return motion_solution(self.positions, self.A0(s), self.B0(t), self.A1, self.B1)
+        """The four-bar with fixed pivots ``A0(s)`` and ``B0(t)``, checked (``s`` and ``t``
+        in m, at most 1e9 in size)."""
+        s, t = coordinate("s", s), coordinate("t", t)
+        A0, B0 = self.A0(s), self.B0(t)
+        for name, X in (("s", A0), ("t", B0)):
+            if np.abs(X).max() > MAX_LENGTH:
+                raise ModelError(f"{name}: puts the fixed pivot at {fmt(X)}, beyond the "
+                                 f"coordinates kinelab computes with ({MAX_LENGTH:g} m); choose "
+                                 "a smaller value")
+        return motion_solution(self.positions, A0, B0, self.A1, self.B1)
 
 
 def _bisector(X1, X2, name, size):

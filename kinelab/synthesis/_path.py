@@ -22,7 +22,11 @@ from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError, describe
 from kinelab.mechanisms import Grashof
-from kinelab.model import Mechanism
+from kinelab.model import MAX_LENGTH, MIN_LENGTH, Mechanism, is_real
+from kinelab.solvers._arguments import flag, reals, whole
+from kinelab.synthesis._arguments import point_array
+from kinelab.synthesis._arguments import seed as check_seed
+from kinelab.solvers import wrap_angle
 from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, finite_or_inf, fourbar_model,
                                         model_grashof, travel)
 from kinelab.synthesis._results import SolutionList
@@ -35,6 +39,8 @@ __all__ = ["coupler_curves", "PathSolution", "path_generation", "MAX_PATH_POINTS
 # screen holds arrays of designs x targets x samples.
 MAX_PATH_POINTS = 30
 MAX_PATH_SAMPLES = 10_000
+# the most runs, rounds and size of a round, as a task file takes them
+MAX_RUNS, MAX_ROUNDS, MAX_POPSIZE = 1000, 1_000_000, 10_000
 _SCREENED = 2_000_000  # designs x targets x samples screened at once: bounds the memory
 
 _INFEASIBLE = 1.0      # added to the objective (task normalised to unit size) of a design
@@ -42,6 +48,7 @@ _INFEASIBLE = 1.0      # added to the objective (task normalised to unit size) o
 _NOWHERE = 100.0       # objective of a design that assembles at no sample
 _MU_FLOOR = np.radians(1.0)   # least squares keep the transmission angle above this at least
 _REACHED = 1e-8        # relative distance engine vs closed form at a matched crank angle
+_MU_SLACK = 1e-9       # rad: least squares meet the transmission angle's bound to about this
 
 
 def coupler_curves(designs: ArrayLike, q: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray,
@@ -188,7 +195,8 @@ class PathSolution(CheckedLinkage):
     model : Mechanism
         The four-bar (catalogue names), sketched at the first target's crank angle.
     q : ndarray, shape (n,)
-        Crank angle at which the coupler point is nearest each target, rad.
+        Crank angle at which the coupler point is nearest each target, rad: ``q[0]`` in
+        (-pi, pi], the others following it in the sense ``direction``, less than a turn on.
     errors : ndarray, shape (n,)
         Distance from each target to the engine's coupler point at ``q``, m.
     coupler_point : (float, float)
@@ -200,6 +208,8 @@ class PathSolution(CheckedLinkage):
     direction : int
         +1 / -1: the crank turns counter-clockwise / clockwise through the targets.
     defects : tuple of str
+        Branch and order defects, and a transmission angle below the task's
+        ``min_transmission_angle`` on the way.
     """
 
     A0: np.ndarray
@@ -300,8 +310,10 @@ def _travel_residuals(Z: np.ndarray, sense: np.ndarray, cos_floor: float):
     return 10.0 * np.column_stack([gap, np.maximum(ahead, 0)]), 10.0 * J
 
 
-def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray) -> PathSolution:
-    """Build and check the linkage of a design (physical units) through its crank angles."""
+def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray,
+              mu_min: float = 0.0) -> PathSolution:
+    """Build and check the linkage of a design (physical units) through its crank angles;
+    a transmission angle below ``mu_min`` on the way is a defect."""
     P, A, B, ok = coupler_curves(design[None, :], q[None, :])
     if not ok[0, 0]:
         raise ModelError("the linkage does not close at the first target")
@@ -313,6 +325,17 @@ def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray) -> PathSol
         return np.linalg.norm(sol.position("P")[idx] - P[0], axis=-1) <= _REACHED * scale
 
     t = travel(model, q, reached)
+    defects = t.defects
+    if t.direction:
+        # the angles as the crank meets them, the travel's own sense, each less than a turn
+        # after the first (least squares may leave whole turns between them)
+        q0 = float(wrap_angle(q[0]))
+        q = q0 + t.direction * np.mod(t.direction * (q - q[0]), 2 * np.pi)
+        q[0] = q0
+    if t.min_transmission_angle < mu_min - _MU_SLACK:
+        defects += (f"transmission angle defect: the transmission angle drops to "
+                    f"{t.min_transmission_angle:.6g} rad between the first target and the last, "
+                    f"below min_transmission_angle = {mu_min:.6g} rad",)
     engine = at_inputs(model, q).position("P")
     errors = np.linalg.norm(engine - targets, axis=-1)
     errors = finite_or_inf(errors)
@@ -323,7 +346,7 @@ def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray) -> PathSol
         model=model, q=q, errors=errors, coupler_point=(float(design[7]), float(design[8])),
         grashof=model_grashof(model), min_transmission_angle=t.min_transmission_angle,
         branch_defect=t.branch_defect, order_defect=t.order_defect, direction=t.direction,
-        defects=t.defects)
+        defects=defects)
 
 
 
@@ -559,19 +582,21 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
         The target points, m, in the order the coupler point is to meet them
         (``MAX_PATH_POINTS``).
     runs : int
-        Independent runs (seeds ``seed, seed + 1, ...``); each gives at most one linkage.
+        Independent runs (seeds ``seed, seed + 1, ...``), 1 to 1000; each gives at most one
+        linkage.
     maxiter : int
-        The most rounds of each run.
+        The most rounds of each run, 1 to 1,000,000.
     popsize : int
-        Size of a round: ``popsize * 32`` designs screened, least squares from
+        Size of a round, 5 to 10,000: ``popsize * 32`` designs screened, least squares from
         ``popsize * 8`` of them.
     samples : int
         Crank angles per coupler curve when designs are screened, 24 to 10,000.
     min_transmission_angle : float
         Designs whose transmission angle drops below this (rad) between the first and
-        last target are penalised like defective ones.
+        last target are penalised like defective ones while searching, and left out of the
+        result (the engine's check flags them with a transmission angle defect).
     seed : int
-        Seed of the first run: the result is reproducible.
+        Seed of the first run, 0 to 2**32 - 1: the result is reproducible.
     refine : bool
         Least squares from the screened designs (False: each round keeps only its best
         screened design, the sampled curve's accuracy).
@@ -588,7 +613,8 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
     Returns
     -------
     SolutionList of PathSolution
-        The linkages free of branch and order defects, best (lowest RMS error) first;
+        The linkages free of branch and order defects whose transmission angle stays at
+        least ``min_transmission_angle``, best (lowest RMS error) first;
         ``reason`` says why a run gave none.
 
     Raises
@@ -608,40 +634,49 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
     >>> best.valid, bool(best.max_error < 1e-6)
     (True, True)
     """
-    T = np.asarray(points, float)
+    T = reals("points", points)
     if T.ndim != 2 or T.shape[1] != 2 or not 3 <= T.shape[0] <= MAX_PATH_POINTS \
             or not np.all(np.isfinite(T)):
         raise ModelError(f"points: expected 3 to {MAX_PATH_POINTS} finite points (x, y), got "
                          f"shape {T.shape}; a path is given by 5 to 20 points as a rule")
+    T = point_array("points", T)
     size = float(np.ptp(T, axis=0).max())
+    if 0.0 < size < MIN_LENGTH:
+        raise ModelError(f"points: the points are at most {size:.3g} m apart, less than the "
+                         f"smallest length kinelab computes with ({MIN_LENGTH:g} m); give the "
+                         "path in smaller units")
     for i in range(T.shape[0] - 1):      # a row at a time: no n x n array
         gaps = np.hypot(*(T[i + 1:] - T[i]).T)
         if size == 0 or gaps.min() <= 1e-12 * size:
             j = i + 1 + int(np.argmin(gaps))
             raise ModelError(f"points: points {i + 1} and {j + 1} coincide; give distinct points")
-    for name, v, low, high in (("runs", runs, 1, None), ("maxiter", maxiter, 1, None),
-                               ("popsize", popsize, 5, None),
-                               ("samples", samples, 24, MAX_PATH_SAMPLES)):
-        if not (isinstance(v, (int, np.integer)) and not isinstance(v, bool) and v >= low
-                and (high is None or v <= high)):
-            span = f">= {low}" if high is None else f"from {low} to {high:,}"
-            raise ModelError(f"{name}: expected an integer {span}, got {describe(v)}")
+    # the bounds of the task files' search section: a typo cannot ask for days of search
+    runs = whole("runs", runs, 1, MAX_RUNS)
+    maxiter = whole("maxiter", maxiter, 1, MAX_ROUNDS)
+    popsize = whole("popsize", popsize, 5, MAX_POPSIZE)
+    samples = whole("samples", samples, 24, MAX_PATH_SAMPLES)
+    seed = check_seed(seed)
+    refine = flag("refine", refine)
     mu = min_transmission_angle
-    if not (isinstance(mu, (int, float)) and 0.0 <= mu < np.pi / 2):
+    if not (is_real(mu) and 0.0 <= mu < np.pi / 2):
         raise ModelError(f"min_transmission_angle: expected an angle in [0, pi/2) rad, got {describe(mu)}")
-    if not (isinstance(tolerance, (int, float)) and 0.0 <= tolerance < 1.0):
+    mu = float(mu)
+    if not (is_real(tolerance) and 0.0 <= tolerance < 1.0):
         raise ModelError(f"tolerance: expected a fraction of the path's size in [0, 1), got "
                          f"{describe(tolerance)}")
     center = T.mean(axis=0)
     scale = float(np.linalg.norm(T - center, axis=1).max())
-    obj = _Objective((T - center) / scale, samples, float(min_transmission_angle))
+    obj = _Objective((T - center) / scale, samples, mu)
     goal = tolerance * float(np.hypot(*np.ptp(T, axis=0)))
     bounds, starts = _BOUNDS, None
     if initial is not None:
-        starts = np.array(initial, float, ndmin=2)
+        starts = np.array(reals("initial", initial), float, ndmin=2)
         if starts.ndim != 2 or starts.shape[1] != 10 or not np.all(np.isfinite(starts)):
             raise ModelError(f"initial: expected finite designs of shape (k, 10), got "
                              f"{describe(initial)}")
+        if np.abs(starts[:, :9]).max() > MAX_LENGTH:
+            raise ModelError(f"initial: expected pivots, lengths and coupler points at most "
+                             f"{MAX_LENGTH:g} m in size, got {np.abs(starts[:, :9]).max():g} m")
         starts[:, 0:4] = ((starts[:, 0:4].reshape(-1, 2, 2) - center) / scale).reshape(-1, 4)
         starts[:, 4:9] /= scale
         starts[:, 9] = np.where(starts[:, 9] >= 0, 0.5, -0.5)
@@ -661,7 +696,7 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
                 phys[0:4] = (center + scale * design[0:4].reshape(2, 2)).ravel()
                 phys[4:9] *= scale
                 try:
-                    s = _solution(T, phys, np.asarray(q, float).copy())
+                    s = _solution(T, phys, np.asarray(q, float).copy(), mu)
                 except ModelError:
                     continue
                 if s.valid and (sol is None or s.rms_error < sol.rms_error):
@@ -669,8 +704,9 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
             if sol is not None and sol.rms_error <= goal:
                 break
         if sol is None:
+            bound = (f" with a transmission angle of at least {mu:.6g} rad" if mu > 0 else "")
             reasons.append(f"run {r + 1} (seed {seed + r}) found no linkage free of branch and "
-                           "order defects; raise maxiter or popsize")
+                           f"order defects{bound}; raise maxiter or popsize")
         else:
             found.append(sol)
     found.sort(key=lambda s: s.rms_error)

@@ -16,7 +16,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError, describe
+from kinelab.model import MAX_LENGTH, MAX_TURNS, MIN_LENGTH
 from kinelab.solvers import wrap_angle
+from kinelab.solvers._arguments import flag, reals
+from kinelab.synthesis._arguments import MAX_POSITIONS, point, point_array
 
 __all__ = ["Positions", "Poles", "poles", "pole"]
 
@@ -24,14 +27,9 @@ _COINCIDENT = 1e-12   # relative to the size of the task: two positions this clo
 
 
 def as_xy(name: str, value: ArrayLike) -> np.ndarray:
-    """A point (2,) of finite numbers, or a ModelError naming the argument."""
-    try:
-        a = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ModelError(f"{name}: expected a point (x, y), got {describe(value)}") from None
-    if a.shape != (2,) or not np.all(np.isfinite(a)):
-        raise ModelError(f"{name}: expected a point (x, y) of two finite numbers, got {describe(value)}")
-    return a
+    """A point (2,) of finite numbers within the model's limits, or a ModelError naming the
+    argument."""
+    return point(name, value)
 
 
 def fmt(xy: ArrayLike) -> str:
@@ -93,28 +91,36 @@ class Positions:
     alpha: np.ndarray
 
     def __init__(self, points: ArrayLike, angles: ArrayLike, *, degrees: bool = False):
+        degrees = flag("degrees", degrees)
         problems = []
-        try:
-            p = np.asarray(points, dtype=float)
-        except (TypeError, ValueError):
-            raise ModelError(f"points: expected an array of shape (n, 2), got {describe(points)}") from None
-        try:
-            a = np.asarray(angles, dtype=float)
-        except (TypeError, ValueError):
-            raise ModelError(f"angles: expected an array of numbers, got {describe(angles)}") from None
+        p = reals("points", points)
+        a = reals("angles", angles)
         if p.ndim != 2 or p.shape[1] != 2:
             problems.append(f"points: expected shape (n, 2), got {p.shape}")
         elif p.shape[0] < 2:
             problems.append(f"points: expected at least two positions, got {p.shape[0]}")
+        elif p.shape[0] > MAX_POSITIONS:
+            problems.append(f"points: expected at most {MAX_POSITIONS:,} positions, got "
+                            f"{p.shape[0]:,}; a motion is given by a few positions (least "
+                            "squares beyond five)")
         elif not np.all(np.isfinite(p)):
             j = int(np.flatnonzero(~np.all(np.isfinite(p), axis=1))[0])
             problems.append(f"points[{j}]: expected two finite numbers (x, y), got "
                             f"{describe(p[j].tolist())}")
+        elif np.abs(p).max() > MAX_LENGTH:
+            j = int(np.flatnonzero(np.abs(p).max(axis=1) > MAX_LENGTH)[0])
+            problems.append(f"points[{j}]: expected coordinates at most {MAX_LENGTH:g} m in "
+                            f"size, got {describe(p[j].tolist())}")
+        limit = MAX_TURNS * (360.0 if degrees else 2 * np.pi)
         if a.ndim != 1:
             problems.append(f"angles: expected shape (n,) or (n - 1,), got {a.shape}")
         elif not np.all(np.isfinite(a)):
             j = int(np.flatnonzero(~np.isfinite(a))[0])
             problems.append(f"angles[{j}]: expected a finite number, got {describe(float(a[j]))}")
+        elif a.size and np.abs(a).max() > limit:
+            j = int(np.flatnonzero(np.abs(a) > limit)[0])
+            problems.append(f"angles[{j}]: expected an angle within {MAX_TURNS} turns of 0 "
+                            f"({limit:g} {'deg' if degrees else 'rad'}), got {float(a[j]):g}")
         if not problems:
             n = p.shape[0]
             if a.shape[0] == n:
@@ -128,6 +134,7 @@ class Positions:
             raise ModelError(problems)
         if degrees:
             a = np.radians(a)
+        p = p.copy() if p is points else p
         object.__setattr__(self, "points", p)
         object.__setattr__(self, "alpha", a)
         scale = self.size
@@ -158,14 +165,14 @@ class Positions:
         >>> np.degrees(pos.alpha)
         array([ 0., 90.])
         """
-        try:
-            f = np.asarray(first, dtype=float)
-            s = np.asarray(second, dtype=float)
-        except (TypeError, ValueError):
-            raise ModelError("first, second: expected arrays of shape (n, 2)") from None
-        if f.shape != s.shape or f.ndim != 2 or f.shape[1] != 2:
-            raise ModelError(f"first, second: expected two arrays of the same shape (n, 2), got "
-                             f"{f.shape} and {s.shape}")
+        f, s = reals("first", first), reals("second", second)
+        if f.shape != s.shape or f.ndim != 2 or f.shape[1] != 2 or not 2 <= f.shape[0]:
+            raise ModelError(f"first, second: expected two arrays of the same shape (n, 2), n "
+                             f"at least 2, got {f.shape} and {s.shape}")
+        if f.shape[0] > MAX_POSITIONS:
+            raise ModelError(f"first: expected at most {MAX_POSITIONS:,} positions, got "
+                             f"{f.shape[0]:,}")
+        f, s = point_array("first", f), point_array("second", s)
         d = s - f
         length = np.hypot(d[:, 0], d[:, 1])
         size = max(float(np.ptp(np.concatenate([f, s]), axis=0).max()), float(length.max()), 1e-300)
@@ -202,7 +209,10 @@ class Positions:
         -------
         ndarray, shape (n, 2) or (n, k, 2)
         """
-        x = np.asarray(xy1, dtype=float)
+        x = point_array("xy1", xy1, "(2,) or (k, 2)")
+        if x.ndim > 2:
+            raise ModelError(f"xy1: expected points (x, y) of shape (2,) or (k, 2), got shape "
+                             f"{x.shape}")
         R = rotation(self.alpha)                          # (n, 2, 2)
         rel = x - self.points[0]                          # (2,) or (k, 2)
         if x.ndim == 1:
@@ -220,14 +230,23 @@ def check_not_one_turn(pos: Positions, *, unit: str = "m", scale: float = 1.0) -
     there), so every crank's fixed pivot would be that same point: a single link pivoted
     there gives the motion, and no four-bar with two distinct fixed pivots does.  (The
     synthesis would otherwise divide by zero-length links or fit circles to nothing.)
-    The message gives that point in ``unit``, ``scale`` m each."""
+    The message gives that point in ``unit``, ``scale`` m each.
+
+    Also refuse positions spread over less than ``MIN_LENGTH`` (but not all at one point):
+    the linkage would be smaller than kinelab computes with."""
+    span = float(np.ptp(pos.points, axis=0).max())
+    if 0.0 < span < MIN_LENGTH:
+        raise ModelError(f"points: the positions are at most {span / scale:.3g} {unit} apart, "
+                         f"less than the smallest length kinelab computes with "
+                         f"({MIN_LENGTH:g} m); give the task in smaller units")
     alpha = wrap_angle(pos.alpha)
     j = int(np.argmax(np.abs(alpha)))
     if pos.n < 3 or abs(alpha[j]) <= _COINCIDENT:
         return              # two positions always have a pole; pure translation has none
     P = _pole_of(pos.points[0], pos.points[j], alpha[j])
-    size = max(pos.size, float(np.linalg.norm(P - pos.points[0])))
-    if np.all(np.linalg.norm(pos.carry(P) - P, axis=1) <= 1e-9 * size):
+    size = max(pos.size, float(np.hypot(*(P - pos.points[0]))))
+    moved = pos.carry(P) - P
+    if np.all(np.hypot(moved[:, 0], moved[:, 1]) <= 1e-9 * size):   # hypot: no underflow
         raise ModelError(f"positions: every position is a turn of the plane about the same point "
                          f"{fmt(P / scale)} {unit} (all the poles are there), so every crank "
                          "would be pivoted at that point and no four-bar is singled out (one link "
@@ -283,12 +302,15 @@ class Poles:
 
     def __getitem__(self, ij: tuple[int, int]) -> np.ndarray:
         """The pole P_ij, (2,), for 1-based i != j (P_ji = P_ij)."""
-        i, j = sorted(ij)
-        try:
-            k = self.pairs.index((i, j))
-        except ValueError:
-            raise ModelError(f"pole: expected a pair of positions among {list(self.pairs)}, "
-                             f"got {fmt(ij)}") from None
+        n = self.pairs[-1][1] if self.pairs else 1
+        ok = (isinstance(ij, tuple) and len(ij) == 2
+              and all(isinstance(v, (int, np.integer)) and not isinstance(v, (bool, np.bool_))
+                      for v in ij))
+        if not ok or ij[0] == ij[1] or not all(1 <= v <= n for v in ij):
+            raise ModelError(f"pole: expected two different positions i, j from 1 to {n} (as in "
+                             f"poles[1, 2]), got {describe(ij)}")
+        i, j = sorted(int(v) for v in ij)
+        k = self.pairs.index((i, j))
         if not self.finite[k]:
             raise ModelError(f"pole P{i}{j} is at infinity: the plane does not turn between "
                              f"positions {i} and {j} (alpha_{i}{j} = 0), it only translates")

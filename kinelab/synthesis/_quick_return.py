@@ -59,6 +59,7 @@ def imbalance_angle(time_ratio: float) -> float:
     >>> round(float(np.degrees(kl.synthesis.imbalance_angle(1.25))), 12)   # Q = 1.25: 20 deg
     20.0
     """
+    time_ratio = _ratio(time_ratio)
     return math.pi * ((time_ratio - 1.0) / (time_ratio + 1.0))     # the ratio first: no overflow
 
 

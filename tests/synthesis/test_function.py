@@ -115,7 +115,8 @@ def test_branch_defect_flagged():
 @pytest.mark.parametrize("kwargs, message", [
     (dict(f=np.cos, x_range=(-1.0, 1.0)), r"f: f\(x0\) = 0.540302 and f\(xf\) = 0.540302 must be different"),
     (dict(input_range=(0.0, 400.0)), r"input_range: the crank would turn a full circle or more"),
-    (dict(points=2), r"points: expected at least 3 precision points, got 2"),
+    (dict(points=2), r"points: expected a whole number from 3 to 100, got 2"),
+    (dict(points=[1.2, 1.8]), r"points: expected at least 3 precision points, got 2"),
     (dict(x_range=(1.0, 1.0)), r"x_range: expected two different finite numbers"),
     (dict(output_range=np.radians([90.0, 90.0]), degrees=False),
      r"^output_range: expected two different finite numbers, got \[1.5707963267948966, "

@@ -136,10 +136,10 @@ def test_transmission_angle_bound_is_kept():
     ([(0, 0), (1, 1)], {}, r"points: expected 3 to 30 finite points \(x, y\), got shape \(2, 2\)"),
     (np.ones((31, 2)), {}, r"points: expected 3 to 30 finite points \(x, y\), got shape \(31, 2\)"),
     ([(0, 0), (1, 1), (2, 0)], dict(samples=10_001),
-     r"samples: expected an integer from 24 to 10,000, got 10001"),
+     r"samples: expected a whole number from 24 to 10,000, got 10001"),
     ([(0, 0), (1, 1), (0, 0)], {}, r"points: points 1 and 3 coincide"),
-    ([(0, 0), (1, 1), (2, 0)], dict(runs=0), r"runs: expected an integer >= 1, got 0"),
-    ([(0, 0), (1, 1), (2, 0)], dict(popsize=2), r"popsize: expected an integer >= 5, got 2"),
+    ([(0, 0), (1, 1), (2, 0)], dict(runs=0), r"runs: expected a whole number from 1 to 1,000, got 0"),
+    ([(0, 0), (1, 1), (2, 0)], dict(popsize=2), r"popsize: expected a whole number from 5 to 10,000, got 2"),
     ([(0, 0), (1, 1), (2, 0)], dict(initial=[[0, 0, 1]]),
      r"initial: expected finite designs of shape \(k, 10\), got \[\[0, 0, 1\]\]"),
     ([(0, 0), (1, 1), (2, 0)], dict(tolerance=-1e-3),
@@ -177,3 +177,66 @@ def test_many_points_are_refused_before_any_work():
         path_generation(np.broadcast_to([1.0, 2.0], (5, 2)))
     with pytest.raises(ModelError, match=r"^points: points 2 and 5 coincide"):
         path_generation([(0, 0), (1, 0), (2, 1), (3, 0), (1, 1e-13)])
+
+
+# -- the crank angles and the transmission angle reported, against the engine ----------------
+FOURBAR_DESIGN = np.array([0, 0, 3, 0, 1.0, 3.0, 2.5, 1.5, 1.0, 1.0])   # the catalogue's
+
+
+def _engine_travel(s, samples=20001):
+    """The engine swept from the first reported crank angle to the last (the reported sense):
+    whether it closes everywhere and the smallest transmission angle met."""
+    q = np.linspace(s.q[0], s.q[-1], samples)
+    sol = kl.analyze(s.model, q=q, unreachable="mask", at_singular="flag")
+    return bool(sol.assembled.all()), float(np.min(kl.kinematics.transmission_angle(sol)))
+
+
+def test_crank_angles_given_whole_turns_apart_are_met_within_one_turn():
+    from kinelab.synthesis._path import _solution
+    q = np.radians(np.linspace(0, 270, 10))
+    T = _traced_task(FOURBAR_DESIGN, q)
+    extra = q - 0.7 + np.r_[0.0, np.full(9, 2 * np.pi)]     # a whole turn after the first
+    s = _solution(T, FOURBAR_DESIGN, extra + 0.7)
+    assert s.valid and s.direction == 1
+    np.testing.assert_allclose(s.q, q, atol=1e-12)
+    s = _solution(T, FOURBAR_DESIGN, q + 4 * np.pi)            # two turns on, all of them
+    np.testing.assert_allclose(s.q, q, atol=1e-12)
+
+
+def test_a_transmission_angle_below_the_bound_is_a_defect():
+    from kinelab.synthesis._path import _solution
+    q = np.radians(np.linspace(0, 270, 10))
+    T = _traced_task(FOURBAR_DESIGN, q)
+    free = _solution(T, FOURBAR_DESIGN, q.copy())
+    closes, engine_min = _engine_travel(free)
+    assert free.valid and closes
+    assert free.min_transmission_angle == pytest.approx(engine_min, abs=1e-6)
+    low = _solution(T, FOURBAR_DESIGN, q.copy(), free.min_transmission_angle + 0.01)
+    assert not low.valid and not low.branch_defect and not low.order_defect
+    assert low.defects[0].startswith("transmission angle defect: the transmission angle drops to")
+    assert "below min_transmission_angle" in low.defects[0]
+    ok = _solution(T, FOURBAR_DESIGN, q.copy(), free.min_transmission_angle - 0.01)
+    assert ok.valid
+
+
+@pytest.mark.parametrize("seed", range(4))
+@pytest.mark.parametrize("mu", [0.5, 1.0, 1.5])
+def test_path_solutions_against_the_engine(seed, mu):
+    """Every linkage returned: crank angles met in order within one turn, the engine closing
+    all the way with the transmission angle reported, and at least the bound asked for."""
+    T = kl.analyze(CATALOGUE, q=np.radians(np.linspace(0, 270, 10))).position("P")
+    sols = path_generation(T, runs=1, maxiter=2, seed=seed, min_transmission_angle=mu)
+    assert len(sols) == 1 or "with a transmission angle of at least" in sols.reason
+    for s in sols:
+        assert s.valid and s.direction in (1, -1)
+        assert -np.pi < s.q[0] <= np.pi
+        steps = s.direction * np.diff(s.q)
+        assert np.all(steps >= 0) and steps.sum() < 2 * np.pi
+        closes, engine_min = _engine_travel(s)
+        assert closes
+        assert s.min_transmission_angle >= mu - 1e-9
+        # the reported minimum is exact; the sweep's samples can only miss it from above
+        assert engine_min >= s.min_transmission_angle - 1e-12
+        assert engine_min <= s.min_transmission_angle + 1e-6
+        P = kl.analyze(s.model, q=s.q).position("P")
+        np.testing.assert_allclose(np.linalg.norm(P - T, axis=1), s.errors, atol=1e-12)
