@@ -45,7 +45,10 @@ def _fit_circles(pos: Positions, a: np.ndarray):
     MtM = np.einsum("mni,mnj->mij", M, M)
     Mtb = np.einsum("mni,mn->mi", M, rhs)
     with np.errstate(all="ignore"):
-        sol = np.linalg.solve(MtM + 1e-300 * np.eye(3), Mtb[..., None])[..., 0]
+        try:
+            sol = np.linalg.solve(MtM + 1e-300 * np.eye(3), Mtb[..., None])[..., 0]
+        except np.linalg.LinAlgError:   # a point whose positions are on a line: no circle,
+            sol = (np.linalg.pinv(MtM) @ Mtb[..., None])[..., 0]     # its residuals say so
     c = sol[:, :2]
     dist = np.linalg.norm(A - c[:, None, :], axis=-1)
     R = dist.mean(axis=1)

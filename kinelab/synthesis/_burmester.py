@@ -258,10 +258,13 @@ def burmester_curves(points, angles=None, *, samples: int = 1441,
     circle = np.full((2, samples, 2), np.nan)
     valid = np.zeros((2, samples), bool)
     for k, sgn in enumerate((1.0, -1.0)):
-        X = V / cs * (p + sgn * 1j * h)                                    # D3 e^{i beta_3}
-        e = np.stack([np.exp(1j * beta2), X / D3, (V - X) / D4], -1) - 1.0  # (m, 3)
-        W, Z, cond = _dyads(e, ea, delta)
-        ok = closes & (cond > _TRIVIAL)
+        # positions that do not turn (a translation) put every centre point at infinity:
+        # the divisions below give no finite dyad, and no sample is valid
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            X = V / cs * (p + sgn * 1j * h)                                # D3 e^{i beta_3}
+            e = np.stack([np.exp(1j * beta2), X / D3, (V - X) / D4], -1) - 1.0  # (m, 3)
+            W, Z, cond = _dyads(e, ea, delta)
+        ok = closes & (cond > _TRIVIAL) & np.isfinite(W) & np.isfinite(Z)
         A1 = -Z                                                            # P1 = 0 here
         A0 = A1 - W
         center[k, ok] = origin + L * np.stack([A0.real, A0.imag], -1)[ok]

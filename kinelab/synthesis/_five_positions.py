@@ -97,18 +97,23 @@ def _polish(pos: Positions, a0: np.ndarray) -> tuple[np.ndarray, np.ndarray] | N
     rows = suh_radcliffe_rows(pos, a0 + pos.points[0])
     a, *_ = np.linalg.lstsq(rows[:, :2], rows[:, 2], rcond=None)
     z = np.concatenate([a0, a])
-    for _ in range(50):
-        e, J, rows = _equations(pos, z)
-        try:
-            step = np.linalg.solve(J, -e)
-        except np.linalg.LinAlgError:
+    with np.errstate(over="ignore", invalid="ignore"):    # a diverging start: None below
+        for _ in range(50):
+            e, J, rows = _equations(pos, z)
+            if not (np.all(np.isfinite(e)) and np.all(np.isfinite(J))):
+                return None
+            try:
+                step = np.linalg.solve(J, -e)
+            except np.linalg.LinAlgError:
+                return None
+            z = z + step
+            if not np.all(np.isfinite(z)):
+                return None
+            if np.abs(step).max() <= 1e-15 * (1.0 + np.abs(z).max()):
+                break
+        e, _, rows = _equations(pos, z)
+        if not np.all(np.isfinite(e)):
             return None
-        z = z + step
-        if not np.all(np.isfinite(z)):
-            return None
-        if np.abs(step).max() <= 1e-15 * (1.0 + np.abs(z).max()):
-            break
-    e, _, rows = _equations(pos, z)
     scale = np.linalg.norm(rows, axis=1).max() * (1.0 + np.abs(z).max())
     s = np.linalg.svd(rows[:, :2], compute_uv=False)
     if np.abs(e).max() > _SOLVED * scale or s[-1] <= 1e-9 * s[0]:

@@ -33,6 +33,8 @@ __all__ = ["fourbar_model", "CheckedLinkage", "Travel", "travel", "circuits", "n
 
 _SWEEP_STEP = math.radians(0.5)   # crank step of the sweeps that look for limit positions
 _DEGENERATE = 1e-12               # relative length below which a link has no length
+MAX_SPAN = 1e6                    # longest link over shortest: beyond, the shortest's motion is
+                                  # within the rounding of the loop's closure (eps x 1e6 ~ 2e-10)
 
 
 def fourbar_model(A0: ArrayLike, B0: ArrayLike, A1: ArrayLike, B1: ArrayLike,
@@ -98,6 +100,11 @@ def fourbar_model(A0: ArrayLike, B0: ArrayLike, A1: ArrayLike, B1: ArrayLike,
         raise ModelError(f"the four-bar found has {what} outside the sizes kinelab computes with "
                          f"(lengths from {MIN_LENGTH:g} m to {MAX_LENGTH:g} m, coordinates up to "
                          f"{MAX_LENGTH:g} m); give the task in other units, near the origin")
+    shortest, longest = min(value.values()), max(value.values())
+    if longest > MAX_SPAN * shortest:
+        raise ModelError(f"the four-bar found has links from {shortest:.3g} m to {longest:.3g} m, "
+                         f"more than {MAX_SPAN:g} times apart: its motion is lost in the rounding "
+                         "of the longest; choose pivots nearer the positions")
     e = (B1 - A1) / value["coupler"]
     side = float(cross(B0 - A1, B1 - A1))
     points = [Point("O2", *map(float, A0)), Point("A", *map(float, A1)),

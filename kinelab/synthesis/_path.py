@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from kinelab import _memory as memory
 from kinelab.errors import ModelError, describe
 from kinelab.mechanisms import Grashof
 from kinelab.model import MAX_LENGTH, MIN_LENGTH, Mechanism, is_real
@@ -85,12 +86,22 @@ def coupler_curves(designs: ArrayLike, q: ArrayLike) -> tuple[np.ndarray, np.nda
     >>> bool(np.allclose(P[0, 0], kl.analyze(fb, q=np.pi / 2).position("P"), atol=1e-12))
     True
     """
-    x = np.asarray(designs, float)
+    x = reals("designs", designs)          # a design with NaN is simply not assembled
     if x.ndim != 2 or x.shape[1] != 10:
         raise ModelError(f"designs: expected shape (D, 10), got {x.shape}")
-    q = np.asarray(q, float)
+    q = reals("q", q)
     if q.ndim not in (1, 2) or (q.ndim == 2 and q.shape[0] != x.shape[0]):
         raise ModelError(f"q: expected shape (m,) or ({x.shape[0]}, m), got {q.shape}")
+    D, m = x.shape[0], q.shape[-1]
+    memory.require(16 * 8 * D * m, f"the coupler curves of {D:,} designs at {m:,} crank angles",
+                   "give fewer designs or angles at a time")
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        return _curves(x, q)
+
+
+def _curves(x: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`coupler_curves` of checked arrays; a design with a zero or non-finite length,
+    or one that overflows, is not assembled."""
     a0x, a0y, b0x, b0y, r2, r3, r4, u, v, branch = (x[:, k][:, None] for k in range(10))
     sigma = np.where(branch >= 0, 1.0, -1.0)
     Ax = a0x + r2 * np.cos(q)             # q (m,) is shared by every design: one cos, one sin
@@ -107,6 +118,7 @@ def coupler_curves(designs: ArrayLike, q: ArrayLike) -> tuple[np.ndarray, np.nda
     By = Ay + p * ey + sigma * h * ex
     wx, wy = (Bx - Ax) / r3, (By - Ay) / r3
     P = np.stack([Ax + u * wx - v * wy, Ay + u * wy + v * wx], -1)
+    assembled &= np.isfinite(P).all(-1) & (r3 != 0)
     return P, np.stack([Ax, Ay], -1), np.stack([Bx, By], -1), assembled
 
 

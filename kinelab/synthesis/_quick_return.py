@@ -37,7 +37,7 @@ from kinelab.errors import ModelError, SingularityError, describe
 from kinelab.kinematics import analyze, time_ratio as engine_time_ratio, transmission_angle
 from kinelab.mechanisms import Grashof, fourbar, grashof, slider_crank, slotted_link
 from kinelab.mechanisms import whitworth as whitworth_mechanism
-from kinelab.model import Mechanism, Units, is_real, length_problem
+from kinelab.model import MAX_LENGTH, Mechanism, Units, is_real, length_problem
 from kinelab.solvers import bisect, wrap_angle
 from kinelab.synthesis._results import SolutionList
 
@@ -722,6 +722,11 @@ def _offset_slider_crank(stroke, time_ratio, rod, degrees: bool, u: Units) -> Qu
             t = max(roots, key=lambda x: float(_pick(arc, x)["mu"][0]))
         d = _pick(arc, t)
         lengths = {k: float(d[k][0]) * S for k in ("crank", "rod", "offset")}
+    reach = lengths["crank"] + lengths["rod"] + abs(lengths["offset"])
+    if reach > MAX_LENGTH:
+        raise ModelError(f"rod: the design's wrist pin goes {_len(u, reach)} from the crank's "
+                         f"pivot, beyond the {_len(u, MAX_LENGTH)} a model holds; give a shorter "
+                         "rod or stroke")
     model = slider_crank(**lengths)
     return _measured("offset slider-crank", model, lengths, "slide", True, degrees, rod=True)
 

@@ -230,3 +230,40 @@ def test_a_fixed_pivot_on_its_bisector_is_checked(s, message):
 def test_imbalance_angle_takes_a_time_ratio(value):
     refused(lambda: S.imbalance_angle(value), r"^time_ratio: expected the slow stroke's time over "
                                               r"the fast one's, at least 1, got ")
+
+
+def test_coupler_curves_within_the_memory_budget_and_degenerate_designs_not_assembled():
+    designs = np.tile([0, 0, 3.0, 0, 1.0, 3.0, 2.5, 1.5, 1.0, 1], (10 ** 5, 1))
+    refused(lambda: S.coupler_curves(designs, np.zeros(10 ** 5)),
+            r"^the coupler curves of 100,000 designs at 100,000 crank angles would take about "
+            r"1.16 TiB, more than the memory budget", MemoryBudgetError)
+    refused(lambda: S.coupler_curves([["a"] * 10], [0.0]), r"^designs: expected real numbers")
+    # a design of zero lengths, and one with a NaN: not assembled, and nothing printed
+    _, _, _, ok = S.coupler_curves([[0] * 10, [0, 0, 3.0, 0, 1.0, 3.0, 2.5, 1.5, np.nan, 1]],
+                                   [0.0, 1.0])
+    assert not ok.any()
+
+
+def test_a_point_moved_along_a_line_has_no_circle_to_fit():
+    """A pure translation along a line: every circle point moves on a line, so no dyad."""
+    found = S.approximate_positions([(i, 0) for i in range(7)], [0] * 7)
+    assert len(found) == 0 and "0 dyad(s) found" in found.reason
+
+
+def test_positions_that_do_not_turn_have_no_burmester_curves():
+    """A translation puts every centre point at infinity: no valid sample, no warning."""
+    assert not S.burmester_curves(P4, [0.0, 0.0, 0.0, 0.0]).valid.any()
+
+
+def test_five_positions_that_only_translate_give_no_linkage_and_no_warning():
+    found = S.five_positions([(i, 0) for i in range(5)], [2 * np.pi, 0, 2 * np.pi, -np.pi, np.pi])
+    assert len(found) == 0 and "no real Burmester point" in found.reason
+
+
+def test_linkages_beyond_what_floats_can_analyse_are_refused():
+    two = S.two_positions([(0, 0), (1, 1)], [0, 90], A1=(0, -1), B1=(1, -1), degrees=True)
+    refused(lambda: two.solution(1e9, 1), r"^the four-bar found has links from 1 m to 1e\+09 m, "
+                                          r"more than 1e\+06 times apart")
+    assert two.solution(1e3, 1).model.name                    # a ratio of 1000 is computed
+    refused(lambda: S.offset_slider_crank(0.1, 1, rod=1e9),
+            r"^rod: the design's wrist pin goes .* beyond the .* a model holds")
