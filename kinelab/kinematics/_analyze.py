@@ -97,18 +97,23 @@ Q_LIMITS = {"angle": INPUT_TURNS * 2 * math.pi, "slide": MAX_LENGTH}
 def _within_limits(p: Plan, q2: np.ndarray, qd2: np.ndarray, qdd2: np.ndarray) -> None:
     """Refuse input values beyond the model's limits (q by each input's kind)."""
     kinds = p.input_kinds
-    for name, a, limits in (("q", q2, [Q_LIMITS[k] for k in kinds]),
-                            ("qd", qd2, [MAX_RATE] * len(kinds)),
-                            ("qdd", qdd2, [MAX_RATE] * len(kinds))):
-        over = ~(np.abs(a) <= limits)
-        if over.any():
-            i, k = np.argwhere(over)[0]
-            unit = INPUT_SI_UNITS[kinds[k]] + ("" if name == "q" else "/s" if name == "qd" else "/s^2")
-            what = (f"angles within {INPUT_TURNS:,} turns of 0 either way (beyond, float64 "
-                    "resolves them to worse than 1e-9 rad)" if name == "q" and kinds[k] == "angle"
-                    else f"at most {limits[k]:g} {unit} in size")
-            where = f" at index {[int(i), int(k)] if len(kinds) > 1 else int(i)}" if a.size > 1 else ""
-            raise ModelError(f"{name}: expected {what}, got {a[i, k]:g}{where}")
+    q_limits = [Q_LIMITS[k] for k in kinds]
+    for name, a, limits in (("q", q2, q_limits), ("qd", qd2, None), ("qdd", qdd2, None)):
+        if a.size <= 64:            # a few values (one configuration): Python is quicker
+            ok = all(abs(v) <= (MAX_RATE if limits is None else limits[k])
+                     for row in a.tolist() for k, v in enumerate(row))
+        else:
+            ok = bool((np.abs(a) <= (MAX_RATE if limits is None else np.array(limits))).all())
+        if ok:
+            continue
+        over = ~(np.abs(a) <= (MAX_RATE if limits is None else np.array(limits)))
+        i, k = np.argwhere(over)[0]
+        unit = INPUT_SI_UNITS[kinds[k]] + ("" if name == "q" else "/s" if name == "qd" else "/s^2")
+        what = (f"angles within {INPUT_TURNS:,} turns of 0 either way (beyond, float64 "
+                "resolves them to worse than 1e-9 rad)" if name == "q" and kinds[k] == "angle"
+                else f"at most {(MAX_RATE if limits is None else limits[k]):g} {unit} in size")
+        where = f" at index {[int(i), int(k)] if len(kinds) > 1 else int(i)}" if a.size > 1 else ""
+        raise ModelError(f"{name}: expected {what}, got {a[i, k]:g}{where}")
 
 
 def _normalise_q(q, qd, qdd, M: int, p: Plan):
