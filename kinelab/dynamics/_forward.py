@@ -33,8 +33,8 @@ SINGULAR_STOP = 2 * SINGULAR_TOL   # singularity measure (a sine) at which the i
 WAIT_FOR_COMPILED_FROM = 32   # runs of a batch from which it waits for the compiled kernel
 MAX_EVALUATIONS = 10 ** 8     # of the equations of motion, per run: minutes compiled, so that a
                               # t_span or max_step beyond reach ends with a message, not a hang
-MAX_EVALUATIONS_PYTHON = 2 * 10 ** 5   # the same with the right-hand side in Python, about
-                                       # 0.4 ms an evaluation: a minute or two
+MAX_EVALUATIONS_PYTHON = 10 ** 6   # the same with the right-hand side in Python, 0.3-0.4 ms
+                                   # an evaluation: a few minutes (a minute of an engine)
 RTOL_FLOOR = 100 * np.finfo(float).eps   # below it rounding swamps the error (scipy's floor)
 MAX_THREADS = 1024            # threads a batch may ask for: far beyond any machine's processors
 _ACROSS = 0.02         # half-width (rad, or sizes for a slide) of the interval across a change
@@ -346,8 +346,8 @@ def simulate(model: Mechanism | Sequence[Mechanism], t_span: tuple[float, float]
         Threads sharing the runs of a compiled batch (default: one per processor).
     max_evaluations : int, optional
         The most evaluations of the equations of motion a run may take; default 10^8 with
-        the compiled kernel (minutes), 2 x 10^5 with the right-hand side in Python (about
-        0.4 ms each: a minute or two).  After 2000 evaluations a run checks its pace: one
+        the compiled kernel (minutes), 10^6 with the right-hand side in Python (0.3-0.4 ms
+        each: a few minutes).  After 2000 evaluations a run checks its pace: one
         that at that pace would take more than ten times ``max_evaluations`` to reach the
         end of ``t_span`` stops there, with the estimate; any other stops when it has taken
         ``max_evaluations``.  Either way a ModelError says so.
