@@ -2,17 +2,18 @@
 cluster; the same chunk function either way (:func:`~kinelab.sweep.evaluate_chunk`)."""
 from __future__ import annotations
 
+import json
 import math
 import os
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
 
 from kinelab import _memory as memory
 from kinelab._files import atomic_write
-from kinelab.errors import KinelabError, ModelError, describe
+from kinelab.errors import KinelabError, ModelError, describe, shown
 from kinelab.model import rate_problem
 from kinelab.sweep._designs import DesignTable
 from kinelab.sweep._family import Family, family as make_family
@@ -253,7 +254,8 @@ def run(family: str | Family, designs, *, samples=72, metrics=None, client=None,
     if "grashof" in df:
         df["grashof"] = df["grashof"].astype(object)
     bad = np.flatnonzero(problems != "")
-    df.attrs["problems"] = {table.index[i]: str(problems[i]) for i in bad}
+    # the row labels as Python values (numbers, text, tuples of a MultiIndex), not numpy's
+    df.attrs["problems"] = dict(zip(table.index[bad].tolist(), map(str, problems[bad])))
     if path is not None:
         write_parquet(df, path)
     return df
@@ -298,8 +300,17 @@ def file_path(path) -> str:
     return text
 
 
+# what an object column may hold to be written as Parquet (pandas' infer_dtype names)
+_PARQUET_OBJECTS = ("string", "empty", "boolean", "integer", "floating", "mixed-integer-float",
+                    "bytes")
+
+
 def write_parquet(df, path) -> None:
-    """Write a study's table as Parquet, atomically (never a half-written file)."""
+    """Write a study's table as Parquet, atomically (never a half-written file).
+
+    The row problems (``df.attrs["problems"]``) travel in the file's metadata, keyed by the
+    row labels as text (``str(label)``: a file's metadata is JSON, whose keys are text),
+    whatever the index (numbers, dates, a MultiIndex)."""
     import pandas
 
     if not isinstance(df, pandas.DataFrame):
@@ -310,4 +321,22 @@ def write_parquet(df, path) -> None:
     except ImportError:
         raise ModelError("path: Parquet needs the optional dependency pyarrow; install it with "
                          "pip install 'kinelab[sweep]'") from None
-    atomic_write(os.fspath(path), lambda f: df.to_parquet(f), binary=True)
+    for name, column in df.items():
+        kind = (pandas.api.types.infer_dtype(column, skipna=True) if column.dtype == object
+                else "complex" if column.dtype.kind == "c" else "")
+        if kind and kind not in _PARQUET_OBJECTS:
+            raise ModelError(f"df: column {shown(str(name))}: expected numbers, booleans or text "
+                             f"to write as Parquet, got {kind} values; convert the column first")
+    attrs = dict(df.attrs)
+    problems = attrs.get("problems")
+    if isinstance(problems, Mapping):
+        attrs["problems"] = {str(label): str(message) for label, message in problems.items()}
+    try:
+        json.dumps(attrs)
+    except (TypeError, ValueError):
+        raise ModelError("df.attrs: expected plain data (text keys; numbers, text, lists and "
+                         "tables as values) to keep in the file's metadata; remove the others "
+                         "from df.attrs") from None
+    frame = df.copy(deep=False)
+    frame.attrs = attrs
+    atomic_write(os.fspath(path), lambda f: frame.to_parquet(f), binary=True)
