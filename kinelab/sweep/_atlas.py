@@ -184,6 +184,15 @@ class Atlas:
             raise ModelError(f"points: expected a whole number from 3 to {MAX_PATH_POINTS}, got "
                              f"{describe(points)}")
         targets = _resampled(P[None], int(points))[0]
+        # points taken evenly along the closed path: on a path that goes back over itself (an
+        # open line, closed by its way back) two of them can fall on one place
+        gaps = np.hypot(*(targets[:, None, :] - targets[None, :, :]).transpose(2, 0, 1))
+        gaps[np.diag_indices(len(targets))] = np.inf
+        if gaps.min() <= 1e-12 * float(np.ptp(targets, axis=0).max()):
+            raise ModelError(f"path: the {int(points)} points refine takes evenly along it (closing it "
+                             "from its last point to its first) fall on one place twice: it goes "
+                             "back over itself, as an open line does; give a closed path, or "
+                             "another number of points")
         for key in options:
             if key not in _REFINE_OPTIONS:
                 hint = ("; refine starts from the atlas's nearest designs: for designs of your own, "

@@ -162,3 +162,10 @@ def test_refine_options(atlas, options, message):
 def test_a_complex_path_is_refused(atlas):
     with pytest.raises(ModelError, match=r"^path: expected more than 16 finite points, shape \(n, 2\)"):
         atlas.nearest(PATH + 0j)
+
+
+def test_refine_on_a_path_that_goes_back_over_itself(atlas):
+    line = np.column_stack([np.linspace(0, 3, 20), np.ones(20)])
+    with pytest.raises(ModelError, match=r"^path: the 8 points refine takes evenly along it .* "
+                                         r"goes back over itself, as an open line does"):
+        atlas.refine(line)
