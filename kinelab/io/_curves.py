@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import csv
 import math
+import numbers
 import os
 import re
 from dataclasses import dataclass
@@ -13,7 +14,7 @@ import numpy as np
 
 from kinelab._memory import require
 from kinelab.errors import ModelError, describe, quoted, shown
-from kinelab.io._text import read_text
+from kinelab.io._text import file_path, read_text
 from kinelab.solvers._differentiate import MIN_SAMPLES
 
 __all__ = ["MeasuredCurve", "read_curve"]
@@ -54,15 +55,25 @@ def _number(text: str) -> float | None:
     return v
 
 
-def _column(header: list[str], choice: str | None, default: int, what: str, source: str) -> int:
+def _choice(value: object, what: str) -> str | int | None:
+    """A column as given: None, a name, or a number from 1 (a whole number or its digits)."""
+    if value is None or isinstance(value, str):
+        return value
+    if isinstance(value, numbers.Integral) and not isinstance(value, (bool, np.bool_)):
+        return int(value)
+    raise ModelError(f"{what}: expected a column's name or its number from 1, got {describe(value)}")
+
+
+def _column(header: list[str], choice: str | int | None, default: int, what: str, source: str) -> int:
     if choice is None:
         return default
     names = [_UNIT.sub(r"\1", h).strip() for h in header]
     for k, (full, bare) in enumerate(zip(header, names)):
         if choice in (full.strip(), bare):
             return k
-    if choice.isdigit() and 1 <= int(choice) <= len(header):
-        return int(choice) - 1
+    number = choice if isinstance(choice, int) else int(choice) if choice.isdigit() else 0
+    if 1 <= number <= len(header):
+        return number - 1
     raise ModelError(f"{what}: expected a column of the file, by name or number from 1, got "
                      f"{shown(choice)}; the columns are {quoted(names)}", source=source)
 
@@ -77,8 +88,9 @@ def read_curve(path: str | os.PathLike, *, x: str | None = None, y: str | None =
     Parameters
     ----------
     path : str or path-like
-    x, y : str, optional
-        The columns to use, by name (with or without the unit) or by number from 1.
+    x, y : str or int, optional
+        The columns to use, by name (with or without the unit) or by number from 1 (``2``
+        or ``"2"``).
 
     Returns
     -------
@@ -100,13 +112,15 @@ def read_curve(path: str | os.PathLike, *, x: str | None = None, y: str | None =
     >>> c.x_name, c.y_unit, c.y[:3]
     ('t', 'mm', array([0., 1., 4.]))
     """
+    path = file_path(path)
+    x, y = _choice(x, "x"), _choice(y, "y")
     source = str(path)
     try:
-        size = Path(path).stat().st_size
+        size = path.stat().st_size
     except OSError:
         size = 0
     # text, rows of Python strings and the arrays: about 20 times the file's size
-    require(20.0 * size, f"reading {Path(path).name}", "cut the file into pieces")
+    require(20.0 * size, f"reading {path.name}", "cut the file into pieces")
     text = read_text(path, max_bytes=None)      # bounded by the memory budget above
     rows = [(line_no, row) for line_no, row in enumerate(csv.reader(text.splitlines()), 1)
             if row and any(c.strip() for c in row) and not row[0].lstrip().startswith("#")]

@@ -18,7 +18,7 @@ import numpy as np
 
 from kinelab.errors import ModelError
 from kinelab.io._fields import Reader, describe, quoted, shown
-from kinelab.io._text import loads, read_text
+from kinelab.io._text import file_path, loads, read_text
 from kinelab.model import (MAX_JOINTS, MAX_LINKS, Input, Joint, Link, Mechanism, Point, angle_problem,
                            coordinate_problem)
 
@@ -44,7 +44,7 @@ class _Body:
 def _read(source) -> tuple[dict, str]:
     if isinstance(source, Mapping):
         return dict(source), "linkage2d data"
-    path = Path(source)
+    path = Path(file_path(source, "source"))
     return loads(read_text(path), "JSON", source=path.name), path.name
 
 
@@ -96,7 +96,7 @@ def from_linkage2d_json(source: str | os.PathLike | Mapping[str, Any], *,
     r = Reader()
     top = r.table(data, "", ("version", "id", "name", "type", "unit_length", "unit_angle",
                              "convention", "links", "joints"), required=("links", "joints"))
-    if top is None:
+    if top is None or r.problems and not ("links" in top and "joints" in top):
         raise ModelError(r.problems, source=where)
     unit = r.string(top.get("unit_length", "m"), "unit_length", choices=_UNITS)
     angle_unit = r.string(top.get("unit_angle", "rad"), "unit_angle", choices=("deg", "rad"))

@@ -28,7 +28,7 @@ from kinelab._files import atomic_write
 from kinelab.errors import AssemblyError, KinelabError, ModelError
 from kinelab.io import _toml
 from kinelab.io._fields import Reader, describe, quoted, shown, shown_key
-from kinelab.io._text import Written, in_si, loads, read_text, written
+from kinelab.io._text import Written, file_path, in_si, loads, read_text, written
 from kinelab.kinematics import Assembly, assemble
 from kinelab.kinematics._assemble import assembly_miss, needs_assembly
 from kinelab.model import (ANGLE_UNITS, JOINT_TYPES, LENGTH_UNITS, SPACES, Input, Joint, Link,
@@ -131,7 +131,7 @@ class ModelFile:
         >>> mf.units, mf.mechanism.link_names
         (Units(length='mm', angle='deg'), ('ground', 'crank', 'coupler', 'rocker'))
         """
-        path = Path(path)
+        path = file_path(path)
         source = path.name
         suffix = path.suffix.lower()
         if suffix not in (".toml", ".json"):
@@ -172,9 +172,10 @@ class ModelFile:
 
     def write(self, path: str | os.PathLike) -> Path:
         """Write TOML or JSON, by the suffix of ``path`` (to a temporary file, then renamed)."""
-        suffix = Path(path).suffix.lower()
+        path = file_path(path)
+        suffix = path.suffix.lower()
         if suffix not in (".toml", ".json"):
-            raise ModelError(f"path: expected a .toml or .json file name, got {shown(Path(path).name)}")
+            raise ModelError(f"path: expected a .toml or .json file name, got {shown(path.name)}")
         text = self.to_toml() if suffix == ".toml" else self.to_json()
         return atomic_write(path, lambda f: f.write(text))
 

@@ -17,9 +17,11 @@ from typing import Literal
 import numpy as np
 
 from kinelab._files import atomic_write
-from kinelab.errors import ModelError, check_choice, describe
+from kinelab.errors import ModelError, check_choice, describe, quoted, shown, suggest
 from kinelab.io._modelfile import LENGTH_UNITS
+from kinelab.kinematics import KinematicSolution
 from kinelab.model import Mechanism, is_real, length_problem
+from kinelab.solvers._arguments import flag
 
 __all__ = ["Outline", "outlines", "to_svg", "to_dxf"]
 
@@ -124,6 +126,10 @@ def outlines(model: Mechanism, *, width: float | None = None, hole: float | None
     """
     if not isinstance(model, Mechanism) or model.space != "planar":
         raise ModelError("model: expected a planar kinelab Mechanism")
+    flag("ground", ground)
+    if sol is not None and not isinstance(sol, KinematicSolution):
+        raise ModelError(f"sol: expected a KinematicSolution of the model (a sweep of its inputs) "
+                         f"or None, got {describe(sol)}")
     w = width if width is not None else 0.15 * _size(model)
     d = hole if hole is not None else (0.4 * w if is_real(w) else None)
     if not (is_real(w) and is_real(d) and 0 < d < w):
@@ -185,11 +191,18 @@ def _layout(parts: list[Outline], layout: str, gap: float) -> list[tuple[Outline
     return placed
 
 
+_OPTIONS = ("width", "hole", "ground", "sol")     # outlines' keywords
+
+
 def _placed(model, unit: str, layout: str, options) -> tuple[float, list]:
     """The drawing's unit scale and its outlines placed as ``layout`` asks (two hole
     diameters apart when laid out as parts)."""
     k = _check_unit(unit)
     check_choice("layout", layout, ("parts", "assembly"))
+    for key in options:
+        if key not in _OPTIONS:
+            raise ModelError(f"{shown(key)}: unknown option{suggest(key, _OPTIONS)}; the options of "
+                             f"a drawing are unit, layout, {quoted(_OPTIONS)}")
     parts = outlines(model, **options)
     return k, _layout(parts, layout, 2.0 * float(np.max(parts[0].holes[:, 2])))
 

@@ -12,7 +12,9 @@ import numpy as np
 
 from kinelab._files import atomic_write, write_csv
 from kinelab.errors import ModelError, check_choice, describe, shown
+from kinelab.io._text import file_path
 from kinelab.kinematics import KinematicSolution
+from kinelab.kinematics._solution import takes_solution
 from kinelab.model import Units
 
 __all__ = ["RESULT_FORMATS", "write_results", "result_format", "results_json", "json_ready"]
@@ -20,6 +22,7 @@ __all__ = ["RESULT_FORMATS", "write_results", "result_format", "results_json", "
 RESULT_FORMATS = ("csv", "json", "parquet")
 
 
+@takes_solution
 def write_results(sol: KinematicSolution, path: str | os.PathLike, *,
                   format: Literal["csv", "json", "parquet"] | None = None,
                   degrees: bool = False, units: Units | Mapping[str, str] | None = None) -> Path:
@@ -61,7 +64,7 @@ def write_results(sol: KinematicSolution, path: str | os.PathLike, *,
     >>> len(rows), rows[1]["jO2.q[deg]"], rows[0]["B.x[mm]"]       # 0.5 rad; 1 + 3 m
     (3, '28.64788975654116', '4000.0')
     """
-    path = Path(path)
+    path = file_path(path)
     fmt = result_format(path, format)
     columns = sol.columns(degrees=degrees, units=units)
     if fmt == "csv":
@@ -97,6 +100,7 @@ def result_format(path: str | os.PathLike, format: str | None = None) -> str:
     return named or "csv"
 
 
+@takes_solution
 def results_json(sol: KinematicSolution, *, degrees: bool = False,
                  units: Units | Mapping[str, str] | None = None) -> str:
     """The JSON text :func:`write_results` writes for ``sol``: a list of row objects, one

@@ -7,6 +7,8 @@ here, so a task gives the same answer, and a malformed one the same message, in 
 from __future__ import annotations
 
 import math
+import numbers
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -16,7 +18,7 @@ import numpy as np
 from kinelab import synthesis
 from kinelab.errors import ModelError, describe, expected_one_of, quoted, shown_key
 from kinelab.io._results import json_ready
-from kinelab.io._text import loads, read_text
+from kinelab.io._text import file_path, loads, read_text
 from kinelab.model import (ANGLE_UNITS, LENGTH_UNITS, Units, is_real, length_problem, name_problem,
                            real_array)
 from kinelab.synthesis._path import MAX_PATH_POINTS, MAX_PATH_SAMPLES
@@ -114,11 +116,12 @@ class _Reader:
     def integer(self, where: str, value, low: int, high: int):
         """A whole number from ``low`` to ``high``: bounds that keep a search's time and
         memory within reason."""
-        if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+        if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral) \
+                or not low <= value <= high:
             self.problems.append(f"{where}: expected a whole number from {low:,} to {high:,}, "
                                  f"got {describe(value)}")
             return None
-        return value
+        return int(value)
 
     def unknown(self, section: str, allowed: set[str]):
         sec = self.data.get(section, {})
@@ -139,7 +142,7 @@ def load_task(path: str | Path) -> Task:
     ModelError
         Every problem of the file at once, each naming its field.
     """
-    path = Path(path)
+    path = file_path(path)
     data = loads(read_text(path), "TOML", source=str(path))
     return read_task(data, source=str(path), name=path.stem)
 
@@ -179,6 +182,12 @@ def read_task(data: Any, *, source: str | None = None, name: str = "task") -> Ta
     kind = data.get("task")
     if kind not in TASK_KINDS:
         r.problems.append(f"task: {expected_one_of(kind, TASK_KINDS)}")
+    not_tables = [f"{key}: expected a table, got {describe(data[key])}"
+                  for key in sorted(_SECTIONS - {"task", "name"})
+                  if key in data and not isinstance(data[key], dict)]
+    if not_tables:
+        # what those sections hold cannot be read: the problems that follow would be echoes
+        raise ModelError(r.problems + not_tables, source=source)
     units = data.get("units", {})
     lu = units.get("length", "m") if isinstance(units, dict) else "m"
     au = units.get("angle", "rad") if isinstance(units, dict) else "rad"
@@ -441,8 +450,19 @@ def _fields_named(task: Task, exc: ModelError, fields: dict[str, str]) -> ModelE
     return ModelError(problems, source=task.source or None)
 
 
+_SOLUTIONS = (synthesis.MotionSolution, synthesis.FunctionSolution, synthesis.PathSolution,
+              synthesis.CrankRocker, synthesis.QuickReturn)
+
+
+def _check_task(task: object) -> None:
+    if not isinstance(task, Task):
+        raise ModelError(f"task: expected a Task (from load_task or read_task), got "
+                         f"{describe(task)}")
+
+
 def solve_task(task: Task) -> tuple[list, dict[str, Any]]:
     """Run a task: its solutions, and the extra results worth drawing."""
+    _check_task(task)
     if task.kind == "function":
         try:
             return [synthesis.function_generation(**task.function)], {}
@@ -527,7 +547,18 @@ def task_summary(task: Task, solutions: list, extra: dict[str, Any],
 
     ``solutions, extra`` are what :func:`solve_task` returns.
     """
-    u = units or task.units
+    _check_task(task)
+    if isinstance(solutions, (str, bytes)) or not isinstance(solutions, (list, tuple)):
+        raise ModelError(f"solutions: expected the list of solutions solve_task returns, got "
+                         f"{describe(solutions)}")
+    for i, s in enumerate(solutions):
+        if not isinstance(s, _SOLUTIONS):
+            raise ModelError(f"solutions[{i}]: expected a linkage found by solve_task, got "
+                             f"{describe(s)}")
+    if not isinstance(extra, Mapping):
+        raise ModelError(f"extra: expected the table of extra results solve_task returns, got "
+                         f"{describe(extra)}")
+    u = task.units if units is None else Units.resolve(units)
     return {"task": task.kind, "name": task.name,
             "units": {"length": u.length, "angle": u.angle},
             "reason": extra.get("reason", ""), "solutions": json_ready(_rows(solutions, u))}

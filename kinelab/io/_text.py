@@ -21,9 +21,9 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-from kinelab.errors import ModelError, shown, shown_key
+from kinelab.errors import ModelError, describe, shown, shown_key
 
-__all__ = ["MAX_DEPTH", "MAX_BYTES", "read_text", "loads", "Written", "written", "in_si"]
+__all__ = ["MAX_DEPTH", "MAX_BYTES", "file_path", "read_text", "loads", "Written", "written", "in_si"]
 
 MAX_DEPTH = 32     # tables and lists inside each other; a model file needs about 6
 MAX_BYTES = 8 << 20  # a file's size: a model, task or drawing is a few kilobytes, and a TOML
@@ -31,10 +31,21 @@ MAX_BYTES = 8 << 20  # a file's size: a model, task or drawing is a few kilobyte
 _SURROGATE = re.compile("[\ud800-\udfff]")
 
 
+def file_path(path: object, name: str = "path") -> Path:
+    """``path`` (text or path-like) as a :class:`~pathlib.Path`, else a :class:`ModelError`
+    naming the argument ``name``."""
+    text = os.fspath(path) if isinstance(path, os.PathLike) else path
+    if not isinstance(text, str) or not text:
+        hint = "; decode it first (path.decode())" if isinstance(text, bytes) else ""
+        raise ModelError(f"{name}: expected a file's path (text or pathlib.Path), got "
+                         f"{describe(path)}{hint}")
+    return Path(text)
+
+
 def read_text(path: str | os.PathLike, *, max_bytes: int | None = MAX_BYTES) -> str:
     """The UTF-8 text of a file (a byte-order mark is allowed), refused beyond ``max_bytes``
     (None: any size, for data such as measured curves, bounded by their reader)."""
-    path = Path(path)
+    path = file_path(path)
     try:
         if max_bytes is not None and path.stat().st_size > max_bytes:   # before reading it
             raise ModelError(f"the file is {path.stat().st_size / 2**20:,.1f} MiB; expected at "
@@ -133,6 +144,13 @@ def _object(pairs: list[tuple[str, Any]]) -> dict:
 
 def loads(text: str, language: str, *, source: str | None = None) -> Any:
     """Plain data from ``text`` in ``language`` ("TOML" or "JSON"); see the module."""
+    if not isinstance(text, str):
+        hint = "; decode it first (text.decode())" if isinstance(text, (bytes, bytearray)) else ""
+        raise ModelError(f"text: expected the {language} text itself (a str), got "
+                         f"{describe(text)}{hint}; to read a file, use its path", source=source)
+    if not text.strip():
+        raise ModelError(f"expected {language} text, got {'an empty text' if not text else 'blank text'}"
+                         , source=source)
     try:
         # numbers keep their digits (Written): a unit's conversion reads them exactly
         if language == "TOML":

@@ -7,12 +7,17 @@ from pathlib import Path
 
 import numpy as np
 
-from kinelab.errors import ModelError, shown
+from kinelab.errors import ModelError, describe, expected_one_of, shown
+from kinelab.io._text import file_path
 from kinelab.kinematics import KinematicSolution
+from kinelab.kinematics._solution import takes_solution
+from kinelab.solvers._arguments import flag, whole
 from kinelab.model import Units
 from kinelab.plot._figures import SINGULAR_LABEL, _regular, _singular_samples, mechanism
 
 __all__ = ["animate", "can_write_mp4"]
+
+MAX_FRAMES = 100_000     # an hour at 30 frames a second
 
 
 def can_write_mp4() -> bool:
@@ -21,6 +26,7 @@ def can_write_mp4() -> bool:
     return animation.writers.is_available("ffmpeg")
 
 
+@takes_solution
 def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, frames: int = 120,
             fps: int = 30, units: Units | Mapping[str, str] | None = None,
             centers: bool = False, velocities: bool = False) -> Path:
@@ -67,7 +73,7 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
     import matplotlib.pyplot as plt
     from matplotlib import animation
 
-    path = Path(path)
+    path = file_path(path)
     suffix = path.suffix.lower()
     if suffix not in (".gif", ".mp4"):
         raise ModelError(f"path: expected a .gif or .mp4 file name, got {shown(path.name)}")
@@ -75,6 +81,16 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
         raise ModelError("path: MP4 needs ffmpeg, which is not installed; write a .gif instead")
     if sol.single or sol.N < 2:
         raise ModelError("sol: an animation needs a sweep of at least two samples")
+    frames, fps = whole("frames", frames, 1, MAX_FRAMES), whole("fps", fps, 1, 1000)
+    centers, velocities = flag("centers", centers), flag("velocities", velocities)
+    if isinstance(trace, str):
+        trace = [trace]         # one point
+    if trace is not None:
+        if not isinstance(trace, (list, tuple)):
+            raise ModelError(f"trace: expected names of points, got {describe(trace)}")
+        for name in trace:
+            if name not in sol.point_item:
+                raise ModelError(f"trace: {expected_one_of(name, sol.point_names)}")
     m = sol.mechanism
     if trace is None:
         from kinelab.io import default_outputs
@@ -89,6 +105,9 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
         return u.convert(sol.position(p), "m")
     all_xy = np.concatenate([position(p) for p in sol.point_names])
     all_xy = all_xy[np.isfinite(all_xy).all(axis=1)]
+    if not len(all_xy):
+        raise ModelError("sol: the mechanism assembles at none of the samples: nothing to "
+                         "animate; analyze a range where it does")
     lo, hi = all_xy.min(axis=0), all_xy.max(axis=0)
     pad = 0.08 * max(hi - lo) + 1e-9
     fig = plt.figure(figsize=(5, 5), dpi=90)

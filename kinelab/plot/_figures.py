@@ -8,7 +8,9 @@ the singular positions are marked.
 """
 from __future__ import annotations
 
+import functools
 import math
+import numbers
 import os
 from collections.abc import Mapping
 from pathlib import Path
@@ -16,8 +18,10 @@ from pathlib import Path
 import numpy as np
 
 from kinelab._files import atomic_write
-from kinelab.errors import ModelError, shown
+from kinelab.errors import ModelError, describe, quoted, shown
+from kinelab.io._text import file_path
 from kinelab.kinematics import KinematicSolution
+from kinelab.kinematics._solution import takes_solution
 from kinelab.kinematics._columns import INPUT_SI_UNITS
 from kinelab.model import Units
 
@@ -33,6 +37,28 @@ _QUANTITIES = {     # (accessor, label, SI unit) of each row
 SINGULAR_LABEL = "singular (det J = 0)"
 
 
+def takes_sweep(function):
+    """``function`` with its first argument checked to be a KinematicSolution with at least
+    one sample (:func:`~kinelab.kinematics._solution.takes_solution`, and an empty sweep
+    named)."""
+    @takes_solution
+    @functools.wraps(function)
+    def checked(sol, *args, **kwargs):
+        if sol.N == 0:
+            raise ModelError("sol: the solution has no samples; analyze at least one input value")
+        return function(sol, *args, **kwargs)
+    return checked
+
+
+def sample_of(sol: KinematicSolution, i: object, name: str) -> int:
+    """The sample ``i`` of ``sol`` (negative counts from the end) as an index."""
+    n = 1 if sol.single else sol.N
+    if isinstance(i, (bool, np.bool_)) or not isinstance(i, numbers.Integral) or not -n <= i < n:
+        span = "0 (one configuration)" if n == 1 else f"a whole number from 0 to {n - 1} (or -{n} to -1 from the end)"
+        raise ModelError(f"{name}: expected {span}, the index of a sample, got {describe(i)}")
+    return int(i) % n
+
+
 def _pyplot():
     import matplotlib.pyplot as plt
     return plt
@@ -43,6 +69,7 @@ def _label(units: Units, si_unit: str) -> str:
     return units.unit(si_unit).replace("^2", "²")
 
 
+@takes_sweep
 def input_axis(sol: KinematicSolution, degrees: bool = False, *,
                units: Units | Mapping[str, str] | None = None) -> tuple[np.ndarray, str]:
     """The values to plot against and their label: the (first varying) input in ``units``
@@ -125,6 +152,11 @@ def _split(sol: KinematicSolution, outputs):
 
 
 def _outputs(sol, outputs):
+    if isinstance(outputs, str):
+        return [outputs]        # one name
+    if outputs is not None and not isinstance(outputs, (list, tuple)):
+        raise ModelError(f"outputs: expected names of links, slides or points, got "
+                         f"{describe(outputs)}")
     if outputs:
         return list(outputs)
     from kinelab.io import default_outputs
@@ -149,6 +181,7 @@ def _legend(ax, always: bool = True, **kwargs) -> None:
     ax.legend([handles[i] for i in order], [labels[i] for i in order], fontsize="small", **kwargs)
 
 
+@takes_sweep
 def curves(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
            units: Units | Mapping[str, str] | None = None, figure=None):
     """Position, velocity and acceleration of chosen outputs against the input.
@@ -215,6 +248,7 @@ def curves(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
     return fig
 
 
+@takes_sweep
 def coefficients(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
                  units: Units | Mapping[str, str] | None = None, figure=None):
     """Velocity and acceleration coefficients K = dS/dq and L = dK/dq of chosen outputs
@@ -262,6 +296,7 @@ def coefficients(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
     return fig
 
 
+@takes_sweep
 def coupler_curve(sol: KinematicSolution, point: str = "P", *, ax=None, sample: int | None = 0,
                   units: Units | Mapping[str, str] | None = None):
     """The path of a point over the sweep, with the mechanism drawn at ``sample``, lengths
@@ -283,7 +318,7 @@ def coupler_curve(sol: KinematicSolution, point: str = "P", *, ax=None, sample: 
     u = Units.resolve(units)
     ax = ax or plt.figure(figsize=(6, 6), layout="constrained").add_subplot()
     if sample is not None:
-        mechanism(sol, sample, ax=ax, units=u)
+        mechanism(sol, sample_of(sol, sample, "sample"), ax=ax, units=u)
     xy = u.convert(sol.position(point), "m")
     ax.plot(*_regular(sol, xy).T, lw=1.3, color="black", label=f"path of {point}")
     singular = _singular_samples(sol)
@@ -298,6 +333,7 @@ def coupler_curve(sol: KinematicSolution, point: str = "P", *, ax=None, sample: 
     return ax
 
 
+@takes_sweep
 def transmission(sol: KinematicSolution, pairs=None, *, degrees: bool | None = None,
                  units: Units | Mapping[str, str] | None = None, ax=None):
     """Transmission angle of link pairs against the input, folded to [0, 90] deg.
@@ -334,6 +370,7 @@ def transmission(sol: KinematicSolution, pairs=None, *, degrees: bool | None = N
     return ax
 
 
+@takes_sweep
 def mechanism(sol: KinematicSolution, i: int = 0, *, ax=None, artists: dict | None = None,
               units: Units | Mapping[str, str] | None = None):
     """Draw the mechanism at sample ``i``: links as bars or plates, pivots, sliders, with
@@ -343,6 +380,7 @@ def mechanism(sol: KinematicSolution, i: int = 0, *, ax=None, artists: dict | No
     drawn again, for animations.
     """
     plt = _pyplot()
+    i = sample_of(sol, i, "i")
     u = Units.resolve(units)
     ax = ax or plt.figure(figsize=(6, 6), layout="constrained").add_subplot()
     m = sol.mechanism
@@ -407,6 +445,15 @@ def mechanism(sol: KinematicSolution, i: int = 0, *, ax=None, artists: dict | No
 
 def save(figure, path: str | os.PathLike) -> Path:
     """Save a figure (PNG, SVG or any matplotlib format, by suffix) atomically."""
-    path = Path(path)
+    from matplotlib.figure import Figure
+
+    if not isinstance(figure, Figure):
+        raise ModelError(f"figure: expected a matplotlib Figure (ax.figure for the axes of a "
+                         f"plot), got {describe(figure)}")
+    path = file_path(path)
     fmt = path.suffix.lstrip(".").lower() or "png"
+    formats = figure.canvas.get_supported_filetypes()
+    if fmt not in formats:
+        raise ModelError(f"path: expected a file name ending in one of "
+                         f"{quoted(sorted('.' + f for f in formats))}, got {shown(path.name)}")
     return atomic_write(path, lambda f: figure.savefig(f, format=fmt, dpi=150), binary=True)

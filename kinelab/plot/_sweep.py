@@ -3,7 +3,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from kinelab import _memory as memory
+from kinelab.errors import ModelError, describe
 from kinelab.plot._figures import _pyplot
+from kinelab.solvers._arguments import flag, whole
 
 __all__ = ["tolerance_band", "error_histogram"]
 
@@ -12,7 +15,17 @@ def _axes(ax):
     return ax if ax is not None else _pyplot().figure().gca()
 
 
+def _study(study) -> "ToleranceStudy":
+    from kinelab.sweep import ToleranceStudy   # a study's room, loaded when a study is drawn
+
+    if not isinstance(study, ToleranceStudy):
+        raise ModelError(f"study: expected a ToleranceStudy (from kinelab.sweep.tolerance), got "
+                         f"{describe(study)}")
+    return study
+
+
 def _scale(study, degrees: bool) -> tuple[float, str]:
+    flag("degrees", degrees)
     if study.unit == "m":
         return 1.0, "m"
     return (180.0 / np.pi, "deg") if degrees else (1.0, "rad")
@@ -26,8 +39,9 @@ def tolerance_band(study, *, ax=None, degrees: bool = False):
     -------
     matplotlib Axes
     """
-    ax = _axes(ax)
+    study = _study(study)
     k, unit = _scale(study, degrees)
+    ax = _axes(ax)
     x = np.degrees(study.q) if degrees else study.q
     lo, p5, p50, p95, hi = study.percentile([0, 5, 50, 95, 100]) * k
     ax.fill_between(x, lo, hi, color="tab:blue", alpha=0.15, label="all designs")
@@ -50,9 +64,16 @@ def error_histogram(study, *, ax=None, degrees: bool = False, bins: int = 40):
     -------
     matplotlib Axes
     """
-    ax = _axes(ax)
+    study = _study(study)
     k, unit = _scale(study, degrees)
+    bins = whole("bins", bins, 1, 10 ** 9)
+    # matplotlib holds a few arrays of the bins, and a bar (an object of about 2 kB) each
+    memory.require(2048.0 * bins, f"a histogram of {bins:,} bins", "ask for fewer bins")
     m = study.max_error[study.assembles] * k
+    if not m.size:
+        raise ModelError("study: no drawn design assembles over the cycle, so there is no error "
+                         "to show; narrow the tolerances")
+    ax = _axes(ax)
     ax.hist(m, bins=bins, color="tab:blue", alpha=0.7)
     ax.axvline(np.percentile(m, 95), color="tab:red", lw=1.0, label="95th percentile")
     ax.set_xlabel(f"largest |{study.output} error| over the cycle [{unit}]")

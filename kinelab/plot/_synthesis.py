@@ -13,10 +13,13 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from kinelab import _memory as memory
+from kinelab.errors import ModelError, describe
 from kinelab.kinematics import analyze
+from kinelab.solvers._arguments import whole
 from kinelab.model import Units
 from kinelab.synthesis import (BurmesterCurves, CrankRocker, FunctionSolution, MotionSolution,
-                               PathSolution, Positions, QuickReturn, poles)
+                               PathSolution, Positions, QuickReturn, SolutionList, poles)
 from kinelab.synthesis import burmester_curves as synthesis_curves
 
 __all__ = ["prescribed_positions", "motion_solution", "burmester_curves", "structural_error",
@@ -44,6 +47,22 @@ def _finish(ax, title, u: Units):
     ax.set_title(title)
     ax.grid(True, alpha=0.3)
     return ax
+
+
+def _given(name: str, value, kinds: type | tuple[type, ...], what: str):
+    """``value`` when it is one of ``kinds``, else a ModelError naming ``name``."""
+    if not isinstance(value, kinds):
+        raise ModelError(f"{name}: expected {what}, got {describe(value)}")
+    return value
+
+
+def _solutions(solutions) -> list:
+    """Linkages whose pivots are marked: MotionSolutions."""
+    if isinstance(solutions, (str, bytes)) or not isinstance(solutions, (list, tuple, SolutionList)):
+        raise ModelError(f"solutions: expected a list of MotionSolution, got {describe(solutions)}")
+    for k, s in enumerate(solutions):
+        _given(f"solutions[{k}]", s, MotionSolution, "a MotionSolution (from kinelab.synthesis)")
+    return list(solutions)
 
 
 def _colour(j):
@@ -149,6 +168,8 @@ def motion_solution(sol: MotionSolution, *, ax=None, units: Units | Mapping[str,
     -------
     matplotlib Axes
     """
+    _given("sol", sol, MotionSolution, "a MotionSolution (from kinelab.synthesis: "
+           "two_positions, three_positions, four_positions ...)")
     u = Units.resolve(units)
     ax = _axes(ax)
     n = len(sol.q)
@@ -179,6 +200,14 @@ def burmester_curves(curves: BurmesterCurves, *, ax=None, positions=None, soluti
     -------
     matplotlib Axes
     """
+    _given("curves", curves, BurmesterCurves, "BurmesterCurves (from "
+           "kinelab.synthesis.burmester_curves)")
+    if positions is not None:
+        _given("positions", positions, Positions, "the four Positions (kinelab.synthesis.Positions)")
+    solutions = _solutions(solutions)
+    if not np.asarray(curves.valid).any():
+        raise ModelError("curves: no point of the centre-point curve is valid (the positions "
+                         "may not be four distinct ones); nothing to draw")
     u = Units.resolve(units)
     ax = _axes(ax)
     center, circle = u.convert(curves.center, "m"), u.convert(curves.circle, "m")
@@ -217,6 +246,8 @@ def structural_error(sol: FunctionSolution, *, ax=None):
     -------
     matplotlib Axes
     """
+    _given("sol", sol, FunctionSolution, "a FunctionSolution (from "
+           "kinelab.synthesis.function_generation)")
     ax = _axes(ax)
     e = np.where(np.isfinite(sol.structural_error), sol.structural_error, np.nan)
     ax.plot(sol.x_samples, e, "-", color="tab:blue")
@@ -238,6 +269,7 @@ def path_solution(sol: PathSolution, *, ax=None, units: Units | Mapping[str, str
     -------
     matplotlib Axes
     """
+    _given("sol", sol, PathSolution, "a PathSolution (from kinelab.synthesis.path_generation)")
     u = Units.resolve(units)
     ax = _axes(ax)
     n = len(sol.q)
@@ -271,6 +303,8 @@ def limit_positions(design: CrankRocker | QuickReturn, *, ax=None,
     -------
     matplotlib Axes
     """
+    _given("design", design, (CrankRocker, QuickReturn), "a CrankRocker or QuickReturn (from "
+           "kinelab.synthesis.crank_rocker, offset_slider_crank, slotted_lever or whitworth)")
     u = Units.resolve(units)
     ax = _axes(ax)
     m = design.model
@@ -334,6 +368,15 @@ def five_positions(positions: Positions, solutions=(), *, ax=None, samples: int 
     -------
     matplotlib Axes
     """
+    _given("positions", positions, Positions, "five Positions (kinelab.synthesis.Positions)")
+    if positions.n != 5:
+        raise ModelError(f"positions: expected five positions, got {positions.n}; draw four with "
+                         "burmester_curves, more with prescribed_positions")
+    solutions = _solutions(solutions)
+    samples = whole("samples", samples, 3, 10 ** 9)
+    # each curve holds a few dozen floats a sample (two branches, centre and circle points)
+    memory.require(2 * 400.0 * samples, f"two centre-point curves of {samples:,} samples",
+                   "ask for fewer samples")
     u = Units.resolve(units)
     ax = _axes(ax)
     prescribed_positions(positions, ax=ax, show_poles=False, units=u)

@@ -18,10 +18,12 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ModelError, describe, one_line, quoted, shown, shown_path
-from kinelab.model import MAX_LENGTH, MIN_LENGTH
+from kinelab.errors import ModelError, describe, one_line, quoted, shown, shown_path, suggest
+from kinelab.model import MAX_LENGTH, MIN_LENGTH, real_array
 from kinelab.sweep._metrics import (DEFAULT_HARMONICS, descriptor_names, descriptors,
                                     resample_closed)
+from kinelab.solvers._arguments import whole
+from kinelab.sweep._designs import MAX_SEED
 from kinelab.sweep._run import file_path as _file, run, write_parquet
 from kinelab.synthesis import MAX_PATH_POINTS, coupler_curves, path_generation
 
@@ -182,6 +184,24 @@ class Atlas:
             raise ModelError(f"points: expected a whole number from 3 to {MAX_PATH_POINTS}, got "
                              f"{describe(points)}")
         targets = _resampled(P[None], int(points))[0]
+        # points taken evenly along the closed path: on a path that goes back over itself (an
+        # open line, closed by its way back) two of them can fall on one place
+        gaps = np.hypot(*(targets[:, None, :] - targets[None, :, :]).transpose(2, 0, 1))
+        gaps[np.diag_indices(len(targets))] = np.inf
+        if gaps.min() <= 1e-12 * float(np.ptp(targets, axis=0).max()):
+            raise ModelError(f"path: the {int(points)} points refine takes evenly along it (closing it "
+                             "from its last point to its first) fall on one place twice: it goes "
+                             "back over itself, as an open line does; give a closed path, or "
+                             "another number of points")
+        for key in options:
+            if key not in _REFINE_OPTIONS:
+                hint = ("; refine starts from the atlas's nearest designs: for designs of your own, "
+                        "call kinelab.synthesis.path_generation" if key in ("initial", "points")
+                        else suggest(key, _REFINE_OPTIONS))
+                raise ModelError(f"{shown(key)}: unknown option of refine{hint}; its options are k, "
+                                 f"points, {quoted(_REFINE_OPTIONS)}")
+        if "seed" in options:
+            options["seed"] = whole("seed", options["seed"], 0, MAX_SEED)
         options = {"runs": 1, **options}
         return path_generation(targets, initial=self.placed(P, k), **options)
 
@@ -241,10 +261,15 @@ class Atlas:
         return cls(df, harmonics, branch)
 
 
+# path_generation's options that refine passes on (it gives the points and initial designs)
+_REFINE_OPTIONS = ("runs", "maxiter", "popsize", "samples", "min_transmission_angle", "seed",
+                   "refine", "tolerance")
+
+
 def _path(path, harmonics: int, placed: bool = False) -> np.ndarray:
     """The path as an array (n, 2), refused when it has no extent, or (``placed``: a linkage
     is to go through it) when it lies beyond the model's lengths."""
-    P = np.asarray(path, float) if not isinstance(path, (str, bytes)) else None
+    P = real_array(path)
     if P is None or P.ndim != 2 or P.shape[1] != 2 or len(P) <= 2 * harmonics \
             or not np.isfinite(P).all():
         raise ModelError(f"path: expected more than {2 * harmonics} finite points, shape (n, 2), "

@@ -13,8 +13,9 @@ from collections.abc import Mapping
 import numpy as np
 
 from kinelab import _memory as memory
-from kinelab.errors import MemoryBudgetError, ModelError, describe, expected_one_of
-from kinelab.model import MAX_LENGTH, MIN_LENGTH, length_problem
+from kinelab.errors import MemoryBudgetError, ModelError, describe, expected_one_of, shown
+from kinelab.model import MAX_LENGTH, MIN_LENGTH, length_problem, real_array
+from kinelab.solvers._arguments import finite, number, reals, whole
 
 __all__ = ["grid", "random", "sobol", "DesignTable"]
 
@@ -24,14 +25,36 @@ def _ranges(ranges: Mapping[str, object], what: str) -> dict[str, tuple[float, f
         raise ModelError(f"{what}: expected parameter ranges, e.g. crank=(0.5, 1.5), got none")
     out = {}
     for name, r in ranges.items():
-        try:
-            lo, hi = (float(v) for v in r)
-        except (TypeError, ValueError):
-            raise ModelError(f"{name}: expected a range (low, high), got {describe(r)}") from None
-        if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi):
+        if not isinstance(r, (tuple, list, np.ndarray)) or len(r) != 2:
+            raise ModelError(f"{name}: expected a range (low, high), got {describe(r)}")
+        lo, hi = (number(f"{name}: range", v) for v in r)
+        if not lo <= hi:
             raise ModelError(f"{name}: expected a finite range with low <= high, got ({lo:g}, {hi:g})")
+        if max(abs(lo), abs(hi)) > MAX_LENGTH:
+            # a family's parameters are lengths and coordinates: no design lies beyond
+            raise ModelError(f"{name}: expected a range within {MAX_LENGTH:g} m of 0 (a design's "
+                             f"lengths and coordinates), got ({lo:g}, {hi:g})")
         out[name] = (lo, hi)
     return out
+
+
+def seed_of(seed: object) -> int | None:
+    """A seed of numpy's generators: None (fresh entropy) or a whole number from 0."""
+    return None if seed is None else whole("seed", seed, 0, MAX_SEED)
+
+
+MAX_SEED = 2 ** 32 - 1      # as a task file's seed
+
+
+def real_values(name: str, values: object) -> np.ndarray:
+    """``values`` as a float array (whole numbers of any length that floats hold too), else a
+    ModelError naming ``name``: never True as 1.0, "3" as 3.0 or a complex number's real part."""
+    a = real_array(values)
+    if a is None:
+        given = values.tolist() if hasattr(values, "tolist") else values
+        reals(name, given)      # raises, saying what is wrong
+        raise ModelError(f"{name}: expected real numbers, got {describe(given)}")
+    return a
 
 
 def _count(n, what: str) -> int:
@@ -82,11 +105,13 @@ def grid(**axes) -> "pandas.DataFrame":
             lo, hi = _ranges({name: axis[:2]}, "grid")[name]
             spaced[name] = (lo, hi, _count(axis[2], f"{name}: count"))
         else:
-            try:
-                v = np.asarray(axis, float).ravel()
-            except (TypeError, ValueError):
+            if axis is None or isinstance(axis, (str, bytes, Mapping)):
                 raise ModelError(f"{name}: expected values or (low, high, count), got "
-                                 f"{describe(axis)}") from None
+                                 f"{describe(axis)}")
+            v = finite(name, real_values(name, axis)).ravel()
+            if v.size and np.abs(v).max() > MAX_LENGTH:
+                raise ModelError(f"{name}: expected values within {MAX_LENGTH:g} m of 0 (a "
+                                 f"design's lengths and coordinates), got {describe(axis)}")
             if v.size == 0:
                 raise ModelError(f"{name}: expected values or (low, high, count), got none")
             values[name] = v
@@ -117,7 +142,7 @@ def random(n: int, *, seed: int | None = 0, **ranges) -> "pandas.DataFrame":
     ranges = _ranges(ranges, "random")
     n = _count(n, "n")
     _fits(n, len(ranges), "a random table")
-    unit = np.random.default_rng(seed).random((n, len(ranges)))
+    unit = np.random.default_rng(seed_of(seed)).random((n, len(ranges)))
     return _scaled(unit, ranges)
 
 
@@ -140,7 +165,7 @@ def sobol(n: int, *, seed: int | None = 0, **ranges) -> "pandas.DataFrame":
     with warnings.catch_warnings():
         # scipy warns that n is not a power of 2: the docstring says what that means
         warnings.filterwarnings("ignore", "The balance properties of Sobol", UserWarning)
-        unit = qmc.Sobol(d=len(ranges), scramble=True, seed=seed).random(n)
+        unit = qmc.Sobol(d=len(ranges), scramble=True, seed=seed_of(seed)).random(n)
     return _scaled(unit, ranges)
 
 
@@ -184,11 +209,7 @@ class DesignTable:
         self.columns: dict[str, np.ndarray] = {}
         problems = [""] * self.size
         for name, v in raw.items():
-            try:
-                f = np.asarray(v, float)
-            except (TypeError, ValueError):
-                raise ModelError(f"designs: column {name!r}: expected numbers, got "
-                                 f"{describe(v[:3].tolist())}") from None
+            f = real_values(f"designs: column {shown(name)}", v)
             self.columns[name] = f
             is_length = name in fam.lengths
             bad = ~((f >= MIN_LENGTH) & (f <= MAX_LENGTH) if is_length else np.abs(f) <= MAX_LENGTH)

@@ -13,13 +13,16 @@ import numpy as np
 
 from kinelab.errors import ModelError, describe, expected_one_of
 from kinelab.mechanisms import grashof_kinds
+from kinelab.model import angle_problem, is_real, rate_problem, real_array
 from kinelab.solvers import wrap_angle
 from kinelab.sweep._batch import Batch
-from kinelab.sweep._family import Designs, Family
+from kinelab.sweep._designs import DesignTable, real_values
+from kinelab.sweep._family import Designs, Family, family as make_family
 
 __all__ = ["METRICS", "metric_columns", "check_metrics", "evaluate_chunk", "descriptors",
            "DEFAULT_HARMONICS"]
 
+MAX_SAMPLES = 1_000_000      # samples per turn, at most: as a model file's sweep (kinelab.io)
 METRICS = ("assembles", "reachable", "grashof", "transmission_min", "transmission_max",
            "time_ratio", "swing", "descriptors", "peak_torque")
 DEFAULT_HARMONICS = 8
@@ -87,6 +90,40 @@ def check_metrics(fam: Family, metrics, full_turn: bool) -> dict[str, object]:
     return out
 
 
+def check_samples(samples):
+    if isinstance(samples, (int, np.integer)) and not isinstance(samples, bool):
+        if not 4 <= samples <= MAX_SAMPLES:
+            raise ModelError(f"samples: expected at least 4 and at most {MAX_SAMPLES:,} samples per "
+                             f"turn, got {describe(int(samples))}")
+        return int(samples)
+    a = real_array(samples) if not isinstance(samples, (str, bytes)) else None
+    if a is None or a.ndim != 1 or not 1 <= a.size <= MAX_SAMPLES or not np.isfinite(a).all():
+        raise ModelError(f"samples: expected a number of samples over a turn, or a 1-D array of "
+                         f"at most {MAX_SAMPLES:,} finite input values (rad), got {describe(samples)}")
+    why = angle_problem(float(np.abs(a).max()))
+    if why:
+        raise ModelError(f"samples: {why}, got {describe(samples)}")
+    return a
+
+
+def check_speed(speed) -> float:
+    if isinstance(speed, np.ndarray) and speed.ndim == 0:
+        speed = speed[()]
+    if not is_real(speed):
+        raise ModelError(f"speed: expected a finite input speed (rad/s), got {describe(speed)}")
+    speed = float(speed)
+    why = rate_problem(speed, "rad/s")
+    if why:
+        raise ModelError(f"speed: {why}, got {speed:g}")
+    return speed
+
+
+def check_harmonics(harmonics) -> int:
+    if isinstance(harmonics, bool) or not isinstance(harmonics, (int, np.integer)) or harmonics < 1:
+        raise ModelError(f"harmonics: expected a whole number >= 1, got {describe(harmonics)}")
+    return int(harmonics)
+
+
 def _input_samples(samples, D: int) -> np.ndarray:
     if isinstance(samples, int):
         return np.broadcast_to(np.linspace(0.0, 2 * math.pi, samples, endpoint=False), (D, samples))
@@ -98,8 +135,25 @@ def evaluate_chunk(fam: Family, columns: Mapping[str, np.ndarray], problems: lis
                    harmonics: int = DEFAULT_HARMONICS) -> dict[str, np.ndarray]:
     """Every metric of one chunk of designs: the one function a local run and a Dask
     worker call, so their results are the same.  ``columns`` are the chunk's checked
-    parameter columns (D,), ``problems`` its rows' reasons ('' for a good row)."""
-    problems = list(problems)
+    parameter columns (D,), ``problems`` its rows' reasons ('' for a good row).
+
+    Its arguments are checked as :func:`~kinelab.sweep.run` checks them (a chunk's checks
+    cost little beside its kinematics): a family or its name, columns of the family's
+    parameters, one problem (text) a row, the samples, metrics, speed and harmonics."""
+    fam = make_family(fam)
+    if not isinstance(columns, Mapping):
+        raise ModelError(f"columns: expected a mapping of parameter to values (D,), got "
+                         f"{describe(columns)}")
+    table = DesignTable(dict(columns), fam)
+    if isinstance(problems, (str, bytes)) or not isinstance(problems, (list, tuple, np.ndarray)) \
+            or len(problems) != table.size or not all(isinstance(p, str) for p in problems):
+        raise ModelError(f"problems: expected one text a design ('' for a good one), {table.size:,} "
+                         f"in all, got {describe(problems)}")
+    problems = [given or found for given, found in zip(problems, table.problems)]
+    columns = table.columns
+    samples = check_samples(samples)
+    metrics = check_metrics(fam, metrics, isinstance(samples, int))
+    speed, harmonics = check_speed(speed), check_harmonics(harmonics)
     designs = fam.prepare(columns, problems)
     D = len(problems)
     q = _input_samples(samples, D)
@@ -284,7 +338,8 @@ def descriptors(points: np.ndarray, harmonics: int = DEFAULT_HARMONICS) -> np.nd
     >>> bool(np.allclose(a[0::2], b[1::2], atol=1e-4))    # to the chords' O(h^2) from another start
     True
     """
-    P = np.asarray(points, float)
+    harmonics = check_harmonics(harmonics)
+    P = real_values("points", points)
     single = P.ndim == 2
     if single:
         P = P[None]

@@ -2,21 +2,22 @@
 cluster; the same chunk function either way (:func:`~kinelab.sweep.evaluate_chunk`)."""
 from __future__ import annotations
 
-import math
+import json
 import os
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
 
 from kinelab import _memory as memory
 from kinelab._files import atomic_write
-from kinelab.errors import KinelabError, ModelError, describe
-from kinelab.model import rate_problem
+from kinelab.errors import KinelabError, ModelError, describe, shown
+from kinelab.solvers._arguments import flag
 from kinelab.sweep._designs import DesignTable
 from kinelab.sweep._family import Family, family as make_family
-from kinelab.sweep._metrics import (DEFAULT_HARMONICS, check_metrics, evaluate_chunk,
+from kinelab.sweep._metrics import (DEFAULT_HARMONICS, MAX_SAMPLES, check_harmonics,
+                                    check_metrics, check_samples, check_speed, evaluate_chunk,
                                     metric_columns)
 
 __all__ = ["run", "connect", "chunk_size_for", "STANDARD_METRICS", "MAX_SAMPLES"]
@@ -28,7 +29,6 @@ _CHUNK_BYTES = 32 << 20      # a chunk's working arrays: large enough that numpy
 _DASK_CHUNKS = 16           # a Dask task holds this many local chunks by default
 _ARRAYS_PER_SAMPLE = 48      # float arrays (D, S) a chunk holds at once, at most (estimate)
 _CONNECT_TIMEOUT = 5.0       # s to reach a scheduler before saying it cannot be reached
-MAX_SAMPLES = 1_000_000      # samples per turn, at most: as a model file's sweep (kinelab.io)
 
 
 def chunk_size_for(samples: int, requested: int | None = None, *, distributed: bool = False) -> int:
@@ -40,29 +40,6 @@ def chunk_size_for(samples: int, requested: int | None = None, *, distributed: b
     default = _CHUNK_BYTES * (_DASK_CHUNKS if distributed else 1) // per_design
     wanted = requested if requested is not None else max(1, default)
     return int(min(wanted, fits))
-
-
-def _check_samples(samples):
-    if isinstance(samples, (int, np.integer)) and not isinstance(samples, bool):
-        if not 4 <= samples <= MAX_SAMPLES:
-            raise ModelError(f"samples: expected at least 4 and at most {MAX_SAMPLES:,} samples per "
-                             f"turn, got {describe(int(samples))}")
-        return int(samples)
-    a = np.asarray(samples, float) if not isinstance(samples, (str, bytes)) else None
-    if a is None or a.ndim != 1 or not 1 <= a.size <= MAX_SAMPLES or not np.isfinite(a).all():
-        raise ModelError(f"samples: expected a number of samples over a turn, or a 1-D array of "
-                         f"at most {MAX_SAMPLES:,} finite input values (rad), got {describe(samples)}")
-    return a
-
-
-def _check_speed(speed) -> float:
-    if isinstance(speed, bool) or not isinstance(speed, (int, float, np.integer, np.floating)) \
-            or not math.isfinite(speed):
-        raise ModelError(f"speed: expected a finite input speed (rad/s), got {describe(speed)}")
-    why = rate_problem(float(speed), "rad/s")
-    if why:
-        raise ModelError(f"speed: {why}, got {float(speed):g}")
-    return float(speed)
 
 
 def _progress_bar(total: int) -> Callable[[int], None] | None:
@@ -202,14 +179,23 @@ def run(family: str | Family, designs, *, samples=72, metrics=None, client=None,
     fam = make_family(family)
     if path is not None:        # checked before the study, not after it
         path = file_path(path)
-    samples = _check_samples(samples)
-    if isinstance(harmonics, bool) or not isinstance(harmonics, (int, np.integer)) or harmonics < 1:
-        raise ModelError(f"harmonics: expected a whole number >= 1, got {describe(harmonics)}")
-    speed = _check_speed(speed)
+    samples = check_samples(samples)
+    harmonics = check_harmonics(harmonics)
+    speed = check_speed(speed)
+    if progress is not None and not callable(progress):
+        if not isinstance(progress, (bool, np.bool_)):
+            raise ModelError(f"progress: expected True, False or a function progress(done, total), "
+                             f"got {describe(progress)}")
+        progress = flag("progress", progress)
     if metrics is None:
         metrics = [m for m in STANDARD_METRICS
                    if _available(fam, m, isinstance(samples, int))]
     checked = check_metrics(fam, metrics, isinstance(samples, int))
+    S = samples if isinstance(samples, int) else len(samples)
+    if "descriptors" in checked.values() and S < 2 * harmonics + 1:
+        raise ModelError(f"harmonics: {harmonics} harmonics of the coupler curve need at least "
+                         f"{2 * harmonics + 1} samples, got {S}; ask for more samples or fewer "
+                         "harmonics")
     table = DesignTable(designs, fam)
     if "descriptors" in checked.values() and fam.closed_form and not fam.has_point(table.columns):
         raise ModelError("metrics: 'descriptors' needs the family's coupler point: add the columns "
@@ -253,7 +239,8 @@ def run(family: str | Family, designs, *, samples=72, metrics=None, client=None,
     if "grashof" in df:
         df["grashof"] = df["grashof"].astype(object)
     bad = np.flatnonzero(problems != "")
-    df.attrs["problems"] = {table.index[i]: str(problems[i]) for i in bad}
+    # the row labels as Python values (numbers, text, tuples of a MultiIndex), not numpy's
+    df.attrs["problems"] = dict(zip(table.index[bad].tolist(), map(str, problems[bad])))
     if path is not None:
         write_parquet(df, path)
     return df
@@ -298,8 +285,17 @@ def file_path(path) -> str:
     return text
 
 
+# what an object column may hold to be written as Parquet (pandas' infer_dtype names)
+_PARQUET_OBJECTS = ("string", "empty", "boolean", "integer", "floating", "mixed-integer-float",
+                    "bytes")
+
+
 def write_parquet(df, path) -> None:
-    """Write a study's table as Parquet, atomically (never a half-written file)."""
+    """Write a study's table as Parquet, atomically (never a half-written file).
+
+    The row problems (``df.attrs["problems"]``) travel in the file's metadata, keyed by the
+    row labels as text (``str(label)``: a file's metadata is JSON, whose keys are text),
+    whatever the index (numbers, dates, a MultiIndex)."""
     import pandas
 
     if not isinstance(df, pandas.DataFrame):
@@ -310,4 +306,22 @@ def write_parquet(df, path) -> None:
     except ImportError:
         raise ModelError("path: Parquet needs the optional dependency pyarrow; install it with "
                          "pip install 'kinelab[sweep]'") from None
-    atomic_write(os.fspath(path), lambda f: df.to_parquet(f), binary=True)
+    for name, column in df.items():
+        kind = (pandas.api.types.infer_dtype(column, skipna=True) if column.dtype == object
+                else "complex" if column.dtype.kind == "c" else "")
+        if kind and kind not in _PARQUET_OBJECTS:
+            raise ModelError(f"df: column {shown(str(name))}: expected numbers, booleans or text "
+                             f"to write as Parquet, got {kind} values; convert the column first")
+    attrs = dict(df.attrs)
+    problems = attrs.get("problems")
+    if isinstance(problems, Mapping):
+        attrs["problems"] = {str(label): str(message) for label, message in problems.items()}
+    try:
+        json.dumps(attrs)
+    except (TypeError, ValueError):
+        raise ModelError("df.attrs: expected plain data (text keys; numbers, text, lists and "
+                         "tables as values) to keep in the file's metadata; remove the others "
+                         "from df.attrs") from None
+    frame = df.copy(deep=False)
+    frame.attrs = attrs
+    atomic_write(os.fspath(path), lambda f: frame.to_parquet(f), binary=True)

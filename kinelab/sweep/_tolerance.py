@@ -9,9 +9,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from kinelab import _memory as memory
-from kinelab.errors import ModelError, check_choice, describe
+from kinelab.errors import ModelError, check_choice, describe, expected_one_of
+from kinelab.model import MAX_LENGTH, is_real
 from kinelab.solvers import wrap_angle
-from kinelab.sweep._designs import DesignTable
+from kinelab.solvers._arguments import finite, number
+from kinelab.sweep._designs import DesignTable, real_values, seed_of
 from kinelab.sweep._family import Family, family as make_family
 from kinelab.sweep._run import MAX_SAMPLES, chunk_size_for
 
@@ -58,11 +60,14 @@ class ToleranceStudy:
     def percentile(self, p: float | np.ndarray) -> np.ndarray:
         """The p-th percentile (0 to 100) of the error at each sample, over the designs that
         assemble: shape (S,), or (len(p), S)."""
+        q = finite("p", real_values("p", p))
+        if q.size and not (0.0 <= q.min() and q.max() <= 100.0):
+            raise ModelError(f"p: expected percentiles from 0 to 100, got {describe(p)}")
         ok = self.errors[self.assembles]
         if len(ok) == 0:
             raise ModelError("tolerance: no drawn design assembles over the cycle; narrow the "
                              "tolerances")
-        return np.percentile(ok, p, axis=0)
+        return np.percentile(ok, q, axis=0)
 
 
 def tolerance(family: str | Family, nominal: Mapping[str, float],
@@ -113,6 +118,17 @@ def tolerance(family: str | Family, nominal: Mapping[str, float],
             or not 4 <= samples <= MAX_SAMPLES:
         raise ModelError(f"samples: expected a whole number from 4 to {MAX_SAMPLES:,}, got "
                          f"{describe(samples)}")
+    seed = seed_of(seed)
+    if not isinstance(nominal, Mapping):
+        raise ModelError(f"nominal: expected a mapping of parameter to value (m), e.g. "
+                         f"{{'crank': 1.0}}, got {describe(nominal)}")
+    if not isinstance(tolerances, Mapping):
+        raise ModelError(f"tolerances: expected a mapping of parameter to tolerance (m), e.g. "
+                         f"{{'crank': 1e-4}}, got {describe(tolerances)}")
+    for name in nominal:
+        if name not in fam.parameters:
+            raise ModelError(f"nominal: {expected_one_of(name, fam.parameters)}")
+    nominal = {name: number(f"nominal: {name}", value) for name, value in nominal.items()}
     output = output if output is not None else fam.output
     if output is None:
         raise ModelError(f"output: family {fam.name!r} has no default output; name a link or a "
@@ -121,12 +137,13 @@ def tolerance(family: str | Family, nominal: Mapping[str, float],
         if name not in fam.parameters:
             raise ModelError(f"tolerances: unknown parameter {name!r} of family {fam.name!r}; "
                              f"its parameters are {', '.join(fam.parameters)}")
-        if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol >= 0):
-            raise ModelError(f"tolerances: {name}: expected a tolerance >= 0 (m), got {describe(tol)}")
+        if not (is_real(tol) and 0 <= float(tol) <= MAX_LENGTH):
+            raise ModelError(f"tolerances: {name}: expected a tolerance >= 0 and at most {MAX_LENGTH:g} m, "
+                             f"got {describe(tol)}")
     memory.require(8 * n * (samples + 3 * len(fam.parameters)),
                    f"a tolerance study of {n:,} designs at {samples:,} samples",
                    "draw fewer designs or take fewer samples")
-    rng = np.random.default_rng(seed)
+    rng = np.random.default_rng(seed)  # checked above
     base = {**{k: v for k, v in fam.defaults.items() if not (isinstance(v, float) and math.isnan(v))},
             **nominal}
     drawn = {}

@@ -116,6 +116,41 @@ def test_parquet_round_trip(tmp_path):
     back = pd.read_parquet(tmp_path / "study.parquet")
     pd.testing.assert_frame_equal(back, df, check_dtype=False)    # text may come back as str dtype
     assert back.attrs["problems"] == {"2": "ground: expected a length from 1e-09 m to 1e+09 m, got nan"}
+    assert df.attrs["problems"] == {2: "ground: expected a length from 1e-09 m to 1e+09 m, got nan"}
+    assert type(next(iter(df.attrs["problems"]))) is int     # a Python number, not numpy's
+
+
+@pytest.mark.parametrize("index, label", [
+    (pd.MultiIndex.from_tuples([(1, "a"), (1, "b"), (2, "a")]), "(2, 'a')"),
+    (pd.date_range("2020-01-01", periods=3), "2020-01-03 00:00:00"),
+    (pd.Index(["x", "y", "z"]), "z"),
+])
+def test_parquet_of_any_index(index, label, tmp_path, recwarn):
+    t = pd.DataFrame(table(3)).set_axis(index)
+    t.iloc[2, t.columns.get_loc("crank")] = -1.0
+    df = kl.sweep.run("fourbar", t, path=tmp_path / "study.parquet")
+    back = pd.read_parquet(tmp_path / "study.parquet")
+    pd.testing.assert_frame_equal(back, df, check_dtype=False, check_freq=False)
+    assert back.attrs["problems"] == {label: "crank: expected a length from 1e-09 m to 1e+09 m, got -1"}
+    assert not recwarn.list
+
+
+@pytest.mark.parametrize("frame, message", [
+    (pd.DataFrame({"x": pd.Series([1, "a"], dtype=object)}),
+     r"^df: column 'x': expected numbers, booleans or text to write as Parquet, got mixed-integer values"),
+    (pd.DataFrame({"x": [1 + 2j]}), r"^df: column 'x': .* got complex values"),
+])
+def test_parquet_refuses_columns_it_cannot_hold(frame, message, tmp_path):
+    with pytest.raises(ModelError, match=message):
+        kl.sweep.write_parquet(frame, tmp_path / "t.parquet")
+    assert not (tmp_path / "t.parquet").exists()
+
+
+def test_parquet_refuses_attrs_it_cannot_hold(tmp_path):
+    frame = pd.DataFrame({"x": [1.0]})
+    frame.attrs["when"] = object()
+    with pytest.raises(ModelError, match=r"^df.attrs: expected plain data"):
+        kl.sweep.write_parquet(frame, tmp_path / "t.parquet")
 
 
 @pytest.mark.parametrize("call, message", [
