@@ -12,6 +12,17 @@ from typing import IO
 from kinelab.errors import ModelError, describe
 
 
+def file_path(path: object, name: str = "path") -> Path:
+    """``path`` (text or path-like) as a :class:`~pathlib.Path`, else a :class:`ModelError`
+    naming the argument ``name``."""
+    text = os.fspath(path) if isinstance(path, os.PathLike) else path
+    if not isinstance(text, str) or not text:
+        hint = "; decode it first (path.decode())" if isinstance(text, bytes) else ""
+        raise ModelError(f"{name}: expected a file's path (text or pathlib.Path), got "
+                         f"{describe(path)}{hint}")
+    return Path(text)
+
+
 def atomic_write(path: str | os.PathLike, write: Callable[[IO], None], *, binary: bool = False) -> Path:
     """Call ``write(file)`` on a temporary file and rename it to ``path`` when it succeeds.
 
@@ -21,9 +32,7 @@ def atomic_write(path: str | os.PathLike, write: Callable[[IO], None], *, binary
         When ``path`` cannot be written (a directory, a place that does not exist or is not
         writable, a full disk): the message names ``path``, not the temporary file.
     """
-    if not isinstance(path, (str, os.PathLike)) or isinstance(path, bytes):
-        raise ModelError(f"path: expected a file name, got {describe(path)}")
-    path = Path(path)
+    path = file_path(path)
     tmp = None
     try:
         if path.is_dir():

@@ -8,13 +8,13 @@ import numbers
 import os
 import re
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
 from kinelab._memory import require
 from kinelab.errors import ModelError, describe, quoted, shown
-from kinelab.io._text import file_path, read_text
+from kinelab._files import file_path
+from kinelab.io._text import read_text
 from kinelab.solvers._differentiate import MIN_SAMPLES
 
 __all__ = ["MeasuredCurve", "read_curve"]

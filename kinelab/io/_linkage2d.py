@@ -18,7 +18,8 @@ import numpy as np
 
 from kinelab.errors import ModelError
 from kinelab.io._fields import Reader, describe, quoted, shown
-from kinelab.io._text import file_path, loads, read_text
+from kinelab._files import file_path
+from kinelab.io._text import loads, read_text
 from kinelab.model import (MAX_JOINTS, MAX_LINKS, Input, Joint, Link, Mechanism, Point, angle_problem,
                            coordinate_problem)
 

@@ -24,11 +24,11 @@ import numpy as np
 
 from kinelab import mechanisms as catalogue
 from kinelab import _memory as memory
-from kinelab._files import atomic_write
+from kinelab._files import atomic_write, file_path
 from kinelab.errors import AssemblyError, KinelabError, ModelError
 from kinelab.io import _toml
 from kinelab.io._fields import Reader, describe, quoted, shown, shown_key
-from kinelab.io._text import Written, file_path, in_si, loads, read_text, written
+from kinelab.io._text import Written, in_si, loads, read_text, written
 from kinelab.kinematics import Assembly, assemble
 from kinelab.kinematics._assemble import assembly_miss, needs_assembly
 from kinelab.model import (ANGLE_UNITS, JOINT_TYPES, LENGTH_UNITS, SPACES, Input, Joint, Link,

@@ -12,7 +12,7 @@ import numpy as np
 
 from kinelab._files import atomic_write, write_csv
 from kinelab.errors import ModelError, check_choice, describe, shown
-from kinelab.io._text import file_path
+from kinelab._files import file_path
 from kinelab.kinematics import KinematicSolution
 from kinelab.kinematics._solution import takes_solution
 from kinelab.model import Units

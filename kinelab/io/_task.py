@@ -18,7 +18,8 @@ import numpy as np
 from kinelab import synthesis
 from kinelab.errors import ModelError, describe, expected_one_of, quoted, shown_key
 from kinelab.io._results import json_ready
-from kinelab.io._text import file_path, loads, read_text
+from kinelab._files import file_path
+from kinelab.io._text import loads, read_text
 from kinelab.model import (ANGLE_UNITS, LENGTH_UNITS, Units, is_real, length_problem, name_problem,
                            real_array)
 from kinelab.synthesis._path import MAX_PATH_POINTS, MAX_PATH_SAMPLES

@@ -18,28 +18,17 @@ import sys
 import tomllib
 from decimal import Decimal, localcontext
 from fractions import Fraction
-from pathlib import Path
 from typing import Any
 
+from kinelab._files import file_path
 from kinelab.errors import ModelError, describe, shown, shown_key
 
-__all__ = ["MAX_DEPTH", "MAX_BYTES", "file_path", "read_text", "loads", "Written", "written", "in_si"]
+__all__ = ["MAX_DEPTH", "MAX_BYTES", "read_text", "loads", "Written", "written", "in_si"]
 
 MAX_DEPTH = 32     # tables and lists inside each other; a model file needs about 6
 MAX_BYTES = 8 << 20  # a file's size: a model, task or drawing is a few kilobytes, and a TOML
                      # parser reads about a megabyte in a few seconds
 _SURROGATE = re.compile("[\ud800-\udfff]")
-
-
-def file_path(path: object, name: str = "path") -> Path:
-    """``path`` (text or path-like) as a :class:`~pathlib.Path`, else a :class:`ModelError`
-    naming the argument ``name``."""
-    text = os.fspath(path) if isinstance(path, os.PathLike) else path
-    if not isinstance(text, str) or not text:
-        hint = "; decode it first (path.decode())" if isinstance(text, bytes) else ""
-        raise ModelError(f"{name}: expected a file's path (text or pathlib.Path), got "
-                         f"{describe(path)}{hint}")
-    return Path(text)
 
 
 def read_text(path: str | os.PathLike, *, max_bytes: int | None = MAX_BYTES) -> str:

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from kinelab.errors import ModelError, describe, expected_one_of, shown
-from kinelab.io._text import file_path
+from kinelab._files import file_path
 from kinelab.kinematics import KinematicSolution
 from kinelab.kinematics._solution import takes_solution
 from kinelab.solvers._arguments import flag, whole

@@ -19,7 +19,7 @@ import numpy as np
 
 from kinelab._files import atomic_write
 from kinelab.errors import ModelError, describe, quoted, shown
-from kinelab.io._text import file_path
+from kinelab._files import file_path
 from kinelab.kinematics import KinematicSolution
 from kinelab.kinematics._solution import takes_solution
 from kinelab.kinematics._columns import INPUT_SI_UNITS

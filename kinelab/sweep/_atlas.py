@@ -24,7 +24,8 @@ from kinelab.sweep._metrics import (DEFAULT_HARMONICS, descriptor_names, descrip
                                     resample_closed)
 from kinelab.solvers._arguments import whole
 from kinelab.sweep._designs import MAX_SEED
-from kinelab.sweep._run import file_path as _file, run, write_parquet
+from kinelab._files import file_path
+from kinelab.sweep._run import run, write_parquet
 from kinelab.synthesis import MAX_PATH_POINTS, coupler_curves, path_generation
 
 __all__ = ["Atlas", "atlas"]
@@ -216,7 +217,7 @@ class Atlas:
         metadata (harmonics, branch), its columns and finite numbers in them."""
         import pandas
 
-        path = _file(path)
+        path = str(file_path(path))
         where = shown_path(path)
         if os.path.isdir(path):      # pyarrow would read the files in it as one table
             raise ModelError(f"{where}: cannot read an atlas: a directory, not a file; name the "

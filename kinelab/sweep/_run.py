@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from kinelab import _memory as memory
-from kinelab._files import atomic_write
+from kinelab._files import atomic_write, file_path
 from kinelab.errors import KinelabError, ModelError, describe, shown
 from kinelab.solvers._arguments import flag
 from kinelab.sweep._designs import DesignTable
@@ -178,7 +178,7 @@ def run(family: str | Family, designs, *, samples=72, metrics=None, client=None,
 
     fam = make_family(family)
     if path is not None:        # checked before the study, not after it
-        path = file_path(path)
+        path = str(file_path(path))
     samples = check_samples(samples)
     harmonics = check_harmonics(harmonics)
     speed = check_speed(speed)
@@ -275,16 +275,6 @@ def _on_dask(client, fam, table, chunks, options, report):
             f.release()
 
 
-def file_path(path) -> str:
-    """A file's path (text or path-like), else a ModelError naming ``path``."""
-    if isinstance(path, bytes) or not isinstance(path, (str, os.PathLike)):
-        raise ModelError(f"path: expected a file's path (text or pathlib.Path), got {describe(path)}")
-    text = os.fspath(path)
-    if not isinstance(text, str) or not text:
-        raise ModelError(f"path: expected a file's path, got {describe(text)}")
-    return text
-
-
 # what an object column may hold to be written as Parquet (pandas' infer_dtype names)
 _PARQUET_OBJECTS = ("string", "empty", "boolean", "integer", "floating", "mixed-integer-float",
                     "bytes")
@@ -300,7 +290,7 @@ def write_parquet(df, path) -> None:
 
     if not isinstance(df, pandas.DataFrame):
         raise ModelError(f"df: expected a pandas DataFrame (a study's table), got {describe(df)}")
-    path = file_path(path)
+    path = str(file_path(path))
     try:
         import pyarrow  # noqa: F401
     except ImportError:

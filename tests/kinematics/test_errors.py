@@ -223,7 +223,7 @@ PARALLELOGRAM = dict(ground=100, crank=60, coupler=100, rocker=60)
     (lambda fb, s: kl.KinematicSolution.concatenate(
         [s, kl.analyze(kl.mechanisms.slider_crank(1, 3), [0.1])]),
      r"^parts: expected analyses of one mechanism by one method"),
-    (lambda fb, s: s.to_csv(None), r"^path: expected a file name, got None$"),
+    (lambda fb, s: s.to_csv(None), r"^path: expected a file's path \(text or pathlib.Path\), got None$"),
     (lambda fb, s: s.to_csv("results.parquet"), r"^path: results.parquet names a Parquet file"),
     (lambda fb, s: s.columns(degrees="yes"), r"^degrees: expected True or False, got 'yes'$"),
 ])
