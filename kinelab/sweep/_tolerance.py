@@ -12,7 +12,7 @@ from kinelab import _memory as memory
 from kinelab.errors import ModelError, check_choice, describe, expected_one_of
 from kinelab.model import MAX_LENGTH, is_real
 from kinelab.solvers import wrap_angle
-from kinelab.solvers._arguments import finite, number
+from kinelab.solvers._arguments import finite, number, whole
 from kinelab.sweep._designs import DesignTable, real_values, seed_of
 from kinelab.sweep._family import Family, family as make_family
 from kinelab.sweep._run import MAX_SAMPLES, chunk_size_for
@@ -114,10 +114,7 @@ def tolerance(family: str | Family, nominal: Mapping[str, float],
     check_choice("distribution", distribution, ("uniform", "normal"))
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise ModelError(f"n: expected a whole number >= 1, got {describe(n)}")
-    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) \
-            or not 4 <= samples <= MAX_SAMPLES:
-        raise ModelError(f"samples: expected a whole number from 4 to {MAX_SAMPLES:,}, got "
-                         f"{describe(samples)}")
+    samples = whole("samples", samples, 4, MAX_SAMPLES)
     seed = seed_of(seed)
     if not isinstance(nominal, Mapping):
         raise ModelError(f"nominal: expected a mapping of parameter to value (m), e.g. "
