@@ -63,6 +63,9 @@ def real_array(value: Any) -> np.ndarray | None:
         if a.dtype == object and a.size and all(
                 isinstance(v, numbers.Integral) and not isinstance(v, bool) for v in a.flat):
             a = a.astype(float)         # whole numbers beyond 64 bits (beyond floats: refused)
+        if a.dtype.kind in "iuf" and isinstance(value, (list, tuple)) and a.size and any(
+                isinstance(v, (bool, np.bool_)) for v in np.asarray(value, dtype=object).flat):
+            return None                 # numpy made a True among numbers into 1
     except (TypeError, ValueError, OverflowError):
         return None
     return a.astype(float) if a.dtype.kind in "iuf" else None

@@ -36,3 +36,11 @@ def test_whole_numbers_beyond_64_bits_are_numbers():
     np.testing.assert_array_equal(a.omega("coupler"), b.omega("coupler"))
     with pytest.raises(ModelError, match=r"^q: expected angles within 1,000,000 turns"):
         kl.analyze(fb, q=10 ** 30)
+
+
+@pytest.mark.parametrize("arg", ["q", "qd"])
+def test_a_boolean_among_numbers_is_not_a_number(arg):
+    """numpy turns [0.1, True] into [0.1, 1.0]: the True is refused, not read as 1."""
+    fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
+    with pytest.raises(ModelError, match=rf"^{arg}: expected numbers, got \[0.1, true\]$"):
+        kl.analyze(fb, **{"q": [0.5, 0.6], arg: [0.1, True]})
