@@ -25,6 +25,8 @@ from kinelab.errors import ModelError, describe, shown, shown_key
 
 __all__ = ["MAX_DEPTH", "MAX_BYTES", "read_text", "loads", "Written", "written", "in_si"]
 
+DIGITS_READ = 100  # characters of a number converted from its digits; a longer one (a file's
+                   # stray thousands of zeros) is read as the float nearest it
 MAX_DEPTH = 32     # tables and lists inside each other; a model file needs about 6
 MAX_BYTES = 8 << 20  # a file's size: a model, task or drawing is a few kilobytes, and a TOML
                      # parser reads about a megabyte in a few seconds
@@ -82,8 +84,10 @@ def in_si(value: int | float, scale: float) -> float:
     if scale == 1.0 or not math.isfinite(value) or value == 0:
         return float(value) * scale
     # the digits written; a float given as a number stands for the digits it prints as
-    exact = Fraction(value.text if isinstance(value, Written) else repr(float(value))) \
-        if isinstance(value, float) else Fraction(value)
+    text = value.text if isinstance(value, Written) else repr(float(value))
+    if len(text) > DIGITS_READ:         # far beyond a float's precision: the float nearest
+        text = repr(float(value))       # them (Python turns no more than 4300 into a number)
+    exact = Fraction(text) if isinstance(value, float) else Fraction(value)
     try:
         return float(exact * Fraction(scale))
     except OverflowError:

@@ -450,3 +450,12 @@ def test_a_model_through_json_numbers_is_the_same_model(name):
     sent as plain JSON numbers (as the web page does), reads back as the file itself."""
     mf = ModelFile.read(f"examples/{name}.toml")
     assert ModelFile.from_dict(json.loads(json.dumps(mf.to_dict()))) == mf
+
+
+@pytest.mark.parametrize("written", ["300." + "0" * 5000 + "1", "3.0e" + "0" * 5000 + "2"])
+def test_a_number_of_thousands_of_digits_is_the_float_nearest_it(written):
+    """Python turns at most 4300 digits into a whole number: such a number is read as the
+    float nearest it, not converted digit by digit."""
+    text = Path("examples/crank_rocker.toml").read_text()
+    mf = ModelFile.from_toml(text.replace("O4 = [300, 0]", f"O4 = [{written}, 0]"))
+    assert mf == ModelFile.read("examples/crank_rocker.toml")
