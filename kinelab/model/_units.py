@@ -103,7 +103,7 @@ class Units:
             u = cls(**units)
         else:
             raise ModelError(f"units: expected a mapping such as {{'length': 'mm', 'angle': "
-                             f"'deg'}} or a kinelab Units, got {type(units).__name__}")
+                             f"'deg'}} or a kinelab Units, got {describe(units)}")
         if not isinstance(degrees, (bool, np.bool_)):
             raise ModelError(f"degrees: expected True or False, got {describe(degrees)}")
         if degrees:
