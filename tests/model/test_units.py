@@ -64,7 +64,7 @@ def test_resolve_keywords():
     ({"lenght": "mm"}, False,
      r"^units: expected the keys 'length' and 'angle', got 'lenght' \(did you mean 'length'\?\)$"),
     ("mm", False, r"^units: expected a mapping such as \{'length': 'mm', 'angle': 'deg'\} or a "
-                  r"kinelab Units, got str$"),
+                  r"kinelab Units, got 'mm'$"),
     ({"angle": "rad"}, True, r"^units\.angle: degrees=True asks for 'deg', got 'rad'; drop one"),
 ])
 def test_bad_units_name_the_field_and_the_choices(units, degrees, message):
