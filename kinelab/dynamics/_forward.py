@@ -476,7 +476,8 @@ def simulate(model: Mechanism | Sequence[Mechanism], t_span: tuple[float, float]
     y0 = np.concatenate([q_init, qd_init, np.zeros((B, 3))], axis=1)
 
     def integrate() -> list:
-        most = max_evaluations or (MAX_EVALUATIONS if compiled is not None else MAX_EVALUATIONS_PYTHON)
+        most = max_evaluations or (MAX_EVALUATIONS if compiled is not None
+                                   else MAX_EVALUATIONS_PYTHON)
         try:
             if compiled is not None:
                 return _integrate_compiled(cases, compiled, y0, (t0, t1), t_eval, rtol, atol,
