@@ -22,7 +22,10 @@ from kinelab._files import file_path
 from kinelab.io._text import loads, read_text
 from kinelab.model import (ANGLE_UNITS, LENGTH_UNITS, Units, is_real, length_problem, name_problem,
                            real_array)
-from kinelab.synthesis._path import MAX_PATH_POINTS, MAX_PATH_SAMPLES
+from kinelab.solvers._arguments import MAX_SEED
+from kinelab.synthesis._arguments import MAX_POSITIONS
+from kinelab.synthesis._path import (MAX_PATH_POINTS, MAX_PATH_SAMPLES, MAX_POPSIZE, MAX_ROUNDS,
+                                     MAX_RUNS)
 from kinelab.synthesis._positions import check_not_one_turn
 
 __all__ = ["Task", "TASK_KINDS", "load_task", "read_task", "solve_task", "task_summary"]
@@ -33,10 +36,9 @@ MECHANISMS = ("offset slider-crank", "slotted lever", "whitworth")
 # memory than a machine has; each is far above what a synthesis needs.
 MAX_SAMPLES = 1_000_000
 MAX_PRECISION_POINTS = 100
-MAX_POSITIONS = 1000        # a motion task's positions (least squares beyond five)
 # (a path task's targets are at most MAX_PATH_POINTS, checked before anything is computed)
-_SEARCH_BOUNDS = {"runs": (1, 1000), "maxiter": (1, 1_000_000), "popsize": (5, 10_000),
-                  "samples": (24, MAX_PATH_SAMPLES), "seed": (0, 2 ** 32 - 1)}
+_SEARCH_BOUNDS = {"runs": (1, MAX_RUNS), "maxiter": (1, MAX_ROUNDS), "popsize": (5, MAX_POPSIZE),
+                  "samples": (24, MAX_PATH_SAMPLES), "seed": (0, MAX_SEED)}
 _SECTIONS = {"task", "name", "units", "positions", "pivots", "function", "search", "crank_rocker",
              "quick_return"}
 # the keys of a design task's section: whether each is a length, an angle or a number

@@ -16,7 +16,10 @@ import numpy as np
 from kinelab.errors import ModelError, describe
 from kinelab.model import real
 
-__all__ = ["number", "tolerance", "whole", "flag", "function", "reals", "finite"]
+__all__ = ["number", "tolerance", "whole", "flag", "function", "reals", "finite", "seed",
+           "MAX_SEED"]
+
+MAX_SEED = 2 ** 32 - 1      # the largest seed of the random draws (numpy's and scipy's)
 
 
 def number(name: str, value: object) -> float:
@@ -46,6 +49,12 @@ def whole(name: str, value: object, low: int, high: int) -> int:
         raise ModelError(f"{name}: expected a whole number from {low} to {high:,}, got "
                          f"{describe(value)}")
     return int(value)
+
+
+def seed(value: object, *, none: bool = False) -> int | None:
+    """A seed of the random draws: a whole number from 0 to ``MAX_SEED`` (or None, fresh
+    entropy, when ``none``)."""
+    return None if none and value is None else whole("seed", value, 0, MAX_SEED)
 
 
 def flag(name: str, value: object) -> bool:

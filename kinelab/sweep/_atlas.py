@@ -22,8 +22,7 @@ from kinelab.errors import ModelError, describe, one_line, quoted, shown, shown_
 from kinelab.model import MAX_LENGTH, MIN_LENGTH, real_array
 from kinelab.sweep._metrics import (DEFAULT_HARMONICS, descriptor_names, descriptors,
                                     resample_closed)
-from kinelab.solvers._arguments import whole
-from kinelab.sweep._designs import MAX_SEED
+from kinelab.solvers._arguments import seed as check_seed
 from kinelab._files import file_path
 from kinelab.sweep._run import run, write_parquet
 from kinelab.synthesis import MAX_PATH_POINTS, coupler_curves, path_generation
@@ -202,7 +201,7 @@ class Atlas:
                 raise ModelError(f"{shown(key)}: unknown option of refine{hint}; its options are k, "
                                  f"points, {quoted(_REFINE_OPTIONS)}")
         if "seed" in options:
-            options["seed"] = whole("seed", options["seed"], 0, MAX_SEED)
+            options["seed"] = check_seed(options["seed"])
         options = {"runs": 1, **options}
         return path_generation(targets, initial=self.placed(P, k), **options)
 

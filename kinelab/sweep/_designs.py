@@ -15,7 +15,8 @@ import numpy as np
 from kinelab import _memory as memory
 from kinelab.errors import MemoryBudgetError, ModelError, describe, expected_one_of, shown
 from kinelab.model import MAX_LENGTH, MIN_LENGTH, length_problem, real_array
-from kinelab.solvers._arguments import finite, number, reals, whole
+from kinelab.solvers._arguments import finite, number, reals
+from kinelab.solvers._arguments import seed as check_seed
 
 __all__ = ["grid", "random", "sobol", "DesignTable"]
 
@@ -40,10 +41,7 @@ def _ranges(ranges: Mapping[str, object], what: str) -> dict[str, tuple[float, f
 
 def seed_of(seed: object) -> int | None:
     """A seed of numpy's generators: None (fresh entropy) or a whole number from 0."""
-    return None if seed is None else whole("seed", seed, 0, MAX_SEED)
-
-
-MAX_SEED = 2 ** 32 - 1      # as a task file's seed
+    return check_seed(seed, none=True)
 
 
 def real_values(name: str, values: object) -> np.ndarray:

@@ -3,8 +3,8 @@
 Every public function checks its arguments here, once, before anything is computed: points
 and pivots hold real numbers within the model's limits (coordinates at most ``MAX_LENGTH``
 in size, so that their squares and products stay finite), angles within ``MAX_TURNS``
-turns, whole numbers are whole numbers within bounds (the bounds of the task files), flags
-are True or False.  A bad argument is a one-line :class:`ModelError` that names it.
+turns (whole numbers, flags and seeds: :mod:`kinelab.solvers._arguments`).  A bad argument
+is a one-line :class:`ModelError` that names it.
 """
 from __future__ import annotations
 
@@ -12,16 +12,13 @@ import math
 
 import numpy as np
 
-from kinelab._memory import require
 from kinelab.errors import ModelError, describe
 from kinelab.model import MAX_LENGTH, MAX_TURNS, is_real, real_array
-from kinelab.solvers._arguments import flag, reals, whole
+from kinelab.solvers._arguments import reals
 
-__all__ = ["point", "point_array", "coordinate", "angle_array", "angle", "whole", "flag",
-           "seed", "MAX_POSITIONS", "MAX_SEED", "require"]
+__all__ = ["point", "point_array", "coordinate", "angle_array", "angle", "MAX_POSITIONS"]
 
 MAX_POSITIONS = 1000        # positions of a motion task, as the task files take them
-MAX_SEED = 2 ** 32 - 1
 _MAX_RADIANS = MAX_TURNS * 2 * math.pi
 
 
@@ -82,8 +79,3 @@ def angle(name: str, value: object, degrees: bool = False) -> float:
     if a.ndim != 0:
         raise ModelError(f"{name}: expected one angle, got {describe(value)}")
     return float(a)
-
-
-def seed(value: object) -> int:
-    """A seed of the random draws: a whole number from 0 to 2**32 - 1."""
-    return whole("seed", value, 0, MAX_SEED)

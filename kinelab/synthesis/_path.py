@@ -25,8 +25,8 @@ from kinelab.errors import ModelError, describe
 from kinelab.mechanisms import Grashof
 from kinelab.model import MAX_LENGTH, MIN_LENGTH, Mechanism, is_real
 from kinelab.solvers._arguments import flag, reals, whole
+from kinelab.solvers._arguments import seed as check_seed
 from kinelab.synthesis._arguments import point_array
-from kinelab.synthesis._arguments import seed as check_seed
 from kinelab.solvers import wrap_angle
 from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, finite_or_inf, fourbar_model,
                                         model_grashof, travel)
