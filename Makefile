@@ -1,16 +1,19 @@
 # `make demo` and `make test` work on a fresh machine with Python 3.11 and make:
-# they create .venv, install kinelab into it and run.
+# they create .venv, install kinelab into it (with the versions in constraints.txt) and run.
 PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
+CONSTRAINTS := constraints.txt
+# the newest versions pip resolves today, in a virtual environment of their own
+LATEST := .venv-latest
 
-.PHONY: demo test bench clean
+.PHONY: demo test test-latest lock bench clean
 
-$(STAMP): pyproject.toml
+$(STAMP): pyproject.toml $(CONSTRAINTS)
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e ".[dev]"
+	$(BIN)/python -m pip install --quiet -c $(CONSTRAINTS) -e ".[dev]"
 	touch $(STAMP)
 
 DEMO := examples/crank_rocker.toml
@@ -24,8 +27,23 @@ demo: $(STAMP)
 test: $(STAMP)
 	$(BIN)/python -m pytest
 
+# The suite against the newest release of every dependency (no constraints): a new release
+# that breaks kinelab shows up here as a failing run.
+test-latest:
+	rm -rf $(LATEST)
+	$(PYTHON) -m venv $(LATEST)
+	$(LATEST)/bin/python -m pip install --quiet --upgrade pip
+	$(LATEST)/bin/python -m pip install --quiet --upgrade -e ".[dev]"
+	$(LATEST)/bin/python -m pip freeze --exclude-editable > $(LATEST)/versions.txt
+	$(LATEST)/bin/python -m pytest -p no:cacheprovider
+
+# Refresh constraints.txt to the newest versions, once the suite passes with them.
+lock: test-latest
+	{ sed -n '/^#/p' $(CONSTRAINTS); cat $(LATEST)/versions.txt; } > $(CONSTRAINTS).new
+	mv $(CONSTRAINTS).new $(CONSTRAINTS)
+
 bench: $(STAMP)
 	for f in benchmarks/*.py; do $(BIN)/python $$f || exit 1; done
 
 clean:
-	rm -rf $(VENV) out .pytest_cache .hypothesis
+	rm -rf $(VENV) $(LATEST) out .pytest_cache .hypothesis

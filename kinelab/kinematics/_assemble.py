@@ -118,8 +118,8 @@ def assemble(mechanism: Mechanism, *, units: Units | None = None) -> Assembly:
     x = _nearest(system, x0)
     residual = system.residual(x)
     if not np.all(np.abs(residual) <= 1e3 * _TOL * system.scale):
-        text, loop, link = system.no_assembly(x)
-        raise AssemblyError(text, loop=loop, gap=system.worst(x)[1], link=link)
+        text, loop, link, gap = system.no_assembly(x)
+        raise AssemblyError(text, loop=loop, gap=gap, link=link)
     points = system.points_at(x)
     moved = {n: float(math.dist(points[n], (p.x, p.y))) for n, p in
              ((p.name, p) for p in mechanism.points)}
@@ -409,28 +409,39 @@ class _Constraints:
             row += width
         return name, best
 
-    def no_assembly(self, x: np.ndarray) -> tuple[str, str, str]:
-        """(message, loop, link to blame) of a sketch that no assembly is near: the loop
-        through the link missed the most and, when its bars are too long for it to close,
-        the inequality they fail."""
+    def no_assembly(self, x: np.ndarray) -> tuple[str, str, str, float]:
+        """(message, loop, link to blame, gap in m) of a sketch that no assembly is near.
+
+        A loop of bars whose longest bar is longer than the others together cannot close
+        in any configuration, and misses by exactly that excess: such a loop is named, the
+        first in the order of the links, with its inequality.  Otherwise the loop through
+        the constraint missed the most where the search stopped, and by how much."""
+        for link in self.m.links:
+            if link.ground:
+                continue
+            loop = _loop_through(self.m, link.name)
+            bars = _bar_lengths(self.m, loop) if loop else None
+            if not bars:
+                continue
+            longest = max(bars, key=bars.get)
+            rest = {k: v for k, v in bars.items() if k != longest}
+            excess = bars[longest] - sum(rest.values())
+            if excess > 0:
+                text = (f"no assembly: the loop {'-'.join(loop)} cannot close; it misses by "
+                        f"{self.length(excess)}: its longest bar is longer than the others "
+                        f"together: {longest} {self.length(bars[longest])} > "
+                        + " + ".join(f"{k} {self.length(v, unit=False)}" for k, v in rest.items())
+                        + f" = {self.length(sum(rest.values()))}; shorten {longest} to at most "
+                        f"{self.length(sum(rest.values()))} or lengthen the others")
+                return text, "-".join(loop), longest, excess
         name, gap = self.worst(x)
         loop = _loop_through(self.m, name) if name in self.m.link_names else None
         where = f"the loop {'-'.join(loop)}" if loop else f"'{name}'"
         text = (f"no assembly near the sketch: {where} cannot close; it misses by "
-                f"{self.length(gap)} at {'link' if name in self.m.link_names else 'joint'} '{name}'")
+                f"{self.length(gap)} at {'link' if name in self.m.link_names else 'joint'} '{name}'"
+                "; check the lengths, or draw the sketch closer to an assembly")
         blame = name if name in self.m.link_names else ""
-        bars = _bar_lengths(self.m, loop) if loop else None
-        if bars:
-            longest = max(bars, key=bars.get)
-            rest = {k: v for k, v in bars.items() if k != longest}
-            if bars[longest] > sum(rest.values()):
-                blame = longest
-                text += (f"; its longest bar is longer than the others together: {longest} "
-                         f"{self.length(bars[longest])} > " + " + ".join(
-                             f"{k} {self.length(v, unit=False)}" for k, v in rest.items())
-                         + f" = {self.length(sum(rest.values()))}")
-        text += "; check the lengths, or draw the sketch closer to an assembly"
-        return text, "-".join(loop) if loop else name, blame
+        return text, "-".join(loop) if loop else name, blame, gap
 
     def length(self, v: float, unit: bool = True) -> str:
         """A length for a message, in the units the model is written in."""

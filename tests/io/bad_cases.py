@@ -125,10 +125,10 @@ CASES = [
      "fb.toml: links[1].length: expected a positive length, got -100 mm"),
     # by hand: 1000 > 300 + 250 + 300, the sketch's other bars
     ("lengths that cannot close", _replace('length = 100', 'length = 1000'),
-     "fb.toml: links[1].length: no assembly near the sketch: the loop A-O2-O4-B cannot close; it "
-     "misses by 250.919 mm at link 'coupler'; its longest bar is longer than the others together: "
-     "crank 1000 mm > ground 300 + rocker 250 + coupler 300 = 850 mm; check the lengths, or draw "
-     "the sketch closer to an assembly"),
+     # the true gap: a loop of bars misses by its longest bar's excess over the others
+     "fb.toml: links[1].length: no assembly: the loop O2-O4-B-A cannot close; it misses by 150 mm: "
+     "its longest bar is longer than the others together: crank 1000 mm > ground 300 + rocker 250 "
+     "+ coupler 300 = 850 mm; shorten crank to at most 850 mm or lengthen the others"),
     ("a place for the link's first point", _replace('length = 100', 'length = 100\nlocal = { O2 = [1, 2] }'),
      "fb.toml: links[1].local.O2: expected one of the link's points after its first two (none), "
      "got 'O2'"),
