@@ -377,25 +377,23 @@ class SerialRobot:
     def _singular_error(self, q, singular, attainable, off) -> SingularityError:
         """What inverse_rates says at singular poses: a limit of the motion asked for, or a
         pose where branches meet."""
-        who, flag_it = f"robot {shown(self.name)}", ("pass on_singular='flag' for "
-                                                     "least-squares rates with those samples "
-                                                     "flagged")
         blocked = singular & ~attainable
+        at = blocked if blocked.any() else singular
+        first = int(np.flatnonzero(at)[0])
+        where = (f"robot {shown(self.name)}: the Jacobian is singular at sample(s) "
+                 f"{indices(at)} (q = {np.round(q[first], 6).tolist()})")
+        flag_it = "pass on_singular='flag' for least-squares rates with those samples flagged"
         if blocked.any():
-            first = int(np.flatnonzero(blocked)[0])
             return SingularityError(
-                f"{who}: the Jacobian is singular at sample(s) {indices(blocked)} (q = "
-                f"{np.round(q[first], 6).tolist()}) and the tool velocity asked for has a "
-                f"part of {off[first]:.6g} m/s that no joint rates give: the tool cannot move "
-                f"that way from this pose (a limit of that motion, such as the edge of the "
-                f"workspace); change the velocity or move off that pose, or {flag_it}")
-        first = int(np.flatnonzero(singular)[0])
+                f"{where} and the tool velocity asked for has a part of {off[first]:.6g} m/s "
+                f"that no joint rates give: the tool cannot move that way from this pose (a "
+                f"limit of that motion, such as the edge of the workspace); change the "
+                f"velocity or move off that pose, or {flag_it}")
         return SingularityError(
-            f"{who}: the Jacobian is singular at sample(s) {indices(singular)} (q = "
-            f"{np.round(q[first], 6).tolist()}): the tool can move with the velocity asked "
-            f"for, but not with unique joint rates, as branches of the inverse solution meet "
-            f"at this pose and the rates depend on the branch the motion is on; move off "
-            f"that pose, or {flag_it} (the minimum-norm ones)")
+            f"{where}: the tool can move with the velocity asked for, but not with unique "
+            f"joint rates, as branches of the inverse solution meet at this pose and the "
+            f"rates depend on the branch the motion is on; move off that pose, or {flag_it} "
+            f"(the minimum-norm ones)")
 
     # -- inverse position -------------------------------------------------------------------
     def inverse(self, point: ArrayLike, *, branch: str | None = None,
