@@ -152,8 +152,13 @@ class RSSR:
     - a **change point**, where ``Φ_θ1 = 0`` too (the row ``[Φ_θ1 Φ_θ3]`` loses rank): the
       two branches cross, and the input goes on along either of them with finite K.
       Since ``Φ_θ1 = -G D' / (2 (E² + F²))`` there and ``D' = -2 k cos θ1 sin θ1``, this
-      happens at θ1 = ±90° when ``m0 = 0`` (``|G| = 2 r3 |L1 - L0|``): then the whole turn
-      is reachable (:meth:`change_points`).  *Mecanismos*' example is one.
+      happens at θ1 = ±90° when ``m0 = 0``, that is ``|G| = 2 r3 |L1 - L0|`` with
+      ``r3 = sqrt(H3² + L3²)``, or ``L2² = H1² + (L1 - L0 ± r3)²``: one assembly puts B on
+      the input axis, where |AB| does not change as the input turns, so that branch is
+      θ3 = const, and the other one crosses it at θ1 = ±90°.  The whole turn is then
+      reachable (:meth:`change_points`).  *Mecanismos*' example is one.
+      (At θ1 = 0 and π, ``D' = 0`` where the loop closes only there: an isolated
+      configuration, from which the mechanism cannot move.)
 
     A branch that goes smoothly through a change point changes the sign of ``Φ_θ3``, so
     ``branch`` names the branch at θ1 = 0 (and wherever it is reached from there without a
