@@ -510,10 +510,8 @@ def _validate(m: Mechanism) -> list[str]:
                     elif (why := next(filter(None, (length_problem(float(c), positive=False)
                                                     for c in v)), None)):
                         add(f"{where}: local.{pn}: {why}, got {describe(v)}")
-        if link.sides is not None or (link.ground is True and link.local):
-            sketch = {pn: points[pn].xy for pn in link.points if pn in placed}
-            for why in place_problems(link, sketch):
-                add(f"{where}: {why}")
+        for why in place_problems(link, {pn: points[pn].xy for pn in link.points if pn in placed}):
+            add(f"{where}: {why}")
         if link.center_of_mass is not None and link.center_of_mass not in link.points:
             add(f"{where}: center_of_mass: expected one of the link's points "
                 f"{quoted(link.points)}, got {describe(link.center_of_mass)}")

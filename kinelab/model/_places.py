@@ -70,10 +70,17 @@ def exact_places(link, sketch: Mapping[str, Sequence[float]]) -> dict[str, Place
     >>> exact_places(coupler, {"A": (0, 0), "B": (5, 0), "P": (3, 2)})
     {'P': (3.2, 2.4)}
     """
+    where = f"link {shown(link.name)}"
+    if missing := [p for p in link.points if p not in sketch]:
+        raise ModelError(f"sketch: expected the place of every point of {where}, got none for "
+                         f"{quoted(missing)}")
     places, problems = _places(link, sketch, Units())
     if problems:
-        raise ModelError([f"link {shown(link.name)}: {p}" for p in problems])
+        raise ModelError([f"{where}: {p}" for p in problems])
     given = set(_mapping(link.local)) | set(_mapping(link.sides))
+    if given and not places:
+        raise ModelError(f"{where}: its first two points are at one place in the sketch, so it "
+                         "has no frame to place its other points in; move one of them")
     return {p: places[p] for p in link.points[2:] if p in given}
 
 
@@ -87,6 +94,8 @@ def place_problems(link, sketch: Mapping[str, Sequence[float]], units: Units | N
     already put each point where its ``local`` or ``sides`` say.  A link whose points are
     not all in ``sketch`` is checked for what needs no geometry only.
     """
+    if link.sides is None and not (link.ground is True and link.local):
+        return []
     return _places(link, sketch, units or Units())[1]
 
 

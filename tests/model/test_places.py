@@ -93,6 +93,15 @@ def test_local_places_come_through_unchanged():
     assert exact_places(Link("coupler", ("A", "B", "P")), SKETCH) == {}
 
 
+def test_exact_places_needs_the_links_points_in_the_sketch():
+    link = Link("coupler", ("A", "B", "P"), sides={"P": {"A": 4.0, "B": 3.0, "side": "left"}})
+    with pytest.raises(ModelError, match=r"^sketch: expected the place of every point of link "
+                       r"'coupler', got none for 'P'$"):
+        exact_places(link, {"A": (0, 0), "B": (5, 0)})
+    with pytest.raises(ModelError, match=r"its first two points are at one place in the sketch"):
+        exact_places(link, {"A": (0, 0), "B": (0, 0), "P": (1, 1)})
+
+
 def fourbar(coupler: Link, P=(1.5, 2.0)) -> Mechanism:
     return Mechanism(
         "fb", (Point("O2", 0, 0), Point("A", 0, 1), Point("B", 3, 2), Point("O4", 3, 0),
