@@ -198,7 +198,7 @@ def sweep_command(family_spec, table, sobol, random_n, grid, ranges, seed, sched
         raise ModelError(f"designs: the design {exc.design} moves points off the places the file "
                          f"declares ({exc.detail}); vary (--range, DESIGNS columns) only points "
                          "that no declaration fixes, or remove that declaration (a link's local "
-                         "place, a joint's offset) from the file and run kinelab check "
+                         "place or sides, a joint's offset) from the file and run kinelab check "
                          f"{shown_path(family_spec)}", source=family_spec) from None
     seconds = time.perf_counter() - start
     _write(_labelled(df, degrees, fam.output_is_slide), path)

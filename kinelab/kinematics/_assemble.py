@@ -24,7 +24,7 @@ import numpy as np
 
 from kinelab.errors import AssemblyError, ModelError, describe, shown
 from kinelab.kinematics._geometry import sketch_angle
-from kinelab.model import Mechanism, Point, Units
+from kinelab.model import Mechanism, Point, Units, exact_places
 
 __all__ = ["Assembly", "assemble", "pose", "needs_assembly", "check_assembled", "assembly_miss",
            "SketchNotAssembled"]
@@ -56,7 +56,7 @@ class Assembly:
 
 def needs_assembly(m: Mechanism) -> bool:
     """Whether the model gives lengths, places or offsets that the sketch must be moved to."""
-    return (any(link.length is not None or link.local for link in m.links)
+    return (any(link.length is not None or link.local or link.sides for link in m.links)
             or any(j.offset is not None for j in m.joints))
 
 
@@ -256,7 +256,7 @@ class _Constraints:
             if L == 0.0:
                 continue
             dist.append((self.index[a], self.index[b], L, link.name))
-            local = link.local or {}
+            local = exact_places(link, xy)      # its local places and its sides
             for p in pts[2:]:
                 if p in local:
                     along, left = local[p]

@@ -203,15 +203,15 @@ class _FourbarDesigns(Designs):
 
 class DesignOffModel(ModelError):
     """A design of a model's family that moves points off the lengths, places or offsets the
-    model declares (a link's ``local`` place, a joint's ``offset``): ``detail`` says which
-    and by how much, ``design`` the parameters that moved."""
+    model declares (a link's ``local`` place or ``sides``, a joint's ``offset``): ``detail``
+    says which and by how much, ``design`` the parameters that moved."""
 
     def __init__(self, detail: str, design: str):
         self.detail, self.design = detail, design
         super().__init__(f"designs: the design {design} moves points off the places the model "
                          f"declares ({detail}); vary only points that no declaration fixes, or "
-                         "remove that declaration (a link's local place, a joint's offset) from "
-                         "the model")
+                         "remove that declaration (a link's local place or sides, a joint's "
+                         "offset) from the model")
 
 
 def _check_design(mech: Mechanism, row: Mapping[str, float], base: Mechanism) -> None:
