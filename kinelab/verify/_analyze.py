@@ -59,7 +59,8 @@ analyze.__doc__ = (kinematics.analyze.__doc__.replace("\n    Returns\n", "\n" + 
                    .rstrip() + "\n" + _VERIFY_EXAMPLE)
 
 
-def certify(result, *, solution: KinematicSolution | None = None, function=None) -> Certificate:
+def certify(result, *, solution: KinematicSolution | None = None, function=None, loads=None,
+            masses=None, rtol: float | None = None) -> Certificate:
     """The certificate of a result: each of its quantities computed again by independent
     routes, the largest disagreement of each against its bound.
 
@@ -81,6 +82,12 @@ def certify(result, *, solution: KinematicSolution | None = None, function=None)
     function : callable, optional
         The prescribed function ``f(x)`` of a function generator (required for a
         :class:`~kinelab.synthesis.FunctionSolution`).
+    loads, masses : optional
+        The loads and masses of dynamics, as given to :func:`kinelab.dynamics.inverse` or
+        :func:`~kinelab.dynamics.simulate` (default, as there: the model's ``[dynamics]``
+        section and its links' mass data).
+    rtol : float, optional
+        A simulation's rtol: adds its integrated energy balance, within 100 rtol.
 
     Returns
     -------
@@ -107,7 +114,7 @@ def certify(result, *, solution: KinematicSolution | None = None, function=None)
     kind = type(result).__name__
     if kind in ("InverseDynamics", "Simulation", "SimulationBatch"):
         from kinelab.verify._dynamics import certify_dynamics
-        return certify_dynamics(result)
+        return certify_dynamics(result, loads=loads, masses=masses, rtol=rtol)
     if kind in ("MotionSolution", "FunctionSolution", "PathSolution", "CrankRocker",
                 "QuickReturn"):
         from kinelab.verify._synthesis import certify_synthesis

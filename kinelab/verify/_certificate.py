@@ -172,13 +172,9 @@ class Certificate(Mapping):
                 mark = "" if c.passed else "  <- exceeds its bound"
                 rows.append(("", c.route, str(c.samples), _number(c.disagreement),
                              _number(c.bound) + mark))
-        widths = [max(len(r[k]) for r in rows) for k in range(len(rows[0]))]
-        out = [f"certificate: {self.subject}"]
-        out += ["  " + "  ".join(c.ljust(w) if k < 2 else c.rjust(w)
-                                 for k, (c, w) in enumerate(zip(r, widths))).rstrip()
-                for r in rows]
-        out.append("units: " + "; ".join(f"{q.name} relative to {q.unit}"
-                                         for q in self.quantities))
+        out = [f"certificate: {self.subject}"] + _table(rows, left=2)
+        out.append("disagreements relative to:")
+        out += _table([(q.name, q.unit) for q in self.quantities], left=2)
         out += [f"note: {n}" for n in self.notes]
         out.append(self.verdict())
         return out
@@ -227,6 +223,13 @@ class Certificate(Mapping):
             from kinelab._files import atomic_write
             atomic_write(Path(path), lambda f: f.write(text))
         return text
+
+
+def _table(rows: list[tuple[str, ...]], left: int) -> list[str]:
+    """Rows as aligned lines: the first ``left`` columns to the left, the others right."""
+    widths = [max(len(r[k]) for r in rows) for k in range(len(rows[0]))]
+    return ["  " + "  ".join(c.ljust(w) if k < left else c.rjust(w)
+                             for k, (c, w) in enumerate(zip(r, widths))).rstrip() for r in rows]
 
 
 def _number(v: float) -> str:

@@ -199,8 +199,8 @@ class _Ledger:
 
 UNITS = {
     "angle": "1 rad",
-    "position": "the mechanism's size",
-    "slide": "the mechanism's size",
+    "position": "the mechanism's size, {size:.6g} m",
+    "slide": "the mechanism's size, {size:.6g} m",
     "K": "the larger of 1 and the sample's largest |K| (rad or sizes per rad or size of input)",
     "L": "the larger of 1 and the sample's largest |L| (rad or sizes per rad or size of input, squared)",
     "velocity": "the sample's largest velocity (rad/s, sizes/s)",
@@ -290,7 +290,8 @@ def certify_kinematics(sol: KinematicSolution) -> Certificate:
     _finite_differences(sol, sub, items, mine, good, qd, qdd, ledger, notes,
                         "newton" if p is newton_plan else "auto", followed)
 
-    quantities = tuple(Quantity(name, reported, UNITS[name], tuple(ledger.by[name]))
+    quantities = tuple(Quantity(name, reported, UNITS[name].format(size=items.size),
+                                tuple(ledger.by[name]))
                        for name in UNITS if name in ledger.by)
     what = f"kinematics of '{m.name}', {sol.N} sample{'s' if sol.N != 1 else ''}"
     return Certificate(what, quantities, tuple(notes))
