@@ -22,7 +22,9 @@ from kinelab.verify._certificate import Certificate, Comparison, Quantity
 from kinelab.verify._kinematics import (NEAR_SAMPLES, NEAR_SINGULAR, SAMPLES, certify_kinematics,
                                         checked_samples)
 from kinelab.verify._symbolic import MAX_SECOND_DERIVATIVES
+from kinelab.verify._synthesis import certify_solutions
 
-__all__ = ["analyze", "certify", "certify_kinematics", "checked_samples", "Certificate",
+__all__ = ["analyze", "certify", "certify_kinematics", "certify_solutions", "checked_samples",
+           "Certificate",
            "Comparison", "Quantity", "SAMPLES", "NEAR_SAMPLES", "NEAR_SINGULAR",
            "MAX_SECOND_DERIVATIVES"]

@@ -59,8 +59,8 @@ analyze.__doc__ = (kinematics.analyze.__doc__.replace("\n    Returns\n", "\n" + 
                    .rstrip() + "\n" + _VERIFY_EXAMPLE)
 
 
-def certify(result, *, solution: KinematicSolution | None = None, function=None, loads=None,
-            masses=None, rtol: float | None = None) -> Certificate:
+def certify(result, *, solution: KinematicSolution | None = None, function=None,
+            requested=None, loads=None, masses=None, rtol: float | None = None) -> Certificate:
     """The certificate of a result: each of its quantities computed again by independent
     routes, the largest disagreement of each against its bound.
 
@@ -82,6 +82,9 @@ def certify(result, *, solution: KinematicSolution | None = None, function=None,
     function : callable, optional
         The prescribed function ``f(x)`` of a function generator (required for a
         :class:`~kinelab.synthesis.FunctionSolution`).
+    requested : mapping, optional
+        What a crank-rocker or quick return was designed for (``swing``, rad;
+        ``time_ratio``; ``stroke``, m): compared with what the linkage reaches.
     loads, masses : optional
         The loads and masses of dynamics, as given to :func:`kinelab.dynamics.inverse` or
         :func:`~kinelab.dynamics.simulate` (default, as there: the model's ``[dynamics]``
@@ -118,7 +121,7 @@ def certify(result, *, solution: KinematicSolution | None = None, function=None,
     if kind in ("MotionSolution", "FunctionSolution", "PathSolution", "CrankRocker",
                 "QuickReturn"):
         from kinelab.verify._synthesis import certify_synthesis
-        return certify_synthesis(result, function=function)
+        return certify_synthesis(result, function=function, requested=requested)
     if kind in ("VelocityPolygon", "AccelerationPolygon"):
         from kinelab.verify._polygons import certify_polygon
         return certify_polygon(result, solution)

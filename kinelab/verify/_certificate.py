@@ -186,6 +186,33 @@ class Certificate(Mapping):
         state = "passed" if self.passed else "failed"
         return f"Certificate({self.subject!r}, {len(self)} quantities, {state})"
 
+    @classmethod
+    def merge(cls, certificates: list[Certificate], subject: str, each: str) -> Certificate:
+        """One certificate of several results (the runs of a batch, the linkages of a
+        task): each quantity's routes with the samples of all and the worst disagreement
+        of any (a failed one first), its unit that of each ``each``."""
+        if len(certificates) == 1:
+            one = certificates[0]
+            return cls(subject, one.quantities, one.notes)
+        by: dict[str, dict[str, Comparison]] = {}
+        first: dict[str, Quantity] = {}
+        for c in certificates:
+            for q in c.quantities:
+                first.setdefault(q.name, q)
+                routes = by.setdefault(q.name, {})
+                for new in q.comparisons:
+                    old = routes.get(new.route)
+                    if old is None:
+                        routes[new.route] = new
+                        continue
+                    worse = new if _rank(new) > _rank(old) else old
+                    routes[new.route] = Comparison(new.route, old.samples + new.samples,
+                                                   worse.disagreement, worse.bound, worse.reason)
+        quantities = tuple(Quantity(name, q.reported, f"{q.unit} (each {each}'s own)",
+                                    tuple(by[name].values())) for name, q in first.items())
+        notes = tuple(dict.fromkeys(n for c in certificates for n in c.notes))
+        return cls(subject, quantities, notes)
+
     # -- plain data and files -----------------------------------------------------------------
     def to_dict(self) -> dict:
         """The certificate as plain data (strict JSON: a NaN disagreement becomes null)."""
@@ -223,6 +250,12 @@ class Certificate(Mapping):
             from kinelab._files import atomic_write
             atomic_write(Path(path), lambda f: f.write(text))
         return text
+
+
+def _rank(c: Comparison) -> tuple:
+    """Failed before passed; then the larger share of its bound (NaN: failed, first)."""
+    share = c.disagreement / c.bound if c.bound > 0 else math.inf
+    return (not c.passed, math.inf if math.isnan(share) else share)
 
 
 def _table(rows: list[tuple[str, ...]], left: int) -> list[str]:

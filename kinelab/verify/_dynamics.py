@@ -182,9 +182,10 @@ def certify_dynamics(result, *, loads=None, masses=None, rtol: float | None = No
     from kinelab.dynamics import InverseDynamics, SimulationBatch
     from kinelab.dynamics._terms import build_system
     if isinstance(result, SimulationBatch):
-        return _merge([certify_dynamics(result[i], loads=loads, masses=masses, rtol=rtol)
-                       for i in range(len(result.status))],
-                      f"{len(result.status)} simulations of '{result.mechanism.name}'")
+        return Certificate.merge(
+            [certify_dynamics(result[i], loads=loads, masses=masses, rtol=rtol)
+             for i in range(len(result.status))],
+            f"{len(result.status)} simulations of '{result.mechanism.name}'", "run")
     sol = result.kinematics
     system = build_system(sol.mechanism, loads, masses)
     loads, masses = system.loads, system.masses
@@ -348,27 +349,3 @@ def _integration(sim, rtol: float | None, notes: list[str]) -> list[Quantity]:
         Comparison("change of the mechanical energy", int(ok.sum()),
                    _largest(sim.energy_balance, scale, ok), bound,
                    f"{INTEGRATION_FACTOR:g} times the integration's rtol ({rtol:g})"),))]
-
-
-def _merge(certificates: list[Certificate], what: str) -> Certificate:
-    """One certificate of several runs: each quantity's comparisons, the worst of the runs."""
-    by: dict[str, dict[str, Comparison]] = {}
-    first: dict[str, Quantity] = {}
-    for c in certificates:
-        for q in c.quantities:
-            first.setdefault(q.name, q)
-            for cmp in q.comparisons:
-                old = by.setdefault(q.name, {}).get(cmp.route)
-                if old is None or not (cmp.disagreement <= old.disagreement) or \
-                        (cmp.bound < old.bound and not cmp.passed):
-                    by[q.name][cmp.route] = Comparison(
-                        cmp.route, cmp.samples + (old.samples if old else 0),
-                        cmp.disagreement, cmp.bound, cmp.reason)
-                else:
-                    by[q.name][cmp.route] = Comparison(
-                        old.route, old.samples + cmp.samples, old.disagreement, old.bound,
-                        old.reason)
-    quantities = tuple(Quantity(name, q.reported, q.unit + " (each run's own)",
-                                tuple(by[name].values())) for name, q in first.items())
-    notes = tuple(dict.fromkeys(n for c in certificates for n in c.notes))
-    return Certificate(what, quantities, notes)

@@ -208,7 +208,7 @@ UNITS = {
 }
 
 
-def _route_name(p) -> str:
+def route_name(p) -> str:
     """How a plan solves its groups: the name of its route in the certificate."""
     kinds = {s.kind for s in p.steps} - {"driven", "locked", "placed"}
     if "newton" not in kinds:
@@ -222,7 +222,7 @@ def certify_kinematics(sol: KinematicSolution) -> Certificate:
     items = _Items.of(sol)
     ledger = _Ledger()
     notes: list[str] = []
-    reported = _route_name(p)
+    reported = route_name(p)
     followed = sol.change_points[0].followed if sol.change_points else "smooth"
     newton_plan = kinematics.plan(m, method="newton")
     other_method = "auto" if p is newton_plan else "newton"
@@ -258,7 +258,7 @@ def certify_kinematics(sol: KinematicSolution) -> Certificate:
            f"amplified near singular configurations (smallest singularity {s_min:.2g})")
 
     # -- the other engine ------------------------------------------------------------------
-    if _route_name(other_plan) == reported:
+    if route_name(other_plan) == reported:
         notes.append(f"no second engine: every group is solved by the {reported} either way; "
                      "compared by the other routes")
     elif followed == "switch" and sol.change_points:
@@ -307,7 +307,7 @@ def _other_engine(m, sub, good, method, items, mine, ledger, notes, bounds, why)
     part = _subset(sub, rows)
     other = kinematics.analyze(m, *_inputs(part), method=method, unreachable="mask",
                                at_singular="flag")
-    name = _route_name(other.plan)
+    name = route_name(other.plan)
     theirs = _Jets.of(other, items)
     mine = dataclasses.replace(mine, **{k: getattr(mine, k)[rows]
                                         for k in ("value", "K", "L", "v", "a")})
