@@ -34,15 +34,25 @@ from kinelab.verify._certificate import Certificate, Comparison, Quantity
 
 __all__ = ["certify_kinematics", "checked_samples", "SAMPLES", "NEAR_SAMPLES", "NEAR_SINGULAR"]
 
+EVERY = 256
+"""Every sample of a sweep up to this many is checked by every route."""
+STRIDE = 128
+"""Beyond :data:`EVERY`, the symbolic derivation and finite differences check one sample in
+this many, evenly spread (at most :data:`SAMPLES`): their cost, some 50 closed-form samples
+each (six analyses per input, sympy's expressions evaluated, the comparisons), then stays
+within the plain analysis' own."""
+NEWTON_EVERY, NEWTON_STRIDE = 64, 1024
+"""The Newton engine, when it is the second engine (about 50 times the closed form's time
+per sample, following the sweep by continuation), checks every sample up to the first, one
+in the second beyond."""
 SAMPLES = 2000
-"""Samples every route checks: all of a sweep up to this many; an evenly spread subset of
-this many beyond (the Newton engine is about 20 times slower per sample than the closed
-form, finite differences take four analyses per input)."""
+"""The most samples of the evenly spread subset of a route."""
 NEAR_SINGULAR = 0.05
 """Singularity measure (the sine of a transmission-type angle, see
 ``KinematicSolution.singularity``) below which a sample of a large sweep is checked too."""
-NEAR_SAMPLES = 1000
-"""At most this many samples near a singular configuration are added to the subset."""
+NEAR_SAMPLES = 500
+"""At most this many samples near a singular configuration are added to a subset, the
+nearest first."""
 
 EPS = np.finfo(float).eps
 H0 = 1e-3
@@ -61,31 +71,31 @@ FD_FLOOR = 1e-9
 FD_SAFETY = 10.0
 
 
-def checked_samples(sol: KinematicSolution) -> np.ndarray:
-    """The samples the Newton engine, the symbolic derivation and finite differences check,
-    in the sweep's order: every assembled sample up to :data:`SAMPLES`; beyond, an evenly
-    spread subset of that many plus up to :data:`NEAR_SAMPLES` of those nearest a singular
-    configuration.  The same samples for the same sweep on every run.
+def checked_samples(sol: KinematicSolution, every: int = EVERY, stride: int = STRIDE,
+                    most: int = SAMPLES) -> np.ndarray:
+    """The samples a route checks, in the sweep's order: every assembled sample up to
+    ``every``; beyond, one in ``stride`` evenly spread (at least ``every``, at most
+    ``most``) and up to :data:`NEAR_SAMPLES` of those nearest a singular configuration.
+    The same samples for the same sweep on every run.
 
     Examples
     --------
     >>> fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
-    >>> len(kl.verify.checked_samples(kl.analyze(fb, np.linspace(0, 6, 500))))
-    500
+    >>> len(kl.verify.checked_samples(kl.analyze(fb, np.linspace(0, 6, 200))))
+    200
     >>> len(kl.verify.checked_samples(kl.analyze(fb, np.linspace(0, 6, 100_000))))
-    2000
+    781
     """
     N = sol.N
-    if N <= SAMPLES:
-        idx = np.arange(N)
-    else:
-        spread = np.unique(np.linspace(0, N - 1, SAMPLES).round().astype(np.int64))
-        s = np.where(sol.assembled, sol.singularity, np.inf)
-        near = np.flatnonzero(s < NEAR_SINGULAR)
-        if len(near) > NEAR_SAMPLES:
-            near = np.sort(near[np.argsort(s[near], kind="stable")[:NEAR_SAMPLES]])
-        idx = np.union1d(spread, near)
-    return idx[sol.assembled[idx]]
+    if N <= every:
+        return np.flatnonzero(sol.assembled)
+    chosen = np.zeros(N, bool)
+    chosen[np.linspace(0, N - 1, min(most, max(every, N // stride))).round().astype(np.int64)] = True
+    near = np.flatnonzero(sol.assembled & (sol.singularity < NEAR_SINGULAR))
+    if len(near) > NEAR_SAMPLES:
+        near = near[np.argsort(sol.singularity[near], kind="stable")[:NEAR_SAMPLES]]
+    chosen[near] = True
+    return np.flatnonzero(chosen & sol.assembled)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -233,7 +243,6 @@ def certify_kinematics(sol: KinematicSolution) -> Certificate:
     idx = checked_samples(sol)
     sub = _subset(sol, idx)
     good = ~sub.singular                   # derivatives defined
-    n_good = int(good.sum())
     bad_sing = int(sol.singular.sum())
     if bad_sing:
         notes.append(f"{bad_sing} sample(s) flagged singular: K, L, velocities and "
@@ -242,20 +251,14 @@ def certify_kinematics(sol: KinematicSolution) -> Certificate:
     if not sol.assembled.all():
         notes.append(f"{int((~sol.assembled).sum())} sample(s) do not assemble (NaN): not checked")
     if len(idx) < sol.N:
-        notes.append(f"the Newton engine, the symbolic derivation and finite differences "
-                     f"check {len(idx)} of the {sol.N} samples (every sample up to "
-                     f"{SAMPLES}; beyond, {SAMPLES} evenly spread and those nearest a "
-                     "singular configuration); loop closure checks every sample")
+        notes.append(f"samples checked: every one up to {CLOSURE_EVERY} by loop closure, "
+                     f"{EVERY} by the symbolic derivation and finite differences, "
+                     f"{NEWTON_EVERY} by the Newton engine; beyond, one in {CLOSURE_STRIDE}, "
+                     f"{STRIDE} and {NEWTON_STRIDE} (at most {SAMPLES} but for loop closure), "
+                     "evenly spread, and those nearest a singular configuration")
     mine = _Jets.of(sub, items)
-    s_min = float(sub.singularity[good].min()) if n_good else 1.0
     qd, qdd = sub.qd / items.unit_in, sub.qdd / items.unit_in
-    # rounding amplified near a singular configuration: K by 1/s^2, L by 1/s^3
-    bounds = {"angle": ENGINE_FLOOR, "position": ENGINE_FLOOR, "slide": ENGINE_FLOOR,
-              "K": max(ENGINE_FLOOR, AMPLIFIED / s_min ** 2),
-              "L": max(ENGINE_FLOOR, AMPLIFIED / s_min ** 3)}
-    bounds["velocity"], bounds["acceleration"] = bounds["K"], bounds["L"]
-    why = (f"the Newton engine's convergence ({NEWTON_TOL:g} of the size) and rounding, "
-           f"amplified near singular configurations (smallest singularity {s_min:.2g})")
+    bounds, why = _engine_bounds(sub)
 
     # -- the other engine ------------------------------------------------------------------
     if route_name(other_plan) == reported:
@@ -264,8 +267,12 @@ def certify_kinematics(sol: KinematicSolution) -> Certificate:
     elif followed == "switch" and sol.change_points:
         notes.append("the Newton engine: it follows the smooth branch through change points, "
                      "and this analysis switched there; compared by the other routes")
-    elif n_good:
-        _other_engine(m, sub, good, other_method, items, mine, ledger, notes, bounds, why)
+    elif other_method == "auto":        # the closed form: as cheap as the analysis
+        _other_engine(m, sub, other_method, items, mine, ledger, notes, bounds, why)
+    else:
+        part = _subset(sol, checked_samples(sol, NEWTON_EVERY, NEWTON_STRIDE))
+        _other_engine(m, part, other_method, items, _Jets.of(part, items), ledger, notes,
+                      *_engine_bounds(part))
 
     # -- the symbolic derivation ---------------------------------------------------------------
     from kinelab.verify._symbolic import symbolic_route
@@ -297,13 +304,30 @@ def certify_kinematics(sol: KinematicSolution) -> Certificate:
     return Certificate(what, quantities, tuple(notes))
 
 
-def _other_engine(m, sub, good, method, items, mine, ledger, notes, bounds, why) -> None:
+def _engine_bounds(sub: KinematicSolution) -> tuple[dict, str]:
+    """The bounds of the engines and the symbolic route at samples ``sub``: rounding and the
+    Newton engine's last step, amplified near a singular configuration (K by 1/s^2, L by
+    1/s^3, s the smallest singularity of the samples not flagged)."""
+    good = ~sub.singular
+    s_min = float(sub.singularity[good].min()) if good.any() else 1.0
+    bounds = {"angle": ENGINE_FLOOR, "position": ENGINE_FLOOR, "slide": ENGINE_FLOOR,
+              "K": max(ENGINE_FLOOR, AMPLIFIED / s_min ** 2),
+              "L": max(ENGINE_FLOOR, AMPLIFIED / s_min ** 3)}
+    bounds["velocity"], bounds["acceleration"] = bounds["K"], bounds["L"]
+    why = (f"the Newton engine's convergence ({NEWTON_TOL:g} of the size) and rounding, "
+           f"amplified near singular configurations (smallest singularity {s_min:.2g})")
+    return bounds, why
+
+
+def _other_engine(m, sub, method, items, mine, ledger, notes, bounds, why) -> None:
     """The same samples by the other engine, from the sketch by continuation.  Samples
     flagged singular are left out of its sweep (continuing through one, the Newton engine's
     L carries errors of ~1e-9 afterwards); samples where it lands on another assembly mode
     (continuing past a limit position it may cross to the other branch) are left out of the
     comparison, and said: their values are checked by loop closure and the symbolic route."""
-    rows = np.flatnonzero(good)
+    rows = np.flatnonzero(~sub.singular)
+    if not len(rows):
+        return
     part = _subset(sub, rows)
     other = kinematics.analyze(m, *_inputs(part), method=method, unreachable="mask",
                                at_singular="flag")
@@ -363,69 +387,111 @@ def _compare_derivatives(ledger, route, mine: _Jets, theirs: _Jets, rows, bounds
         ledger.add(quantity, route, n, _largest(b - a, scale(a)), bound, reason)
 
 
+CHUNK = 65536      # samples of loop closure at a time: arrays that stay in the cache
+CLOSURE_EVERY, CLOSURE_STRIDE = 4096, 8
+"""Loop closure checks every sample up to the first; beyond, one in the second (and those
+nearest a singular configuration): in numpy it costs some ten times the compiled analysis
+per sample."""
+
+
 def _closure(sol: KinematicSolution, items: _Items, ledger: _Ledger) -> None:
     """Loop closure at every sample: each link's points where its angle and first point put
     them; each prismatic joint's point on its guide's line, its links' relative angle and
     its slide.  Residuals relative to the size (lengths) and 1 rad (angles: a point's miss
-    over its distance from the link's first point)."""
+    over its distance from the link's first point).  A chunk of samples at a time, every
+    link and joint of the chunk in one array operation."""
     m, p = sol.mechanism, sol.plan
-    ok = sol.assembled
     xy = {pt.name: np.array([pt.x, pt.y]) for pt in m.points}
     sketch = p.sketch_angles
-    size = items.size
+    n_stored = sol.stored_jets.shape[1]
+    extra: list[int] = []       # items not stored per sample (fixed, driven), after them
 
-    def angle(link):
-        return sol.item_jets([p.link_item[link]])[:, 0, 0]
-
-    def position(point):
-        i = p.point_item[point]
-        return sol.item_jets([i, i + 1])[:, :, 0]
-
-    def rotated(link, point, origin):
-        """Where ``link`` puts ``point``, from ``origin`` (a point of it), at every sample."""
-        turn = angle(link) - sketch[p.link_item[link]]
-        c, s = np.cos(turn), np.sin(turn)
-        r = xy[point] - xy[origin]
-        return position(origin) + np.stack([c * r[0] - s * r[1], s * r[0] + c * r[1]], -1)
-
-    worst = {"position": 0.0, "angle": 0.0, "slide": 0.0}
-
-    def record(kind, residual):
-        r = np.abs(residual[ok])
-        if r.size:
-            worst[kind] = max(worst[kind], float(r.max()) if not np.isnan(r).any() else math.nan)
-
+    def col(item: int) -> int:
+        """The column of ``item`` in the values of a chunk (see :func:`_values`)."""
+        slot = int(p.item_slot[item])
+        if slot >= 0:
+            return slot
+        if item not in extra:
+            extra.append(item)
+        return n_stored + extra.index(item)
+    turning, pairs = [], []    # links' (angle col, sketch angle); (link, first x, point x, r, arm)
     for link in m.links:
         if link.ground or len(link.points) < 2:
             continue
         first = link.points[0]
+        turning.append((col(p.link_item[link.name]), sketch[p.link_item[link.name]]))
         for point in link.points[1:]:
-            miss = np.linalg.norm(rotated(link.name, point, first) - position(point), axis=-1)
-            record("position", miss / size)
-            arm = float(np.linalg.norm(xy[point] - xy[first]))
-            if arm > 1e-6 * size:          # the link's angle, seen from this pair of points
-                record("angle", miss / arm)
+            r = xy[point] - xy[first]
+            pairs.append((len(turning) - 1, col(p.point_item[first]),
+                          col(p.point_item[first] + 1), col(p.point_item[point]),
+                          col(p.point_item[point] + 1), r[0], r[1], float(np.hypot(*r))))
+    slides = []         # (guide, slider, origin x, y, point x, y, slide cols, angles, across0)
     for j in m.joints:
         if j.type != "P":
             continue
         g, s_ = j.links
         gi, si = p.link_item[g], p.link_item[s_]
-        record("angle", wrap_angle(angle(s_) - angle(g) - (sketch[si] - sketch[gi])))
         origin = j.origin or m.link(g).points[0]
         axis0 = math.atan2(j.axis[1], j.axis[0])
-        th = angle(g) - sketch[gi] + axis0
-        d = position(j.point) - position(origin)
         d0 = xy[j.point] - xy[origin]
-        across0 = -math.sin(axis0) * d0[0] + math.cos(axis0) * d0[1]
-        record("position", (-np.sin(th) * d[:, 0] + np.cos(th) * d[:, 1] - across0) / size)
-        along = np.cos(th) * d[:, 0] + np.sin(th) * d[:, 1]
-        record("slide", (along - sol.item_jets([p.slide_item[j.name]])[:, 0, 0]) / size)
-    n = int(ok.sum())
+        slides.append((col(gi), col(si), col(p.point_item[origin]), col(p.point_item[origin] + 1),
+                       col(p.point_item[j.point]), col(p.point_item[j.point] + 1),
+                       col(p.slide_item[j.name]), sketch[gi], sketch[si], axis0,
+                       -math.sin(axis0) * d0[0] + math.cos(axis0) * d0[1]))
+    T = np.array(turning, float).reshape(-1, 2)
+    P = np.array(pairs, float).reshape(-1, 8)
+    J = np.array(slides, float).reshape(-1, 11)
+    ti, pi, ji = T[:, 0].astype(np.int64), P[:, :5].astype(np.int64), J[:, :7].astype(np.int64)
+    far = P[:, 7] > 1e-6 * items.size       # pairs that show the link's angle
+    worst = {"position": 0.0, "angle": 0.0, "slide": 0.0}
+    size = items.size
+    where = p.item_columns(np.array(extra, np.int64))
+    every = sol.assembled.all() and sol.N <= CLOSURE_EVERY
+    rows = None if every else checked_samples(sol, CLOSURE_EVERY, CLOSURE_STRIDE, sol.N)
+    n = sol.N if every else len(rows)
+    for start in range(0, n, CHUNK):
+        stop = min(n, start + CHUNK)
+        v = _values(sol, where, slice(start, stop) if every else rows[start:stop])
+        if len(P):
+            turn = v[:, ti] - T[:, 1]                        # one cosine and sine per link
+            c, si = np.cos(turn)[:, pi[:, 0]], np.sin(turn)[:, pi[:, 0]]
+            miss = np.hypot(v[:, pi[:, 1]] + c * P[:, 5] - si * P[:, 6] - v[:, pi[:, 3]],
+                            v[:, pi[:, 2]] + si * P[:, 5] + c * P[:, 6] - v[:, pi[:, 4]])
+            _worst(worst, "position", miss / size)
+            _worst(worst, "angle", miss[:, far] / P[far, 7])
+        if len(J):
+            _worst(worst, "angle", wrap_angle(v[:, ji[:, 1]] - v[:, ji[:, 0]] - (J[:, 8] - J[:, 7])))
+            th = v[:, ji[:, 0]] - J[:, 7] + J[:, 9]
+            dx, dy = v[:, ji[:, 4]] - v[:, ji[:, 2]], v[:, ji[:, 5]] - v[:, ji[:, 3]]
+            c, si = np.cos(th), np.sin(th)
+            _worst(worst, "position", (-si * dx + c * dy - J[:, 10]) / size)
+            _worst(worst, "slide", (c * dx + si * dy - v[:, ji[:, 6]]) / size)
     reason = ("rounding of coordinates of a few sizes, and the Newton groups' convergence "
               "tolerance")
     for kind, value in worst.items():
         if kind != "slide" or items.slide.any():
             ledger.add(kind, "loop closure", n, value, CLOSURE_BOUND, reason)
+
+
+def _worst(worst: dict, kind: str, residual: np.ndarray) -> None:
+    """Keep the largest |residual| of each kind (NaN, once met, stays: it fails)."""
+    if residual.size == 0 or math.isnan(worst[kind]):
+        return
+    r = np.abs(residual)
+    worst[kind] = math.nan if np.isnan(r).any() else max(worst[kind], float(r.max()))
+
+
+def _values(sol: KinematicSolution, extra, rows) -> np.ndarray:
+    """The values (no K, L) at samples ``rows`` (a slice or indices) of every stored item,
+    in its stored column, then of the items ``extra`` (``plan.item_columns`` of fixed and
+    driven items), made as the solution makes them."""
+    n_stored = sol.stored_jets.shape[1]
+    q = sol.q[rows]
+    v = np.empty((len(q), n_stored + len(extra.slots)))
+    v[:, :n_stored] = sol.stored_jets[rows, :, 0]
+    v[:, n_stored + extra.fixed_cols] = extra.fixed_values
+    v[:, n_stored + extra.driven_cols] = wrap_angle(q[:, extra.driven_inputs] * extra.driven_signs)
+    return v
 
 
 def _richardson(d: np.ndarray, size: np.ndarray, h: np.ndarray):
