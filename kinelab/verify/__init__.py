@@ -19,12 +19,14 @@ certificates.  It imports sympy, the dynamics and the synthesis only when a rout
 """
 from kinelab.verify._analyze import analyze, certify
 from kinelab.verify._certificate import Certificate, Comparison, Quantity
-from kinelab.verify._kinematics import (NEAR_SAMPLES, NEAR_SINGULAR, SAMPLES, certify_kinematics,
-                                        checked_samples)
+from kinelab.verify._kinematics import (CLOSURE_EVERY, CLOSURE_STRIDE, EVERY, NEAR_SAMPLES,
+                                        NEAR_SINGULAR, NEWTON_EVERY, NEWTON_STRIDE, SAMPLES,
+                                        STRIDE, certify_kinematics, checked_samples)
 from kinelab.verify._symbolic import MAX_SECOND_DERIVATIVES
 from kinelab.verify._synthesis import certify_solutions
 
 __all__ = ["analyze", "certify", "certify_kinematics", "certify_solutions", "checked_samples",
            "Certificate",
-           "Comparison", "Quantity", "SAMPLES", "NEAR_SAMPLES", "NEAR_SINGULAR",
+           "Comparison", "Quantity", "EVERY", "STRIDE", "NEWTON_EVERY", "NEWTON_STRIDE",
+           "CLOSURE_EVERY", "CLOSURE_STRIDE", "SAMPLES", "NEAR_SAMPLES", "NEAR_SINGULAR",
            "MAX_SECOND_DERIVATIVES"]

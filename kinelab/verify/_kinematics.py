@@ -34,14 +34,14 @@ from kinelab.verify._certificate import Certificate, Comparison, Quantity
 
 __all__ = ["certify_kinematics", "checked_samples", "SAMPLES", "NEAR_SAMPLES", "NEAR_SINGULAR"]
 
-EVERY = 256
+EVERY = 1000
 """Every sample of a sweep up to this many is checked by every route."""
 STRIDE = 128
 """Beyond :data:`EVERY`, the symbolic derivation and finite differences check one sample in
 this many, evenly spread (at most :data:`SAMPLES`): their cost, some 50 closed-form samples
 each (six analyses per input, sympy's expressions evaluated, the comparisons), then stays
 within the plain analysis' own."""
-NEWTON_EVERY, NEWTON_STRIDE = 64, 1024
+NEWTON_EVERY, NEWTON_STRIDE = 200, 1024
 """The Newton engine, when it is the second engine (about 50 times the closed form's time
 per sample, following the sweep by continuation), checks every sample up to the first, one
 in the second beyond."""
@@ -81,10 +81,10 @@ def checked_samples(sol: KinematicSolution, every: int = EVERY, stride: int = ST
     Examples
     --------
     >>> fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
-    >>> len(kl.verify.checked_samples(kl.analyze(fb, np.linspace(0, 6, 200))))
-    200
-    >>> len(kl.verify.checked_samples(kl.analyze(fb, np.linspace(0, 6, 100_000))))
-    781
+    >>> len(kl.verify.checked_samples(kl.analyze(fb, np.linspace(0, 6, 800))))
+    800
+    >>> len(kl.verify.checked_samples(kl.analyze(fb, np.linspace(0, 6, 1_000_000))))
+    2000
     """
     N = sol.N
     if N <= every:

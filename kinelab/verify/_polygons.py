@@ -50,15 +50,22 @@ def certify_polygon(polygon, solution: KinematicSolution | None) -> Certificate:
                                method="auto" if newton else "newton")
     name = route_name(other.plan)
     notes = []
-    if name == route_name(solution.plan):
-        notes.append(f"no second engine: every group is solved by the {name} either way; the "
-                     "sides and parts are checked by their formulas")
     gap = max(float(np.linalg.norm(other.position(p) - np.reshape(solution.position(p), (-1, 2))[i]))
               for p in m.point_names)
     if gap > BRANCH_GAP * solution.plan.scale:
         raise ModelError(f"the {name} reaches this input on another assembly mode (from the "
                          "sketch it crossed a limit position), so it cannot check this polygon; "
                          "verify a configuration nearer the sketch")
+    second = name != route_name(solution.plan) and not other.singular[0]
+    if not second:
+        why_not = (f"every group is solved by the {name} either way" if not other.singular[0]
+                   else f"the {name} flags this configuration singular (its own measure of "
+                        "its groups)")
+        notes.append(f"no second engine: {why_not}; the sides and parts are checked by their "
+                     "formulas with the analysis' own omega, alpha and slide rates")
+        other = kinematics.analyze(m, *_at(solution, i), at_singular="flag",
+                                   method="newton" if newton else "auto")
+        name = "the analysis"
     s = float(solution.singularity[i])
     bound = max(ENGINE_FLOOR, AMPLIFIED / s ** (3 if acceleration else 2))
     why = (f"the engines' convergence and rounding, amplified near a singular configuration "
@@ -95,13 +102,13 @@ def certify_polygon(polygon, solution: KinematicSolution | None) -> Certificate:
     scale = max(max((float(np.linalg.norm(v)) for v in vertices.values()), default=0.0), 1e-300)
     if scale <= 1e-300:
         scale = 1.0
-    vertex_miss = max(float(np.linalg.norm(vertices[k] - theirs[k])) for k in vertices) / scale
+    vertex_miss = _most(vertices[k] - theirs[k] for k in vertices) / scale
     side_miss, close_miss = 0.0, 0.0
     parts_miss: dict[str, float] = {}
     for (p, ref), side in polygon.sides.items():
-        close_miss = max(close_miss, float(np.linalg.norm(side.vector - (vertices[p] - vertices[ref]))))
-        if side.parts:
-            close_miss = max(close_miss, float(np.linalg.norm(side.vector - sum(side.parts.values()))))
+        close_miss = _most([side.vector - (vertices[p] - vertices[ref]),
+                            side.vector - sum(side.parts.values()) if side.parts else 0.0],
+                           close_miss)
         if side.kind == "difference":
             r = _at_point(p, pos) - _at_point(ref, pos)       # a guide's point: under P
             w, al = omega[side.link], alpha[side.link]
@@ -116,24 +123,24 @@ def certify_polygon(polygon, solution: KinematicSolution | None) -> Certificate:
                             "sliding": float(other.slide_acceleration(j.name)) * u}
                 if "coriolis" not in side.parts:
                     expected.pop("coriolis")
-                    parts_miss["coriolis"] = max(parts_miss.get("coriolis", 0.0),
-                                                 float(np.linalg.norm(2 * w * _k_cross(rel_v[key]))))
+                    parts_miss["coriolis"] = _most([2 * w * _k_cross(rel_v[key])],
+                                                   parts_miss.get("coriolis", 0.0))
             else:
                 expected = {"": float(other.slide_velocity(j.name)) * u}
         total = sum(expected.values())
-        side_miss = max(side_miss, float(np.linalg.norm(side.vector - total)))
+        side_miss = _most([side.vector - total], side_miss)
         for part, v in expected.items():
             if part:
-                parts_miss[part] = max(parts_miss.get(part, 0.0),
-                                       float(np.linalg.norm(side.parts[part] - v)))
+                parts_miss[part] = _most([side.parts[part] - v], parts_miss.get(part, 0.0))
     for p in polygon.vertices:       # the ground's points stay at the pole
         if all(lk == m.ground.name for lk in m.links_carrying(p)):
-            close_miss = max(close_miss, float(np.linalg.norm(vertices[p])))
+            close_miss = _most([vertices[p]], close_miss)
     what = "acceleration" if acceleration else "velocity"
     unit = f"the polygon's largest vector, {scale:.6g} m/s" + ("^2" if acceleration else "")
     n_vert, n_side = len(vertices), len(polygon.sides)
-    comparisons = [
-        Comparison(f"{name} (vertices)", n_vert, vertex_miss, bound, why),
+    comparisons = [Comparison(f"{name} (vertices)", n_vert, vertex_miss, bound, why)] if second \
+        else []
+    comparisons += [
         Comparison(f"{name}'s rigid-body and sliding formulas (sides)", n_side,
                    side_miss / scale, bound, why),
         Comparison("closure (sides, parts, pole)", n_side, close_miss / scale, CLOSURE,
@@ -145,9 +152,9 @@ def certify_polygon(polygon, solution: KinematicSolution | None) -> Certificate:
         label = "Coriolis" if part == "coriolis" else part
         quantities.append(Quantity(f"{label} part", "analysis", unit, (
             Comparison(route, n_side, miss / scale, bound, why),)))
-    images = max((abs(_image(omega[lk], alpha[lk], acceleration) - complex(
+    images = _most(abs(_image(omega[lk], alpha[lk], acceleration) - complex(
         img.scale * math.cos(img.turn), img.scale * math.sin(img.turn)))
-                  for lk, img in polygon.images.items()), default=0.0)
+                   for lk, img in polygon.images.items())
     rot_scale = max(max((img.scale for img in polygon.images.values()), default=0.0), 1e-300)
     quantities.append(Quantity(f"{what} images", "analysis",
                                f"the largest image scale, {rot_scale:.6g} 1/s"
@@ -156,6 +163,17 @@ def certify_polygon(polygon, solution: KinematicSolution | None) -> Certificate:
                    images / (rot_scale if rot_scale > 1e-300 else 1.0), bound, why),)))
     q = ", ".join(f"{v:.6g}" for v in polygon.q)
     return Certificate(f"{what} polygon of '{m.name}' at q = {q}", tuple(quantities), tuple(notes))
+
+
+def _most(vectors, start: float = 0.0) -> float:
+    """The largest norm of ``vectors`` (and ``start``); NaN if any is NaN (it fails)."""
+    out = start
+    for v in vectors:
+        n = float(np.linalg.norm(v))
+        if math.isnan(n) or math.isnan(out):
+            return math.nan
+        out = max(out, n)
+    return out
 
 
 def _image(omega: float, alpha: float, acceleration: bool) -> complex:
