@@ -19,15 +19,7 @@ import time
 import numpy as np
 
 import kinelab as kl
-
-
-def best_time(f, repeat: int) -> float:
-    best = float("inf")
-    for _ in range(repeat):
-        t = time.perf_counter()
-        f()
-        best = min(best, time.perf_counter() - t)
-    return best
+from kinematics import best_time          # benchmarks/kinematics.py: the best of several runs
 
 
 def main(quick: bool = False) -> None:

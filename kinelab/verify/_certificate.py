@@ -70,10 +70,7 @@ class Quantity:
     @property
     def largest(self) -> float:
         """The largest disagreement of any route (NaN when one produced no number)."""
-        values = [c.disagreement for c in self.comparisons]
-        if any(math.isnan(v) for v in values):
-            return math.nan
-        return max(values, default=0.0)
+        return _largest(c.disagreement for c in self.comparisons)
 
     @property
     def passed(self) -> bool:
@@ -148,10 +145,7 @@ class Certificate(Mapping):
     @property
     def largest(self) -> float:
         """The largest disagreement of the certificate (NaN when a route produced none)."""
-        values = [q.largest for q in self.quantities]
-        if any(math.isnan(v) for v in values):
-            return math.nan
-        return max(values, default=0.0)
+        return _largest(q.largest for q in self.quantities)
 
     def verdict(self) -> str:
         """The last line: ``verified: N quantities, largest disagreement E``, or ``NOT
@@ -250,6 +244,12 @@ class Certificate(Mapping):
             from kinelab._files import atomic_write
             atomic_write(Path(path), lambda f: f.write(text))
         return text
+
+
+def _largest(values) -> float:
+    """The largest of ``values`` (0 for none), NaN if one is NaN: it produced no number."""
+    values = list(values)
+    return math.nan if any(math.isnan(v) for v in values) else max(values, default=0.0)
 
 
 def _rank(c: Comparison) -> tuple:

@@ -118,20 +118,19 @@ def _build(m: Mechanism, p: Plan) -> SymbolicRoute:
             wanted.append(expr)
             slots.append((name, k))
     e = len(rows)
-    for r, f in enumerate(rows):
-        add("Phi", r, f)
-        for a, x in enumerate(X):
-            d = sp.diff(f, x)
-            add("PhiG", r * (M + n) + a, d)
-            for b, y in enumerate(X):
-                add("PhiH", (r * (M + n) + a) * (M + n) + b, sp.diff(d, y))
-    for i, f in enumerate(exprs):
-        add("value", i, f)
-        for a, x in enumerate(X):
-            d = sp.diff(f, x)
-            add("G", i * (M + n) + a, d)
-            for b, y in enumerate(X):
-                add("H", (i * (M + n) + a) * (M + n) + b, sp.diff(d, y))
+
+    def with_derivatives(functions, value: str, first: str, second: str) -> None:
+        """Each function, its gradient and its Hessian in (q, S), into the named arrays."""
+        width = M + n
+        for r, f in enumerate(functions):
+            add(value, r, f)
+            for a, x in enumerate(X):
+                d = sp.diff(f, x)
+                add(first, r * width + a, d)
+                for b, y in enumerate(X):
+                    add(second, (r * width + a) * width + b, sp.diff(d, y))
+    with_derivatives(rows, "Phi", "PhiG", "PhiH")
+    with_derivatives(exprs, "value", "G", "H")
     function = sp.lambdify(X, wanted, modules="numpy", cse=True)
     unknown_items = np.array([p.link_item[name] if kind == "angle" else p.slide_item[name]
                               for kind, name in (eq.unknowns[s] for s in S)], np.int64)

@@ -10,6 +10,7 @@ from click.testing import CliRunner
 
 from kinelab.cli import main
 from kinelab.verify import Certificate
+from tests.synthesis.test_cli import CRANK_ROCKER
 
 ROOT = Path(__file__).resolve().parents[2]
 EX = ROOT / "examples"
@@ -91,16 +92,6 @@ def test_polygons(tmp_path):
     assert VERIFIED.match(last_line(res))
     assert "Coriolis part" in res.stdout
     assert (tmp_path / "slotted_link_polygons_certificate.json").exists()
-
-
-CRANK_ROCKER = """
-task = "crank-rocker"
-units = { length = "mm", angle = "deg" }
-[crank_rocker]
-ground = 100
-swing = 45
-time_ratio = 1.25
-"""
 
 
 def test_synth(tmp_path):
