@@ -182,3 +182,18 @@ def test_verify_must_be_a_flag():
         kl.analyze(fb, 0.5, verify="yes")
     with pytest.raises(kl.errors.ModelError, match="expected a result to certify"):
         kl.verify.certify(fb)
+
+
+@pytest.mark.parametrize("limit, why", [
+    ("MAX_UNKNOWNS", "2 unknown coordinates; the derivation is written for at most 1"),
+    ("MAX_SECOND_DERIVATIVES", "second derivatives to take in symbols (at most 10")])
+def test_the_symbolic_route_is_skipped_when_too_large_and_says_why(monkeypatch, limit, why):
+    import kinelab.derive
+    from kinelab.verify import _symbolic
+    monkeypatch.setattr(kinelab.derive if limit == "MAX_UNKNOWNS" else _symbolic, limit,
+                        1 if limit == "MAX_UNKNOWNS" else 10)
+    sc = kl.mechanisms.slider_crank(crank=1.0, rod=3.0)        # a new plan: nothing cached
+    cert = kl.analyze(sc, q=np.linspace(0.0, 6.0, 30), qd=1.0, verify=True).certificate
+    assert cert.passed, str(cert)
+    assert all("symbolic derivation" not in cert[q][0] for q in cert)
+    assert any(n.startswith("the symbolic derivation: skipped, ") and why in n for n in cert.notes)
