@@ -463,9 +463,26 @@ def _check_task(task: object) -> None:
                          f"{describe(task)}")
 
 
-def solve_task(task: Task) -> tuple[list, dict[str, Any]]:
-    """Run a task: its solutions, and the extra results worth drawing."""
+def solve_task(task: Task, *, verify: bool = False) -> tuple[list, dict[str, Any]]:
+    """Run a task: its solutions, and the extra results worth drawing.
+
+    With ``verify``, ``extra["certificate"]`` is the :class:`kinelab.verify.Certificate` of
+    every linkage found: each analysed again at every task point and compared with the task
+    and with what the synthesis reported (see :func:`kinelab.verify.certify`).
+    """
     _check_task(task)
+    if not isinstance(verify, bool):
+        raise ModelError(f"verify: expected True or False, got {describe(verify)}")
+    sols, extra = _solve(task)
+    if verify:
+        from kinelab.verify import certify_solutions
+        extra = {**extra, "certificate": certify_solutions(
+            sols, f"{len(sols)} linkage(s) of the {task.kind} task '{task.name}'",
+            function=task.function.get("f"), requested=task.design)}
+    return sols, extra
+
+
+def _solve(task: Task) -> tuple[list, dict[str, Any]]:
     if task.kind == "function":
         try:
             return [synthesis.function_generation(**task.function)], {}

@@ -159,6 +159,9 @@ class KinematicSolution(TableExport):
         two assembly modes of a dyad meet (see ``analyze(at_change_point=...)``); a sweep
         over more than 10,000 turns lists none (``kinelab.kinematics.change_points`` lists
         them a part at a time).
+    certificate : kinelab.verify.Certificate or None
+        With ``kl.analyze(..., verify=True)``: every number above computed again by
+        independent routes, and how far apart they came (see :mod:`kinelab.verify`).
     """
 
     plan: Plan
@@ -175,6 +178,7 @@ class KinematicSolution(TableExport):
     newton_state: tuple[np.ndarray, np.ndarray] | None = None   # (q, groups' unknowns) at
                                                                 # the end, for analyze(start=)
     change_points: tuple = ()
+    certificate: Mapping | None = None
 
     # -- what was solved -----------------------------------------------------------------
     @property
