@@ -28,8 +28,9 @@ from kinelab.solvers._arguments import flag, reals, whole
 from kinelab.solvers._arguments import seed as check_seed
 from kinelab.synthesis._arguments import point_array
 from kinelab.solvers import wrap_angle
-from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, finite_or_inf, fourbar_model,
-                                        model_grashof, travel)
+from kinelab.synthesis._linkage import (TRANSMISSION_LIMIT, CheckedLinkage, at_inputs,
+                                        finite_or_inf, fourbar_model, model_grashof,
+                                        transmission_defects, transmission_limit, travel)
 from kinelab.synthesis._results import SolutionList
 
 __all__ = ["coupler_curves", "PathSolution", "path_generation", "MAX_PATH_POINTS"]
@@ -49,7 +50,6 @@ _INFEASIBLE = 1.0      # added to the objective (task normalised to unit size) o
 _NOWHERE = 100.0       # objective of a design that assembles at no sample
 _MU_FLOOR = np.radians(1.0)   # least squares keep the transmission angle above this at least
 _REACHED = 1e-8        # relative distance engine vs closed form at a matched crank angle
-_MU_SLACK = 1e-9       # rad: least squares meet the transmission angle's bound to about this
 
 
 def coupler_curves(designs: ArrayLike, q: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray,
@@ -215,13 +215,17 @@ class PathSolution(CheckedLinkage):
         P from A, along AB and to its left, m.
     grashof : Grashof
     min_transmission_angle : float
-        Over the travel from the first target to the last, rad.
+        The smallest transmission angle over the travel from the first target to the
+        last, rad (the engine's, :func:`kinelab.analyze`).
     branch_defect, order_defect : bool
     direction : int
         +1 / -1: the crank turns counter-clockwise / clockwise through the targets.
     defects : tuple of str
-        Branch and order defects, and a transmission angle below the task's
-        ``min_transmission_angle`` on the way.
+        Branch and order defects, and a transmission angle below ``transmission_limit``
+        on the way.
+    transmission_limit : float
+        The task's ``min_transmission_angle``, rad (30 deg unless it says otherwise);
+        ``meets_transmission_limit`` says whether the linkage keeps it.
     """
 
     A0: np.ndarray
@@ -239,6 +243,7 @@ class PathSolution(CheckedLinkage):
     order_defect: bool
     direction: int
     defects: tuple[str, ...]
+    transmission_limit: float = TRANSMISSION_LIMIT
 
     @property
     def rms_error(self) -> float:
@@ -323,7 +328,7 @@ def _travel_residuals(Z: np.ndarray, sense: np.ndarray, cos_floor: float):
 
 
 def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray,
-              mu_min: float = 0.0) -> PathSolution:
+              mu_min: float = TRANSMISSION_LIMIT) -> PathSolution:
     """Build and check the linkage of a design (physical units) through its crank angles;
     a transmission angle below ``mu_min`` on the way is a defect."""
     P, A, B, ok = coupler_curves(design[None, :], q[None, :])
@@ -344,10 +349,8 @@ def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray,
         q0 = float(wrap_angle(q[0]))
         q = q0 + t.direction * np.mod(t.direction * (q - q[0]), 2 * np.pi)
         q[0] = q0
-    if t.min_transmission_angle < mu_min - _MU_SLACK:
-        defects += (f"transmission angle defect: the transmission angle drops to "
-                    f"{t.min_transmission_angle:.6g} rad between the first target and the last, "
-                    f"below min_transmission_angle = {mu_min:.6g} rad",)
+    defects += transmission_defects(t.min_transmission_angle, mu_min,
+                                    "between the first target and the last")
     engine = at_inputs(model, q).position("P")
     errors = np.linalg.norm(engine - targets, axis=-1)
     errors = finite_or_inf(errors)
@@ -358,7 +361,7 @@ def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray,
         model=model, q=q, errors=errors, coupler_point=(float(design[7]), float(design[8])),
         grashof=model_grashof(model), min_transmission_angle=t.min_transmission_angle,
         branch_defect=t.branch_defect, order_defect=t.order_defect, direction=t.direction,
-        defects=defects)
+        defects=defects, transmission_limit=mu_min)
 
 
 
@@ -569,7 +572,8 @@ class _Search:
 
 
 def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, popsize: int = 15,
-                    samples: int = 180, min_transmission_angle: float = 0.0, seed: int = 0,
+                    samples: int = 180, min_transmission_angle: float = TRANSMISSION_LIMIT,
+                    seed: int = 0,
                     refine: bool = True, tolerance: float = 1e-4,
                     initial: ArrayLike | None = None) -> SolutionList:
     """Four-bars whose coupler point passes near prescribed points, in order.
@@ -604,9 +608,12 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
     samples : int
         Crank angles per coupler curve when designs are screened, 24 to 10,000.
     min_transmission_angle : float
-        Designs whose transmission angle drops below this (rad) between the first and
-        last target are penalised like defective ones while searching, and left out of the
-        result (the engine's check flags them with a transmission angle defect).
+        The smallest transmission angle accepted between the first target and the last,
+        rad, in [0, pi/2); default 30 deg (:data:`TRANSMISSION_LIMIT`, a rule of thumb
+        for smooth running).  Designs below it are penalised like defective ones while
+        searching, and left out of the result (the engine's check flags them with a
+        transmission angle defect); a run that finds only such linkages says in
+        ``reason`` how low the best of them goes.
     seed : int
         Seed of the first run, 0 to 2**32 - 1: the result is reproducible.
     refine : bool
@@ -669,10 +676,7 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
     samples = whole("samples", samples, 24, MAX_PATH_SAMPLES)
     seed = check_seed(seed)
     refine = flag("refine", refine)
-    mu = min_transmission_angle
-    if not (is_real(mu) and 0.0 <= mu < np.pi / 2):
-        raise ModelError(f"min_transmission_angle: expected an angle in [0, pi/2) rad, got {describe(mu)}")
-    mu = float(mu)
+    mu = transmission_limit(min_transmission_angle)
     if not (is_real(tolerance) and 0.0 <= tolerance < 1.0):
         raise ModelError(f"tolerance: expected a fraction of the path's size in [0, 1), got "
                          f"{describe(tolerance)}")
@@ -699,7 +703,7 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
     found, reasons = [], []
     for r in range(runs):
         search = _Search(obj, popsize, seed + r, bounds, starts)
-        sol = None
+        sol = low = None        # the best valid linkage; the best one only the limit rejects
         for _ in range(maxiter):
             for design, q, rms in search.round(refine):
                 if sol is not None and rms * scale >= sol.rms_error:
@@ -713,12 +717,20 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
                     continue
                 if s.valid and (sol is None or s.rms_error < sol.rms_error):
                     sol = s
+                elif (not s.branch_defect and not s.order_defect
+                      and (low is None or s.rms_error < low.rms_error)):
+                    low = s
             if sol is not None and sol.rms_error <= goal:
                 break
         if sol is None:
-            bound = (f" with a transmission angle of at least {mu:.6g} rad" if mu > 0 else "")
+            bound = (f" with a transmission angle of at least {np.degrees(mu):.4g} deg"
+                     if mu > 0 else "")
+            best = ("" if low is None else
+                    f" (its best, {low.rms_error:.3g} m from the points in RMS, has a smallest "
+                    f"transmission angle of {np.degrees(low.min_transmission_angle):.4g} deg)")
             reasons.append(f"run {r + 1} (seed {seed + r}) found no linkage free of branch and "
-                           f"order defects{bound}; raise maxiter or popsize")
+                           f"order defects{bound}{best}; raise maxiter or popsize"
+                           + (", or lower min_transmission_angle" if mu > 0 else ""))
         else:
             found.append(sol)
     found.sort(key=lambda s: s.rms_error)

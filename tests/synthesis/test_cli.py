@@ -340,7 +340,7 @@ def test_five_and_more_positions(tmp_path):
     assert res.exit_code == 2 and "pivots.a0x: not used with 5 positions" in res.stderr
     res = run(tmp_path, FIVE.format(points=P[:5].tolist(), angles=th[:5].tolist())
               + "[search]\ndyads = 2\n")
-    assert res.exit_code == 2 and "search: not used with 5 positions" in res.stderr
+    assert res.exit_code == 2 and "search.dyads: not used with 5 positions" in res.stderr
 
 
 def _strict_json(text):

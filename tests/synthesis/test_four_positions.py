@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+import kinelab as kl
 from kinelab.errors import ModelError
 from kinelab.synthesis import (Positions, burmester_curves, center_point_cubic, center_points,
                                four_positions, moving_pivot, poles)
@@ -68,6 +69,15 @@ def test_poles_lie_on_the_center_point_curve():
     assert np.abs(normalised_det(POS, p.P)).max() < 1e-12
 
 
+def travel_transmission(s, samples=20001):
+    """The smallest transmission angle the engine meets while the crank turns from position
+    1 to the last, in the sense the solution reports (the shorter way when it reports none)."""
+    d = s.direction or 1
+    q = s.q[0] + d * np.linspace(0.0, np.mod(d * (s.q[-1] - s.q[0]), 2 * np.pi), samples)
+    sol = kl.analyze(s.model, q=q, unreachable="mask", at_singular="flag")
+    return float(np.min(kl.kinematics.transmission_angle(sol)[sol.assembled]))
+
+
 def test_every_solution_is_checked_and_valid_ones_reach_the_poses():
     sols = four_positions(POS, None, a0x=0.0, b0x=3.0)
     assert len(sols) == 9 and sols.reason == ""
@@ -76,12 +86,20 @@ def test_every_solution_is_checked_and_valid_ones_reach_the_poses():
     assert len(own) == 1 and own[0].valid
     for s in sols:
         dpos, dang = engine_pose_errors(s.model, s.q, POS.points, POS.alpha)
+        mu = travel_transmission(s)
         if s.valid:
             assert dpos.max() < 1e-9 and dang.max() < 1e-9
+            assert mu >= np.radians(30)         # the default limit, kept all the way
         else:
-            assert s.branch_defect or s.order_defect
+            assert s.branch_defect or s.order_defect or s.circuit_defect or mu < np.radians(30)
         if not s.branch_defect:
             assert dpos.max() < 1e-9       # reached, possibly out of order
+        if not (s.branch_defect or s.order_defect):
+            # the smallest transmission angle reported is the engine's over the travel (the
+            # check samples where it is smallest; the sweep here can only miss it from above)
+            assert s.min_transmission_angle - 1e-12 <= mu <= s.min_transmission_angle + 1e-6
+            assert s.meets_transmission_limit == (mu >= np.radians(30) - 1e-6)
+            assert ("transmission angle defect" in s.state) != s.meets_transmission_limit
 
 
 def test_order_defect_is_found():
