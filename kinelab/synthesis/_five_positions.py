@@ -216,8 +216,8 @@ def five_positions(points, angles=None, *, min_transmission_angle: float | None 
     SolutionList of MotionSolution
         Up to six linkages, each with ``A0, B0, A1, B1``, the ``model``, its defects
         (branch, order, circuit, transmission angle) and Grashof class (keep
-        ``[s for s in sols if s.valid]`` for the usable ones); when there are fewer than two real Burmester points the list
-        is empty and ``reason`` says so.
+        ``[s for s in sols if s.valid]`` for the usable ones); when there are fewer than
+        two real Burmester points the list is empty and ``reason`` says so.
 
     Raises
     ------
