@@ -22,6 +22,7 @@ from numpy.typing import ArrayLike
 
 from kinelab import _memory as memory
 from kinelab.errors import ModelError, describe
+from kinelab.kinematics import analyze
 from kinelab.mechanisms import Grashof
 from kinelab.model import MAX_LENGTH, MIN_LENGTH, Mechanism, is_real
 from kinelab.solvers._arguments import flag, reals, whole
@@ -33,7 +34,8 @@ from kinelab.synthesis._linkage import (TRANSMISSION_LIMIT, CheckedLinkage, at_i
                                         transmission_defects, transmission_limit, travel)
 from kinelab.synthesis._results import SolutionList
 
-__all__ = ["coupler_curves", "PathSolution", "path_generation", "MAX_PATH_POINTS"]
+__all__ = ["coupler_curves", "curve_distances", "PathSolution", "path_generation",
+           "MAX_PATH_POINTS"]
 
 # The most targets and crank samples a search takes.  A path is given by 5 to 20 points as a
 # rule (9 + n unknowns: at most nine are met exactly); each round's work grows with both
@@ -255,10 +257,97 @@ class PathSolution(CheckedLinkage):
         """Largest distance of a target from the coupler curve, m."""
         return float(self.errors.max())
 
+    def curve_distances(self, points: ArrayLike) -> np.ndarray:
+        """Distance from each of ``points`` (n, 2), m, to the linkage's coupler curve, m
+        (see :func:`curve_distances`)."""
+        return curve_distances(self.model, points)
+
     def __repr__(self) -> str:
         state = self.state
         return (f"PathSolution(rms error={self.rms_error:.3g} m, max error={self.max_error:.3g} m, "
                 f"{self.grashof.kind}, {state})")
+
+
+_CURVE_SAMPLES = 3600     # crank angles of the coupler curve a point is first matched to
+_GOLDEN = 40              # golden-section steps from there: the bracket shrinks by 0.618^40
+_NEWTON = 3               # Gauss-Newton steps after them: the distance to rounding
+
+
+def curve_distances(model: Mechanism, points: ArrayLike) -> np.ndarray:
+    """Distance from each point to the coupler curve of a four-bar model, m, by the engine.
+
+    The coupler curve is where the coupler point ``P`` goes as the crank turns through every
+    angle at which the loop closes on the model's assembly branch: the whole closed curve of
+    a crank that turns fully, the arc between its limit positions otherwise.  Each point is
+    matched to the nearest of 3600 engine samples of a turn, then the crank angle is refined
+    around it by golden-section search and Gauss-Newton steps (``kl.analyze`` at every step,
+    with the velocity coefficient of ``P`` for the slope), so the distance is exact to
+    rounding, not to the sampling.
+
+    Parameters
+    ----------
+    model : Mechanism
+        A four-bar with a coupler point ``P`` and one crank input.
+    points : array_like, shape (n, 2)
+        m.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        m; +inf for every point when the loop closes nowhere.
+    """
+    T = np.asarray(reals("points", points), float)
+    if T.ndim != 2 or T.shape[1] != 2 or not np.all(np.isfinite(T)):
+        raise ModelError(f"points: expected finite points of shape (n, 2), got {describe(points)}")
+    h = 2 * np.pi / _CURVE_SAMPLES
+    q = np.arange(_CURVE_SAMPLES) * h - np.pi
+    sol = at_inputs(model, q)
+    P, ok = sol.position("P"), sol.assembled
+    if not ok.any() or len(T) == 0:
+        return np.full(len(T), np.inf)
+    Q, qs = P[ok], q[ok]
+    best = np.empty(len(T))
+    k = np.empty(len(T), int)
+    step = max(1, 2_000_000 // len(Q))           # points matched at once: bounds the memory
+    for i in range(0, len(T), step):
+        d2 = np.sum((T[i:i + step, None, :] - Q[None]) ** 2, axis=-1)
+        k[i:i + step] = np.argmin(d2, axis=1)
+        best[i:i + step] = np.sqrt(d2[np.arange(len(d2)), k[i:i + step]])
+    q_best = qs[k]
+
+    def distance(angles):
+        # at unit crank speed, so that the velocity of P is dP/dq
+        s = analyze(model, angles, qd=1.0, unreachable="mask", at_singular="flag")
+        d = np.linalg.norm(s.position("P") - T, axis=1)
+        return np.where(s.assembled & np.isfinite(d), d, np.inf), s
+
+    # golden-section search on the bracket one sample either side (the curve is smooth
+    # there; where the loop stops closing the distance is +inf, and the search stays out)
+    g = (np.sqrt(5.0) - 1.0) / 2.0
+    a, b = q_best - h, q_best + h
+    c, e = b - g * (b - a), a + g * (b - a)
+    fc, fe = distance(c)[0], distance(e)[0]
+    for _ in range(_GOLDEN):
+        left = fc <= fe
+        a, b = np.where(left, a, c), np.where(left, e, b)
+        c_new, e_new = np.where(left, b - g * (b - a), e), np.where(left, c, a + g * (b - a))
+        f_new = distance(np.where(left, c_new, e_new))[0]
+        fc, fe = np.where(left, f_new, fe), np.where(left, fc, f_new)
+        c, e = c_new, e_new
+    for angles, f in ((c, fc), (e, fe)):
+        better = f < best
+        best, q_best = np.where(better, f, best), np.where(better, angles, q_best)
+    for _ in range(_NEWTON):
+        d, s = distance(q_best)
+        r, dP = s.position("P") - T, s.velocity("P")
+        slope = np.sum(dP * dP, axis=1)
+        with np.errstate(invalid="ignore"):
+            trial = q_best - np.sum(r * dP, axis=1) / np.where(slope > 0, slope, 1.0)
+        trial = np.where(np.isfinite(trial), trial, q_best)
+        f = distance(trial)[0]
+        better = f < best
+        best, q_best = np.where(better, f, best), np.where(better, trial, q_best)
+    return best
 
 
 def _unwrapped(q: np.ndarray):
