@@ -8,7 +8,8 @@ import pytest
 
 from kinelab.errors import ModelError
 from kinelab.io import read_task, solve_task
-from kinelab.synthesis import function_generation, two_positions
+from kinelab.synthesis import (crank_rocker, function_generation, offset_slider_crank,
+                               slotted_lever, two_positions, whitworth)
 
 MODEL_WORDS = ("sketch", "dyad", "'coupler'", "'rocker'", "links[", "points[", "O4")
 
@@ -95,3 +96,47 @@ def test_two_positions_with_the_coupler_and_rocker_in_line():
     assert_task_terms(info.value)
     # a little off that line, the same family gives a linkage
     assert fam.solution(1.0, t + 0.1).model is not None
+
+
+# -- quick returns: the user gave a stroke and a time ratio, not the catalogue's lengths ----
+
+QUICK_RETURN_WORDS = MODEL_WORDS + ("'jO2'", "'slide'", "'lever'", "'ram_slide'", "point '",
+                                    "mechanism '", "q = ")
+
+
+@pytest.mark.parametrize("call, start", [
+    # a time ratio near 3: the design's rod all but lines up, a dead centre on the turn
+    (lambda: offset_slider_crank(0.1, 2.99), "time_ratio: the offset slider-crank it gives all "
+     "but locks at a dead centre on its turn, where the engine finds it singular and cannot "
+     "measure its time ratio; lower the time ratio"),
+    (lambda: slotted_lever(50, 0.3), "time_ratio: the slotted lever it gives all but locks at a "
+     "dead centre on its turn"),
+    (lambda: whitworth(1.5, 0.05, 0.3, rod=0.1500001), "time_ratio: the Whitworth quick return "
+     "it gives all but locks at a dead centre on its turn, where the engine finds it singular "
+     "and cannot measure its time ratio; lengthen the rod or lower the time ratio"),
+    # lengths the user never gave, beyond the sizes kinelab computes with
+    (lambda: offset_slider_crank(1.5e-9, 1.2), "stroke: the offset slider-crank it gives (crank "
+     "7.05711e-10 m, "),
+    (lambda: whitworth(1.5, 0.05, 1.5e-9), "stroke: the Whitworth quick return it gives (crank "
+     "0.161803 m, distance 0.05 m, lever 7.5e-10 m, rod 1.5e-09 m) lies outside the sizes"),
+    (lambda: slotted_lever(1.5, 9.9e8), "distance: the slotted lever it gives (crank "),
+    (lambda: crank_rocker(0.1, 1e-7, 1.2, degrees=True), "ground: the crank-rocker it gives "
+     "(ground 0.1 m, crank 8.21141e-11 m, "),
+])
+def test_quick_returns_refuse_in_the_tasks_terms(call, start):
+    with pytest.raises(ModelError) as info:
+        call()
+    message = str(info.value)
+    assert message.startswith(start), message
+    assert not any(w in message for w in QUICK_RETURN_WORDS), message
+    assert isinstance(info.value.__cause__, Exception)      # the engine's or catalogue's words
+
+
+def test_the_lengths_said_are_the_designs():
+    """crank = stroke / 2 / ... : the offset slider-crank's lengths scale with the stroke, so
+    the lengths a too-small stroke would give are the 0.1 m design's, scaled."""
+    design = offset_slider_crank(0.1, 1.2)
+    with pytest.raises(ModelError) as info:
+        offset_slider_crank(1.5e-9, 1.2)
+    crank = design.lengths["crank"] * 1.5e-9 / 0.1
+    assert f"crank {crank:.6g} m" in str(info.value)
