@@ -2,6 +2,7 @@
 otherwise, measured by the engine over the travel, and a linkage below it never valid."""
 import json
 import re
+import tomllib
 
 import numpy as np
 import pytest
@@ -12,6 +13,7 @@ from kinelab.cli import main
 from kinelab.errors import ModelError
 from kinelab.synthesis import (TRANSMISSION_LIMIT, function_generation, path_generation,
                                three_positions)
+from tests.synthesis.test_cli import LOG10_TASK
 
 THIRTY = np.radians(30.0)
 
@@ -186,15 +188,7 @@ def test_a_motion_task_flags_a_linkage_below_the_limit(tmp_path):
 
 @pytest.mark.parametrize("kind, text", [
     ("motion", MOTION_3.format(points=[[1, 1], [2, 0.5], [3, 1.5]], angles=[0, 0, 45], extra="")),
-    ("function", """
-task = "function"
-units = { angle = "deg" }
-[function]
-expression = "log10(x)"
-x_range = [1, 2]
-input_range = [90, 150]
-output_range = [0, 90]
-"""),
+    ("function", LOG10_TASK),
     ("path", TASK_8.format(extra="")),
 ])
 @pytest.mark.parametrize("value, problem", [
@@ -207,24 +201,12 @@ def test_the_limit_in_a_task_file_is_checked_in_its_units(kind, text, value, pro
         text = text.replace("[search]", f"[search]\nmin_transmission_angle = {value}")
     else:
         text += f"[search]\nmin_transmission_angle = {value}\n"
-    import tomllib
     with pytest.raises(ModelError, match=rf"^search\.min_transmission_angle: {re.escape(problem)}$"):
         kl.io.read_task(tomllib.loads(text))
 
 
 def test_a_function_task_takes_the_limit():
-    import tomllib
-    text = """
-task = "function"
-units = { angle = "deg" }
-[function]
-expression = "log10(x)"
-x_range = [1, 2]
-input_range = [90, 150]
-output_range = [0, 90]
-[search]
-min_transmission_angle = 50
-"""
+    text = LOG10_TASK + "[search]\nmin_transmission_angle = 50\n"
     task = kl.io.read_task(tomllib.loads(text))
     (sol,), _ = kl.io.solve_task(task)
     assert sol.state == "transmission angle defect"
