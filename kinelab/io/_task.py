@@ -24,6 +24,7 @@ from kinelab.model import (ANGLE_UNITS, LENGTH_UNITS, Units, is_real, length_pro
                            real_array)
 from kinelab.solvers._arguments import MAX_SEED
 from kinelab.synthesis._arguments import MAX_POSITIONS
+from kinelab.synthesis._function import _function_generation
 from kinelab.synthesis._path import (MAX_PATH_POINTS, MAX_PATH_SAMPLES, MAX_POPSIZE, MAX_ROUNDS,
                                      MAX_RUNS)
 from kinelab.synthesis._positions import check_not_one_turn
@@ -491,7 +492,7 @@ def solve_task(task: Task) -> tuple[list, dict[str, Any]]:
     _check_task(task)
     if task.kind == "function":
         try:
-            return [synthesis.function_generation(**task.function)], {}
+            return [_function_generation(**task.function, shown=task.angle_unit)], {}
         except ModelError as exc:
             raise _fields_named(task, exc, _FUNCTION_FIELDS) from exc
     if task.kind == "path":

@@ -259,6 +259,15 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
     >>> round(sol.max_structural_error, 5), sol.valid    # y spans 0.301
     (0.00042, True)
     """
+    return _function_generation(f, x_range, input_range, output_range, points, ground, samples,
+                                min_transmission_angle, degrees)
+
+
+def _function_generation(f, x_range, input_range, output_range, points=3, ground=1.0,
+                         samples=201, min_transmission_angle=None, degrees=False,
+                         shown: str | None = None) -> FunctionSolution:
+    """:func:`function_generation`; ``shown``, the angle unit its messages show angles in
+    (a task file's; default the call's)."""
     if not callable(f):
         raise ModelError(f"f: expected a function of x, got {describe(f)}")
     x0, xf = _range("x_range", x_range)
@@ -326,10 +335,12 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
         # at the first point's crank angle where its rocker pin is nearest the prescribed one
         B = _assembled(A, np.array([d, 0.0]), math.sqrt(b2), abs(c), B)
     model = fourbar_model((0.0, 0.0), (d, 0.0), A, B, name="function generator")
-    at = np.degrees([theta2(x[0]), theta4(x[0])]) if degrees else [theta2(x[0]), theta4(x[0])]
-    start, other = ("10 deg", "20 deg") if degrees else ("0.2 rad", "0.4 rad")
+    shown = shown or unit
+    at = [theta2(x[0]), theta4(x[0])]
+    at = np.degrees(at) if shown == "deg" else at
+    start, other = ("10 deg", "20 deg") if shown == "deg" else ("0.2 rad", "0.4 rad")
     planned(model, f"input_range, output_range: at the precision point x = {x[0]:.6g} (input "
-            f"angle {at[0]:.6g} {unit}, output angle {at[1]:.6g} {unit})",
+            f"angle {at[0]:.6g} {shown}, output angle {at[1]:.6g} {shown})",
             f"offset the angle ranges (start the input at, say, {start} and the output at "
             f"{other}) or choose other precision points")
     q_off = np.pi if a < 0 else 0.0

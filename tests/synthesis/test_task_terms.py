@@ -68,6 +68,22 @@ points = [0, 0.5, 1.0]
         "pairs.toml: function.input_range, function.output_range: at the precision point x = 0 "
         "(input angle 0 rad, output angle 0 rad): the linkage is flat")
     assert not any(w in str(info.value) for w in MODEL_WORDS)
+    # a task in degrees is answered in degrees
+    task = read_task(tomllib.loads("""
+task = "function"
+units = { angle = "deg" }
+[function]
+expression = "x + 0.4 * x * (1 - x)"
+x_range = [0, 1]
+input_range = [0, 60]
+output_range = [0, 60]
+points = [0, 0.5, 1.0]
+"""), source="pairs.toml")
+    with pytest.raises(ModelError, match=r"^pairs\.toml: function\.input_range, function\."
+                                         r"output_range: at the precision point x = 0 \(input "
+                                         r"angle 0 deg, output angle 0 deg\): .* \(start the "
+                                         r"input at, say, 10 deg and the output at 20 deg\)"):
+        solve_task(task)
 
 
 def test_two_positions_whose_pivots_put_the_linkage_flat():
