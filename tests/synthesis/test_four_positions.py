@@ -3,12 +3,11 @@
 import numpy as np
 import pytest
 
-import kinelab as kl
 from kinelab.errors import ModelError
 from kinelab.synthesis import (Positions, burmester_curves, center_point_cubic, center_points,
                                four_positions, moving_pivot, poles)
 from kinelab.synthesis._pivots import suh_radcliffe_rows
-from tests.synthesis.helpers import catalogue_poses, engine_pose_errors
+from tests.synthesis.helpers import catalogue_poses, engine_pose_errors, travel_transmission
 
 # a task of four positions of a catalogue crank-rocker's coupler, at crank angles 0..160 deg
 POS = Positions(*catalogue_poses(np.radians([0.0, 70.0, 100.0, 160.0])))
@@ -67,15 +66,6 @@ def test_center_points_see_opposite_pole_sides_under_equal_angles():
 def test_poles_lie_on_the_center_point_curve():
     p = poles(POS)
     assert np.abs(normalised_det(POS, p.P)).max() < 1e-12
-
-
-def travel_transmission(s, samples=20001):
-    """The smallest transmission angle the engine meets while the crank turns from position
-    1 to the last, in the sense the solution reports (the shorter way when it reports none)."""
-    d = s.direction or 1
-    q = s.q[0] + d * np.linspace(0.0, np.mod(d * (s.q[-1] - s.q[0]), 2 * np.pi), samples)
-    sol = kl.analyze(s.model, q=q, unreachable="mask", at_singular="flag")
-    return float(np.min(kl.kinematics.transmission_angle(sol)[sol.assembled]))
 
 
 def test_every_solution_is_checked_and_valid_ones_reach_the_poses():
