@@ -52,38 +52,31 @@ def test_a_flat_linkage_at_a_precision_point_is_said_in_the_tasks_terms():
     assert np.abs(sol.precision_errors).max() < 1e-9
 
 
-def test_the_same_in_a_task_file_names_its_fields():
-    task = read_task(tomllib.loads("""
+FLAT_TASK = """
 task = "function"
+units = {{ angle = "{unit}" }}
 [function]
 expression = "x + 0.4 * x * (1 - x)"
 x_range = [0, 1]
-input_range = [0, 1]
-output_range = [0, 1.1]
+input_range = [0, {end}]
+output_range = [0, {end}]
 points = [0, 0.5, 1.0]
-"""), source="pairs.toml")
+"""
+
+
+@pytest.mark.parametrize("unit, end", [("rad", 1), ("deg", 60)])
+def test_the_same_in_a_task_file_names_its_fields_and_its_unit(unit, end):
+    task = read_task(tomllib.loads(FLAT_TASK.format(unit=unit, end=end)), source="pairs.toml")
     with pytest.raises(ModelError) as info:
         solve_task(task)
-    assert str(info.value).startswith(
+    start, other = ("10 deg", "20 deg") if unit == "deg" else ("0.2 rad", "0.4 rad")
+    message = str(info.value)
+    assert message.startswith(
         "pairs.toml: function.input_range, function.output_range: at the precision point x = 0 "
-        "(input angle 0 rad, output angle 0 rad): the linkage is flat")
-    assert not any(w in str(info.value) for w in MODEL_WORDS)
-    # a task in degrees is answered in degrees
-    task = read_task(tomllib.loads("""
-task = "function"
-units = { angle = "deg" }
-[function]
-expression = "x + 0.4 * x * (1 - x)"
-x_range = [0, 1]
-input_range = [0, 60]
-output_range = [0, 60]
-points = [0, 0.5, 1.0]
-"""), source="pairs.toml")
-    with pytest.raises(ModelError, match=r"^pairs\.toml: function\.input_range, function\."
-                                         r"output_range: at the precision point x = 0 \(input "
-                                         r"angle 0 deg, output angle 0 deg\): .* \(start the "
-                                         r"input at, say, 10 deg and the output at 20 deg\)"):
-        solve_task(task)
+        f"(input angle 0 {unit}, output angle 0 {unit}): the linkage is flat")
+    assert message.endswith(f"(start the input at, say, {start} and the output at {other}) or "
+                            "choose other precision points")
+    assert not any(w in message for w in MODEL_WORDS)
 
 
 def test_two_positions_whose_pivots_put_the_linkage_flat():
