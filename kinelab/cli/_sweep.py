@@ -249,5 +249,13 @@ def atlas_find(atlas_path, path_file, k, refine):
     click.echo(near.to_string(float_format=lambda v: f"{v:.6g}"))
     if sols is not None:
         best = sols[0]
+        size = float(np.hypot(*np.ptp(points, axis=0)))
+        limit = (f"meets the {np.degrees(best.transmission_limit):.3g} deg limit"
+                 if best.meets_transmission_limit else
+                 f"below the {np.degrees(best.transmission_limit):.3g} deg limit")
+        share = 100 * best.max_error / size
         click.echo(f"refined: A0 = ({best.A0[0]:.6g}, {best.A0[1]:.6g}) m, B0 = ({best.B0[0]:.6g}, "
-                   f"{best.B0[1]:.6g}) m, largest error {best.max_error:.3g} m")
+                   f"{best.B0[1]:.6g}) m; its coupler curve passes within {best.max_error:.3g} m "
+                   f"of all {len(points)} points of {shown_path(path_file)} (the largest "
+                   f"distance, {share:.3g} % of the path's size), min transmission "
+                   f"{np.degrees(best.min_transmission_angle):.3g} deg ({limit}), {best.state}")

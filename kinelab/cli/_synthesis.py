@@ -129,8 +129,8 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si:
         else:
             head += ", ".join(f"{k} {v:.4f}" for k, v in row["lengths"].items()) + \
                 f" {u.length}, "
-        if "min_transmission_angle" in row:
-            head += f"min transmission {row['min_transmission_angle']:.3g} {u.angle}, "
+        if "transmission_limit" in row:
+            head += _transmission(row, u) + ", "
         if "rms_error" in row:
             head += f"rms error {_error(row['rms_error'], u.length)}, "
         if "max_structural_error" in row:
@@ -140,6 +140,16 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si:
     click.echo(f"wrote {len(files)} file(s) to {shown_path(out)}")
     if certificate is not None:
         report(certificate)
+
+
+def _transmission(row: dict[str, Any], u: Units) -> str:
+    """The smallest transmission angle of a linkage over its travel, and whether it meets the
+    task's limit, in ``u``."""
+    limit = f"{row['transmission_limit']:.3g} {u.angle} limit"
+    if "min_transmission_angle" not in row:
+        return f"min transmission not measured ({limit} not met)"
+    verdict = "meets the" if row["meets_transmission_limit"] else "below the"
+    return f"min transmission {row['min_transmission_angle']:.3g} {u.angle} ({verdict} {limit})"
 
 
 def _error(value: float | None, unit: str = "") -> str:

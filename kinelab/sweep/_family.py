@@ -248,6 +248,12 @@ class _EngineDesigns(Designs):
                 except KinelabError as exc:     # this design alone cannot be analysed
                     problems[d] = str(exc).splitlines()[0]
                     mech = None
+            if mech is not None and len(mech.inputs) != 1:
+                # the family's, not the design's: every sample of a sweep is one input's value
+                raise ModelError(f"family: the mechanisms of {fam.name!r} have {len(mech.inputs)} "
+                                 "inputs, but a sweep turns one input through its samples; sweep "
+                                 "a family with one input (a model file of it with one input, "
+                                 "say)")
             self.mechanisms.append(mech)
         # the names of the kinematics, for a chunk where no design could be built too
         self.template = fam.base or next((m for m in self.mechanisms if m is not None), None)
