@@ -6,16 +6,20 @@ import kinelab as kl
 
 
 def scaled(m: kl.model.Mechanism, s: float) -> kl.model.Mechanism:
-    """``m`` with every length multiplied by ``s``: the sketch, the links' lengths and exact
-    places, the prismatic joints' offsets, and the ranges and rates of slide inputs.  Masses
-    stay; moments of inertia scale with s**2 (the same masses over a larger body)."""
+    """``m`` with every length multiplied by ``s``: the sketch, the links' lengths, exact
+    places and sides, the prismatic joints' offsets, and the ranges and rates of slide
+    inputs.  Masses stay; moments of inertia scale with s**2 (the same masses over a larger
+    body)."""
     def length(v):
         return None if v is None else v * s
 
     points = tuple(dataclasses.replace(p, x=p.x * s, y=p.y * s, z=p.z * s) for p in m.points)
     links = tuple(dataclasses.replace(
         link, length=length(link.length), inertia=None if link.inertia is None else link.inertia * s * s,
-        local=None if link.local is None else {k: (a * s, b * s) for k, (a, b) in link.local.items()})
+        local=None if link.local is None else {k: (a * s, b * s) for k, (a, b) in link.local.items()},
+        sides=None if link.sides is None else {
+            k: {name: d if name == "side" else d * s for name, d in spec.items()}
+            for k, spec in link.sides.items()})
         for link in m.links)
     joints = tuple(dataclasses.replace(j, offset=length(j.offset)) for j in m.joints)
     inputs = tuple(dataclasses.replace(i, range=None if i.range is None else (i.range[0] * s, i.range[1] * s),
