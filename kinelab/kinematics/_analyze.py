@@ -400,6 +400,39 @@ def _assembles(p: Plan, qs: np.ndarray) -> np.ndarray:
     return res
 
 
+# How far from a singular configuration a flagged sample may be: a change point is flagged
+# within about SINGULAR_TOL of it (the measure grows like the distance), a limit position
+# within about SINGULAR_TOL**2 (like its square root); in rad, or sizes for a slide.
+_CHANGE_POINT_ZONE = 10 * SINGULAR_TOL
+_LIMIT_ZONE = 10 * SINGULAR_TOL ** 2
+
+
+def singular_kind(mechanism: Mechanism, q, method: str = "auto",
+                  at_change_point: str = "smooth") -> dict:
+    """What kind of singular configuration the input values ``q`` (M,) flagged singular are
+    next to, as :class:`SingularInput` takes it: a change point (two assembly modes cross:
+    ``links``), a limit position (the input's reach ends: ``reachable``), or neither.  Known
+    for mechanisms of one input: change points of closed forms, limit positions of every
+    plan."""
+    p = plan(mechanism, method=method)
+    if len(p.input_kinds) != 1:
+        return {}
+    v = float(q[0])
+    unit = 1.0 if p.input_kinds[0] == "angle" else p.scale
+    bmap = _branch_map(p, 1, at_change_point)
+    if bmap is not None:
+        near = bmap.change_points(v - _CHANGE_POINT_ZONE * unit, v + _CHANGE_POINT_ZONE * unit)
+        if near:
+            nearest = min(near, key=lambda c: abs(c.q - v))
+            return dict(kind="change point", links=nearest.step, at=nearest.q)
+    ranges = reachable_ranges(mechanism, method=method)
+    if ranges and not turns_fully(mechanism, ranges):
+        bound = min((b for span in ranges for b in span), key=lambda b: abs(v - b))
+        if abs(v - bound) <= _LIMIT_ZONE * unit:
+            return dict(kind="limit position", reachable=ranges, at=bound)
+    return {}
+
+
 def _check_redundant(p: Plan, sol: KinematicSolution):
     """Joints the plan did not need must stay closed on their own (parallelogram links)."""
     m = p.mechanism
@@ -545,7 +578,8 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
         policy = at_singular if at_singular != "auto" else ("raise" if single else "flag")
         if policy == "raise":
             i = int(np.flatnonzero(singular)[0])
-            raise SingularInput(q2[i], p.input_kinds, det=float(diag[i, 0]))
+            raise SingularInput(q2[i], p.input_kinds, det=float(diag[i, 0]),
+                                **singular_kind(mechanism, q2[i], method, at_change_point))
         jets[singular, :, 1:] = np.nan
         rates[singular] = np.nan
     sol = KinematicSolution(

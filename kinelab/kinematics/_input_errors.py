@@ -75,24 +75,65 @@ def _telling_digits(value: float, bounds: list[float]) -> int:
 class SingularInput(SingularityError):
     """Input values ``q`` (SI; ``kinds`` 'angle' or 'slide') at a singular configuration
     (det J = ``det``, nearly 0), where positions exist but velocities and accelerations do
-    not; ``sample`` is its index in a solution, when it is one of several."""
+    not; ``sample`` is its index in a solution, when it is one of several.
+
+    ``kind`` says which: a ``"limit position"`` (a fold: the input cannot go past it, and
+    the output's speed grows without bound as it comes near; ``reachable`` holds the
+    intervals the input does reach), a ``"change point"`` (two assembly modes of ``links``
+    meet and cross: the motion goes on through it on either, with finite speeds along
+    each, but which one it takes is not decided at the point itself), or a ``"singular
+    configuration"`` of another kind.  ``at`` is the input value of the limit position or
+    change point, which ``q`` is at or next to (within the rounding that makes K and L
+    untrustworthy there)."""
 
     __module__ = "kinelab.kinematics"
     instead = "a value off it"
 
     def __init__(self, q, kinds, *, det: float = float("nan"), sample: int | None = None,
+                 kind: str = "singular configuration", links: str = "",
+                 reachable: list[tuple[float, float]] | None = None, at: float | None = None,
                  advice: str = "move the input off it, or pass at_singular='flag' to get the "
                                "positions with the sample flagged"):
         self.q, self.kinds = tuple(float(v) for v in q), tuple(kinds)
         self.det, self.sample = det, sample
+        self.kind, self.links, self.reachable, self.at = kind, links, reachable, at
         super().__init__(f"{self.saying()}; {advice}")
 
     def saying(self, units: Units | None = None, names: tuple[str, ...] = ()) -> str:
         """The configuration, input values in ``units`` (default SI), named by ``names``."""
+        u = units or Units()
         where = "" if self.sample is None else f"sample {self.sample}: "
         det = "0" if self.det != self.det else f"{self.det + 0.0:.3g}"     # no "-0"
-        return (f"{where}{_values(self.q, self.kinds, units or Units(), names)} is a singular "
-                f"configuration (det J = {det}): positions exist but velocities and "
-                "accelerations are not defined there")
-
-
+        bounds = [float(u.convert(b, INPUT_SI_UNITS[self.kinds[0]]))
+                  for span in self.reachable or () for b in span]
+        digits = 6
+        if len(self.q) == 1 and bounds:
+            digits = _telling_digits(float(u.convert(self.q[0], INPUT_SI_UNITS[self.kinds[0]])),
+                                     bounds)
+        at = f"{where}{_values(self.q, self.kinds, u, names, digits)}"
+        place = f"is a {self.kind}"
+        detail = f"det J = {det}"
+        if self.kind in ("limit position", "change point") and self.at is not None:
+            kind = self.kinds[0]
+            # located to about 1e-12: nearer than 1e-9 (rad, or sizes) is at it
+            if abs(self.q[0] - self.at) > 1e-9 * max(1.0, abs(self.at)):
+                point = float(u.convert(self.at, INPUT_SI_UNITS[kind]))
+                value = float(u.convert(self.q[0], INPUT_SI_UNITS[kind]))
+                point = 0.0 if abs(point) < 1e-9 * max(1.0, abs(value)) else point
+                place = f"is next to a {self.kind}"
+                detail = (f"at {point:.{max(digits, _telling_digits(point, [value]))}g} "
+                          f"{u.unit(INPUT_SI_UNITS[kind])}; {detail}")
+        if self.kind == "limit position":
+            spans = ", ".join(f"[{lo:.{digits}g}, {hi:.{digits}g}]"
+                              for lo, hi in zip(bounds[::2], bounds[1::2]))
+            who = f"{describe(names[0])} reaches" if names else "q reaches"
+            return (f"{at} {place} ({detail}): the input cannot go past it, and "
+                    "velocities and accelerations are unbounded there; "
+                    f"{who} {spans} {u.unit(INPUT_SI_UNITS[self.kinds[0]])}")
+        if self.kind == "change point":
+            return (f"{at} {place} of {self.links} ({detail}): two assembly modes meet and "
+                    "cross there; the motion goes on through it, on the branch a sweep "
+                    "follows, but velocities and accelerations are not defined at the point"
+                    + ("" if place.startswith("is a") else ", nor computed this near it"))
+        return (f"{at} is a singular configuration (det J = {det}): positions exist but "
+                "velocities and accelerations are not defined there")

@@ -275,8 +275,11 @@ def sample_index(sol: KinematicSolution, sample: int) -> int:
         raise AssemblyError(f"sample {i}: the loops do not close at {_q_text(sol, i)}; choose "
                             "a sample where the mechanism assembles")
     if sol.singular[i]:
+        from kinelab.kinematics._analyze import singular_kind
         raise SingularInput(sol.q[i], sol.plan.input_kinds, sample=i if n > 1 else None,
-                            advice="choose another sample")
+                            advice="choose another sample",
+                            **singular_kind(sol.mechanism, sol.q[i],
+                                            "newton" if sol.plan.groups is not None else "auto"))
     return i
 
 

@@ -214,7 +214,8 @@ def test_singular_input_is_refused_in_one_line(tmp_path, command):
     result = run(command, model, "--at", "90deg", "--out", tmp_path)
     assert result.exit_code == 2, result.output
     lines = result.output.strip().splitlines()
-    assert len(lines) == 1 and "singular configuration" in lines[0]
+    # B meets O2 at 90 deg, where the slider's two assembly modes cross
+    assert len(lines) == 1 and "is a change point of dyad 'rod'-'slider'" in lines[0]
     assert not list(tmp_path.glob("*.png"))
 
 

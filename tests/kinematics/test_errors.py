@@ -1,4 +1,6 @@
 """Bad input gets a kinelab error that says what to do; never NaN or a deep traceback."""
+import math
+
 import numpy as np
 import pytest
 
@@ -36,8 +38,50 @@ def test_unreachable_mask_marks_samples():
 
 def test_single_singular_configuration_raises():
     sc = kl.mechanisms.slider_crank(crank=1.0, rod=1.0)    # at 90°, the rod stands upright
-    with pytest.raises(SingularityError, match=r"q = 1\.5708 rad is a singular configuration"):
+    with pytest.raises(SingularityError, match=r"q = 1\.5708 rad is a change point of dyad "
+                                               r"'rod'-'slider'"):
         kl.analyze(sc, q=np.pi / 2, qd=1.0)
+
+
+# A change point (two assembly modes cross: the motion goes on) and a limit position (a fold:
+# the input's reach ends) are told apart, each with where it is; a limit position with the
+# reach computed.  Non-Grashof four-bar: the crank reaches cos q >= -5/16 (the coupler and
+# rocker, 1 + 1.5, just reach A from O4 when |A - O4|^2 = 1 + 4 - 4 cos q = 6.25).
+@pytest.mark.parametrize("q, text", [
+    (math.acos(-5 / 16), r"q = 1\.888620030723\d* rad is a limit position \(det J = [^)]*\): the input "
+                         r"cannot go past it, and velocities and accelerations are unbounded there; "
+                         r"q reaches \[-1\.88862003072\d*, 1\.88862003072\d*\] rad"),
+    (math.acos(-5 / 16) - 1e-6, r"q = 1\.888619 rad is next to a limit position \(at 1\.88862 rad; "
+                                r"det J = [^)]*\)"),
+])
+def test_a_limit_position_is_named_with_the_reach(q, text):
+    fb = kl.mechanisms.fourbar(**NON_GRASHOF)
+    with pytest.raises(SingularityError, match=text) as info:
+        kl.analyze(fb, q=q, qd=1.0)
+    assert info.value.kind == "limit position"
+    assert info.value.reachable == kl.kinematics.reachable_ranges(fb)
+    assert info.value.at == pytest.approx(math.acos(-5 / 16), abs=1e-11)
+
+
+def test_a_change_point_is_not_called_a_limit_position():
+    """The parallelogram at 0: two assembly modes cross; the crank turns on."""
+    pg = kl.mechanisms.fourbar(ground=100, crank=60, coupler=100, rocker=60)
+    with pytest.raises(SingularityError, match=r"^q = 0\.001 rad is next to a change point of dyad "
+                                               r"'coupler'-'rocker' \(RRR A-B-O4\) \(at 0 rad; det J = "
+                                               r"[^)]*\): two assembly modes meet and cross there") as info:
+        kl.analyze(pg, q=0.001, qd=1.0)
+    assert info.value.kind == "change point" and info.value.reachable is None
+    assert kl.kinematics.turns_fully(pg, kl.kinematics.reachable_ranges(pg))
+
+
+def test_a_limit_position_of_a_newton_plan_is_named():
+    """The same four-bar through the Newton engine: the reach that continuation finds."""
+    fb = kl.mechanisms.fourbar(**NON_GRASHOF)
+    lo, hi = kl.kinematics.reachable_ranges(fb, method="newton")[0]
+    with pytest.raises(SingularityError, match=r"limit position") as info:
+        kl.analyze(fb, q=hi - 1e-9, qd=1.0, method="newton")
+    assert info.value.kind == "limit position"
+    assert hi == pytest.approx(math.acos(-5 / 16), abs=1e-8)
 
 
 def test_singular_samples_are_flagged_in_a_sweep():

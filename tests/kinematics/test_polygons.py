@@ -253,8 +253,9 @@ def test_singular_and_unassembled_samples_are_refused():
     sc = kl.mechanisms.slider_crank(1.0, 1.0)      # crank = rod: singular where B meets O2
     sol = kl.analyze(sc, q=np.array([0.3, np.pi / 2]), at_singular="flag")
     assert sol.singular[1]
-    with pytest.raises(SingularityError, match=r"^sample 1: q = 1.5708 rad is a singular configuration "
-                                               r"\(det J = 0\): .*; choose another sample$") as info:
+    with pytest.raises(SingularityError, match=r"^sample 1: q = 1.5708 rad is a change point of dyad "
+                                               r"'rod'-'slider' .*\(det J = 0\): .*; choose another "
+                                               r"sample$") as info:
         K.velocity_polygon(sol, 1)
     assert info.value.sample == 1 and info.value.q == (np.pi / 2,)
     fb = kl.mechanisms.fourbar(3.0, 1.0, 1.5, 0.8)
