@@ -333,7 +333,9 @@ def simulate(model: Mechanism | Sequence[Mechanism], t_span: tuple[float, float]
         A :func:`scipy.integrate.solve_ivp` method; DOP853 (default) for accuracy, Radau
         or BDF for stiff springs and dampers.
     rtol, atol : float
-        Integration tolerances, on q and q'.  An rtol below 100 machine epsilons
+        Integration tolerances, on q and q': atol in rad (rad/s) for an angle input and in
+        sizes of the mechanism (per s) for a slide, so that it means the same whatever the
+        unit the mechanism is drawn in.  An rtol below 100 machine epsilons
         (2.2e-14) is raised to it, with a warning, as :func:`scipy.integrate.solve_ivp` does.
     max_step : float
         Largest step, s.
@@ -817,7 +819,9 @@ def _integrate_scipy(system: System, actuators, y0: np.ndarray, span, t_eval, me
     # over 2M + 3 components equals the norm of q and q' alone (an rtol at the floor stays
     # there: scipy would raise it to the floor with a second warning).
     shrink = math.sqrt(2 * M / (2 * M + 3))
-    atols = np.concatenate([np.full(2 * M, atol * shrink), np.full(3, np.inf)])
+    p = plan(system.model)
+    unit = np.array([1.0 if kind == "angle" else p.scale for kind in p.input_kinds] * 2)
+    atols = np.concatenate([atol * shrink * unit, np.full(3, np.inf)])
     try:    # a state beyond float64 is reported by rhs (diverged), not by numpy's warnings
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             out = solve_ivp(rhs, span, y0, method=method, t_eval=t_eval, rtol=max(rtol * shrink, RTOL_FLOOR),

@@ -26,6 +26,7 @@ from kinelab.dynamics._codes import (FAIL_ASSEMBLY, FAIL_BUDGET, FAIL_DIVERGED, 
                                      RUN_SINGULAR)
 from kinelab.kinematics import SINGULAR_TOL
 from kinelab.kinematics import _kernel as kin
+from kinelab.kinematics._codes import HEADER, OP_SLIDE_POINT
 from kinelab.kinematics._kernel import (_jit, _lu_factor, _lu_solve, evaluate_one_sample,
                                         one_sample_scratch)
 
@@ -326,6 +327,23 @@ def _stage(K, s, a, h, y, out):
 
 
 @_jit()
+def _state_units(plan_i, scale, M):
+    """The unit of each of q and q' in which atol is given: 1 for an angle input (rad,
+    rad/s), the mechanism's size for a slide (found as the plan's driven slide of input m),
+    so that the tolerance does not depend on the unit the mechanism is drawn in."""
+    unit = np.ones(2 * M)
+    n_ops = plan_i[2]
+    wi = plan_i[3]
+    for k in range(n_ops):
+        row = HEADER + k * wi
+        if plan_i[row] == OP_SLIDE_POINT:
+            m = plan_i[row + 4]
+            unit[m] = scale
+            unit[M + m] = scale
+    return unit
+
+
+@_jit()
 def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, system, work):
     """One run from y0 at t0 to t1 (or to a stop) in at most ``budget`` evaluations: the
     outputs at t_eval (every step when t_eval is empty).
@@ -336,6 +354,7 @@ def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, sys
     nq = 2 * M
     info = np.zeros(2 + n)
     sample = one_sample_scratch(system[0], system[1], M)
+    unit = _state_units(system[0], system[3], M)
     K = np.zeros((_STAGES + 4, n))
     y = y0.copy()
     f = np.zeros(n)
@@ -362,7 +381,7 @@ def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, sys
     # the first step (scipy's select_initial_step, Hairer, Norsett and Wanner II.4)
     span = t1 - t0
     for i in range(nq):
-        scale[i] = atol + abs(y0[i]) * rtol
+        scale[i] = atol * unit[i] + abs(y0[i]) * rtol
     d0 = _rms(y0, scale, nq)
     d1 = _rms(f, scale, nq)
     h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
@@ -440,7 +459,7 @@ def integrate_run(y0, t0, t1, t_eval, rtol, atol, max_step, stop, budget, M, sys
             e5 = 0.0
             e3 = 0.0
             for j in range(nq):
-                sc = atol + max(abs(y[j]), abs(y_new[j])) * rtol
+                sc = atol * unit[j] + max(abs(y[j]), abs(y_new[j])) * rtol
                 a5 = 0.0
                 a3 = 0.0
                 for i in range(_STAGES + 1):
