@@ -323,6 +323,81 @@ class Mechanism:
         from kinelab.kinematics import pose
         return pose(self, q)
 
+    # -- edits ----------------------------------------------------------------------------
+    def with_dimensions(self, *, lengths: Mapping[str, float] | None = None,
+                        local: Mapping[str, Mapping[str, tuple[float, float]]] | None = None,
+                        offsets: Mapping[str, float] | None = None,
+                        pivots: Mapping[str, tuple[float, float]] | None = None) -> Mechanism:
+        """The same mechanism with some dimensions changed, assembled again at its inputs
+        and on its branch: :func:`kinelab.kinematics.reassemble`.
+
+        Parameters
+        ----------
+        lengths : mapping of str to float, optional
+            Links' new lengths (first two points), m; the ground's moves its second point.
+        local : mapping of str to mapping of str to (float, float), optional
+            ``{link: {point: (along, left)}}``: new places of links' other points, m.
+        offsets : mapping of str to float, optional
+            Prismatic joints' new offsets, m.
+        pivots : mapping of str to (float, float), optional
+            The ground's points' new places, m.
+
+        Returns
+        -------
+        Mechanism
+            With the new dimensions declared (``length``, ``local``, ``offset``) and its
+            points at the configuration continued from this one: every input keeps its
+            value and every dyad its side.  Where that side no longer exists at the inputs,
+            the nearest other assembly is taken and a warning names the dyads that changed.
+
+        Raises
+        ------
+        AssemblyError
+            No configuration has these dimensions at these inputs: the message says which
+            loop, by how much it misses, where the inputs reach and which value would close
+            it.
+        ModelError
+            An unknown name or a value that is not a length, place or offset.
+
+        Examples
+        --------
+        >>> fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
+        >>> longer = fb.with_dimensions(lengths={"crank": 1.5})
+        >>> round(math.dist(longer.point("O2").xy, longer.point("A").xy), 12)
+        1.5
+        >>> bool(np.allclose(np.arctan2(*longer.point("A").xy[::-1]),
+        ...                  np.arctan2(*fb.point("A").xy[::-1]), rtol=0, atol=1e-12))
+        True
+        """
+        # the edit needs the assembly of the kinematics room: imported when called, so that
+        # kinelab.model itself depends on nothing above it (as in `at`)
+        import warnings
+
+        from kinelab.kinematics import reassemble
+        done = reassemble(self, lengths=lengths, local=local, offsets=offsets, pivots=pivots)
+        if done.switched:
+            warnings.warn(f"'{self.name}': at its inputs these dimensions close only in another "
+                          f"assembly mode of {', '.join(done.switched)}: assembled there",
+                          UserWarning, stacklevel=2)
+        return done.mechanism
+
+    def with_lengths(self, lengths: Mapping[str, float] | None = None, /,
+                     **more: float) -> Mechanism:
+        """:meth:`with_dimensions` with new lengths only: ``m.with_lengths(coupler=0.25)`` or
+        ``m.with_lengths({"coupler": 0.25})``, m.
+
+        Examples
+        --------
+        >>> fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
+        >>> m = fb.with_lengths(rocker=2.0)
+        >>> round(math.dist(m.point("O4").xy, m.point("B").xy), 12), m.link("rocker").length
+        (2.0, 2.0)
+        """
+        if lengths is not None and not isinstance(lengths, Mapping):
+            raise ModelError(f"lengths: expected a mapping of link names to lengths (m), got "
+                             f"{describe(lengths)}")
+        return self.with_dimensions(lengths={**(lengths or {}), **more})
+
     # -- plain data ---------------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:
         """Plain data (SI units), the inverse of :meth:`from_dict`."""
