@@ -728,8 +728,7 @@ class _Parser:
         try:
             self.assembly = assemble(m, units=units)
         except AssemblyError as exc:
-            where = self.where.get(("link", exc.link))
-            self.fail([f"{where}.length: {exc}" if where else f"points: {exc}"])
+            self.fail([f"{self.field_of(exc)}: {exc}"])
         except ModelError as exc:
             self.fail([_locate(p, self.where) for p in exc.problems])
         ls = units.length_scale
@@ -737,6 +736,21 @@ class _Parser:
         return dataclasses.replace(done, points=tuple(
             dataclasses.replace(p, x=_rounded(p.x, ls) if ls != 1.0 else p.x,
                                 y=_rounded(p.y, ls) if ls != 1.0 else p.y) for p in done.points))
+
+    def field_of(self, exc: AssemblyError) -> str:
+        """The field of the file whose dimension a refused assembly names (the one changed
+        the most from the sketch): ``links[2].length``, ``links[2].local.P``,
+        ``joints[4].offset``; else ``points``."""
+        dimension = getattr(exc, "dimension", None) or (("length", exc.link) if exc.link else ())
+        kind, name = (dimension[0], dimension[1]) if dimension else ("", "")
+        if kind in ("length", "local") and ("link", name) in self.where:
+            where = self.where[("link", name)]
+            return f"{where}.local.{shown_key(dimension[2])}" if kind == "local" else f"{where}.length"
+        if kind == "offset" and ("joint", name) in self.where:
+            return f"{self.where[('joint', name)]}.offset"
+        if kind == "pivot":
+            return f"points.{shown_key(name)}"
+        return "points"
 
     def local(self, value, where: str, pts, scale: float):
         """A link's ``local`` table: point = [along, left], in the file's length unit."""

@@ -168,13 +168,15 @@ def assemble(mechanism: Mechanism, *, units: Units | None = None,
     system = _Constraints(mechanism, units or Units(), pivots=pivots)
     closure = system.closure()
     closed = None
-    if closure is not None:
-        closed = system.close_all(closure)
-        if not closed.closes.any() and closure.exact:
-            raise system.refusal(closure, closed)       # no branch closes: nothing to follow
+    if closure is not None and closure.exact:
+        closed = system.close_all(closure)       # closed forms: every branch, at once
+        if not closed.closes.any():
+            raise system.refusal(closure, closed)       # none closes: nothing to follow
     x, ok = system.follow()
     switched: tuple[str, ...] = ()
     if not ok:
+        if closure is not None and closed is None:
+            closed = system.close_all(closure)
         x, switched = system.search(closure, closed)
     return system.assembly(x, switched)
 
@@ -493,6 +495,8 @@ class _Constraints:
         self.hold = bool(m.inputs)
         self._structure = _Structure(m)
         self._owner = np.array([self.dist_links.index(n) for n, _ in self.frame_links], np.int64)
+        self._frame_part = None
+        self._dims = {}
         # where each block of the distance and frame rows goes in the Jacobian
         n_dist = len(self.dist[2])
         base = n_dist + 2 * np.arange(len(self.frame[3]))
@@ -504,6 +508,22 @@ class _Constraints:
                        (base + 1, fb)):
             self._scatter.append(self._rows_of(r, pts))
 
+    @functools.cached_property
+    def _frame_flat(self):
+        """Where the frame rows' entries go in a dense Jacobian (flat indices) and which of
+        their twelve coefficients (x and y of the point, of the first and of the second point,
+        for the x row then the y row) each one is: (flat, (coefficient, row))."""
+        n = len(self.x0)
+        flat, coef, row = [], [], []
+        for k, (r, c, keep) in enumerate(self._scatter[2:]):
+            for comp in range(2):
+                flat.append(r * n + c + comp)
+                coef.append(np.full(len(r), 2 * k + comp))
+                row.append(np.flatnonzero(keep))
+        if not flat:
+            return np.zeros(0, np.int64), (np.zeros(0, np.int64), np.zeros(0, np.int64))
+        return np.concatenate(flat), (np.concatenate(coef), np.concatenate(row))
+
     def _rows_of(self, r, points):
         c = self.column[points]
         keep = c >= 0
@@ -511,7 +531,16 @@ class _Constraints:
 
     # -- the homotopy ------------------------------------------------------------------
     def at(self, t: float) -> dict:
-        """The dimensions at t: lengths, places (lam, mu), offsets and the ground's points."""
+        """The dimensions at t: lengths, places (lam, mu), offsets and the ground's points
+        (those at the ends kept: the same object each time)."""
+        if t in self._dims:
+            return self._dims[t]
+        dims = self._at(t)
+        if t in (0.0, 1.0):
+            self._dims[t] = dims
+        return dims
+
+    def _at(self, t: float) -> dict:
         L = self.dist_drawn + t * (self.dist[2] - self.dist_drawn)
         places = self.places[0] + t * (self.places[1] - self.places[0])
         Lp = L[self._owner] if len(self._owner) else np.zeros(0)
@@ -574,21 +603,60 @@ class _Constraints:
         dims = dims or self.at(t)
         P = self.all_points(x, dims)
         ia, ib, _ = self.dist
-        L = dims["L"]
-        d = (P[ib] - P[ia]) / L[:, None]
+        d = (P[ib] - P[ia]) / dims["L"][:, None]
+        n_rows = len(d) + 2 * len(dims["lam"]) + len(self.special)
+        if len(x) <= 2000:
+            # the frame rows are linear in the points: their part is the same at every x
+            if self._frame_part is None or self._frame_part[0] is not dims:
+                self._frame_part = (dims, self._sparse_parts(dims, d, len(x), frames_only=True))
+            J = self._frame_part[1].copy()
+            (ra, ca, ka), (rb, cb, kb) = self._scatter[:2]
+            J[ra, ca], J[ra, ca + 1] = -d[ka, 0], -d[ka, 1]
+            J[rb, cb], J[rb, cb + 1] = d[kb, 0], d[kb, 1]
+            first = n_rows - len(self.special)
+            for k, (points, grads) in enumerate(self._special_gradients(P)):
+                for i, g in zip(points, grads):
+                    c = self.column[i]
+                    if c >= 0:
+                        J[first + k, c] += g[0]
+                        J[first + k, c + 1] += g[1]
+            return J
+        rows, cols, vals = self._sparse_parts(dims, d, len(x), P=P)
+        from scipy import sparse
+        return sparse.csr_matrix((vals, (rows, cols)), shape=(n_rows, len(x)))
+
+    def _sparse_parts(self, dims, d, n, *, frames_only=False, P=None):
+        """(rows, cols, values) of the Jacobian (or, with ``frames_only``, the dense matrix
+        of its frame rows alone)."""
         lam, mu = dims["lam"], dims["mu"]
+        if frames_only:
+            J = np.zeros((len(d) + 2 * len(lam) + len(self.special), n))
+            flat, which = self._frame_flat
+            if len(flat):
+                values = np.stack([np.ones_like(lam), np.zeros_like(lam), lam - 1, -mu, -lam, mu,
+                                   np.zeros_like(lam), np.ones_like(lam), mu, lam - 1, -mu, -lam])
+                J.flat[flat] = values[which]
+            return J
         one, zero = np.ones_like(lam), np.zeros_like(lam)
         # frame row x: p_x - a_x - lam (b_x - a_x) + mu (b_y - a_y); row y: p_y - a_y - lam e_y - mu e_x
         blocks = (-d, d, np.stack([one, zero], -1), np.stack([lam - 1, -mu], -1),
                   np.stack([-lam, mu], -1), np.stack([zero, one], -1), np.stack([mu, lam - 1], -1),
                   np.stack([-mu, -lam], -1))
         rows, cols, vals = [], [], []
-        for (r, c, keep), block in zip(self._scatter, blocks):
+        for k, ((r, c, keep), block) in enumerate(zip(self._scatter, blocks)):
+            if frames_only and k < 2:
+                continue
             for comp in range(2):
                 rows.append(r)
                 cols.append(c + comp)
                 vals.append(block[keep, comp])
-        first = len(L) + 2 * len(lam)
+        n_rows = len(d) + 2 * len(lam) + len(self.special)
+        if frames_only:
+            J = np.zeros((n_rows, n))
+            if rows:
+                J[np.concatenate(rows), np.concatenate(cols)] = np.concatenate(vals)
+            return J
+        first = len(d) + 2 * len(lam)
         for k, (points, grads) in enumerate(self._special_gradients(P)):
             for i, g in zip(points, grads):
                 c = self.column[i]
@@ -596,14 +664,7 @@ class _Constraints:
                     rows.append(np.array([first + k, first + k]))
                     cols.append(np.array([c, c + 1]))
                     vals.append(np.asarray(g, float))
-        n_rows = first + len(self.special)
-        rows, cols, vals = np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
-        if len(x) <= 2000:
-            J = np.zeros((n_rows, len(x)))
-            np.add.at(J, (rows, cols), vals)
-            return J
-        from scipy import sparse
-        return sparse.csr_matrix((vals, (rows, cols)), shape=(n_rows, len(x)))
+        return np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
 
     def _special_gradients(self, P):
         """Per joint or input row: the points it depends on and d row / d point (2,)."""
@@ -650,7 +711,7 @@ class _Constraints:
         if not len(x):
             return x, True
         monitor = self._monitor()
-        signs = monitor(x)
+        signs = monitor(x, 0.0)
         t, dt = 0.0, 1.0
         while t < 1.0:
             t1 = min(1.0, t + dt)
@@ -663,7 +724,7 @@ class _Constraints:
             if ok:
                 ok = (np.max(np.abs(corrected - predicted)) <= 0.5 * max(np.max(np.abs(predicted - x)),
                                                                         1e-9 * self.scale)
-                      and np.array_equal(monitor(corrected), signs))
+                      and np.array_equal(monitor(corrected, t1), signs))
             if ok:
                 x, t = corrected, t1
                 if steps <= 3:
@@ -672,8 +733,11 @@ class _Constraints:
                 dt *= 0.5
                 if dt < _SHORTEST:
                     return x, False
-        x, ok, _ = self.correct(x, 1.0, _POLISH, polish=True)
-        return x, ok and np.array_equal(monitor(x), signs)
+        if not np.all(np.abs(self.residual(x, 1.0)) <= 1e3 * _TOL * self.scale):
+            x, ok, _ = self.correct(x, 1.0, _POLISH, polish=True)
+            if not ok:
+                return x, False
+        return x, np.array_equal(monitor(x, 1.0), signs)
 
     def correct(self, x: np.ndarray, t: float, iterations: int, polish: bool = False):
         """Gauss-Newton towards the configuration at t nearest to the sketch:
@@ -719,8 +783,8 @@ class _Constraints:
                 Z, X = (idx[p] for p in g.points)
                 tests.append(lambda P, X=X, Z=Z, j=g.joints[0]: float(f.axis(P, j) @ (P[X] - P[Z])))
 
-        def signs(x):
-            P = self.all_points(x)
+        def signs(x, t):
+            P = self.all_points(x, self.at(t))
             return np.sign([test(P) for test in tests])
         return signs
 
@@ -774,9 +838,11 @@ class _Constraints:
         start = self._start_signs(closure)
         P = closed.P[rows]
         distance = np.sum((P[:, self.free_points] - self.sketch[self.free_points]) ** 2, axis=(1, 2))
+        # the nearest branch: the fewest groups in another mode than the sketch's, then the
+        # configuration nearest to the sketch
         known = start != 0
-        same = np.all((closed.signs[rows][:, known] == start[known]), axis=1)
-        pool = np.flatnonzero(same) if same.any() else np.arange(len(rows))
+        changes = np.sum(closed.signs[rows][:, known] != start[known], axis=1)
+        pool = np.flatnonzero(changes == changes.min())
         pick = pool[np.argmin(distance[pool])]
         row = rows[pick]
         switched = tuple(closure.dec.groups[k].label for k in np.flatnonzero(known)
@@ -792,7 +858,7 @@ class _Constraints:
         groups = closure.dec.groups
         signs = np.zeros(len(groups))
         dyads = [k for k, g in enumerate(groups) if g.kind in ("RRR", "RRP", "RPR")]
-        values = self._monitor()(self.x0)
+        values = self._monitor()(self.x0, 0.0)
         for k, v in zip(dyads, values):
             signs[k] = v
         if any(g.kind == "newton" for g in groups):
@@ -834,6 +900,10 @@ class _Constraints:
     # -- the result ----------------------------------------------------------------------
     def assembly(self, x: np.ndarray, switched: tuple[str, ...]) -> Assembly:
         m = self.m
+        # a point that moved by rounding alone stays where it was drawn
+        start = self.x0.reshape(-1, 2)
+        still = np.max(np.abs(x.reshape(-1, 2) - start), axis=1) <= 4 * np.finfo(float).eps * self.scale
+        x = np.where(still[:, None], start, x.reshape(-1, 2)).ravel()
         points = self.points_at(x)
         moved = {n: float(math.dist(points[n], (p.x, p.y))) for n, p in
                  ((p.name, p) for p in m.points)}
@@ -841,8 +911,7 @@ class _Constraints:
                  if d > _MOVED * self.scale}
         P = self.all_points(x)
         joints = tuple(self.turned_axis(j, P) for j in m.joints)
-        out = dataclasses.replace(m, points=tuple(Point(p.name, *points[p.name]) for p in m.points),
-                                  joints=joints)
+        out = m._moved(tuple(Point(p.name, *points[p.name]) for p in m.points), joints)
         return Assembly(out, moved, switched)
 
     def turned_axis(self, j, P):

@@ -323,6 +323,24 @@ class Mechanism:
         from kinelab.kinematics import pose
         return pose(self, q)
 
+    def _moved(self, points: tuple[Point, ...], joints: tuple[Joint, ...]) -> Mechanism:
+        """The same mechanism with its points moved (the same names, in order) and its joints'
+        axes turned: what assembly makes of it.  Only the new coordinates are checked (the
+        rest is this checked mechanism's)."""
+        problems = [f"point {shown(p.name)}: coordinates: {why}, got ({p.x:g}, {p.y:g}) m"
+                    for p in points for why in [next(filter(None, (
+                        length_problem(c, positive=False) if is_real(c) else "expected finite numbers"
+                        for c in (p.x, p.y))), None)] if why]
+        if problems or [p.name for p in points] != list(self.point_names) or len(joints) != len(self.joints):
+            return Mechanism(self.name, points, self.links, joints, self.inputs, self.space,
+                             self.parameters)
+        out = object.__new__(Mechanism)
+        for f in ("name", "links", "inputs", "space", "parameters"):
+            object.__setattr__(out, f, getattr(self, f))
+        object.__setattr__(out, "points", tuple(points))
+        object.__setattr__(out, "joints", tuple(joints))
+        return out
+
     # -- edits ----------------------------------------------------------------------------
     def with_dimensions(self, *, lengths: Mapping[str, float] | None = None,
                         local: Mapping[str, Mapping[str, tuple[float, float]]] | None = None,
