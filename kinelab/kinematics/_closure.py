@@ -42,8 +42,9 @@ __all__ = ["Group", "Decomposition", "decompose", "Frames", "Closed"]
 SIGNED = ("RRR", "RRP", "RPR", "newton")   # groups with more than one assembly mode
 _STARTS = 24            # Newton groups: starts per configuration (the first is the given one)
 _SCAN_STARTS = 6        # ... when scanning many inputs or dimensions
-_CUT_STARTS = 12        # ... when measuring the gap of a group that does not close
+_CUT_STARTS = 8         # ... when measuring the gap of a group that does not close
 _NEWTON_ITERATIONS = 25
+_SCAN_ITERATIONS = 16
 _CHECK = 1e-9           # relative to the size: a redundant joint closes to within this
 
 
@@ -795,7 +796,8 @@ class _NewtonGroup:
         R, n, K = len(st.src), self.n, starts
         z0 = self._starts(st, K)                                # (R, K, n)
         rows = np.repeat(np.arange(R), K)
-        z, ok, det = self._iterate(st, rows, z0.reshape(R * K, n).copy())
+        z, ok, det = self._iterate(st, rows, z0.reshape(R * K, n).copy(),
+                                   _NEWTON_ITERATIONS if gaps else _SCAN_ITERATIONS)
         # the distinct solutions of each row, in the order of the starts
         keys = np.round(self._points(st, rows, z) / (1e-7 * c.scale))
         good = np.flatnonzero(ok)
@@ -920,19 +922,19 @@ class _NewtonGroup:
                 S[:, k, col] += d
         return out + (s, S)
 
-    def _iterate(self, st, rows, z):
+    def _iterate(self, st, rows, z, iterations):
         """Newton-Raphson on every row at once: (z, converged, det J at the solution)."""
         scale = self.c.scale
         ok = np.zeros(len(rows), bool)
         det = np.zeros(len(rows))
         active = np.arange(len(rows))
         units = np.where(self.lengthy, scale, 1.0)
-        for it in range(_NEWTON_ITERATIONS):
+        for it in range(iterations):
             if not len(active):
                 break
             r, J = self.evaluate(st, rows[active], z[active])
             res = np.abs(r).max(1)
-            if it >= 12:          # a start still far from any solution is given up
+            if it >= iterations // 2:     # a start still far from any solution is given up
                 near = res <= 1e-2 * scale
                 active, r, J, res = active[near], r[near], J[near], res[near]
             converged = res <= 1e-12 * scale
@@ -1059,7 +1061,7 @@ def _cut_gap(ng: _NewtonGroup, st, rows, z0) -> np.ndarray:
         sep = np.where(feasible, sep, np.inf)
         damping = np.full(R * K, 1e-3)          # Levenberg-Marquardt, in the size's units
         settled = np.zeros(R * K, bool)
-        for _ in range(120):
+        for _ in range(80):
             live = feasible & ~settled & (damping < 1e8)
             if not live.any():
                 break
@@ -1080,6 +1082,6 @@ def _cut_gap(ng: _NewtonGroup, st, rows, z0) -> np.ndarray:
             sep = np.where(better, sep_try, sep)
             damping = np.where(better, damping / 3.0, damping * 4.0)
             # settled: a step that no longer changes the separation beyond rounding
-            settled |= better & (gain <= 1e-15 * c.scale)
+            settled |= better & (gain <= 1e-14 * c.scale)
         out[todo] = sep.reshape(R, K).min(1)
     return out

@@ -351,9 +351,50 @@ class Triad(Case):
                 best[k] = min(best[k], v[i], gap(np.array([0.5 * (lo + hi)]), side)[0])
         return best
 
+    def newton(self, D, A, x, iterations=30):
+        h = 1e-7
+        for _ in range(iterations):
+            r = self.residual(D, A, x)[0]
+            J = np.stack([(self.residual(D, A, x + h * np.eye(2)[k])[0]
+                           - self.residual(D, A, x - h * np.eye(2)[k])[0]) / (2 * h) for k in (0, 1)], -1)
+            det = J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0]
+            with np.errstate(all="ignore"):
+                dx = np.stack([J[:, 1, 1] * r[:, 0] - J[:, 0, 1] * r[:, 1],
+                               J[:, 0, 0] * r[:, 1] - J[:, 1, 0] * r[:, 0]], -1) / det[:, None]
+            x = x - np.where(np.isfinite(dx), np.clip(dx, -0.5, 0.5), 0.0)
+        return x, np.abs(self.residual(D, A, x)[0]).max(1)
+
+    def continued(self, D1, steps=200):
+        """The sketch's configuration followed in small equal steps of the dimensions, from
+        the sketch's (t = 0) to D1 (t = 1), lengths, places and pivots in straight lines:
+        link3's and the triad's angles at the end, NaN where a step fails to converge or
+        jumps (the branch ends on the way)."""
+        P = self.P0
+        D0 = {k: np.broadcast_to(v, np.shape(D1[k])) for k, v in self.batch([{}]).items()}
+        x = np.tile([math.atan2(*(P["C"] - P["A"])[::-1]),
+                     math.atan2(*(P["D"] - P["C"])[::-1])], (len(D1["crank"]), 1))
+        alive = np.ones(len(x), bool)
+        for t in np.linspace(0.0, 1.0, steps + 1)[1:]:
+            D = {k: (1 - t) * D0[k] + t * D1[k] for k in D1}
+            new, res = self.newton(D, self.crank_pin(D), x.copy(), iterations=6)
+            jump = np.abs(np.remainder(new - x + math.pi, 2 * math.pi) - math.pi).max(1)
+            alive &= (res <= 1e-10 * self.size) & (jump < 0.1)
+            x = np.where(alive[:, None], new, x)
+        x[~alive] = np.nan
+        return x
+
     def expect(self, D):
         A = self.crank_pin(D)
-        roots = self.roots(D, A)
+        continued = self.continued(D)
+        # where the sketch's branch does not continue, the brute-force search; elsewhere the
+        # continued configuration is a root
+        roots = np.full((len(A), 1, 2), np.nan)
+        roots[:, 0] = continued
+        lost = np.flatnonzero(~np.isfinite(continued[:, 0]))
+        if len(lost):
+            more = self.roots({k: v[lost] for k, v in D.items()}, A[lost])
+            roots = np.concatenate([roots, np.full((len(A), more.shape[1], 2), np.nan)], 1)
+            roots[lost, 1:] = more
         found = np.isfinite(roots[..., 0]).any(1)
         ex1 = excess(norm(D["O4"] - D["O2"]), D["link4"], D["triad"], D["link3"], D["crank"])
         ex2 = excess(norm(D["triad.E"] - np.array([D["triad"], 0 * D["triad"]]).T),
@@ -368,7 +409,7 @@ class Triad(Case):
         v = _verdict(ex, np.where(found, 0.0, np.maximum(gap, 1e-300)), {"A": A},
                      np.zeros(len(A), bool))
         v["roots"] = roots
-        v["A"] = A
+        v["continued"] = continued
         return v
 
 
