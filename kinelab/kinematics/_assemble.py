@@ -60,6 +60,7 @@ _CORRECTOR = 8        # Gauss-Newton steps of a corrector
 _POLISH = 40          # ... of the last one, at the declared dimensions
 _CONTRACTION = 0.7    # a corrector's step must shrink at least this much each time
 _SHORTEST = 2.0 ** -20   # the shortest step in t: below it the path has stopped
+_ATTEMPTS = 400          # steps tried along one path, at most
 _SEARCH_STARTS = 24   # starts of the search for a mechanism that does not decompose
 _GRID = 721           # inputs (and dimensions) tried when looking for where it closes
 
@@ -401,10 +402,18 @@ class _Constraints:
         self.frames = Frames(m)
         problems = []
         target = self.sketch.copy()
+        if pivots is not None and not isinstance(pivots, Mapping):
+            raise ModelError(f"pivots: expected a mapping of the ground's points to (x, y), got "
+                             f"{describe(pivots)}")
         for name, xy in (pivots or {}).items():
             if name not in ground:
                 problems.append(f"pivots: expected one of the ground's points "
                                 f"{quoted(m.ground.points)}, got {describe(name)}")
+            elif not (isinstance(xy, (tuple, list, np.ndarray)) and len(xy) == 2
+                      and all(is_real(c) and not length_problem(float(c), positive=False)
+                              for c in xy)):
+                problems.append(f"pivots.{name}: expected (x, y), two finite numbers (m), got "
+                                f"{describe(xy)}")
             else:
                 target[self.index[name]] = xy
         self.fixed = (self.sketch[self.fixed_points].copy(), target[self.fixed_points].copy())
@@ -643,19 +652,11 @@ class _Constraints:
                   np.stack([-lam, mu], -1), np.stack([zero, one], -1), np.stack([mu, lam - 1], -1),
                   np.stack([-mu, -lam], -1))
         rows, cols, vals = [], [], []
-        for k, ((r, c, keep), block) in enumerate(zip(self._scatter, blocks)):
-            if frames_only and k < 2:
-                continue
+        for (r, c, keep), block in zip(self._scatter, blocks):
             for comp in range(2):
                 rows.append(r)
                 cols.append(c + comp)
                 vals.append(block[keep, comp])
-        n_rows = len(d) + 2 * len(lam) + len(self.special)
-        if frames_only:
-            J = np.zeros((n_rows, n))
-            if rows:
-                J[np.concatenate(rows), np.concatenate(cols)] = np.concatenate(vals)
-            return J
         first = len(d) + 2 * len(lam)
         for k, (points, grads) in enumerate(self._special_gradients(P)):
             for i, g in zip(points, grads):
@@ -706,33 +707,42 @@ class _Constraints:
 
     # -- continuation ------------------------------------------------------------------
     def follow(self) -> tuple[np.ndarray, bool]:
-        """Continue the sketch from its own dimensions to the declared ones: (x, reached)."""
+        """Continue the sketch from its own dimensions to the declared ones: (x, reached).
+
+        A step from t to t + dt is predicted along the tangent dx/dt = -J+ dc/dt and
+        corrected by Gauss-Newton at t + dt; it is taken when the corrector converges
+        without moving far from the prediction and every dyad keeps its side, else tried
+        again at half the size.  Steps that converge quickly double the next."""
         x = self.x0.copy()
         if not len(x):
             return x, True
         monitor = self._monitor()
         signs = monitor(x, 0.0)
-        t, dt = 0.0, 1.0
-        while t < 1.0:
+        t, dt, tangent = 0.0, 1.0, None
+        for _ in range(_ATTEMPTS):
+            if t >= 1.0:
+                break
+            if tangent is None:
+                lo, hi = max(t - 1e-6, 0.0), min(t + 1e-6, 1.0)
+                dc = (self.residual(x, hi) - self.residual(x, lo)) / (hi - lo)
+                tangent = -_min_norm(self.jacobian(x, t), dc)
             t1 = min(1.0, t + dt)
-            J = self.jacobian(x, t)
-            h = 1e-6
-            dc = (self.residual(x, min(t + h, 1.0)) - self.residual(x, max(t - h, 0.0))) / (
-                min(t + h, 1.0) - max(t - h, 0.0))
-            predicted = x - (t1 - t) * _dense_min_norm(J, dc)
+            predicted = x + (t1 - t) * tangent
             corrected, ok, steps = self.correct(predicted, t1, _CORRECTOR)
             if ok:
-                ok = (np.max(np.abs(corrected - predicted)) <= 0.5 * max(np.max(np.abs(predicted - x)),
-                                                                        1e-9 * self.scale)
+                ok = (np.max(np.abs(corrected - predicted))
+                      <= 0.5 * max(np.max(np.abs(predicted - x)), 1e-9 * self.scale)
                       and np.array_equal(monitor(corrected, t1), signs))
             if ok:
-                x, t = corrected, t1
+                x, t, tangent = corrected, t1, None
                 if steps <= 3:
                     dt = min(1.0, 2.0 * dt)
             else:
                 dt *= 0.5
                 if dt < _SHORTEST:
                     return x, False
+        if t < 1.0:
+            return x, False
         if not np.all(np.abs(self.residual(x, 1.0)) <= 1e3 * _TOL * self.scale):
             x, ok, _ = self.correct(x, 1.0, _POLISH, polish=True)
             if not ok:
@@ -847,11 +857,11 @@ class _Constraints:
         row = rows[pick]
         switched = tuple(closure.dec.groups[k].label for k in np.flatnonzero(known)
                          if closed.signs[row, k] != start[k])
-        x = closed.P[row][self.free_points].ravel()
-        x, ok, _ = self.correct(x, 1.0, _POLISH, polish=True)
-        if not ok:
-            raise self.refusal(closure, closed)
-        return x, switched
+        found = closed.P[row][self.free_points].ravel()
+        x, ok, _ = self.correct(found, 1.0, _POLISH, polish=True)
+        # the closed forms are exact already: a polish that does not converge (at a singular
+        # configuration, a dyad straight) leaves them as they are
+        return (x if ok else found), switched
 
     def _start_signs(self, closure) -> np.ndarray:
         """Each group's mode at the sketch (0 where the sketch cannot tell)."""
@@ -949,10 +959,6 @@ class _Constraints:
     def refusal(self, closure, closed, near=None) -> AssemblyError:
         from kinelab.kinematics._refusal import refusal
         return refusal(self, closure, closed, near)
-
-
-def _dense_min_norm(J, b):
-    return _min_norm(J, b)
 
 
 def _rotation(angle: float) -> np.ndarray:

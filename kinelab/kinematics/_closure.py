@@ -37,11 +37,11 @@ import numpy as np
 from kinelab.kinematics._geometry import sketch_angle
 from kinelab.model import Mechanism
 
-__all__ = ["Group", "Decomposition", "decompose", "Frames", "Closed"]
+__all__ = ["Group", "Decomposition", "decompose", "Frames", "Closure", "Closed", "SCAN_STARTS"]
 
 SIGNED = ("RRR", "RRP", "RPR", "newton")   # groups with more than one assembly mode
 _STARTS = 24            # Newton groups: starts per configuration (the first is the given one)
-_SCAN_STARTS = 6        # ... when scanning many inputs or dimensions
+SCAN_STARTS = 6         # ... when scanning many inputs or dimensions
 _CUT_STARTS = 8         # ... when measuring the gap of a group that does not close
 _NEWTON_ITERATIONS = 25
 _SCAN_ITERATIONS = 16
@@ -371,7 +371,10 @@ class _Decomposer:
             joints.append(j.name)
             count += 3 if j.name in self.driven_slides else 2
         for k, a, b in self.angle_inputs:
-            if k in self.used_inputs or not ({a, b} & group):
+            # an input whose link is in the group counts, even when it turned that link
+            # already (its angle is an unknown of the group again)
+            again = k in self.used_inputs and bool({a, b} & group)
+            if (k in self.used_inputs and not again) or not ({a, b} & group):
                 continue
             if {a, b} <= (group | self.directed):
                 inputs.append(k)

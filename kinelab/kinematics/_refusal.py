@@ -14,6 +14,7 @@ import math
 import numpy as np
 
 from kinelab.errors import AssemblyError
+from kinelab.kinematics._closure import SCAN_STARTS
 from kinelab.kinematics._columns import INPUT_SI_UNITS
 from kinelab.kinematics._input_errors import _telling_digits, _values
 
@@ -63,7 +64,9 @@ def refusal(system, closure, closed, near=None) -> AssemblyError:
         loop = "-".join(points) if points else ""
         where = f"the loop {loop}" if points else group.label
         blame_link = group.links[0]
-    text = f"no assembly at {at}: {where} cannot close there; it misses by {system.length(gap)}"
+    text = f"no assembly at {at}: {where} cannot close there; " + (
+        f"it misses by {system.length(gap)}" if math.isfinite(gap) else
+        "no configuration of it was found, even cut open")
     detail = closed.detail.get(k)
     if group is not None and detail is not None:
         D, lo, hi = (float(detail[n][i]) for n in ("D", "lo", "hi"))
@@ -157,8 +160,7 @@ def system_blame(system):
 
 
 def _closes(closure, local, fixed, offsets, q):
-    from kinelab.kinematics._closure import _SCAN_STARTS
-    closed = closure.solve(local, fixed, offsets, q, starts=_SCAN_STARTS, gaps=False)
+    closed = closure.solve(local, fixed, offsets, q, starts=SCAN_STARTS, gaps=False)
     return closed.per_problem(len(q))[0] if len(q) > 0 else np.zeros(0, bool)
 
 
