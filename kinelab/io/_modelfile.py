@@ -108,7 +108,8 @@ class ModelFile:
         Where the file came from (for messages); not part of equality.
     assembly : Assembly, optional
         When the file gives lengths, places or offsets: how its sketch was moved to the
-        nearest assembly (which points moved, by how much); not part of equality.
+        assembly at its inputs (which points moved, by how much, which dyads changed
+        side); not part of equality.
     """
 
     mechanism: Mechanism
@@ -718,7 +719,7 @@ class _Parser:
             self.fail([_locate(p, self.where) for p in exc.problems])
 
     def assemble(self, m: Mechanism, units: Units) -> Mechanism:
-        """The model moved from its sketch to the nearest assembly with its links' lengths
+        """The model moved from its sketch to its assembly with its links' lengths
         and places and its slides' offsets; what moved is kept in ``self.assembly``.
 
         The assembled coordinates are kept to the digits a model file is written with

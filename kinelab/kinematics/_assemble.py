@@ -20,7 +20,8 @@ same branch, in three steps:
    exist somewhere between t = 0 and 1): the loops are closed in closed form on every
    branch of every dyad, and Newton groups from a fixed set of starts (see
    ``_closure``).  The configuration on the sketch's branch is taken when it exists, else
-   the one nearest to the sketch, and the result says which dyads changed side.
+   the one with the fewest dyads on another side (of those, the nearest to the sketch), and
+   the result says which dyads changed side.
 3. **Refusal**, when no configuration exists at those inputs: the error names the loop,
    the true gap (the least distance by which it fails to close at those inputs over its
    branches, see ``_closure``), the inputs at which it does close, and the nearest value
@@ -106,9 +107,10 @@ def assemble(mechanism: Mechanism, *, units: Units | None = None,
     stay (or move to ``pivots``).  Each input keeps the value the sketch shows (a crank its
     drawn angle, a slide its drawn slide), and each dyad its side of the line of its ends:
     the configuration is followed by continuation from the sketch's own dimensions to the
-    declared ones.  Where that branch does not exist at these inputs, the nearest other
-    does, and :attr:`Assembly.switched` says which dyads changed side.  A mechanism without
-    inputs is moved to the assembly nearest to the sketch (least squares over the points).
+    declared ones.  Where that branch does not exist at these inputs, the one with the
+    fewest dyads on another side does (of those, the nearest to the sketch), and
+    :attr:`Assembly.switched` says which dyads changed side.  A mechanism without inputs
+    is moved to the assembly nearest to the sketch (least squares over the points).
 
     Parameters
     ----------
@@ -248,11 +250,13 @@ def _edited(m: Mechanism, lengths, local, offsets, pivots):
     for name, v in (lengths or {}).items():
         link = links.get(name) if isinstance(name, str) else None
         if link is None:
-            problems.append(f"lengths: expected one of the links {quoted(links)}, got {describe(name)}")
+            problems.append(f"lengths: expected one of the links {quoted(links)}, got "
+                            f"{describe(name)}")
         elif len(link.points) < 2:
             problems.append(f"lengths.{name}: a link with one point has no length")
-        elif not is_real(v) or v <= 0 or length_problem(float(v)):
-            problems.append(f"lengths.{name}: {length_problem(float(v)) if is_real(v) and v > 0 else 'expected a positive length (m)'}, got {describe(v)}")
+        elif not (is_real(v) and v > 0) or length_problem(float(v)):
+            why = length_problem(float(v)) if is_real(v) and v > 0 else "expected a positive length (m)"
+            problems.append(f"lengths.{name}: {why}, got {describe(v)}")
         elif link.ground:
             a, b = (np.array(m.point(p).xy) for p in link.points[:2])
             d = b - a
@@ -282,9 +286,10 @@ def _edited(m: Mechanism, lengths, local, offsets, pivots):
     for name, v in (offsets or {}).items():
         j = joints.get(name) if isinstance(name, str) else None
         if j is None or j.type != "P":
-            problems.append(f"offsets: expected one of the prismatic joints "
-                            f"{quoted([n for n, jt in joints.items() if jt.type == 'P'])}, got "
-                            f"{describe(name)}")
+            sliding = [n for n, jt in joints.items() if jt.type == "P"]
+            problems.append(f"offsets: expected one of the prismatic joints {quoted(sliding)}, got "
+                            f"{describe(name)}" if sliding else
+                            f"offsets: '{m.name}' has no prismatic joint, got {describe(name)}")
         elif not is_real(v) or length_problem(float(v), positive=False):
             problems.append(f"offsets.{name}: expected a finite number at most 1e9 m in size, "
                             f"got {describe(v)}")

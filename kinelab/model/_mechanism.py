@@ -93,7 +93,9 @@ class Link:
     length : float, optional
         The exact distance between its first two points, m.  With it, the sketch may be
         rough: :func:`kinelab.kinematics.assemble` moves the points to the assembled
-        configuration nearest to it (``kinelab.load`` does so for model files).
+        configuration at the sketch's inputs and on its branch (``kinelab.load`` does so
+        for model files; :meth:`Mechanism.with_dimensions` changes it on an assembled
+        mechanism).
     local : mapping of str to (float, float), optional
         The exact place of some of its other points in its own frame, m: along the
         direction from its first point to its second, and to the left of it, from the

@@ -121,7 +121,8 @@ def test_ten_thousand_random_edits_against_independent_geometry():
                         failures.append(f"{where}: refused, but it closes: {text}")
                     continue
                 if expected["bars"][k] != ("its longest bar is longer" in text):
-                    failures.append(f"{where}: expected {'a loop of bars' if expected['bars'][k] else 'a gap at the input'}: {text}")
+                    kind = "a loop of bars" if expected["bars"][k] else "a gap at the input"
+                    failures.append(f"{where}: expected {kind}: {text}")
                 tol = (1e-6 if case.name == "triad6" else 1e-9) * case.size
                 if np.isfinite(gap) and abs(exc.gap - gap) > tol:
                     failures.append(f"{where}: gap {exc.gap!r}, expected {gap!r}: {text}")
@@ -302,3 +303,53 @@ def test_edits_at_any_scale_assemble_alike_and_refuse_alike(scale):
         kl.kinematics.reassemble(m, lengths={"link5": 0.2 * scale})
     assert scaled.value.gap / scale == pytest.approx(big.value.gap, rel=1e-12)
     same_but_lengths(str(scaled.value), str(big.value), scale)
+
+
+# -- the edit methods --------------------------------------------------------------------------
+def test_edits_of_unknown_names_or_values_that_are_not_dimensions_are_refused_all_at_once():
+    fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
+    with pytest.raises(ModelError) as info:
+        fb.with_dimensions(lengths={"coupler": -1.0, "nope": 1.0}, offsets={"jA": 0.1},
+                           pivots={"A": (0.0, 0.0), "O4": (1.0, "a")}, local={"coupler": {"B": (1, 2)}})
+    assert info.value.problems == (
+        "lengths.coupler: expected a positive length (m), got -1.0",
+        "lengths: expected one of the links 'ground', 'crank', 'coupler', 'rocker', got 'nope'",
+        "local.coupler: expected one of the link's points after its first two ('P'), got 'B'",
+        "offsets: 'fourbar' has no prismatic joint, got 'jA'",
+        "pivots: expected one of the ground's points 'O2', 'O4', got 'A'",
+        "pivots.O4: expected (x, y), two finite numbers, got (1.0, 'a')")
+    with pytest.raises(ModelError, match="lengths: expected a mapping of link names to lengths"):
+        fb.with_lengths([1.0])
+
+
+def test_with_dimensions_keeps_the_input_and_declares_what_it_changed():
+    """The ground's length moves its second pivot along the line from its first; an offset,
+    a place and a pivot are declared and exact; the crank keeps its angle throughout."""
+    sc = kl.mechanisms.slider_crank(1.0, 3.0, offset=0.5)
+    q = math.atan2(*sc.point("A").xy[::-1])
+    m = sc.with_dimensions(offsets={"slide": 0.8}, lengths={"rod": 2.5})
+    assert m.joint("slide").offset == 0.8 and m.point("B").y == pytest.approx(0.8, abs=1e-15)
+    assert math.atan2(*m.point("A").xy[::-1]) == pytest.approx(q, abs=1e-15)
+    assert math.dist(m.point("A").xy, m.point("B").xy) == pytest.approx(2.5, rel=1e-14)
+    fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
+    moved = fb.with_dimensions(lengths={"ground": 3.5}, local={"coupler": {"P": (1.0, 0.5)}})
+    assert moved.point("O4").xy == (3.5, 0.0) and moved.link("coupler").local == {"P": (1.0, 0.5)}
+    A, B, P = (np.array(moved.point(n).xy) for n in "ABP")
+    e = (B - A) / norm(B - A)
+    assert (P - A) @ e == pytest.approx(1.0, abs=1e-14) and cross(e, P - A) == pytest.approx(0.5, abs=1e-14)
+    assert norm(np.array(moved.point("O4").xy) - B) == pytest.approx(2.5, rel=1e-14)
+
+
+def test_a_change_of_branch_warns_and_is_said_in_the_result():
+    """The Watt six-bar with link5 5.51: at the crank's angle the second dyad closes only with
+    the first in its other mode (found here by its own law of cosines)."""
+    w = kl.mechanisms.watt6()
+    case = next(c for c in cases() if c.name == "watt6")
+    expected = case.expect(case.batch([{"link5": 5.51}]))
+    assert expected["switched"][0] and not expected["refused"][0]
+    with pytest.warns(UserWarning, match=r"another assembly mode of the dyad 'coupler' and 'rocker'"):
+        m = w.with_lengths(link5=5.51)
+    for name, xy in expected["points"].items():
+        np.testing.assert_allclose(m.point(name).xy, xy[0], rtol=0, atol=1e-12)
+    a = kl.kinematics.reassemble(w, lengths={"link5": 5.51})
+    assert a.switched == ("the dyad 'coupler' and 'rocker' (A-B-O4)",)
