@@ -723,6 +723,10 @@ class _Constraints:
             return x, True
         monitor = self._monitor()
         signs = monitor(x, 0.0)
+        drawn = signs != 0             # a dyad drawn straight shows no side to keep
+
+        def kept(x, t):
+            return bool(np.all(monitor(x, t)[drawn] == signs[drawn]))
         t, dt, tangent = 0.0, 1.0, None
         for _ in range(_ATTEMPTS):
             if t >= 1.0:
@@ -737,7 +741,7 @@ class _Constraints:
             if ok:
                 ok = (np.max(np.abs(corrected - predicted))
                       <= 0.5 * max(np.max(np.abs(predicted - x)), 1e-9 * self.scale)
-                      and np.array_equal(monitor(corrected, t1), signs))
+                      and kept(corrected, t1))
             if ok:
                 x, t, tangent = corrected, t1, None
                 if steps <= 3:
@@ -752,7 +756,7 @@ class _Constraints:
             x, ok, _ = self.correct(x, 1.0, _POLISH, polish=True)
             if not ok:
                 return x, False
-        return x, np.array_equal(monitor(x, 1.0), signs)
+        return x, kept(x, 1.0)
 
     def correct(self, x: np.ndarray, t: float, iterations: int, polish: bool = False):
         """Gauss-Newton towards the configuration at t nearest to the sketch:
