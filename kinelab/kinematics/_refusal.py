@@ -386,6 +386,10 @@ def _loop_joints(m, link: str):
 
 
 def loop_through(m, link: str) -> list[str] | None:
-    """The joint points of the shortest loop of the linkage through ``link``."""
+    """The joint points of the shortest loop of the linkage through ``link`` (a point where
+    two joints act, as a slider's pin, once)."""
     found = _loop_joints(m, link)
-    return None if found is None else [j.point for j in found[0]]
+    if found is None:
+        return None
+    points = [j.point for j in found[0]]
+    return [p for k, p in enumerate(points) if p != points[k - 1]] or points[:1]
