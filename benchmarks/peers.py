@@ -474,7 +474,9 @@ def kinelab_path_synthesis(target_points, *, tolerance: float = 1e-3, seed: int 
 
     T = np.asarray(target_points, float)
     t0 = time.process_time()
-    sols = kl.synthesis.path_generation(T, runs=1, seed=seed, tolerance=tolerance)
+    # the peers keep no transmission angle limit: neither does kinelab here
+    sols = kl.synthesis.path_generation(T, runs=1, seed=seed, tolerance=tolerance,
+                                        min_transmission_angle=0.0)
     seconds = time.process_time() - t0
     if not sols:
         return PeerSynthesis(math.inf, seconds, -1)

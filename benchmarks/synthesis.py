@@ -116,12 +116,16 @@ def reliability(count: int = 20, seeds: int = 3, error: float = 1e-3):
         size = np.hypot(*np.ptp(T, axis=0))
         for seed in range(seeds):
             t0 = time.process_time()
-            sols = kl.synthesis.path_generation(T, runs=1, seed=seed, tolerance=error)
+            # the limit off: the traced tasks' own linkages may go below 30 deg, and this
+            # measures the search
+            sols = kl.synthesis.path_generation(T, runs=1, seed=seed, tolerance=error,
+                                                min_transmission_angle=0.0)
             times.append(time.process_time() - t0)
             reached.append(bool(sols) and sols[0].rms_error <= error * size)
     t = np.array(times)
     print(f"path generation to {error:g} of the path's size, {len(tasks)} traced 10-point "
-          f"tasks x {seeds} seeds (defaults, runs=1): reached {sum(reached)} of {len(t)}; "
+          f"tasks x {seeds} seeds (defaults, runs=1, no transmission limit): reached "
+          f"{sum(reached)} of {len(t)}; "
           f"processor time best {t.min():.2f} s, median {np.median(t):.2f} s, 90% "
           f"{np.percentile(t, 90):.2f} s, worst {t.max():.2f} s; {int(np.sum(t > 2.0))} over 2 s")
 

@@ -8,14 +8,15 @@
 """
 from importlib import import_module as _import_module
 
-from kinelab import errors, io, kinematics, mechanisms, model, solvers
+from kinelab import errors, io, kinematics, mechanisms, model, solvers, verify
 from kinelab._memory import memory_budget, reuse_result_memory
 from kinelab.io import load
-from kinelab.kinematics import KinematicSolution, analyze
+from kinelab.kinematics import KinematicSolution
+from kinelab.verify import analyze
 from kinelab.model import Mechanism
 
 __all__ = ["errors", "model", "solvers", "mechanisms", "kinematics", "spatial", "structure",
-           "synthesis", "dynamics", "derive", "sweep", "io",
+           "synthesis", "dynamics", "derive", "verify", "sweep", "io",
            "plot", "analyze", "load",
            "Mechanism", "KinematicSolution", "reuse_result_memory", "memory_budget"]
 

@@ -7,10 +7,11 @@ import math
 import click
 import numpy as np
 
-from kinelab import io, kinematics, solvers
+from kinelab import io, kinematics, solvers, verify
 from kinelab.cli._format import configuration_text, summary_text
-from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, errors_from, output_path, output_units, parse_inputs,
-                               read_model, stem, sweep)
+from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, VERIFY, certificate_path, errors_from,
+                               output_path, output_units, parse_inputs, read_model, report, stem,
+                               sweep)
 from kinelab.io._modelfile import MAX_SAMPLES
 from kinelab.errors import AssemblyError, KinelabError, ModelError, shown_path
 from kinelab.kinematics import KinematicSolution
@@ -73,18 +74,24 @@ def missing_time_ratio(mf, s, units) -> str | None:
                    "for several inputs.")
 @CHANGE_POINTS
 @click.option("--quiet", "-q", is_flag=True, help="Do not print the summary.")
-def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, quiet):
+@VERIFY
+def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, quiet, verify_):
     """Sweep MODEL's input range and write one row per sample: inputs; every link's angle,
     omega, alpha; every slide and its rates; every point's x, y, vx, vy, ax, ay; K and L of
     each; det J and the singular flag.  Prints a summary.  Results are in the file's units
-    (--si for m and rad), each column named item.quantity[unit]."""
+    (--si for m and rad), each column named item.quantity[unit].  With --verify, every
+    number is computed again by independent routes and the certificate is printed last and
+    written beside the table."""
     mf = read_model(model)
     if speed is not None:
         mf = with_speeds(mf, parse_inputs(speed, mf, "--speed", rate=True))
     m = mf.mechanism
     units = output_units(mf.units, si, degrees)
     if at is not None:
-        click.echo(configuration_text(configuration(mf, at, change_points), units))
+        sol = configuration(mf, at, change_points)
+        click.echo(configuration_text(sol, units))
+        if verify_:
+            report(verify.certify(sol))
         return
     path = output_path(out, stem(model), fmt or "csv")
     kind = io.result_format(path, fmt)       # before the sweep, which can be long
@@ -99,6 +106,8 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
     told = f"{kind.upper()} as --format says, whatever the name; " if (
         written.suffix.lower() != f".{kind}") else ""
     click.echo(f"wrote {shown_path(written)} ({told}{sol.N} rows, {len(sol.columns())} columns)")
+    if verify_:
+        report(verify.certify(sol), certificate_path(written))
 
 
 def configuration(mf: io.ModelFile, at: str, change_points: str = "smooth") -> KinematicSolution:

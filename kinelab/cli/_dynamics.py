@@ -12,7 +12,8 @@ import click
 import numpy as np
 
 from kinelab import dynamics
-from kinelab.cli._main import DEGREES, SI, errors_from, output_units, read_model
+from kinelab.cli._main import (DEGREES, SI, VERIFY, certificate_path, errors_from, output_units,
+                               read_model, report)
 from kinelab.io import ModelFile
 from kinelab.io._modelfile import MAX_SAMPLES
 from kinelab.model import Units
@@ -30,10 +31,10 @@ def times(q: np.ndarray, speed: float, acceleration: float) -> np.ndarray:
 
 def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
         units: Units | None = None, gravity: tuple[float, float] | None = None,
-        plots: bool = True):
+        plots: bool = True, verify: bool = False):
     """Sweep, solve and write ``<name>_dynamics.csv`` and the figures (the inputs in
-    ``units``, default the file's; forces and energies in SI); returns the result and the
-    paths written."""
+    ``units``, default the file's; forces and energies in SI); returns the result, the
+    paths written and, with ``verify``, the result's certificate (not written yet)."""
     units = mf.units if units is None else units
     m = mf.mechanism
     setup = dynamics.DynamicsSetup.from_model(m)
@@ -43,8 +44,13 @@ def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
                                springs=loads.springs, dampers=loads.dampers)
     q, qd, qdd = mf.sample_inputs(samples)
     inp = m.inputs[0]
-    res = dynamics.inverse(m, q, qd, qdd, loads=loads, masses=setup.masses(m),
+    masses = setup.masses(m)
+    res = dynamics.inverse(m, q, qd, qdd, loads=loads, masses=masses,
                            t=times(q, inp.speed, inp.acceleration))
+    certificate = None
+    if verify:          # before anything is written: a model the routes refuse writes nothing
+        from kinelab.verify import certify
+        certificate = certify(res, loads=loads, masses=masses)
     out = Path(out)
     written = [out / f"{m.name}_dynamics.csv"]
     res.to_csv(written[0], units=units)
@@ -60,7 +66,7 @@ def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
             save(fig, path)
             plt.close(fig)
             written.append(path)
-    return res, written
+    return res, written, certificate
 
 
 def _gravity(text: str | None):
@@ -86,20 +92,25 @@ def _gravity(text: str | None):
 @click.option("--gravity", default=None, metavar="GX,GY",
               help="Gravity in m/s^2, instead of the file's (e.g. 0,-9.81).")
 @click.option("--no-plots", is_flag=True, help="Write the table only.")
-def dynamics_command(model, out, samples, si, degrees, gravity, no_plots):
+@VERIFY
+def dynamics_command(model, out, samples, si, degrees, gravity, no_plots, verify_):
     """Actuator efforts, joint reactions and shaking force of MODEL over its inputs' sweep.
 
     Writes <name>_dynamics.csv (efforts, energies, reactions, shaking force and moment)
     and, unless --no-plots, <name>_efforts.png, <name>_reactions.png, <name>_shaking.png.
     The links need mass data; loads come from the file's [dynamics] section.  The inputs'
     positions and rates are in the file's units (--si for m and rad); forces are in N,
-    torques in N m, energies in J and powers in W.
+    torques in N m, energies in J and powers in W.  With --verify, the efforts, energies,
+    reactions and shaking are computed again by independent routes (power balance,
+    Newton-Euler, each link's balance, the whole mechanism's momentum) and the certificate
+    is printed last and written as <name>_dynamics_certificate.json.
     """
     g = _gravity(gravity)
     mf = read_model(model)
     units = output_units(mf.units, si, degrees)
     with errors_from(mf):
-        res, written = run(mf, out, samples=samples, units=units, gravity=g, plots=not no_plots)
+        res, written, certificate = run(mf, out, samples=samples, units=units, gravity=g,
+                                        plots=not no_plots, verify=verify_)
     for name, kind, col in zip(res.input_names, res.input_kinds, res.input_forces.T):
         unit = "N m" if kind == "angle" else "N"
         ok = np.isfinite(col)
@@ -116,3 +127,5 @@ def dynamics_command(model, out, samples, si, degrees, gravity, no_plots):
         click.echo(f"{int(res.singular.sum())} singular sample(s): forces undefined there (NaN)")
     for path in written:
         click.echo(f"wrote {shown_path(path)}")
+    if certificate is not None:
+        report(certificate, certificate_path(written[0]))

@@ -99,11 +99,8 @@ def import_(source, out, fmt, unit, inputs, input_joint):
             raise ModelError(exc.problems, source=path.name) from None
         description = _speed_note(path.name, unit)
     if m.inputs:        # what kinelab check would refuse is said now, and nothing is written
-        from kinelab import kinematics
-        try:
-            kinematics.plan(m)
-        except ModelError as exc:
-            raise ModelError(exc.problems, source=path.name) from None
+        from kinelab.io._imported import planned
+        planned(m, path.name, pyslvs=fmt == "pyslvs")
     written = io.save(io.ModelFile(mechanism=m, units=io.Units(unit, "deg"),
                                    description=description), out)
     click.echo(f"wrote {shown_path(written)}: {len(m.links)} links, {len(m.joints)} joints, inputs "

@@ -14,8 +14,8 @@ from kinelab import io, kinematics, solvers
 from kinelab.cli._analyze import MODEL, SAMPLES, configuration, with_speeds
 from kinelab.cli._draw import FIGURE_FORMATS, _agg
 from kinelab.cli._format import _num
-from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, errors_from, output_units, parse_inputs,
-                               read_model, stem, sweep)
+from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, VERIFY, errors_from, output_units,
+                               parse_inputs, read_model, report, stem, sweep)
 from kinelab.errors import ModelError, shown, shown_path
 from kinelab.model import Units
 from kinelab.solvers._differentiate import MAX_SAMPLES
@@ -71,11 +71,15 @@ def _save(fig, out: str, name: str, formats) -> list[Path]:
 @SI
 @DEGREES
 @CHANGE_POINTS
+@VERIFY
 def polygons(model, at, speed, out, formats, velocity_scale, acceleration_scale, si, degrees,
-             change_points):
+             change_points, verify_):
     """Velocity and acceleration polygons of MODEL at one input: every point's velocity and
     acceleration from the pole, every side with its parts (normal, tangential, Coriolis,
-    sliding), printed and drawn to scale beside the mechanism."""
+    sliding), printed and drawn to scale beside the mechanism.  With --verify, every vertex,
+    side and part is computed again (the other engine, the rigid-body and sliding formulas,
+    Coriolis from 2 omega x v_rel) and each polygon's closure checked; the certificate is
+    printed last and written as <name>_polygons_certificate.json."""
     from kinelab import plot as kplot
     _agg()
     mf = read_model(model)
@@ -86,6 +90,14 @@ def polygons(model, at, speed, out, formats, velocity_scale, acceleration_scale,
     with errors_from(mf, "--at"):
         vp = kinematics.velocity_polygon(sol)
         ap = kinematics.acceleration_polygon(sol)
+    certificate = None
+    if verify_:         # before anything is printed or drawn
+        from kinelab.verify import Certificate, certify
+        with errors_from(mf, "--verify"):
+            parts = [certify(p, solution=sol) for p in (vp, ap)]
+        certificate = Certificate(f"polygons of '{mf.mechanism.name}' at {at}",
+                                  parts[0].quantities + parts[1].quantities,
+                                  parts[0].notes + parts[1].notes)
     v_unit, a_unit = units.unit("m/s"), units.unit("m/s^2")
 
     def name(p):        # a guide's point under a slider's point A: A'
@@ -117,6 +129,8 @@ def polygons(model, at, speed, out, formats, velocity_scale, acceleration_scale,
                      f"{base}_acceleration_polygon", formats)
     for path in written:
         click.echo(f"wrote {shown_path(path)}")
+    if certificate is not None:
+        report(certificate, Path(out) / f"{base}_polygons_certificate.json")
 
 
 @click.command()

@@ -12,14 +12,14 @@ import click
 import numpy as np
 
 from kinelab import kinematics
-from kinelab.errors import KinelabError, ModelError, one_line, quoted, shown
+from kinelab.errors import KinelabError, ModelError, one_line, quoted, shown, shown_path
 from kinelab.io import ModelFile
 from kinelab.io._modelfile import errors_from
 from kinelab.kinematics import KinematicSolution
 from kinelab.model import ANGLE_UNITS, LENGTH_UNITS, Units, range_problem, rate_problem
 
 __all__ = ["main", "read_model", "errors_from", "sweep", "output_path", "parse_inputs", "stem",
-           "SI", "DEGREES", "output_units"]
+           "SI", "DEGREES", "VERIFY", "report", "certificate_path", "output_units"]
 
 BAD_INPUT = 2      # exit status for a bad file, option or input value
 
@@ -105,6 +105,30 @@ SI = click.option("--si", is_flag=True,
 DEGREES = click.option("--degrees", is_flag=True,
                        help="Angles in degrees, whatever the file's unit (with --si: metres "
                             "and degrees).")
+
+
+VERIFY = click.option(
+    "--verify", "verify_", is_flag=True,
+    help="Compute every reported number again by independent routes and print the certificate "
+         "last: each quantity, its routes, their largest disagreement and its bound, and the "
+         "verdict 'verified: N quantities, largest disagreement E' (exit status 0) or 'NOT "
+         "verified: ...' (exit status 1); with the outputs, <name>_certificate.json.")
+
+
+def certificate_path(written: Path) -> Path:
+    """Where the certificate of a table goes: ``<name>_certificate.json`` beside it."""
+    return written.with_name(f"{written.stem}_certificate.json")
+
+
+def report(certificate, path: Path | None = None) -> None:
+    """Write a certificate to ``path`` (atomically), print it with its verdict last, and
+    end with exit status 1 when it failed."""
+    if path is not None:
+        certificate.to_json(path)
+        click.echo(f"wrote {shown_path(path)}")
+    click.echo("\n".join(certificate.lines()))
+    if not certificate.passed:
+        click.get_current_context().exit(1)
 
 
 CHANGE_POINTS = click.option(

@@ -198,7 +198,7 @@ def sweep_command(family_spec, table, sobol, random_n, grid, ranges, seed, sched
         raise ModelError(f"designs: the design {exc.design} moves points off the places the file "
                          f"declares ({exc.detail}); vary (--range, DESIGNS columns) only points "
                          "that no declaration fixes, or remove that declaration (a link's local "
-                         "place, a joint's offset) from the file and run kinelab check "
+                         "place or sides, a joint's offset) from the file and run kinelab check "
                          f"{shown_path(family_spec)}", source=family_spec) from None
     seconds = time.perf_counter() - start
     _write(_labelled(df, degrees, fam.output_is_slide), path)
@@ -249,5 +249,13 @@ def atlas_find(atlas_path, path_file, k, refine):
     click.echo(near.to_string(float_format=lambda v: f"{v:.6g}"))
     if sols is not None:
         best = sols[0]
+        size = float(np.hypot(*np.ptp(points, axis=0)))
+        limit = (f"meets the {np.degrees(best.transmission_limit):.3g} deg limit"
+                 if best.meets_transmission_limit else
+                 f"below the {np.degrees(best.transmission_limit):.3g} deg limit")
+        share = 100 * best.max_error / size
         click.echo(f"refined: A0 = ({best.A0[0]:.6g}, {best.A0[1]:.6g}) m, B0 = ({best.B0[0]:.6g}, "
-                   f"{best.B0[1]:.6g}) m, largest error {best.max_error:.3g} m")
+                   f"{best.B0[1]:.6g}) m; its coupler curve passes within {best.max_error:.3g} m "
+                   f"of all {len(points)} points of {shown_path(path_file)} (the largest "
+                   f"distance, {share:.3g} % of the path's size), min transmission "
+                   f"{np.degrees(best.min_transmission_angle):.3g} deg ({limit}), {best.state}")

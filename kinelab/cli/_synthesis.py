@@ -18,7 +18,7 @@ from typing import Any
 import click
 import numpy as np
 
-from kinelab.cli._main import DEGREES, SI, output_units
+from kinelab.cli._main import DEGREES, SI, VERIFY, output_units, report
 from kinelab.errors import shown_path
 from kinelab.io import Task, load_task, solve_task, task_summary
 from kinelab.model import Units
@@ -74,27 +74,34 @@ def _fmt_xy(v, u: Units):
 @click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
 @SI
 @DEGREES
+@VERIFY
 def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si: bool,
-          degrees: bool) -> None:
+          degrees: bool, verify_: bool) -> None:
     """Dimensional synthesis from the TOML task file TASK: a four-bar through positions,
     a function or path generator, a crank-rocker for a swing and a time ratio, a quick
     return.
 
     Writes each linkage found as a model file solution_<i>.toml and, unless --no-figures,
     a figure solution_<i>.png, with summary.json: all in the task's units (--si for m and
-    rad), as the printed table.
+    rad), as the printed table.  With --verify, each linkage is analysed again at every task
+    point and compared with the task and with the table; the certificate is printed last
+    (with --json, it is in the JSON) and written as certificate.json and in summary.json.
     """
     from kinelab._files import atomic_write
     from kinelab.io import to_toml
 
     task = load_task(task_file)
     u = output_units(task.units, si, degrees)
-    sols, extra = solve_task(task)
+    sols, extra = solve_task(task, verify=verify_)
     summary = task_summary(task, sols, extra, u)
+    certificate = extra.get("certificate")
     rows = summary["solutions"]
     files: dict[str, bytes | str] = {}
     for i, s in enumerate(sols, 1):
         files[f"solution_{i}.toml"] = to_toml(s.model, units=u)
+    if certificate is not None:
+        summary["certificate"] = certificate.to_dict()
+        files["certificate.json"] = certificate.to_json()
     # the summary holds no inf or NaN (task_summary writes null): allow_nan=False keeps it so
     files["summary.json"] = json.dumps(summary, indent=2, allow_nan=False)
     if figures and sols:
@@ -105,6 +112,8 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si:
         atomic_write(out / name, lambda f, c=content: f.write(c), binary=binary)
     if as_json:
         click.echo(files["summary.json"])
+        if certificate is not None and not certificate.passed:
+            click.get_current_context().exit(1)
         return
     what = task.kind if task.kind in ("crank-rocker", "quick-return") else f"{task.kind} generation"
     click.echo(f"{task.name}: {what}, {len(sols)} linkage(s)"
@@ -120,8 +129,8 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si:
         else:
             head += ", ".join(f"{k} {v:.4f}" for k, v in row["lengths"].items()) + \
                 f" {u.length}, "
-        if "min_transmission_angle" in row:
-            head += f"min transmission {row['min_transmission_angle']:.3g} {u.angle}, "
+        if "transmission_limit" in row:
+            head += _transmission(row, u) + ", "
         if "rms_error" in row:
             head += f"rms error {_error(row['rms_error'], u.length)}, "
         if "max_structural_error" in row:
@@ -129,6 +138,18 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si:
         head += f"{s.grashof.kind}, {s.state}"
         click.echo(head)
     click.echo(f"wrote {len(files)} file(s) to {shown_path(out)}")
+    if certificate is not None:
+        report(certificate)
+
+
+def _transmission(row: dict[str, Any], u: Units) -> str:
+    """The smallest transmission angle of a linkage over its travel, and whether it meets the
+    task's limit, in ``u``."""
+    limit = f"{row['transmission_limit']:.3g} {u.angle} limit"
+    if "min_transmission_angle" not in row:
+        return f"min transmission not measured ({limit} not met)"
+    verdict = "meets the" if row["meets_transmission_limit"] else "below the"
+    return f"min transmission {row['min_transmission_angle']:.3g} {u.angle} ({verdict} {limit})"
 
 
 def _error(value: float | None, unit: str = "") -> str:

@@ -31,9 +31,10 @@ from kinelab.io._fields import Reader, describe, quoted, shown, shown_key
 from kinelab.io._text import Written, in_si, loads, read_text, written
 from kinelab.kinematics import Assembly, assemble
 from kinelab.kinematics._assemble import assembly_miss, needs_assembly
-from kinelab.model import (ANGLE_UNITS, JOINT_TYPES, LENGTH_UNITS, SPACES, Input, Joint, Link,
-                           Mechanism, Point, Units, angle_problem, coordinate_problem,
-                           length_problem, name_problem, range_problem, rate_problem)
+from kinelab.model import (ANGLE_UNITS, JOINT_TYPES, LENGTH_UNITS, SIDE_WORDS, SPACES, Input,
+                           Joint, Link, Mechanism, Point, Units, angle_problem,
+                           coordinate_problem, length_problem, name_problem, place_problems,
+                           range_problem, rate_problem)
 
 __all__ = ["SCHEMA", "LENGTH_UNITS", "ANGLE_UNITS", "Units", "Outputs", "ModelFile", "load",
            "save", "from_toml", "to_toml", "from_json", "to_json", "errors_from"]
@@ -55,7 +56,8 @@ _TOP = ("schema", "name", "description", "space", "units", "points", "links", "j
         "inputs", "sweep", "catalogue", "outputs", "dynamics")
 _RESERVED = {key: "loads belong in the [dynamics] section (see docs/dynamics.md); move it there"
              for key in ("forces", "gravity", "loads")}
-_LINK = ("name", "points", "ground", "length", "local", "mass", "center_of_mass", "inertia")
+_LINK = ("name", "points", "ground", "length", "local", "sides", "mass", "center_of_mass",
+         "inertia")
 _JOINT = ("name", "type", "links", "point", "axis", "origin", "offset", "axis2", "pitch")
 _INPUT = ("joint", "links", "name", "range", "speed", "acceleration", "samples")
 _OUTPUTS = ("report", "transmission", "time_ratio")
@@ -430,13 +432,18 @@ class _Parser:
             length = self.optional_number(t, "length", where, scale=ls, positive=True,
                                           unit=units.length, check=length_problem)
             local = self.local(t["local"], f"{where}.local", pts or (), ls) if "local" in t else None
-            if None in (lname, pts, ground) or ("local" in t and local is None):
+            sides = self.sides(t["sides"], f"{where}.sides", units) if "sides" in t else None
+            if None in (lname, pts, ground) or any(k in t and v is None for k, v in
+                                                   (("local", local), ("sides", sides))):
                 continue
             if length is not None and len(pts) < 2:
                 r.fail(f"{where}.length", "a link with one point has no length; remove it")
                 continue
-            links.append(Link(lname, pts, ground=ground, mass=mass, center_of_mass=com,
-                              inertia=inertia, length=length, local=local))
+            link = Link(lname, pts, ground=ground, mass=mass, center_of_mass=com,
+                        inertia=inertia, length=length, local=local, sides=sides)
+            for why in place_problems(link, points, units):     # lengths in the file's unit
+                r.fail("", f"{where}.{why}")
+            links.append(link)
         joints = []
         for i, t in enumerate(raw_joints):
             if t is not None:
@@ -771,6 +778,31 @@ class _Parser:
         return out if len(out) == len(value) else None
 
 
+    def sides(self, value, where: str, units: Units):
+        """A link's ``sides`` table: point = {A = distance, B = distance, side = "left"},
+        the distances in the file's length unit.  Which points they are, and whether they
+        make a triangle, is checked with the link (:func:`kinelab.model.place_problems`)."""
+        shape = 'A = distance, B = distance, side = "left" or "right"'
+        if not isinstance(value, Mapping):
+            self.r.fail(where, f"expected a table of point = {{{shape}}}, got {describe(value)}")
+            return None
+        out = {}
+        for name, spec in value.items():
+            field = f"{where}.{shown_key(name)}"
+            if not isinstance(spec, Mapping):
+                self.r.fail(field, f"expected a table {{{shape}}} of its distances from two "
+                            f"points of the link placed before it, got {describe(spec)}")
+                continue
+            before = len(self.r.problems)
+            read = {k: self.r.string(v, f"{field}.side", choices=SIDE_WORDS) if k == "side"
+                    else self.r.number(v, f"{field}.{shown_key(k)}", scale=units.length_scale,
+                                       positive=True, unit=units.length, check=length_problem)
+                    for k, v in spec.items()}
+            if len(self.r.problems) == before:
+                out[name] = read
+        return out if len(out) == len(value) else None
+
+
 def _file_lengths(problem: str, units: Units) -> str:
     """A catalogue constructor's message (lengths in m) with its lengths in the file's unit."""
     if units.length == "m":
@@ -866,6 +898,10 @@ def _dump(mf: ModelFile) -> dict[str, Any]:
             d["length"] = _out(d["length"], ls)
         if "local" in d:
             d["local"] = {k: [_out(c, ls) for c in v] for k, v in d["local"].items()}
+        if "sides" in d:
+            d["sides"] = {k: _toml.Inline((r, v if r == "side" else _out(v, ls))
+                                          for r, v in spec.items())
+                          for k, spec in d["sides"].items()}
     for d in data["joints"]:
         for key in ("axis", "axis2"):
             if key in d:

@@ -23,6 +23,7 @@ import re
 from collections.abc import Sequence
 
 from kinelab.errors import ModelError, describe, expected_one_of, shown
+from kinelab.io._imported import in_expression_terms
 from kinelab.io._modelfile import LENGTH_UNITS
 from kinelab.model import Input, Joint, Link, Mechanism, Point, angle_problem
 
@@ -244,9 +245,21 @@ def from_pyslvs(expression: str, *, inputs: Sequence[tuple[int, int]] | None = N
     links = [Link(GROUND, tuple(carried[GROUND]), ground=True)]
     links += [Link(n, tuple(sorted(pts, key=lambda q: q not in on_ground)))
               for n, pts in carried.items() if n != GROUND]
+    sliding = {n for j in joints if j.type == "P" for n in j.links}
+    lonely = [f"expression: link {shown(n)}: it is in joint {pts[0][1:]} only, and a moving "
+              "link needs two joints (one is enough for a link on a slider's slot, whose angle "
+              "gives its direction); name it in a second joint's L[...]"
+              for n, pts in ((n, list(p)) for n, p in carried.items())
+              if n != GROUND and len(pts) == 1 and n not in sliding]
+    if lonely:
+        raise ModelError(lonely)
     model_inputs = _inputs(vpoints, joints, carried, inputs)
-    return Mechanism(name=name, points=tuple(points + extra), links=tuple(links),
-                     joints=tuple(joints), inputs=tuple(model_inputs))
+    try:
+        return Mechanism(name=name, points=tuple(points + extra), links=tuple(links),
+                         joints=tuple(joints), inputs=tuple(model_inputs))
+    except ModelError as exc:
+        # kinelab's names for the expression's joints (P3, jP3 ...) said as its joint numbers
+        raise ModelError([f"expression: {in_expression_terms(p)}" for p in exc.problems]) from exc
 
 
 def _commented_inputs(expression: str):

@@ -24,6 +24,7 @@ from kinelab.model import (ANGLE_UNITS, LENGTH_UNITS, Units, is_real, length_pro
                            real_array)
 from kinelab.solvers._arguments import MAX_SEED
 from kinelab.synthesis._arguments import MAX_POSITIONS
+from kinelab.synthesis._function import _function_generation
 from kinelab.synthesis._path import (MAX_PATH_POINTS, MAX_PATH_SAMPLES, MAX_POPSIZE, MAX_ROUNDS,
                                      MAX_RUNS)
 from kinelab.synthesis._positions import check_not_one_turn
@@ -261,20 +262,18 @@ def _motion_task(r: _Reader, task: Task, L: float, A: float) -> None:
     piv = {k: r.get("pivots", k) for k in ("A0", "B0", "A1", "B1", "a0x", "b0x", "s", "t")}
     given = {k for k, v in piv.items() if v is not None}
     allowed = {2: {"A1", "B1", "s", "t"}, 3: {"A0", "B0", "A1", "B1"}, 4: {"a0x", "b0x"}}
+    s = r.data.get("search", {}) if isinstance(r.data.get("search"), dict) else {}
+    if "dyads" in s and n <= 5:
+        r.problems.append(f"search.dyads: not used with {n} positions (only with more than five)")
+    r.unknown("search", {"dyads", "min_transmission_angle"})
+    if "dyads" in s and n > 5:
+        task.search["dyads"] = r.integer("search.dyads", s["dyads"], 2, 100)
+    _transmission_limit(r, task, s, A)
     if n >= 5:
         # five: Burmester's points; more: least squares; no pivot is chosen
         for k in sorted(given):
             r.problems.append(f"pivots.{k}: not used with {n} positions; with five or more the "
                               "pivots follow from the positions alone")
-        if n > 5:
-            r.unknown("search", {"dyads"})
-            s = r.data.get("search", {}) if isinstance(r.data.get("search"), dict) else {}
-            if "dyads" in s:
-                task.search["dyads"] = r.integer("search.dyads", s["dyads"], 2, 100)
-            return
-    if "search" in r.data:
-        r.problems.append(f"search: not used with {n} positions (only with more than five)")
-    if n >= 5:
         return
     for k in sorted(given - allowed[n]):
         r.problems.append(f"pivots.{k}: not used with {n} positions; with {n} give "
@@ -296,10 +295,30 @@ def _motion_task(r: _Reader, task: Task, L: float, A: float) -> None:
                                   f"{side}1 (moving pivot in position 1)")
 
 
+def _transmission_limit(r: _Reader, task: Task, search: dict, A: float) -> None:
+    """``search.min_transmission_angle`` of a motion, function or path task, if given: an
+    angle from 0 up to (not including) a right angle, checked in the file's unit and kept in
+    rad among the arguments of the task's synthesis."""
+    if "min_transmission_angle" not in search:
+        return
+    where = "search.min_transmission_angle"
+    value = r.number(where, search["min_transmission_angle"], A)
+    if value is not None and not 0.0 <= value < math.pi / 2:
+        r.problems.append(f"{where}: expected an angle from 0 to {math.pi / 2 / A:g} "
+                          f"{task.angle_unit} (not included), got "
+                          f"{describe(search['min_transmission_angle'])} {task.angle_unit}")
+        value = None
+    args = task.function if task.kind == "function" else task.search
+    args["min_transmission_angle"] = value
+
+
 def _function_task(r: _Reader, task: Task, L: float, A: float) -> None:
     keys = {"expression", "x_range", "input_range", "output_range", "points", "ground",
             "samples"}
     r.unknown("function", keys)
+    r.unknown("search", {"min_transmission_angle"})
+    if isinstance(r.data.get("search"), dict):
+        _transmission_limit(r, task, r.data["search"], A)
     f = dict(r.data.get("function", {})) if isinstance(r.data.get("function"), dict) else {}
     expr = f.get("expression")
     if not isinstance(expr, str):
@@ -353,9 +372,10 @@ def _path_task(r: _Reader, task: Task, L: float, A: float) -> None:
     else:
         task.targets = r.lengths("positions.points", pts, (None, 2), L)
     s = dict(r.data.get("search", {})) if isinstance(r.data.get("search"), dict) else {}
-    if "min_transmission_angle" in s:
-        s["min_transmission_angle"] = r.number("search.min_transmission_angle",
-                                               s["min_transmission_angle"], A)
+    s.pop("min_transmission_angle", None)
+    task.search = s
+    _transmission_limit(r, task, r.data.get("search", {}) if isinstance(r.data.get("search"),
+                                                                          dict) else {}, A)
     for key, (low, high) in _SEARCH_BOUNDS.items():
         if key in s:
             s[key] = r.integer(f"search.{key}", s[key], low, high)
@@ -363,7 +383,6 @@ def _path_task(r: _Reader, task: Task, L: float, A: float) -> None:
         s["tolerance"] = r.number("search.tolerance", s["tolerance"], positive=True)
     if "refine" in s and not isinstance(s["refine"], bool):
         r.problems.append(f"search.refine: expected true or false, got {describe(s['refine'])}")
-    task.search = s
 
 
 def _design_task(r: _Reader, task: Task, L: float, A: float) -> None:
@@ -431,8 +450,13 @@ def _design(task: Task) -> list:
 
 # the task file's field of each argument named in the messages of function and path generation
 _FUNCTION_FIELDS = {"f": "function.expression", "theta2, theta4": "function.points",
+                    "input_range, output_range": "function.input_range, function.output_range",
+                    "min_transmission_angle": "search.min_transmission_angle",
                     **{k: f"function.{k}" for k in ("x_range", "input_range", "output_range",
                                                     "points", "ground", "samples")}}
+_MOTION_FIELDS = {"points": "positions.points", "dyads": "search.dyads",
+                  "min_transmission_angle": "search.min_transmission_angle",
+                  **{k: f"pivots.{k}" for k in ("A0", "B0", "A1", "B1", "a0x", "b0x", "s", "t")}}
 _PATH_FIELDS = {"points": "positions.points",
                 **{k: f"search.{k}" for k in ("runs", "maxiter", "popsize", "samples", "seed",
                                               "min_transmission_angle", "refine", "tolerance")}}
@@ -463,36 +487,62 @@ def _check_task(task: object) -> None:
                          f"{describe(task)}")
 
 
-def solve_task(task: Task) -> tuple[list, dict[str, Any]]:
-    """Run a task: its solutions, and the extra results worth drawing."""
+def solve_task(task: Task, *, verify: bool = False) -> tuple[list, dict[str, Any]]:
+    """Run a task: its solutions, and the extra results worth drawing.
+
+    With ``verify``, ``extra["certificate"]`` is the :class:`kinelab.verify.Certificate` of
+    every linkage found: each analysed again at every task point and compared with the task
+    and with what the synthesis reported (see :func:`kinelab.verify.certify`).
+    """
     _check_task(task)
+    if not isinstance(verify, bool):
+        raise ModelError(f"verify: expected True or False, got {describe(verify)}")
+    sols, extra = _solve(task)
+    if verify:
+        from kinelab.verify import certify_solutions
+        extra = {**extra, "certificate": certify_solutions(
+            sols, f"{len(sols)} linkage(s) of the {task.kind} task '{task.name}'",
+            function=task.function.get("f"), requested=task.design)}
+    return sols, extra
+
+
+def _solve(task: Task) -> tuple[list, dict[str, Any]]:
     if task.kind == "function":
         try:
-            return [synthesis.function_generation(**task.function)], {}
+            return [_function_generation(**task.function, shown=task.angle_unit)], {}
         except ModelError as exc:
-            raise _fields_named(task, exc, _FUNCTION_FIELDS) from None
+            raise _fields_named(task, exc, _FUNCTION_FIELDS) from exc
     if task.kind == "path":
         try:
             sols = synthesis.path_generation(task.targets, **task.search)
         except ModelError as exc:
-            raise _fields_named(task, exc, _PATH_FIELDS) from None
+            raise _fields_named(task, exc, _PATH_FIELDS) from exc
         return list(sols), {"reason": sols.reason}
     if task.kind in ("crank-rocker", "quick-return"):
         return _design(task), {}
+    try:
+        return _motion(task)
+    except ModelError as exc:
+        raise _fields_named(task, exc, _MOTION_FIELDS) from exc
+
+
+def _motion(task: Task) -> tuple[list, dict[str, Any]]:
+    """Run a motion task (2 to n positions)."""
     pos, piv = task.positions, task.pivots
+    limit = {k: v for k, v in task.search.items() if k == "min_transmission_angle"}
     if pos.n == 5:
-        sols = synthesis.five_positions(pos)
+        sols = synthesis.five_positions(pos, **limit)
         return list(sols), {"five": True, "reason": sols.reason}
     if pos.n > 5:
         sols = synthesis.approximate_positions(pos, **task.search)
         return list(sols), {"reason": sols.reason}
     if pos.n == 2:
         fam = synthesis.two_positions(pos, A1=piv["A1"], B1=piv["B1"])
-        return [fam.solution(piv.get("s", 0.0), piv.get("t", 0.0))], {}
+        return [fam.solution(piv.get("s", 0.0), piv.get("t", 0.0), **limit)], {}
     if pos.n == 3:
         return [synthesis.three_positions(pos, A0=piv.get("A0"), B0=piv.get("B0"),
-                                          A1=piv.get("A1"), B1=piv.get("B1"))], {}
-    sols = synthesis.four_positions(pos, a0x=piv["a0x"], b0x=piv["b0x"])
+                                          A1=piv.get("A1"), B1=piv.get("B1"), **limit)], {}
+    sols = synthesis.four_positions(pos, a0x=piv["a0x"], b0x=piv["b0x"], **limit)
     curves = synthesis.burmester_curves(pos)
     return list(sols), {"curves": curves, "reason": sols.reason}
 
@@ -528,6 +578,8 @@ def _rows(sols: list, u: Units) -> list[dict[str, Any]]:
             row.update({k: u.convert(getattr(s, k), "m").tolist() for k in ("A0", "B0", "A1", "B1")})
         if not math.isnan(s.min_transmission_angle):
             row["min_transmission_angle"] = u.convert(s.min_transmission_angle, "rad")
+        row["transmission_limit"] = u.convert(s.transmission_limit, "rad")
+        row["meets_transmission_limit"] = s.meets_transmission_limit
         if hasattr(s, "rms_error"):
             row["rms_error"] = u.convert(s.rms_error, "m")
         if hasattr(s, "max_structural_error"):

@@ -14,9 +14,14 @@ import re
 from collections.abc import Mapping
 from typing import Any
 
-__all__ = ["dumps"]
+__all__ = ["dumps", "Inline"]
 
 _BARE_KEY = re.compile(r"^[A-Za-z0-9_-]+$")
+
+
+class Inline(dict):
+    """A table written on one line, as a value (``P = {A = 30, B = 40, side = "left"}``),
+    rather than under a header of its own."""
 
 
 def toml_key(k: str) -> str:
@@ -52,7 +57,7 @@ def _body(table: Mapping[str, Any], path: str, out: list[str]) -> None:
     """Key-value lines of ``table``, then its sub-tables and arrays of tables."""
     later = []
     for k, v in table.items():
-        if isinstance(v, Mapping) or _is_table_array(v):
+        if (isinstance(v, Mapping) and not isinstance(v, Inline)) or _is_table_array(v):
             later.append((k, v))
         else:
             out.append(f"{toml_key(k)} = {_value(v)}")

@@ -50,7 +50,7 @@ import numpy as np
 from kinelab.errors import AssemblyError, ModelError, describe, quoted, shown
 from kinelab.kinematics._closure import Closure, Frames, decompose, rotate
 from kinelab.kinematics._geometry import sketch_angle
-from kinelab.model import Mechanism, Point, Units, is_real, length_problem
+from kinelab.model import Mechanism, Point, Units, exact_places, is_real, length_problem
 
 __all__ = ["Assembly", "assemble", "reassemble", "pose", "needs_assembly", "check_assembled",
            "assembly_miss", "SketchNotAssembled"]
@@ -93,7 +93,7 @@ class Assembly:
 
 def needs_assembly(m: Mechanism) -> bool:
     """Whether the model gives lengths, places or offsets that the sketch must be moved to."""
-    return (any(link.length is not None or link.local for link in m.links)
+    return (any(link.length is not None or link.local or link.sides for link in m.links)
             or any(j.offset is not None for j in m.joints))
 
 
@@ -272,6 +272,7 @@ def _edited(m: Mechanism, lengths, local, offsets, pivots):
                             f"links {quoted(links)}, got {describe(name)}")
             continue
         merged = dict(new_links[name].local or {})
+        by_sides = dict(new_links[name].sides or {})
         for p, xy in places.items():
             if p not in link.points[2:]:
                 problems.append(f"local.{name}: expected one of the link's points after its first "
@@ -281,7 +282,8 @@ def _edited(m: Mechanism, lengths, local, offsets, pivots):
                                 f"got {describe(xy)}")
             else:
                 merged[p] = (float(xy[0]), float(xy[1]))
-        new_links[name] = dataclasses.replace(new_links[name], local=merged)
+                by_sides.pop(p, None)          # a place given one way: now by local
+        new_links[name] = dataclasses.replace(new_links[name], local=merged, sides=by_sides or None)
     new_joints = dict(joints)
     for name, v in (offsets or {}).items():
         j = joints.get(name) if isinstance(name, str) else None
@@ -446,7 +448,7 @@ class _Constraints:
             if L == 0.0:
                 continue
             dist.append((self.index[a], self.index[b], L, float(np.hypot(*d_ab)), link.name))
-            local = link.local or {}
+            local = exact_places(link, xy)      # its local places and its sides
             for p in pts[2:]:
                 if p in local:
                     along, left = local[p]

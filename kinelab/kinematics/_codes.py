@@ -40,15 +40,34 @@ DISC_ZERO = 1e-15  # relative: a discriminant this close to zero is zero (its ro
 FOLDED = 1e-16     # an RRR dyad whose ends are closer than 1e-8 of its arm has folded: the
                    # direction of d = Z - X is rounding, the direction it moves along is not
 
+# Newton groups measure their unknowns in their own units, so that nothing depends on the
+# unit a mechanism is drawn in: an anchor's x and y in sizes of the mechanism (the plan's
+# ``scale``), an angle in radians.  Their Jacobian's singularity measure is the smallest
+# singular value of the Jacobian with its columns, then its rows, scaled to unit norm, which
+# no unit changes (the kernel's ``_smallest_singular_value``, SINGULAR_STEPS steps of inverse
+# iteration).
 NEWTON_MAX_ITER = 12
-NEWTON_TOL = 1e-13        # step, relative to the mechanism's size, at which Newton has converged
+NEWTON_TOL = 1e-13        # step (in those units) at which Newton has converged
+NEWTON_STALL = 1e-10      # ... or a step below this that is not half the one before: near a
+                          # singular configuration rounding, amplified by the Jacobian's
+                          # condition, keeps the steps from shrinking; the solution is then as
+                          # accurate as the configuration allows
 JUMP_RATIO = 0.2          # a correction this large against the predicted step means a jump
-BASE_MIN = 1e-6           # a group solved where its measure (|det| over its rows' norms) is
+JUMP_FLOOR = 1e-9         # ... added to the predicted step in that test (in those units)
+SINGULAR_STEPS = 3        # of inverse iteration for the measure of a Newton group
+BASE_MIN = 1e-6           # a group solved where its measure is
                           # below this is written but not kept to predict from: next to a
                           # singular configuration K and L are rounding
 NODE_STEP = 1e-3          # a sample on a singular configuration the motion passes (a change
                           # point) is placed from this fraction of a continuation step either side
-CONTINUATION_STEP = 0.05  # largest continuation step of a Newton group, rad (or m / scale)
+CONTINUATION_STEP = 0.05  # largest continuation step of a Newton group: rad, or sizes of the
+                          # mechanism for a slide (the input's unit, ``input_units``)
+
+
+def input_units(kinds, scale) -> np.ndarray:
+    """The unit in which continuation measures each input's steps: 1 rad for an angle, the
+    mechanism's size for a slide."""
+    return np.array([1.0 if kind == "angle" else scale for kind in kinds], float)
 
 
 # One sample at a time (an input dragged in an interactive view): the plan and the outputs

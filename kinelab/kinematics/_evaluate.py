@@ -101,11 +101,8 @@ def run_compiled(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None):
         q0 = p.q_sketch
         if start is not None:
             q0, x0 = start
-        # continuation steps of at most 0.05 rad (or 0.05 sizes of the mechanism for slides)
-        max_step = k.CONTINUATION_STEP * (1.0 if all(kd == "angle" for kd in p.input_kinds)
-                                         else min(1.0, p.scale))
         state = np.empty(len(x0) + M)
-        args = (q, qd, qdd, np.array(q0, float), max_step, p.ops_i, ops_f, p.const_items,
+        args = (q, qd, qdd, np.array(q0, float), k.input_units(p.input_kinds, p.scale), p.ops_i, ops_f, p.const_items,
                 p.const_values, p.n_items, p.n_angles, stored, groups_i, con_i, con_f,
                 np.array(x0, float), p.scale, *tail, state)
         if M == 1:

@@ -33,7 +33,6 @@ _FOLD_ARMS = 1e-12   # relative: an RRR dyad folds (rather than failing to close
                      # arms equal to this (the kernel's _rrr, where the literal stands)
 _MIN_STEP = 1e-9     # fraction of a sample's step below which continuation gives up (the
                      # kernel's _continuation, where the literal stands)
-_JUMP_FLOOR = 1e-9   # of the mechanism's size, added to the jump check (kernel's _newton_group)
 _CLEAR = 10.0        # continuation steps of _NODE_STEP beyond which a state is "well clear"
 _AT = 0.1            # ... and within which it has stopped "at the sample" (kernel's literals)
 
@@ -675,7 +674,8 @@ def _newton_group(G, state, q, jc, M, scale):
     """Solve group G at input q (M,) from its state by Newton-Raphson and write its links'
     poses, K and L to jc (n_items, C); returns (status, det, measure).  The state changes
     only on success, and not where the group is too near a singular configuration to
-    predict from (the kernel's ``_newton_group``)."""
+    predict from (the kernel's ``_newton_group``).  Steps are measured in the unknowns' own
+    units (anchors in sizes of the mechanism, angles in rad: see ``_codes``)."""
     o, n = G.o, G.n
     sx, sK, sL = state.x[o:o + n], state.K[o:o + n], state.L[o:o + n]
     dq = q - state.q[G.g]
@@ -684,36 +684,38 @@ def _newton_group(G, state, q, jc, M, scale):
         xp = xp + sK[:, m] * dq[m]
         for j in range(M):
             xp = xp + 0.5 * sL[:, m, j] * dq[m] * dq[j]
-    step = math.sqrt(float(np.sum((xp - sx) ** 2)))
+    unit = np.where(np.arange(n) % 3 == 2, 1.0, scale)     # of each unknown
+    step = math.sqrt(float(np.sum(((xp - sx) / unit) ** 2)))
     kn = _Known(G, jc, M)
     qa = G.aQ @ q + G.a_off
     qp = G.pQ @ q - G.p_s0
     x = xp.copy()
     converged = False
     det = 0.0
-    hada = 1.0
     A = None
+    last = math.inf
     for _ in range(k.NEWTON_MAX_ITER):
         phi, A = _residual(G, x, kn, qa, qp)
-        hada = float(np.prod(np.sqrt(np.einsum("ij,ij->i", A, A))))
         det = float(np.linalg.det(A))
         try:
             dx = np.linalg.solve(A, -phi)
         except np.linalg.LinAlgError:       # an exactly singular Jacobian: no step
             break
         x = x + dx
-        dn = float(dx @ dx)
+        dn = math.sqrt(float(np.sum((dx / unit) ** 2)))
         if not math.isfinite(dn):
             break
-        if math.sqrt(dn) <= k.NEWTON_TOL * scale:
+        if dn <= k.NEWTON_TOL or (dn <= k.NEWTON_STALL and dn > 0.5 * last):
             converged = True
             break
-    if not converged or det == 0.0:
+        last = dn
+    if not converged:
         return k.ST_NO_CONVERGENCE, 0.0, 0.0
-    if math.sqrt(float(np.sum((x - xp) ** 2))) > k.JUMP_RATIO * step + _JUMP_FLOOR * scale:
+    if math.sqrt(float(np.sum(((x - xp) / unit) ** 2))) > k.JUMP_RATIO * step + k.JUMP_FLOOR:
         return k.ST_NO_CONVERGENCE, 0.0, 0.0
     Kw, Lw = _rates(G, x, kn, A, q, M)
-    if abs(det) >= k.BASE_MIN * hada:
+    measure = _smallest_singular_value(G, A, scale)
+    if measure >= k.BASE_MIN:
         state.x[o:o + n] = x
         state.K[o:o + n] = Kw
         state.L[o:o + n] = Lw
@@ -724,7 +726,44 @@ def _newton_group(G, state, q, jc, M, scale):
     jc[a, 1:1 + M], jc[a + 1, 1:1 + M], jc[links, 1:1 + M] = Kw[0::3], Kw[1::3], Kw[2::3]
     flat = Lw.reshape(n, M * M)
     jc[a, 1 + M:], jc[a + 1, 1 + M:], jc[links, 1 + M:] = flat[0::3], flat[1::3], flat[2::3]
-    return k.ST_OK, det, abs(det) / hada if hada > 0.0 else 0.0
+    return k.ST_OK, det, measure
+
+
+def _smallest_singular_value(G, A: np.ndarray, scale: float) -> float:
+    """The singularity measure of a Newton group: the kernel's ``_smallest_singular_value``
+    (A made dimensionless, equilibrated, then inverse iteration with its LU factors, step for
+    step; see the kernel's ``_norms``)."""
+    from scipy.linalg import lu_factor, lu_solve
+
+    n = len(A)
+    ru = np.full(n, 1.0 / scale)
+    ru[G.ar] = 1.0                                   # angle equations, in rad
+    cu = np.where(np.arange(n) % 3 == 2, 1.0, scale)  # anchors in sizes, angles in rad
+    c = np.sqrt(np.einsum("ij,ij->j", ru[:, None] * A * cu, ru[:, None] * A * cu))
+    cn = np.where(c > 0.0, c / cu, 0.0)
+    if not np.all(cn > 0.0):
+        return 0.0
+    rn = np.sqrt(np.einsum("ij,ij->i", A / cn, A / cn))
+    if not np.all(rn > 0.0):
+        return 0.0
+    factors = lu_factor(A, check_finite=False)
+    if np.any(np.diag(factors[0]) == 0.0):
+        return 0.0
+    v = 1.0 + np.arange(n) / n
+    v = v / math.sqrt(float(v @ v))
+    sigma = 0.0
+    for _ in range(k.SINGULAR_STEPS):
+        w = lu_solve(factors, v * cn, trans=1, check_finite=False) * rn
+        size = math.sqrt(float(w @ w))
+        if not math.isfinite(size) or size == 0.0:
+            return 0.0
+        sigma = 1.0 / size
+        v = lu_solve(factors, w * rn, check_finite=False) * cn
+        size = math.sqrt(float(v @ v))
+        if not math.isfinite(size) or size == 0.0:
+            return 0.0
+        v = v / size
+    return min(sigma, 1.0)
 
 
 # --------------------------------------------------------------------------------------
@@ -831,7 +870,7 @@ def _closed_form(p, T, q, qd, qdd, ops_f, stored, out, M):
         _write(J[stored], lo, hi, qd, qdd, M, angle_rows, out)
 
 
-def _continuation(p, T, q, qd, qdd, q_start, max_step, ops_f, stored, x0, out, M):
+def _continuation(p, T, q, qd, qdd, q_start, q_unit, ops_f, stored, x0, out, M):
     """A plan with Newton groups, following the samples in order from a start (the
     kernel's ``_continuation``, step for step).  Returns (q, x) where the run ended."""
     N = len(q)
@@ -857,8 +896,9 @@ def _continuation(p, T, q, qd, qdd, q_start, max_step, ops_f, stored, x0, out, M
     angle_rows = np.flatnonzero(stored < p.n_angles)
     qprev = q_start.copy()
     clear = state.copy()                    # the state on the sample's path, well clear of it
+    max_step = k.CONTINUATION_STEP
     for i in range(N):
-        dist = math.sqrt(float(np.sum((q[i] - qprev) ** 2)))
+        dist = math.sqrt(float(np.sum(((q[i] - qprev) / q_unit) ** 2)))
         h = max_step / dist if dist > max_step else 1.0
         t = 0.0
         st = k.ST_OK
@@ -957,9 +997,8 @@ def run(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None):
         q0 = p.q_sketch
         if start is not None:
             q0, x0 = start
-        max_step = k.CONTINUATION_STEP * (1.0 if all(kd == "angle" for kd in p.input_kinds)
-                                         else min(1.0, p.scale))
-        q_end, x_end = _continuation(p, T, q, qd, qdd, np.array(q0, float).reshape(M), max_step,
+        q_end, x_end = _continuation(p, T, q, qd, qdd, np.array(q0, float).reshape(M),
+                                     k.input_units(p.input_kinds, p.scale),
                                      ops_f, stored, x0, out, M)
     out["state"] = (q_end, x_end)
     return out

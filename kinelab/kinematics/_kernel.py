@@ -27,8 +27,8 @@ import numpy as np
 from numba import njit
 
 from kinelab.kinematics._codes import (BASE_MIN, C_DRIVE_ANGLE, C_DRIVE_SLIDE, C_PRISMATIC,
-                                       C_REVOLUTE, DISC_TOL, DISC_ZERO, FOLDED, HEADER,
-                                       JUMP_RATIO, NEWTON_MAX_ITER, NEWTON_TOL, NODE_STEP,
+                                       C_REVOLUTE, CONTINUATION_STEP, JUMP_FLOOR, SINGULAR_STEPS, DISC_TOL, DISC_ZERO, FOLDED, HEADER,
+                                       JUMP_RATIO, NEWTON_MAX_ITER, NEWTON_STALL, NEWTON_TOL, NODE_STEP,
                                        OP_DRIVE_ANGLE, OP_FRAME_POINT, OP_LINES, OP_LOCK_ANGLE,
                                        OP_NEWTON, OP_RIGID_POINT, OP_RPR, OP_RRP, OP_RRR,
                                        OP_SLIDE_OUT, OP_SLIDE_POINT, OP_TWO_POINTS,
@@ -693,7 +693,9 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
     xp = work[n * n + 2 * n:n * n + 3 * n]
     Kw = work[n * n + 3 * n:n * n + 3 * n + n * M].reshape((n, M))
     Lw = work[n * n + 3 * n + n * M:n * n + 3 * n + n * M + n * M * M].reshape((n, M, M))
-    # second-order predictor S + K dq + 1/2 dq L dq
+    # second-order predictor S + K dq + 1/2 dq L dq.  Steps are measured in the unknowns'
+    # own units: an anchor's x and y in sizes of the mechanism, an angle in radians
+    inv = 1.0 / scale
     step = 0.0
     for i in range(n):
         v = gx[o + i]
@@ -704,41 +706,45 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
                 v += 0.5 * gL[o + i, m, k] * dm * (q[k] - gq[g, k])
         xp[i] = v
         x[i] = v
-        step += (v - gx[o + i]) ** 2
+        step += ((v - gx[o + i]) * (1.0 if i % 3 == 2 else inv)) ** 2
     step = math.sqrt(step)
-    cs = work[n * n + 3 * n + n * M + n * M * M:n * n + 3 * n + n * M + n * M * M + 2 * nlk]
+    e = n * n + 3 * n + n * M + n * M * M
+    cs = work[e:e + 2 * nlk]
+    cn = work[e + 2 * nlk:e + 2 * nlk + n]          # the scalings of A's columns
+    rn = work[e + 2 * nlk + n:e + 2 * nlk + 2 * n]  # ... and of its rows (``_norms``)
+    v = work[e + 2 * nlk + 2 * n:e + 2 * nlk + 3 * n]
+    w = work[e + 2 * nlk + 3 * n:e + 2 * nlk + 4 * n]
     converged = False
     det = 0.0
-    hada = 1.0
+    last = math.inf
     for it in range(NEWTON_MAX_ITER):
         A[:, :] = 0.0
         _link_trig(x, nlk, cs)
         _group_residual(c0, c1, con_i, con_f, x, cs, q, jet, A, phi, True)
-        hada = 1.0
-        for i in range(n):
-            rn = 0.0
-            for j in range(n):
-                rn += A[i, j] * A[i, j]
-            hada *= math.sqrt(rn)
+        _norms(c0, c1, con_i, A, n, scale, cn, rn)
         det = _lu_factor(A, piv, n)
+        if _lu_singular(A, n):
+            break
         for i in range(n):
             phi[i] = -phi[i]
         _lu_solve(A, piv, phi, n)
         dn = 0.0
         for i in range(n):
             x[i] += phi[i]
-            dn += phi[i] * phi[i]
+            dn += (phi[i] * (1.0 if i % 3 == 2 else inv)) ** 2
+        dn = math.sqrt(dn)
         if not math.isfinite(dn):
             break
-        if math.sqrt(dn) <= NEWTON_TOL * scale:
+        if dn <= NEWTON_TOL or (dn <= NEWTON_STALL and dn > 0.5 * last):
             converged = True
             break
-    if not converged or det == 0.0:
+        last = dn
+    if not converged:
         return ST_NO_CONVERGENCE, 0.0, 0.0
     corr = 0.0
     for i in range(n):
-        corr += (x[i] - xp[i]) ** 2
-    if math.sqrt(corr) > JUMP_RATIO * step + 1e-9 * scale:
+        corr += ((x[i] - xp[i]) * (1.0 if i % 3 == 2 else inv)) ** 2
+    if math.sqrt(corr) > JUMP_RATIO * step + JUMP_FLOOR:
         return ST_NO_CONVERGENCE, 0.0, 0.0
     # K and L: linear solves with the last factorisation, whose Jacobian differs from the
     # one at the solution by the last Newton step (below 1e-13 of the mechanism's size)
@@ -755,9 +761,10 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
             for i in range(n):
                 Lw[i, m, k] = phi[i]
                 Lw[i, k, m] = phi[i]
+    measure = _smallest_singular_value(A, piv, n, cn, rn, v, w)
     # accept: store the state (unless too near a singular configuration to predict from)
     # and write the links' angles and anchor points
-    if abs(det) >= BASE_MIN * hada:
+    if measure >= BASE_MIN:
         for i in range(n):
             gx[o + i] = x[i]
             for m in range(M):
@@ -782,7 +789,131 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
                 jet[a, c2] = Lw[3 * j, m, k]
                 jet[a + 1, c2] = Lw[3 * j + 1, m, k]
                 jet[link, c2] = Lw[3 * j + 2, m, k]
-    return ST_OK, det, abs(det) / hada if hada > 0.0 else 0.0
+    return ST_OK, det, measure
+
+
+# The singularity measure of a Newton group: the smallest singular value of its Jacobian A
+# made dimensionless and then equilibrated.  Dimensionless: each unknown in its unit (an
+# anchor's x and y in sizes of the mechanism, an angle in rad: A's columns times cu) and each
+# equation in its unit (a length equation in sizes, an angle equation in rad: A's rows times
+# ru), so that the matrix is the same whatever the unit the mechanism is drawn in.  Then its
+# columns, then its rows, scaled to unit norm: B = diag(1 / rn) A diag(1 / cn), with cn and
+# rn holding those scalings and units together.  B's smallest singular value is its distance
+# to the nearest singular matrix (Eckart-Young); for a dyad it is about half the sine of the
+# angle between its arms.  Estimated by inverse iteration on (B^T B)^-1 with the LU factors of
+# A (B^-1 = diag(cn) A^-1 diag(rn), B^-T = diag(rn) A^-T diag(cn)): SINGULAR_STEPS steps from
+# a fixed start.  Near a singular configuration, where it matters, the smallest singular value
+# is far below the others and the iteration converges at once; elsewhere the estimate may be
+# high, never low.
+
+
+@_jit()
+def _norms(c0, c1, con_i, A, n, scale, cn, rn):
+    """cn, rn <- the column and row scalings of B (above), before A is factorised."""
+    row = 0
+    for k in range(c0, c1):                 # rn <- each equation's unit: 1 / size or 1 (rad)
+        kind = con_i[k, 0]
+        if kind == C_REVOLUTE:
+            rn[row] = 1.0 / scale
+            rn[row + 1] = 1.0 / scale
+            row += 2
+        elif kind == C_DRIVE_ANGLE:
+            rn[row] = 1.0
+            row += 1
+        elif kind == C_PRISMATIC:
+            rn[row] = 1.0
+            rn[row + 1] = 1.0 / scale
+            row += 2
+        else:
+            rn[row] = 1.0 / scale
+            row += 1
+    for j in range(n):
+        cu = 1.0 if j % 3 == 2 else scale
+        c = 0.0
+        for i in range(n):
+            t = rn[i] * A[i, j] * cu
+            c += t * t
+        cn[j] = math.sqrt(c) / cu if c > 0.0 else 0.0
+    for i in range(n):
+        r = 0.0
+        for j in range(n):
+            if cn[j] > 0.0:
+                t = A[i, j] / cn[j]
+                r += t * t
+        rn[i] = math.sqrt(r)
+
+
+@_jit()
+def _lu_singular(A, n):
+    """Whether the LU factors of A have a zero pivot (A exactly singular)."""
+    for k in range(n):
+        if A[k, k] == 0.0:
+            return True
+    return False
+
+
+@_jit()
+def _lu_solve_transposed(A, piv, b, n):
+    """Solve A^T y = b in place with the factors of ``_lu_factor`` (P A = L U, so
+    A^T = U^T L^T P): U^T s = b, L^T t = s, then the row swaps undone in reverse."""
+    for i in range(n):
+        t = b[i]
+        for j in range(i):
+            t -= A[j, i] * b[j]
+        b[i] = t / A[i, i]
+    for i in range(n - 1, -1, -1):
+        t = b[i]
+        for j in range(i + 1, n):
+            t -= A[j, i] * b[j]
+        b[i] = t
+    for k in range(n - 1, -1, -1):
+        p = piv[k]
+        if p != k:
+            t = b[k]
+            b[k] = b[p]
+            b[p] = t
+
+
+@_jit()
+def _smallest_singular_value(A, piv, n, cn, rn, v, w):
+    """The singularity measure of a Newton group (see above), from the LU factors of A and
+    the scalings ``_norms`` gave before the factorisation; v, w are scratch of length n."""
+    for i in range(n):
+        if cn[i] == 0.0 or rn[i] == 0.0:
+            return 0.0
+        v[i] = 1.0 + i / n                  # a fixed start with no special direction
+    s = 0.0
+    for i in range(n):
+        s += v[i] * v[i]
+    s = math.sqrt(s)
+    for i in range(n):
+        v[i] /= s
+    sigma = 0.0
+    for it in range(SINGULAR_STEPS):
+        for i in range(n):                  # w = B^-T v = R^-1 A^-T C^-1 v
+            w[i] = v[i] * cn[i]
+        _lu_solve_transposed(A, piv, w, n)
+        s = 0.0
+        for i in range(n):
+            w[i] *= rn[i]
+            s += w[i] * w[i]
+        s = math.sqrt(s)
+        if not math.isfinite(s) or s == 0.0:
+            return 0.0
+        sigma = 1.0 / s                     # |B^-T v| = 1 / sigma_min for v the singular vector
+        for i in range(n):                  # v = B^-1 w = C^-1 A^-1 R^-1 w, normalised
+            v[i] = w[i] * rn[i]
+        _lu_solve(A, piv, v, n)
+        s = 0.0
+        for i in range(n):
+            v[i] *= cn[i]
+            s += v[i] * v[i]
+        s = math.sqrt(s)
+        if not math.isfinite(s) or s == 0.0:
+            return 0.0
+        for i in range(n):
+            v[i] /= s
+    return min(sigma, 1.0)
 
 
 # --------------------------------------------------------------------------------------
@@ -1114,14 +1245,15 @@ def run_one_sample(x, plan_i, plan_f, out):
 
 
 @_jit()
-def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
+def _continuation(q, qd, qdd, q_start, q_unit, ops_i, ops_f, const_items, const_values,
                   n_items, n_angles, stored, groups_i, con_i, con_f, grp_x0, scale,
                   o_jet, o_rate, o_diag, o_status, o_fail, o_state, M):
     """Evaluate a plan with Newton groups, following the samples in order from a start.
 
     The start is the groups' state ``grp_x0`` at input ``q_start`` (the sketch, or where an
     earlier run ended).  Each step from the previous input to the next is split so that no
-    step exceeds ``max_step`` (Euclidean, in input units), and halved again while a Newton
+    step exceeds CONTINUATION_STEP (Euclidean, each input in its unit ``q_unit``: rad, or the
+    mechanism's size for a slide), and halved again while a Newton
     group fails to converge or jumps (its correction is large against the predicted step).
     On return ``o_state`` holds the groups' state and the input where the run ended.
     """
@@ -1148,7 +1280,7 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
     bL = gL.copy()
     bq = gq.copy()
     bdet = gdet.copy()
-    work = np.zeros(nmax * nmax + 3 * nmax + nmax * M + nmax * M * M + nmax)
+    work = np.zeros(nmax * nmax + 3 * nmax + nmax * M + nmax * M * M + 5 * nmax)
     piv = np.zeros(nmax, np.int64)
     jet_b = np.empty_like(jet)
     sx = gx.copy()              # the groups' state on the current sample's path, well clear of it
@@ -1172,10 +1304,11 @@ def _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, cons
         o_state[:nx] = grp_x0
         o_state[nx:] = q_start
         return
+    max_step = CONTINUATION_STEP
     for i in range(N):
         dist = 0.0
         for m in range(M):
-            dist += (q[i, m] - qprev[m]) ** 2
+            dist += ((q[i, m] - qprev[m]) / q_unit[m]) ** 2
         dist = math.sqrt(dist)
         h = 1.0
         if dist > max_step:
@@ -1284,20 +1417,20 @@ def _place_between(q, i, qprev, eps, qt, jet, jet_b, qd, qdd, ops_i, ops_f, M, K
 
 
 @_jit(nogil=True)
-def run_continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
+def run_continuation(q, qd, qdd, q_start, q_unit, ops_i, ops_f, const_items, const_values,
                      n_items, n_angles, stored, groups_i, con_i, con_f, grp_x0, scale,
                      o_jet, o_rate, o_diag, o_status, o_fail, o_state, M):
     """Evaluate a plan with Newton groups along the samples (see ``_continuation``)."""
-    _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
+    _continuation(q, qd, qdd, q_start, q_unit, ops_i, ops_f, const_items, const_values,
                   n_items, n_angles, stored, groups_i, con_i, con_f, grp_x0, scale,
                   o_jet, o_rate, o_diag, o_status, o_fail, o_state, M)
 
 
 @_jit(nogil=True)
-def run_continuation_one_input(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items,
+def run_continuation_one_input(q, qd, qdd, q_start, q_unit, ops_i, ops_f, const_items,
                                const_values, n_items, n_angles, stored, groups_i, con_i, con_f,
                                grp_x0, scale, o_jet, o_rate, o_diag, o_status, o_fail, o_state):
     """:func:`run_continuation` for one input."""
-    _continuation(q, qd, qdd, q_start, max_step, ops_i, ops_f, const_items, const_values,
+    _continuation(q, qd, qdd, q_start, q_unit, ops_i, ops_f, const_items, const_values,
                   n_items, n_angles, stored, groups_i, con_i, con_f, grp_x0, scale,
                   o_jet, o_rate, o_diag, o_status, o_fail, o_state, 1)

@@ -29,7 +29,7 @@ import numpy as np
 from kinelab.errors import ModelError, shown
 from kinelab.kinematics import _codes as k
 from kinelab.kinematics._geometry import sketch_angle
-from kinelab.model import Joint, Mechanism
+from kinelab.model import MIN_LENGTH, Joint, Mechanism
 from kinelab.solvers import wrap_angle
 
 _SKETCH_SINGULAR = 1e-9   # a dyad this close to straight at the sketch cannot fix its branch
@@ -195,7 +195,8 @@ class _Builder:
         self.n_all = len(self.P)
         self.ground = m.ground.name
         span = np.array(list(self.xy.values()))
-        self.scale = float(max(np.ptp(span[:, 0]), np.ptp(span[:, 1]), 1e-3))
+        # the mechanism's size: every length tolerance is relative to it
+        self.scale = float(max(np.ptp(span[:, 0]), np.ptp(span[:, 1]), MIN_LENGTH))
         self.theta_s = {link.name: sketch_angle(m, link.name) for link in m.links}
         self.ops_i: list[list[int]] = []
         self.ops_f: list[list[float]] = []

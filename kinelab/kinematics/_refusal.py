@@ -308,6 +308,8 @@ def _loop_of_bars(system) -> AssemblyError | None:
             continue
         bars = {}
         for (j1, j2), side in zip(zip(joints, joints[1:] + joints[:1]), sides):
+            if j1.point == j2.point:          # two joints at one point: no bar between them
+                continue
             if side in bars:
                 bars = None
                 break

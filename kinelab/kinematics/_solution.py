@@ -140,11 +140,16 @@ class KinematicSolution(TableExport):
         slotted link ``-B``).  Newton groups contribute the determinant of their own
         system in absolute coordinates.
     singularity : ndarray, shape (N,)
-        A scale-free distance from singularity in [0, 1]: for each group |det| divided by
-        the product of its columns' norms (the sine of the transmission-type angle of a
-        dyad), the smallest over the groups.
+        A distance from singularity in [0, 1] that no unit changes, the smallest over the
+        groups: for a dyad, |det| over the product of its arms' lengths (the sine of the
+        angle between them, of the transmission kind); for a group solved by Newton-Raphson,
+        the smallest singular value of its Jacobian made dimensionless (lengths in sizes of
+        the mechanism, angles in rad) with its columns and rows scaled to unit norm, the
+        relative distance to the nearest singular Jacobian (about half the sine, for a
+        dyad).  Below ``SINGULAR_TOL`` (5e-3) a sample is flagged ``singular``.
     singular : ndarray of bool, shape (N,)
-        ``singularity`` is zero to rounding: det J = 0, velocities undefined.  At those
+        ``singularity`` is below ``SINGULAR_TOL``: det J = 0 to within what rounding
+        lets K and L be trusted, velocities undefined.  At those
         samples K, L, velocities and accelerations are NaN; positions are valid.
     assembled : ndarray of bool, shape (N,)
         False where the loops cannot close (only with ``unreachable="mask"``; every value
@@ -154,6 +159,9 @@ class KinematicSolution(TableExport):
         two assembly modes of a dyad meet (see ``analyze(at_change_point=...)``); a sweep
         over more than 10,000 turns lists none (``kinelab.kinematics.change_points`` lists
         them a part at a time).
+    certificate : kinelab.verify.Certificate or None
+        With ``kl.analyze(..., verify=True)``: every number above computed again by
+        independent routes, and how far apart they came (see :mod:`kinelab.verify`).
     """
 
     plan: Plan
@@ -170,6 +178,7 @@ class KinematicSolution(TableExport):
     newton_state: tuple[np.ndarray, np.ndarray] | None = None   # (q, groups' unknowns) at
                                                                 # the end, for analyze(start=)
     change_points: tuple = ()
+    certificate: Mapping | None = None
 
     # -- what was solved -----------------------------------------------------------------
     @property

@@ -363,7 +363,13 @@ def whitworth(crank: float, distance: float, lever: float, rod: float,
     C = base.point("C")
     dx = math.sqrt(max(rod ** 2 - (ram_height - C.y) ** 2, 0.0))
     if dx == 0.0:
-        raise ModelError("rod: too short to reach the ram line in the sketch; lengthen it")
+        A, O2 = base.point("A"), base.point("O2")
+        q0 = math.degrees(math.atan2(A.y - O2.y, A.x - O2.x))
+        raise ModelError(f"rod: expected more than {abs(ram_height - C.y):.6g} m, the distance from "
+                         f"the lever's end to the ram line at crank angle {q0:.6g} deg (where the "
+                         f"mechanism is first assembled), got {rod:g} m; lengthen it (a rod longer "
+                         f"than lever + |ram_height| = {lever + abs(ram_height):.6g} m reaches the "
+                         "ram line at every crank angle)")
     D = (C.x + dx, float(ram_height))
     return Mechanism(
         name="whitworth",

@@ -2,6 +2,7 @@
 units of lengths and angles it may be written in (:class:`Units`)."""
 from kinelab.model._joints import JOINT_TYPES, JointType
 from kinelab.model._mechanism import SPACES, Input, Joint, Link, Mechanism, Point
+from kinelab.model._places import SIDE_WORDS, exact_places, place_problems
 from kinelab.model._units import ANGLE_UNITS, LENGTH_UNITS, Units
 from kinelab.model._values import (MAX_INERTIA, MAX_JOINTS, MAX_LENGTH, MAX_LINKS, MAX_MASS,
                                    MAX_RATE, MAX_TURNS, MIN_LENGTH, angle_problem,
@@ -12,4 +13,4 @@ __all__ = ["Mechanism", "Point", "Link", "Joint", "Input", "JointType", "JOINT_T
            "Units", "LENGTH_UNITS", "ANGLE_UNITS", "MIN_LENGTH", "MAX_LENGTH", "MAX_RATE",
            "MAX_TURNS", "MAX_MASS", "MAX_INERTIA", "MAX_LINKS", "MAX_JOINTS", "is_real", "real",
            "real_array", "length_problem", "coordinate_problem", "angle_problem", "rate_problem",
-           "range_problem", "name_problem"]
+           "range_problem", "name_problem", "SIDE_WORDS", "exact_places", "place_problems"]

@@ -18,6 +18,7 @@ import numpy as np
 
 from kinelab.errors import PROBLEMS_SHOWN, ModelError, describe, quoted, shown, suggest
 from kinelab.model._joints import JOINT_TYPES
+from kinelab.model._places import place_problems
 from kinelab.model._values import (MAX_INERTIA, MAX_JOINTS, MAX_LINKS, MAX_MASS, is_real,
                                    length_problem, name_problem, range_problem, rate_problem,
                                    real)
@@ -99,8 +100,17 @@ class Link:
     local : mapping of str to (float, float), optional
         The exact place of some of its other points in its own frame, m: along the
         direction from its first point to its second, and to the left of it, from the
-        first point (as ``fourbar``'s ``coupler_point``).  Points the link carries that are
-        in neither keep their place relative to the first two as the sketch draws it.
+        first point (as ``fourbar``'s ``coupler_point``).
+    sides : mapping of str to mapping, optional
+        The exact place of some of its other points by the sides of a triangle: point =
+        ``{A: distance, B: distance, "side": "left" or "right"}``, m, the distances from two
+        points of the link placed before it (its first two, or points listed before it in
+        ``points``), and the side of the line from the one of the two listed first in
+        ``points`` to the other.  ``side`` may be left out only for a flat triangle (the
+        point on the line of the two).  The place is worked out by the law of cosines
+        (:func:`kinelab.model.exact_places`).  Points the link carries that are in neither
+        ``local`` nor ``sides`` keep their place relative to the first two as the sketch
+        draws it.
     """
 
     name: str
@@ -111,11 +121,16 @@ class Link:
     inertia: float | None = None
     length: float | None = None
     local: Mapping[str, tuple[float, float]] | None = field(default=None, hash=False)
+    sides: Mapping[str, Mapping[str, float | str]] | None = field(default=None, hash=False)
 
     def __post_init__(self):
         if self.local is not None and isinstance(self.local, Mapping):
             object.__setattr__(self, "local", {k: _floats(tuple(v)) if isinstance(v, (list, tuple))
                                                else v for k, v in self.local.items()})
+        if isinstance(self.sides, Mapping):
+            object.__setattr__(self, "sides", {
+                p: {k: v if k == "side" else _float(v) for k, v in spec.items()}
+                if isinstance(spec, Mapping) else spec for p, spec in self.sides.items()} or None)
         _set(self, mass=_float(self.mass), inertia=_float(self.inertia),
              length=_float(self.length),
              ground=bool(self.ground) if isinstance(self.ground, np.bool_) else self.ground)
@@ -429,7 +444,9 @@ class Mechanism:
                          for p in self.points}
         out["links"] = [clean(vars(link) | {"points": list(link.points)}
                               | ({"local": {k: list(v) for k, v in link.local.items()}}
-                                 if link.local else {}))
+                                 if link.local else {})
+                              | ({"sides": {k: dict(v) for k, v in link.sides.items()}}
+                                 if link.sides else {}))
                         for link in self.links]
         out["joints"] = [clean(dict(vars(j))) for j in self.joints]
         out["inputs"] = [clean({k: v for k, v in vars(i).items()
@@ -588,6 +605,8 @@ def _validate(m: Mechanism) -> list[str]:
                     elif (why := next(filter(None, (length_problem(float(c), positive=False)
                                                     for c in v)), None)):
                         add(f"{where}: local.{pn}: {why}, got {describe(v)}")
+        for why in place_problems(link, {pn: points[pn].xy for pn in link.points if pn in placed}):
+            add(f"{where}: {why}")
         if link.center_of_mass is not None and link.center_of_mass not in link.points:
             add(f"{where}: center_of_mass: expected one of the link's points "
                 f"{quoted(link.points)}, got {describe(link.center_of_mass)}")

@@ -104,11 +104,21 @@ class JointRates:
     singular : ndarray of bool, shape () or (N,)
         The Jacobian is singular there; ``qd`` and ``qdd`` are then the least-squares
         (minimum-norm) rates, which need not produce the asked tool motion.
+    attainable : ndarray of bool, shape () or (N,)
+        The tool velocity asked for is one the tool can have at that pose (in the range
+        of the Jacobian): always where the Jacobian is regular.  At a singular pose it
+        tells two things apart: ``False``, no joint rates give that velocity (the pose
+        is a limit of that motion, such as the edge of the workspace for a tool moving
+        out of it); ``True``, many do (the pose is where branches of the inverse
+        solution meet, such as elbow up and elbow down with the arm stretched, and a
+        path through it goes on along either; ``qd`` is then the minimum-norm one,
+        exact, but not in general that of either branch).
     """
 
     qd: np.ndarray
     qdd: np.ndarray
     singular: np.ndarray
+    attainable: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -314,12 +324,15 @@ class SerialRobot:
         on_singular : {'raise', 'flag'}
             At a singular pose (``J`` loses rank, smallest singular value below 1e-10
             of the largest) raise :class:`SingularityError`, or return least-squares
-            rates there with ``singular`` set.
+            rates there with ``singular`` set (and ``attainable``: whether the velocity
+            asked for is one the tool can have there).
 
         Raises
         ------
         SingularityError
-            With ``on_singular='raise'``, naming the singular samples.
+            With ``on_singular='raise'``, naming the singular samples, and saying whether
+            the tool cannot move that way there (a limit of the motion) or can, with
+            joint rates that are not unique (branches of the inverse solution meet).
         ModelError
             If the robot does not have as many joints as tool coordinates.
 
@@ -343,19 +356,44 @@ class SerialRobot:
         J = self._jacobian(*chain)
         sv = np.linalg.svd(J, compute_uv=False)
         singular = sv[:, -1] <= _SINGULAR * sv[:, 0]
+        # At a singular pose, the part of v along the directions J cannot give (its left
+        # null space): none, and v is attainable with rates that are not unique.
+        off = np.zeros(len(q))
+        if singular.any():
+            U, s, _ = np.linalg.svd(J[singular])
+            lost = s <= _SINGULAR * s[:, :1]
+            off[singular] = np.linalg.norm(np.einsum("nij,ni->nj", U, v[singular]) * lost,
+                                           axis=-1)
+        attainable = off <= _SINGULAR * np.linalg.norm(v, axis=-1)
         if singular.any() and on_singular == "raise":
-            first = int(np.flatnonzero(singular)[0])
-            raise SingularityError(
-                f"robot {shown(self.name)}: the Jacobian is singular at sample(s) "
-                f"{indices(singular)} (q = {np.round(q[first], 6).tolist()}): the tool "
-                f"cannot move in every direction there, so no joint rates give an arbitrary "
-                f"tool velocity; move off that pose, or pass on_singular='flag' for "
-                f"least-squares rates with those samples flagged")
+            raise self._singular_error(q, singular, attainable, off)
         qd = _solve(J, v, singular)
         qdd = _solve(J, a - self._bias(*chain, qd), singular)
         if single:
-            return JointRates(qd=qd[0], qdd=qdd[0], singular=singular[0])
-        return JointRates(qd=qd, qdd=qdd, singular=singular)
+            return JointRates(qd=qd[0], qdd=qdd[0], singular=singular[0],
+                              attainable=attainable[0])
+        return JointRates(qd=qd, qdd=qdd, singular=singular, attainable=attainable)
+
+    def _singular_error(self, q, singular, attainable, off) -> SingularityError:
+        """What inverse_rates says at singular poses: a limit of the motion asked for, or a
+        pose where branches meet."""
+        blocked = singular & ~attainable
+        at = blocked if blocked.any() else singular
+        first = int(np.flatnonzero(at)[0])
+        where = (f"robot {shown(self.name)}: the Jacobian is singular at sample(s) "
+                 f"{indices(at)} (q = {np.round(q[first], 6).tolist()})")
+        flag_it = "pass on_singular='flag' for least-squares rates with those samples flagged"
+        if blocked.any():
+            return SingularityError(
+                f"{where} and the tool velocity asked for has a part of {off[first]:.6g} m/s "
+                f"that no joint rates give: the tool cannot move that way from this pose (a "
+                f"limit of that motion, such as the edge of the workspace); change the "
+                f"velocity or move off that pose, or {flag_it}")
+        return SingularityError(
+            f"{where}: the tool can move with the velocity asked for, but not with unique "
+            f"joint rates, as branches of the inverse solution meet at this pose and the "
+            f"rates depend on the branch the motion is on; move off that pose, or {flag_it} "
+            f"(the minimum-norm ones)")
 
     # -- inverse position -------------------------------------------------------------------
     def inverse(self, point: ArrayLike, *, branch: str | None = None,

@@ -8,10 +8,11 @@ or on a Dask cluster with the same call and the same results (``client=``).
 - :func:`family` -- a catalogue kind or a model's points as named parameters;
 - :func:`grid`, :func:`random`, :func:`sobol` -- design tables from parameter ranges;
 - :func:`descriptors` -- normalised Fourier descriptors of closed curves;
-- :func:`atlas`, :class:`Atlas` -- coupler curves of many four-bars, searched by shape;
+- :func:`atlas`, :class:`Atlas` -- coupler curves of many four-bars, searched by shape, and
+  refined into linkages (:class:`RefinedPath`) measured against the whole path;
 - :func:`tolerance` -- Monte Carlo of an output's error under dimensional tolerances.
 """
-from kinelab.sweep._atlas import Atlas, atlas
+from kinelab.sweep._atlas import Atlas, RefinedPath, atlas
 from kinelab.sweep._batch import Batch
 from kinelab.sweep._designs import grid, random, sobol
 from kinelab.sweep._family import CATALOGUE, Family, family
@@ -20,5 +21,5 @@ from kinelab.sweep._run import STANDARD_METRICS, connect, run, write_parquet
 from kinelab.sweep._tolerance import ToleranceStudy, tolerance
 
 __all__ = ["run", "family", "Family", "Batch", "grid", "random", "sobol", "descriptors",
-           "evaluate_chunk", "connect", "atlas", "Atlas", "tolerance", "ToleranceStudy", "write_parquet", "METRICS", "STANDARD_METRICS",
-           "CATALOGUE"]
+           "evaluate_chunk", "connect", "atlas", "Atlas", "RefinedPath", "tolerance",
+           "ToleranceStudy", "write_parquet", "METRICS", "STANDARD_METRICS", "CATALOGUE"]

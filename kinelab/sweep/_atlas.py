@@ -25,9 +25,10 @@ from kinelab.sweep._metrics import (DEFAULT_HARMONICS, descriptor_names, descrip
 from kinelab.solvers._arguments import seed as check_seed
 from kinelab._files import file_path
 from kinelab.sweep._run import run, write_parquet
-from kinelab.synthesis import MAX_PATH_POINTS, coupler_curves, path_generation
+from kinelab.synthesis import (MAX_PATH_POINTS, PathSolution, SolutionList, coupler_curves,
+                               path_generation)
 
-__all__ = ["Atlas", "atlas"]
+__all__ = ["Atlas", "RefinedPath", "atlas"]
 
 COLUMNS = ("ground", "crank", "coupler", "rocker", "coupler_point_along",
            "coupler_point_perpendicular")
@@ -174,25 +175,54 @@ class Atlas:
             placed.append(out)
         return np.array(placed)
 
-    def refine(self, path: ArrayLike, k: int = 3, *, points: int = 8, **options):
-        """Linkages through ``points`` points of the path, polished from the ``k`` nearest
-        designs by :func:`kinelab.synthesis.path_generation` (its ``options``: runs,
-        maxiter, seed, tolerance ...; by default one run)."""
+    def refine(self, path: ArrayLike, k: int = 3, *, points: int | None = None,
+               **options) -> SolutionList:
+        """Linkages through the path, polished from the ``k`` nearest designs by
+        :func:`kinelab.synthesis.path_generation`, each measured against every point given.
+
+        Parameters
+        ----------
+        path : array_like, shape (n, 2)
+            The closed path, its points in order, m.
+        k : int
+            How many of the nearest designs to start from.
+        points : int, optional
+            How many of the path's points the linkages are fitted through, 3 to 30
+            (``MAX_PATH_POINTS``), taken evenly along it (by length, the first and the last
+            among them); default (and at most) every point of the path, up to 30.  A last
+            point that repeats the first (a path closed by hand) is not fitted twice.
+        **options
+            Of :func:`~kinelab.synthesis.path_generation`: runs, maxiter, popsize,
+            samples, min_transmission_angle (30 deg by default), seed, refine, tolerance;
+            by default one run.
+
+        Returns
+        -------
+        SolutionList of RefinedPath
+            Best first (the lowest RMS distance of the given points to the coupler curve).
+            Each one's ``max_error`` and ``rms_error`` are the largest and RMS distance
+            from **every** point of ``path`` to the linkage's coupler curve
+            (``path_errors``), whatever points it was fitted through.
+        """
         P = _path(path, self.harmonics, placed=True)
-        if isinstance(points, bool) or not isinstance(points, (int, np.integer)) \
-                or not 3 <= points <= MAX_PATH_POINTS:
+        count = MAX_PATH_POINTS if points is None else points
+        if isinstance(count, bool) or not isinstance(count, (int, np.integer)) \
+                or not 3 <= count <= MAX_PATH_POINTS:
             raise ModelError(f"points: expected a whole number from 3 to {MAX_PATH_POINTS}, got "
                              f"{describe(points)}")
-        targets = _resampled(P[None], int(points))[0]
-        # points taken evenly along the closed path: on a path that goes back over itself (an
-        # open line, closed by its way back) two of them can fall on one place
-        gaps = np.hypot(*(targets[:, None, :] - targets[None, :, :]).transpose(2, 0, 1))
-        gaps[np.diag_indices(len(targets))] = np.inf
-        if gaps.min() <= 1e-12 * float(np.ptp(targets, axis=0).max()):
-            raise ModelError(f"path: the {int(points)} points refine takes evenly along it (closing it "
-                             "from its last point to its first) fall on one place twice: it goes "
-                             "back over itself, as an open line does; give a closed path, or "
-                             "another number of points")
+        size = float(np.ptp(P, axis=0).max())
+        # a closing repeat of the first point would be the same target twice
+        given = P[:-1] if np.hypot(*(P[-1] - P[0])) <= 1e-12 * size else P
+        chosen = _along(given, int(count))
+        targets = given[chosen]
+        for a in range(len(chosen) - 1):
+            gaps = np.hypot(*(targets[a + 1:] - targets[a]).T)
+            if gaps.min() <= 1e-12 * size:
+                b = a + 1 + int(np.argmin(gaps))
+                raise ModelError(f"path: points {chosen[a] + 1} and {chosen[b] + 1} are the "
+                                 f"same place {_shown_xy(targets[a])}, which refine cannot fit "
+                                 "twice (it fits the path's points in order); give each place "
+                                 "once, or another number of points")
         for key in options:
             if key not in _REFINE_OPTIONS:
                 hint = ("; refine starts from the atlas's nearest designs: for designs of your own, "
@@ -203,7 +233,16 @@ class Atlas:
         if "seed" in options:
             options["seed"] = check_seed(options["seed"])
         options = {"runs": 1, **options}
-        return path_generation(targets, initial=self.placed(P, k), **options)
+        initial = self.placed(P, k)
+        try:
+            found = path_generation(targets, initial=initial, **options)
+        except ModelError as exc:
+            # the targets are the path's points (or points along it): say so in its terms
+            raise ModelError([f"path: {p[len('points: '):]}" if p.startswith("points: ") else p
+                              for p in exc.problems]) from exc
+        refined = [RefinedPath.of(s, P) for s in found]
+        refined.sort(key=lambda s: s.rms_error)
+        return SolutionList(refined, reason=found.reason)
 
     def to_parquet(self, path: str | os.PathLike) -> None:
         df = self.table.copy()
@@ -261,6 +300,56 @@ class Atlas:
         return cls(df, harmonics, branch)
 
 
+@dataclass(frozen=True, eq=False)
+class RefinedPath(PathSolution):
+    """A linkage refined from an atlas's designs onto a path, measured against the whole path.
+
+    It is a :class:`~kinelab.synthesis.PathSolution` of the points it was fitted through
+    (``points``, with ``q`` and ``errors`` at them), and besides:
+
+    Attributes
+    ----------
+    path : ndarray, shape (n, 2)
+        The path as given, m.
+    path_errors : ndarray, shape (n,)
+        The distance from each point of ``path`` to the linkage's coupler curve, m
+        (:func:`kinelab.synthesis.curve_distances`: the engine's curve over every crank angle
+        at which the loop closes on the linkage's assembly branch; exact to rounding).
+
+    ``max_error`` and ``rms_error`` are the largest and RMS of ``path_errors``: how far the
+    linkage misses the path the user gave, not only the points it was fitted through.
+    """
+
+    path: np.ndarray = None
+    path_errors: np.ndarray = None
+
+    @classmethod
+    def of(cls, sol: PathSolution, path: np.ndarray) -> RefinedPath:
+        from dataclasses import fields
+
+        path = np.array(path, float)
+        errors = sol.curve_distances(path)
+        for a in (path, errors):
+            a.setflags(write=False)
+        return cls(**{f.name: getattr(sol, f.name) for f in fields(PathSolution)}, path=path,
+                   path_errors=errors)
+
+    @property
+    def rms_error(self) -> float:
+        """Root-mean-square distance of the path's points from the coupler curve, m."""
+        return float(np.sqrt(np.mean(self.path_errors ** 2)))
+
+    @property
+    def max_error(self) -> float:
+        """Largest distance of a point of the path from the coupler curve, m."""
+        return float(self.path_errors.max())
+
+    def __repr__(self) -> str:
+        return (f"RefinedPath(largest distance of the {len(self.path)} path points to the "
+                f"coupler curve={self.max_error:.3g} m, rms={self.rms_error:.3g} m, "
+                f"{self.grashof.kind}, {self.state})")
+
+
 # path_generation's options that refine passes on (it gives the points and initial designs)
 _REFINE_OPTIONS = ("runs", "maxiter", "popsize", "samples", "min_transmission_angle", "seed",
                    "refine", "tolerance")
@@ -293,6 +382,22 @@ def _normalised(P: np.ndarray) -> np.ndarray:
     unit = P / np.abs(P).max()
     unit = unit - unit.mean(axis=0)
     return unit / np.abs(unit).max()
+
+
+def _along(P: np.ndarray, count: int) -> np.ndarray:
+    """Indices of at most ``count`` of the points of a path (n, 2), in order, spread evenly
+    along it by length: each the point nearest an even step, the first and last included."""
+    if len(P) <= count:
+        return np.arange(len(P))
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(P, axis=0).T))])
+    steps = np.linspace(0.0, s[-1], count)
+    right = np.clip(np.searchsorted(s, steps), 1, len(s) - 1)
+    nearest = np.where(steps - s[right - 1] <= s[right] - steps, right - 1, right)
+    return np.unique(nearest)
+
+
+def _shown_xy(xy) -> str:
+    return "(" + ", ".join(f"{float(v):.9g}" for v in xy) + ")"
 
 
 def _resampled(P: np.ndarray, n: int) -> np.ndarray:

@@ -195,6 +195,11 @@ class DesignTable:
                 raise ModelError(f"designs: column {name!r}: "
                                  f"{expected_one_of(name, fam.parameters)} (parameters of "
                                  f"{fam.name!r}); rename or drop it")
+        if not raw:
+            raise ModelError("designs: expected a column for each parameter to vary, got none; "
+                             + (f"the family {fam.name!r} takes {', '.join(fam.parameters)}"
+                                if fam.parameters else
+                                f"the family {fam.name!r} has no numeric parameters to vary"))
         missing = [p for p in fam.parameters if p not in raw and p not in fam.defaults]
         if missing:
             raise ModelError(f"designs: missing column(s) {', '.join(map(repr, missing))} of "

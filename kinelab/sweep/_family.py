@@ -203,15 +203,15 @@ class _FourbarDesigns(Designs):
 
 class DesignOffModel(ModelError):
     """A design of a model's family that moves points off the lengths, places or offsets the
-    model declares (a link's ``local`` place, a joint's ``offset``): ``detail`` says which
-    and by how much, ``design`` the parameters that moved."""
+    model declares (a link's ``local`` place or ``sides``, a joint's ``offset``): ``detail``
+    says which and by how much, ``design`` the parameters that moved."""
 
     def __init__(self, detail: str, design: str):
         self.detail, self.design = detail, design
         super().__init__(f"designs: the design {design} moves points off the places the model "
                          f"declares ({detail}); vary only points that no declaration fixes, or "
-                         "remove that declaration (a link's local place, a joint's offset) from "
-                         "the model")
+                         "remove that declaration (a link's local place or sides, a joint's "
+                         "offset) from the model")
 
 
 def _check_design(mech: Mechanism, row: Mapping[str, float], base: Mechanism) -> None:
@@ -248,6 +248,12 @@ class _EngineDesigns(Designs):
                 except KinelabError as exc:     # this design alone cannot be analysed
                     problems[d] = str(exc).splitlines()[0]
                     mech = None
+            if mech is not None and len(mech.inputs) != 1:
+                # the family's, not the design's: every sample of a sweep is one input's value
+                raise ModelError(f"family: the mechanisms of {fam.name!r} have {len(mech.inputs)} "
+                                 "inputs, but a sweep turns one input through its samples; sweep "
+                                 "a family with one input (a model file of it with one input, "
+                                 "say)")
             self.mechanisms.append(mech)
         # the names of the kinematics, for a chunk where no design could be built too
         self.template = fam.base or next((m for m in self.mechanisms if m is not None), None)

@@ -15,7 +15,9 @@ the planar kinematics engine:
   1, 2, ..., n;
 - **circuit defect**: some position lies on the other circuit of a Grashof linkage, which
   no motion reaches without taking the linkage apart;
-- the Grashof class and the smallest transmission angle on the way.
+- the Grashof class and the smallest transmission angle on the way, measured by the engine;
+  below a limit (30 deg unless the task says otherwise, ``min_transmission_angle``) it is a
+  **transmission angle defect**.
 
 All lengths in metres and angles in radians (``degrees=True`` where people type angles).
 The notes' examples in centimetres are reproduced in metres: the synthesis is
@@ -27,10 +29,11 @@ from kinelab.synthesis._burmester import (BurmesterCurves, burmester_curves, cen
 from kinelab.synthesis._five_positions import burmester_points, five_positions
 from kinelab.synthesis._function import (FunctionSolution, chebyshev_points, freudenstein,
                                          function_generation)
-from kinelab.synthesis._linkage import fourbar_model
+from kinelab.synthesis._linkage import TRANSMISSION_LIMIT, fourbar_model
 from kinelab.synthesis._motion import (MotionSolution, TwoPositions, three_positions,
                                        two_positions)
-from kinelab.synthesis._path import MAX_PATH_POINTS, PathSolution, coupler_curves, path_generation
+from kinelab.synthesis._path import (MAX_PATH_POINTS, PathSolution, coupler_curves,
+                                     curve_distances, path_generation)
 from kinelab.synthesis._pivots import fixed_pivot, moving_pivot
 from kinelab.synthesis._positions import Poles, Positions, pole, poles
 from kinelab.synthesis._quick_return import (CrankRocker, QuickReturn, crank_rocker, crank_rockers,
@@ -43,7 +46,7 @@ __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "four_positions", "center_points", "center_point_cubic", "burmester_curves",
            "BurmesterCurves", "SolutionList", "function_generation", "FunctionSolution",
            "chebyshev_points", "freudenstein", "path_generation", "PathSolution",
-           "coupler_curves", "fourbar_model", "five_positions", "burmester_points",
-           "approximate_positions", "fit_dyads", "crank_rocker", "crank_rockers", "CrankRocker",
-           "offset_slider_crank", "slotted_lever", "whitworth", "QuickReturn",
-           "imbalance_angle", "max_time_ratio", "MAX_PATH_POINTS"]
+           "coupler_curves", "curve_distances", "fourbar_model", "five_positions",
+           "burmester_points", "approximate_positions", "fit_dyads", "crank_rocker",
+           "crank_rockers", "CrankRocker", "offset_slider_crank", "slotted_lever", "whitworth",
+           "QuickReturn", "imbalance_angle", "max_time_ratio", "MAX_PATH_POINTS", "TRANSMISSION_LIMIT"]

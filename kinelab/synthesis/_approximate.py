@@ -21,6 +21,7 @@ import numpy as np
 
 from kinelab.errors import ModelError, describe
 from kinelab.synthesis._burmester import _normalised
+from kinelab.synthesis._linkage import transmission_limit
 from kinelab.synthesis._motion import motion_solution
 from kinelab.synthesis._positions import (Positions, as_positions, check_not_one_turn, fmt,
                                           rotation)
@@ -159,6 +160,7 @@ def fit_dyads(points, angles=None, *, dyads: int = 4, degrees: bool = False):
 
 
 def approximate_positions(points, angles=None, *, dyads: int = 4,
+                          min_transmission_angle: float | None = None,
                           degrees: bool = False) -> SolutionList:
     """More than five positions: four-bars from the best least-squares dyads.
 
@@ -174,6 +176,10 @@ def approximate_positions(points, angles=None, *, dyads: int = 4,
         The coupler's orientations, or its rotations from position 1, rad.
     dyads : int
         Dyads to combine (the best first): up to dyads (dyads - 1) / 2 four-bars.
+    min_transmission_angle : float, optional
+        The smallest transmission angle accepted between position 1 and the last (rad, or
+        degrees with ``degrees=True``); default 30 deg (:data:`TRANSMISSION_LIMIT`).  A
+        linkage below it has a transmission angle defect.
     degrees : bool
         Angles in degrees.
 
@@ -201,6 +207,7 @@ def approximate_positions(points, angles=None, *, dyads: int = 4,
     (True, True)
     """
     pos = as_positions(points, angles, degrees)
+    limit = transmission_limit(min_transmission_angle, degrees)
     if pos.n < 6:
         raise ModelError(f"points: expected more than five positions, got {pos.n}; "
                          + ("use five_positions" if pos.n == 5 else "fewer are met exactly "
@@ -212,7 +219,8 @@ def approximate_positions(points, angles=None, *, dyads: int = 4,
             i, j = j, i
         try:
             sols.append(motion_solution(pos, centers[i], centers[j], circles[i], circles[j],
-                                        radii=(float(radii[i]), float(radii[j]))))
+                                        radii=(float(radii[i]), float(radii[j])), limit=limit,
+                                        remedy="other pairs of dyads may still give one"))
         except ModelError as exc:
             reasons.append(f"dyads at {fmt(centers[i])} and {fmt(centers[j])} left out: {exc}")
     sols.sort(key=lambda s: (not s.valid, float(np.sqrt(np.mean(s.position_errors ** 2)))))

@@ -31,6 +31,7 @@ from kinelab._memory import require
 from kinelab.model import MAX_LENGTH, is_real, length_problem
 from kinelab.solvers._arguments import reals, whole
 from kinelab.synthesis._arguments import coordinate
+from kinelab.synthesis._linkage import transmission_limit
 from kinelab.synthesis._motion import motion_solution
 from kinelab.synthesis._pivots import solve_rows, suh_radcliffe_rows
 from kinelab.synthesis._positions import Positions, as_positions, check_not_one_turn, fmt
@@ -296,6 +297,7 @@ def _dyads(e, ea, delta):
 
 
 def four_positions(points, angles=None, a0x: float = None, b0x: float = None, *,
+                   min_transmission_angle: float | None = None,
                    degrees: bool = False) -> SolutionList:
     """Four positions: every four-bar whose fixed pivots have the given abscissae.
 
@@ -312,6 +314,10 @@ def four_positions(points, angles=None, a0x: float = None, b0x: float = None, *,
         Orientations of the coupler, or rotations alpha_2..alpha_4 from position 1, rad.
     a0x, b0x : float
         Abscissae of the fixed pivots of the crank and of the rocker, m.
+    min_transmission_angle : float, optional
+        The smallest transmission angle accepted between position 1 and the last (rad, or
+        degrees with ``degrees=True``); default 30 deg (:data:`TRANSMISSION_LIMIT`).  A
+        linkage below it has a transmission angle defect.
     degrees : bool
         Angles in degrees.
 
@@ -335,6 +341,7 @@ def four_positions(points, angles=None, a0x: float = None, b0x: float = None, *,
     array([-20.195,  25.565, -29.167,  42.355, -25.349,  25.379, -37.085,  36.094])
     """
     pos = _four(points, angles, degrees)
+    limit = transmission_limit(min_transmission_angle, degrees)
     problems = [f"{n}: expected a finite number, got {describe(v)}" if not is_real(v)
                 else f"{n}: {why}, got {float(v):g} m"
                 for n, v in (("a0x", a0x), ("b0x", b0x))
@@ -366,6 +373,10 @@ def four_positions(points, angles=None, a0x: float = None, b0x: float = None, *,
             reasons.append(f"A0 = B0 = {fmt(A0)} left out: a linkage needs two "
                            "distinct fixed pivots")
             continue
-        sols.append(motion_solution(pos, A0, B0, moving["A", ka], moving["B", kb]))
+        try:
+            sols.append(motion_solution(pos, A0, B0, moving["A", ka], moving["B", kb],
+                                        limit=limit, remedy="another b0x gives other linkages"))
+        except ModelError as exc:
+            reasons.append(f"A0 = {fmt(A0)}, B0 = {fmt(B0)} left out: {exc}")
     return SolutionList(sols, reason="; ".join(reasons))
 

@@ -24,6 +24,7 @@ import numpy as np
 
 from kinelab.errors import ModelError
 from kinelab.synthesis._burmester import _cubic, _normalised
+from kinelab.synthesis._linkage import transmission_limit
 from kinelab.synthesis._motion import motion_solution
 from kinelab.synthesis._pivots import suh_radcliffe_rows
 from kinelab.synthesis._positions import (Positions, as_positions, check_not_one_turn, fmt,
@@ -193,7 +194,8 @@ def burmester_points(points, angles=None, *, degrees: bool = False) -> tuple[np.
     return centers, circles
 
 
-def five_positions(points, angles=None, *, degrees: bool = False) -> SolutionList:
+def five_positions(points, angles=None, *, min_transmission_angle: float | None = None,
+                   degrees: bool = False) -> SolutionList:
     """Five positions: every four-bar whose coupler passes through them (Burmester).
 
     Each pair of the real Burmester points (:func:`burmester_points`) makes one four-bar,
@@ -204,14 +206,18 @@ def five_positions(points, angles=None, *, degrees: bool = False) -> SolutionLis
     ----------
     points, angles, degrees : see :func:`burmester_points`
         The five positions.
+    min_transmission_angle : float, optional
+        The smallest transmission angle accepted between position 1 and the last (rad, or
+        degrees with ``degrees=True``); default 30 deg (:data:`TRANSMISSION_LIMIT`).  A
+        linkage below it has a transmission angle defect.
 
     Returns
     -------
     SolutionList of MotionSolution
         Up to six linkages, each with ``A0, B0, A1, B1``, the ``model``, its defects
-        (branch, order, circuit) and Grashof class (keep ``[s for s in sols if s.valid]``
-        for the usable ones); when there are fewer than two real Burmester points the list
-        is empty and ``reason`` says so.
+        (branch, order, circuit, transmission angle) and Grashof class (keep
+        ``[s for s in sols if s.valid]`` for the usable ones); when there are fewer than
+        two real Burmester points the list is empty and ``reason`` says so.
 
     Raises
     ------
@@ -228,6 +234,7 @@ def five_positions(points, angles=None, *, degrees: bool = False) -> SolutionLis
     (True, True)
     """
     pos = _five(points, angles, degrees)
+    limit = transmission_limit(min_transmission_angle, degrees)
     centers, circles = burmester_points(pos)
     k = centers.shape[0]
     if k < 2:
@@ -240,7 +247,9 @@ def five_positions(points, angles=None, *, degrees: bool = False) -> SolutionLis
         if np.linalg.norm(circles[j] - centers[j]) < np.linalg.norm(circles[i] - centers[i]):
             i, j = j, i
         try:
-            sols.append(motion_solution(pos, centers[i], centers[j], circles[i], circles[j]))
+            sols.append(motion_solution(pos, centers[i], centers[j], circles[i], circles[j],
+                                        limit=limit,
+                                        remedy="other pairs of Burmester points may give one"))
         except ModelError as exc:
             reasons.append(f"Burmester points {fmt(centers[i])} and {fmt(centers[j])} left "
                            f"out: {exc}")

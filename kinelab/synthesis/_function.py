@@ -30,7 +30,9 @@ from kinelab.model import MAX_TURNS, Mechanism, is_real, length_problem
 from kinelab.solvers import wrap_angle
 from kinelab.solvers._arguments import flag, reals, whole
 from kinelab.synthesis._arguments import angle_array
-from kinelab.synthesis._linkage import CheckedLinkage, fourbar_model, model_grashof
+from kinelab.synthesis._linkage import (TRANSMISSION_LIMIT, CheckedLinkage, fourbar_model,
+                                        model_grashof, planned, transmission_defects,
+                                        transmission_limit)
 
 __all__ = ["chebyshev_points", "freudenstein", "FunctionSolution", "function_generation"]
 
@@ -134,12 +136,16 @@ class FunctionSolution(CheckedLinkage):
         the residual of the least-squares fit at each one.
     grashof : Grashof
     min_transmission_angle : float
-        Over the whole input range, rad.
+        Over the whole input range, rad (the engine's, :func:`kinelab.analyze`).
     branch_defect : bool
         The linkage cannot move over the range on one branch without a limit or
         dead-centre position, or meets a precision point on the other branch.  (No order
         defect is possible: the crank angle is a monotonic function of x.)
     defects : tuple of str
+        The branch defect, and a transmission angle below ``transmission_limit``.
+    transmission_limit : float
+        The smallest transmission angle accepted over the input range, rad (30 deg unless
+        the task says otherwise); ``meets_transmission_limit`` says whether it is kept.
     """
 
     model: Mechanism
@@ -155,6 +161,7 @@ class FunctionSolution(CheckedLinkage):
     min_transmission_angle: float
     branch_defect: bool
     defects: tuple[str, ...]
+    transmission_limit: float = TRANSMISSION_LIMIT
 
     @property
     def max_structural_error(self) -> float:
@@ -198,6 +205,7 @@ def _range(name, r, unit: str = "") -> tuple[float, float]:
 def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[float, float],
                         input_range: tuple[float, float], output_range: tuple[float, float], *,
                         points: int | ArrayLike = 3, ground: float = 1.0, samples: int = 201,
+                        min_transmission_angle: float | None = None,
                         degrees: bool = False) -> FunctionSolution:
     """A four-bar whose rocker angle generates y = f(x) from the crank angle.
 
@@ -221,6 +229,10 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
         O2O4, m (the linkage is scale-free; this sets its size).
     samples : int
         Points of the structural-error curve.
+    min_transmission_angle : float, optional
+        The smallest transmission angle accepted over the input range (rad, or degrees
+        with ``degrees=True``); default 30 deg (:data:`TRANSMISSION_LIMIT`).  Below it the
+        linkage has a transmission angle defect.
     degrees : bool
         Angles in degrees.
 
@@ -232,8 +244,9 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
     ------
     ModelError
         Bad ranges, an f that is not finite or not continuous over x_range (a pole, a
-        jump), f(x0) = f(xf), or no four-bar (an infinite link, or a coupler whose
-        squared length comes out negative).
+        jump), f(x0) = f(xf), or no four-bar (an infinite link, a coupler whose squared
+        length comes out negative, or a linkage at a dead centre at the first precision
+        point: its coupler and rocker in line, as when both angles are zero there).
 
     Examples
     --------
@@ -246,6 +259,15 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
     >>> round(sol.max_structural_error, 5), sol.valid    # y spans 0.301
     (0.00042, True)
     """
+    return _function_generation(f, x_range, input_range, output_range, points, ground, samples,
+                                min_transmission_angle, degrees)
+
+
+def _function_generation(f, x_range, input_range, output_range, points=3, ground=1.0,
+                         samples=201, min_transmission_angle=None, degrees=False,
+                         shown: str | None = None) -> FunctionSolution:
+    """:func:`function_generation`; ``shown``, the angle unit its messages show angles in
+    (a task file's; default the call's)."""
     if not callable(f):
         raise ModelError(f"f: expected a function of x, got {describe(f)}")
     x0, xf = _range("x_range", x_range)
@@ -266,6 +288,7 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
     if why := length_problem(float(ground)):
         raise ModelError(f"ground: {why}, got {float(ground):g} m")
     samples = whole("samples", samples, 2, MAX_SAMPLES)
+    limit = transmission_limit(min_transmission_angle, degrees)
     if np.ndim(points) == 0:
         points = whole("points", points, 3, MAX_PRECISION_POINTS)
     else:
@@ -312,6 +335,14 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
         # at the first point's crank angle where its rocker pin is nearest the prescribed one
         B = _assembled(A, np.array([d, 0.0]), math.sqrt(b2), abs(c), B)
     model = fourbar_model((0.0, 0.0), (d, 0.0), A, B, name="function generator")
+    shown = shown or unit
+    at = [theta2(x[0]), theta4(x[0])]
+    at = np.degrees(at) if shown == "deg" else at
+    start, other = ("10 deg", "20 deg") if shown == "deg" else ("0.2 rad", "0.4 rad")
+    planned(model, f"input_range, output_range: at the precision point x = {x[0]:.6g} (input "
+            f"angle {at[0]:.6g} {shown}, output angle {at[1]:.6g} {shown})",
+            f"offset the angle ranges (start the input at, say, {start} and the output at "
+            f"{other}) or choose other precision points")
     q_off = np.pi if a < 0 else 0.0
     out_off = np.pi if c < 0 else 0.0
 
@@ -335,7 +366,10 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
         defects.append("branch defect: the linkage cannot move over the whole input range on the "
                        "branch of the first precision point (a limit or dead-centre position, "
                        "or a precision point on the other branch)")
+    branch_defect = bool(defects)
     mu = transmission_angle(sol)[sol.assembled]
+    mu_min = float(mu.min()) if mu.size else float("nan")
+    defects += transmission_defects(mu_min, limit, "over the input range")
     q = theta2(x) + q_off
     for arr in (K, x, q, xs):
         arr.setflags(write=False)
@@ -348,8 +382,8 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
         output_range=(t4s + out_off, t4e + out_off), x_samples=xs, structural_error=err,
         precision_errors=at_points,
         grashof=model_grashof(model),
-        min_transmission_angle=float(mu.min()) if mu.size else float("nan"),
-        branch_defect=bool(defects), defects=tuple(defects))
+        min_transmission_angle=mu_min, branch_defect=branch_defect, defects=tuple(defects),
+        transmission_limit=limit)
 
 
 def _values(f: Callable, x: np.ndarray) -> np.ndarray:

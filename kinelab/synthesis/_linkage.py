@@ -11,7 +11,9 @@ then move it with the planar kinematics engine (:func:`kinelab.analyze`):
   (dead-centre) configuration;
 - **order defect**: the crank cannot pass the positions in the order 1, 2, ..., n while
   turning one way;
-- the Grashof class and the smallest transmission angle met on the way.
+- the Grashof class and the smallest transmission angle met on the way, against a limit
+  (:data:`TRANSMISSION_LIMIT`, 30 deg, by default): a linkage below it has a
+  **transmission angle defect**.
 """
 from __future__ import annotations
 
@@ -22,19 +24,26 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ModelError
-from kinelab.kinematics import KinematicSolution, analyze, transmission_angle
+from kinelab.errors import ModelError, describe
+from kinelab.kinematics import KinematicSolution, analyze, plan, transmission_angle
 from kinelab.mechanisms import Grashof, grashof
 from kinelab.model import (MAX_LENGTH, MIN_LENGTH, Input, Joint, Link, Mechanism, Point,
-                           length_problem)
+                           is_real, length_problem)
 from kinelab.synthesis._positions import as_xy, cross, fmt
 
-__all__ = ["fourbar_model", "CheckedLinkage", "Travel", "travel", "circuits", "nearer_branch"]
+__all__ = ["fourbar_model", "CheckedLinkage", "Travel", "travel", "circuits", "nearer_branch",
+           "TRANSMISSION_LIMIT", "transmission_limit", "transmission_defects", "planned"]
 
 _SWEEP_STEP = math.radians(0.5)   # crank step of the sweeps that look for limit positions
 _DEGENERATE = 1e-12               # relative length below which a link has no length
 MAX_SPAN = 1e6                    # longest link over shortest: beyond, the shortest's motion is
                                   # within the rounding of the loop's closure (eps x 1e6 ~ 2e-10)
+# The smallest transmission angle a synthesized linkage may have over its travel, unless the
+# task says otherwise: a rule of thumb for smooth running and good force transmission.  Alt,
+# who introduced the transmission angle (1932), asked for about 40 deg; 30 deg is the looser
+# floor common in practice, and the one kept here.
+TRANSMISSION_LIMIT = math.radians(30.0)
+_MU_SLACK = 1e-9                  # rad: a transmission angle this close to the limit meets it
 
 
 def fourbar_model(A0: ArrayLike, B0: ArrayLike, A1: ArrayLike, B1: ArrayLike,
@@ -136,17 +145,77 @@ def model_grashof(model: Mechanism) -> Grashof:
     return grashof(p["ground"], p["crank"], p["coupler"], p["rocker"])
 
 
+def transmission_limit(value, degrees: bool = False) -> float:
+    """The ``min_transmission_angle`` of a task, rad: None for :data:`TRANSMISSION_LIMIT`, else
+    an angle in [0, pi/2) rad ([0, 90) deg with ``degrees``)."""
+    if value is None:
+        return TRANSMISSION_LIMIT
+    top, unit = ("90", "deg") if degrees else ("pi/2", "rad")
+    if not (is_real(value) and 0.0 <= value < (90.0 if degrees else math.pi / 2)):
+        raise ModelError(f"min_transmission_angle: expected an angle in [0, {top}) {unit}, got "
+                         f"{describe(value)}")
+    return math.radians(float(value)) if degrees else float(value)
+
+
+def _deg(angle: float) -> str:
+    return f"{math.degrees(angle):.4g} deg"
+
+
+def transmission_defects(mu_min: float, limit: float, span: str) -> tuple[str, ...]:
+    """The transmission angle defect of a linkage whose transmission angle drops to
+    ``mu_min`` (rad) ``span`` ("between position 1 and position 3"), when that is below
+    ``limit``; none when it is not (or when no travel was measured: other defects say why)."""
+    if not mu_min < limit - _MU_SLACK:
+        return ()
+    return (f"transmission angle defect: the transmission angle drops to {_deg(mu_min)} "
+            f"{span}, below the limit of {_deg(limit)} (min_transmission_angle): the coupler "
+            "pushes the rocker too nearly along it; choose another linkage, or lower the limit",)
+
+
+def planned(model: Mechanism, where: str, remedy: str) -> Mechanism:
+    """The synthesized four-bar ``model``, its engine plan made (and cached on it).
+
+    The model is sketched in a configuration the task prescribes.  Where the coupler and
+    the rocker are in line there, the sketch is a dead centre where the two assembly modes
+    meet, and the engine cannot start from it; that is said in the task's terms: ``where``
+    names the task's item (``"input_range, output_range: at the precision point x = 0"``),
+    ``remedy`` what to change.  The engine's own error is kept as the cause."""
+    try:
+        plan(model)
+    except ModelError as exc:
+        O2, A, B, O4 = (np.array(model.point(n).xy) for n in ("O2", "A", "B", "O4"))
+        size = max(float(np.ptp(np.array([O2, A, B, O4]), axis=0).max()), 1e-300)
+        flat = abs(float(cross(A - O2, O4 - O2))) <= 1e-9 * size * size
+        what = ("the linkage is flat: its four pivots lie on one line, the crank, the coupler and "
+                "the rocker all along the ground line" if flat else
+                f"the crank pin {fmt(A)}, the rocker pin {fmt(B)} and the rocker's pivot "
+                f"{fmt(O4)} are in line, so the coupler and the rocker are")
+        raise ModelError(f"{where}: {what}: a dead centre, where the four-bar's two assembly modes "
+                         "meet, so it cannot tell which one is meant (and transmits no force to "
+                         f"the rocker there); {remedy}") from exc
+    return model
+
+
 class CheckedLinkage:
-    """What every synthesized four-bar result offers (it has ``model`` and ``defects``)."""
+    """What every synthesized four-bar result offers (it has ``model``, ``defects``,
+    ``min_transmission_angle`` and ``transmission_limit``)."""
 
     model: Mechanism
     defects: tuple[str, ...]
+    min_transmission_angle: float
+    transmission_limit: float
 
     @property
     def valid(self) -> bool:
         """No defect: the engine reaches every prescribed configuration, in order, on one
-        branch."""
+        branch, with a transmission angle of at least ``transmission_limit`` all the way."""
         return not self.defects
+
+    @property
+    def meets_transmission_limit(self) -> bool:
+        """The smallest transmission angle over the travel is at least ``transmission_limit``
+        (False when it could not be measured)."""
+        return bool(self.min_transmission_angle >= self.transmission_limit - _MU_SLACK)
 
     @property
     def lengths(self) -> dict[str, float]:

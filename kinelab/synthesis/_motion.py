@@ -15,8 +15,10 @@ from kinelab.errors import ModelError
 from kinelab.mechanisms import Grashof
 from kinelab.model import MAX_LENGTH, Mechanism
 from kinelab.solvers import wrap_angle
-from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, circuits, finite_or_inf,
-                                        fourbar_model, model_grashof, nearer_branch, travel)
+from kinelab.synthesis._linkage import (TRANSMISSION_LIMIT, CheckedLinkage, at_inputs, circuits,
+                                        finite_or_inf, fourbar_model, model_grashof,
+                                        nearer_branch, planned, transmission_defects,
+                                        transmission_limit, travel)
 from kinelab.synthesis._arguments import coordinate
 from kinelab.synthesis._pivots import fixed_pivot, moving_pivot
 from kinelab.synthesis._positions import (Positions, as_positions, as_xy, check_not_one_turn,
@@ -50,7 +52,7 @@ class MotionSolution(CheckedLinkage):
         Grashof class of the linkage.
     min_transmission_angle : float
         Smallest transmission angle (folded to [0, pi/2]) met while the crank carries the
-        coupler from position 1 to position n, rad.
+        coupler from position 1 to position n, rad (the engine's, :func:`kinelab.analyze`).
     branch_defect, order_defect : bool
         See :mod:`kinelab.synthesis` (a branch defect: some position lies on the other
         assembly branch or beyond a limit position; an order defect: turning the crank one
@@ -72,7 +74,11 @@ class MotionSolution(CheckedLinkage):
         m.  Zero (to rounding) for exact synthesis; the residuals of the least-squares fit
         for :func:`approximate_positions`.
     defects : tuple of str
-        A sentence for each defect found; empty for a usable linkage.
+        A sentence for each defect found (a transmission angle below ``transmission_limit``
+        is one); empty for a usable linkage.
+    transmission_limit : float
+        The smallest transmission angle the task accepts, rad (30 deg unless it says
+        otherwise); ``meets_transmission_limit`` says whether the linkage keeps it.
     """
 
     A0: np.ndarray
@@ -93,6 +99,7 @@ class MotionSolution(CheckedLinkage):
     angle_errors: np.ndarray
     dyad_residuals: np.ndarray
     defects: tuple[str, ...]
+    transmission_limit: float = TRANSMISSION_LIMIT
 
     def __repr__(self) -> str:
         f = np.array2string
@@ -103,9 +110,13 @@ class MotionSolution(CheckedLinkage):
 
 
 def motion_solution(pos: Positions, A0, B0, A1, B1,
-                    radii: tuple[float, float] | None = None) -> MotionSolution:
+                    radii: tuple[float, float] | None = None, *,
+                    limit: float = TRANSMISSION_LIMIT,
+                    remedy: str = "choose another rocker pivot") -> MotionSolution:
     """Build the model of a synthesized four-bar and check it with the engine.
 
+    ``limit`` is the smallest transmission angle accepted (rad); ``remedy`` what the
+    task's author is told to change when position 1 is a dead centre of the linkage.
     With ``radii`` (the crank's and the rocker's lengths fitted by least squares) the
     linkage is approximate: it is sketched with those lengths at the crank angle of
     position 1, and a position counts as reached on the sketch's branch when the engine's
@@ -120,6 +131,7 @@ def motion_solution(pos: Positions, A0, B0, A1, B1,
         radii = (float(np.linalg.norm(A1 - A0)), float(np.linalg.norm(B1 - B0)))
     else:
         model = _fitted_model(pos, A0, B0, A1, B1, radii)
+    planned(model, "position 1", remedy)
     q = np.arctan2(Aj[:, 1] - A0[1], Aj[:, 0] - A0[0])
     scale = max(pos.size, max(model.parameters[k] for k in ("ground", "crank", "coupler", "rocker")))
 
@@ -143,6 +155,9 @@ def motion_solution(pos: Positions, A0, B0, A1, B1,
         lost = ", ".join(str(j + 1) for j in np.flatnonzero(circuit != circuit[0]))
         defects += (f"circuit defect: position(s) {lost} lie on the other circuit of the "
                     "linkage; it cannot move there from position 1 without being taken apart",)
+    circuit_defect = len(defects) > len(t.defects)
+    defects += transmission_defects(t.min_transmission_angle, limit,
+                                    f"between position 1 and position {pos.n}")
     dpos, dang = pose_errors(at_inputs(model, q), np.arange(pos.n))
     residuals = np.column_stack([np.linalg.norm(Aj - A0, axis=1) - radii[0],
                                  np.linalg.norm(Bj - B0, axis=1) - radii[1]])
@@ -152,9 +167,9 @@ def motion_solution(pos: Positions, A0, B0, A1, B1,
                           model=model, q=q, grashof=model_grashof(model),
                           min_transmission_angle=t.min_transmission_angle,
                           branch_defect=t.branch_defect, order_defect=t.order_defect,
-                          circuit_defect=len(defects) > len(t.defects),
+                          circuit_defect=circuit_defect,
                           direction=t.direction, position_errors=dpos, angle_errors=dang,
-                          dyad_residuals=residuals, defects=defects)
+                          dyad_residuals=residuals, defects=defects, transmission_limit=limit)
 
 
 def _fitted_model(pos: Positions, A0, B0, A1, B1, radii) -> Mechanism:
@@ -224,17 +239,21 @@ class TwoPositions:
         """Fixed pivots B0 = B0_origin + t B0_direction, shape t.shape + (2,)."""
         return self.B0_origin + np.multiply.outer(np.asarray(t, float), self.B0_direction)
 
-    def solution(self, s: float, t: float) -> MotionSolution:
+    def solution(self, s: float, t: float, *,
+                 min_transmission_angle: float = TRANSMISSION_LIMIT) -> MotionSolution:
         """The four-bar with fixed pivots ``A0(s)`` and ``B0(t)``, checked (``s`` and ``t``
-        in m, at most 1e9 in size)."""
+        in m, at most 1e9 in size; below ``min_transmission_angle``, rad, on the way from
+        position 1 to 2 it has a transmission angle defect)."""
         s, t = coordinate("s", s), coordinate("t", t)
+        limit = transmission_limit(min_transmission_angle)
         A0, B0 = self.A0(s), self.B0(t)
         for name, X in (("s", A0), ("t", B0)):
             if np.abs(X).max() > MAX_LENGTH:
                 raise ModelError(f"{name}: puts the fixed pivot at {fmt(X)}, beyond the "
                                  f"coordinates kinelab computes with ({MAX_LENGTH:g} m); choose "
                                  "a smaller value")
-        return motion_solution(self.positions, A0, B0, self.A1, self.B1)
+        return motion_solution(self.positions, A0, B0, self.A1, self.B1, limit=limit,
+                               remedy="choose another t (it moves B0 along its bisector) or B1")
 
 
 def _bisector(X1, X2, name, size):
@@ -302,7 +321,8 @@ def two_positions(points, angles=None, A1: ArrayLike = None, B1: ArrayLike = Non
 # -- three positions ----------------------------------------------------------------------
 def three_positions(points, angles=None, A0: ArrayLike | None = None, B0: ArrayLike | None = None,
                     *, A1: ArrayLike | None = None, B1: ArrayLike | None = None,
-                    method: str = "suh-radcliffe", degrees: bool = False) -> MotionSolution:
+                    method: str = "suh-radcliffe", min_transmission_angle: float | None = None,
+                    degrees: bool = False) -> MotionSolution:
     """Three positions: the four-bar through them, from two chosen pivots.
 
     For each dyad give either its fixed pivot (``A0``, ``B0``: the moving pivot follows
@@ -322,6 +342,10 @@ def three_positions(points, angles=None, A0: ArrayLike | None = None, B0: ArrayL
         Moving pivots in position 1, m (instead of A0, B0).
     method : {"suh-radcliffe", "poles"}
         How a moving pivot is found from a fixed one (see :func:`moving_pivot`).
+    min_transmission_angle : float, optional
+        The smallest transmission angle accepted between position 1 and position 3 (rad,
+        or degrees with ``degrees=True``); default 30 deg (:data:`TRANSMISSION_LIMIT`).
+        Below it the linkage has a transmission angle defect.
     degrees : bool
         Angles in degrees.
 
@@ -334,7 +358,8 @@ def three_positions(points, angles=None, A0: ArrayLike | None = None, B0: ArrayL
     ------
     ModelError
         Not three positions, a dyad given by both or neither of its pivots, a pivot at
-        infinity, or coincident pivots.
+        infinity, coincident pivots, or pivots that put the linkage at a dead centre in
+        position 1 (the coupler and the rocker in line).
 
     Examples
     --------
@@ -349,6 +374,7 @@ def three_positions(points, angles=None, A0: ArrayLike | None = None, B0: ArrayL
     ('fourbar', True)
     """
     pos = as_positions(points, angles, degrees)
+    limit = transmission_limit(min_transmission_angle, degrees)
     if pos.n != 3:
         raise ModelError(f"points: expected three positions, got {pos.n}"
                          + ("; use four_positions" if pos.n == 4 else ""))
@@ -370,4 +396,5 @@ def three_positions(points, angles=None, A0: ArrayLike | None = None, B0: ArrayL
     if problems:
         raise ModelError(problems)
     (A0v, A1v), (B0v, B1v) = pivots["A"], pivots["B"]
-    return motion_solution(pos, A0v, B0v, A1v, B1v)
+    return motion_solution(pos, A0v, B0v, A1v, B1v, limit=limit,
+                           remedy="choose another B0 or B1 (or A0, A1)")

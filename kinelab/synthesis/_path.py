@@ -22,17 +22,20 @@ from numpy.typing import ArrayLike
 
 from kinelab import _memory as memory
 from kinelab.errors import ModelError, describe
+from kinelab.kinematics import analyze
 from kinelab.mechanisms import Grashof
 from kinelab.model import MAX_LENGTH, MIN_LENGTH, Mechanism, is_real
 from kinelab.solvers._arguments import flag, reals, whole
 from kinelab.solvers._arguments import seed as check_seed
 from kinelab.synthesis._arguments import point_array
 from kinelab.solvers import wrap_angle
-from kinelab.synthesis._linkage import (CheckedLinkage, at_inputs, finite_or_inf, fourbar_model,
-                                        model_grashof, travel)
+from kinelab.synthesis._linkage import (TRANSMISSION_LIMIT, CheckedLinkage, at_inputs,
+                                        finite_or_inf, fourbar_model, model_grashof,
+                                        transmission_defects, transmission_limit, travel)
 from kinelab.synthesis._results import SolutionList
 
-__all__ = ["coupler_curves", "PathSolution", "path_generation", "MAX_PATH_POINTS"]
+__all__ = ["coupler_curves", "curve_distances", "PathSolution", "path_generation",
+           "MAX_PATH_POINTS"]
 
 # The most targets and crank samples a search takes.  A path is given by 5 to 20 points as a
 # rule (9 + n unknowns: at most nine are met exactly); each round's work grows with both
@@ -49,7 +52,6 @@ _INFEASIBLE = 1.0      # added to the objective (task normalised to unit size) o
 _NOWHERE = 100.0       # objective of a design that assembles at no sample
 _MU_FLOOR = np.radians(1.0)   # least squares keep the transmission angle above this at least
 _REACHED = 1e-8        # relative distance engine vs closed form at a matched crank angle
-_MU_SLACK = 1e-9       # rad: least squares meet the transmission angle's bound to about this
 
 
 def coupler_curves(designs: ArrayLike, q: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray,
@@ -215,13 +217,17 @@ class PathSolution(CheckedLinkage):
         P from A, along AB and to its left, m.
     grashof : Grashof
     min_transmission_angle : float
-        Over the travel from the first target to the last, rad.
+        The smallest transmission angle over the travel from the first target to the
+        last, rad (the engine's, :func:`kinelab.analyze`).
     branch_defect, order_defect : bool
     direction : int
         +1 / -1: the crank turns counter-clockwise / clockwise through the targets.
     defects : tuple of str
-        Branch and order defects, and a transmission angle below the task's
-        ``min_transmission_angle`` on the way.
+        Branch and order defects, and a transmission angle below ``transmission_limit``
+        on the way.
+    transmission_limit : float
+        The task's ``min_transmission_angle``, rad (30 deg unless it says otherwise);
+        ``meets_transmission_limit`` says whether the linkage keeps it.
     """
 
     A0: np.ndarray
@@ -239,6 +245,7 @@ class PathSolution(CheckedLinkage):
     order_defect: bool
     direction: int
     defects: tuple[str, ...]
+    transmission_limit: float = TRANSMISSION_LIMIT
 
     @property
     def rms_error(self) -> float:
@@ -250,10 +257,97 @@ class PathSolution(CheckedLinkage):
         """Largest distance of a target from the coupler curve, m."""
         return float(self.errors.max())
 
+    def curve_distances(self, points: ArrayLike) -> np.ndarray:
+        """Distance from each of ``points`` (n, 2), m, to the linkage's coupler curve, m
+        (see :func:`curve_distances`)."""
+        return curve_distances(self.model, points)
+
     def __repr__(self) -> str:
         state = self.state
         return (f"PathSolution(rms error={self.rms_error:.3g} m, max error={self.max_error:.3g} m, "
                 f"{self.grashof.kind}, {state})")
+
+
+_CURVE_SAMPLES = 3600     # crank angles of the coupler curve a point is first matched to
+_GOLDEN = 40              # golden-section steps from there: the bracket shrinks by 0.618^40
+_NEWTON = 3               # Gauss-Newton steps after them: the distance to rounding
+
+
+def curve_distances(model: Mechanism, points: ArrayLike) -> np.ndarray:
+    """Distance from each point to the coupler curve of a four-bar model, m, by the engine.
+
+    The coupler curve is where the coupler point ``P`` goes as the crank turns through every
+    angle at which the loop closes on the model's assembly branch: the whole closed curve of
+    a crank that turns fully, the arc between its limit positions otherwise.  Each point is
+    matched to the nearest of 3600 engine samples of a turn, then the crank angle is refined
+    around it by golden-section search and Gauss-Newton steps (``kl.analyze`` at every step,
+    with the velocity coefficient of ``P`` for the slope), so the distance is exact to
+    rounding, not to the sampling.
+
+    Parameters
+    ----------
+    model : Mechanism
+        A four-bar with a coupler point ``P`` and one crank input.
+    points : array_like, shape (n, 2)
+        m.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        m; +inf for every point when the loop closes nowhere.
+    """
+    T = np.asarray(reals("points", points), float)
+    if T.ndim != 2 or T.shape[1] != 2 or not np.all(np.isfinite(T)):
+        raise ModelError(f"points: expected finite points of shape (n, 2), got {describe(points)}")
+    h = 2 * np.pi / _CURVE_SAMPLES
+    q = np.arange(_CURVE_SAMPLES) * h - np.pi
+    sol = at_inputs(model, q)
+    P, ok = sol.position("P"), sol.assembled
+    if not ok.any() or len(T) == 0:
+        return np.full(len(T), np.inf)
+    Q, qs = P[ok], q[ok]
+    best = np.empty(len(T))
+    k = np.empty(len(T), int)
+    step = max(1, 2_000_000 // len(Q))           # points matched at once: bounds the memory
+    for i in range(0, len(T), step):
+        d2 = np.sum((T[i:i + step, None, :] - Q[None]) ** 2, axis=-1)
+        k[i:i + step] = np.argmin(d2, axis=1)
+        best[i:i + step] = np.sqrt(d2[np.arange(len(d2)), k[i:i + step]])
+    q_best = qs[k]
+
+    def distance(angles):
+        # at unit crank speed, so that the velocity of P is dP/dq
+        s = analyze(model, angles, qd=1.0, unreachable="mask", at_singular="flag")
+        d = np.linalg.norm(s.position("P") - T, axis=1)
+        return np.where(s.assembled & np.isfinite(d), d, np.inf), s
+
+    # golden-section search on the bracket one sample either side (the curve is smooth
+    # there; where the loop stops closing the distance is +inf, and the search stays out)
+    g = (np.sqrt(5.0) - 1.0) / 2.0
+    a, b = q_best - h, q_best + h
+    c, e = b - g * (b - a), a + g * (b - a)
+    fc, fe = distance(c)[0], distance(e)[0]
+    for _ in range(_GOLDEN):
+        left = fc <= fe
+        a, b = np.where(left, a, c), np.where(left, e, b)
+        c_new, e_new = np.where(left, b - g * (b - a), e), np.where(left, c, a + g * (b - a))
+        f_new = distance(np.where(left, c_new, e_new))[0]
+        fc, fe = np.where(left, f_new, fe), np.where(left, fc, f_new)
+        c, e = c_new, e_new
+    for angles, f in ((c, fc), (e, fe)):
+        better = f < best
+        best, q_best = np.where(better, f, best), np.where(better, angles, q_best)
+    for _ in range(_NEWTON):
+        d, s = distance(q_best)
+        r, dP = s.position("P") - T, s.velocity("P")
+        slope = np.sum(dP * dP, axis=1)
+        with np.errstate(invalid="ignore"):
+            trial = q_best - np.sum(r * dP, axis=1) / np.where(slope > 0, slope, 1.0)
+        trial = np.where(np.isfinite(trial), trial, q_best)
+        f = distance(trial)[0]
+        better = f < best
+        best, q_best = np.where(better, f, best), np.where(better, trial, q_best)
+    return best
 
 
 def _unwrapped(q: np.ndarray):
@@ -323,7 +417,7 @@ def _travel_residuals(Z: np.ndarray, sense: np.ndarray, cos_floor: float):
 
 
 def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray,
-              mu_min: float = 0.0) -> PathSolution:
+              mu_min: float = TRANSMISSION_LIMIT) -> PathSolution:
     """Build and check the linkage of a design (physical units) through its crank angles;
     a transmission angle below ``mu_min`` on the way is a defect."""
     P, A, B, ok = coupler_curves(design[None, :], q[None, :])
@@ -344,10 +438,8 @@ def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray,
         q0 = float(wrap_angle(q[0]))
         q = q0 + t.direction * np.mod(t.direction * (q - q[0]), 2 * np.pi)
         q[0] = q0
-    if t.min_transmission_angle < mu_min - _MU_SLACK:
-        defects += (f"transmission angle defect: the transmission angle drops to "
-                    f"{t.min_transmission_angle:.6g} rad between the first target and the last, "
-                    f"below min_transmission_angle = {mu_min:.6g} rad",)
+    defects += transmission_defects(t.min_transmission_angle, mu_min,
+                                    "between the first target and the last")
     engine = at_inputs(model, q).position("P")
     errors = np.linalg.norm(engine - targets, axis=-1)
     errors = finite_or_inf(errors)
@@ -358,7 +450,7 @@ def _solution(targets: np.ndarray, design: np.ndarray, q: np.ndarray,
         model=model, q=q, errors=errors, coupler_point=(float(design[7]), float(design[8])),
         grashof=model_grashof(model), min_transmission_angle=t.min_transmission_angle,
         branch_defect=t.branch_defect, order_defect=t.order_defect, direction=t.direction,
-        defects=defects)
+        defects=defects, transmission_limit=mu_min)
 
 
 
@@ -569,7 +661,8 @@ class _Search:
 
 
 def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, popsize: int = 15,
-                    samples: int = 180, min_transmission_angle: float = 0.0, seed: int = 0,
+                    samples: int = 180, min_transmission_angle: float = TRANSMISSION_LIMIT,
+                    seed: int = 0,
                     refine: bool = True, tolerance: float = 1e-4,
                     initial: ArrayLike | None = None) -> SolutionList:
     """Four-bars whose coupler point passes near prescribed points, in order.
@@ -604,9 +697,12 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
     samples : int
         Crank angles per coupler curve when designs are screened, 24 to 10,000.
     min_transmission_angle : float
-        Designs whose transmission angle drops below this (rad) between the first and
-        last target are penalised like defective ones while searching, and left out of the
-        result (the engine's check flags them with a transmission angle defect).
+        The smallest transmission angle accepted between the first target and the last,
+        rad, in [0, pi/2); default 30 deg (:data:`TRANSMISSION_LIMIT`, a rule of thumb
+        for smooth running).  Designs below it are penalised like defective ones while
+        searching, and left out of the result (the engine's check flags them with a
+        transmission angle defect); a run that finds only such linkages says in
+        ``reason`` how low the best of them goes.
     seed : int
         Seed of the first run, 0 to 2**32 - 1: the result is reproducible.
     refine : bool
@@ -669,10 +765,7 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
     samples = whole("samples", samples, 24, MAX_PATH_SAMPLES)
     seed = check_seed(seed)
     refine = flag("refine", refine)
-    mu = min_transmission_angle
-    if not (is_real(mu) and 0.0 <= mu < np.pi / 2):
-        raise ModelError(f"min_transmission_angle: expected an angle in [0, pi/2) rad, got {describe(mu)}")
-    mu = float(mu)
+    mu = transmission_limit(min_transmission_angle)
     if not (is_real(tolerance) and 0.0 <= tolerance < 1.0):
         raise ModelError(f"tolerance: expected a fraction of the path's size in [0, 1), got "
                          f"{describe(tolerance)}")
@@ -699,7 +792,7 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
     found, reasons = [], []
     for r in range(runs):
         search = _Search(obj, popsize, seed + r, bounds, starts)
-        sol = None
+        sol = low = None        # the best valid linkage; the best one only the limit rejects
         for _ in range(maxiter):
             for design, q, rms in search.round(refine):
                 if sol is not None and rms * scale >= sol.rms_error:
@@ -713,12 +806,20 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
                     continue
                 if s.valid and (sol is None or s.rms_error < sol.rms_error):
                     sol = s
+                elif (not s.branch_defect and not s.order_defect
+                      and (low is None or s.rms_error < low.rms_error)):
+                    low = s
             if sol is not None and sol.rms_error <= goal:
                 break
         if sol is None:
-            bound = (f" with a transmission angle of at least {mu:.6g} rad" if mu > 0 else "")
+            bound = (f" with a transmission angle of at least {np.degrees(mu):.4g} deg"
+                     if mu > 0 else "")
+            best = ("" if low is None else
+                    f" (its best, {low.rms_error:.3g} m from the points in RMS, has a smallest "
+                    f"transmission angle of {np.degrees(low.min_transmission_angle):.4g} deg)")
             reasons.append(f"run {r + 1} (seed {seed + r}) found no linkage free of branch and "
-                           f"order defects{bound}; raise maxiter or popsize")
+                           f"order defects{bound}{best}; raise maxiter or popsize"
+                           + (", or lower min_transmission_angle" if mu > 0 else ""))
         else:
             found.append(sol)
     found.sort(key=lambda s: s.rms_error)

@@ -37,7 +37,7 @@ from kinelab.errors import ModelError, SingularityError, describe
 from kinelab.kinematics import analyze, time_ratio as engine_time_ratio, transmission_angle
 from kinelab.mechanisms import Grashof, fourbar, grashof, slider_crank, slotted_link
 from kinelab.mechanisms import whitworth as whitworth_mechanism
-from kinelab.model import MAX_LENGTH, Mechanism, Units, is_real, length_problem
+from kinelab.model import MAX_LENGTH, MIN_LENGTH, Mechanism, Units, is_real, length_problem
 from kinelab.solvers import bisect, wrap_angle
 from kinelab.synthesis._results import SolutionList
 
@@ -381,14 +381,15 @@ def _pivot_arc_angles(arc: _Arc) -> tuple[float, float]:
     return min(start, edge), max(start, edge)
 
 
-def _measured_crank_rocker(d: dict, ground: float, degrees: bool, choice: str) -> CrankRocker:
+def _measured_crank_rocker(d: dict, ground: float, degrees: bool, choice: str,
+                           u: Units) -> CrankRocker:
     """Build the design ``d`` (one sample of a family) at the given ground length and measure
     it with the engine; ``choice`` names the argument that picked it, for the message when
     the design all but locks."""
     k = ground / float(d["ground"][0])
     L = {n: float(d[n][0]) * k for n in ("ground", "crank", "coupler", "rocker")}
     L["ground"] = float(ground)
-    model = fourbar(**L)
+    model = _built("crank-rocker", fourbar, L, "ground", u, "swing or time ratio")
     try:
         tr = engine_time_ratio(model, "rocker")
     except SingularityError:
@@ -494,7 +495,8 @@ def _crank_rockers(ground, psi, time_ratio, crank, degrees: bool, u: Units) -> S
                          f"{_len(u, hi * ground)} (both excluded) for ground {_len(u, ground)}, "
                          f"swing {_ang(u, psi)} and time ratio {Q:g}, got {_len(u, crank)}; no "
                          "crank-rocker of this family has it")
-    designs = [_measured_crank_rocker(_pick(arc, t), ground, degrees, "crank") for arc, t in found]
+    designs = [_measured_crank_rocker(_pick(arc, t), ground, degrees, "crank", u)
+               for arc, t in found]
     designs.sort(key=lambda s: -s.transmission_min)
     return SolutionList(designs)
 
@@ -584,7 +586,7 @@ def _crank_rocker(ground, psi, time_ratio, crank, pivot_angle, degrees: bool,
                          "is best; give the crank")
     best = [(arc, *_refined_max(arc, lambda d: d["mu"])) for arc in arcs]
     arc, t, _ = max(best, key=lambda b: b[2])
-    return _measured_crank_rocker(_pick(arc, t), ground, degrees, "time_ratio")
+    return _measured_crank_rocker(_pick(arc, t), ground, degrees, "time_ratio", u)
 
 
 def _by_pivot_angle(ground, psi, Q, arcs, phi, degrees: bool, u: Units) -> CrankRocker:
@@ -599,7 +601,7 @@ def _by_pivot_angle(ground, psi, Q, arcs, phi, degrees: bool, u: Units) -> Crank
             t = _roots(arc, lambda d: d["pivot"], phi)
             if t.size:
                 return _measured_crank_rocker(_pick(arc, float(t[0])), ground, degrees,
-                                              "pivot_angle")
+                                              "pivot_angle", u)
     ranges = " or ".join(f"({u.convert(lo, 'rad'):.6g}, {u.convert(hi, 'rad'):.6g})"
                          for lo, hi in spans)
     raise ModelError(f"pivot_angle: expected an angle in {ranges} {u.angle} for swing "
@@ -623,13 +625,39 @@ def _slider_crank_arc(delta: float) -> _Arc:
     return _Arc(math.pi / 2, math.pi - delta, designs)
 
 
+_CALLED = {"whitworth": "Whitworth quick return"}     # a kind as a sentence names it
+
+
+def _built(kind: str, make: Callable[..., Mechanism], lengths: dict, size: str, u: Units,
+           others: str = "") -> Mechanism:
+    """The catalogue model of a design's lengths.  The user gave a task, not these lengths:
+    a design beyond the sizes kinelab computes with is refused in the task's terms, naming
+    ``size``, the argument that sets the design's scale (and ``others`` that shape it)."""
+    try:
+        return make(**lengths)
+    except ModelError as exc:
+        shown = ", ".join(f"{k} {_len(u, v)}" for k, v in lengths.items())
+        raise ModelError(f"{size}: the {_CALLED.get(kind, kind)} it gives ({shown}) lies outside "
+                         f"the sizes kinelab computes with (lengths from {_len(u, MIN_LENGTH)} to "
+                         f"{_len(u, MAX_LENGTH)}, every point within {_len(u, MAX_LENGTH)} of "
+                         f"the origin); give the task in other units, or another {size}"
+                         + (f" or {others}" if others else "")) from exc
+
+
 def _measured(kind: str, model: Mechanism, lengths: dict, output: str, slide: bool,
-              degrees: bool, rod: bool = False) -> QuickReturn:
+              degrees: bool, rod: bool = False, remedy: str = "lower the time ratio"
+              ) -> QuickReturn:
     """Measure a quick return with the engine: its time ratio and dead centres, the stroke
     (``slide``) or swing of ``output`` between them and, with ``rod``, the smallest angle
     between the rod and the normal to the slide (met with the crank at right angles to
-    the slide, where the rod leans most)."""
-    tr = engine_time_ratio(model, output)
+    the slide, where the rod leans most).  ``remedy``: what the task's author is told to
+    change when the design locks at a dead centre on its turn."""
+    try:
+        tr = engine_time_ratio(model, output)
+    except SingularityError as exc:
+        raise ModelError(f"time_ratio: the {_CALLED.get(kind, kind)} it gives all but locks at a "
+                         "dead centre on its turn, where the engine finds it singular and cannot "
+                         f"measure its time ratio; {remedy}") from exc
     sol = analyze(model, q=tr.dead_centres)
     conv = np.degrees if degrees else (lambda v: v)
     if slide:
@@ -727,8 +755,9 @@ def _offset_slider_crank(stroke, time_ratio, rod, degrees: bool, u: Units) -> Qu
         raise ModelError(f"rod: the design's wrist pin goes {_len(u, reach)} from the crank's "
                          f"pivot, beyond the {_len(u, MAX_LENGTH)} a model holds; give a shorter "
                          "rod or stroke")
-    model = slider_crank(**lengths)
-    return _measured("offset slider-crank", model, lengths, "slide", True, degrees, rod=True)
+    model = _built("offset slider-crank", slider_crank, lengths, "stroke", u)
+    return _measured("offset slider-crank", model, lengths, "slide", True, degrees, rod=True,
+                     remedy="lower the time ratio" + (" or lengthen the rod" if rod else ""))
 
 
 # -- slotted levers -------------------------------------------------------------------------
@@ -769,7 +798,8 @@ def slotted_lever(time_ratio: float, distance: float, *, degrees: bool = False) 
         raise ModelError(f"time_ratio: the crank would be {R:.3g} m ({why}); raise the time "
                          "ratio or the distance")
     lengths = dict(crank=R, distance=C)
-    return _measured("slotted lever", slotted_link(**lengths), lengths, "lever", False, degrees)
+    model = _built("slotted lever", slotted_link, lengths, "distance", _shown(degrees))
+    return _measured("slotted lever", model, lengths, "lever", False, degrees)
 
 
 def whitworth(time_ratio: float, distance: float, stroke: float, *, rod: float | None = None,
@@ -824,5 +854,6 @@ def _whitworth(time_ratio, distance, stroke, rod, degrees: bool, u: Units) -> Qu
         raise ModelError(f"time_ratio: the crank would be {R:.3g} m ({why}); raise the time "
                          "ratio or shorten the distance")
     lengths = dict(crank=R, distance=d, lever=S / 2, rod=rod)
-    return _measured("whitworth", whitworth_mechanism(**lengths), lengths, "ram_slide", True,
-                     degrees)
+    model = _built("whitworth", whitworth_mechanism, lengths, "stroke", u)
+    return _measured("whitworth", model, lengths, "ram_slide", True, degrees,
+                     remedy="lengthen the rod or lower the time ratio")

@@ -462,8 +462,8 @@ def _angle(v) -> float:
 
 def _explicit(mf: ModelFile) -> dict:
     """The model's JSON form with every link's length (its first two points) and the local
-    places of its other points written out, and without a catalogue section: a form whose
-    points may be moved while every link keeps its shape."""
+    places of its other points written out (but for those given by their sides), and without
+    a catalogue section: a form whose points may be moved while every link keeps its shape."""
     data = mf.to_dict()
     data.pop("catalogue", None)
     xy = {p: np.array(v, float) for p, v in data["points"].items()}
@@ -477,11 +477,12 @@ def _explicit(mf: ModelFile) -> dict:
         if len(pts) > 2 and length > 0:
             e = (b - a) / length
             local = dict(link.get("local", {}))
-            for p in pts[2:]:
+            for p in (p for p in pts[2:] if p not in link.get("sides", {})):
                 v = xy[p] - a
                 local.setdefault(p, [float(f"{np.dot(v, e):.14g}"),
                                      float(f"{e[0] * v[1] - e[1] * v[0]:.14g}")])
-            link["local"] = local
+            if local:
+                link["local"] = local
     return data
 
 

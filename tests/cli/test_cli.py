@@ -451,7 +451,8 @@ def test_names_in_options_are_escaped_and_bounded(command, option, value, messag
     ("long.pyslvs", "M[J[R, P[0, " + "9" * 5000 + "], L[ground, a]]]",
      "long.pyslvs: expression: joint 0: expected finite numbers"),
     ("big.pyslvs", "M[J[R, P[0, 0], L[ground, a]], J[R, P[0, 1e300], L[a]]]",
-     "big.pyslvs: point 'P1': coordinates: expected at most 1e+09 m in size, got (0, 1e+297, 0) m"),
+     "big.pyslvs: expression: joint 1: coordinates: expected at most 1e+09 m in size, got "
+     "(0, 1e+297, 0) m"),
     ("bad.pyslvs", "M[J[Q" + "x" * 1000 + ", P[0, 0], L[ground, a]]]",
      "bad.pyslvs: expression: joint 0: type: expected one of 'R', 'P', 'RP', got 'Q"
      + "x" * 56 + "\u2026'"),
@@ -523,6 +524,6 @@ def test_an_import_that_check_would_refuse_writes_nothing(tmp_path):
     result = run("import", source, "--out", tmp_path / "m.toml", "--inputs", "0,1;1,2;2,3")
     assert result.exit_code == 2
     assert result.stderr == ("kinelab: error: cr.pyslvs: inputs: the linkage has 1 degree(s) of "
-                             "freedom at the sketch (exact mobility; Kutzbach-Gruebler counts 1) but 3 "
+                             "freedom as drawn (exact mobility; Kutzbach-Gruebler counts 1) but 3 "
                              "input(s); give it 1 input(s), or fewer joints\n")
     assert not (tmp_path / "m.toml").exists()

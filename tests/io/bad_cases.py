@@ -66,6 +66,13 @@ def _replace(old: str, new: str) -> str:
 
 
 _HEAD = BASE.split("[points]")[0]
+
+
+def _sides(table: str) -> str:
+    """BASE with a coupler point P at (100, 250) on the coupler A-B of length 300, given
+    by ``sides = { <table> }``."""
+    return (_replace('points = ["A", "B"]', f'points = ["A", "B", "P"]\nlength = 300\n'
+                     f'sides = {{ {table} }}').replace('O4 = [300, 0]', 'O4 = [300, 0]\nP = [100, 250]'))
 _SLIDER = ('[[links]]\nname = "slider"\npoints = ["B"]\n\n[[joints]]\ntype = "R"\n'
            'links = ["rocker", "slider"]\npoint = "B"\nname = "jBs"\n\n[[joints]]\nname = "s"\n'
            'type = "P"\nlinks = ["ground", "slider"]\npoint = "B"\n')
@@ -88,7 +95,7 @@ CASES = [
      "'catalogue', 'outputs', 'dynamics'"),
     ("unknown link field", _replace('ground = true', 'groud = true'),
      "fb.toml: links[0].groud: unknown field (did you mean 'ground'?); valid fields are 'name', "
-     "'points', 'ground', 'length', 'local', 'mass', 'center_of_mass', 'inertia'"),
+     "'points', 'ground', 'length', 'local', 'sides', 'mass', 'center_of_mass', 'inertia'"),
     ("unknown units field", _replace('angle = "deg"', 'angle = "deg"\ntime = "s"'),
      "fb.toml: units.time: unknown field; valid fields are 'length', 'angle'"),
     ("gravity outside [dynamics]", 'gravity = [0, -9.81]\n' + BASE,
@@ -136,6 +143,67 @@ CASES = [
                                                   'name = "coupler"\npoints = ["A", "B", "O4"]\n'
                                                   'local = { O4 = [1] }'),
      "fb.toml: links[2].local.O4: expected a place [along, left], got [1]"),
+    # a coupler point P given by its sides from A and B, which the sketch puts 300 mm apart
+    ("sides that make no triangle", _sides('P = { A = 30, B = 10, side = "left" }'),
+     "fb.toml: links[2].sides.P: 'P' cannot be 30 mm from 'A' and 10 mm from 'B': 'A' and 'B' "
+     "are 300 mm apart; the sides must satisfy |dA - dB| <= AB <= dA + dB; change a distance"),
+    # by hand: |400 - 50| = 350 > 300
+    ("sides whose difference is too long", _sides('P = { A = 400, B = 50, side = "left" }'),
+     "fb.toml: links[2].sides.P: 'P' cannot be 400 mm from 'A' and 50 mm from 'B': 'A' and 'B' "
+     "are 300 mm apart; the sides must satisfy |dA - dB| <= AB <= dA + dB; change a distance"),
+    ("a side of zero", _sides('P = { A = 0, B = 200, side = "left" }'),
+     "fb.toml: links[2].sides.P.A: expected a positive length, got 0 mm"),
+    ("a negative side", _sides('P = { A = 200, B = -200, side = "left" }'),
+     "fb.toml: links[2].sides.P.B: expected a positive length, got -200 mm"),
+    ("an infinite side", _sides('P = { A = inf, B = 200, side = "left" }'),
+     "fb.toml: links[2].sides.P.A: expected a finite number, got inf"),
+    ("a side of nan", _sides('P = { A = nan, B = 200, side = "left" }'),
+     "fb.toml: links[2].sides.P.A: expected a finite number, got nan"),
+    ("a side as text", _sides('P = { A = "200", B = 200, side = "left" }'),
+     "fb.toml: links[2].sides.P.A: expected a number, got '200'"),
+    ("a side out of scale", _sides('P = { A = 1e300, B = 200, side = "left" }'),
+     "fb.toml: links[2].sides.P.A: expected a length from 1e-09 m to 1e+09 m, got 1e+300 mm"),
+    ("an unknown side word", _sides('P = { A = 200, B = 200, side = "lft" }'),
+     "fb.toml: links[2].sides.P.side: expected one of 'left', 'right', got 'lft' (did you mean "
+     "'left'?)"),
+    ("no side for a triangle that has two", _sides('P = { A = 200, B = 200 }'),
+     "fb.toml: links[2].sides.P.side: missing; 'P' may lie left or right of the line A -> B; say "
+     "which: side = 'left' or 'right'"),
+    ("a point in local and in sides", _sides('P = { A = 200, B = 200, side = "left" }')
+     .replace('length = 300', 'length = 300\nlocal = { P = [150, 100] }'),
+     "fb.toml: links[2].sides.P: 'P' is given in local too; give its place one way: remove it "
+     "from local or from sides"),
+    ("a side from a point off the link", _sides('P = { A = 200, O4 = 200, side = "left" }'),
+     "fb.toml: links[2].sides.P.O4: expected one of the link's points placed before 'P' ('A', "
+     "'B'), got 'O4'; points are placed in the order of the link's points"),
+    ("a side from a point placed later", _sides('P = { A = 200, Q = 200, side = "left" }')
+     .replace('points = ["A", "B", "P"]', 'points = ["A", "B", "P", "Q"]')
+     .replace('O4 = [300, 0]', 'O4 = [300, 0]\nQ = [100, 300]'),
+     "fb.toml: links[2].sides.P.Q: expected one of the link's points placed before 'P' ('A', "
+     "'B'), got 'Q'; points are placed in the order of the link's points"),
+    ("a side from one point only", _sides('P = { A = 200, side = "left" }'),
+     "fb.toml: links[2].sides.P: expected the distances from two points of the link placed "
+     "before 'P' ('A', 'B'), such as {A = 30, B = 40, side = 'left'}, got 1 ('A')"),
+    ("sides for the link's first point", _sides('A = { B = 200, P = 200, side = "left" }'),
+     "fb.toml: links[2].sides.A: expected one of the link's points after its first two ('P'), "
+     "got 'A', its first point, which the link's frame places"),
+    ("sides for the link's second point", _sides('B = { A = 300, P = 200, side = "left" }'),
+     "fb.toml: links[2].sides.B: expected one of the link's points after its first two ('P'), "
+     "got 'B', its second point, which the link's frame places"),
+    ("sides as a list", _sides('P = [200, 200, "left"]'),
+     "fb.toml: links[2].sides.P: expected a table {A = distance, B = distance, side = \"left\" "
+     "or \"right\"} of its distances from two points of the link placed before it, got [200, "
+     "200, 'left']"),
+    # by hand: the ground O2-O4-G is the frame (O4 300 mm along +x); the sides put G at
+    # along = (150^2 - 250^2 + 300^2) / 600 = 83.3333, left = sqrt(150^2 - 83.3333^2) = 124.722,
+    # which is hypot(100 - 83.3333, 100 - 124.722) = 29.8153 from where the sketch puts it
+    ("a ground point off its sides", _replace('points = ["O2", "O4"]', 'points = ["O2", "O4", "G"]\n'
+                                             'sides = { G = { O2 = 150, O4 = 250, side = "left" } }')
+     .replace('O4 = [300, 0]', 'O4 = [300, 0]\nG = [100, 100]'),
+     "fb.toml: links[0].sides.G: the ground's points are the frame and are not moved, but the "
+     "sketch puts 'G' 29.8153 mm from where its sides place it, (83.3333, 124.722 mm); move 'G' "
+     "there "
+     "or correct its sides"),
     ("an offset on a pin", _replace('point = "O2"', 'point = "O2"\noffset = 3'),
      "fb.toml: joints[0].offset: only a prismatic joint has one (the distance of its slide line "
      "from its origin); remove it"),

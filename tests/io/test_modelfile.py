@@ -446,7 +446,8 @@ def test_a_catalogue_table_is_written_only_when_it_reads_back(units):
     assert "[catalogue]" in text and kl.io.from_toml(text).parameters == fb.parameters
 
 
-@pytest.mark.parametrize("name", ["crank_rocker", "offset_slider_crank", "stephenson6", "whitworth"])
+@pytest.mark.parametrize("name", ["crank_rocker", "offset_slider_crank", "stephenson6", "whitworth",
+                                  "jansen"])
 def test_a_model_through_json_numbers_is_the_same_model(name):
     """A float stands for the digits it prints as: the JSON form of a file in mm and degrees,
     sent as plain JSON numbers (as the web page does), reads back as the file itself."""

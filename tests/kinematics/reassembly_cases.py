@@ -116,7 +116,8 @@ class Case:
         for g in m.ground.points:            # the pivots, edited or not
             d.setdefault(g, P[g].copy())
         self.dims = d
-        self.q = math.atan2(*(P["A"] - P["O2"])[::-1])
+        self.pivot = "O2" if "O2" in P else "O"
+        self.q = math.atan2(*(P["A"] - P[self.pivot])[::-1])
 
     def effective(self, edit: dict) -> dict:
         """The dimensions after an edit.  A point's place on a link that the model does not
@@ -160,8 +161,8 @@ class Case:
         e = (frame_b - frame_a) / norm(frame_b - frame_a)[..., None]
         return frame_a + local[..., :1] * e + local[..., 1:] * np.stack([-e[..., 1], e[..., 0]], -1)
 
-    def crank_pin(self, D, pivot="O2", crank="crank", q=None):
-        return D[pivot] + D[crank][..., None] * unit(np.full(len(D[crank]), self.q if q is None else q))
+    def crank_pin(self, D, pivot=None, crank="crank", q=None):
+        return D[pivot or self.pivot] + D[crank][..., None] * unit(np.full(len(D[crank]), self.q if q is None else q))
 
     def side(self, X, Y, Z):
         """The sketch's side of Y relative to the line X -> Z."""
@@ -413,6 +414,68 @@ class Triad(Case):
         return v
 
 
+class Jansen(Case):
+    """Jansen's linkage: the crank O-A; the dyads upper-top (A-C-B) and lower-rocker (A-D-B),
+    each on its own; E on top and G on leg by their sides (a triangle of three known sides);
+    then the dyad thigh-leg (E-F-D), on the four branches of the first two.  Where the
+    sketch's branch does not close, the branch with the fewest dyads changed, then the
+    configuration nearest to the sketch (the model's rule)."""
+
+    def expect(self, D):
+        P, m = self.P0, self.mechanism
+        A = self.crank_pin(D)
+        s1, s2, s3 = self.side("A", "C", "B"), self.side("A", "D", "B"), self.side("E", "F", "D")
+        Eloc = triangle(m.link("top").sides["E"], D["top"])
+        Gloc = triangle(m.link("leg").sides["G"], D["leg"])
+        free = ["A", "C", "D", "E", "F", "G"]
+        rows = []
+        for c1 in (s1, -s1):
+            C, gap1 = two_circles(A, D["B"], D["upper"], D["top"], np.full(len(A), c1))
+            E = self.place(D, D["B"], C, Eloc)
+            for c2 in (s2, -s2):
+                Dp, gap2 = two_circles(A, D["B"], D["lower"], D["rocker"], np.full(len(A), c2))
+                F, gap3 = two_circles(E, Dp, D["thigh"], D["leg"], np.full(len(A), s3))
+                G = self.place(D, Dp, F, Gloc)
+                pts = {"A": A, "C": C, "D": Dp, "E": E, "F": F, "G": G}
+                dist = sum(np.sum((pts[p] - P[p]) ** 2, -1) for p in free)
+                rows.append((pts, gap1, gap2, gap3, (c1 != s1) + (c2 != s2), dist))
+        gap1, gap2 = rows[0][1], rows[0][2]
+        closes = np.stack([(g1 == 0) & (g2 == 0) & (g3 == 0) for _, g1, g2, g3, _, _ in rows])
+        # the kept branch: fewest changes, then nearest
+        changes = np.stack([np.full(len(A), r[4]) for r in rows])
+        best_changes = np.min(np.where(closes, changes, 9), axis=0)
+        score = np.where(closes & (changes == best_changes), np.stack([r[5] for r in rows]), np.inf)
+        pick = np.argmin(score, axis=0)
+        points = {p: np.choose(pick[:, None], [r[0][p] for r in rows]) for p in free}
+        gap3 = np.min(np.stack([r[3] for r in rows]), axis=0)
+        gap = np.where(gap1 > 0, gap1, np.where(gap2 > 0, gap2, np.where(closes.any(0), 0.0, gap3)))
+        switched = np.where(closes.any(0), best_changes, 0)
+        EB = norm(Eloc)
+        ex1 = excess(norm(D["B"] - D["O"]), D["top"], D["upper"], D["crank"])
+        ex2 = excess(norm(D["B"] - D["O"]), D["rocker"], D["lower"], D["crank"])
+        ex3 = excess(EB, norm(D["B"] - D["O"]), D["crank"], D["lower"], D["leg"], D["thigh"])
+        ex = np.where(ex1 > 0, ex1, np.where(ex2 > 0, ex2, ex3))
+        v = _verdict(ex, gap, points, switched)
+        # a place by sides that no triangle has: the link itself cannot be built
+        v["invalid"] = np.zeros(len(A), bool)
+        for link, p in (("top", "E"), ("leg", "G")):
+            spec = m.link(link).sides[p]
+            a, b = (spec[k] for k in spec if k != "side")
+            v["invalid"] |= (D[link] > a + b) | (D[link] < abs(a - b))
+        return v
+
+
+def triangle(spec, L):
+    """(along, left) of a point given by its sides from a link's first two points, L apart:
+    at spec[first] from the first and spec[second] from the second, on spec's side (the law
+    of cosines; here the two points are always the link's first two)."""
+    first, second = (k for k in spec if k != "side")
+    a, b = spec[first], spec[second]
+    along = (a * a - b * b + L * L) / (2 * L)
+    left = np.sqrt(np.maximum(a * a - along * along, 0.0))
+    return np.stack([along, left if spec["side"] == "left" else -left], -1)
+
+
 def _verdict(ex, gap, points, switched):
     bars = ex > 0
     return {"refused": bars | (gap > 0), "bars": bars,
@@ -463,4 +526,7 @@ def cases() -> list[Case]:
         SixBar("stephenson6", mech.stephenson6(), steph),
         SixBar("stephenson6.toml", load("stephenson6.toml"), steph),
         Triad("triad6", mech.triad6(), triad),
+        Jansen("jansen.toml", load("jansen.toml"), {
+            "crank": "length", "upper": "length", "lower": "length", "top": "length",
+            "rocker": "length", "thigh": "length", "leg": "length", "B": "pivot"}),
     ]

@@ -1,6 +1,8 @@
 """The catalogue's constructors take real lengths of sizes kinelab computes with, nothing else."""
 import datetime
+import re
 
+import numpy as np
 import pytest
 
 import kinelab as kl
@@ -50,3 +52,22 @@ def test_a_coupler_point_and_crank_angles_are_checked():
         kl.mechanisms.fivebar(1.0, 1.0, 1.5, 1.5, 1.0, q0=(True, "x"))
     with pytest.raises(ModelError, match=r"^points: expected a mapping"):
         kl.mechanisms.triad6(points="O2")
+
+
+def test_a_whitworth_rod_too_short_is_said_in_its_own_lengths():
+    """The catalogue assembles the Whitworth at a crank angle it picks; a rod that cannot reach
+    the ram line there is refused with that angle and the distance it would have to span
+    (checked here from the geometry: the lever points at the crank pin A)."""
+    with pytest.raises(ModelError) as info:
+        kl.mechanisms.whitworth(crank=1.0, distance=0.5, lever=1.0, rod=0.1)
+    message = str(info.value)
+    assert "sketch" not in message
+    found = re.fullmatch(r"rod: expected more than ([\d.e+-]+) m, the distance from the lever's "
+                         r"end to the ram line at crank angle ([\d.e+-]+) deg \(where the "
+                         r"mechanism is first assembled\), got 0\.1 m; lengthen it \(a rod longer "
+                         r"than lever \+ \|ram_height\| = 1 m reaches the ram line at every crank "
+                         r"angle\)", message)
+    assert found, message
+    q0 = np.radians(float(found.group(2)))
+    A = np.array([np.cos(q0), 0.5 + np.sin(q0)])          # O2 = (0, 0.5), crank 1
+    assert float(found.group(1)) == pytest.approx(abs(A[1] / np.hypot(*A)), rel=1e-5)

@@ -184,6 +184,54 @@ def test_singular_pose_is_reported():
                                atol=1e-12)
 
 
+def test_singular_pose_tells_a_limit_from_a_meeting_of_branches():
+    """The RR arm stretched along x (l1 = l2 = 1, q = 0, tool at (2, 0)): J = [[0, 0], [2, 1]]
+    gives only velocities along y.  Moving out along x is impossible there (the edge of the
+    workspace); moving along y is possible, with many rates (2 q̇1 + q̇2 = 1 for v = (0, 1))."""
+    robot = sp.rr(1.0, 1.0)
+    with pytest.raises(SingularityError, match=r"has a part of 1 m/s that no joint rates give: "
+                                               r"the tool cannot move that way from this pose"):
+        robot.inverse_rates([0.0, 0.0], [1.0, 0.0])
+    with pytest.raises(SingularityError, match=r"the tool can move with the velocity asked for, "
+                                               r"but not with unique joint rates"):
+        robot.inverse_rates([0.0, 0.0], [0.0, 1.0])
+    rates = robot.inverse_rates([[0.0, 0.0]] * 3, [[1.0, 0.0], [0.0, 1.0], [0.6, 0.8]],
+                                on_singular="flag")
+    np.testing.assert_array_equal(rates.singular, [True, True, True])
+    np.testing.assert_array_equal(rates.attainable, [False, True, False])
+    # the minimum-norm solution of 2 q̇1 + q̇2 = 1: (2, 1)/5, exact
+    np.testing.assert_allclose(rates.qd[1], [0.4, 0.2], rtol=0, atol=1e-15)
+    regular = robot.inverse_rates([0.0, 0.5], [1.0, 0.0])
+    assert regular.attainable and not regular.singular
+
+
+def test_an_attainable_velocity_at_a_singular_pose_is_where_branches_cross():
+    """The tool path P(t) = (2 - t², t) touches the edge of the RR arm's workspace at t = 0
+    from inside (|P|² = 4 - 3t² + t⁴), with v = (0, 1), a = (-2, 0) there.  The elbow-up and
+    elbow-down solutions meet at t = 0 and the motion goes on along two smooth branches,
+    each from one to the other, with finite rates: 2 q̇1 + q̇2 = 1 (J q̇ = v) and, from
+    the x part of the acceleration, q̇1² + (q̇1 + q̇2)² = 2, so q̇1 = (1 ± √3)/2."""
+    robot = sp.rr(1.0, 1.0)
+    assert robot.inverse_rates([0.0, 0.0], [0.0, 1.0], on_singular="flag").attainable
+    # h = 1e-3: near the edge of the workspace the inverse has rounding eps/t (1e-13 here),
+    # so the central differences below carry 1e-10 of it, and h² q'''/6 (q''' <= 10) of
+    # truncation: 1e-5.
+    h = 1e-3
+    before = {b: robot.inverse([2 - h * h, -h], branch=b) for b in robot.branches}
+    after = {b: robot.inverse([2 - h * h, h], branch=b) for b in robot.branches}
+    found = []
+    for b in robot.branches:
+        # the continuation of branch b: the solution after t = 0 nearest its straight line
+        ahead = 2 * robot.inverse([2.0, 0.0])[0] - before[b]
+        c = min(after, key=lambda k: np.abs(after[k] - ahead).max())
+        assert c != b                      # up becomes down, and down becomes up
+        found.append((after[c] - before[b]) / (2 * h))
+    np.testing.assert_allclose(sorted(qd[0] for qd in found),
+                               [(1 - np.sqrt(3)) / 2, (1 + np.sqrt(3)) / 2], rtol=0, atol=1e-5)
+    for qd in found:
+        assert 2 * qd[0] + qd[1] == pytest.approx(1.0, abs=1e-5)
+
+
 # -- branches mean what their names say ---------------------------------------------------
 
 def test_rr_up_has_the_elbow_left_of_the_chord():

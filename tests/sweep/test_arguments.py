@@ -164,8 +164,14 @@ def test_a_complex_path_is_refused(atlas):
         atlas.nearest(PATH + 0j)
 
 
-def test_refine_on_a_path_that_goes_back_over_itself(atlas):
-    line = np.column_stack([np.linspace(0, 3, 20), np.ones(20)])
-    with pytest.raises(ModelError, match=r"^path: the 8 points refine takes evenly along it .* "
-                                         r"goes back over itself, as an open line does"):
-        atlas.refine(line)
+def test_refine_fits_the_paths_own_points_and_refuses_one_place_twice(atlas):
+    """Refine fits points of the path as given, in order (never points between them, which
+    on a path that goes back over itself could fall on one place): a place given twice is
+    refused in the path's terms, with the numbers of its points."""
+    there_and_back = np.column_stack([np.r_[np.linspace(0, 3, 12), np.linspace(3, 0, 12)[1:-1]],
+                                      np.ones(22)])
+    with pytest.raises(ModelError, match=r"^path: points 2 and 22 are the same place "
+                                         r"\(0\.272727273, 1\), which refine cannot fit twice "
+                                         r"\(it fits the path's points in order\); give each "
+                                         r"place once, or another number of points$"):
+        atlas.refine(there_and_back)

@@ -120,3 +120,68 @@ def test_a_study_path_is_checked_before_the_study(path):
         kl.sweep._run.write_parquet(kl.sweep.run("fourbar", d), path)
     with pytest.raises(ModelError, match=r"^df: expected a pandas DataFrame"):
         kl.sweep._run.write_parquet(d, "x.parquet")
+
+
+# -- refinement is measured against every point of the path given --------------------------
+def distances_to_sampled_curve(model, points, samples=2**16):
+    """Independently of the code under test: the engine's coupler curve at ``samples`` crank
+    angles over a turn (where it closes), as a polyline, and the distance from each point to
+    it; with the bound on how far that polyline strays from the curve (the largest distance
+    from the engine's point halfway between two samples to their chord)."""
+    q = np.linspace(-np.pi, np.pi, samples + 1)
+    sol = kl.analyze(model, q=q, unreachable="mask", at_singular="flag")
+    mid = kl.analyze(model, q=q[:-1] + np.pi / samples, unreachable="mask", at_singular="flag")
+    P, ok = sol.position("P"), sol.assembled
+    use = ok[:-1] & ok[1:] & mid.assembled             # chords between samples that close
+    a, b, m = P[:-1][use], P[1:][use], mid.position("P")[use]
+    e = b - a
+    ee = np.sum(e * e, axis=1)
+
+    def to_chords(X):
+        t = np.clip(np.sum((X[:, None] - a) * e, axis=-1) / ee, 0.0, 1.0)
+        return np.linalg.norm(X[:, None] - a - t[..., None] * e, axis=-1)
+
+    sagitta = float(np.max(np.abs(e[:, 0] * (m - a)[:, 1] - e[:, 1] * (m - a)[:, 0])
+                           / np.sqrt(ee)))
+    return to_chords(np.asarray(points, float)).min(axis=1), sagitta
+
+
+def twenty_four_points(atlas, distorted):
+    """24 points of an atlas design's coupler curve, 100 wide; ``distorted``: stretched by
+    1.4 across and jittered by 3 (standard deviation)."""
+    P = curve_of(atlas.table.iloc[5], n=24)
+    P = (P - P.mean(axis=0)) / np.ptp(P, axis=0).max() * 100.0
+    if distorted:
+        P = P * [1.0, 1.4] + np.random.default_rng(3).normal(scale=3.0, size=P.shape)
+    return P
+
+
+@pytest.mark.parametrize("distorted, points", [(False, None), (True, None), (True, 8)])
+def test_refine_reports_its_error_against_every_point_given(atlas, distorted, points):
+    path = twenty_four_points(atlas, distorted)
+    sols = atlas.refine(path, k=3, points=points)
+    assert len(sols) >= 1
+    best = sols[0]
+    assert isinstance(best, kl.sweep.RefinedPath) and best.path.shape == (24, 2)
+    # fitted through every point given, unless told to take 8 along the path
+    assert best.points.shape == ((24, 2) if points is None else (8, 2))
+    expected, sagitta = distances_to_sampled_curve(best.model, path)
+    size = np.hypot(*np.ptp(path, axis=0))
+    # the polyline of 2^16 samples strays from the curve by at most its largest sagitta
+    tolerance = sagitta + 1e-12 * size
+    np.testing.assert_allclose(best.path_errors, expected, rtol=0, atol=tolerance)
+    assert best.max_error == pytest.approx(expected.max(), abs=tolerance)
+    assert best.rms_error == pytest.approx(np.sqrt(np.mean(expected ** 2)), abs=tolerance)
+    if not distorted:
+        assert best.max_error < 1e-9 * size          # the curve itself: met everywhere
+    else:
+        assert best.max_error > 0.01 * size          # 24 jittered points: no four-bar meets them
+    assert best.valid and best.meets_transmission_limit
+
+
+def test_refine_leaves_a_closing_repeat_out_of_the_fit(atlas):
+    path = twenty_four_points(atlas, False)
+    closed = np.vstack([path, path[:1]])              # the first point again, to close it
+    best = atlas.refine(closed, k=2)[0]
+    assert best.points.shape == (24, 2) and best.path.shape == (25, 2)
+    assert best.max_error < 1e-9 * np.ptp(path)

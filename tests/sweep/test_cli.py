@@ -82,6 +82,40 @@ def test_atlas_build_and_find(tmp_path):
     assert r.exit_code == 0, r.output
     lines = r.output.splitlines()
     assert lines[1].split()[0] == "3" and lines[-1].startswith("refined: A0 = ")
+    # its error: the largest distance from all 60 points of the file to the coupler curve
+    best = a.refine(path, k=2)[0]                    # the same search, seeded: the same linkage
+    assert best.path_errors.shape == (60,)
+    assert f"its coupler curve passes within {best.max_error:.3g} m of all 60 points " in lines[-1]
+    assert lines[-1].endswith(", valid")
+
+
+def test_atlas_find_reports_the_distance_to_every_point_of_the_file(tmp_path):
+    """24 jittered points of a coupler curve, 100 m wide: the line gives the largest distance
+    from every one of them to the refined linkage's coupler curve, as the Python result does
+    (tests/sweep/test_atlas.py checks that against the engine's curve)."""
+    atlas = tmp_path / "atlas.parquet"
+    assert invoke("atlas", "build", "--sobol", 256, "--seed", 1, *RANGES, *POINT,
+                  "-o", atlas).exit_code == 0
+    a = kl.sweep.Atlas.from_parquet(atlas)
+    row = a.table.iloc[2]
+    fb = kl.mechanisms.fourbar(*(float(row[c]) for c in ("ground", "crank", "coupler", "rocker")),
+                               coupler_point=(float(row["coupler_point_along"]),
+                                              float(row["coupler_point_perpendicular"])))
+    P = kl.analyze(fb, np.linspace(0, 2 * np.pi, 24, endpoint=False)).position("P")
+    P = (P - P.mean(axis=0)) / np.ptp(P, axis=0).max() * 100.0
+    P = P * [1.0, 1.4] + np.random.default_rng(3).normal(scale=3.0, size=P.shape)
+    pd.DataFrame(P, columns=["x", "y"]).to_csv(tmp_path / "path.csv", index=False)
+    r = invoke("atlas", "find", atlas, tmp_path / "path.csv", "-k", 3, "--refine")
+    assert r.exit_code == 0, r.output
+    best = a.refine(P, k=3)[0]
+    size = np.hypot(*np.ptp(P, axis=0))
+    line = r.output.splitlines()[-1]
+    share = 100 * best.max_error / size
+    assert (f"passes within {best.max_error:.3g} m of all 24 points of {tmp_path / 'path.csv'} "
+            f"(the largest distance, {share:.3g} % of the path's size)") in line
+    assert best.max_error == best.path_errors.max() and best.max_error > 0.01 * size
+    mu = np.degrees(best.min_transmission_angle)
+    assert f"min transmission {mu:.3g} deg (meets the 30 deg limit)" in line
 
 
 def one_line_error(r, *fragments):

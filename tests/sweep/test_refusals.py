@@ -148,3 +148,37 @@ def test_a_models_output_and_point_are_its_own():
     with pytest.raises(ModelError, match=r"^point: expected one of .*'G3', got 'Q'$"):
         kl.sweep.family(m, point="Q")
     assert kl.sweep.family(m, output="slide", point="G3").point == "G3"
+
+
+# -- refusals in the study's terms, never the engine's (a q the user never gave) ----------------
+FIVEBAR = dict(ground=[2.0], crank1=[1.0], coupler1=[1.5], coupler2=[1.5], crank2=[1.0])
+
+
+def test_a_family_with_two_inputs_is_refused_in_the_studys_terms():
+    with pytest.raises(ModelError) as info:
+        kl.sweep.run("fivebar", FIVEBAR, samples=8)
+    assert str(info.value) == ("family: the mechanisms of 'fivebar' have 2 inputs, but a sweep "
+                               "turns one input through its samples; sweep a family with one "
+                               "input (a model file of it with one input, say)")
+
+
+@pytest.mark.parametrize("family, wanted", [
+    ("fourbar", "the family 'fourbar' takes ground, crank, coupler, rocker, coupler_point_along, "
+                "coupler_point_perpendicular"),
+    ("watt6", "the family 'watt6' has no numeric parameters to vary"),
+])
+def test_a_table_without_columns_says_which_it_takes(family, wanted):
+    with pytest.raises(ModelError, match=rf"^designs: expected a column for each parameter to vary, "
+                                         rf"got none; {re.escape(wanted)}$"):
+        kl.sweep.run(family, {}, samples=8)
+
+
+def test_a_design_whose_catalogue_mechanism_cannot_be_drawn_says_so_in_its_lengths():
+    """A Whitworth design whose rod cannot reach the ram line where the catalogue first
+    assembles it: the row's reason speaks of the rod and the crank angle, not of a sketch."""
+    df = kl.sweep.run("whitworth", dict(crank=[1.0], distance=[0.5], lever=[1.0], rod=[0.1]),
+                      samples=8)
+    reason = df.attrs["problems"][0]
+    assert reason.startswith("rod: expected more than ") and "sketch" not in reason
+    assert reason.endswith("got 0.1 m; lengthen it (a rod longer than lever + |ram_height| = 1 m "
+                           "reaches the ram line at every crank angle)")

@@ -34,3 +34,12 @@ def crank_lengths(pos, A0, A1):
     R = np.stack([np.stack([np.cos(a), -np.sin(a)], -1), np.stack([np.sin(a), np.cos(a)], -1)], -2)
     Aj = pos.points + np.einsum("nij,j->ni", R, np.asarray(A1) - pos.points[0])
     return np.linalg.norm(Aj - A0, axis=1)
+
+
+def travel_transmission(s, samples=20001):
+    """The smallest transmission angle the engine meets while the crank turns from position
+    1 to the last, in the sense the solution reports (the shorter way when it reports none)."""
+    d = s.direction or 1
+    q = s.q[0] + d * np.linspace(0.0, np.mod(d * (s.q[-1] - s.q[0]), 2 * np.pi), samples)
+    sol = kl.analyze(s.model, q=q, unreachable="mask", at_singular="flag")
+    return float(np.min(kl.kinematics.transmission_angle(sol)[sol.assembled]))

@@ -34,6 +34,16 @@ A0 = [5, 0]
 B0 = [0, 0]
 """
 
+LOG10_TASK = """
+task = "function"
+units = { angle = "deg" }
+[function]
+expression = "log10(x)"
+x_range = [1, 2]
+input_range = [90, 150]
+output_range = [0, 90]
+"""
+
 CRANK_ROCKER = """
 task = "crank-rocker"
 units = { length = "mm", angle = "deg" }
@@ -82,15 +92,7 @@ def test_model_file_is_the_linkage(tmp_path):
 
 
 def test_function_and_path_tasks(tmp_path):
-    res = run(tmp_path, """
-task = "function"
-units = { angle = "deg" }
-[function]
-expression = "log10(x)"
-x_range = [1, 2]
-input_range = [90, 150]
-output_range = [0, 90]
-""")
+    res = run(tmp_path, LOG10_TASK)
     assert res.exit_code == 0, res.output
     # the figure the command prints is the library's, for the same task in radians
     printed = float(re.search(r"max structural error ([\d.e-]+)", res.output).group(1))
@@ -340,7 +342,7 @@ def test_five_and_more_positions(tmp_path):
     assert res.exit_code == 2 and "pivots.a0x: not used with 5 positions" in res.stderr
     res = run(tmp_path, FIVE.format(points=P[:5].tolist(), angles=th[:5].tolist())
               + "[search]\ndyads = 2\n")
-    assert res.exit_code == 2 and "search: not used with 5 positions" in res.stderr
+    assert res.exit_code == 2 and "search.dyads: not used with 5 positions" in res.stderr
 
 
 def _strict_json(text):

@@ -7,7 +7,7 @@ from kinelab.errors import ModelError
 from kinelab.synthesis import (Positions, burmester_curves, center_point_cubic, center_points,
                                four_positions, moving_pivot, poles)
 from kinelab.synthesis._pivots import suh_radcliffe_rows
-from tests.synthesis.helpers import catalogue_poses, engine_pose_errors
+from tests.synthesis.helpers import catalogue_poses, engine_pose_errors, travel_transmission
 
 # a task of four positions of a catalogue crank-rocker's coupler, at crank angles 0..160 deg
 POS = Positions(*catalogue_poses(np.radians([0.0, 70.0, 100.0, 160.0])))
@@ -76,12 +76,20 @@ def test_every_solution_is_checked_and_valid_ones_reach_the_poses():
     assert len(own) == 1 and own[0].valid
     for s in sols:
         dpos, dang = engine_pose_errors(s.model, s.q, POS.points, POS.alpha)
+        mu = travel_transmission(s)
         if s.valid:
             assert dpos.max() < 1e-9 and dang.max() < 1e-9
+            assert mu >= np.radians(30)         # the default limit, kept all the way
         else:
-            assert s.branch_defect or s.order_defect
+            assert s.branch_defect or s.order_defect or s.circuit_defect or mu < np.radians(30)
         if not s.branch_defect:
             assert dpos.max() < 1e-9       # reached, possibly out of order
+        if not (s.branch_defect or s.order_defect):
+            # the smallest transmission angle reported is the engine's over the travel (the
+            # check samples where it is smallest; the sweep here can only miss it from above)
+            assert s.min_transmission_angle - 1e-12 <= mu <= s.min_transmission_angle + 1e-6
+            assert s.meets_transmission_limit == (mu >= np.radians(30) - 1e-6)
+            assert ("transmission angle defect" in s.state) != s.meets_transmission_limit
 
 
 def test_order_defect_is_found():

@@ -8,7 +8,7 @@ import kinelab as kl
 from kinelab.errors import ModelError
 from kinelab.synthesis import (Positions, fixed_pivot, fourbar_model, moving_pivot,
                                three_positions, two_positions)
-from tests.synthesis.helpers import catalogue_poses, engine_pose_errors
+from tests.synthesis.helpers import catalogue_poses, engine_pose_errors, travel_transmission
 
 P3 = np.array([(1.0, 1.0), (2.0, 0.5), (3.0, 1.5)])
 ALPHA3 = np.radians([0.0, 0.0, 45.0])
@@ -184,13 +184,19 @@ def test_a_limit_position_narrower_than_the_sweep_step_is_found():
 @given(three_poses(), st.tuples(coord, coord), st.tuples(coord, coord))
 def test_every_three_position_linkage_is_checked_by_the_engine(pos, A0, B0):
     """Random tasks and fixed pivots: the synthesized model, moved by the engine, puts the
-    coupler on every pose unless its checks report a branch defect."""
+    coupler on every pose unless its checks report a branch defect; it is valid when it has
+    no defect and its transmission angle, the engine's over the travel, keeps the 30 deg limit."""
     try:
         sol = three_positions(pos, A0=A0, B0=B0)
-    except ModelError:              # a pivot at infinity, or two pivots in one place
+    except ModelError:              # a pivot at infinity, two pivots in one place, a dead centre
         assume(False)
     assume(max(np.abs(sol.A1).max(), np.abs(sol.B1).max()) < 1e2)
-    assert sol.valid == (not sol.branch_defect and not sol.order_defect)
+    assert sol.valid == (not sol.branch_defect and not sol.order_defect
+                         and not sol.circuit_defect and sol.meets_transmission_limit)
+    if not (sol.branch_defect or sol.order_defect):
+        mu = travel_transmission(sol)
+        assert sol.min_transmission_angle - 1e-12 <= mu <= sol.min_transmission_angle + 1e-6
+        assert sol.meets_transmission_limit == (sol.min_transmission_angle >= np.radians(30) - 1e-9)
     if not sol.branch_defect:
         dpos, dang = engine_pose_errors(sol.model, sol.q, pos.points, pos.alpha)
         # 1e-9 relative to the linkage: the pivots solve 2 x 2 systems of this conditioning

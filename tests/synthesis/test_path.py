@@ -76,24 +76,28 @@ def _traced_task(d, q):
     return coupler_curves(np.asarray(d, float)[None, :], np.asarray(q, float)[None, :])[0][0]
 
 
+# Each task with the transmission angle its own linkage keeps over the travel (the engine's,
+# swept at 2001 samples: 41.4, 12.8 and 46.0 deg): the second goes below the default limit of
+# 30 deg near its limit positions, so its search is asked for 10 deg.
 TEN_POINT_TASKS = [
     # the catalogue crank-rocker over 270 deg
-    _traced_task([0, 0, 3, 0, 1.0, 3.0, 2.5, 1.5, 1.0, 1.0], np.radians(np.linspace(0, 270, 10))),
+    (_traced_task([0, 0, 3, 0, 1.0, 3.0, 2.5, 1.5, 1.0, 1.0], np.radians(np.linspace(0, 270, 10))),
+     np.radians(30)),
     # crossed, the crank stopped by limit positions near 9 and 39 deg: 290 deg of travel
-    _traced_task([0.2, -0.1, 1.1, 0.3, 0.8, 1.3, 1.6, -0.4, 0.7, -1.0],
-                 np.radians(np.linspace(50, 340, 10))),
+    (_traced_task([0.2, -0.1, 1.1, 0.3, 0.8, 1.3, 1.6, -0.4, 0.7, -1.0],
+                  np.radians(np.linspace(50, 340, 10))), np.radians(10)),
     # a small crank, a long coupler, P behind A, over 200 deg
-    _traced_task([-0.5, 0.4, 1.5, -0.2, 0.5, 2.2, 1.4, -0.6, -0.5, 1.0],
-                 np.radians(np.linspace(-30, 170, 10))),
+    (_traced_task([-0.5, 0.4, 1.5, -0.2, 0.5, 2.2, 1.4, -0.6, -0.5, 1.0],
+                  np.radians(np.linspace(-30, 170, 10))), np.radians(30)),
 ]
 
 
 @pytest.mark.parametrize("k", range(len(TEN_POINT_TASKS)))
 def test_ten_point_tasks_reach_the_tolerance(k):
-    T = TEN_POINT_TASKS[k]
+    T, limit = TEN_POINT_TASKS[k]
     size = np.hypot(*np.ptp(T, axis=0))
     for seed in (0, 1):
-        sols = path_generation(T, runs=1, seed=seed, tolerance=1e-3)
+        sols = path_generation(T, runs=1, seed=seed, tolerance=1e-3, min_transmission_angle=limit)
         best = sols[0]
         assert best.valid
         # the engine, moved to the reported crank angles, puts P within 1e-3 of the size
@@ -211,10 +215,16 @@ def test_a_transmission_angle_below_the_bound_is_a_defect():
     closes, engine_min = _engine_travel(free)
     assert free.valid and closes
     assert free.min_transmission_angle == pytest.approx(engine_min, abs=1e-6)
+    assert free.transmission_limit == np.radians(30) and free.meets_transmission_limit
     low = _solution(T, FOURBAR_DESIGN, q.copy(), free.min_transmission_angle + 0.01)
     assert not low.valid and not low.branch_defect and not low.order_defect
-    assert low.defects[0].startswith("transmission angle defect: the transmission angle drops to")
-    assert "below min_transmission_angle" in low.defects[0]
+    assert not low.meets_transmission_limit and low.state == "transmission angle defect"
+    shown = f"{np.degrees(engine_min):.4g} deg"         # the engine's, as the defect says it
+    limit = f"{np.degrees(free.min_transmission_angle + 0.01):.4g} deg"
+    assert low.defects == (f"transmission angle defect: the transmission angle drops to {shown} "
+                           f"between the first target and the last, below the limit of {limit} "
+                           "(min_transmission_angle): the coupler pushes the rocker too nearly "
+                           "along it; choose another linkage, or lower the limit",)
     ok = _solution(T, FOURBAR_DESIGN, q.copy(), free.min_transmission_angle - 0.01)
     assert ok.valid
 

@@ -171,6 +171,22 @@ def test_flipping_a_dyad_gives_the_other_assembly_mode_with_the_same_lengths(cli
         assert np.allclose(a.position(name), b.position(name), rtol=0, atol=1e-12)
 
 
+def test_flipping_a_dyad_keeps_the_sides_of_a_point_given_by_them(client):
+    """Jansen's linkage, its foot G given by its sides on the leg D-F-G: the leg's dyad
+    D-F-E flipped, G keeps its sides (and gets no local place beside them)."""
+    mf, model = model_of("jansen")
+    s = client.post("/api/study", json={"model": model}).json()
+    step = next(b["step"] for b in s["branches"] if set(b["points"]) == {"D", "F", "E"})
+    flipped = client.post("/api/flip", json={"model": model, "step": step}).json()["model"]
+    leg = next(link for link in flipped["links"] if link["name"] == "leg")
+    assert leg["sides"] == {"G": {"D": 49.0, "F": 65.7, "side": "left"}} and "local" not in leg
+    pts = {p: np.array(v) for p, v in flipped["points"].items()}
+    before = {p: np.array(v) for p, v in model["points"].items()}
+    assert np.linalg.norm(pts["F"] - before["F"]) > 10          # cm: F is in its other mode
+    for a, b, d in [("D", "G", 49.0), ("F", "G", 65.7), ("D", "F", 36.7), ("E", "F", 39.4)]:
+        assert np.hypot(*(pts[a] - pts[b])) == pytest.approx(d, rel=1e-12)
+
+
 def test_load_and_save_are_the_model_files(client):
     text = (EXAMPLES / "crank_rocker.toml").read_text()
     loaded = client.post("/api/load", json={"text": text, "source": "crank_rocker.toml"}).json()

@@ -484,3 +484,71 @@ def test_a_guide_turned_in_the_table_carries_the_slider_along_it(page):
     np.testing.assert_allclose(across, 0.0, atol=1e-9)                        # on the guide
     assert np.ptp((B - B0) @ along) > 90                                     # and sliding
     np.testing.assert_allclose(np.hypot(*(B - A).T), 200.0, rtol=1e-12)
+
+
+def columns_xy(study, point):
+    u = study["units"]["length"]
+    return np.array([study["columns"][f"{point}.x[{u}]"], study["columns"][f"{point}.y[{u}]"]]).T
+
+
+def test_typing_the_sides_of_a_coupler_point_places_it_by_the_law_of_cosines(page):
+    """The example's coupler point P (given by its local place) typed in the table as 200 mm
+    from A and 150 mm from B, right of A -> B: over the whole sweep P is where the law of
+    cosines puts it."""
+    page.click("#tabs button[data-tab=table]")
+    row = "tr[data-of-link=coupler][data-link-point=P]"
+    assert page.input_value(f"#tab-table {row} td[data-field=from1] select") == "A"
+    assert page.input_value(f"#tab-table {row} td[data-field=from2] select") == "B"
+    type_in_table(page, f"{row} td[data-field=distance1]", 200)
+    page.wait_for_function("() => ((window.kinelab.model.links[2].sides || {}).P || {}).A === 200")
+    type_in_table(page, f"{row} td[data-field=distance2]", 150)
+    page.wait_for_function("() => window.kinelab.model.links[2].sides.P.B === 150")
+    page.select_option(f"#tab-table {row} td[data-field=side] select", "right")
+    page.wait_for_function("() => window.kinelab.model.links[2].sides.P.side === 'right'")
+    page.wait_for_function("() => !window.kinelab.busy && !window.kinelab.pending")
+    page.shot("sides_typed")
+    coupler = state(page, "window.kinelab.model.links[2]")
+    assert coupler["sides"] == {"P": {"A": 200, "B": 150, "side": "right"}}
+    assert "P" not in coupler.get("local", {})          # one way per point
+    s = state(page, "window.kinelab.study")
+    A, B, P = (columns_xy(s, p) for p in "ABP")
+    # the law of cosines, by hand: along = (200² - 150² + 300²) / (2 x 300) = 179.1667 mm from
+    # A towards B, and 88.878 mm = sqrt(200² - 179.1667²) to the right of A -> B
+    along = (200**2 - 150**2 + 300**2) / (2 * 300)
+    right = math.sqrt(200**2 - along**2)
+    assert (along, right) == pytest.approx((179.16666666666666, 88.87803), rel=1e-6)
+    e = (B - A) / 300.0
+    np.testing.assert_allclose(np.hypot(*(B - A).T), 300.0, rtol=1e-12)
+    np.testing.assert_allclose(P, A + along * e - right * np.stack([-e[:, 1], e[:, 0]], -1),
+                               rtol=0, atol=1e-9)
+    page.wait_for_function(f"() => document.querySelector('#tab-table {row} .now-sides').textContent === '200, 150'")
+
+
+def test_dragging_a_point_given_by_its_sides_keeps_them_measured(page):
+    """With the edit tool, P (given by its sides, typed in the table) dragged away: its sides
+    become its new distances from A and B, and the linkage keeps them over the sweep."""
+    page.wait_for_function("() => window.kinelab.config !== null")
+    page.click("#tabs button[data-tab=table]")
+    type_in_table(page, "tr[data-of-link=coupler][data-link-point=P] td[data-field=distance1]", 180)
+    page.wait_for_function("() => ((window.kinelab.model.links[2].sides || {}).P || {}).A === 180")
+    page.wait_for_function("() => window.kinelab.config !== null")     # drawn where it is now
+    page.check("input[name=tool][value=edit]")
+    x, y = point_on_screen(page, "P")
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for k in range(1, 6):
+        page.mouse.move(x + 6 * k, y + 4 * k)      # down and to the right: towards A -> B
+    page.mouse.up()
+    page.wait_for_function("() => window.kinelab.model.links[2].sides.P.A !== 180")
+    page.wait_for_function("() => !window.kinelab.busy && !window.kinelab.pending")
+    page.shot("sides_dragged")
+    sides = state(page, "window.kinelab.model.links[2].sides.P")
+    pts = state(page, "window.kinelab.model.points")
+    assert sides["side"] == "left"
+    assert sides["A"] == pytest.approx(math.dist(pts["A"], pts["P"]), rel=1e-9)
+    assert sides["B"] == pytest.approx(math.dist(pts["B"], pts["P"]), rel=1e-9)
+    assert abs(sides["A"] - 180) > 1                                     # mm: it moved
+    s = state(page, "window.kinelab.study")
+    A, B, P = (columns_xy(s, p) for p in "ABP")
+    np.testing.assert_allclose(np.hypot(*(P - A).T), sides["A"], rtol=1e-12)
+    np.testing.assert_allclose(np.hypot(*(P - B).T), sides["B"], rtol=1e-12)

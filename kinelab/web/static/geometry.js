@@ -10,8 +10,31 @@ export function local(a, b, p) {
 
 const round = (v) => Number(v.toPrecision(14));
 
+// The side of p from the line a -> b ("left" or "right"; null on the line).
+export function sideOf(a, b, p) {
+  const c = (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+  return c > 0 ? "left" : c < 0 ? "right" : null;
+}
+
+// The two points p's sides are measured from, in the order of the link's points (the side
+// is of the line from the first to the second); the first two points when it has none.
+export function sideRefs(link, p) {
+  const given = link.sides && link.sides[p];
+  if (!given) return link.points.slice(0, 2);
+  return Object.keys(given).filter((k) => k !== "side")
+    .sort((x, y) => link.points.indexOf(x) - link.points.indexOf(y));
+}
+
+// p's sides from r1 and r2 as the points lie: its distances, and its side of r1 -> r2
+// (`was` on the line, where either side is the same place).
+export function measuredSides(points, [r1, r2], p, was = "left") {
+  return {[r1]: round(dist(points[r1], points[p])), [r2]: round(dist(points[r2], points[p])),
+          side: sideOf(points[r1], points[r2], points[p]) || was};
+}
+
 // The model with point `name` moved to xy: each link that carries it takes its new length
-// (first two points) or its new local place, so the server re-assembles around the move.
+// (first two points), its new local places and the new sides of the points measured from or
+// to it, so the server re-assembles around the move.
 export function movePoint(model, name, xy) {
   const m = structuredClone(model);
   delete m.catalogue;
@@ -25,6 +48,10 @@ export function movePoint(model, name, xy) {
       if (link.local) for (const p of Object.keys(link.local)) link.local[p] = local(a, b, m.points[p]).map(round);
     } else if (link.local && link.local[name] !== undefined) {
       link.local[name] = local(a, b, m.points[name]).map(round);
+    }
+    for (const [p, given] of Object.entries(link.sides || {})) {
+      const refs = sideRefs(link, p);
+      if (p === name || refs.includes(name)) link.sides[p] = measuredSides(m.points, refs, p, given.side);
     }
   }
   return m;

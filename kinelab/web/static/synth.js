@@ -192,7 +192,12 @@ function describe(row, units) {
   if (row.stroke !== undefined) parts.push(`stroke ${f(row.stroke)} ${units.length}`);
   if (row.time_ratio !== undefined) parts.push(`time ratio ${f(row.time_ratio)}`);
   const mu = row.min_transmission_angle ?? row.transmission_min;
-  if (mu !== undefined) parts.push(`min transmission ${f(mu)} ${units.angle}`);
+  if (mu !== undefined) {
+    let text = `min transmission ${f(mu)} ${units.angle}`;
+    if (row.transmission_limit !== undefined)
+      text += ` (${row.meets_transmission_limit ? "meets" : "below"} the ${f(row.transmission_limit)} ${units.angle} limit)`;
+    parts.push(text);
+  }
   if (row.rms_error !== undefined) parts.push(`rms error ${f(row.rms_error)} ${units.length}`);
   if (row.max_structural_error !== undefined) parts.push(`max structural error ${f(row.max_structural_error)}`);
   return parts.join("; ");

@@ -1,7 +1,8 @@
 // The table beside the drawing: exact coordinates, lengths, joints, the input and the
 // branches; typing a value changes the model, the server re-assembles it (a refused value
 // leaves the model, and the table, as they were).
-import {movePoint, movePivot, groundLength, offsetOf, dist} from "./geometry.js";
+import {movePoint, movePivot, groundLength, offsetOf, dist, sideOf, sideRefs,
+        measuredSides} from "./geometry.js";
 
 function cell(row, content) {
   const td = document.createElement("td");
@@ -70,6 +71,7 @@ export function renderTable(root, state, {edit, flip}) {
     lt.append(tr);
   }
   root.append(lt);
+  sidesTable(root, m, u, h, guarded, edit);
 
   h("joints");
   const jt = table(["joint", "type", "links (P: guide, slider)", "point", `P axis (${u.angle})`,
@@ -145,6 +147,59 @@ export function renderTable(root, state, {edit, flip}) {
   renderTable.values(state);
 }
 
+// A link's points after its first two, each by its sides: its distances from two points of
+// the link placed before it and its side of the line from the first of them to the second
+// (those it is given by, else its first two points' as the sketch draws them).  Typing one
+// gives the point by its sides (instead of its local place), and the server re-assembles.
+function sidesTable(root, m, u, h, guarded, edit) {
+  const rows = m.links.flatMap((link, k) => link.points.slice(2).map((p) => [k, link, p]));
+  if (!rows.length) return;
+  h(`points of links, by their sides (${u.length})`);
+  const st = table(["link", "point", "from", "distance", "from", "distance", "side", "distances now"]);
+  const f = (v) => Number(v.toPrecision(12));
+  for (const [k, link, p] of rows) {
+    const refs = sideRefs(link, p);
+    const given = (link.sides && link.sides[p]) || measuredSides(m.points, refs, p);
+    const write = (spec) => {
+      const next = structuredClone(m); delete next.catalogue;
+      const l = next.links[k];
+      l.sides = {...(l.sides || {}), [p]: spec};
+      if (l.local) { delete l.local[p]; if (!Object.keys(l.local).length) delete l.local; }
+      edit(next);
+    };
+    // a new point to measure from: its distance as the points lie, the side of the new pair
+    const from = (slot) => {
+      const sel = document.createElement("select");
+      for (const q of link.points.slice(0, link.points.indexOf(p))) sel.append(new Option(q, q));
+      sel.value = refs[slot];
+      sel.onchange = guarded(() => {
+        const pair = [...refs]; pair[slot] = sel.value;
+        if (pair[0] === pair[1]) throw new Error(`${p}: measure its sides from two different points`);
+        pair.sort((x, y) => link.points.indexOf(x) - link.points.indexOf(y));
+        write(measuredSides(m.points, pair, p, given.side));
+      });
+      return sel;
+    };
+    const side = document.createElement("select");
+    for (const s of ["left", "right"]) side.append(new Option(s, s));
+    side.value = given.side || sideOf(m.points[refs[0]], m.points[refs[1]], m.points[p]) || "left";
+    side.onchange = () => write({...given, side: side.value});
+    const distance = (slot) => input(f(given[refs[slot]]), guarded((v) => write(
+      {...given, side: side.value, [refs[slot]]: num(v)})));
+    const tr = document.createElement("tr");
+    tr.dataset.ofLink = link.name; tr.dataset.linkPoint = p; tr.dataset.refs = JSON.stringify(refs);
+    cell(tr, link.name); cell(tr, p);
+    cell(tr, from(0)).dataset.field = "from1";
+    cell(tr, distance(0)).dataset.field = "distance1";
+    cell(tr, from(1)).dataset.field = "from2";
+    cell(tr, distance(1)).dataset.field = "distance2";
+    cell(tr, side).dataset.field = "side";
+    cell(tr, "").className = "now-sides";
+    st.append(tr);
+  }
+  root.append(st);
+}
+
 // The current configuration's exact values in the table.
 renderTable.values = (state) => {
   const s = state.study;
@@ -166,5 +221,11 @@ renderTable.values = (state) => {
     const [a, b] = link.points;
     tr.querySelector(".now-length").textContent = b && now[a] && now[b] && now[a][0] !== null && now[b][0] !== null
       ? f(dist(now[a], now[b])) : "–";
+  }
+  const known = (p) => now[p] && now[p][0] !== null;
+  for (const tr of document.querySelectorAll("#tab-table tr[data-link-point]")) {
+    const p = tr.dataset.linkPoint, refs = JSON.parse(tr.dataset.refs);
+    tr.querySelector(".now-sides").textContent = [p, ...refs].every(known)
+      ? refs.map((r) => f(dist(now[r], now[p]))).join(", ") : "–";
   }
 };
