@@ -154,6 +154,9 @@ def check(model, si, degrees):
         click.echo("assembled from the sketch with the links' lengths: " + (", ".join(
             f"{n} moved {units.convert(d, 'm'):.4g} {units.unit('m')}" for n, d in moved.items())
             if moved else "no point moved"))
+        if mf.assembly.switched:
+            click.echo("the sketch's assembly mode does not close at its inputs: assembled in "
+                       "the other mode of " + ", ".join(mf.assembly.switched))
     click.echo("assembles at the sketch, solved as: " + "; ".join(
         s.label for s in p.steps if s.kind not in ("locked", "placed")))
     si_unit = [INPUT_SI_UNITS[k] for k in p.input_kinds]

@@ -110,7 +110,8 @@ class ModelFile:
         Where the file came from (for messages); not part of equality.
     assembly : Assembly, optional
         When the file gives lengths, places or offsets: how its sketch was moved to the
-        nearest assembly (which points moved, by how much); not part of equality.
+        assembly at its inputs (which points moved, by how much, which dyads changed
+        side); not part of equality.
     """
 
     mechanism: Mechanism
@@ -725,7 +726,7 @@ class _Parser:
             self.fail([_locate(p, self.where) for p in exc.problems])
 
     def assemble(self, m: Mechanism, units: Units) -> Mechanism:
-        """The model moved from its sketch to the nearest assembly with its links' lengths
+        """The model moved from its sketch to its assembly with its links' lengths
         and places and its slides' offsets; what moved is kept in ``self.assembly``.
 
         The assembled coordinates are kept to the digits a model file is written with
@@ -735,8 +736,7 @@ class _Parser:
         try:
             self.assembly = assemble(m, units=units)
         except AssemblyError as exc:
-            where = self.where.get(("link", exc.link))
-            self.fail([f"{where}.length: {exc}" if where else f"points: {exc}"])
+            self.fail([f"{self.field_of(exc)}: {exc}"])
         except ModelError as exc:
             self.fail([_locate(p, self.where) for p in exc.problems])
         ls = units.length_scale
@@ -744,6 +744,21 @@ class _Parser:
         return dataclasses.replace(done, points=tuple(
             dataclasses.replace(p, x=_rounded(p.x, ls) if ls != 1.0 else p.x,
                                 y=_rounded(p.y, ls) if ls != 1.0 else p.y) for p in done.points))
+
+    def field_of(self, exc: AssemblyError) -> str:
+        """The field of the file whose dimension a refused assembly names (the one changed
+        the most from the sketch): ``links[2].length``, ``links[2].local.P``,
+        ``joints[4].offset``; else ``points``."""
+        dimension = getattr(exc, "dimension", None) or (("length", exc.link) if exc.link else ())
+        kind, name = (dimension[0], dimension[1]) if dimension else ("", "")
+        if kind in ("length", "local") and ("link", name) in self.where:
+            where = self.where[("link", name)]
+            return f"{where}.local.{shown_key(dimension[2])}" if kind == "local" else f"{where}.length"
+        if kind == "offset" and ("joint", name) in self.where:
+            return f"{self.where[('joint', name)]}.offset"
+        if kind == "pivot":
+            return f"points.{shown_key(name)}"
+        return "points"
 
     def local(self, value, where: str, pts, scale: float):
         """A link's ``local`` table: point = [along, left], in the file's length unit."""

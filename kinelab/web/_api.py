@@ -167,7 +167,7 @@ def prepare(body: dict) -> _Prepared:
         if ready is not None:
             _PREPARED.move_to_end(key)
             return ready
-    sol = mf.analyze(samples)
+    sol = _sweep(mf, samples)
     with errors_from(mf):
         tracker = Tracker(mf.mechanism, at_singular="flag")
     ready = _Prepared(mf, sol, tracker, threading.Lock())
@@ -176,6 +176,16 @@ def prepare(body: dict) -> _Prepared:
         while len(_PREPARED) > _PREPARED_KEPT:
             _PREPARED.popitem(last=False)
     return ready
+
+
+def _sweep(mf: ModelFile, samples: int | None) -> KinematicSolution:
+    """The page's sweep of the file's inputs: samples where the loops do not close are
+    marked (``unassembled``), not refused, so that an edit that leaves part of the input
+    range out of reach still shows the linkage where it does close."""
+    q, qd, qdd = mf.sample_inputs(samples)
+    with errors_from(mf, "inputs"):
+        return kinematics.analyze(mf.mechanism, q, qd, qdd, at_singular="flag",
+                                  unreachable="mask")
 
 
 def _finite(values) -> list:
@@ -227,6 +237,7 @@ def study(body: dict) -> dict:
         "branches": _branches(mf),
         "moved": {} if mf.assembly is None else {
             k: u.convert(v, "m") for k, v in mf.assembly.moved.items()},
+        "switched": [] if mf.assembly is None else list(mf.assembly.switched),
     }
 
 
