@@ -11,8 +11,9 @@ Velocidades*, §4.6; Badan (IFG), *Análise de aceleração*) as data:
 :func:`acceleration_polygon`, :func:`kennedy_construction`, :func:`centrodes`,
 :func:`velocity_ratio`, and :func:`differentiate` for measured curves.
 """
-from kinelab.kinematics._analyze import (SINGULAR_TOL, AssemblyStatus, analyze, assembly_status,
-                                         change_points, plan, reachable_ranges, turns_fully)
+from kinelab.kinematics._analyze import (SINGULAR_TOL, AssemblyStatus, analyze, analyze_designs,
+                                         assembly_status, change_points, plan, reachable_ranges,
+                                         turns_fully)
 from kinelab.kinematics._assemble import (Assembly, SketchNotAssembled, assemble, pose,
                                           reassemble)
 from kinelab.kinematics._branches import ChangePoint
@@ -27,11 +28,13 @@ from kinelab.kinematics._polygons import (AccelerationDifference, AccelerationPo
                                          RelativeAcceleration, Side, VelocityPolygon,
                                          acceleration_difference, acceleration_polygon,
                                          relative_acceleration, velocity_polygon)
-from kinelab.kinematics._solution import AccelerationComponents, GuidePoint, KinematicSolution
+from kinelab.kinematics._solution import (AccelerationComponents, DesignSolution, GuidePoint,
+                                          KinematicSolution)
 from kinelab.kinematics._tracker import Tracker
 from kinelab.solvers import Derivatives, differentiate
 
-__all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "KinematicSolution", "AccelerationComponents",
+__all__ = ["analyze", "analyze_designs", "DesignSolution", "plan", "reachable_ranges", "turns_fully",
+           "KinematicSolution", "AccelerationComponents",
            "GuidePoint",
            "Plan", "Step", "SINGULAR_TOL", "transmission_angle", "time_ratio", "TimeRatio",
            "instant_center", "instant_centers", "InstantCenter", "InstantCenters", "change_points",

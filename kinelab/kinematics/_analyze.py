@@ -18,13 +18,13 @@ from kinelab.kinematics._columns import INPUT_SI_UNITS
 from kinelab.kinematics._input_errors import SingularInput, UnreachableInput
 from kinelab.kinematics._evaluate import run as _run
 from kinelab.kinematics._plan import Plan, build_plan
-from kinelab.kinematics._solution import KinematicSolution
+from kinelab.kinematics._solution import DesignSolution, KinematicSolution
 from kinelab.model import MAX_LENGTH, MAX_RATE, Mechanism, real_array
 from kinelab.solvers import bisect, wrap_angle
 from kinelab.solvers._arguments import number, whole
 
-__all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "change_points",
-           "assembly_status", "AssemblyStatus"]
+__all__ = ["analyze", "analyze_designs", "plan", "reachable_ranges", "turns_fully",
+           "change_points", "assembly_status", "AssemblyStatus"]
 
 _NOTHING = np.empty(0, np.int64)   # items written out where only the status matters
 
@@ -591,3 +591,114 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
     if p.redundant:
         _check_redundant(p, sol)
     return sol
+
+
+def analyze_designs(mechanism: Mechanism, points: ArrayLike, q: ArrayLike, qd: ArrayLike = 0.0,
+                    qdd: ArrayLike = 0.0, *, axes=None,
+                    method: Literal["auto", "newton"] = "auto") -> DesignSolution:
+    """Position, velocity and acceleration of D designs of one mechanism's topology, each over
+    its samples, in one run of the kernel.
+
+    A design is the mechanism drawn with other dimensions: its own sketch, the places of
+    the mechanism's points (and, where they differ, the directions of its prismatic joints'
+    axes).  Every design keeps the mechanism's links, joints and inputs, and the mechanism's
+    plan (``plan(mechanism).steps``); its sketch gives its links' lengths, its points'
+    places on them, its dyads' assembly modes and its inputs' values there.  So the plan is made once, and each design's numbers come
+    from its sketch in a few array operations (``Plan.designs``).
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        The topology, and the design whose sketch fixes the plan.
+    points : array_like, shape (D, P, 2), or mapping of point name to (D, 2)
+        The designs' sketches: the places of the mechanism's P points (in the order of
+        ``mechanism.points``), m.
+    q : array_like, shape (N,) or (N, M) for the same inputs for every design, or (D, N) or
+        (D, N, M), each design its own
+        Input values, rad or m.
+    qd, qdd : array_like
+        Input rates, broadcast to the shape of q.
+    axes : mapping of str to array_like (D, 2) or (2,), optional
+        The designs' prismatic joints' axes in their sketches, by joint name (default the
+        mechanism's).
+    method : {"auto", "newton"}
+        As :func:`analyze`.
+
+    Returns
+    -------
+    DesignSolution
+        Accessors of shape (D, N, ...); samples where a design's loops do not close are
+        marked in ``assembled`` (and NaN), singular ones in ``singular``.  Each design stays
+        on its sketch's assembly modes: a change point is not followed (an input exactly at
+        one is flagged singular), and Newton groups follow each design's samples from its
+        sketch, in the order given.
+
+    Raises
+    ------
+    ModelError
+        Points or inputs of the wrong shape, or a mechanism with redundant joints (a
+        parallelogram's extra link, which each design's sketch would have to keep closed:
+        analyse those one at a time).
+
+    Examples
+    --------
+    Three slider-cranks with cranks of 1.0, 1.2 and 1.4 (rod 3): their sketches moved, B
+    where each closes with the crank upright.
+
+    >>> sc = kl.mechanisms.slider_crank(crank=1.0, rod=3.0)
+    >>> r = np.array([1.0, 1.2, 1.4])
+    >>> xy = np.array([[[0, 0], [0, c], [np.sqrt(9 - c * c), 0]] for c in r])
+    >>> [p.name for p in sc.points]
+    ['O2', 'A', 'B']
+    >>> sol = kl.kinematics.analyze_designs(sc, xy, q=np.radians([0.0, 90.0]))
+    >>> sol.slide("slide").round(6)          # B at crank + rod, then at sqrt(rod^2 - crank^2)
+    array([[4.      , 2.828427],
+           [4.2     , 2.749545],
+           [4.4     , 2.6533  ]])
+    """
+    p = plan(mechanism, method=method)
+    if p.redundant:
+        raise ModelError(f"mechanism: its joints {', '.join(repr(n) for n in p.redundant)} are "
+                         "redundant (they close only in its sketch's special geometry); "
+                         "analyse its designs one at a time with kl.analyze")
+    numbers = p.designs(points, axes)
+    D, M = len(numbers), len(mechanism.inputs)
+    qa = _finite("q", q)
+    per_design = qa.ndim == (3 if M > 1 else 2)
+    if not (qa.ndim == (1 if M == 1 else 2) or per_design) or (M > 1 and qa.shape[-1] != M):
+        want = "(N,) or (D, N)" if M == 1 else f"(N, {M}) or (D, N, {M})"
+        raise ModelError(f"q: expected shape {want} for {D} designs of a mechanism with {M} "
+                         f"input(s), got {qa.shape}")
+    if per_design and qa.shape[0] != D:
+        raise ModelError(f"q: expected the inputs of {D} designs along its first axis, got "
+                         f"{qa.shape[0]}")
+    shape = qa.shape if per_design else (D,) + qa.shape
+    qa = np.broadcast_to(qa, shape)
+    n = shape[1]
+    _require_results(p, (D * n,) + (shape[2:] if M > 1 else ()), M)
+    flat = (-1,) if M == 1 else (-1, M)
+
+    def rates(name, value):
+        a = _finite(name, value)
+        if a.ndim == 0:
+            return a
+        try:
+            return np.broadcast_to(a, shape).reshape(flat)
+        except ValueError:
+            raise ModelError(f"{name}: shape {a.shape} does not match q's shape {shape}") from None
+    q2, qd2, qdd2, _ = _normalise_q(qa.reshape(flat), rates("qd", qd), rates("qdd", qdd), M, p)
+    out = _run(p, q2, qd2, qdd2, designs=numbers)
+    jets, rates, diag = out["jets"], out["rates"], out["diag"]
+    ok = out["status"] == k.ST_OK
+    ok &= np.repeat(numbers.valid, n)
+    jets[~ok] = np.nan
+    rates[~ok] = np.nan
+    diag[~ok] = np.nan
+    singular = ok & (diag[:, 1] < SINGULAR_TOL)
+    jets[singular, :, 1:] = np.nan
+    rates[singular] = np.nan
+    return DesignSolution(
+        plan=p, q=q2, qd=_per_sample(qd2, q2.shape), qdd=_per_sample(qdd2, q2.shape),
+        stored_jets=jets, stored_rates=rates, det_J=diag[:, 0], singularity=diag[:, 1],
+        singular=singular, assembled=ok, single=False,
+        constants=numbers.const_values, designs=D, valid=numbers.valid)

@@ -41,13 +41,49 @@ def entry_point(p: Plan) -> str:
     return kind + "_one_input" if len(p.input_kinds) == 1 else kind
 
 
-def run(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None):
+def run(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None, designs=None):
     """Run the kernel (compiled, or its numpy form until that is ready) over the rows of
     ``q``; see :func:`run_compiled`."""
     if _compiled.ready(entry_point(p)):
-        return run_compiled(p, q, qd, qdd, start, ops_f, stored)
+        return run_compiled(p, q, qd, qdd, start, ops_f, stored, designs)
     from kinelab.kinematics import _interpreter
-    return _interpreter.run(p, q, qd, qdd, start, ops_f, stored)
+    return _interpreter.run(p, q, qd, qdd, start, ops_f, stored, designs)
+
+
+class Numbers:
+    """The numbers a run takes, per design (a leading axis of D): the operations' parameters,
+    the constants, and for Newton groups their constraints' numbers, their start (inputs and
+    unknowns) and the mechanism's size; ``starts`` (D + 1) bounds each design's rows of q.
+    One design: the plan's own numbers (or ``ops_f`` in their place, another assembly mode
+    of its dyads; ``start`` = (q, group state) to continue Newton groups from)."""
+
+    def __init__(self, p: Plan, N: int, ops_f=None, start=None, designs=None):
+        M = len(p.input_kinds)
+        if designs is None:
+            self.D = 1
+            self.ops_f = (p.ops_f if ops_f is None else ops_f)[None]
+            self.const_values = p.const_values[None]
+            self.starts = np.array([0, N], np.int64)
+            self.scale = np.array([p.scale])
+            if p.groups is not None:
+                q0, x0 = (p.q_sketch, p.groups[3]) if start is None else start
+                self.con_f = p.groups[2][None]
+                self.x0 = np.asarray(x0, float).reshape(1, -1)
+                self.q0 = np.asarray(q0, float).reshape(1, M)
+        else:
+            self.D = len(designs)
+            if N % self.D:
+                raise ValueError("the samples of D designs are D equal blocks of rows")
+            self.ops_f, self.const_values = designs.ops_f, designs.const_values
+            self.starts = np.arange(0, N + 1, N // self.D, dtype=np.int64)
+            self.scale = designs.scale
+            if p.groups is not None:
+                self.con_f, self.x0 = designs.group_f, designs.group_x0
+                self.q0 = designs.q_sketch if start is None else np.asarray(start[0], float)
+                if start is not None:
+                    self.x0 = np.asarray(start[1], float)
+        if p.groups is not None:
+            self.q_unit = np.stack([k.input_units(p.input_kinds, s) for s in self.scale])
 
 
 def outputs(p: Plan, q, ops_f=None, stored=None) -> tuple[np.ndarray, np.ndarray, dict]:
@@ -66,50 +102,58 @@ def outputs(p: Plan, q, ops_f=None, stored=None) -> tuple[np.ndarray, np.ndarray
     return ops_f, stored, out
 
 
-def run_compiled(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None):
+def run_compiled(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None, designs=None):
     """Run the compiled kernel over the rows of ``q`` (N, M) with rates ``qd``, ``qdd`` (N, M) or (1, M).
 
     ``start`` = (q, group state) to continue Newton groups from instead of the sketch;
     ``ops_f`` replaces the plan's operation parameters (another assembly mode of its dyads);
     ``stored`` the items written out (default the plan's ``stored_items``; an empty array
-    when only the status is wanted).  Returns the kernel's outputs: jets, rates (of the
-    stored items), diag (det J and the singularity measure), status and fail per sample, and
-    the Newton state at the end.  Refuses results beyond the memory budget.
+    when only the status is wanted); ``designs`` (:class:`~kinelab.kinematics._plan.Designs`,
+    D of them) the numbers of D designs of the plan's topology, whose samples are D equal
+    blocks of the rows of q.  Returns the kernel's outputs: jets, rates (of the stored
+    items), diag (det J and the singularity measure), status and fail per sample, and the
+    Newton state at the end (per design, with ``designs``).  Refuses results beyond the
+    memory budget.
     """
     from kinelab.kinematics import _kernel
-    ops_f, stored, out = outputs(p, q, ops_f, stored)
+    _, stored, out = outputs(p, q, ops_f, stored)
     N, M = q.shape
+    nums = Numbers(p, N, ops_f, start, designs)
     tail = (out["jets"], out["rates"], out["diag"], out["status"], out["fail"])
     if p.groups is None:
-        plan_args = (p.ops_i, ops_f, p.const_items, p.const_values, p.n_items, p.n_angles,
-                     stored, *tail)
-        if M == 1:
-            def piece(lo, hi):
-                _kernel.run_closed_form_one_input(q, qd, qdd, lo, hi, *plan_args)
-        else:
-            def piece(lo, hi):
-                _kernel.run_closed_form(q, qd, qdd, lo, hi, *plan_args, M)
+        plan_args = (p.ops_i, nums.ops_f, p.const_items, nums.const_values, p.n_items,
+                     p.n_angles, stored, *tail)
+        run = _kernel.run_closed_form_one_input if M == 1 else _kernel.run_closed_form
+        more = () if M == 1 else (M,)
+
+        def piece(starts, d0, d1):
+            run(q, qd, qdd, starts, d0, d1, *plan_args, *more)
         workers = min(_threads(), N // _PARALLEL_FROM) if N >= 2 * _PARALLEL_FROM else 1
         if workers <= 1:
-            piece(0, N)
-        else:   # the kernel releases the GIL: threads take pieces of the sweep in turn
+            piece(nums.starts, 0, nums.D)
+        elif nums.D == 1:   # the kernel releases the GIL: threads take pieces of the sweep in turn
             pieces = max(workers, N // _PIECE)
-            bounds = np.linspace(0, N, pieces + 1).astype(int)
-            list(_pool(workers).map(piece, bounds[:-1], bounds[1:]))
+            bounds = np.linspace(0, N, pieces + 1).astype(np.int64)
+            list(_pool(workers).map(lambda lo, hi: piece(np.array([lo, hi]), 0, 1),
+                                    bounds[:-1], bounds[1:]))
+        else:               # ... pieces of the designs
+            pieces = min(nums.D, max(workers, N // _PIECE))
+            bounds = np.linspace(0, nums.D, pieces + 1).astype(np.int64)
+            list(_pool(workers).map(lambda d0, d1: piece(nums.starts, d0, d1),
+                                    bounds[:-1], bounds[1:]))
     else:
-        groups_i, con_i, con_f, x0 = p.groups
-        q0 = p.q_sketch
-        if start is not None:
-            q0, x0 = start
-        state = np.empty(len(x0) + M)
-        args = (q, qd, qdd, np.array(q0, float), k.input_units(p.input_kinds, p.scale), p.ops_i, ops_f, p.const_items,
-                p.const_values, p.n_items, p.n_angles, stored, groups_i, con_i, con_f,
-                np.array(x0, float), p.scale, *tail, state)
+        groups_i, con_i = p.groups[:2]
+        nx = nums.x0.shape[1]
+        state = np.empty((nums.D, nx + M))
+        args = (q, qd, qdd, nums.starts, nums.q0, nums.q_unit, p.ops_i, nums.ops_f,
+                p.const_items, nums.const_values, p.n_items, p.n_angles, stored, groups_i,
+                con_i, nums.con_f, nums.x0, nums.scale, *tail, state)
         if M == 1:
             _kernel.run_continuation_one_input(*args)
         else:
             _kernel.run_continuation(*args, M)
-        out["state"] = (state[len(x0):].copy(), state[:len(x0)].copy())
+        out["state"] = ((state[0, nx:].copy(), state[0, :nx].copy()) if designs is None
+                        else (state[:, nx:].copy(), state[:, :nx].copy()))
     return out
 
 

@@ -773,12 +773,13 @@ class _Tables:
     """A plan arranged for this module, kept on the plan: each operation's function and
     integer fields, and the Newton groups' index arrays."""
 
-    def __init__(self, p: Plan, M: int):
+    def __init__(self, p: Plan, M: int, con_f=None):
         self.ops = [(_OPS.get(int(row[0])), op, tuple(int(v) for v in row))
                     for op, row in enumerate(p.ops_i)]
         self.groups = []
         if p.groups is not None:
-            groups_i, con_i, con_f, _ = p.groups
+            groups_i, con_i, plan_f, _ = p.groups
+            con_f = plan_f if con_f is None else con_f
             self.groups = [_Group(g, groups_i, con_i, con_f, M) for g in range(len(groups_i))]
 
 
@@ -790,9 +791,9 @@ def _tables(p: Plan, M: int) -> _Tables:
     return t
 
 
-def _new_jet(p: Plan, C: int, n: int) -> np.ndarray:
+def _new_jet(p: Plan, C: int, n: int, const_values: np.ndarray) -> np.ndarray:
     J = np.zeros((p.n_items, C, n))
-    J[p.const_items, 0] = p.const_values[:, None]
+    J[p.const_items, 0] = const_values[:, None]
     return J
 
 
@@ -849,14 +850,14 @@ def _write(S, lo, hi, qd, qdd, M, angle_rows, out):
     rates[:, :, 1] = a.T
 
 
-def _closed_form(p, T, q, qd, qdd, ops_f, stored, out, M):
+def _closed_form(p, T, q, qd, qdd, ops_f, const_values, stored, out, M):
     """A plan without Newton groups: all samples at once, a chunk at a time."""
     ff = ops_f.tolist()
     C = 1 + M + M * M
     angle_rows = np.flatnonzero(stored < p.n_angles)
     for lo in range(0, len(q), _CHUNK):
         hi = min(len(q), lo + _CHUNK)
-        J = _new_jet(p, C, hi - lo)
+        J = _new_jet(p, C, hi - lo, const_values)
         tally = _evaluate(T, J, q[lo:hi], ff, M)
         status = tally.status()
         failed = status != k.ST_OK
@@ -870,18 +871,19 @@ def _closed_form(p, T, q, qd, qdd, ops_f, stored, out, M):
         _write(J[stored], lo, hi, qd, qdd, M, angle_rows, out)
 
 
-def _continuation(p, T, q, qd, qdd, q_start, q_unit, ops_f, stored, x0, out, M):
+def _continuation(p, T, q, qd, qdd, q_start, q_unit, ops_f, const_values, scale, stored, x0,
+                  out, M):
     """A plan with Newton groups, following the samples in order from a start (the
     kernel's ``_continuation``, step for step).  Returns (q, x) where the run ended."""
     N = len(q)
     ff = ops_f.tolist()
     C = 1 + M + M * M
-    J = _new_jet(p, C, 1)
+    J = _new_jet(p, C, 1, const_values)
     state = _State(x0, len(T.groups), M)
     state.q[:] = q_start
 
     def evaluate(qt):
-        tally = _evaluate(T, J, qt.reshape(1, M), ff, M, state, p.scale)
+        tally = _evaluate(T, J, qt.reshape(1, M), ff, M, state, scale)
         res = (float(tally.det[0]), float(tally.measure[0]), float(tally.gap[0]),
                float(tally.failed[0]))
         return int(tally.status()[0]), res
@@ -977,28 +979,33 @@ def _place_between(qi, qprev, eps, J, evaluate, n_angles, M):
     return True, res
 
 
-def run(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None):
+def run(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None, designs=None):
     """Evaluate a plan over the rows of ``q`` (N, M) with rates ``qd``, ``qdd`` (N, M) or
     (1, M): the arguments and the outputs of :func:`kinelab.kinematics._evaluate.run`
     (jets, rates, diag, status, fail and, for plans with Newton groups, the state where
-    the run ended), computed with numpy and no compilation."""
-    from kinelab.kinematics._evaluate import outputs
+    the run ended), computed with numpy and no compilation; D designs one after the other."""
+    from kinelab.kinematics._evaluate import Numbers, outputs
     q = np.asarray(q, float)
     qd = np.asarray(qd, float)
     qdd = np.asarray(qdd, float)
-    ops_f, stored, out = outputs(p, q, ops_f, stored)
+    _, stored, out = outputs(p, q, ops_f, stored)
     N, M = q.shape
-    T = _tables(p, M)
+    nums = Numbers(p, N, ops_f, start, designs)
+    ends = []
     with np.errstate(all="ignore"):     # an exact singularity gives inf or NaN, then flagged
-        if p.groups is None:
-            _closed_form(p, T, q, qd, qdd, ops_f, stored, out, M)
-            return out
-        x0 = p.groups[3]
-        q0 = p.q_sketch
-        if start is not None:
-            q0, x0 = start
-        q_end, x_end = _continuation(p, T, q, qd, qdd, np.array(q0, float).reshape(M),
-                                     k.input_units(p.input_kinds, p.scale),
-                                     ops_f, stored, x0, out, M)
-    out["state"] = (q_end, x_end)
+        for d in range(nums.D):
+            lo, hi = nums.starts[d], nums.starts[d + 1]
+            rows = {key: a[lo:hi] for key, a in out.items()}
+            rates = [r if len(r) == 1 else r[lo:hi] for r in (qd, qdd)]
+            if p.groups is None:
+                _closed_form(p, _tables(p, M), q[lo:hi], *rates, nums.ops_f[d],
+                             nums.const_values[d], stored, rows, M)
+                continue
+            T = _tables(p, M) if designs is None else _Tables(p, M, nums.con_f[d])
+            ends.append(_continuation(p, T, q[lo:hi], *rates, nums.q0[d], nums.q_unit[d],
+                                      nums.ops_f[d], nums.const_values[d], nums.scale[d],
+                                      stored, nums.x0[d], rows, M))
+    if p.groups is not None:
+        out["state"] = (ends[0] if designs is None else
+                        (np.array([e[0] for e in ends]), np.array([e[1] for e in ends])))
     return out

@@ -1169,28 +1169,40 @@ def _closed_form(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_
 
 # The entry points run without the GIL, so that Python threads can share a sweep's samples.
 # Each comes twice: for any number of inputs M, and with M = 1 compiled in as a constant
-# (the common case), which lets the loops over inputs unroll.
+# (the common case), which lets the loops over inputs unroll.  They take D designs of one
+# plan at once: design d has its own numbers (ops_f[d], const_values[d] ...) and its own
+# samples, the rows starts[d]:starts[d + 1] of q and of the outputs; one design is D = 1.
+
+@_jit()
+def _closed_form_designs(q, qd, qdd, starts, d0, d1, ops_i, ops_f, const_items, const_values,
+                         n_items, n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail, M):
+    for d in range(d0, d1):
+        _closed_form(q, qd, qdd, starts[d], starts[d + 1], ops_i, ops_f[d], const_items,
+                     const_values[d], n_items, n_angles, stored, o_jet, o_rate, o_diag,
+                     o_status, o_fail, M)
+
 
 @_jit(nogil=True)
-def run_closed_form(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_items,
-                    n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail, M):
-    """Evaluate samples lo:hi of a plan without Newton groups (samples are independent).
+def run_closed_form(q, qd, qdd, starts, d0, d1, ops_i, ops_f, const_items, const_values,
+                    n_items, n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail, M):
+    """Evaluate designs d0:d1 of a plan without Newton groups (samples are independent).
 
-    o_jet (N, len(stored), 1 + M + M*M) and o_rate (N, len(stored), 2) for the items listed
-    in ``stored``; o_diag (N, 2): det, measure; o_fail (N, 2): gap, failed operation (only
-    where the status is not ST_OK); M = q.shape[1].
+    ops_f (D, n_ops, 8) and const_values (D, n_const) per design; o_jet (N, len(stored),
+    1 + M + M*M) and o_rate (N, len(stored), 2) for the items listed in ``stored``; o_diag
+    (N, 2): det, measure; o_fail (N, 2): gap, failed operation (only where the status is not
+    ST_OK); M = q.shape[1].
     """
-    _closed_form(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_items,
-                 n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail, M)
+    _closed_form_designs(q, qd, qdd, starts, d0, d1, ops_i, ops_f, const_items, const_values,
+                         n_items, n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail, M)
 
 
 @_jit(nogil=True)
-def run_closed_form_one_input(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values,
-                              n_items, n_angles, stored, o_jet, o_rate, o_diag, o_status,
-                              o_fail):
+def run_closed_form_one_input(q, qd, qdd, starts, d0, d1, ops_i, ops_f, const_items,
+                              const_values, n_items, n_angles, stored, o_jet, o_rate, o_diag,
+                              o_status, o_fail):
     """:func:`run_closed_form` for one input."""
-    _closed_form(q, qd, qdd, lo, hi, ops_i, ops_f, const_items, const_values, n_items,
-                 n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail, 1)
+    _closed_form_designs(q, qd, qdd, starts, d0, d1, ops_i, ops_f, const_items, const_values,
+                         n_items, n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail, 1)
 
 
 @_jit()
@@ -1417,21 +1429,39 @@ def _place_between(q, i, qprev, eps, qt, jet, jet_b, qd, qdd, ops_i, ops_f, M, K
     return True
 
 
-@_jit(nogil=True)
-def run_continuation(q, qd, qdd, q_start, q_unit, ops_i, ops_f, const_items, const_values,
-                     n_items, n_angles, stored, groups_i, con_i, con_f, grp_x0, scale,
-                     o_jet, o_rate, o_diag, o_status, o_fail, o_state, M):
-    """Evaluate a plan with Newton groups along the samples (see ``_continuation``)."""
-    _continuation(q, qd, qdd, q_start, q_unit, ops_i, ops_f, const_items, const_values,
-                  n_items, n_angles, stored, groups_i, con_i, con_f, grp_x0, scale,
-                  o_jet, o_rate, o_diag, o_status, o_fail, o_state, M)
+@_jit()
+def _continuation_designs(q, qd, qdd, starts, q_start, q_unit, ops_i, ops_f, const_items,
+                          const_values, n_items, n_angles, stored, groups_i, con_i, con_f,
+                          grp_x0, scale, o_jet, o_rate, o_diag, o_status, o_fail, o_state, M):
+    for d in range(starts.shape[0] - 1):
+        lo = starts[d]
+        hi = starts[d + 1]
+        _continuation(q[lo:hi], qd if qd.shape[0] == 1 else qd[lo:hi],
+                      qdd if qdd.shape[0] == 1 else qdd[lo:hi], q_start[d], q_unit[d], ops_i,
+                      ops_f[d], const_items, const_values[d], n_items, n_angles, stored,
+                      groups_i, con_i, con_f[d], grp_x0[d], scale[d], o_jet[lo:hi],
+                      o_rate[lo:hi], o_diag[lo:hi], o_status[lo:hi], o_fail[lo:hi], o_state[d],
+                      M)
 
 
 @_jit(nogil=True)
-def run_continuation_one_input(q, qd, qdd, q_start, q_unit, ops_i, ops_f, const_items,
+def run_continuation(q, qd, qdd, starts, q_start, q_unit, ops_i, ops_f, const_items,
+                     const_values, n_items, n_angles, stored, groups_i, con_i, con_f, grp_x0,
+                     scale, o_jet, o_rate, o_diag, o_status, o_fail, o_state, M):
+    """Evaluate the designs of a plan with Newton groups along their samples (see
+    ``_continuation``): design d from its own start (q_start[d], grp_x0[d]) with its own
+    numbers (ops_f[d], const_values[d], con_f[d], scale[d], its inputs' units q_unit[d]);
+    its end state goes to o_state[d]."""
+    _continuation_designs(q, qd, qdd, starts, q_start, q_unit, ops_i, ops_f, const_items,
+                          const_values, n_items, n_angles, stored, groups_i, con_i, con_f,
+                          grp_x0, scale, o_jet, o_rate, o_diag, o_status, o_fail, o_state, M)
+
+
+@_jit(nogil=True)
+def run_continuation_one_input(q, qd, qdd, starts, q_start, q_unit, ops_i, ops_f, const_items,
                                const_values, n_items, n_angles, stored, groups_i, con_i, con_f,
                                grp_x0, scale, o_jet, o_rate, o_diag, o_status, o_fail, o_state):
     """:func:`run_continuation` for one input."""
-    _continuation(q, qd, qdd, q_start, q_unit, ops_i, ops_f, const_items, const_values,
-                  n_items, n_angles, stored, groups_i, con_i, con_f, grp_x0, scale,
-                  o_jet, o_rate, o_diag, o_status, o_fail, o_state, 1)
+    _continuation_designs(q, qd, qdd, starts, q_start, q_unit, ops_i, ops_f, const_items,
+                          const_values, n_items, n_angles, stored, groups_i, con_i, con_f,
+                          grp_x0, scale, o_jet, o_rate, o_diag, o_status, o_fail, o_state, 1)

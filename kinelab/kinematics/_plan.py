@@ -90,6 +90,7 @@ class Plan:
     redundant: tuple[str, ...]
     scale: float
     input_kinds: tuple[str, ...] = field(default=())   # "angle" or "slide" per input
+    recipe: _Recipe | None = field(default=None, repr=False, compare=False)
     _columns: dict = field(default_factory=dict, init=False, repr=False, compare=False)
     memo: dict = field(default_factory=dict, init=False, repr=False, compare=False)
     """What analyses derive from the plan once (its change points, its packed form)."""
@@ -125,6 +126,113 @@ class Plan:
                 return s
         return None
 
+    def designs(self, points, axes=None) -> Designs:
+        """The plan's numbers for D designs of this mechanism's topology, from their sketches.
+
+        Parameters
+        ----------
+        points : mapping of str to array_like (D, 2), or array_like (D, P, 2)
+            Each design's sketch: the places of the mechanism's points, by name, or in the
+            order of ``mechanism.points`` (m).  Every design keeps the model's joints, inputs
+            and the plan's operations; its own sketch gives its links' dimensions, its dyads'
+            assembly modes and its inputs' values there.
+        axes : mapping of str to array_like (D, 2) or (2,), optional
+            The directions of prismatic joints' axes in the designs' sketches, by joint name
+            (default: each joint's axis as the mechanism gives it).
+
+        Returns
+        -------
+        Designs
+            Its ``valid`` marks the designs whose sketch this plan can take: a design
+            whose sketch draws a dyad straight, puts two of the plan's points on one link at
+            one place where the mechanism's sketch does not (or the other way round), or
+            gives a link no length, needs a plan of its own (``build_plan``).
+        """
+        return self.recipe.designs(points, axes)
+
+
+@dataclass(frozen=True)
+class Designs:
+    """The numbers of a plan for D designs of one topology (:meth:`Plan.designs`): each
+    design's operation parameters, constants, the inputs and link angles at its sketch,
+    its size, the numbers and starting state of its Newton groups, and whether it is valid."""
+
+    ops_f: np.ndarray            # (D, n_ops, 8)
+    const_values: np.ndarray     # (D, n_const)
+    q_sketch: np.ndarray         # (D, M)
+    sketch_angles: np.ndarray    # (D, n_links)
+    scale: np.ndarray            # (D,)
+    group_f: np.ndarray | None   # (D, constraint rows, 8): con_f of the Newton groups
+    group_x0: np.ndarray | None  # (D, unknowns): their state at the sketch
+    valid: np.ndarray            # (D,) bool
+
+    def __len__(self) -> int:
+        return len(self.valid)
+
+
+class _Recipe:
+    """How a plan's numbers follow from a sketch (kept on the plan, see ``Plan.designs``)."""
+
+    def __init__(self, b: _Builder):
+        self.m = b.m
+        self.ops = list(b.recipes)
+        self.groups = [numbers for *_, numbers in b.groups]
+        self.coincide = list(b.coincide)
+        self.sources = dict(b.sources)
+        self.constants, self.inputs_at = b.constants, b.inputs_at
+
+    def geometry(self, points, axes=None) -> _Geometry:
+        names = self.m.point_names
+        if isinstance(points, dict):
+            missing = [n for n in names if n not in points]
+            if missing:
+                raise ModelError(f"points: expected a place for every point of the mechanism, "
+                                 f"missing {', '.join(repr(n) for n in missing)}")
+            xy = {n: np.asarray(points[n], float) for n in names}
+        else:
+            a = np.asarray(points, float)
+            if a.ndim != 3 or a.shape[1:] != (len(names), 2):
+                raise ModelError(f"points: expected an array (D, {len(names)}, 2) of the points' "
+                                 f"places, got shape {a.shape}")
+            xy = {n: a[:, i] for i, n in enumerate(names)}
+        shapes = {v.shape for v in xy.values()}
+        if len(shapes) != 1 or len(next(iter(shapes))) != 2 or next(iter(shapes))[1] != 2:
+            raise ModelError(f"points: expected every place of shape (D, 2), got {sorted(shapes)}")
+        D = next(iter(shapes))[0]
+        prismatic = [j.name for j in self.m.joints if j.type == "P"]
+        given = {}
+        for name, a in (axes or {}).items():
+            if name not in prismatic:
+                raise ModelError(f"axes: expected prismatic joints' names ({', '.join(map(repr, prismatic))}), "
+                                 f"got {name!r}")
+            a = np.asarray(a, float)
+            if a.shape not in ((2,), (D, 2)) or not np.all(np.isfinite(a)) or np.any(_norm(a) == 0):
+                raise ModelError(f"axes.{name}: expected a non-zero direction, (2,) or (D, 2), got "
+                                 f"shape {a.shape}")
+            given[name] = np.broadcast_to(a, (D, 2))
+        return _Geometry(self.m, xy, self.sources, given)
+
+    def designs(self, points, axes=None) -> Designs:
+        G = self.geometry(points, axes)
+        D = len(G.scale)
+        ops_f = np.zeros((D, len(self.ops), 8))
+        for op, recipe in enumerate(self.ops):
+            if recipe is not None:
+                for col, v in enumerate(recipe(G)):
+                    ops_f[:, op, col] = v
+        group_f = group_x0 = None
+        if self.groups:
+            parts = [numbers(G) for numbers in self.groups]
+            group_f = np.concatenate([f for f, _ in parts], 1)
+            group_x0 = np.concatenate([x for _, x in parts], 1)
+        const_values = self.constants(G)
+        valid = np.isfinite(ops_f).all(axis=(1, 2)) & np.isfinite(const_values).all(axis=1)
+        for a, b in self.coincide:           # points the plan takes as one place
+            valid &= _norm(G.xy[a] - G.xy[b]) <= 1e-14 * G.scale
+        return Designs(ops_f=ops_f, const_values=const_values, q_sketch=self.inputs_at(G),
+                       sketch_angles=np.stack([G.theta[n] for n in self.m.link_names], -1),
+                       scale=G.scale, group_f=group_f, group_x0=group_x0, valid=valid)
+
 
 @dataclass(frozen=True)
 class ItemColumns:
@@ -135,6 +243,7 @@ class ItemColumns:
     solved_cols: np.ndarray
     fixed_cols: np.ndarray
     fixed_values: np.ndarray
+    fixed_constants: np.ndarray    # where each fixed item is among the plan's constants
     driven_cols: np.ndarray
     driven_inputs: np.ndarray      # the input m turning each driven item
     driven_signs: np.ndarray
@@ -155,6 +264,8 @@ class ItemColumns:
         return cls(slots=slots, contiguous=contiguous, solved_cols=np.flatnonzero(slots >= 0),
                    fixed_cols=ints(fixed),
                    fixed_values=np.array([plan.fixed_values[int(items[c])] for c in fixed], float),
+                   fixed_constants=ints([plan.const_items.tolist().index(int(items[c]))
+                                         for c in fixed]),
                    driven_cols=ints(driven), driven_inputs=ints([m for m, _ in drive]),
                    driven_signs=np.array([sg for _, sg in drive], float),
                    others=np.flatnonzero(slots < 0))
@@ -173,6 +284,103 @@ def _angle(v) -> float:
 def _rot(theta: float, v) -> np.ndarray:
     c, s = math.cos(theta), math.sin(theta)
     return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1]])
+
+
+# -- the numbers of a plan, for one sketch or for the sketches of many designs ----------------
+# Every number an operation carries (a dyad's arm lengths and branch, a point's place on its
+# link, a slide's axis ...) comes from the sketch.  The builder decides the operations from
+# the mechanism's own sketch and records, beside each, how its numbers follow from a sketch
+# (a *recipe*): the same recipes, given the sketches of D designs of one topology at once
+# (point places of shape (D, 2)), give each design's numbers in a few array operations
+# (``Plan.designs``).  For the plan's own sketch D = 1.
+
+def _angles(v: np.ndarray) -> np.ndarray:
+    """Direction of vectors (..., 2), rad."""
+    return np.arctan2(v[..., 1], v[..., 0])
+
+
+def _rotated(theta, v: np.ndarray) -> np.ndarray:
+    """Vectors (..., 2) turned by angles theta (...)."""
+    c, s = np.cos(theta), np.sin(theta)
+    return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], -1)
+
+
+def _positive(v: np.ndarray) -> np.ndarray:
+    """A length that must not be zero (the builder would not have chosen the operation)."""
+    return np.where(v > 0.0, v, np.nan)
+
+
+def _side(value: np.ndarray, size: np.ndarray) -> np.ndarray:
+    """A dyad's assembly mode, +1 or -1: NaN where the sketch draws it straight (the builder
+    refuses such a sketch, see ``_Builder._branch``)."""
+    return np.where(np.abs(value) > _SKETCH_SINGULAR * size, np.sign(value), np.nan)
+
+
+def _xy(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    return v[..., 0], v[..., 1]
+
+
+def _cross2(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def _norm(v: np.ndarray) -> np.ndarray:
+    return np.sqrt(v[..., 0] * v[..., 0] + v[..., 1] * v[..., 1])
+
+
+class _Geometry:
+    """A sketch as the recipes read it: the places of the named points (D, 2), the angles of
+    the links (D,), the prismatic joints' axes in the sketch (D, 2) and the places of the
+    points the plan adds (each at a named point's place)."""
+
+    def __init__(self, m: Mechanism, xy: dict[str, np.ndarray], sources: dict[int, str],
+                 axes: dict[str, np.ndarray] | None = None):
+        self.m, self.xy, self.sources = m, xy, sources
+        self.names = m.point_names
+        D = len(next(iter(xy.values())))
+        self.axes = {j.name: np.broadcast_to(np.asarray(j.axis, float), (D, 2))
+                     for j in m.joints if j.type == "P"}
+        self.axes.update(axes or {})
+        self.theta = {link.name: self._link_angle(link) for link in m.links}
+        span = np.stack(list(xy.values()), 1)                       # (D, points, 2)
+        self.scale = np.maximum(np.ptp(span, axis=1).max(axis=-1), MIN_LENGTH)
+
+    def _link_angle(self, link) -> np.ndarray:
+        """A link's angle in the sketch (as ``sketch_angle``): from its first point to its
+        second; a moving block with one point, the axis of the prismatic joint it slides in
+        (else of the one it guides); a ground with one point, 0."""
+        D = len(next(iter(self.xy.values())))
+        if len(link.points) >= 2:
+            return _angles(self.xy[link.points[1]] - self.xy[link.points[0]])
+        prismatic = sorted((j for j in self.m.joints_of(link.name) if j.type == "P"),
+                           key=lambda j: j.links[1] != link.name)
+        if link.ground or not prismatic:
+            return np.zeros(D)
+        return _angles(self.axes[prismatic[0].name])
+
+    def at(self, idx: int) -> np.ndarray:
+        """The place of point idx (a named point, or one the plan added)."""
+        return self.xy[self.names[idx] if idx < len(self.names) else self.sources[idx]]
+
+    def axis(self, j: Joint) -> np.ndarray:
+        """The direction of prismatic joint j's axis in the sketch, rad (D,)."""
+        return _angles(self.axes[j.name])
+
+    def unit(self, j: Joint) -> np.ndarray:
+        """Prismatic joint j's axis in the sketch, a unit vector (D, 2)."""
+        a = self.axes[j.name]
+        return a / _norm(a)[..., None]
+
+    def slide(self, j: Joint) -> np.ndarray:
+        """The slide of prismatic joint j in the sketch: u . (point - origin)."""
+        origin = j.origin or self.m.link(j.links[0]).points[0]
+        u = self.unit(j)
+        d = self.xy[j.point] - self.xy[origin]
+        return u[..., 0] * d[..., 0] + u[..., 1] * d[..., 1]
+
+    def local(self, link: str, idx: int, anchor: int) -> np.ndarray:
+        """Point idx in the frame of link, from the link's anchor (D, 2)."""
+        return _rotated(-self.theta[link], self.at(idx) - self.at(anchor))
 
 
 class _Builder:
@@ -206,11 +414,14 @@ class _Builder:
         self.anchor: dict[str, int] = {}
         self.computed: set[int] = set()
         self.virtual: dict[tuple[str, float, float], int] = {}
+        self.sources: dict[int, str] = {}          # a point the plan adds: the named point
+        self.coincide: list[tuple[str, str]] = []  # named points at one place in the sketch
+        self.recipes: list = []                    # per operation: its numbers from a sketch
+        self.G = _Geometry(m, {n: xy[None, :] for n, xy in self.xy.items()}, self.sources)
         self.used: set[str] = set()
         self.const_points: list[int] = []
-        self.const_xy: list[np.ndarray] = []
         for pn in m.link(self.ground).points:
-            self._set_const(self.P[pn], self.xy[pn])
+            self._set_const(self.P[pn])
         self.anchor[self.ground] = self.P[m.link(self.ground).points[0]]
         self.slides = {j.name: i for i, j in enumerate(x for x in m.joints if x.type == "P")}
         self.relations = self._input_relations()
@@ -247,50 +458,67 @@ class _Builder:
     def _frame_angle(self, link: str) -> float:
         return 0.0 if link == self.ground else self.theta_s[link]
 
+    def constants(self, G: _Geometry) -> np.ndarray:
+        """The values of the plan's constant items (D, 1 + 2 constant points): the ground's
+        angle, then x and y of each point fixed in it."""
+        ground = wrap_angle(G.theta[self.ground])
+        return np.stack([ground] + [v for idx in self.const_points for v in _xy(G.at(idx))], -1)
+
+    def inputs_at(self, G: _Geometry) -> np.ndarray:
+        """The inputs' values at the sketch (D, M)."""
+        def frame(link):
+            return np.zeros_like(G.scale) if link == self.ground else G.theta[link]
+        return np.stack([G.slide(rel[1]) if rel[0] == "slide" else frame(rel[2]) - frame(rel[1])
+                         for rel in self.relations], -1)
+
     # -- emitting operations ---------------------------------------------------------------
-    def _emit(self, ints, floats=()) -> int:
+    def _emit(self, ints, recipe=None) -> int:
+        """Add an operation: its integer fields, and the recipe of its numbers (a function
+        of a ``_Geometry`` returning each number for every sketch, see ``Plan.designs``)."""
+        floats = [] if recipe is None else [float(np.reshape(v, -1)[0]) for v in recipe(self.G)]
         self.ops_i.append(list(ints) + [0] * (8 - len(ints)))
-        self.ops_f.append(list(floats) + [0.0] * (8 - len(floats)))
+        self.ops_f.append(floats + [0.0] * (8 - len(floats)))
+        self.recipes.append(recipe)
         return len(self.ops_i) - 1
 
-    def _set_const(self, idx: int, xy) -> None:
+    def _set_const(self, idx: int) -> None:
         self.const_points.append(idx)
-        self.const_xy.append(np.asarray(xy, float))
         self.computed.add(idx)
 
-    def _local(self, link: str, xy) -> np.ndarray:
-        """Sketch point xy in the frame of link (anchored at its anchor, rotated back)."""
-        a = self.anchor_xy(link)
-        return _rot(-self.theta_s[link], np.asarray(xy, float) - a)
+    def _xy_of(self, idx: int) -> np.ndarray:
+        return self.G.at(idx)[0]
 
     def anchor_xy(self, link: str) -> np.ndarray:
-        idx = self.anchor[link]
-        return self._xy_of(idx)
+        return self._xy_of(self.anchor[link])
 
-    def _xy_of(self, idx: int) -> np.ndarray:
-        if idx < len(self.point_xy):
-            return self.point_xy[idx]
-        for (link, x, y), i in self.virtual.items():
-            if i == idx:
-                return np.array([x, y])
-        raise KeyError(idx)
-
-    def point_on(self, link: str, xy) -> int:
-        """Index of a point rigid with a placed link at sketch position xy (named or new)."""
-        xy = np.asarray(xy, float)
+    def point_on(self, link: str, name: str) -> int:
+        """Index of a point rigid with a placed link at the sketch place of the named point
+        ``name`` (one of the link's own points there, or a point the plan adds)."""
+        xy = self.xy[name]
         for pn in self.m.link(link).points:
             if np.allclose(self.xy[pn], xy, rtol=0, atol=1e-14 * self.scale):
+                if pn != name:
+                    self.coincide.append((pn, name))
                 return self.P[pn]
         key = (link, float(xy[0]), float(xy[1]))
         if key not in self.virtual:
-            idx = self.n_all
-            self.n_all += 1
-            self.virtual[key] = idx
+            idx = self._new_point(link, name)
             if link == self.ground:
-                self._set_const(idx, xy)
+                self._set_const(idx)
             else:
-                self._emit_rigid(idx, link, xy)
+                self._emit_rigid(idx, link)
+        else:
+            first = self.sources[self.virtual[key]]
+            if first != name:
+                self.coincide.append((first, name))
         return self.virtual[key]
+
+    def _new_point(self, link: str, name: str) -> int:
+        idx = self.n_all
+        self.n_all += 1
+        self.virtual[(link, float(self.xy[name][0]), float(self.xy[name][1]))] = idx
+        self.sources[idx] = name
+        return idx
 
     def _farthest_known(self, link: str, exclude: int) -> tuple[float, int]:
         """(distance, index) of the computed point of a link farthest from its anchor."""
@@ -300,25 +528,30 @@ class _Builder:
                  if self.P[pn] in self.computed and self.P[pn] not in (a, exclude)]
         return max(known, default=(0.0, -1))
 
-    def _emit_rigid(self, idx: int, link: str, xy, far: tuple[float, int] | None = None) -> None:
-        """Emit the operation placing point idx (at sketch xy) rigid with a placed link.
+    def _emit_rigid(self, idx: int, link: str, far: tuple[float, int] | None = None) -> None:
+        """Emit the operation placing point idx rigid with a placed link.
 
         Through the anchor a and the known point b of the link farthest from it (``far``, if
         the caller keeps it), p = a + lam (b - a) + mu k x (b - a) needs no sine or cosine;
         a link with one known point (a crank on its pivot) turns r by its angle instead.
         """
         a = self.anchor[link]
-        a_xy = self._xy_of(a)
         if far is None:
             far = self._farthest_known(link, idx)
         if far[0] > 1e-6 * self.scale:
-            d = self._xy_of(far[1]) - a_xy
-            r = np.asarray(xy, float) - a_xy
-            d2 = float(d @ d)
-            self._emit([k.OP_FRAME_POINT, idx, a, far[1]],
-                       [float(r @ d) / d2, float(d[0] * r[1] - d[1] * r[0]) / d2])
+            b = far[1]
+
+            def frame_point(G):
+                d, r = G.at(b) - G.at(a), G.at(idx) - G.at(a)
+                d2 = d[..., 0] * d[..., 0] + d[..., 1] * d[..., 1]
+                d2 = np.where(d2 > (1e-6 * G.scale) ** 2, d2, np.nan)   # as decided above
+                return [(r[..., 0] * d[..., 0] + r[..., 1] * d[..., 1]) / d2, _cross2(d, r) / d2]
+            self._emit([k.OP_FRAME_POINT, idx, a, b], frame_point)
         else:
-            self._emit([k.OP_RIGID_POINT, idx, self.L[link], a], self._local(link, xy))
+            def rigid_point(G):
+                r = G.local(link, idx, a)
+                return [r[..., 0], r[..., 1]]
+            self._emit([k.OP_RIGID_POINT, idx, self.L[link], a], rigid_point)
 
     def place(self, link: str, anchor: int) -> None:
         """Mark a link placed (angle and anchor known) and compute its named points."""
@@ -331,7 +564,7 @@ class _Builder:
         for pn in self.m.link(link).points:
             idx = self.P[pn]
             if idx not in self.computed:
-                self._emit_rigid(idx, link, self.xy[pn], far)
+                self._emit_rigid(idx, link, far)
                 self.computed.add(idx)
                 far = max(far, (float(np.hypot(*(self.xy[pn] - a_xy))), idx))
 
@@ -346,9 +579,9 @@ class _Builder:
         for j in m.joints:
             if j.type == "P":
                 g, s = j.links
-                o = self.point_on(g, self.xy[j.point])
+                o = self.point_on(g, j.point)
                 self._emit([k.OP_SLIDE_OUT, self.slides[j.name], self.P[j.point], o, self.L[g]],
-                           [self._axis_angle(j) - self.theta_s[g], self._slide_sketch(j)])
+                           lambda G, j=j, g=g: [G.axis(j) - G.theta[g], G.slide(j)])
         redundant = tuple(j.name for j in m.joints if j.name not in self.used)
         nl, npn, ns = len(self.L), len(self.P), len(self.slides)
 
@@ -361,10 +594,9 @@ class _Builder:
             if row[0] == k.OP_SLIDE_OUT:
                 row[1] = nl + 2 * npn + int(row[1])
         const_items = [self.L[self.ground]]
-        const_values = [float(wrap_angle(self.theta_s[self.ground]))]
-        for idx, xy in zip(self.const_points, self.const_xy):
+        for idx in self.const_points:
             const_items += [item(idx), item(idx) + 1]
-            const_values += [float(xy[0]), float(xy[1])]
+        const_values = self.constants(self.G)[0].tolist()
         fixed = {i: v for i, v in zip(const_items, const_values) if i < nl + 2 * npn + ns}
         driven = {int(row[1]): (int(row[3]), float(f[0])) for row, f in zip(ops_i, self.ops_f)
                   if row[0] == k.OP_DRIVE_ANGLE and row[2] == -1}
@@ -383,7 +615,7 @@ class _Builder:
             q_sketch=self.q_sketch.copy(),
             sketch_angles=np.array([self.theta_s[n] for n in m.link_names]),
             steps=tuple(self.steps), redundant=redundant, scale=self.scale,
-            input_kinds=self.input_kinds)
+            input_kinds=self.input_kinds, recipe=_Recipe(self))
 
     def _propagate_angles(self) -> bool:
         progress = False
@@ -396,7 +628,7 @@ class _Builder:
                     base = -1 if known == self.ground else self.L[known]
                     if other == self.ground:
                         continue
-                    self._emit([k.OP_DRIVE_ANGLE, self.L[other], base, mi], [sign])
+                    self._emit([k.OP_DRIVE_ANGLE, self.L[other], base, mi], lambda G, s=sign: [s])
                     self.angle_known.add(other)
                     self.steps.append(Step("driven", (other,), (), f"'{other}' turned by input {mi}"))
                     progress = True
@@ -406,7 +638,7 @@ class _Builder:
             for known, other in (j.links, j.links[::-1]):
                 if known in self.angle_known and other not in self.angle_known:
                     self._emit([k.OP_LOCK_ANGLE, self.L[other], self.L[known]],
-                               [self.theta_s[other] - self.theta_s[known]])
+                               lambda G, a=other, b=known: [G.theta[a] - G.theta[b]])
                     self.angle_known.add(other)
                     self.steps.append(Step("locked", (other,), (j.name,),
                                            f"'{other}' keeps its angle to '{known}' (slide '{j.name}')"))
@@ -425,13 +657,14 @@ class _Builder:
     def _partner(self, j: Joint, link: str) -> str:
         return j.links[1] if j.links[0] == link else j.links[0]
 
-    def _line_for(self, link: str, j: Joint, xy) -> tuple[int, int, float]:
-        """The line a point of `link` (at sketch xy) moves on, sliding in P joint j on a placed
-        partner: (point of the partner on that line, link giving its direction, beta)."""
+    def _line_for(self, link: str, j: Joint, name: str) -> tuple[int, int, object]:
+        """The line a point of `link` (at the sketch place of point ``name``) moves on,
+        sliding in P joint j on a placed partner: (point of the partner on that line, link
+        giving its direction, the recipe of beta, its angle to that link)."""
         partner = self._partner(j, link)
         guide = j.links[0]
-        o = self.point_on(partner, xy)
-        return o, self.L[guide], self._axis_angle(j) - self.theta_s[guide]
+        o = self.point_on(partner, name)
+        return o, self.L[guide], lambda G: G.axis(j) - G.theta[guide]
 
     def _place_single(self) -> bool:
         return self._place_by_two_hinges() or self._place_known_angle()
@@ -448,9 +681,9 @@ class _Builder:
             if len(hinges) < 2 or hinges[0].point == hinges[1].point:
                 continue
             j1, j2 = hinges[:2]
-            p1, p2 = self.xy[j1.point], self.xy[j2.point]
             self._emit([k.OP_TWO_POINTS, self.L[link], self.P[j1.point], self.P[j2.point]],
-                       [self.theta_s[link] - _angle(p2 - p1)])
+                       lambda G, link=link, a=j1.point, b=j2.point:
+                       [G.theta[link] - _angles(G.xy[b] - G.xy[a])])
             self.used.add(j1.name)       # j2 stays unused: it is checked as redundant
             self.place(link, self.P[j1.point])
             self.steps.append(Step("placed", (link,), (j1.name, j2.name),
@@ -475,17 +708,17 @@ class _Builder:
                 if mi is None or self._partner(j, link) not in self.pos_known:
                     continue
                 guide, slider = j.links
-                beta = self._axis_angle(j) - self.theta_s[guide]
-                s0 = self._slide_sketch(j)
                 if link == slider:
                     out = self.P[j.point]
-                    base = self.point_on(guide, self.xy[j.point])
+                    base = self.point_on(guide, j.point)
                     sign = 1.0
                 else:
                     base = self.P[j.point]
-                    out = self._new_point(link, self.xy[j.point])
+                    out = self._new_point(link, j.point)
                     sign = -1.0
-                self._emit([k.OP_SLIDE_POINT, out, base, self.L[guide], mi], [beta, s0, sign])
+                self._emit([k.OP_SLIDE_POINT, out, base, self.L[guide], mi],
+                           lambda G, j=j, guide=guide, sign=sign:
+                           [G.axis(j) - G.theta[guide], G.slide(j), sign])
                 self.used.add(j.name)
                 self.place(link, out)
                 self.steps.append(Step("placed", (link,), (j.name,), f"'{link}' driven along '{j.name}'"))
@@ -493,23 +726,17 @@ class _Builder:
             slides = [j for j in free if j.type == "P" and self._partner(j, link) in self.pos_known]
             if len(slides) >= 2:
                 j1, j2 = slides[:2]
-                a_xy = self.xy[self.m.link(link).points[0]]
-                o1, l1, b1 = self._line_for(link, j1, a_xy)
-                o2, l2, b2 = self._line_for(link, j2, a_xy)
-                out = self.P[self.m.link(link).points[0]]
-                op = self._emit([k.OP_LINES, out, o1, l1, o2, l2], [b1, b2])
+                first = self.m.link(link).points[0]
+                o1, l1, b1 = self._line_for(link, j1, first)
+                o2, l2, b2 = self._line_for(link, j2, first)
+                out = self.P[first]
+                op = self._emit([k.OP_LINES, out, o1, l1, o2, l2], lambda G: [b1(G), b2(G)])
                 self.used.update((j1.name, j2.name))
                 self.place(link, out)
                 self.steps.append(Step("lines", (link,), (j1.name, j2.name),
                                        f"'{link}' placed by slides '{j1.name}' and '{j2.name}'", op))
                 return True
         return False
-
-    def _new_point(self, link: str, xy) -> int:
-        idx = self.n_all
-        self.n_all += 1
-        self.virtual[(link, float(xy[0]), float(xy[1]))] = idx
-        return idx
 
     def _known_hinge(self, link: str, exclude: str):
         for j in self._free_joints(link):
@@ -559,10 +786,16 @@ class _Builder:
         if lb == 0.0 or lc == 0.0:
             return False
         d = Z - X
-        sigma = self._branch(d[0] * (Y - X)[1] - d[1] * (Y - X)[0], lb * float(np.linalg.norm(d)) + 1e-300,
-                             f"the dyad '{b}'-'{c}' ({jx.point}-{j.point}-{jz.point})")
+        self._branch(d[0] * (Y - X)[1] - d[1] * (Y - X)[0], lb * float(np.linalg.norm(d)) + 1e-300,
+                     f"the dyad '{b}'-'{c}' ({jx.point}-{j.point}-{jz.point})")
+
+        def rrr(G, x=jx.point, y=j.point, z=jz.point):
+            yx, yz, zx = G.xy[y] - G.xy[x], G.xy[y] - G.xy[z], G.xy[z] - G.xy[x]
+            lb, lc = _norm(yx), _norm(yz)
+            return [_positive(lb), _positive(lc), _side(_cross2(zx, yx), lb * _norm(zx)),
+                    G.theta[b] - _angles(yx), G.theta[c] - _angles(yz)]
         op = self._emit([k.OP_RRR, self.L[b], self.L[c], self.P[jx.point], self.P[j.point], self.P[jz.point]],
-                        [lb, lc, sigma, self.theta_s[b] - _angle(Y - X), self.theta_s[c] - _angle(Y - Z)])
+                        rrr)
         self.used.update((j.name, jx.name, jz.name))
         self.computed.add(self.P[j.point])
         self.place(b, self.P[jx.point])
@@ -582,12 +815,18 @@ class _Builder:
         lb = float(np.linalg.norm(Y - X))
         if lb == 0.0:
             return False
-        o, g, beta = self._line_for(c, jp, Y)
-        u = np.array([math.cos(self._axis_angle(jp)), math.sin(self._axis_angle(jp))])
-        sigma = self._branch(float(u @ (Y - X)), lb, f"the dyad '{b}'-'{c}' ({jx.point}-{j.point} "
-                             f"and slide '{jp.name}')")
-        op = self._emit([k.OP_RRP, self.L[b], self.P[jx.point], self.P[j.point], o, g],
-                        [lb, beta, sigma, self.theta_s[b] - _angle(Y - X)])
+        o, g, beta = self._line_for(c, jp, j.point)
+        axis = _angle(jp.axis)
+        u = np.array([math.cos(axis), math.sin(axis)])
+        self._branch(float(u @ (Y - X)), lb, f"the dyad '{b}'-'{c}' ({jx.point}-{j.point} "
+                     f"and slide '{jp.name}')")
+
+        def rrp(G, x=jx.point, y=j.point):
+            yx, u = G.xy[y] - G.xy[x], G.unit(jp)
+            lb = _norm(yx)
+            return [_positive(lb), beta(G), _side(u[..., 0] * yx[..., 0] + u[..., 1] * yx[..., 1], lb),
+                    G.theta[b] - _angles(yx)]
+        op = self._emit([k.OP_RRP, self.L[b], self.P[jx.point], self.P[j.point], o, g], rrp)
         self.used.update((j.name, jx.name, jp.name))
         self.computed.add(self.P[j.point])
         self.place(b, self.P[jx.point])
@@ -603,10 +842,9 @@ class _Builder:
         jb, jc = self._known_slide(b, j.name), self._known_slide(c, j.name)
         if jb is None or jc is None:
             return False
-        Y = self.xy[j.point]
-        o1, l1, b1 = self._line_for(b, jb, Y)
-        o2, l2, b2 = self._line_for(c, jc, Y)
-        op = self._emit([k.OP_LINES, self.P[j.point], o1, l1, o2, l2], [b1, b2])
+        o1, l1, b1 = self._line_for(b, jb, j.point)
+        o2, l2, b2 = self._line_for(c, jc, j.point)
+        op = self._emit([k.OP_LINES, self.P[j.point], o1, l1, o2, l2], lambda G: [b1(G), b2(G)])
         self.used.update((j.name, jb.name, jc.name))
         self.place(b, self.P[j.point])
         self.place(c, self.P[j.point])
@@ -625,14 +863,19 @@ class _Builder:
         if np.linalg.norm(X - Z) == 0.0:
             return False
         u = np.asarray(j.axis, float) / math.hypot(*j.axis)
-        sigma = self._branch(float(u @ (X - Z)), float(np.linalg.norm(X - Z)),
-                             f"the dyad '{G}'-'{S}' (slide '{j.name}' between {jz.point} and {jx.point})")
-        rho = _rot(-self.theta_s[G], X - Z)
-        ul = _rot(-self.theta_s[G], u)
+        self._branch(float(u @ (X - Z)), float(np.linalg.norm(X - Z)),
+                     f"the dyad '{G}'-'{S}' (slide '{j.name}' between {jz.point} and {jx.point})")
+
+        def rpr(Geo, x=jx.point, z=jz.point):
+            xz, u = Geo.xy[x] - Geo.xy[z], Geo.unit(j)
+            rho = _rotated(-Geo.theta[G], xz)
+            ul = _rotated(-Geo.theta[G], u)
+            return [rho[..., 0], rho[..., 1], ul[..., 0], ul[..., 1],
+                    _side(u[..., 0] * xz[..., 0] + u[..., 1] * xz[..., 1], _positive(_norm(xz)))]
         # G's angle comes from the op; its anchor Z is known
-        op = self._emit([k.OP_RPR, self.L[G], self.P[jx.point], self.P[jz.point]],
-                        [rho[0], rho[1], ul[0], ul[1], sigma])
-        self._emit([k.OP_LOCK_ANGLE, self.L[S], self.L[G]], [self.theta_s[S] - self.theta_s[G]])
+        op = self._emit([k.OP_RPR, self.L[G], self.P[jx.point], self.P[jz.point]], rpr)
+        self._emit([k.OP_LOCK_ANGLE, self.L[S], self.L[G]],
+                   lambda Geo: [Geo.theta[S] - Geo.theta[G]])
         self.used.update((j.name, jx.name, jz.name))
         self.place(G, self.P[jz.point])
         self.place(S, self.P[jx.point])
@@ -691,37 +934,43 @@ class _Builder:
             "and inputs, or move the sketch off a singular configuration")
 
     def _group_tables(self, links: list[str], cons):
+        """A Newton group's tables: its anchors, the integer rows of its constraints, and the
+        recipe of their numbers and of the group's unknowns at the sketch (``x0``): a
+        function of a ``_Geometry`` returning (rows of numbers (D, n, 8), x0 (D, 3 links))."""
         gi = {n: i for i, n in enumerate(links)}
         anchors = [self.P[self.m.link(n).points[0]] for n in links]
         for n, a in zip(links, anchors):
             self.anchor[n] = a
-        rows_i, rows_f = [], []
+        rows_i, makers = [], []
 
-        def side(link, xy):
+        def side(link, name):
+            """(group link, known point, link item, recipe of the point in the group link's
+            frame) of one side of a constraint at the sketch place of point ``name``."""
             if link in gi:
-                r = _rot(-self.theta_s[link], np.asarray(xy) - self.xy[self.m.link(link).points[0]])
-                return gi[link], -1, self.L[link], r
-            return -1, self.point_on(link, xy), self.L[link], np.zeros(2)
+                first = self.m.link(link).points[0]
+                return gi[link], -1, self.L[link], \
+                    lambda G: _rotated(-G.theta[link], G.xy[name] - G.xy[first])
+            return -1, self.point_on(link, name), self.L[link], lambda G: np.zeros_like(G.xy[name])
 
         for c in cons:
             if c[0] == "joint":
                 j, mi = c[1], c[2]
-                xy = self.xy[j.point]
+                g1, p1, l1, r1 = side(j.links[0], j.point)
+                g2, p2, l2, r2 = side(j.links[1], j.point)
                 if j.type == "R":
-                    g1, p1, l1, r1 = side(j.links[0], xy)
-                    g2, p2, l2, r2 = side(j.links[1], xy)
                     rows_i.append([k.C_REVOLUTE, g1, p1, l1, g2, p2, l2, 0])
-                    rows_f.append([r1[0], r1[1], r2[0], r2[1], 0.0, 0.0, 0.0, 0.0])
+                    makers.append(lambda G, r1=r1, r2=r2: [*_xy(r1(G)), *_xy(r2(G))])
                 else:
-                    g1, p1, l1, r1 = side(j.links[0], xy)
-                    g2, p2, l2, r2 = side(j.links[1], xy)
-                    beta = self._axis_angle(j) - self.theta_s[j.links[0]]
+                    guide, slider = j.links
                     rows_i.append([k.C_PRISMATIC, g1, p1, l1, g2, p2, l2, 0])
-                    rows_f.append([r1[0], r1[1], r2[0], r2[1], beta,
-                                   self.theta_s[j.links[1]] - self.theta_s[j.links[0]], 0.0, 0.0])
+                    makers.append(lambda G, r1=r1, r2=r2, j=j, guide=guide, slider=slider:
+                                  [*_xy(r1(G)), *_xy(r2(G)), G.axis(j) - G.theta[guide],
+                                   G.theta[slider] - G.theta[guide]])
                     if mi is not None:
                         rows_i.append([k.C_DRIVE_SLIDE, g1, p1, l1, g2, p2, l2, mi])
-                        rows_f.append([r1[0], r1[1], r2[0], r2[1], beta, self._slide_sketch(j), 0.0, 0.0])
+                        makers.append(lambda G, r1=r1, r2=r2, j=j, guide=guide:
+                                      [*_xy(r1(G)), *_xy(r2(G)), G.axis(j) - G.theta[guide],
+                                       G.slide(j)])
             else:
                 _, a, b, mi = c
                 ga = gi.get(a, -1)
@@ -729,24 +978,40 @@ class _Builder:
                 la = -1 if a == self.ground else self.L[a]
                 lb = -1 if b == self.ground else self.L[b]
                 rows_i.append([k.C_DRIVE_ANGLE, ga, -1, la, gb, -1, lb, mi])
-                rows_f.append([1.0] + [0.0] * 7)
-        x0 = np.concatenate([[*self.xy[self.m.link(n).points[0]], self.theta_s[n]] for n in links])
-        return anchors, np.array(rows_i, np.int64), np.array(rows_f, float), x0
+                makers.append(lambda G: [1.0])
+        firsts = [self.m.link(n).points[0] for n in links]
+
+        def numbers(G):
+            D = len(G.theta[links[0]])
+            rows = np.zeros((D, len(makers), 8))
+            for r, make in enumerate(makers):
+                for col, v in enumerate(make(G)):
+                    rows[:, r, col] = v
+            x0 = np.stack([v for n, f in zip(links, firsts)
+                           for v in (G.xy[f][..., 0], G.xy[f][..., 1], G.theta[n])], -1)
+            return rows, x0
+        rows_f, x0 = numbers(self.G)
+        return anchors, np.array(rows_i, np.int64).reshape(-1, 8), rows_f[0], x0[0], numbers
 
     def _sketch_jacobian(self, links, cons) -> np.ndarray:
         """Jacobian of the constraints `cons` with respect to the poses of `links`, at the
         sketch (rows: equations, columns: x, y, theta of each link)."""
-        saved = (len(self.ops_i), dict(self.virtual), self.n_all, list(self.const_points),
-                 [c.copy() for c in self.const_xy], set(self.computed), dict(self.anchor))
+        saved = (len(self.ops_i), dict(self.virtual), dict(self.sources), list(self.coincide),
+                 self.n_all, list(self.const_points), set(self.computed), dict(self.anchor))
         try:
-            _, ci, cf, x0 = self._group_tables(links, cons)
+            _, ci, cf, x0, _ = self._group_tables(links, cons)
             pt = np.array([self._xy_of(i) for i in range(self.n_all)], float).reshape(-1, 2)
             ang = np.array([self.theta_s[name] for name in self.m.link_names])
         finally:
-            (nops, self.virtual, self.n_all, self.const_points, self.const_xy, self.computed,
+            (nops, virtual, sources, coincide, self.n_all, self.const_points, self.computed,
              self.anchor) = saved
+            self.virtual = virtual
+            self.sources.clear()                 # the geometry reads this very mapping
+            self.sources.update(sources)
+            self.coincide = coincide
             del self.ops_i[nops:]
             del self.ops_f[nops:]
+            del self.recipes[nops:]
         # a jet of the sketch: angles, then x, y of every point known so far
         from kinelab.kinematics import _interpreter
         nl, M = len(self.L), len(self.q_sketch)
@@ -783,9 +1048,9 @@ class _Builder:
                 f"input(s); give it {mob.exact} input(s), or {more} joints")
 
     def _emit_group(self, links, cons) -> None:
-        anchors, ci, cf, x0 = self._group_tables(links, cons)
+        anchors, ci, cf, x0, numbers = self._group_tables(links, cons)
         gid = len(self.groups)
-        self.groups.append((links, anchors, ci, cf, x0))
+        self.groups.append((links, anchors, ci, cf, x0, numbers))
         op = self._emit([k.OP_NEWTON, gid])
         joints = tuple(c[1].name for c in cons if c[0] == "joint")
         self.used.update(joints)
@@ -800,7 +1065,7 @@ class _Builder:
         width = 4 + 2 * max(len(names) for names, *_ in self.groups)
         rows, ci, cf, x0 = [], [], [], []
         offset, c0 = 0, 0
-        for names, anchors, c_i, c_f, x in self.groups:
+        for names, anchors, c_i, c_f, x, _ in self.groups:
             c_i = c_i.copy()
             for row in c_i:       # known sides (g = -1) name a point: make it an item
                 for gcol, pcol in ((1, 2), (4, 5)):

@@ -181,6 +181,9 @@ class KinematicSolution(TableExport):
                                                                 # the end, for analyze(start=)
     change_points: tuple = ()
     certificate: Mapping | None = None
+    constants: np.ndarray | None = None      # (D, constants): each design's own values of
+                                             # the plan's constants, its samples D equal
+                                             # blocks of the N (designs), else the plan's
 
     # -- what was solved -----------------------------------------------------------------
     @property
@@ -249,7 +252,13 @@ class KinematicSolution(TableExport):
         out[:, c.solved_cols] = stored[:, c.slots[c.solved_cols]]
         signs, inputs = c.driven_signs, c.driven_inputs
         if values:
-            out[:, c.fixed_cols, 0] = c.fixed_values
+            if self.constants is None:
+                out[:, c.fixed_cols, 0] = c.fixed_values
+            else:                    # each design's block of samples, its own constants
+                D = len(self.constants)
+                blocks = out.reshape((D, self.N // D) + out.shape[1:])
+                for col, const in zip(c.fixed_cols, c.fixed_constants):
+                    blocks[:, :, col, 0] = self.constants[:, const, None]
             out[:, c.driven_cols, 0] = wrap_angle(self.q[:, inputs] * signs)
             out[:, c.driven_cols, 1 + inputs] = signs        # K = sign, L = 0
         else:
@@ -545,3 +554,45 @@ def takes_solution(function):
             raise ModelError(f"sol: expected a KinematicSolution, got {got}{hint}")
         return function(sol, *args, **kwargs)
     return checked
+
+
+@dataclass(frozen=True, eq=False)
+class DesignSolution(KinematicSolution):
+    """The analysis of D designs of one mechanism's topology over N samples each
+    (:func:`kinelab.kinematics.analyze_designs`).
+
+    Its accessors are those of :class:`KinematicSolution`, with one more leading axis:
+    ``angle(link)``, ``omega``, ``alpha``, ``slide(joint)`` ... have shape (D, N), a point's
+    ``position`` (D, N, 2), ``K`` of an angle (D, N) or (D, N, M) with M inputs, and so on.
+    ``q`` and the arrays of the samples (``singular``, ``assembled``, ``singularity``,
+    ``det_J``) keep the D designs' samples one after the other, (D N, ...); reshape them with
+    ``by_design``.
+
+    Attributes
+    ----------
+    designs : int
+        D.
+    valid : ndarray of bool, shape (D,)
+        The designs whose sketch the mechanism's plan takes (see ``Plan.designs``); the
+        others' samples are not assembled (NaN).
+    """
+
+    designs: int = 1
+    valid: np.ndarray | None = None
+
+    @property
+    def samples(self) -> int:
+        """N, the samples of each design."""
+        return self.q.shape[0] // self.designs
+
+    def by_design(self, a: np.ndarray) -> np.ndarray:
+        """An array over every design's samples, (D N, ...), as (D, N, ...)."""
+        return np.reshape(a, (self.designs, self.samples) + np.shape(a)[1:])
+
+    def _out(self, a: np.ndarray) -> np.ndarray:
+        return self.by_design(a)
+
+    def __repr__(self) -> str:
+        return (f"DesignSolution('{self.mechanism.name}', designs={self.designs}, "
+                f"N={self.samples}, inputs={list(self.input_names)}, "
+                f"singular samples={int(self.singular.sum())})")
