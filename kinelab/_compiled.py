@@ -27,8 +27,10 @@ runs on after the process that started it ends, so that a short command still le
 kernel compiled for the next; a helper whose entry point fails to compile writes a stamp
 saying why, and the processes that need it stay on the numpy form, with a warning.
 
-Nothing of numba runs in a background thread: loading and compiling happen in the thread
-that asked, so no thread is inside numba or LLVM while the interpreter exits.
+Nothing of numba runs in a background thread of kinelab's: loading and compiling happen in
+the thread that asked, and at exit the interpreter waits for a load under way in any
+other thread (and lets none start), so that no thread is inside numba or LLVM while the
+interpreter ends.
 
 The environment variable ``KINELAB_KERNEL`` chooses:
 
@@ -42,6 +44,7 @@ The environment variable ``KINELAB_KERNEL`` chooses:
 """
 from __future__ import annotations
 
+import atexit
 import functools
 import hashlib
 import os
@@ -73,6 +76,7 @@ _SOURCES = ("kinematics/_kernel.py", "kinematics/_codes.py", "dynamics/_kernel.p
 _LOOK_EVERY = 0.5          # s between two looks for a stamp, while an entry point is not ready
 _WAIT_STEP = 0.2           # s between two looks while waiting for one
 _LOCK = "kinelab-kernel.lock"
+_FENCE = 120.0             # s that exit waits for a load or compile under way in another thread
 
 _ready = {name: threading.Event() for name in ENTRIES}
 _failed: dict[str, str] = {}
@@ -205,6 +209,13 @@ def _fail(entry: str, message: str) -> None:
     warnings.warn(f"kinelab: the compiled kernel ({entry}) is not available ({message}); "
                   "analyses run on its numpy form, which is slower", RuntimeWarning,
                   stacklevel=2)
+
+
+@atexit.register
+def _fence() -> None:
+    """At exit: let a load or compile under way in another thread end, and start none after
+    (a thread inside numba or LLVM while the interpreter ends can abort the process)."""
+    _loading.acquire(timeout=_FENCE)
 
 
 def _warm_up(name: str) -> None:

@@ -159,9 +159,15 @@ _SHORT = textwrap.dedent("""
     import numpy as np
     import kinelab as kl
     from kinelab import _compiled
+    import threading
     fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5)
     t = time.perf_counter()
-    kl.analyze(fb, np.linspace(0.0, 2.0 * np.pi, 361))
+    if "thread" in sys.argv[1:]:        # the process ends while a thread may be loading
+        threading.Thread(target=kl.analyze, args=(fb, np.linspace(0.0, 1.0, 10)),
+                         daemon=True).start()
+        time.sleep(0.05)
+    else:
+        kl.analyze(fb, np.linspace(0.0, 2.0 * np.pi, 361))
     first = time.perf_counter() - t
     if "tracker" in sys.argv[1:]:
         kl.kinematics.Tracker(fb).positions(0.5)
@@ -340,11 +346,11 @@ def test_a_killed_helper_blocks_nobody(cold):
 
 @POSIX
 def test_short_processes_exit_cleanly(cold, warm):
-    """Processes that end at once, while the helper compiles (cold cache) or right after
-    loading the kernel (warm cache), exit with status 0 and nothing on stderr: no thread
-    is inside numba when the interpreter exits."""
+    """Processes that end at once, while the helper compiles (cold cache), right after
+    loading the kernel (warm cache) or while a thread of theirs loads it, exit with
+    status 0 and nothing on stderr: no thread is inside numba when the interpreter ends."""
     cache, place = cold
     for i in range(12):
-        args = ("tracker", "simulate")[:i % 3]
+        args = ("thread",) if i % 4 == 3 else ("tracker", "simulate")[:i % 4]
         _report(_short(*args, cache=cache if i % 2 else None))
     assert len(_helpers(place)) <= 1
