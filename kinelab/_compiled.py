@@ -57,7 +57,7 @@ import warnings
 
 from kinelab.errors import ModelError
 
-__all__ = ["ENTRIES", "mode", "set_mode", "ready", "wait", "wait_for", "cache_place"]
+__all__ = ["ENTRIES", "mode", "set_mode", "ready", "wait", "wait_for", "cache_place", "helpers_at_work"]
 
 # each entry point, and the module whose warm_up(entry) runs it once with the argument types
 # of every call (this module sits below the rooms and names them only here)
@@ -396,3 +396,26 @@ def _helper_main() -> None:
             _warm_up(name)
         except Exception as e:                # noqa: BLE001 - numba may fail in many ways
             _write_stamp(place, name, f"{type(e).__name__}: {e}")
+
+
+def helpers_at_work(place: str) -> list[int]:
+    """The process ids of the helpers alive on the cache directory ``place`` (Linux: read
+    from /proc; elsewhere an empty list), for tests and benchmarks."""
+    pids = []
+    try:
+        entries = os.listdir("/proc")
+    except OSError:
+        return pids
+    for name in entries:
+        if not name.isdigit():
+            continue
+        try:
+            with open(f"/proc/{name}/cmdline", "rb") as f:
+                argv = f.read().split(b"\0")
+            with open(f"/proc/{name}/stat", "rb") as f:
+                state = f.read().rsplit(b")", 1)[1].split()[0]
+        except (OSError, IndexError):
+            continue
+        if state != b"Z" and place.encode() in argv and any(b"_helper_main" in a for a in argv):
+            pids.append(int(name))
+    return sorted(pids)

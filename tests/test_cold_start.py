@@ -22,7 +22,8 @@ import pytest
 
 from kinelab import _compiled
 
-POSIX = pytest.mark.skipif(sys.platform == "win32", reason="the cache's lock is POSIX")
+POSIX = pytest.mark.skipif(not sys.platform.startswith("linux"),
+                           reason="helpers are counted in /proc; the cache's lock is POSIX")
 TIMEOUT = 600              # s for any one process: the suite never hangs on one
 
 # the three plan kinds (one input, several inputs, Newton groups) and forward dynamics
@@ -222,30 +223,14 @@ def _together(n: int, *args: str, cache: Path | None = None) -> list[dict]:
     return reports
 
 
-def _helpers(place: str) -> list[int]:
-    """The helper processes alive on the cache directory ``place``."""
-    pids = []
-    for entry in Path("/proc").iterdir():
-        if not entry.name.isdigit():
-            continue
-        try:
-            argv = (entry / "cmdline").read_bytes().split(b"\0")
-            state = (entry / "stat").read_text().rsplit(")", 1)[1].split()[0]
-        except OSError:
-            continue
-        if state != "Z" and any(b"_helper_main" in a for a in argv) and place.encode() in argv:
-            pids.append(int(entry.name))
-    return pids
-
-
 def _stop_helpers(place: str) -> None:
-    for pid in _helpers(place):
+    for pid in _compiled.helpers_at_work(place):
         try:
             os.kill(pid, signal.SIGKILL)
         except OSError:
             pass
     deadline = time.monotonic() + 30
-    while _helpers(place) and time.monotonic() < deadline:
+    while _compiled.helpers_at_work(place) and time.monotonic() < deadline:
         time.sleep(0.05)
 
 
@@ -290,14 +275,14 @@ def cold(tmp_path):
 def test_a_warm_cache_is_loaded_in_the_process(warm):
     """With every entry point it needs in the cache, a process loads them itself and
     starts no helper, and neither do 8 processes started at once."""
-    before = set(_helpers(warm))
+    before = set(_compiled.helpers_at_work(warm))
     one = _report(_short("tracker", "simulate"))
     assert one["helper"] is None
     assert set(one["compiled"]) == {"closed_form_one_input", "one_sample", "dynamics_one_input"}
     reports = _together(8)
     assert [r["helper"] for r in reports] == [None] * 8
     assert all("closed_form_one_input" in r["compiled"] for r in reports)
-    assert set(_helpers(warm)) <= before
+    assert set(_compiled.helpers_at_work(warm)) <= before
 
 
 @POSIX
@@ -309,9 +294,9 @@ def test_processes_started_together_on_a_cold_cache_start_one_helper(cold):
     assert all(r["compiled"] == [] for r in reports)
     started = [r["helper"] for r in reports if r["helper"] is not None]
     assert len(started) == 1
-    assert _helpers(place) == started
+    assert _compiled.helpers_at_work(place) == started
     again = _report(_short(cache=cache))
-    assert again["helper"] is None and _helpers(place) == started
+    assert again["helper"] is None and _compiled.helpers_at_work(place) == started
 
 
 @POSIX
@@ -326,7 +311,7 @@ def test_commands_in_a_row_leave_one_helper(cold):
                                "analyze", str(model), "--out", str(cache.parent / f"out{i}.csv"),
                                "--quiet"], env=env, capture_output=True, text=True, timeout=TIMEOUT)
         assert done.returncode == 0, done.stderr
-        helpers = _helpers(place)
+        helpers = _compiled.helpers_at_work(place)
         assert len(helpers) <= 1
         seen |= set(helpers)
     assert len(seen) == 1
@@ -337,9 +322,9 @@ def test_a_killed_helper_blocks_nobody(cold):
     """The lock goes with the helper: killed, the next process starts another."""
     cache, place = cold
     first = _report(_short(cache=cache))["helper"]
-    assert first is not None and _helpers(place) == [first]
+    assert first is not None and _compiled.helpers_at_work(place) == [first]
     _stop_helpers(place)
-    assert _helpers(place) == []
+    assert _compiled.helpers_at_work(place) == []
     second = _report(_short(cache=cache))["helper"]
     assert second is not None and second != first
 
@@ -353,4 +338,4 @@ def test_short_processes_exit_cleanly(cold, warm):
     for i in range(12):
         args = ("thread",) if i % 4 == 3 else ("tracker", "simulate")[:i % 4]
         _report(_short(*args, cache=cache if i % 2 else None))
-    assert len(_helpers(place)) <= 1
+    assert len(_compiled.helpers_at_work(place)) <= 1
