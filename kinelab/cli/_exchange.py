@@ -8,7 +8,7 @@ import click
 
 from kinelab import io
 from kinelab.cli._analyze import MODEL
-from kinelab.cli._main import errors_from, output_path, read_model, stem, sweep
+from kinelab.cli._main import Number, errors_from, output_path, read_model, stem, sweep
 from kinelab.errors import ModelError, shown, shown_path
 from kinelab.io._text import read_text
 
@@ -30,9 +30,9 @@ UNITS = click.Choice(list(io.LENGTH_UNITS))
                    "model file's).")
 @click.option("--layout", type=click.Choice(("parts", "assembly")), default="parts",
               show_default=True, help="svg/dxf: links laid flat in a row, or as assembled.")
-@click.option("--width", type=click.FloatRange(min=0, min_open=True), default=None,
+@click.option("--width", type=Number(positive=True), default=None,
               help="svg/dxf: bar width (default: 15 % of the median link length).")
-@click.option("--hole", type=click.FloatRange(min=0, min_open=True), default=None,
+@click.option("--hole", type=Number(positive=True), default=None,
               help="svg/dxf: hole diameter (default: 40 % of the width).")
 @click.option("--ground", is_flag=True, help="svg/dxf: draw the ground link too.")
 def export(model, target, out, unit, layout, width, hole, ground):

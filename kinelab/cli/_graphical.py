@@ -4,7 +4,6 @@ as tables and figures."""
 from __future__ import annotations
 
 import dataclasses
-import re
 from pathlib import Path
 
 import click
@@ -14,11 +13,11 @@ from kinelab import io, kinematics, solvers
 from kinelab.cli._analyze import MODEL, SAMPLES, configuration, with_speeds
 from kinelab.cli._draw import FIGURE_FORMATS, _agg
 from kinelab.cli._format import _num
-from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, VERIFY, errors_from, output_units,
-                               parse_inputs, read_model, report, stem, sweep)
-from kinelab.errors import ModelError, shown, shown_path
+from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, VERIFY, Number, errors_from,
+                               output_units, parse_inputs, read_model, report, stem, sweep)
+from kinelab.errors import ModelError, shown_path
 from kinelab.model import Units
-from kinelab.solvers._differentiate import MAX_SAMPLES
+from kinelab.solvers._differentiate import MAX_SAMPLES, MIN_WINDOW
 
 __all__ = ["polygons", "centres", "differentiate_command"]
 
@@ -60,12 +59,12 @@ def _save(fig, out: str, name: str, formats) -> list[Path]:
 @SPEED
 @OUT
 @FORMATS
-@click.option("--velocity-scale", "velocity_scale", type=click.FloatRange(min=0, min_open=True),
+@click.option("--velocity-scale", "velocity_scale", type=Number(positive=True),
               default=None, metavar="VALUE",
               help="Velocity per centimetre of the drawing, in the results' length unit per "
                    "second (default: a round number that fits).")
 @click.option("--acceleration-scale", "acceleration_scale",
-              type=click.FloatRange(min=0, min_open=True), default=None, metavar="VALUE",
+              type=Number(positive=True), default=None, metavar="VALUE",
               help="Acceleration per centimetre of the drawing, in the results' length unit "
                    "per second squared (default: a round number that fits).")
 @SI
@@ -198,39 +197,6 @@ def centres(model, at, out, formats, with_centrodes, samples, si, change_points)
 
 PLOTTED = 20_000     # samples a figure of derivatives draws at most (every k-th beyond):
                      # it is about 1,000 pixels wide, and matplotlib slows down past that
-_NOT_A_SAMPLE = re.compile(rb"^[ \t]*(#.*)?\r?$", re.M)     # blank or comment lines
-
-
-def _samples_at_most(path: str, limit: int) -> None:
-    """Refuse a curve file with more than ``limit`` samples before it is read (reading
-    takes a while), counting its lines by chunks, in bounded memory."""
-    lines, tail = 0, b""
-    try:
-        with open(path, "rb") as f:
-            while chunk := f.read(1 << 20):
-                chunk = tail + chunk
-                cut = chunk.rfind(b"\n") + 1
-                whole, tail = chunk[:cut], chunk[cut:]
-                lines += whole.count(b"\n") - len(_NOT_A_SAMPLE.findall(whole)) + \
-                    whole.endswith(b"\n")       # the regex also matches after the last newline
-                if lines - 1 > limit:             # the first line is the header
-                    raise ModelError(f"expected at most {limit:,} samples, got more; cut the "
-                                     "curve into pieces, or keep every k-th sample",
-                                     source=path)
-    except OSError:
-        pass                                      # read_curve says why
-
-
-def _printable(curve) -> None:
-    """Refuse a header whose names or units hold unprintable characters (an escape
-    sequence would reach the table, the figure and the terminal)."""
-    for name, unit in ((curve.x_name, curve.x_unit), (curve.y_name, curve.y_unit)):
-        bad = next((c for c in name + unit if not c.isprintable()), None)
-        if bad is not None:
-            full = f"{name} [{unit}]" if unit else name
-            raise ModelError(f"header: column {shown(full)}: expected printable characters in "
-                             f"a column's name and unit, got {shown(bad)}; remove it",
-                             source=curve.source)
 
 
 @click.command("differentiate")
@@ -239,7 +205,8 @@ def _printable(curve) -> None:
               help="The abscissa's column, by name or number from 1 (default: the first).")
 @click.option("--y", "y_column", default=None, metavar="COLUMN",
               help="The curve's column, by name or number from 1 (default: the second).")
-@click.option("--window", type=int, default=None, metavar="SAMPLES",
+@click.option("--window", type=click.IntRange(MIN_WINDOW, MAX_SAMPLES), default=None,
+              metavar="SAMPLES",
               help="Samples per local fit (odd, at least 11), instead of the one chosen by "
                    "cross-validation.")
 @click.option("--out", "-o", "out", default=".", show_default=True, metavar="DIR",
@@ -252,9 +219,7 @@ def differentiate_command(data, x_column, y_column, window, out, formats):
     figure) and prints how the smoothing was chosen."""
     from kinelab import plot as kplot
     _agg()
-    _samples_at_most(data, MAX_SAMPLES)
     curve = io.read_curve(data, x=x_column, y=y_column)
-    _printable(curve)
     try:
         d = solvers.differentiate(curve.x, curve.y, window=window)
     except ModelError as exc:           # name the file in the message

@@ -14,12 +14,13 @@ import numpy as np
 from kinelab import kinematics
 from kinelab.errors import KinelabError, ModelError, one_line, quoted, shown, shown_path
 from kinelab.io import ModelFile
+from kinelab.io._text import NUMBER, PLAIN_NUMBER, number
 from kinelab.io._modelfile import errors_from
 from kinelab.kinematics import KinematicSolution
 from kinelab.model import ANGLE_UNITS, LENGTH_UNITS, Units, range_problem, rate_problem
 
 __all__ = ["main", "read_model", "errors_from", "sweep", "output_path", "parse_inputs", "stem",
-           "SI", "DEGREES", "VERIFY", "report", "certificate_path", "output_units"]
+           "SI", "DEGREES", "VERIFY", "report", "certificate_path", "output_units", "Number"]
 
 BAD_INPUT = 2      # exit status for a bad file, option or input value
 
@@ -200,7 +201,27 @@ def output_path(out: str | None, stem: str, suffix: str) -> Path:
     return path / f"{stem}.{suffix}"
 
 
-_VALUE = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([a-z]*)\s*$")
+_VALUE = re.compile(rf"[ \t]*({NUMBER})[ \t]*([a-z]*)[ \t]*")     # 30, 30deg, 0.5 rad
+
+
+class Number(click.ParamType):
+    """An option's number, written as every file and option writes one
+    (:data:`kinelab.io._text.NUMBER`: ``1000``, ``-0.5``, ``1.5e3``), finite, and above 0
+    when ``positive``."""
+
+    name = "number"
+
+    def __init__(self, *, positive: bool = False):
+        self.positive = positive
+
+    def convert(self, value, param, ctx):
+        if isinstance(value, float):         # a default
+            return value
+        v = number(value) if isinstance(value, str) else None
+        if v is None or not math.isfinite(v) or (self.positive and v <= 0):
+            kind = "a finite number above 0" if self.positive else "a finite number"
+            self.fail(f"expected {kind} in {PLAIN_NUMBER}, got {shown(str(value))}", param, ctx)
+        return v
 
 
 def parse_inputs(text: str, mf: ModelFile, option: str = "--at", *, rate: bool = False) -> np.ndarray:
@@ -215,13 +236,13 @@ def parse_inputs(text: str, mf: ModelFile, option: str = "--at", *, rate: bool =
                          f"input: {quoted(mf.mechanism.input_names)}), got {shown(text)}")
     out = []
     for part, kind in zip(parts, kinds):
-        match = _VALUE.match(part)
+        match = _VALUE.fullmatch(part)
         unit = match.group(2) if match else ""
         units = ANGLE_UNITS if kind == "angle" else LENGTH_UNITS
         default = mf.units.angle_scale if kind == "angle" else mf.units.length_scale
         if not match or (unit and unit not in units):
-            raise ModelError(f"{option}: expected a number, optionally followed by one of "
-                             f"{', '.join(units)}, got {shown(part.strip())}")
+            raise ModelError(f"{option}: expected a number in {PLAIN_NUMBER}, optionally "
+                             f"followed by one of {', '.join(units)}, got {shown(part.strip())}")
         v = float(match.group(1)) * (units[unit] if unit else default)
         si = "rad" if kind == "angle" else "m"
         why = ("expected a finite number" if not math.isfinite(v) else
