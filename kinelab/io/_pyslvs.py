@@ -25,6 +25,7 @@ from collections.abc import Sequence
 from kinelab.errors import ModelError, describe, expected_one_of, shown
 from kinelab.io._imported import in_expression_terms
 from kinelab.io._modelfile import LENGTH_UNITS
+from kinelab.io._text import NUMBER
 from kinelab.model import Input, Joint, Link, Mechanism, Point, angle_problem
 
 __all__ = ["from_pyslvs", "to_pyslvs", "IMPORT_SPEEDS"]
@@ -34,13 +35,13 @@ __all__ = ["from_pyslvs", "to_pyslvs", "IMPORT_SPEEDS"]
 # speed of the examples (600 deg/s).
 IMPORT_SPEEDS = {"angle": 2.0 * math.pi * 100.0 / 60.0, "slide": 0.1}
 
-_TOKEN = re.compile(r"""
-    (?P<space>\s+|\#\[[\s\S]*?\#\][^\n]*|\#[^\n]*)
+_TOKEN = re.compile(rf"""
+    (?P<space>\s+)
   | (?P<open>(?:M|J|A|P|L|color)\[)
   | (?P<close>\])
   | (?P<comma>,)
   | (?P<paren>[()])
-  | (?P<number>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)
+  | (?P<number>{NUMBER})
   | (?P<name>[A-Za-z_][A-Za-z0-9_-]*)
 """, re.X)
 _CNAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -51,7 +52,18 @@ class _Tokens:
     def __init__(self, text: str):
         self.items: list[tuple[str, str, int]] = []
         pos = 0
+        closing = None           # the "#]" last found (None: not looked for; -1: none after)
         while pos < len(text):
+            if text[pos] == "#":
+                # a comment: "#[ ... #]" and the rest of its line, or "#" to the line's end;
+                # one "#]" found serves every "#[" before it (no square work)
+                block = text.startswith("#[", pos)
+                if block and (closing is None or 0 <= closing < pos + 2):
+                    closing = text.find("#]", pos + 2)
+                block = block and closing >= pos + 2
+                end = text.find("\n", closing + 2 if block else pos)
+                pos = len(text) if end < 0 else end
+                continue
             m = _TOKEN.match(text, pos)
             if m is None:
                 raise ModelError(f"expression: character {pos + 1}: unexpected {describe(text[pos])}; "
@@ -262,8 +274,12 @@ def from_pyslvs(expression: str, *, inputs: Sequence[tuple[int, int]] | None = N
         raise ModelError([f"expression: {in_expression_terms(p)}" for p in exc.problems]) from exc
 
 
+_INPUTS_COMMENT = re.compile(r"inputs \(pivot joint, driven joint\) = (\[[0-9\s(),]*\])")
+
+
 def _commented_inputs(expression: str):
-    match = re.search(r"#.*inputs \(pivot joint, driven joint\) = (\[[\d\s(),]*\])", expression)
+    match = next((m for m in _INPUTS_COMMENT.finditer(expression)
+                  if "#" in expression[expression.rfind("\n", 0, m.start()) + 1:m.start()]), None)
     if match is None:
         return None
     import ast
