@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 
 import click
@@ -88,11 +89,11 @@ def import_(source, out, fmt, unit, inputs, input_joint):
         text = read_text(path)
         pairs = None
         if inputs:
-            try:
-                pairs = [tuple(int(v) for v in p.split(",")) for p in inputs.split(";")]
-            except ValueError:
-                raise ModelError(f"--inputs: expected pairs of joint numbers like '0,1;4,3', got "
-                                 f"{shown(inputs)}") from None
+            pairs = [tuple(int(v) if _JOINT.fullmatch(v) else -1 for v in p.split(","))
+                     for p in inputs.split(";")]
+            if any(-1 in p for p in pairs):
+                raise ModelError(f"--inputs: expected pairs of joint numbers (ASCII digits) like "
+                                 f"'0,1;4,3', got {shown(inputs)}")
         try:
             m = io.from_pyslvs(text, inputs=pairs, length=unit, name=path.stem)
         except ModelError as exc:
@@ -105,6 +106,9 @@ def import_(source, out, fmt, unit, inputs, input_joint):
                                    description=description), out)
     click.echo(f"wrote {shown_path(written)}: {len(m.links)} links, {len(m.joints)} joints, inputs "
                f"{', '.join(m.input_names) or 'none (add one under [[inputs]])'}")
+
+
+_JOINT = re.compile(r"[ \t]*[0-9]{1,9}[ \t]*")      # a Pyslvs joint's number
 
 
 def _speed_note(source: str, unit: str) -> str:

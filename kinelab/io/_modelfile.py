@@ -34,7 +34,7 @@ from kinelab.kinematics._assemble import assembly_miss, needs_assembly
 from kinelab.model import (ANGLE_UNITS, JOINT_TYPES, LENGTH_UNITS, SIDE_WORDS, SPACES, Input,
                            Joint, Link, Mechanism, Point, Units, angle_problem,
                            coordinate_problem, length_problem, name_problem, place_problems,
-                           range_problem, rate_problem)
+                           range_problem, rate_problem, size_problems)
 
 __all__ = ["SCHEMA", "LENGTH_UNITS", "ANGLE_UNITS", "Units", "Outputs", "ModelFile", "load",
            "save", "from_toml", "to_toml", "from_json", "to_json", "errors_from"]
@@ -399,6 +399,10 @@ class _Parser:
             raw_points = {}
         elif "points" in top:
             point_names = dict.fromkeys(raw_points)
+        counts = {k: len(v) if isinstance(v, (list, Mapping)) else 0 for k, v in
+                  (("points", raw_points), ("links", top.get("links")), ("joints", top.get("joints")))}
+        if too_large := size_problems(**counts):      # before any of them is read
+            self.fail(too_large)
         for pname, xy in raw_points.items():
             v = r.numbers(xy, f"points.{shown_key(pname)}", dim, scale=ls, what="coordinates",
                           unit=units.length, check=coordinate_problem)
