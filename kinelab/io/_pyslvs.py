@@ -26,7 +26,7 @@ from kinelab.errors import ModelError, describe, expected_one_of, shown
 from kinelab.io._imported import in_expression_terms
 from kinelab.io._modelfile import LENGTH_UNITS
 from kinelab.io._text import NUMBER
-from kinelab.model import Input, Joint, Link, Mechanism, Point, angle_problem
+from kinelab.model import MAX_POINTS, Input, Joint, Link, Mechanism, Point, angle_problem
 
 __all__ = ["from_pyslvs", "to_pyslvs", "IMPORT_SPEEDS"]
 
@@ -49,32 +49,40 @@ GROUND = "ground"
 
 
 class _Tokens:
+    """The expression's tokens, each read when the parser comes to it (a long expression is
+    never held as a list of its tokens)."""
+
     def __init__(self, text: str):
-        self.items: list[tuple[str, str, int]] = []
-        pos = 0
-        closing = None           # the "#]" last found (None: not looked for; -1: none after)
+        self.text, self.pos = text, 0
+        self.closing: int | None = None      # the "#]" last found (-1: there is none after)
+        self.current = self._next()
+
+    def _next(self) -> tuple[str, str, int]:
+        text, pos = self.text, self.pos
         while pos < len(text):
             if text[pos] == "#":
                 # a comment: "#[ ... #]" and the rest of its line, or "#" to the line's end;
                 # one "#]" found serves every "#[" before it (no square work)
                 block = text.startswith("#[", pos)
-                if block and (closing is None or 0 <= closing < pos + 2):
-                    closing = text.find("#]", pos + 2)
-                block = block and closing >= pos + 2
-                end = text.find("\n", closing + 2 if block else pos)
+                if block and (self.closing is None or 0 <= self.closing < pos + 2):
+                    self.closing = text.find("#]", pos + 2)
+                block = block and self.closing >= pos + 2
+                end = text.find("\n", self.closing + 2 if block else pos)
                 pos = len(text) if end < 0 else end
                 continue
             m = _TOKEN.match(text, pos)
             if m is None:
                 raise ModelError(f"expression: character {pos + 1}: unexpected {describe(text[pos])}; "
                                  "expected the Pyslvs form M[J[R, P[x, y], L[a, b]], ...]")
-            if m.lastgroup != "space":
-                self.items.append((m.lastgroup, m.group(), pos + 1))
             pos = m.end()
-        self.i = 0
+            if m.lastgroup != "space":
+                self.pos = pos
+                return m.lastgroup, m.group(), m.start() + 1
+        self.pos = pos
+        return "end", "the end", -1
 
     def peek(self) -> tuple[str, str, int]:
-        return self.items[self.i] if self.i < len(self.items) else ("end", "the end", -1)
+        return self.current
 
     def take(self, kind: str, value: str | None = None, what: str = "") -> str:
         k, v, pos = self.peek()
@@ -85,13 +93,13 @@ class _Tokens:
                 "paren": "a parenthesis"}.get(kind, kind)
             raise ModelError(f"expression: {where}: expected {expected}{' (' + what + ')' if what else ''}"
                              f", got {shown(v)}")
-        self.i += 1
+        self.current = self._next()
         return v
 
     def accept(self, kind: str, value: str | None = None) -> bool:
         k, v, _ = self.peek()
         if k == kind and (value is None or v == value):
-            self.i += 1
+            self.current = self._next()
             return True
         return False
 
@@ -102,6 +110,9 @@ def _parse(text: str) -> list[tuple[str, float, float, float, tuple[str, ...]]]:
     t.take("open", "M[", "the mechanism")
     joints = []
     while not t.accept("close"):
+        if len(joints) == MAX_POINTS:       # a joint is a point of the model
+            raise ModelError(f"expression: expected at most {MAX_POINTS:,} joints, got more; "
+                             "every point is solved at every sample: model the mechanism in parts")
         t.take("open", "J[", "a joint")
         kind = t.take("name", what="the joint type R, P or RP")
         if kind not in ("R", "P", "RP"):
