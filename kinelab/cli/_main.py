@@ -2,6 +2,7 @@
 outputs, sweeping with a progress bar, and turning kinelab errors into exit status 2."""
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import re
@@ -20,7 +21,8 @@ from kinelab.kinematics import KinematicSolution
 from kinelab.model import ANGLE_UNITS, LENGTH_UNITS, Units, range_problem, rate_problem
 
 __all__ = ["main", "read_model", "errors_from", "sweep", "output_path", "parse_inputs", "stem",
-           "SI", "DEGREES", "VERIFY", "report", "certificate_path", "output_units", "Number"]
+           "SI", "DEGREES", "VERIFY", "report", "certificate_path", "output_units", "Number",
+           "about"]
 
 BAD_INPUT = 2      # exit status for a bad file, option or input value
 
@@ -101,6 +103,20 @@ def read_model(path: str) -> ModelFile:
     return ModelFile.read(path)
 
 
+@contextlib.contextmanager
+def about(path: str | os.PathLike | None, fields: tuple[str, ...] = ()):
+    """Name ``path``, a file the command read, in the errors raised inside that name no file
+    (``designs.csv: designs: missing column(s) ...``): every such error, or (``fields``)
+    those whose problems are all about these fields of it; nothing when ``path`` is None."""
+    try:
+        yield
+    except ModelError as exc:
+        if path is None or exc.source is not None or fields and not all(
+                p.partition(":")[0] in fields for p in exc.problems):
+            raise
+        raise ModelError(exc.problems, source=str(path)) from None
+
+
 SI = click.option("--si", is_flag=True,
                   help="Results in SI (m, rad) instead of the file's units.")
 DEGREES = click.option("--degrees", is_flag=True,
@@ -154,7 +170,8 @@ def sweep(mf: ModelFile, samples: int | None = None, *, progress: bool | None = 
     q, qd, qdd = mf.sample_inputs(samples)
     if progress is None:
         progress = sys.stderr.isatty()
-    p = kinematics.plan(m)
+    with errors_from(mf):
+        p = kinematics.plan(m)
     big = len(q) >= (200 if p.uses_newton else 20000)
     if not (progress and big):
         return mf.analyze(samples, at_change_point=change_points)
@@ -229,7 +246,8 @@ def parse_inputs(text: str, mf: ModelFile, option: str = "--at", *, rate: bool =
     in SI; a bare number is in the file's unit.  The same for rates (``rate``: ``--speed
     60deg`` is 60 deg/s): errors name ``option``.  Values are refused past the sizes a model
     takes (an angle within MAX_TURNS turns of 0, a rate of at most MAX_RATE)."""
-    kinds = kinematics.plan(mf.mechanism).input_kinds
+    with errors_from(mf):
+        kinds = kinematics.plan(mf.mechanism).input_kinds
     parts = text.split(",")
     if len(parts) != len(kinds):
         raise ModelError(f"{option}: expected {len(kinds)} value(s) separated by commas (one per "

@@ -11,6 +11,7 @@ import json
 import click
 
 from kinelab import structure
+from kinelab.cli._main import about
 
 __all__ = ["mobility", "types"]
 
@@ -32,7 +33,8 @@ def mobility(model: str, as_json: bool) -> None:
     """Mobility of MODEL: Kutzbach-Gruebler's count and the exact value, with the reason
     they differ."""
     m = _load(model)
-    result = structure.mobility(m)
+    with about(model):
+        result = structure.mobility(m)
     if as_json:
         click.echo(json.dumps(result.to_dict(), indent=2, ensure_ascii=False))
         return

@@ -15,7 +15,7 @@ import numpy as np
 from kinelab import sweep as sw
 from kinelab.sweep._family import DesignOffModel
 from kinelab._files import atomic_write
-from kinelab.cli._main import Number
+from kinelab.cli._main import Number, about
 from kinelab.errors import ModelError, describe, shown_path
 from kinelab.io._csv import read_table
 from kinelab.io._text import PLAIN_NUMBER, number
@@ -100,7 +100,9 @@ def _family_of(spec: str, branch: str | None, output: str | None):
         raise ModelError(f"FAMILY: expected a catalogue kind ({', '.join(sw.CATALOGUE)}) or a "
                          f"model file (.toml or .json), got {describe(spec)}")
     from kinelab.io import load
-    return sw.family(load(spec), output=output, **options)
+    model = load(spec)
+    with about(spec):
+        return sw.family(model, output=output, **options)
 
 
 def _labelled(df, degrees: bool, output_is_slide: bool):
@@ -190,15 +192,17 @@ def sweep_command(family_spec, table, sobol, random_n, grid, ranges, seed, sched
     designs = designs_from(table, sobol, random_n, grid, ranges, seed)
     names = None if metrics is None else tuple(m.strip() for m in metrics.split(",") if m.strip())
     start = time.perf_counter()
-    try:
-        df = sw.run(fam, designs, samples=samples, metrics=names, client=scheduler,
-                    chunk_size=chunk_size, speed=speed)
-    except DesignOffModel as exc:
-        raise ModelError(f"designs: the design {exc.design} moves points off the places the file "
-                         f"declares ({exc.detail}); vary (--range, DESIGNS columns) only points "
-                         "that no declaration fixes, or remove that declaration (a link's local "
-                         "place or sides, a joint's offset) from the file and run kinelab check "
-                         f"{shown_path(family_spec)}", source=family_spec) from None
+    model_file = None if family_spec in sw.CATALOGUE else family_spec
+    with about(table, ("designs", "metrics")), about(model_file, ("family",)):
+        try:
+            df = sw.run(fam, designs, samples=samples, metrics=names, client=scheduler,
+                        chunk_size=chunk_size, speed=speed)
+        except DesignOffModel as exc:
+            raise ModelError(f"designs: the design {exc.design} moves points off the places the "
+                             f"file declares ({exc.detail}); vary (--range, DESIGNS columns) only "
+                             "points that no declaration fixes, or remove that declaration (a "
+                             "link's local place or sides, a joint's offset) from the file and run "
+                             f"kinelab check {shown_path(family_spec)}", source=family_spec) from None
     seconds = time.perf_counter() - start
     _write(_labelled(df, degrees, fam.output_is_slide), path)
     _report_problems(df)
@@ -224,7 +228,9 @@ def atlas_build(table, sobol, random_n, grid, ranges, seed, scheduler, chunk_siz
     path = _check_out(out, "atlas")
     sw.family("fourbar", branch=branch)       # the branch checked before the designs are made
     designs = designs_from(table, sobol, random_n, grid, ranges, seed)
-    a = sw.atlas(designs, branch=branch, samples=samples, client=scheduler, chunk_size=chunk_size)
+    with about(table, ("designs", "metrics")):
+        a = sw.atlas(designs, branch=branch, samples=samples, client=scheduler,
+                     chunk_size=chunk_size)
     a.to_parquet(path)
     click.echo(f"{len(a):,} of {len(designs):,} designs turn their crank fully; wrote {shown_path(path)}")
 
@@ -240,11 +246,15 @@ def atlas_find(atlas_path, path_file, k, refine):
     """The designs of ATLAS whose coupler curves are nearest in shape to the closed path in
     PATH (a CSV of x, y points in order, m)."""
     a = sw.Atlas.from_parquet(atlas_path)
+    if not len(a):
+        raise ModelError("it holds no design that turns its crank fully; build it from more or "
+                         "other designs", source=atlas_path)
     points = _read_table(path_file, "points").to_numpy()[:, :2]
-    near = a.nearest(points, k)
-    sols = a.refine(points, k=min(k, 3)) if refine else None    # refused before anything is printed
-    if sols is not None and not len(sols):
-        raise ModelError(f"refine: {sols.reason}")
+    with about(path_file):      # what is wrong now is the path's
+        near = a.nearest(points, k)
+        sols = a.refine(points, k=min(k, 3)) if refine else None   # refused before any output
+        if sols is not None and not len(sols):
+            raise ModelError(f"refine: {sols.reason}")
     click.echo(near.to_string(float_format=lambda v: f"{v:.6g}"))
     if sols is not None:
         best = sols[0]

@@ -494,7 +494,7 @@ def test_file_paths_are_shown_escaped_on_one_line(tmp_path):
 
 @pytest.mark.parametrize("args, message", [
     (["types", "--space", "planar", "--mobility", "abc"],
-     "Invalid value for '--mobility': 'abc' is not a valid integer. (see 'kinelab types --help')"),
+     "Invalid value for '--mobility': 'abc' is not a valid integer range. (see 'kinelab types --help')"),
     (["check"], "Missing argument 'MODEL'. (see 'kinelab check --help')"),
     (["nosuch"], "No such command 'nosuch'. (see 'kinelab --help')"),
     (["--memory-budget", "0.0000001", "check", "x.toml"],
