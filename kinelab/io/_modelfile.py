@@ -734,9 +734,9 @@ class _Parser:
 
         The assembled coordinates are kept to the digits a model file is written with
         (:func:`_rounded`); a sketch already assembled to those digits is taken as it is."""
-        if assembly_miss(m) <= _ASSEMBLED:
-            return m
         try:
+            if assembly_miss(m) <= _ASSEMBLED:
+                return m
             self.assembly = assemble(m, units=units)
         except AssemblyError as exc:
             where = self.where.get(("link", exc.link))
