@@ -88,7 +88,7 @@ def header(row: tuple[int, list[str]], source: str) -> list[str]:
     header), or a name is unprintable, holds a quote or is given twice (a column may have
     no name: it is then known by its number alone)."""
     line, cells = row
-    names = [c.strip() for c in cells]
+    names = [c.strip(" \t") for c in cells]
     if all(number(c) is not None for c in names):
         raise ModelError(f"line {line}: expected a header row naming the columns (such as "
                          "'t [s], x [mm]'), got numbers; add one", source=source)
@@ -163,7 +163,7 @@ def read_table(path: str | os.PathLike, *, what: str = "rows",
     path = file_path(path)
     source = str(path)
     text = read_text(path, max_bytes=TABLE_BYTES, note=f" ({MAX_ROWS:,} {what} at most)")
-    rows = csv_rows(text, source, what=what)
+    rows = csv_rows(text, source, max_rows=MAX_ROWS, what=what)
     first = next(rows, None)
     if first is None:
         raise ModelError(f"expected a header row naming the columns and {what}, got an empty "
