@@ -255,7 +255,7 @@ class Atlas:
         (a regular one of at most 1 GiB, :func:`~kinelab.sweep.read_parquet`), its metadata
         (harmonics, branch), its columns (those of its harmonics, and no others), finite
         numbers in them, the bars' lengths and the coupler point within the model's sizes
-        (1e-9 m to 1e9 m)."""
+        (1e-9 m to 1e9 m), descriptors from 0 to 1."""
         path = file_path(path)
         where = shown_path(path)
         df = read_parquet(path, "an atlas", "build one with kinelab atlas")
@@ -296,8 +296,9 @@ class Atlas:
 
 def _column_problem(name: str, values: np.ndarray) -> tuple[int, str] | None:
     """(row, what was expected) of the first value of an atlas's column that cannot be: not
-    a finite number, or beyond the model's sizes (a bar's length from MIN_LENGTH to
-    MAX_LENGTH, the coupler point within MAX_LENGTH of its base)."""
+    a finite number, beyond the model's sizes (a bar's length from MIN_LENGTH to
+    MAX_LENGTH, the coupler point within MAX_LENGTH of its base), or a descriptor outside
+    [0, 1] (one so far away would leave the search no finite distance)."""
     if not len(values):
         return None
     if values.dtype.kind not in "iuf":
@@ -311,8 +312,9 @@ def _column_problem(name: str, values: np.ndarray) -> tuple[int, str] | None:
     elif name in COLUMNS:
         bad = np.flatnonzero(np.abs(values) > MAX_LENGTH)
         what = f"coordinates of at most {MAX_LENGTH:g} m in size"
-    else:                   # a descriptor: any finite number
-        return None
+    else:                   # a descriptor: a harmonic's magnitude over the norm of them all
+        bad = np.flatnonzero((values < 0) | (values > 1 + 1e-9))
+        what = "descriptors from 0 to 1 (magnitudes of harmonics over their norm)"
     return (int(bad[0]), what) if bad.size else None
 
 
