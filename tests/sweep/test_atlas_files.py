@@ -10,23 +10,24 @@ from click.testing import CliRunner
 import kinelab as kl
 from kinelab.cli import main
 from kinelab.errors import MemoryBudgetError, ModelError
-from tests.sweep.atlases import sobol_atlas
+from tests.sweep.test_atlas import _rewritten, small_atlas_file  # noqa: F401 (a fixture)
 
 
-@pytest.fixture(scope="module")
-def atlas_file(tmp_path_factory):
-    path = tmp_path_factory.mktemp("atlas") / "a.parquet"
-    sobol_atlas(64).to_parquet(path)
-    return path
+@pytest.fixture
+def atlas_file(small_atlas_file):
+    return small_atlas_file
 
 
 def rewritten(source, tmp_path, attrs=None, change=None):
-    df = pd.read_parquet(source)
-    original = dict(df.attrs)
-    df = change(df) if change else df
-    df.attrs = {**original, **(attrs or {})}
-    df.to_parquet(tmp_path / "bad.parquet")
-    return tmp_path / "bad.parquet"
+    return _rewritten(source, tmp_path, "bad.parquet", attrs, change)
+
+
+def circle(tmp_path):
+    """A path CSV of 40 points around the unit circle."""
+    path = tmp_path / "p.csv"
+    t = np.linspace(0, 2 * np.pi, 40, endpoint=False)
+    pd.DataFrame({"x": np.cos(t), "y": np.sin(t)}).to_csv(path, index=False)
+    return path
 
 
 def _set(column, row, value):
@@ -68,20 +69,14 @@ def test_an_atlas_that_is_not_what_its_metadata_says_is_refused(atlas_file, tmp_
         kl.sweep.Atlas.from_parquet(bad)
     assert str(info.value).startswith(f"{bad}: {message}")
     assert str(info.value).endswith("; rebuild it with kinelab atlas")
-    path = tmp_path / "p.csv"
-    t = np.linspace(0, 2 * np.pi, 40, endpoint=False)
-    pd.DataFrame({"x": np.cos(t), "y": np.sin(t)}).to_csv(path, index=False)
-    r = CliRunner().invoke(main, ["atlas", "find", str(bad), str(path)])
+    r = CliRunner().invoke(main, ["atlas", "find", str(bad), str(circle(tmp_path))])
     assert r.exit_code == 2 and r.stderr == f"kinelab: error: {info.value}\n"
 
 
 def test_an_atlas_with_no_rows_is_read_and_said_empty_by_find(atlas_file, tmp_path):
     bad = rewritten(atlas_file, tmp_path, change=lambda df: df.iloc[:0])
     assert len(kl.sweep.Atlas.from_parquet(bad)) == 0
-    path = tmp_path / "p.csv"
-    t = np.linspace(0, 2 * np.pi, 40, endpoint=False)
-    pd.DataFrame({"x": np.cos(t), "y": np.sin(t)}).to_csv(path, index=False)
-    r = CliRunner().invoke(main, ["atlas", "find", str(bad), str(path)])
+    r = CliRunner().invoke(main, ["atlas", "find", str(bad), str(circle(tmp_path))])
     assert r.exit_code == 2
     assert r.stderr == (f"kinelab: error: {bad}: it holds no design that turns its crank fully; "
                         "build it from more or other designs\n")
