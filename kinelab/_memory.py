@@ -172,12 +172,13 @@ def _size(n: float) -> str:
     return f"{int(n)} bytes"
 
 
-def require(nbytes: float, what: str, instead: str) -> None:
+def require(nbytes: float, what: str, instead: str, *, source: str | None = None) -> None:
     """Refuse (MemoryBudgetError) an allocation of ``nbytes`` beyond the budget, saying
-    ``what`` needs it and what to do ``instead``."""
+    ``what`` needs it and what to do ``instead`` (and naming ``source``, the file it is for)."""
     budget = memory_budget()
     if nbytes > budget:
         raise MemoryBudgetError(
             f"{what} would take about {_size(nbytes)}, more than the memory budget of "
             f"{_size(budget)}; {instead}, or raise the budget (kinelab.memory_budget('8G'), the "
-            "environment variable KINELAB_MEMORY_BUDGET, or kinelab --memory-budget 8G)")
+            "environment variable KINELAB_MEMORY_BUDGET, or kinelab --memory-budget 8G)",
+            source=source)

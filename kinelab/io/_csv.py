@@ -11,7 +11,8 @@ so that they all take and refuse the same things:
 - a field may be quoted whole (``"t [s]"``, ``"1.5"``); a quote that does not close on its
   line (a stray quote, or a line break inside quotes) or one inside an unquoted field is
   refused with its line;
-- a column's name is printable, holds no quote and is not given twice;
+- a column's name is printable, holds no quote, is at most ``MAX_NAME`` characters long and
+  is not given twice;
 - a number is written as :data:`kinelab.io._text.NUMBER` says;
 - the file is at most ``TABLE_BYTES``, a line at most ``MAX_LINE`` characters, and rows are
   counted as they are parsed, so a file of more than ``MAX_ROWS`` rows is refused on its row
@@ -38,6 +39,8 @@ TABLE_BYTES = 64 << 20   # a CSV file's size: a million rows of a few numbers ea
 MAX_ROWS = 1_000_000     # rows of a CSV file (besides its header): a curve's samples, a
                          # path's points, designs (more designs: a Parquet table)
 MAX_LINE = 1 << 20       # characters of a line: a row of a few thousand numbers
+MAX_NAME = 200           # characters of a column's name and unit: they label tables and
+                         # figures (a label of 10^5 characters takes matplotlib half a minute)
 
 _LINE_ENDS = re.compile(r"\r\n?")
 # a line to parse: not blank (spaces, tabs, commas), not a comment (# first)
@@ -99,6 +102,9 @@ def header(row: tuple[int, list[str]], source: str) -> list[str]:
             raise ModelError(f"header: column {shown(name)}: expected printable characters in a "
                              f"column's name and unit, got {shown(bad)}; remove it",
                              source=source)
+        if len(name) > MAX_NAME:
+            raise ModelError(f"header: column {shown(name)}: expected a name and unit of at most "
+                             f"{MAX_NAME} characters, got {len(name):,}; shorten it", source=source)
         if '"' in name:
             raise ModelError(f"header: column {shown(name)}: a stray quote; quote a whole field "
                              "(\"t [s]\") or remove the quote", source=source)
@@ -173,6 +179,6 @@ def read_table(path: str | os.PathLike, *, what: str = "rows",
         raise ModelError(f"line {first[0]}, column {names.index('') + 1}: expected a column's "
                          "name, got nothing; name every column", source=source)
     # the text, already read, and the values (8 bytes each)
-    require(16.0 * len(text), f"reading {path.name}", "cut the file into pieces")
+    require(16.0 * len(text), "reading it", "cut the file into pieces", source=source)
     return names, numbers_of(rows, list(range(len(names))), names, source, whole=True,
                              missing=missing)[1]

@@ -131,7 +131,7 @@ def read_curve(path: str | os.PathLike, *, x: str | None = None, y: str | None =
                          f"{shown(header[iy])} for both", source=source)
     names = [header[ix] or f"column {ix + 1}", header[iy] or f"column {iy + 1}"]
     # the text, already read, and the values (16 bytes a sample) with their lines
-    require(8.0 * len(text), f"reading {path.name}", "cut the file into pieces")
+    require(8.0 * len(text), "reading it", "cut the file into pieces", source=source)
     lines, data = numbers_of(rows, [ix, iy], names, source)
     if len(lines) < MIN_SAMPLES:
         raise ModelError(f"expected at least {MIN_SAMPLES} samples, got {len(lines)}; a "

@@ -310,9 +310,9 @@ def read_parquet(path, what: str = "a table", instead: str = "") -> "pandas.Data
         unpacked = sum(meta.row_group(i).total_byte_size for i in range(meta.num_row_groups))
         unpacked = max(unpacked, 8 * meta.num_rows * meta.num_columns)
         # the table twice (Arrow's and pandas') beside the file's bytes
-        memory.require(2.0 * unpacked + len(data), f"reading {path.name} "
-                       f"({byte_size(len(data))} unpacking to {byte_size(unpacked)})",
-                       "read a smaller table")
+        memory.require(2.0 * unpacked + len(data), f"reading it ({byte_size(len(data))} "
+                       f"unpacking to {byte_size(unpacked)})", "read a smaller table",
+                       source=str(path))
         return pandas.read_parquet(io.BytesIO(data))
     except ModelError:
         raise

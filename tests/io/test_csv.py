@@ -80,6 +80,13 @@ def test_control_characters_in_names_are_refused(tmp_path, name, bad):
         read_table(tmp_path / "d.csv")
 
 
+def test_a_long_name_is_refused(tmp_path):
+    """A name labels the table and the figure: 10^5 characters took matplotlib half a minute."""
+    assert curve(tmp_path, "t," + "x" * 200 + "\n" + ROWS).y_name == "x" * 200
+    refused(tmp_path, "t," + "x" * 100_000 + "\n" + ROWS,
+            "expected a name and unit of at most 200 characters, got 100,000; shorten it")
+
+
 def test_a_name_given_twice_is_refused(tmp_path):
     refused(tmp_path, "t,x,x\n" + ROWS, "header: column 3: the name 'x' is already column 2's")
 
