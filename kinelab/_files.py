@@ -33,13 +33,13 @@ _OPEN_FLAGS = (os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTT
                | getattr(os, "O_CLOEXEC", 0) | getattr(os, "O_BINARY", 0))
 
 
-def byte_size(n: int, *, exact: bool = False) -> str:
-    """A size in bytes as a message says it: ``8 MiB`` (a limit), ``8.0 MiB`` (``exact``: a
-    file's size, which may be just over the limit), ``512 bytes``."""
-    for unit, scale in (("GiB", 1 << 30), ("MiB", 1 << 20), ("KiB", 1 << 10)):
+def byte_size(n: float, *, exact: bool = False) -> str:
+    """A size in bytes as a message says it: ``8 MiB``, ``5.65 GiB`` (a limit, an estimate),
+    ``8.0 MiB`` (``exact``: a file's size, which may be just over the limit), ``512 bytes``."""
+    for unit, scale in (("TiB", 1 << 40), ("GiB", 1 << 30), ("MiB", 1 << 20), ("KiB", 1 << 10)):
         if n >= scale:
             return f"{n / scale:,.1f} {unit}" if exact else f"{n / scale:.3g} {unit}"
-    return f"{n:,} bytes"
+    return f"{int(n)} bytes"
 
 
 def _not_regular(mode: int) -> str | None:
@@ -70,7 +70,7 @@ def read_file(path: str | os.PathLike, limit: int, *, note: str = "") -> bytes:
             fd = os.open(path, _OPEN_FLAGS)
             try:
                 info = os.fstat(fd)
-                why = _not_regular(info.st_mode)      # replaced between the two looks
+                why = _not_regular(info.st_mode)      # the path replaced since os.stat
                 if why is None and info.st_size <= limit:
                     data = _read_at_most(fd, limit + 1)
             finally:
@@ -94,10 +94,7 @@ def read_file(path: str | os.PathLike, limit: int, *, note: str = "") -> bytes:
 def _read_at_most(fd: int, n: int) -> bytes:
     parts, size = [], 0
     while size < n:
-        try:
-            chunk = os.read(fd, min(_CHUNK, n - size))
-        except BlockingIOError:      # a file that is no regular one after all: nothing now
-            break
+        chunk = os.read(fd, min(_CHUNK, n - size))
         if not chunk:
             break
         parts.append(chunk)

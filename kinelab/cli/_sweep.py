@@ -202,7 +202,8 @@ def sweep_command(family_spec, table, sobol, random_n, grid, ranges, seed, sched
                              f"file declares ({exc.detail}); vary (--range, DESIGNS columns) only "
                              "points that no declaration fixes, or remove that declaration (a "
                              "link's local place or sides, a joint's offset) from the file and run "
-                             f"kinelab check {shown_path(family_spec)}", source=family_spec) from None
+                             f"kinelab check {shown_path(family_spec)}",
+                             source=family_spec) from None
     seconds = time.perf_counter() - start
     _write(_labelled(df, degrees, fam.output_is_slide), path)
     _report_problems(df)

@@ -400,7 +400,7 @@ class _Parser:
         elif "points" in top:
             point_names = dict.fromkeys(raw_points)
         counts = {k: len(v) if isinstance(v, (list, Mapping)) else 0 for k, v in
-                  (("points", raw_points), ("links", top.get("links")), ("joints", top.get("joints")))}
+                  (("points", raw_points), *((k, top.get(k)) for k in ("links", "joints")))}
         if too_large := size_problems(**counts):      # before any of them is read
             self.fail(too_large)
         for pname, xy in raw_points.items():

@@ -201,13 +201,17 @@ def test_at_prints_one_configuration_in_the_files_units():
     assert float(si["A.y[m]"]) == pytest.approx(0.1, abs=1e-12)
 
 
+A_NUMBER = ("a number in decimal or scientific notation in ASCII digits (1000, -0.5, 1.5e3), "
+            "optionally followed by one of rad, deg")
+
+
 @pytest.mark.parametrize("at, message", [
-    ("abc", "kinelab: error: --at: expected a number in decimal or scientific notation in ASCII digits (1000, -0.5, 1.5e3), optionally followed by one of rad, deg, got 'abc'"),
-    ("30mm", "kinelab: error: --at: expected a number in decimal or scientific notation in ASCII digits (1000, -0.5, 1.5e3), optionally followed by one of rad, deg, got '30mm'"),
+    ("abc", f"kinelab: error: --at: expected {A_NUMBER}, got 'abc'"),
+    ("30mm", f"kinelab: error: --at: expected {A_NUMBER}, got '30mm'"),
     # one rule of numbers, as in files and CSV tables: no underscores, no other scripts' digits
-    ("1_000", "kinelab: error: --at: expected a number in decimal or scientific notation in ASCII digits (1000, -0.5, 1.5e3), optionally followed by one of rad, deg, got '1_000'"),
-    ("\uff13\uff10", "kinelab: error: --at: expected a number in decimal or scientific notation in ASCII digits (1000, -0.5, 1.5e3), optionally followed by one of rad, deg, got '\uff13\uff10'"),
-    ("\u0663\u0660deg", "kinelab: error: --at: expected a number in decimal or scientific notation in ASCII digits (1000, -0.5, 1.5e3), optionally followed by one of rad, deg, got '\u0663\u0660deg'"),
+    ("1_000", f"kinelab: error: --at: expected {A_NUMBER}, got '1_000'"),
+    ("\uff13\uff10", f"kinelab: error: --at: expected {A_NUMBER}, got '\uff13\uff10'"),
+    ("\u0663\u0660deg", f"kinelab: error: --at: expected {A_NUMBER}, got '\u0663\u0660deg'"),
     ("30,40", "kinelab: error: --at: expected 1 value(s) separated by commas (one per input: 'crank "
               "angle'), got '30,40'"),
     # 1e400 is inf; 1e300 deg is finite but no angle a sweep or a sine means anything at
@@ -331,10 +335,10 @@ def test_speed_of_several_inputs(tmp_path):
 
 
 @pytest.mark.parametrize("speed, message", [
-    ("fast", "--speed: expected a number in decimal or scientific notation in ASCII digits (1000, -0.5, 1.5e3), optionally followed by one of rad, deg, got 'fast'"),
-    ("60mm", "--speed: expected a number in decimal or scientific notation in ASCII digits (1000, -0.5, 1.5e3), optionally followed by one of rad, deg, got '60mm'"),
-    ("inf", "--speed: expected a number in decimal or scientific notation in ASCII digits (1000, -0.5, 1.5e3), optionally followed by one of rad, deg, got 'inf'"),
-    ("6_0", "--speed: expected a number in decimal or scientific notation in ASCII digits (1000, -0.5, 1.5e3), optionally followed by one of rad, deg, got '6_0'"),
+    ("fast", f"--speed: expected {A_NUMBER}, got 'fast'"),
+    ("60mm", f"--speed: expected {A_NUMBER}, got '60mm'"),
+    ("inf", f"--speed: expected {A_NUMBER}, got 'inf'"),
+    ("6_0", f"--speed: expected {A_NUMBER}, got '6_0'"),
     ("60,30", "--speed: expected 1 value(s) separated by commas (one per input: 'crank angle'), "
               "got '60,30'"),
 ])
