@@ -87,7 +87,7 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si:
     point and compared with the task and with the table; the certificate is printed last
     (with --json, it is in the JSON) and written as certificate.json and in summary.json.
     """
-    from kinelab._files import atomic_write
+    from kinelab._files import atomic_write, outputs, safe_name
     from kinelab.io import to_toml
 
     task = load_task(task_file)
@@ -106,10 +106,13 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si:
     files["summary.json"] = json.dumps(summary, indent=2, allow_nan=False)
     if figures and sols:
         files.update(_figures(task, sols, extra, u))
-    out = Path(out_dir) if out_dir else Path(task_file).with_name(Path(task_file).stem + "_solutions")
-    for name, content in files.items():
-        binary = isinstance(content, bytes)
-        atomic_write(out / name, lambda f, c=content: f.write(c), binary=binary)
+    out = Path(out_dir) if out_dir else Path(task_file).with_name(
+        safe_name(Path(task_file).stem) + "_solutions")
+    with outputs(out) as written:        # every file, or none
+        for name, content in files.items():
+            binary = isinstance(content, bytes)
+            written.write(name, lambda p, c=content, b=binary: atomic_write(
+                p, lambda f: f.write(c), binary=b))
     if as_json:
         click.echo(files["summary.json"])
         if certificate is not None and not certificate.passed:
