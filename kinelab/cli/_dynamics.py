@@ -103,7 +103,8 @@ def dynamics_command(model, out, samples, si, degrees, gravity, no_plots, verify
     """Actuator efforts, joint reactions and shaking force of MODEL over its inputs' sweep.
 
     Writes <name>_dynamics.csv (efforts, energies, reactions, shaking force and moment)
-    and, unless --no-plots, <name>_efforts.png, <name>_reactions.png, <name>_shaking.png.
+    and, unless --no-plots, <name>_efforts.png, <name>_reactions.png, <name>_shaking.png,
+    all of them or none; <name> is the model's name, made safe for a file's name.
     The links need mass data; loads come from the file's [dynamics] section.  The inputs'
     positions and rates are in the file's units (--si for m and rad); forces are in N,
     torques in N m, energies in J and powers in W.  With --verify, the efforts, energies,

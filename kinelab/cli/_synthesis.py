@@ -4,9 +4,9 @@ A click command of the main ``kinelab`` group.  It reads a TOML task file (the f
 ``docs/synthesis.md``) and solves it with :func:`kinelab.io.load_task` and
 :func:`~kinelab.io.solve_task`,
 prints a table of the linkages found and writes each as a model file (``kinelab.io``) with
-a figure, all in the task's units (SI with ``--si``).  Everything is computed before anything is written, and
-every file is written to a temporary name first, so a failure never leaves a half-written
-output behind; the group turns kinelab errors into one-line messages with exit status 2.
+a figure, all in the task's units (SI with ``--si``).  Everything is computed before anything
+is written, and the files are written as one set (:func:`kinelab._files.outputs`): all of
+them, or none; the group turns kinelab errors into one-line messages with exit status 2.
 """
 from __future__ import annotations
 
