@@ -253,6 +253,12 @@ class Outputs:
     def _check(self, final: Path) -> None:
         """Refuse to write over a directory or a symbolic link at ``final``, or anywhere
         but directly in the set's directory (symbolic links resolved)."""
+        try:
+            self._refuse(final)
+        except OSError as exc:      # a name too long for the file system, a parent not a directory
+            raise _cannot_write(final, exc) from None
+
+    def _refuse(self, final: Path) -> None:
         if final.is_symlink():
             raise UnwritableOutput("cannot write it: it is a symbolic link, and kinelab writes "
                                    "neither through one nor over it; remove the link or choose "
@@ -270,7 +276,7 @@ class Outputs:
         d = self.directory
         try:
             if d.exists() and not d.is_dir():
-                raise NotADirectoryError(errno.ENOTDIR, f"{d} is not a directory", str(d))
+                raise NotADirectoryError(errno.ENOTDIR, f"{shown_path(d)} is not a directory")
             missing = [d, *(p for p in d.parents if not p.exists())] if not d.exists() else []
             for p in reversed(missing):
                 p.mkdir()
