@@ -86,15 +86,8 @@ def atomic_path(path: str | os.PathLike, *, suffix: str = "") -> Iterator[Path]:
 
 
 def atomic_write(path: str | os.PathLike, write: Callable[[IO], None], *, binary: bool = False) -> Path:
-    """Call ``write(file)`` on a temporary file and rename it to ``path`` when it succeeds
-    (see :func:`atomic_path`).
-
-    Raises
-    ------
-    ModelError
-        When ``path`` cannot be written (a directory, a place that does not exist or is not
-        writable, a full disk): the message names ``path``, not the temporary file.
-    """
+    """Call ``write(file)`` on a temporary file and rename it to ``path`` when it succeeds;
+    raises as :func:`atomic_path` does."""
     path = file_path(path)
     with atomic_path(path) as tmp:
         with open(tmp, "wb" if binary else "w", **({} if binary else {"newline": ""})) as f:
