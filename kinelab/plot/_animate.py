@@ -151,11 +151,11 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
         moved = [a for overlay in overlays for a in overlay(i)]
         return list(artists.values()) + list(traced.values()) + moved
 
-    anim = animation.FuncAnimation(fig, draw, frames=len(idx), blit=False)
     writer = (animation.PillowWriter(fps=fps) if suffix == ".gif"
               else animation.FFMpegWriter(fps=fps))
     try:
         with atomic_path(path, suffix=suffix) as tmp:     # the writer goes by the suffix
+            anim = animation.FuncAnimation(fig, draw, frames=len(idx), blit=False)
             anim.save(tmp, writer=writer)
     finally:
         plt.close(fig)

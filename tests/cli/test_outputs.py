@@ -172,6 +172,7 @@ def test_every_command_is_classed_as_writing_files_or_not():
     assert set(main.commands) == WRITERS | READERS
 
 
+@pytest.mark.filterwarnings("ignore:constrained_layout not applied")    # 10,000-character legends
 def test_no_command_writes_outside_out_whatever_the_names_in_its_files(sandbox):
     """Absolute paths, '..', separators of either system, '.', device names, 10,000
     characters, escape sequences: as a model's, a point's, a link's, a task's or a file's
