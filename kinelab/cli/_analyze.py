@@ -8,6 +8,7 @@ import click
 import numpy as np
 
 from kinelab import io, kinematics, solvers, verify
+from kinelab._files import outputs
 from kinelab.cli._format import configuration_text, summary_text
 from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, VERIFY, certificate_path, errors_from,
                                output_path, output_units, parse_inputs, read_model, report, stem,
@@ -97,7 +98,12 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
     kind = io.result_format(path, fmt)       # before the sweep, which can be long
     sol = sweep(mf, samples, change_points=change_points)
     s = None if quiet else summarise(mf, sol)
-    written = io.write_results(sol, path, format=kind, units=units)
+    certificate = verify.certify(sol) if verify_ else None
+    with outputs(path.parent) as files:      # the table and its certificate, or neither
+        written = files.write(path.name, lambda p: io.write_results(sol, p, format=kind,
+                                                                    units=units))
+        if certificate is not None:
+            proof = files.write(certificate_path(written).name, certificate.to_json)
     if s is not None:
         click.echo(summary_text(s, units))
         note = missing_time_ratio(mf, s, units)
@@ -106,8 +112,9 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
     told = f"{kind.upper()} as --format says, whatever the name; " if (
         written.suffix.lower() != f".{kind}") else ""
     click.echo(f"wrote {shown_path(written)} ({told}{sol.N} rows, {len(sol.columns())} columns)")
-    if verify_:
-        report(verify.certify(sol), certificate_path(written))
+    if certificate is not None:
+        click.echo(f"wrote {shown_path(proof)}")
+        report(certificate)
 
 
 def configuration(mf: io.ModelFile, at: str, change_points: str = "smooth") -> KinematicSolution:

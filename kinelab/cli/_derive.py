@@ -8,11 +8,11 @@ from __future__ import annotations
 
 import click
 
-from kinelab._files import atomic_write
-from kinelab.cli._main import errors_from, output_path, parse_inputs, read_model, stem
+from kinelab._files import atomic_write, output
+from kinelab.cli._main import (errors_from, output_path, parse_inputs, read_model, said_written,
+                               stem)
 from kinelab.derive import LANGUAGES, derive
 from kinelab.derive._document import write_pdf
-from kinelab.errors import shown_path
 
 __all__ = ["derive_command"]
 
@@ -45,8 +45,5 @@ def derive_command(model, at, lang, fmt, out):
         d = derive(mf.mechanism, lang)
         text = d.to_markdown(at=q) if fmt == "md" else d.to_latex(at=q)
     path = output_path(out, f"{stem(model)}_derivation", fmt)
-    if fmt == "pdf":
-        write_pdf(text, path)
-    else:
-        atomic_write(path, lambda f: f.write(text))
-    click.echo(f"wrote {shown_path(path)}")
+    said_written([output(path, lambda p: write_pdf(text, p) if fmt == "pdf" else
+                         atomic_write(p, lambda f: f.write(text)))])

@@ -14,7 +14,7 @@ import numpy as np
 
 from kinelab import sweep as sw
 from kinelab.sweep._family import DesignOffModel
-from kinelab._files import atomic_write
+from kinelab._files import atomic_write, output
 from kinelab.errors import ModelError, describe, shown_path
 from kinelab.sweep._run import MAX_SAMPLES
 
@@ -201,7 +201,8 @@ def sweep_command(family_spec, table, sobol, random_n, grid, ranges, seed, sched
                          "place or sides, a joint's offset) from the file and run kinelab check "
                          f"{shown_path(family_spec)}", source=family_spec) from None
     seconds = time.perf_counter() - start
-    _write(_labelled(df, degrees, fam.output_is_slide), path)
+    table = _labelled(df, degrees, fam.output_is_slide)
+    output(path, lambda p: _write(table, p))
     _report_problems(df)
     assembles = f", {int(df['assembles'].sum()):,} assemble over the turn" if "assembles" in df else ""
     click.echo(f"{len(df):,} designs in {seconds:.3g} s{assembles}; wrote {shown_path(path)}")
@@ -226,7 +227,7 @@ def atlas_build(table, sobol, random_n, grid, ranges, seed, scheduler, chunk_siz
     sw.family("fourbar", branch=branch)       # the branch checked before the designs are made
     designs = designs_from(table, sobol, random_n, grid, ranges, seed)
     a = sw.atlas(designs, branch=branch, samples=samples, client=scheduler, chunk_size=chunk_size)
-    a.to_parquet(path)
+    output(path, a.to_parquet)
     click.echo(f"{len(a):,} of {len(designs):,} designs turn their crank fully; wrote {shown_path(path)}")
 
 

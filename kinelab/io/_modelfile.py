@@ -24,7 +24,7 @@ import numpy as np
 
 from kinelab import mechanisms as catalogue
 from kinelab import _memory as memory
-from kinelab._files import atomic_write, file_path
+from kinelab._files import UnwritableOutput, atomic_write, file_path
 from kinelab.errors import AssemblyError, KinelabError, ModelError
 from kinelab.io import _toml
 from kinelab.io._fields import Reader, describe, quoted, shown, shown_key
@@ -271,13 +271,16 @@ _INSTEAD = {"inputs": "narrow the range of the file's inputs", "--at": "give --a
 def errors_from(mf: ModelFile, field: str = ""):
     """Name the file (and a field) in the errors raised inside: ``crank_rocker.toml:
     inputs: ...`` (``model: ...`` when the file has no name).  Input values that will not
-    do are said in the file's units and with its inputs' names."""
+    do are said in the file's units and with its inputs' names.  An error that names a file
+    of its own (an output that cannot be written) is left as it is."""
     from kinelab.kinematics import SingularInput, UnreachableInput
 
     try:
         yield
     except KinelabError as exc:
         prefix = f"{mf.source or 'model'}: {field + ': ' if field else ''}"
+        if isinstance(exc, UnwritableOutput):
+            raise
         if isinstance(exc, ModelError):
             raise ModelError([prefix + p for p in exc.problems]) from None
         if isinstance(exc, (UnreachableInput, SingularInput)):
