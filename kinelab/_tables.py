@@ -16,8 +16,9 @@ import numpy as np
 
 __all__ = ["csv_blocks", "json_blocks", "BLOCK_VALUES"]
 
-BLOCK_VALUES = 1 << 20
-"""Values formatted at a time: the text of a block is a few tens of megabytes at most."""
+BLOCK_VALUES = 1 << 18
+"""Values formatted at a time: a block's text, as Python strings of about 80 bytes a value,
+is some 20 MB at most."""
 
 
 def _rows_per_block(width: int) -> int:

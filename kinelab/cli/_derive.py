@@ -12,7 +12,7 @@ from kinelab._deadline import within
 from kinelab._files import atomic_write
 from kinelab.cli._main import errors_from, output_path, parse_inputs, read_model, stem
 from kinelab.derive import LANGUAGES, TIME_LIMIT, derive
-from kinelab.derive._derivation import _too_long
+from kinelab.derive._derivation import time_limit_message
 from kinelab.derive._document import write_pdf
 from kinelab.errors import shown_path
 
@@ -54,7 +54,7 @@ def derive_command(model, at, lang, fmt, out, time_limit):
             at=q, time_limit=None)
     with errors_from(mf):
         text = within(time_limit, document,
-                      message=_too_long(mf.mechanism, None, time_limit, "it"))
+                      message=time_limit_message(mf.mechanism, None, time_limit, "it"))
     path = output_path(out, f"{stem(model)}_derivation", fmt)
     if fmt == "pdf":
         write_pdf(text, path)

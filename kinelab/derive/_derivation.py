@@ -261,7 +261,7 @@ class Derivation:
         from kinelab.derive._document import document
         seconds = checked_limit(time_limit)
         return within(seconds, lambda: document(self, fmt, at=at, lang=lang or self.lang),
-                      message=_too_long(self.model, len(self.S), seconds, "its document"))
+                      message=time_limit_message(self.model, len(self.S), seconds, "its document"))
 
     def __repr__(self) -> str:
         return (f"Derivation('{self.model.name}', q={list(self.q)}, S={list(self.S)}, "
@@ -298,7 +298,9 @@ def checked_limit(time_limit) -> float | None:
     return float(time_limit)
 
 
-def _too_long(model: Mechanism, unknowns: int | None, seconds: float | None, what: str) -> str:
+def time_limit_message(model: Mechanism, unknowns: int | None, seconds: float | None,
+                       what: str) -> str:
+    """What a derivation (``what``: "it", "its document") stopped at its time limit says."""
     if seconds is None:
         return ""
     size = f" of {unknowns} unknowns" if unknowns else ""
@@ -366,7 +368,7 @@ def derive(model: Mechanism, lang: Literal["en", "pt"] = "en", *, dynamics: bool
         raise ModelError(f"model: expected a kinelab Mechanism, got {type(model).__name__}; "
                          "build one with kinelab.mechanisms or kinelab.load")
     return within(seconds, _derive, model, lang, dynamics, loads, masses,
-                  message=_too_long(model, None, seconds, "it"))
+                  message=time_limit_message(model, None, seconds, "it"))
 
 
 def _derive(model: Mechanism, lang: str, dynamics: bool, loads, masses) -> Derivation:

@@ -11,7 +11,7 @@ from starlette.responses import Response
 from kinelab import io
 from kinelab.errors import ModelError, describe, quoted
 from kinelab.io._modelfile import errors_from
-from kinelab.web import _api
+from kinelab.web import _api, _limits
 
 __all__ = ["export", "KINDS"]
 
@@ -34,16 +34,21 @@ def export(body: dict) -> Response:
     with tempfile.TemporaryDirectory(prefix="kinelab-web-") as folder:
         path = Path(folder) / f"result.{kind}"      # the name the user sees is in the header
         if kind in ("csv", "json"):
-            sol = mf.analyze(_api.samples_of(body, mf))
+            samples = _api.samples_of(body, mf)
+            _limits.check_sweep(mf, samples, "csv" if kind == "csv" else "rows", "the table")
+            sol = mf.analyze(samples)
             io.write_results(sol, path, format=kind, units=mf.units)
         elif kind == "gif":
             import matplotlib
             matplotlib.use("Agg")          # files only, from a worker thread: no window
             from kinelab import plot
-            sol = mf.analyze(_api.samples_of(body, mf))
+            samples = _api.samples_of(body, mf)
+            _limits.check_sweep(mf, samples, "none", "the animation's sweep")
+            sol = mf.analyze(samples)
             with _FIGURES, errors_from(mf):
                 plot.animate(sol, path, frames=60, fps=20, units=mf.units)
         else:
+            _limits.check_sweep(mf, 181, "none", "the outlines' sweep")
             sol = mf.analyze(181)          # slots span the sliders' travel, as the CLI's
             write = io.to_svg if kind == "svg" else io.to_dxf
             with errors_from(mf):
