@@ -9,13 +9,18 @@ from pathlib import Path
 from starlette.responses import Response
 
 from kinelab import io
+from kinelab._deadline import within
 from kinelab.errors import ModelError, describe, quoted
 from kinelab.io._modelfile import errors_from
 from kinelab.web import _api, _limits
 
-__all__ = ["export", "KINDS"]
+__all__ = ["export", "KINDS", "ANIMATION_SECONDS"]
 
 _FIGURES = threading.Lock()      # pyplot keeps global state: one figure at a time
+
+ANIMATION_SECONDS = 60.0
+"""The longest the server draws one animation (a few seconds for a six-bar; a chain of 200
+links takes minutes)."""
 
 KINDS = {"csv": "text/csv", "json": "application/json", "gif": "image/gif",
          "dxf": "application/dxf", "svg": "image/svg+xml"}
@@ -45,8 +50,19 @@ def export(body: dict) -> Response:
             samples = _api.samples_of(body, mf)
             _limits.check_sweep(mf, samples, "none", "the animation's sweep")
             sol = mf.analyze(samples)
-            with _FIGURES, errors_from(mf):
-                plot.animate(sol, path, frames=60, fps=20, units=mf.units)
+
+            def draw():
+                with errors_from(mf):
+                    plot.animate(sol, path, frames=60, fps=20, units=mf.units)
+            with _FIGURES:
+                try:
+                    within(ANIMATION_SECONDS, draw, message=(
+                        f"kind: the animation of {len(mf.mechanism.links)} links took more than "
+                        f"{ANIMATION_SECONDS:g} s; make it with kinelab animate, which has no "
+                        "such limit"))
+                finally:
+                    import matplotlib.pyplot as plt
+                    plt.close("all")        # a figure an animation stopped midway left open
         else:
             _limits.check_sweep(mf, 181, "none", "the outlines' sweep")
             sol = mf.analyze(181)          # slots span the sliders' travel, as the CLI's

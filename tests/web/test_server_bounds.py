@@ -292,3 +292,19 @@ def test_a_client_that_goes_away_mid_upload_is_not_a_fault(server):
     time.sleep(0.5)
     text = "".join(log)
     assert "Traceback" not in text and "Exception" not in text and "ERROR" not in text, text
+
+
+def test_an_animation_stops_at_the_servers_limit(client, monkeypatch):
+    from kinelab.web import _export
+    monkeypatch.setattr(_export, "ANIMATION_SECONDS", 1.0)
+    start = time.perf_counter()
+    r = client.post("/api/export", json={"model": CHAIN, "kind": "gif", "samples": 50})
+    assert time.perf_counter() - start < 1.0 + MARGIN
+    assert r.status_code == 422
+    assert r.json()["error"] == ("kind: the animation of 200 links took more than 1 s; make it "
+                                 "with kinelab animate, which has no such limit")
+    import matplotlib.pyplot as plt
+    assert not plt.get_fignums()
+    monkeypatch.undo()
+    r = client.post("/api/export", json={"model": CRANK_ROCKER, "kind": "gif", "samples": 37})
+    assert r.status_code == 200 and r.content.startswith(b"GIF8")
