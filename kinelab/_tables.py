@@ -41,10 +41,8 @@ def _json_values(column: np.ndarray) -> list[str]:
         return ["true" if v else "false" for v in column.tolist()]
     if np.issubdtype(column.dtype, np.integer):
         return list(map(str, column.tolist()))
-    if column.dtype.kind != "f":
-        from kinelab.io._results import json_ready
-        return [json.dumps(json_ready(v), allow_nan=False) for v in column]
-    text = list(map(float.__repr__, column.astype(float).tolist()))
+    column = column.astype(float)
+    text = list(map(float.__repr__, column.tolist()))
     for i in np.flatnonzero(~np.isfinite(column)).tolist():
         text[i] = "null"
     return text
