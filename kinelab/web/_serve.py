@@ -3,7 +3,9 @@ from __future__ import annotations
 
 import warnings
 
+from kinelab._memory import reuse_result_memory
 from kinelab.errors import ModelError
+from kinelab.web._limits import cache_bytes
 
 __all__ = ["serve", "LOOPBACK"]
 
@@ -27,6 +29,10 @@ def serve(start: dict | None = None, *, host: str = "127.0.0.1", port: int = 800
         warnings.warn(f"serving on {host}: anyone who can reach this address can use the app "
                       "(it has no accounts); serve on 127.0.0.1 unless you mean it",
                       stacklevel=2)
+    # the memory of dropped results kept for the next ones (1 GiB by default, for long runs
+    # of large sweeps) is, in a server, memory held between requests: as much as its cache
+    kept = reuse_result_memory(0)
+    reuse_result_memory(min(kept, cache_bytes()))
     app = create_app(start, host=host, port=port or None)
     config = uvicorn.Config(app, host=host, port=port, log_level="warning", lifespan="off",
                             http=_json_errors_protocol())
@@ -42,7 +48,10 @@ def serve(start: dict | None = None, *, host: str = "127.0.0.1", port: int = 800
             shown = f"[{bound[0]}]" if ":" in bound[0] else bound[0]
             announce(f"http://{shown}:{bound[1]}/")
     server.startup = startup
-    server.run()
+    try:
+        server.run()
+    finally:
+        reuse_result_memory(kept)
 
 
 def _json_errors_protocol():
