@@ -20,9 +20,10 @@ __all__ = ["derive", "Derivation", "DerivationValues", "Singularity", "LANGUAGES
 
 LANGUAGES = ("en", "pt")
 TIME_LIMIT = 60.0
-"""Seconds a derivation (and, apart, its document) may take by default: the longest that
-:data:`MAX_UNKNOWNS` unknowns take on a slow machine is well within it, and past it the
-expressions are too large to read anyway."""
+"""Seconds a derivation (and, apart, its document) may take by default.  The catalogue's and
+the examples' take seconds; eight unknowns whose expressions stay large (four slider dyads
+with their slide lines at odd angles) take from 15 s to minutes as the machine and its load
+go, and past the limit stop with a message that says how to allow more."""
 MAX_UNKNOWNS = 8
 """The most unknown coordinates a derivation takes: J's determinant and adjugate grow so fast
 in closed form that eight (four dyads) take seconds, ten about twenty and twelve over a minute."""
