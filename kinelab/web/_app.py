@@ -95,7 +95,7 @@ def _is_json(request: Request) -> bool:
     return media == "application/json"
 
 
-def _answer(call, body: dict, raw: bool) -> Response:
+def _answer(call, body: dict, raw: bool, path: str) -> Response:
     """``call(body)`` and its answer's bytes, in a worker thread; what the request reserves
     is given back once the bytes are made."""
     with _limits.request():
@@ -107,7 +107,7 @@ def _answer(call, body: dict, raw: bool) -> Response:
         try:        # strict JSON: a number that is not finite is kinelab's fault, said as such
             text = json.dumps(result, allow_nan=False)
         except ValueError:
-            _log.exception("a request gave a value that is not a finite number")
+            _log.exception("request %s gave a value that is not finite", path)
             return _error("internal error: the result holds a value that is not a finite "
                           "number; the server's log has the details", 500)
         return Response(text.encode(), media_type="application/json")
@@ -124,7 +124,8 @@ def _route(call, *, raw: bool = False):
         try:
             body = await _body(request)
             loop = asyncio.get_running_loop()
-            return await loop.run_in_executor(request.app.state.workers, _answer, call, body, raw)
+            return await loop.run_in_executor(request.app.state.workers, _answer, call, body, raw,
+                                              request.url.path)
         except _TooLarge:
             return _error(f"body: larger than {MAX_BODY // 1024:,} KiB; a model file is a few "
                           "kilobytes: send less", 413)
