@@ -70,15 +70,15 @@ def sweep_cost(mf, samples: int | None, answer: str) -> tuple[int, int, int]:
     if answer == "columns":             # and the transmission angles, one per dyad at most
         columns += len(mf.mechanism.links)
     cells = rows * columns
-    text = {"rows": _VALUE_TEXT + _name_text(p, columns), "csv": _VALUE_TEXT,
+    text = {"rows": _VALUE_TEXT + _name_text(p), "csv": _VALUE_TEXT,
             "columns": _VALUE_TEXT}[answer]
     per_cell = 2 * 8 + _TEXT_COPIES * text + (_PYTHON_FLOAT if answer == "columns" else 0)
     return engine + cells * per_cell + _BLOCK, rows, columns
 
 
-def _name_text(p, columns: int) -> int:
-    """The mean length of a column's name in a row of JSON (its quotes, colon and space),
-    from the names of the items, which the columns extend by a quantity and a unit."""
+def _name_text(p) -> int:
+    """At least the length of a column's name in a row of JSON: the longest item's name,
+    and 30 for the quantity, the unit, the quotes, the colon and the space."""
     names = list(p.link_item) + list(p.slide_item) + list(p.point_item)
     longest = max((len(s) for s in names), default=8)
     return longest + 30
