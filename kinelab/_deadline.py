@@ -9,7 +9,8 @@ milliseconds, wherever it is.  Work inside one long C call stops when that call 
 The exception is a :class:`BaseException` of a class made for each call, so neither
 sympy's ``except Exception`` nor an inner limit takes it for its own; the watchdog raises
 it again every :data:`_AGAIN` seconds until the call has ended, in case a bare ``except:``
-swallowed it.  The call's end and the watchdog's shot exclude each other without a lock:
+swallowed it, and holds its shot while the thread imports a module (which a shot would leave
+half made).  The call's end and the watchdog's shot exclude each other without a lock:
 the watchdog tests "ended?" and shoots in one step (no bytecode boundary between the test
 and the C call, so no other thread runs in between), and the working thread marks the end
 and then withdraws a shot not yet delivered, both C calls; so nothing is raised after
@@ -19,6 +20,7 @@ from __future__ import annotations
 
 import ctypes
 import math
+import sys
 import threading
 import time
 
@@ -41,16 +43,40 @@ class _Expired(BaseException):
     """Raised in the working thread at its deadline (a class of its own per call)."""
 
 
+def _importing(thread: int) -> bool:
+    """Whether a thread is importing a module: a module stopped midway would be left out
+    of ``sys.modules`` (or, for a class being made, turned into another error)."""
+    frame = sys._current_frames().get(thread)
+    while frame is not None:
+        if frame.f_code.co_filename.startswith("<frozen importlib"):
+            return True
+        frame = frame.f_back
+    return False
+
+
 def _watch(thread: int, expired: type, ended: list, seconds: float) -> None:
     deadline = time.monotonic() + seconds
     while not ended:
         left = deadline - time.monotonic()
-        if left > 0:
-            time.sleep(min(left, _POLL))
+        if left > 0 or _importing(thread):
+            time.sleep(min(left, _POLL) if left > 0 else _POLL / 5)
             continue
         if not ended:                   # the test and the shot: one step under the GIL
             _shoot(thread, expired)
         time.sleep(_AGAIN)
+
+
+def _caused_by(exc: BaseException, expired: type) -> bool:
+    """Whether ``exc`` is, or was raised while handling, the deadline's exception (Python
+    turns one raised in ``__set_name__`` into a RuntimeError, and so may code that catches
+    everything)."""
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, expired):
+            return True
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return False
 
 
 def within(seconds: float | None, call, *args, message: str | None = None):
@@ -80,5 +106,7 @@ def within(seconds: float | None, call, *args, message: str | None = None):
             # right after the first, it is the one the except clause below takes).
             ended.append(True)
             _withdraw(thread, None)
-    except expired:
-        raise TimeLimitError(message or f"stopped after {seconds:g} s, its time limit") from None
+    except BaseException as exc:
+        if _caused_by(exc, expired):
+            raise TimeLimitError(message or f"stopped after {seconds:g} s, its time limit") from None
+        raise

@@ -368,6 +368,7 @@ def derive(model: Mechanism, lang: Literal["en", "pt"] = "en", *, dynamics: bool
     if not isinstance(model, Mechanism):
         raise ModelError(f"model: expected a kinelab Mechanism, got {type(model).__name__}; "
                          "build one with kinelab.mechanisms or kinelab.load")
+    import sympy  # noqa: F401 -- imported before the clock starts: the limit is the derivation's
     return within(seconds, _derive, model, lang, dynamics, loads, masses,
                   message=time_limit_message(model, None, seconds, "it"))
 

@@ -524,6 +524,8 @@ def derivation(body: dict) -> dict:
     """The derivation of the model in the notes' notation (``body["lang"]``: "en" or
     "pt"): its sections, each a title and equations in presentation MathML, and the whole
     document as Markdown; stopped after :data:`DERIVE_SECONDS` (422)."""
+    import sympy.printing.mathml  # noqa: F401 -- imported before the clock starts
+
     from kinelab.derive import LANGUAGES
     from kinelab.derive._derivation import time_limit_message
 

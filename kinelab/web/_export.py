@@ -46,6 +46,8 @@ def export(body: dict) -> Response:
         elif kind == "gif":
             import matplotlib
             matplotlib.use("Agg")          # files only, from a worker thread: no window
+            import matplotlib.pyplot as plt  # before the clock starts
+
             from kinelab import plot
             samples = _api.samples_of(body, mf)
             _limits.check_sweep(mf, samples, "none", "the animation's sweep")
@@ -61,7 +63,6 @@ def export(body: dict) -> Response:
                         f"{ANIMATION_SECONDS:g} s; make it with kinelab animate, which has no "
                         "such limit"))
                 finally:
-                    import matplotlib.pyplot as plt
                     plt.close("all")        # a figure an animation stopped midway left open
         else:
             _limits.check_sweep(mf, 181, "none", "the outlines' sweep")

@@ -110,3 +110,34 @@ def test_the_command_stops_at_its_limit_in_one_line(tmp_path):
     assert res.output.count("\n") == 1 and res.output.startswith(
         "kinelab: error: sliders.json: derivation of 'four sliders': it took more than 1 s")
     assert not list(tmp_path.glob("*.md"))
+
+
+def test_a_module_imported_at_the_deadline_is_imported_whole(tmp_path, monkeypatch):
+    """The watchdog holds its shot while the thread imports a module (a module stopped
+    midway would be left half made), and stops the work once the import is done."""
+    (tmp_path / "slow_module_for_deadline.py").write_text(
+        "import time\nend = time.perf_counter() + 1.0\nwhile time.perf_counter() < end:\n"
+        "    pass\nWHOLE = True\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+
+    def work():
+        import slow_module_for_deadline  # noqa: F401
+        busy(30)
+    start = time.perf_counter()
+    with pytest.raises(TimeLimitError):
+        within(0.2, work)
+    assert time.perf_counter() - start < 1.0 + MARGIN
+    import sys
+    assert sys.modules["slow_module_for_deadline"].WHOLE
+
+
+def test_the_deadline_is_known_behind_another_error():
+    """Python turns an exception raised in ``__set_name__`` into a RuntimeError, and code
+    that catches everything may raise another: still a time-out."""
+    def wrapped():
+        try:
+            busy(30)
+        except BaseException as exc:
+            raise RuntimeError("something else") from exc
+    with pytest.raises(TimeLimitError):
+        within(0.2, wrapped)
