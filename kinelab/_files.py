@@ -121,10 +121,10 @@ def write_csv(columns: dict, path: str | os.PathLike) -> Path:
     data = np.column_stack([np.asarray(columns[n], dtype=float) for n in names]) if names else np.zeros((0, 0))
 
     def write(f):
-        w = csv.writer(f)
-        w.writerow(names)
-        for start in range(0, len(data), 10_000):      # Python floats a block at a time
-            w.writerows(data[start:start + 10_000].tolist())
+        from kinelab._tables import csv_blocks
+        csv.writer(f).writerow(names)
+        for block in csv_blocks(data):
+            f.write(block)
     return atomic_write(path, write)
 
 

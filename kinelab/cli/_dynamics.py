@@ -17,10 +17,17 @@ from kinelab.cli._main import (DEGREES, SI, VERIFY, certificate_path, errors_fro
                                read_model, report, said_written)
 from kinelab.io import ModelFile
 from kinelab.io._modelfile import MAX_SAMPLES
+from kinelab.dynamics._inverse import table_width
 from kinelab.model import Units
-from kinelab.errors import describe
+from kinelab.errors import ModelError, describe, shown_path
 
-__all__ = ["dynamics_command", "run", "times"]
+__all__ = ["dynamics_command", "run", "times", "MAX_VALUES"]
+
+MAX_VALUES = 5_000_000
+"""The most values (samples x columns) of the table ``kinelab dynamics`` writes: the inverse
+dynamics, the CSV text and the figures of a table this large take about 20 s on a slow,
+loaded machine (250,000 samples of the engine example's 20 columns; ``benchmarks/tables.py``
+prints the rates)."""
 
 
 def times(q: np.ndarray, speed: float, acceleration: float) -> np.ndarray:
@@ -40,6 +47,13 @@ def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
     result, the paths written (the certificate's last) and the certificate."""
     units = mf.units if units is None else units
     m = mf.mechanism
+    rows, width = mf.sample_count(samples), table_width(m)
+    if rows * width > MAX_VALUES:
+        raise ModelError(f"{'--samples' if samples is not None else 'inputs.samples'}: a table of "
+                         f"{rows:,} samples x {width} columns is {rows * width:,} values; kinelab "
+                         f"dynamics writes at most {MAX_VALUES:,} (about 20 s): ask for at most "
+                         f"{MAX_VALUES // width:,} samples",
+                         source=None if samples is not None else mf.source)
     setup = dynamics.DynamicsSetup.from_model(m)
     loads = setup.loads
     if gravity is not None:

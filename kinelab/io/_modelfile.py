@@ -202,6 +202,27 @@ class ModelFile:
             return analyze(self.mechanism, q, qd, qdd, at_singular="flag",
                            at_change_point=at_change_point)
 
+    def sample_count(self, samples: int | None = None) -> int:
+        """The number of samples (rows) of the file's sweep with ``samples`` per input
+        (default the file's): their product for a grid of several inputs.
+
+        >>> kl.io.ModelFile.read("examples/fivebar.toml").sample_count(100)
+        100
+        """
+        counts = self._counts(samples)
+        return math.prod(counts) if (len(counts) > 1 and self.sweep == "grid") else max(counts)
+
+    def _counts(self, samples: int | None) -> list[int]:
+        M = len(self.mechanism.inputs)
+        if M == 0:
+            raise ModelError("inputs: the mechanism has no input; add one under [[inputs]]",
+                             source=self.source)
+        if samples is not None and not (isinstance(samples, int) and not isinstance(samples, bool)
+                                        and 2 <= samples <= MAX_SAMPLES):
+            raise ModelError(f"samples: expected a whole number from 2 to {MAX_SAMPLES:,}, got {describe(samples)}")
+        return [samples] * M if samples is not None else (
+            list(self.samples) if self.samples else [DEFAULT_SAMPLES] * M)
+
     def sample_inputs(self, samples: int | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Input values, rates and accelerations of the file's sweep, SI.
 
@@ -226,14 +247,8 @@ class ModelFile:
         """
         m = self.mechanism
         M = len(m.inputs)
-        if M == 0:
-            raise ModelError("inputs: the mechanism has no input; add one under [[inputs]]",
-                             source=self.source)
-        counts = [samples] * M if samples is not None else (
-            list(self.samples) if self.samples else [DEFAULT_SAMPLES] * M)
-        if samples is not None and not (isinstance(samples, int) and 2 <= samples <= MAX_SAMPLES):
-            raise ModelError(f"samples: expected a whole number from 2 to {MAX_SAMPLES:,}, got {describe(samples)}")
-        total = math.prod(counts) if (M > 1 and self.sweep == "grid") else max(counts)
+        counts = self._counts(samples)
+        total = self.sample_count(samples)
         memory.require(total * M * 8 * 3, f"the inputs of {total:,} samples"
                        + (f" (a grid of {' x '.join(f'{c:,}' for c in counts)})" if M > 1 and
                           self.sweep == "grid" else ""),
