@@ -13,8 +13,10 @@ from kinelab import io, kinematics, solvers
 from kinelab.cli._analyze import MODEL, SAMPLES, configuration, with_speeds
 from kinelab.cli._draw import FIGURE_FORMATS, _agg
 from kinelab.cli._format import _num
+from kinelab._files import Outputs, outputs, safe_name, write_csv
 from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, VERIFY, Number, errors_from,
-                               output_units, parse_inputs, read_model, report, stem, sweep)
+                               output_units, parse_inputs, read_model, report, said_written,
+                               stem, sweep)
 from kinelab.errors import ModelError, shown_path
 from kinelab.model import Units
 from kinelab.solvers._differentiate import MAX_SAMPLES, MIN_WINDOW
@@ -44,11 +46,13 @@ def _vector_row(name: str, v, u: Units, si: str) -> tuple[str, ...]:
     return (name, _num(x), _num(y), _num(float(np.hypot(x, y))))
 
 
-def _save(fig, out: str, name: str, formats) -> list[Path]:
+def _save(fig, files: Outputs, name: str, formats) -> list[Path]:
+    """Write ``fig`` in each of ``formats`` as ``name.<format>``, one of ``files``."""
     from kinelab import plot as kplot
     import matplotlib.pyplot as plt
     try:
-        return [kplot.save(fig, Path(out) / f"{name}.{fmt}") for fmt in formats]
+        return [files.write(f"{name}.{fmt}", lambda p: kplot.save(fig, p))
+                for fmt in dict.fromkeys(formats)]
     finally:
         plt.close(fig)
 
@@ -122,14 +126,16 @@ def polygons(model, at, speed, out, formats, velocity_scale, acceleration_scale,
         lines.append(f"{point}' is the point of {guide} under {point}")
     click.echo("\n".join(lines))
     base = stem(model)
-    written = _save(kplot.velocity_polygon(sol, units=units, scale=velocity_scale), out,
-                    f"{base}_velocity_polygon", formats)
-    written += _save(kplot.acceleration_polygon(sol, units=units, scale=acceleration_scale), out,
-                     f"{base}_acceleration_polygon", formats)
-    for path in written:
-        click.echo(f"wrote {shown_path(path)}")
+    with outputs(out) as files:
+        written = _save(kplot.velocity_polygon(sol, units=units, scale=velocity_scale), files,
+                        f"{base}_velocity_polygon", formats)
+        written += _save(kplot.acceleration_polygon(sol, units=units, scale=acceleration_scale),
+                         files, f"{base}_acceleration_polygon", formats)
+        if certificate is not None:
+            written.append(files.write(f"{base}_polygons_certificate.json", certificate.to_json))
+    said_written(written)
     if certificate is not None:
-        report(certificate, Path(out) / f"{base}_polygons_certificate.json")
+        report(certificate)
 
 
 @click.command()
@@ -173,26 +179,37 @@ def centres(model, at, out, formats, with_centrodes, samples, si, change_points)
     lines += _table(rows)
     click.echo("\n".join(lines))
     base = stem(model)
-    written = _save(kplot.instant_centers(sol, units=units), out, f"{base}_centres", formats)
-    if with_centrodes:
-        m = mf.mechanism
-        pinned = {lk for j in m.joints if j.type == "R" and m.ground.name in j.links
-                  for lk in j.links}
-        links = [lk for lk in m.link_names if lk != m.ground.name and lk not in pinned]
-        if not links:
-            raise click.UsageError("--centrodes: every moving link of this mechanism is pinned to "
-                                   "the ground, and its centrodes are its pivot")
-        swept = sweep(mf, samples, change_points=change_points)
-        near = int(np.argmin(np.abs(swept.q[:, 0] - sol.q[0, 0]))) if swept.M == 1 else 0
-        ok = swept.assembled & ~swept.singular
-        if not ok[near]:
-            near = int(np.flatnonzero(ok)[0]) if ok.any() else near
-        for lk in links:
-            with errors_from(mf, "--centrodes"):
-                ax = kplot.centrodes(swept, lk, near, units=units)
-            written += _save(ax.figure, out, f"{base}_centrodes_{lk}", formats)
-    for path in written:
-        click.echo(f"wrote {shown_path(path)}")
+    with outputs(out) as files:
+        written = _save(kplot.instant_centers(sol, units=units), files, f"{base}_centres",
+                        formats)
+        if with_centrodes:
+            written += _centrodes(mf, sol, files, base, formats, samples, units, change_points)
+    said_written(written)
+
+
+def _centrodes(mf, sol, files: Outputs, base: str, formats, samples, units,
+               change_points) -> list[Path]:
+    """The centrodes of each link of ``mf`` not pinned to the ground, over the file's sweep,
+    at the sample nearest ``sol``'s input: one figure each, ``<base>_centrodes_<link>``."""
+    from kinelab import plot as kplot
+    m = mf.mechanism
+    pinned = {lk for j in m.joints if j.type == "R" and m.ground.name in j.links
+              for lk in j.links}
+    links = [lk for lk in m.link_names if lk != m.ground.name and lk not in pinned]
+    if not links:
+        raise click.UsageError("--centrodes: every moving link of this mechanism is pinned to "
+                               "the ground, and its centrodes are its pivot")
+    swept = sweep(mf, samples, change_points=change_points)
+    near = int(np.argmin(np.abs(swept.q[:, 0] - sol.q[0, 0]))) if swept.M == 1 else 0
+    ok = swept.assembled & ~swept.singular
+    if not ok[near]:
+        near = int(np.flatnonzero(ok)[0]) if ok.any() else near
+    written = []
+    for lk in links:
+        with errors_from(mf, "--centrodes"):
+            ax = kplot.centrodes(swept, lk, near, units=units)
+        written += _save(ax.figure, files, f"{base}_centrodes_{safe_name(lk)}", formats)
+    return written
 
 
 PLOTTED = 20_000     # samples a figure of derivatives draws at most (every k-th beyond):
@@ -236,21 +253,20 @@ def differentiate_command(data, x_column, y_column, window, out, formats):
                f"d{yn}/d{xn}.error{unit(rate)}": d.velocity_error,
                f"d2{yn}/d{xn}2{unit(rate + '^2' if xu else rate)}": d.acceleration,
                f"d2{yn}/d{xn}2.error{unit(rate + '^2' if xu else rate)}": d.acceleration_error}
-    from kinelab._files import write_csv
-    base = Path(data).stem
-    written = [write_csv(columns, Path(out) / f"{base}_derivatives.csv")]
+    base = stem(data)
     k = -(-len(d.x) // PLOTTED)
     drawn = d if k == 1 else dataclasses.replace(d, **{
         f: getattr(d, f)[::k] for f in ("x", "y", "velocity", "acceleration", "velocity_error",
                                        "acceleration_error", "residual")})
-    fig = kplot.derivatives(drawn, x_label=f"{xn}{unit(xu)}", y_label=yn, y_unit=yu or "1",
-                            x_unit=xu or "1")
-    written += _save(fig, out, f"{base}_derivatives", formats)
+    with outputs(out) as files:
+        written = [files.write(f"{base}_derivatives.csv", lambda p: write_csv(columns, p))]
+        fig = kplot.derivatives(drawn, x_label=f"{xn}{unit(xu)}", y_label=yn, y_unit=yu or "1",
+                                x_unit=xu or "1")
+        written += _save(fig, files, f"{base}_derivatives", formats)
     how = ("as --window says" if window is not None else
            f"0.7 of the {d.window_gcv} generalised cross-validation chose")
     click.echo(f"{shown_path(Path(data).name)}: {len(d.x)} samples of {yn} against {xn}; noise about "
                f"{_num(d.noise, 3)} {yu}; local fits of degree 5 over {d.window} samples "
                f"({how}); median error band on the velocity "
                f"{_num(float(np.median(d.velocity_error)), 3)} {rate}".replace(" ;", ";"))
-    for path in written:
-        click.echo(f"wrote {shown_path(path)}")
+    said_written(written)

@@ -13,6 +13,7 @@ import click
 import numpy as np
 
 from kinelab import kinematics
+from kinelab._files import safe_name
 from kinelab.errors import KinelabError, ModelError, one_line, quoted, shown, shown_path
 from kinelab.io import ModelFile
 from kinelab.io._text import NUMBER, PLAIN_NUMBER, number
@@ -21,8 +22,8 @@ from kinelab.kinematics import KinematicSolution
 from kinelab.model import ANGLE_UNITS, LENGTH_UNITS, Units, range_problem, rate_problem
 
 __all__ = ["main", "read_model", "errors_from", "sweep", "output_path", "parse_inputs", "stem",
-           "SI", "DEGREES", "VERIFY", "report", "certificate_path", "output_units", "Number",
-           "about"]
+           "SI", "DEGREES", "VERIFY", "report", "said_written", "certificate_path", "output_units",
+           "Number", "about"]
 
 BAD_INPUT = 2      # exit status for a bad file, option or input value
 
@@ -137,12 +138,15 @@ def certificate_path(written: Path) -> Path:
     return written.with_name(f"{written.stem}_certificate.json")
 
 
-def report(certificate, path: Path | None = None) -> None:
-    """Write a certificate to ``path`` (atomically), print it with its verdict last, and
-    end with exit status 1 when it failed."""
-    if path is not None:
-        certificate.to_json(path)
+def said_written(paths) -> None:
+    """Say which files a command wrote, one line each."""
+    for path in paths:
         click.echo(f"wrote {shown_path(path)}")
+
+
+def report(certificate) -> None:
+    """Print a certificate (written already, with the command's other outputs) with its
+    verdict last, and end with exit status 1 when it failed."""
     click.echo("\n".join(certificate.lines()))
     if not certificate.passed:
         click.get_current_context().exit(1)
@@ -204,8 +208,9 @@ def analyze_in_chunks(m, q, qd, qdd, *, chunks: int, label: str = "",
 
 
 def stem(model: str) -> str:
-    """A model file's name without its suffix: what its outputs are named after."""
-    return Path(model).stem
+    """A model file's name without its suffix, made safe (:func:`safe_name`): what its
+    outputs are named after."""
+    return safe_name(Path(model).stem)
 
 
 def output_path(out: str | None, stem: str, suffix: str) -> Path:

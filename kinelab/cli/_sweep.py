@@ -14,7 +14,7 @@ import numpy as np
 
 from kinelab import sweep as sw
 from kinelab.sweep._family import DesignOffModel
-from kinelab._files import atomic_write
+from kinelab._files import atomic_write, output
 from kinelab.cli._main import Number, about
 from kinelab.errors import ModelError, describe, shown_path
 from kinelab.io._csv import read_table
@@ -205,7 +205,8 @@ def sweep_command(family_spec, table, sobol, random_n, grid, ranges, seed, sched
                              f"kinelab check {shown_path(family_spec)}",
                              source=family_spec) from None
     seconds = time.perf_counter() - start
-    _write(_labelled(df, degrees, fam.output_is_slide), path)
+    table = _labelled(df, degrees, fam.output_is_slide)
+    output(path, lambda p: _write(table, p))
     _report_problems(df)
     assembles = f", {int(df['assembles'].sum()):,} assemble over the turn" if "assembles" in df else ""
     click.echo(f"{len(df):,} designs in {seconds:.3g} s{assembles}; wrote {shown_path(path)}")
@@ -232,7 +233,7 @@ def atlas_build(table, sobol, random_n, grid, ranges, seed, scheduler, chunk_siz
     with about(table, ("designs", "metrics")):
         a = sw.atlas(designs, branch=branch, samples=samples, client=scheduler,
                      chunk_size=chunk_size)
-    a.to_parquet(path)
+    output(path, a.to_parquet)
     click.echo(f"{len(a):,} of {len(designs):,} designs turn their crank fully; wrote {shown_path(path)}")
 
 

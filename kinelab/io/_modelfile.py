@@ -24,7 +24,7 @@ import numpy as np
 
 from kinelab import mechanisms as catalogue
 from kinelab import _memory as memory
-from kinelab._files import atomic_write, file_path
+from kinelab._files import UnwritableOutput, atomic_write, file_path
 from kinelab.errors import AssemblyError, KinelabError, ModelError
 from kinelab.io import _toml
 from kinelab.io._fields import Reader, describe, quoted, shown, shown_key
@@ -110,7 +110,8 @@ class ModelFile:
         Where the file came from (for messages); not part of equality.
     assembly : Assembly, optional
         When the file gives lengths, places or offsets: how its sketch was moved to the
-        nearest assembly (which points moved, by how much); not part of equality.
+        assembly at its inputs (which points moved, by how much, which dyads changed
+        side); not part of equality.
     """
 
     mechanism: Mechanism
@@ -201,6 +202,27 @@ class ModelFile:
             return analyze(self.mechanism, q, qd, qdd, at_singular="flag",
                            at_change_point=at_change_point)
 
+    def sample_count(self, samples: int | None = None) -> int:
+        """The number of samples (rows) of the file's sweep with ``samples`` per input
+        (default the file's): their product for a grid of several inputs.
+
+        >>> kl.io.ModelFile.read("examples/fivebar.toml").sample_count(100)
+        100
+        """
+        counts = self._counts(samples)
+        return math.prod(counts) if (len(counts) > 1 and self.sweep == "grid") else max(counts)
+
+    def _counts(self, samples: int | None) -> list[int]:
+        M = len(self.mechanism.inputs)
+        if M == 0:
+            raise ModelError("inputs: the mechanism has no input; add one under [[inputs]]",
+                             source=self.source)
+        if samples is not None and not (isinstance(samples, int) and not isinstance(samples, bool)
+                                        and 2 <= samples <= MAX_SAMPLES):
+            raise ModelError(f"samples: expected a whole number from 2 to {MAX_SAMPLES:,}, got {describe(samples)}")
+        return [samples] * M if samples is not None else (
+            list(self.samples) if self.samples else [DEFAULT_SAMPLES] * M)
+
     def sample_inputs(self, samples: int | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Input values, rates and accelerations of the file's sweep, SI.
 
@@ -225,14 +247,8 @@ class ModelFile:
         """
         m = self.mechanism
         M = len(m.inputs)
-        if M == 0:
-            raise ModelError("inputs: the mechanism has no input; add one under [[inputs]]",
-                             source=self.source)
-        counts = [samples] * M if samples is not None else (
-            list(self.samples) if self.samples else [DEFAULT_SAMPLES] * M)
-        if samples is not None and not (isinstance(samples, int) and 2 <= samples <= MAX_SAMPLES):
-            raise ModelError(f"samples: expected a whole number from 2 to {MAX_SAMPLES:,}, got {describe(samples)}")
-        total = math.prod(counts) if (M > 1 and self.sweep == "grid") else max(counts)
+        counts = self._counts(samples)
+        total = self.sample_count(samples)
         memory.require(total * M * 8 * 3, f"the inputs of {total:,} samples"
                        + (f" (a grid of {' x '.join(f'{c:,}' for c in counts)})" if M > 1 and
                           self.sweep == "grid" else ""),
@@ -270,13 +286,16 @@ _INSTEAD = {"inputs": "narrow the range of the file's inputs", "--at": "give --a
 def errors_from(mf: ModelFile, field: str = ""):
     """Name the file (and a field) in the errors raised inside: ``crank_rocker.toml:
     inputs: ...`` (``model: ...`` when the file has no name).  Input values that will not
-    do are said in the file's units and with its inputs' names."""
+    do are said in the file's units and with its inputs' names.  An error that names a file
+    of its own (an output that cannot be written) is left as it is."""
     from kinelab.kinematics import SingularInput, UnreachableInput
 
     try:
         yield
     except KinelabError as exc:
         prefix = f"{mf.source or 'model'}: {field + ': ' if field else ''}"
+        if isinstance(exc, UnwritableOutput):
+            raise
         if isinstance(exc, ModelError):
             raise ModelError([prefix + p for p in exc.problems]) from None
         if isinstance(exc, (UnreachableInput, SingularInput)):
@@ -729,7 +748,7 @@ class _Parser:
             self.fail([_locate(p, self.where) for p in exc.problems])
 
     def assemble(self, m: Mechanism, units: Units) -> Mechanism:
-        """The model moved from its sketch to the nearest assembly with its links' lengths
+        """The model moved from its sketch to its assembly with its links' lengths
         and places and its slides' offsets; what moved is kept in ``self.assembly``.
 
         The assembled coordinates are kept to the digits a model file is written with
@@ -739,8 +758,7 @@ class _Parser:
                 return m
             self.assembly = assemble(m, units=units)
         except AssemblyError as exc:
-            where = self.where.get(("link", exc.link))
-            self.fail([f"{where}.length: {exc}" if where else f"points: {exc}"])
+            self.fail([f"{self.field_of(exc)}: {exc}"])
         except ModelError as exc:
             self.fail([_locate(p, self.where) for p in exc.problems])
         ls = units.length_scale
@@ -748,6 +766,21 @@ class _Parser:
         return dataclasses.replace(done, points=tuple(
             dataclasses.replace(p, x=_rounded(p.x, ls) if ls != 1.0 else p.x,
                                 y=_rounded(p.y, ls) if ls != 1.0 else p.y) for p in done.points))
+
+    def field_of(self, exc: AssemblyError) -> str:
+        """The field of the file whose dimension a refused assembly names (the one changed
+        the most from the sketch): ``links[2].length``, ``links[2].local.P``,
+        ``joints[4].offset``; else ``points``."""
+        dimension = getattr(exc, "dimension", None) or (("length", exc.link) if exc.link else ())
+        kind, name = (dimension[0], dimension[1]) if dimension else ("", "")
+        if kind in ("length", "local") and ("link", name) in self.where:
+            where = self.where[("link", name)]
+            return f"{where}.local.{shown_key(dimension[2])}" if kind == "local" else f"{where}.length"
+        if kind == "offset" and ("joint", name) in self.where:
+            return f"{self.where[('joint', name)]}.offset"
+        if kind == "pivot":
+            return f"points.{shown_key(name)}"
+        return "points"
 
     def local(self, value, where: str, pts, scale: float):
         """A link's ``local`` table: point = [along, left], in the file's length unit."""

@@ -13,7 +13,8 @@ Velocidades*, §4.6; Badan (IFG), *Análise de aceleração*) as data:
 """
 from kinelab.kinematics._analyze import (SINGULAR_TOL, AssemblyStatus, analyze, assembly_status,
                                          change_points, plan, reachable_ranges, turns_fully)
-from kinelab.kinematics._assemble import Assembly, SketchNotAssembled, assemble, pose
+from kinelab.kinematics._assemble import (Assembly, SketchNotAssembled, assemble, pose,
+                                          reassemble)
 from kinelab.kinematics._branches import ChangePoint
 from kinelab.kinematics._centrodes import (Centrodes, KennedyConstruction, KennedyStep, centrodes,
                                           kennedy_construction, velocity_ratio)
@@ -34,7 +35,7 @@ __all__ = ["analyze", "plan", "reachable_ranges", "turns_fully", "KinematicSolut
            "GuidePoint",
            "Plan", "Step", "SINGULAR_TOL", "transmission_angle", "time_ratio", "TimeRatio",
            "instant_center", "instant_centers", "InstantCenter", "InstantCenters", "change_points",
-           "ChangePoint", "assemble", "Assembly", "SketchNotAssembled", "pose", "assembly_status",
+           "ChangePoint", "assemble", "reassemble", "Assembly", "SketchNotAssembled", "pose", "assembly_status",
            "AssemblyStatus", "UnreachableInput", "SingularInput",
            "Tracker", "acceleration_difference", "AccelerationDifference", "relative_acceleration",
            "RelativeAcceleration", "velocity_polygon", "VelocityPolygon", "acceleration_polygon",

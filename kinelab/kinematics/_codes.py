@@ -3,6 +3,9 @@
 numerical tolerances both apply, and the packed plan of the one-sample entry point.
 
 Nothing here imports numba: the rest of kinelab reads these without loading the compiler.
+The compiled kernel takes these numbers in when it is compiled, and numba's cache on disk
+sees changes to ``_kernel.py`` only: after changing a number here, touch ``_kernel.py`` (or
+remove ``kinelab/kinematics/__pycache__/*.nb?``) so that it is compiled again.
 """
 from __future__ import annotations
 
@@ -54,7 +57,7 @@ NEWTON_STALL = 1e-10      # ... or a step below this that is not half the one be
                           # accurate as the configuration allows
 JUMP_RATIO = 0.2          # a correction this large against the predicted step means a jump
 JUMP_FLOOR = 1e-9         # ... added to the predicted step in that test (in those units)
-SINGULAR_STEPS = 3        # of inverse iteration for the measure of a Newton group
+SINGULAR_STEPS = 2        # of inverse iteration for the measure of a Newton group
 BASE_MIN = 1e-6           # a group solved where its measure is
                           # below this is written but not kept to predict from: next to a
                           # singular configuration K and L are rounding

@@ -803,8 +803,9 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
 # angle between its arms.  Estimated by inverse iteration on (B^T B)^-1 with the LU factors of
 # A (B^-1 = diag(cn) A^-1 diag(rn), B^-T = diag(rn) A^-T diag(cn)): SINGULAR_STEPS steps from
 # a fixed start.  Near a singular configuration, where it matters, the smallest singular value
-# is far below the others and the iteration converges at once; elsewhere the estimate may be
-# high, never low.
+# is far below the others and the iteration converges at once (Pyslvs' Stephenson II at its
+# most singular, 0.0139: to 2e-4); elsewhere the estimate may be high, never low (up to a few
+# times over the triad six-bar's cycle and Stephenson II's).
 
 
 @_jit()

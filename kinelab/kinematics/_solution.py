@@ -146,7 +146,9 @@ class KinematicSolution(TableExport):
         the smallest singular value of its Jacobian made dimensionless (lengths in sizes of
         the mechanism, angles in rad) with its columns and rows scaled to unit norm, the
         relative distance to the nearest singular Jacobian (about half the sine, for a
-        dyad).  Below ``SINGULAR_TOL`` (5e-3) a sample is flagged ``singular``.
+        dyad; estimated by inverse iteration, which is exact near a singular configuration
+        and may be a few times high far from one).  Below ``SINGULAR_TOL`` (5e-3) a sample
+        is flagged ``singular``.
     singular : ndarray of bool, shape (N,)
         ``singularity`` is below ``SINGULAR_TOL``: det J = 0 to within what rounding
         lets K and L be trusted, velocities undefined.  At those

@@ -93,7 +93,9 @@ class Link:
     length : float, optional
         The exact distance between its first two points, m.  With it, the sketch may be
         rough: :func:`kinelab.kinematics.assemble` moves the points to the assembled
-        configuration nearest to it (``kinelab.load`` does so for model files).
+        configuration at the sketch's inputs and on its branch (``kinelab.load`` does so
+        for model files; :meth:`Mechanism.with_dimensions` changes it on an assembled
+        mechanism).
     local : mapping of str to (float, float), optional
         The exact place of some of its other points in its own frame, m: along the
         direction from its first point to its second, and to the left of it, from the
@@ -336,6 +338,99 @@ class Mechanism:
         # kinelab.model itself depends on nothing above it
         from kinelab.kinematics import pose
         return pose(self, q)
+
+    def _moved(self, points: tuple[Point, ...], joints: tuple[Joint, ...]) -> Mechanism:
+        """The same mechanism with its points moved (the same names, in order) and its joints'
+        axes turned: what assembly makes of it.  Only the new coordinates are checked (the
+        rest is this checked mechanism's)."""
+        problems = [f"point {shown(p.name)}: coordinates: {why}, got ({p.x:g}, {p.y:g}) m"
+                    for p in points for why in [next(filter(None, (
+                        length_problem(c, positive=False) if is_real(c) else "expected finite numbers"
+                        for c in (p.x, p.y))), None)] if why]
+        if problems or [p.name for p in points] != list(self.point_names) or len(joints) != len(self.joints):
+            return Mechanism(self.name, points, self.links, joints, self.inputs, self.space,
+                             self.parameters)
+        out = object.__new__(Mechanism)
+        for f in ("name", "links", "inputs", "space", "parameters"):
+            object.__setattr__(out, f, getattr(self, f))
+        object.__setattr__(out, "points", tuple(points))
+        object.__setattr__(out, "joints", tuple(joints))
+        return out
+
+    # -- edits ----------------------------------------------------------------------------
+    def with_dimensions(self, *, lengths: Mapping[str, float] | None = None,
+                        local: Mapping[str, Mapping[str, tuple[float, float]]] | None = None,
+                        offsets: Mapping[str, float] | None = None,
+                        pivots: Mapping[str, tuple[float, float]] | None = None) -> Mechanism:
+        """The same mechanism with some dimensions changed, assembled again at its inputs
+        and on its branch: :func:`kinelab.kinematics.reassemble`.
+
+        Parameters
+        ----------
+        lengths : mapping of str to float, optional
+            Links' new lengths (first two points), m; the ground's moves its second point.
+        local : mapping of str to mapping of str to (float, float), optional
+            ``{link: {point: (along, left)}}``: new places of links' other points, m.
+        offsets : mapping of str to float, optional
+            Prismatic joints' new offsets, m.
+        pivots : mapping of str to (float, float), optional
+            The ground's points' new places, m.
+
+        Returns
+        -------
+        Mechanism
+            With the new dimensions declared (``length``, ``local``, ``offset``) and its
+            points at the configuration continued from this one: every input keeps its
+            value and every dyad its side.  Where that side no longer exists at the inputs,
+            the nearest other assembly is taken and a warning names the dyads that changed.
+
+        Raises
+        ------
+        AssemblyError
+            No configuration has these dimensions at these inputs: the message says which
+            loop, by how much it misses, where the inputs reach and which value would close
+            it.
+        ModelError
+            An unknown name or a value that is not a length, place or offset.
+
+        Examples
+        --------
+        >>> fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
+        >>> longer = fb.with_dimensions(lengths={"crank": 1.5})
+        >>> round(math.dist(longer.point("O2").xy, longer.point("A").xy), 12)
+        1.5
+        >>> bool(np.allclose(np.arctan2(*longer.point("A").xy[::-1]),
+        ...                  np.arctan2(*fb.point("A").xy[::-1]), rtol=0, atol=1e-12))
+        True
+        """
+        # the edit needs the assembly of the kinematics room: imported when called, so that
+        # kinelab.model itself depends on nothing above it (as in `at`)
+        import warnings
+
+        from kinelab.kinematics import reassemble
+        done = reassemble(self, lengths=lengths, local=local, offsets=offsets, pivots=pivots)
+        if done.switched:
+            warnings.warn(f"'{self.name}': at its inputs these dimensions close only in another "
+                          f"assembly mode of {', '.join(done.switched)}: assembled there",
+                          UserWarning, stacklevel=2)
+        return done.mechanism
+
+    def with_lengths(self, lengths: Mapping[str, float] | None = None, /,
+                     **more: float) -> Mechanism:
+        """:meth:`with_dimensions` with new lengths only: ``m.with_lengths(coupler=0.25)`` or
+        ``m.with_lengths({"coupler": 0.25})``, m.
+
+        Examples
+        --------
+        >>> fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
+        >>> m = fb.with_lengths(rocker=2.0)
+        >>> round(math.dist(m.point("O4").xy, m.point("B").xy), 12), m.link("rocker").length
+        (2.0, 2.0)
+        """
+        if lengths is not None and not isinstance(lengths, Mapping):
+            raise ModelError(f"lengths: expected a mapping of link names to lengths (m), got "
+                             f"{describe(lengths)}")
+        return self.with_dimensions(lengths={**(lengths or {}), **more})
 
     # -- plain data ---------------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:

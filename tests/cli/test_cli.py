@@ -536,3 +536,17 @@ def test_an_import_that_check_would_refuse_writes_nothing(tmp_path):
                              "freedom as drawn (exact mobility; Kutzbach-Gruebler counts 1) but 3 "
                              "input(s); give it 1 input(s), or fewer joints\n")
     assert not (tmp_path / "m.toml").exists()
+
+
+@pytest.mark.parametrize("fmt", ["json", "csv"])
+def test_a_table_too_large_to_write_as_text_is_refused_before_the_sweep(tmp_path, fmt):
+    """The documented maximum of samples holds for Parquet; as text, the bound on values
+    (rows x columns) says how many rows fit, before any work."""
+    res = run("analyze", EX / "crank_rocker.toml", "--samples", 1_000_000, "-o", tmp_path / f"big.{fmt}")
+    assert res.exit_code == 2
+    most = kl.io._results.MAX_TABLE_VALUES[fmt]
+    assert res.output == (f"kinelab: error: --samples: a {fmt.upper()} table of 1,000,000 rows x 76 "
+                          f"columns is 76,000,000 values; kinelab writes at most {most:,} as "
+                          f"{fmt.upper()} (about 30 s): ask for at most {most // 76:,} rows; or "
+                          "write Parquet (--format parquet)\n")
+    assert not list(tmp_path.iterdir())

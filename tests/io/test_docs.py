@@ -41,3 +41,27 @@ def test_every_field_is_documented():
         assert f"`{name}`" in TEXT, name
     for unit in list(f.LENGTH_UNITS) + list(f.ANGLE_UNITS):
         assert f'`"{unit}"`' in TEXT
+
+
+def test_the_assembly_examples_are_what_the_program_says():
+    """The section on lengths and a rough sketch quotes kinelab: its `kinelab check` line for
+    crank_rocker.toml, and its refusals of that file with the coupler made 700 mm (a loop of
+    bars that cannot close) and 10 mm (one that cannot close at the drawn crank angle)."""
+    from click.testing import CliRunner
+
+    from kinelab.cli import main
+    from kinelab.errors import ModelError
+
+    section = TEXT.split("## Lengths and a rough sketch")[1].split("\n## ")[0]
+    blocks = re.findall(r"```text\n(.*?)\n```", section, re.S)
+    assert len(blocks) == 3
+    example = DOC.parents[1] / "examples" / "crank_rocker.toml"
+    result = CliRunner().invoke(main, ["check", str(example)])
+    assert result.exit_code == 0 and blocks[0] in result.stdout.splitlines()
+    for block, length in zip(blocks[1:], (700, 10)):
+        text, n = re.subn(r'(name = "coupler"\npoints = \[[^\]]*\]\nlength = )\d+', rf"\g<1>{length}",
+                          example.read_text())
+        assert n == 1
+        with pytest.raises(ModelError) as info:
+            kl.io.ModelFile.from_toml(text, source="crank_rocker.toml")
+        assert str(info.value) == block

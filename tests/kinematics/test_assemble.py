@@ -21,7 +21,7 @@ def pins(*spec):
 
 
 def rough_fourbar(A=(0.1, 1.05), B=(2.6, 2.5), P=(1.0, 2.6), lengths=(1.0, 3.0, 2.5),
-                  place=(1.5, 1.0)):
+                  place=(1.5, 1.0), inputs=(Input(joint="jO2"),)):
     return Mechanism(
         "fb", (Point("O2", 0, 0), Point("A", *A), Point("B", *B), Point("O4", 3, 0), Point("P", *P)),
         (Link("ground", ("O2", "O4"), ground=True), Link("crank", ("O2", "A"), length=lengths[0]),
@@ -29,7 +29,7 @@ def rough_fourbar(A=(0.1, 1.05), B=(2.6, 2.5), P=(1.0, 2.6), lengths=(1.0, 3.0, 
          Link("rocker", ("O4", "B"), length=lengths[2])),
         pins(("O2", ("ground", "crank")), ("A", ("crank", "coupler")), ("B", ("coupler", "rocker")),
              ("O4", ("ground", "rocker"))),
-        (Input(joint="jO2"),))
+        inputs)
 
 
 def cross(u, v):
@@ -60,11 +60,11 @@ def test_a_rough_fourbar_gets_its_lengths_and_its_coupler_point():
     np.testing.assert_allclose(m.point("P").xy, ref.position("P"), rtol=0, atol=1e-13)
 
 
-def test_the_assembly_is_the_nearest_to_the_sketch():
+def test_without_inputs_the_assembly_is_the_nearest_to_the_sketch():
     """At the nearest point x of the constraint set to the sketch x0, x - x0 is normal to the
     set: its part along every direction the constraints allow (their Jacobian's null space)
     is zero.  The Jacobian here is a central difference of the measured distances."""
-    rough = rough_fourbar()
+    rough = rough_fourbar(inputs=())
     m = kl.kinematics.assemble(rough).mechanism
     free = ["A", "B", "P"]
     x = np.concatenate([m.point(n).xy for n in free])
@@ -80,6 +80,22 @@ def test_the_assembly_is_the_nearest_to_the_sketch():
     null = np.linalg.svd(J)[2][J.shape[0]:]          # directions along the constraint set
     assert np.max(np.abs(null @ (x - x0))) < 1e-8
     assert np.linalg.norm(x - x0) > 1e-2              # it did move
+    np.testing.assert_allclose(constraints(x), [1.0, 3.0, 2.5, 1.5, 1.0], rtol=1e-13)
+
+
+def test_the_crank_keeps_its_drawn_angle():
+    """With an input the assembly is at the sketch's input: the crank along its drawn
+    direction, B where the catalogue's closed form puts it at that angle on the open branch."""
+    rough = rough_fourbar()
+    a = kl.kinematics.assemble(rough)
+    m = a.mechanism
+    q = math.atan2(1.05, 0.1)
+    np.testing.assert_allclose(m.point("A").xy, (math.cos(q), math.sin(q)), rtol=0, atol=1e-15)
+    fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
+    ref = kl.analyze(fb, q)
+    np.testing.assert_allclose(m.point("B").xy, ref.position("B"), rtol=0, atol=1e-14)
+    np.testing.assert_allclose(m.point("P").xy, ref.position("P"), rtol=0, atol=1e-14)
+    assert a.switched == ()
 
 
 @pytest.mark.parametrize("B, side", [((2.6, 2.5), 1.0), ((1.8, -1.2), -1.0)])
@@ -89,15 +105,22 @@ def test_the_sketch_keeps_its_branch(B, side):
     assert np.sign(cross(O4 - A, Bx - A)) == side         # B left of A -> O4: open
 
 
-def test_a_sketch_drawn_across_its_branch_is_refused():
+def test_a_sketch_drawn_near_the_line_of_its_dyad_keeps_its_side():
     # B drawn 0.05 from the line A -> O4 while A is 0.35 off its circle: the nearest assembly
-    # puts B on the other side of that line (found by a search over such sketches)
+    # (without the input held) puts B on the other side of that line; continued from the
+    # sketch's own lengths at the drawn crank angle, it stays on the side drawn
     A, B = (0.56534, -0.33324), (1.82350, -0.18927)
     rough = rough_fourbar(A=A, B=B, P=(1.0, 0.0), lengths=(1.0, 2.0, 2.0), place=(1.0, 0.0))
     O4 = np.array([3.0, 0.0])
     assert -0.1 < cross(O4 - A, np.subtract(B, A)) < 0         # drawn just to the right
-    with pytest.raises(ModelError, match="on the other side of the line of its ends than the sketch"):
-        kl.kinematics.assemble(rough)
+    m = kl.kinematics.assemble(rough).mechanism
+    A1, B1 = np.array(m.point("A").xy), np.array(m.point("B").xy)
+    assert cross(O4 - A1, B1 - A1) < 0
+    assert math.atan2(A1[1], A1[0]) == pytest.approx(math.atan2(A[1], A[0]), abs=1e-14)
+    free = kl.kinematics.assemble(rough_fourbar(A=A, B=B, P=(1.0, 0.0), lengths=(1.0, 2.0, 2.0),
+                                                place=(1.0, 0.0), inputs=())).mechanism
+    A2, B2 = np.array(free.point("A").xy), np.array(free.point("B").xy)
+    assert cross(O4 - A2, B2 - A2) > 0
 
 
 def test_lengths_that_cannot_close_say_which_inequality_fails():

@@ -223,6 +223,41 @@ def test_a_refused_drag_keeps_the_last_good_configuration(page):
     page.shot("refused")
     assert "rocker" in page.inner_text("#status")
     assert state(page, "window.kinelab.model.links[3].length") == 250
+    # the table shows the model's value again, not the one refused
+    assert page.locator("#tab-table tr[data-link=rocker] td[data-field=length] input").input_value() == "250"
+
+
+def test_lengths_and_pivots_typed_in_the_table_re_assemble_at_the_crank_angle(page):
+    """A coupler of 100 mm closes at the drawn crank angle (90 deg: A stays at (0, 100));
+    one of 10 mm does not (A is 316.228 mm from O4, coupler and rocker reach 240 to 260 mm)
+    and is refused, the table keeping 100; a pivot moved in the table keeps the lengths."""
+    page.click("#tabs button[data-tab=table]")
+
+    def cell(row, field):
+        return page.locator(f"#tab-table tr[{row}] td[data-field={field}] input")
+    cell("data-link=coupler", "length").fill("100")
+    cell("data-link=coupler", "length").press("Enter")
+    page.wait_for_function("() => window.kinelab.model.links[2].length === 100 && !window.kinelab.busy")
+    points = state(page, "window.kinelab.model.points")
+    assert points["A"] == [0, 100]
+    assert math.dist(points["A"], points["B"]) == pytest.approx(100, rel=1e-12)
+    assert math.dist(points["O4"], points["B"]) == pytest.approx(250, rel=1e-12)
+    cell("data-link=coupler", "length").fill("10")
+    cell("data-link=coupler", "length").press("Enter")
+    page.wait_for_selector("#status.error")
+    page.shot("refused coupler")
+    text = page.inner_text("#status")
+    assert "misses by 56.2278 mm" in text and "\n" not in text.strip()
+    assert state(page, "window.kinelab.model.links[2].length") == 100
+    assert cell("data-link=coupler", "length").input_value() == "100"
+    cell("data-point=O4", "x").fill("320")
+    cell("data-point=O4", "x").press("Enter")
+    page.wait_for_function("() => window.kinelab.model.points.O4[0] === 320 && !window.kinelab.busy")
+    page.shot("pivot moved")
+    after = state(page, "window.kinelab.model.points")
+    assert after["A"] == [0, 100]
+    for a, b, length in (("A", "B", 100), ("O4", "B", 250)):
+        assert math.dist(after[a], after[b]) == pytest.approx(length, rel=1e-12)
 
 
 def test_synthesize_a_crank_rocker_and_open_it(page, tmp_path):

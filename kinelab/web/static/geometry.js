@@ -56,3 +56,52 @@ export function movePoint(model, name, xy) {
   }
   return m;
 }
+
+// The model with the ground's point `name` moved to xy, every moving link keeping its
+// dimensions: the lengths and local places of those that carry it are written out as they
+// are, so the server re-assembles the linkage on the moved pivot (at the same input, on the
+// same branch).
+export function movePivot(model, name, xy) {
+  const m = structuredClone(model);
+  delete m.catalogue;
+  for (const link of m.links) {
+    const pts = link.points;
+    if (link.ground || pts.length < 2 || !pts.includes(name)) continue;
+    const [a, b] = [m.points[pts[0]], m.points[pts[1]]];
+    if (link.length === undefined) link.length = round(dist(a, b));
+    for (const p of pts.slice(2)) {
+      link.local = link.local || {};
+      if (link.local[p] === undefined) link.local[p] = local(a, b, m.points[p]).map(round);
+    }
+  }
+  m.points[name] = xy.map(round);
+  const ground = m.links.find((l) => l.ground);
+  if (ground && ground.length !== undefined && ground.points.length > 1)
+    ground.length = round(dist(m.points[ground.points[0]], m.points[ground.points[1]]));
+  return m;
+}
+
+// The model with its ground's length (its first two points) set: its second point moves
+// along the line from its first, a pivot moved as `movePivot` moves it.
+export function groundLength(model, length) {
+  const ground = model.links.find((l) => l.ground);
+  const [a, b] = ground.points.slice(0, 2).map((p) => model.points[p]);
+  const d = dist(a, b);
+  const m = movePivot(model, ground.points[1], [a[0] + (b[0] - a[0]) * length / d,
+                                                a[1] + (b[1] - a[1]) * length / d]);
+  const g = m.links.find((l) => l.ground);
+  if (g.length !== undefined) g.length = length;
+  return m;
+}
+
+// A prismatic joint's offset: its declared one, else the distance of its point from the
+// line through its origin along its axis (to the left), as the sketch draws it.
+export function offsetOf(model, joint, angleScale) {
+  if (joint.offset !== undefined) return joint.offset;
+  const axis = Array.isArray(joint.axis) ? joint.axis
+    : [Math.cos(joint.axis / angleScale), Math.sin(joint.axis / angleScale)];
+  const n = Math.hypot(axis[0], axis[1]);
+  const guide = model.links.find((l) => l.name === joint.links[0]);
+  const o = model.points[joint.origin || guide.points[0]], p = model.points[joint.point];
+  return round((axis[0] * (p[1] - o[1]) - axis[1] * (p[0] - o[0])) / n);
+}

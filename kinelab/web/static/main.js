@@ -41,14 +41,22 @@ async function setModel(model, source, {record = true, refit = true, keepDraft =
     const s = await study(model, source);
     if (record && before) { state.history.push({model: before, source: state.source}); state.future = []; }
     accept(s, source, refit);
-    status(Object.keys(s.moved).length ? "assembled: " + Object.entries(s.moved)
-      .map(([p, d]) => `${p} moved ${Number(d.toPrecision(4))} ${s.units.length}`).join(", ") : "");
+    const moved = Object.entries(s.moved)
+      .map(([p, d]) => `${p} moved ${Number(d.toPrecision(4))} ${s.units.length}`).join(", ");
+    const switched = (s.switched || []).length
+      ? `; in the other assembly mode of ${s.switched.join(", ")} (the sketch's does not close)` : "";
+    const open = s.unassembled.length
+      ? `${s.unassembled.length} of ${s.samples} samples of the input range do not close` : "";
+    status([moved || switched ? "assembled: " + (moved || "no point moved") + switched : "", open]
+      .filter(Boolean).join("; "));
     return true;
   } catch (err) {
     if (keepDraft) {           // a drawing on its way: kept as it is, the reason shown
       if (record && before) { state.history.push({model: before, source: state.source}); state.future = []; }
       state.model = model; state.source = source; state.study = null; state.draft = true;
       redraw();
+    } else if (state.model) {  // refused: the model stays, and the table shows it again
+      renderTable($("tab-table"), state, {edit: editModel, flip, setIndex});
     }
     status(err.message, true);
     return false;
@@ -59,6 +67,10 @@ function accept(s, source, refit) {
   state.study = s; state.model = s.model; state.source = source; state.draft = false;
   state.config = null;             // the last configuration was of the model before
   if (state.index >= s.samples) state.index = 0;
+  if (s.unassembled.includes(state.index)) {      // show a sample where the loops close
+    const good = Array.from({length: s.samples}, (_, i) => i).find((i) => !s.unassembled.includes(i));
+    if (good !== undefined) state.index = good;
+  }
   $("scrub").max = s.samples - 1;
   $("title").textContent = `${s.model.name}${source ? " — " + source : ""}`;
   if (refit) fitView();

@@ -1,6 +1,8 @@
 // The table beside the drawing: exact coordinates, lengths, joints, the input and the
-// branches; typing a value changes the model, the server re-assembles it.
-import {movePoint, dist, sideOf, sideRefs, measuredSides} from "./geometry.js";
+// branches; typing a value changes the model, the server re-assembles it (a refused value
+// leaves the model, and the table, as they were).
+import {movePoint, movePivot, groundLength, offsetOf, dist, sideOf, sideRefs,
+        measuredSides} from "./geometry.js";
 
 function cell(row, content) {
   const td = document.createElement("td");
@@ -34,11 +36,15 @@ export function renderTable(root, state, {edit, flip}) {
 
   h(`points (sketch, ${u.length}) and now`);
   const pt = table(["point", "x", "y", "x now", "y now"]);
+  const ground = m.links.find((l) => l.ground);
   for (const [p, xy] of Object.entries(m.points)) {
     const tr = document.createElement("tr"); tr.dataset.point = p;
     cell(tr, p);
-    cell(tr, input(xy[0], guarded((v) => edit(movePoint(m, p, [num(v), xy[1]]))))).dataset.field = "x";
-    cell(tr, input(xy[1], guarded((v) => edit(movePoint(m, p, [xy[0], num(v)]))))).dataset.field = "y";
+    // a pivot moves with every link keeping its dimensions; another point changes the
+    // links that carry it
+    const move = ground && ground.points.includes(p) ? movePivot : movePoint;
+    cell(tr, input(xy[0], guarded((v) => edit(move(m, p, [num(v), xy[1]]))))).dataset.field = "x";
+    cell(tr, input(xy[1], guarded((v) => edit(move(m, p, [xy[0], num(v)]))))).dataset.field = "y";
     cell(tr, "").className = "now-x"; cell(tr, "").className = "now-y";
     pt.append(tr);
   }
@@ -56,6 +62,7 @@ export function renderTable(root, state, {edit, flip}) {
     })));
     const current = link.length ?? (link.points.length > 1 ? dist(m.points[link.points[0]], m.points[link.points[1]]) : "");
     cell(tr, link.points.length > 1 ? input(current, guarded((v) => {
+      if (link.ground) { edit(groundLength(m, num(v))); return; }
       const next = structuredClone(m); delete next.catalogue;
       next.links[k].length = num(v);
       edit(next);
@@ -67,7 +74,8 @@ export function renderTable(root, state, {edit, flip}) {
   sidesTable(root, m, u, h, guarded, edit);
 
   h("joints");
-  const jt = table(["joint", "type", "links (P: guide, slider)", "point", `P axis (${u.angle})`]);
+  const jt = table(["joint", "type", "links (P: guide, slider)", "point", `P axis (${u.angle})`,
+                    `P offset (${u.length})`]);
   const toAngle = u.angle === "deg" ? 180 / Math.PI : 1;
   for (const [k, j] of (m.joints || []).entries()) {
     const tr = document.createElement("tr");
@@ -95,6 +103,11 @@ export function renderTable(root, state, {edit, flip}) {
       next.joints[k].axis = num(v);          // an angle in the model's unit, as a file has it
       edit(next);
     })) : "").dataset.field = "axis";
+    cell(tr, j.type === "P" && j.axis !== undefined ? input(offsetOf(m, j, toAngle), guarded((v) => {
+      const next = structuredClone(m); delete next.catalogue;
+      next.joints[k].offset = num(v);
+      edit(next);
+    })) : "").dataset.field = "offset";
     tr.dataset.joint = j.name;
     jt.append(tr);
   }
