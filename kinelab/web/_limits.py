@@ -26,6 +26,7 @@ from collections import OrderedDict
 import numpy as np
 
 from kinelab import _memory as memory
+from kinelab._files import byte_size
 from kinelab._tables import BLOCK_VALUES
 from kinelab.errors import KinelabError, ModelError
 
@@ -121,8 +122,8 @@ class _InFlight:
                 left = deadline - time.monotonic()
                 if left <= 0:
                     raise Busy(f"{what}: the server is busy with other large requests "
-                               f"(they hold {memory._size(self.held)} of its memory budget of "
-                               f"{memory._size(memory.memory_budget())}); try again in a "
+                               f"(they hold {byte_size(self.held)} of its memory budget of "
+                               f"{byte_size(memory.memory_budget())}); try again in a "
                                "moment")
                 self._changed.wait(left)
             self.held += nbytes
