@@ -1,13 +1,16 @@
-"""Fuzzing kinelab's command line with hostile model and task files, at scale.
+"""Fuzzing kinelab's command line with hostile files, at scale.
 
-Each case is a valid file mutated field by field (``tests/fuzzing/grammar.py``), read by the
-command that reads it (``check``, ``dynamics``, ``synth``).  The property: the command
-succeeds, or ends with one bounded line per problem and exit status 2, within TIMEOUT
-seconds and MEMORY bytes.  Prints the count of each outcome and a few examples of every
+Each case is a valid file mutated (``tests/fuzzing/grammar.py``) and read by the command
+that reads it: model files field by field (``check``, ``dynamics``), task files of every
+kind (``synth``), CSV tables as text (a measured curve for ``differentiate``, designs for
+``sweep`` and ``atlas build``, a path for ``atlas find``) and atlases as Parquet tables and
+bytes (``atlas find``).  The property: the command succeeds, or ends with one bounded line
+per problem, each naming the file, and exit status 2, within TIMEOUT seconds and MEMORY
+bytes.  Prints the count of each outcome for each kind of file and a few examples of every
 finding.
 
     python benchmarks/fuzz_model_files.py                  # 100,000 cases on every core
-    python benchmarks/fuzz_model_files.py --cases 2000 --seed 7
+    python benchmarks/fuzz_model_files.py --cases 2000 --seed 7 --files csv,atlas
 
 Cases run in worker processes (one per core), each with its address space limited to MEMORY
 and each case interrupted after TIMEOUT seconds (SIGALRM).
@@ -20,6 +23,7 @@ import multiprocessing
 import os
 import random
 import resource
+import shutil
 import signal
 import sys
 import tempfile
@@ -33,7 +37,7 @@ TIMEOUT = 30            # seconds per case
 MEMORY = 6 * 2**30      # bytes of address space per worker (the budget is 2 GiB)
 
 
-class _Timeout(Exception):
+class _Timeout(BaseException):     # not an Exception: the command line runner lets it pass
     pass
 
 
@@ -47,11 +51,15 @@ def _start_worker():
     os.chdir(tempfile.mkdtemp(prefix="kinelab-fuzz-"))
 
 
-def _one(seed: int) -> tuple[str, str, str]:
+FILES = ("model", "task", "csv", "atlas")
+
+
+def _one(job: tuple[int, tuple[str, ...]]) -> tuple[str, str, str, str]:
     from tests.fuzzing import grammar
 
+    seed, files = job
     rng = random.Random(seed)
-    c = grammar.case(rng)
+    c = grammar.case(rng) if files == ("model",) else grammar.any_case(rng, files)
     directory = Path(tempfile.mkdtemp(dir="."))
     signal.alarm(TIMEOUT)
     try:
@@ -62,7 +70,8 @@ def _one(seed: int) -> tuple[str, str, str]:
         outcome, detail = "memory", ""
     finally:
         signal.alarm(0)
-    return outcome, detail, f"seed {seed}: {' '.join(c.command)} on a {c.suffix} file"
+        shutil.rmtree(directory, ignore_errors=True)     # a case's files: up to a few MB
+    return c.family, outcome, detail, f"seed {seed}: {' '.join(c.command)} on a {c.suffix} file"
 
 
 def main() -> None:
@@ -70,15 +79,24 @@ def main() -> None:
     parser.add_argument("--cases", type=int, default=100_000)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--workers", type=int, default=os.cpu_count() or 1)
+    parser.add_argument("--files", default=",".join(FILES),
+                        help="kinds of file, comma-separated: " + ", ".join(FILES) + " (model "
+                             "alone: the cases of the first 100,000-case runs, seed for seed)")
     args = parser.parse_args()
+    files = tuple(f.strip() for f in args.files.split(","))
+    if not files or not set(files) <= set(FILES):
+        parser.error(f"--files: expected some of {', '.join(FILES)}, got {args.files!r}")
     counts: collections.Counter = collections.Counter()
+    by_file: collections.Counter = collections.Counter()
     examples: dict[str, list[str]] = collections.defaultdict(list)
     start = time.perf_counter()
-    seeds = range(args.seed, args.seed + args.cases)
+    jobs = ((seed, files) for seed in range(args.seed, args.seed + args.cases))
     with multiprocessing.get_context("fork").Pool(args.workers, initializer=_start_worker,
                                                   maxtasksperchild=2000) as pool:
-        for i, (outcome, detail, where) in enumerate(pool.imap_unordered(_one, seeds, chunksize=20)):
+        for i, (family, outcome, detail, where) in enumerate(pool.imap_unordered(_one, jobs,
+                                                                                  chunksize=20)):
             counts[outcome] += 1
+            by_file[family, outcome] += 1
             if outcome not in ("success", "error") and len(examples[outcome]) < 5:
                 examples[outcome].append(f"{where}: {detail}")
             if (i + 1) % 5000 == 0:
@@ -88,6 +106,11 @@ def main() -> None:
           f"{elapsed:.0f} s on {args.workers} workers")
     for outcome, n in counts.most_common():
         print(f"  {outcome:<16} {n:>8,}  {100 * n / args.cases:6.2f} %")
+    print("  by kind of file:")
+    for family in sorted({f for f, _ in by_file}):
+        total = sum(n for (f, _), n in by_file.items() if f == family)
+        parts = ", ".join(f"{o} {n:,}" for (f, o), n in sorted(by_file.items()) if f == family)
+        print(f"    {family:<8} {total:>8,}: {parts}")
     findings = sum(n for o, n in counts.items() if o not in ("success", "error"))
     print(f"  findings: {findings:,}")
     for outcome, lines in examples.items():

@@ -28,7 +28,7 @@ def main(repeats: int = 30) -> None:
     from kinelab.web import create_app
 
     model = ModelFile.read(ROOT / "examples" / "stephenson6.toml").to_dict()
-    client = TestClient(create_app())
+    client = TestClient(create_app(), base_url="http://127.0.0.1:8000")
     def server_share(columns, tag):
         times = []
         for k in range(repeats):

@@ -24,6 +24,7 @@ import threading
 
 import numpy as np
 
+from kinelab._files import byte_size
 from kinelab.errors import MemoryBudgetError, ModelError, describe
 
 _SMALLEST = 1 << 20                 # smaller arrays come from the allocator's own free lists
@@ -165,19 +166,13 @@ def memory_budget(max_bytes: int | str | None = None) -> int:
     return old
 
 
-def _size(n: float) -> str:
-    for unit, scale in (("TiB", 1 << 40), ("GiB", 1 << 30), ("MiB", 1 << 20), ("KiB", 1 << 10)):
-        if n >= scale:
-            return f"{n / scale:.3g} {unit}"
-    return f"{int(n)} bytes"
-
-
-def require(nbytes: float, what: str, instead: str) -> None:
+def require(nbytes: float, what: str, instead: str, *, source: str | None = None) -> None:
     """Refuse (MemoryBudgetError) an allocation of ``nbytes`` beyond the budget, saying
-    ``what`` needs it and what to do ``instead``."""
+    ``what`` needs it and what to do ``instead`` (and naming ``source``, the file it is for)."""
     budget = memory_budget()
     if nbytes > budget:
         raise MemoryBudgetError(
-            f"{what} would take about {_size(nbytes)}, more than the memory budget of "
-            f"{_size(budget)}; {instead}, or raise the budget (kinelab.memory_budget('8G'), the "
-            "environment variable KINELAB_MEMORY_BUDGET, or kinelab --memory-budget 8G)")
+            f"{what} would take about {byte_size(nbytes)}, more than the memory budget of "
+            f"{byte_size(budget)}; {instead}, or raise the budget (kinelab.memory_budget('8G'), "
+            "the environment variable KINELAB_MEMORY_BUDGET, or kinelab --memory-budget 8G)",
+            source=source)

@@ -22,6 +22,7 @@ __all__ = [
     "ConvergenceError",
     "SingularityError",
     "MemoryBudgetError",
+    "TimeLimitError",
 ]
 
 
@@ -92,6 +93,12 @@ class MemoryBudgetError(ModelError):
 
 class ConvergenceError(KinelabError, RuntimeError):
     """An iterative solver did not converge."""
+
+
+class TimeLimitError(KinelabError, ValueError):
+    """Work stopped at its time limit (a derivation whose expressions grow too large to
+    finish in time); the message says which limit and how to change it.  Like
+    :class:`MemoryBudgetError`, a request too large for its bound: a ValueError."""
 
 
 class SingularityError(KinelabError, ValueError):

@@ -67,10 +67,11 @@ def test_a_huge_grid_of_inputs_is_refused_before_it_is_built():
 
 
 def test_limits_need_no_memory_for_unused_points(budget):
-    """20,000 points on the coupler: finding where it assembles writes no coordinates (the
-    whole table would be 1441 x 40,000 x 3 doubles, 1.4 GB)."""
+    """As many points as a model may have (MAX_POINTS) on the coupler: finding where it
+    assembles writes no coordinates (the whole table would be 1441 x 4,000 x 3 doubles,
+    138 MB)."""
     fb = kl.mechanisms.fourbar(1.0, 2.0, 1.0, 1.5)          # non-Grashof: limits to find
-    extra = tuple(Point(f"P{i}", 0.5 + 1e-5 * i, 1.0) for i in range(20_000))
+    extra = tuple(Point(f"P{i}", 0.5 + 1e-5 * i, 1.0) for i in range(kl.model.MAX_POINTS - 4))
     links = tuple(Link("coupler", ("A", "B") + tuple(p.name for p in extra)) if link.name == "coupler"
                   else link for link in fb.links)
     m = Mechanism("many points", fb.points + extra, links, fb.joints, fb.inputs)
@@ -88,16 +89,18 @@ def test_the_command_line_option(tmp_path, budget):
 
 
 def test_check_of_a_large_model_needs_little_memory(tmp_path, budget):
-    """A coupler carrying 50,000 points: reading, planning and checking its sweep take
-    seconds and stay within a 256 MiB budget (analysing the sweep would need 1.4 GB)."""
+    """A coupler carrying as many points as a model may have (MAX_POINTS): reading, planning
+    and checking its sweep stay within a 16 MiB budget (analysing the sweep would need about
+    70 MB)."""
     from tests.io.bad_cases import BASE
 
-    extra = "".join(f"X{i} = [{100 + i * 1e-3}, 150]\n" for i in range(50_000))
-    names = ", ".join(f'"X{i}"' for i in range(50_000))
+    n = kl.model.MAX_POINTS - 4
+    extra = "".join(f"X{i} = [{100 + i * 1e-3}, 150]\n" for i in range(n))
+    names = ", ".join(f'"X{i}"' for i in range(n))
     text = (BASE.replace("O4 = [300, 0]", "O4 = [300, 0]\n" + extra)
             .replace('points = ["A", "B"]', f'points = ["A", "B", {names}]'))
     path = tmp_path / "big.toml"
     path.write_text(text)
-    result = CliRunner().invoke(main, ["--memory-budget", "256M", "check", str(path)])
+    result = CliRunner().invoke(main, ["--memory-budget", "16M", "check", str(path)])
     assert result.exit_code == 0, result.output
     assert "sweep: 361 samples assemble, none singular" in result.stdout

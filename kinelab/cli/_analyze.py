@@ -8,14 +8,16 @@ import click
 import numpy as np
 
 from kinelab import io, kinematics, solvers, verify
+from kinelab._files import outputs
 from kinelab.cli._format import configuration_text, summary_text
 from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, VERIFY, certificate_path, errors_from,
                                output_path, output_units, parse_inputs, read_model, report, stem,
                                sweep)
 from kinelab.io._modelfile import MAX_SAMPLES
+from kinelab.io._results import table_too_large
 from kinelab.errors import AssemblyError, KinelabError, ModelError, shown_path
 from kinelab.kinematics import KinematicSolution
-from kinelab.kinematics._columns import INPUT_SI_UNITS
+from kinelab.kinematics._columns import INPUT_SI_UNITS, table_width
 
 __all__ = ["analyze", "check"]
 
@@ -95,9 +97,15 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
         return
     path = output_path(out, stem(model), fmt or "csv")
     kind = io.result_format(path, fmt)       # before the sweep, which can be long
+    check_table_size(mf, samples, kind)
     sol = sweep(mf, samples, change_points=change_points)
     s = None if quiet else summarise(mf, sol)
-    written = io.write_results(sol, path, format=kind, units=units)
+    certificate = verify.certify(sol) if verify_ else None
+    with outputs(path.parent) as files:      # the table and its certificate, or neither
+        written = files.write(path.name, lambda p: io.write_results(sol, p, format=kind,
+                                                                    units=units))
+        if certificate is not None:
+            proof = files.write(certificate_path(written).name, certificate.to_json)
     if s is not None:
         click.echo(summary_text(s, units))
         note = missing_time_ratio(mf, s, units)
@@ -106,8 +114,20 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
     told = f"{kind.upper()} as --format says, whatever the name; " if (
         written.suffix.lower() != f".{kind}") else ""
     click.echo(f"wrote {shown_path(written)} ({told}{sol.N} rows, {len(sol.columns())} columns)")
-    if verify_:
-        report(verify.certify(sol), certificate_path(written))
+    if certificate is not None:
+        click.echo(f"wrote {shown_path(proof)}")
+        report(certificate)
+
+
+def check_table_size(mf: io.ModelFile, samples: int | None, kind: str) -> None:
+    """Refuse, before the sweep, a table too large to write as ``kind`` in about 30 s."""
+    with errors_from(mf):
+        width = table_width(kinematics.plan(mf.mechanism))
+    problem = table_too_large(kind, mf.sample_count(samples), width)
+    if problem:
+        raise ModelError(f"{'--samples' if samples is not None else 'inputs.samples'}: {problem}; "
+                         "or write Parquet (--format parquet)",
+                         source=None if samples is not None else mf.source)
 
 
 def configuration(mf: io.ModelFile, at: str, change_points: str = "smooth") -> KinematicSolution:

@@ -8,11 +8,13 @@ from __future__ import annotations
 
 import click
 
-from kinelab._files import atomic_write
-from kinelab.cli._main import errors_from, output_path, parse_inputs, read_model, stem
-from kinelab.derive import LANGUAGES, derive
+from kinelab._deadline import within
+from kinelab._files import atomic_write, output
+from kinelab.cli._main import (errors_from, output_path, parse_inputs, read_model, said_written,
+                               stem)
+from kinelab.derive import LANGUAGES, TIME_LIMIT, derive
+from kinelab.derive._derivation import time_limit_message
 from kinelab.derive._document import write_pdf
-from kinelab.errors import shown_path
 
 __all__ = ["derive_command"]
 
@@ -30,7 +32,11 @@ __all__ = ["derive_command"]
                    "engine: lualatex, xelatex, pdflatex or tectonic).")
 @click.option("--out", "-o", default=".", metavar="DIR", show_default=True,
               help="Directory (or file) to write <name>_derivation.<format> to.")
-def derive_command(model, at, lang, fmt, out):
+@click.option("--time-limit", type=click.FloatRange(0, min_open=True), default=TIME_LIMIT,
+              show_default=True, metavar="SECONDS",
+              help="The most the derivation and its document may take; past it the command "
+                   "stops and says so.")
+def derive_command(model, at, lang, fmt, out, time_limit):
     """Write the derivation of MODEL in the notes' notation: position equations (one vector
     loop per independent circuit), their time derivative, J, Q, det J and the singular
     configurations, K and L, and for a model with masses the Gibbs-Appell / Kane terms,
@@ -41,12 +47,14 @@ def derive_command(model, at, lang, fmt, out):
     q = None
     if at is not None:
         q = parse_inputs(at, mf)
+
+    def document():
+        d = derive(mf.mechanism, lang, time_limit=None)
+        return d.to_markdown(at=q, time_limit=None) if fmt == "md" else d.to_latex(
+            at=q, time_limit=None)
     with errors_from(mf):
-        d = derive(mf.mechanism, lang)
-        text = d.to_markdown(at=q) if fmt == "md" else d.to_latex(at=q)
+        text = within(time_limit, document,
+                      message=time_limit_message(mf.mechanism, None, time_limit, "it"))
     path = output_path(out, f"{stem(model)}_derivation", fmt)
-    if fmt == "pdf":
-        write_pdf(text, path)
-    else:
-        atomic_write(path, lambda f: f.write(text))
-    click.echo(f"wrote {shown_path(path)}")
+    said_written([output(path, lambda p: write_pdf(text, p) if fmt == "pdf" else
+                         atomic_write(p, lambda f: f.write(text)))])

@@ -1,15 +1,14 @@
 """``kinelab plot`` and ``kinelab animate``."""
 from __future__ import annotations
 
-from pathlib import Path
-
 import click
 
 from kinelab import io
+from kinelab._files import output, outputs, safe_name
 from kinelab.cli._analyze import MODEL, SAMPLES
-from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, errors_from, output_path, output_units, read_model,
-                               stem, sweep)
-from kinelab.errors import ModelError, quoted, shown, shown_path, suggest
+from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, errors_from, output_path, output_units,
+                               read_model, said_written, stem, sweep)
+from kinelab.errors import ModelError, quoted, shown, suggest
 
 __all__ = ["plot", "animate"]
 
@@ -43,14 +42,14 @@ def _check_names(option: str, names: list[str] | None, known, what: str) -> None
               help="Directory for the figures.")
 @click.option("--format", "formats", type=click.Choice(FIGURE_FORMATS), multiple=True,
               default=("png", "svg"), show_default=True, help="Repeat for several formats.")
-@click.option("--outputs", default=None, metavar="NAMES",
+@click.option("--outputs", "names", default=None, metavar="NAMES",
               help="Comma-separated links, slides and points to plot (default: the file's "
                    "[outputs], else the moving links, slides and coupler points).")
 @SAMPLES
 @SI
 @DEGREES
 @CHANGE_POINTS
-def plot(model, out, formats, outputs, samples, si, degrees, change_points):
+def plot(model, out, formats, names, samples, si, degrees, change_points):
     """Write MODEL's figures: outputs' position, velocity and acceleration against the input;
     K and L; coupler curves; transmission angle.  Axes are in the file's units (--si for m
     and rad); singular positions are marked and left out of the curves."""
@@ -60,7 +59,7 @@ def plot(model, out, formats, outputs, samples, si, degrees, change_points):
     mf = read_model(model)
     m = mf.mechanism
     units = output_units(mf.units, si, degrees)
-    chosen = _names(outputs) or list(mf.outputs.report) or list(io.default_outputs(m))
+    chosen = _names(names) or list(mf.outputs.report) or list(io.default_outputs(m))
     base = stem(model)
     # checked before the sweep, which can be long
     _check_names("--outputs", chosen, [*m.link_names, *(j.name for j in m.joints if j.type == "P"),
@@ -73,20 +72,24 @@ def plot(model, out, formats, outputs, samples, si, degrees, change_points):
             figures.append(("motion", kplot.curves(sol, curve_names, units=units)))
             figures.append(("coefficients", kplot.coefficients(sol, curve_names, units=units)))
         for p in (n for n in chosen if n in sol.point_item):
-            figures.append((f"path_{p}", kplot.coupler_curve(sol, p, units=units).figure))
+            figures.append((f"path_{safe_name(p)}", kplot.coupler_curve(sol, p, units=units).figure))
         pairs = list(mf.outputs.transmission) or _default_pairs(m)
         if pairs:
             figures.append(("transmission", kplot.transmission(sol, pairs, units=units).figure))
     if not figures:
         raise click.UsageError("nothing to plot: name links, slides or points with --outputs")
     written = []
-    for kind, fig in figures:
-        for fmt in formats:
-            # --out is a directory: several figures, each in several formats, go in it
-            written.append(kplot.save(fig, Path(out) / f"{base}_{kind}.{fmt}"))
-        plt.close(fig)
-    for path in written:
-        click.echo(f"wrote {shown_path(path)}")
+    try:
+        # --out is a directory: several figures, each in several formats, go in it
+        with outputs(out) as files:
+            for kind, fig in figures:
+                for fmt in dict.fromkeys(formats):
+                    written.append(files.write(f"{base}_{kind}.{fmt}",
+                                               lambda p: kplot.save(fig, p)))
+    finally:
+        for _, fig in figures:
+            plt.close(fig)
+    said_written(written)
 
 
 @click.command()
@@ -119,8 +122,9 @@ def animate(model, out, fmt, trace, frames, fps, centers, velocities, samples, s
     _check_names("--trace", _names(trace), mf.mechanism.point_names,
                  f"points of {shown(mf.mechanism.name)}")
     sol = sweep(mf, samples, change_points=change_points)
-    path = output_path(out, stem(model), fmt)
-    with errors_from(mf, "--trace" if trace else ""):
-        written = kplot.animate(sol, path, trace=_names(trace), frames=frames, fps=fps,
-                                units=units, centers=centers, velocities=velocities)
-    click.echo(f"wrote {shown_path(written)}")
+
+    def write(path):
+        with errors_from(mf, "--trace" if trace else ""):
+            kplot.animate(sol, path, trace=_names(trace), frames=frames, fps=fps, units=units,
+                          centers=centers, velocities=velocities)
+    said_written([output(output_path(out, stem(model), fmt), write)])

@@ -12,14 +12,22 @@ import click
 import numpy as np
 
 from kinelab import dynamics
+from kinelab._files import outputs, safe_name
 from kinelab.cli._main import (DEGREES, SI, VERIFY, certificate_path, errors_from, output_units,
-                               read_model, report)
+                               read_model, report, said_written)
 from kinelab.io import ModelFile
 from kinelab.io._modelfile import MAX_SAMPLES
+from kinelab.dynamics._inverse import table_width
 from kinelab.model import Units
-from kinelab.errors import describe, shown_path
+from kinelab.errors import ModelError, describe, shown_path
 
-__all__ = ["dynamics_command", "run", "times"]
+__all__ = ["dynamics_command", "run", "times", "MAX_VALUES"]
+
+MAX_VALUES = 5_000_000
+"""The most values (samples x columns) of the table ``kinelab dynamics`` writes: the inverse
+dynamics, the CSV text and the figures of a table this large take about 20 s on a slow,
+loaded machine (250,000 samples of the engine example's 20 columns; ``benchmarks/tables.py``
+prints the rates)."""
 
 
 def times(q: np.ndarray, speed: float, acceleration: float) -> np.ndarray:
@@ -33,10 +41,19 @@ def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
         units: Units | None = None, gravity: tuple[float, float] | None = None,
         plots: bool = True, verify: bool = False):
     """Sweep, solve and write ``<name>_dynamics.csv`` and the figures (the inputs in
-    ``units``, default the file's; forces and energies in SI); returns the result, the
-    paths written and, with ``verify``, the result's certificate (not written yet)."""
+    ``units``, default the file's; forces and energies in SI) into ``out``, all or none of
+    them, ``<name>`` being the model's name made safe (:func:`safe_name`); with ``verify``,
+    the result's certificate too, as ``<name>_dynamics_certificate.json``.  Returns the
+    result, the paths written (the certificate's last) and the certificate."""
     units = mf.units if units is None else units
     m = mf.mechanism
+    rows, width = mf.sample_count(samples), table_width(m)
+    if rows * width > MAX_VALUES:
+        raise ModelError(f"{'--samples' if samples is not None else 'inputs.samples'}: a table of "
+                         f"{rows:,} samples x {width} columns is {rows * width:,} values; kinelab "
+                         f"dynamics writes at most {MAX_VALUES:,} (about 20 s): ask for at most "
+                         f"{MAX_VALUES // width:,} samples",
+                         source=None if samples is not None else mf.source)
     setup = dynamics.DynamicsSetup.from_model(m)
     loads = setup.loads
     if gravity is not None:
@@ -51,21 +68,24 @@ def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
     if verify:          # before anything is written: a model the routes refuse writes nothing
         from kinelab.verify import certify
         certificate = certify(res, loads=loads, masses=masses)
-    out = Path(out)
-    written = [out / f"{m.name}_dynamics.csv"]
-    res.to_csv(written[0], units=units)
-    if plots:
-        from kinelab.cli._draw import _agg
-        from kinelab.plot import _dynamics as figs
-        from kinelab.plot import save
-        plt = _agg()
-        for suffix, draw in (("efforts", figs.effort_curves), ("reactions", figs.reaction_curves),
-                             ("shaking", figs.shaking_curves)):
-            fig = draw(res, units=units)
-            path = out / f"{m.name}_{suffix}.png"
-            save(fig, path)
-            plt.close(fig)
-            written.append(path)
+    name = safe_name(m.name)
+    with outputs(out) as files:
+        written = [files.write(f"{name}_dynamics.csv", lambda p: res.to_csv(p, units=units))]
+        if plots:
+            from kinelab.cli._draw import _agg
+            from kinelab.plot import _dynamics as figs
+            from kinelab.plot import save
+            plt = _agg()
+            for suffix, draw in (("efforts", figs.effort_curves),
+                                 ("reactions", figs.reaction_curves),
+                                 ("shaking", figs.shaking_curves)):
+                fig = draw(res, units=units)
+                try:
+                    written.append(files.write(f"{name}_{suffix}.png", lambda p: save(fig, p)))
+                finally:
+                    plt.close(fig)
+        if certificate is not None:
+            written.append(files.write(certificate_path(written[0]).name, certificate.to_json))
     return res, written, certificate
 
 
@@ -97,7 +117,8 @@ def dynamics_command(model, out, samples, si, degrees, gravity, no_plots, verify
     """Actuator efforts, joint reactions and shaking force of MODEL over its inputs' sweep.
 
     Writes <name>_dynamics.csv (efforts, energies, reactions, shaking force and moment)
-    and, unless --no-plots, <name>_efforts.png, <name>_reactions.png, <name>_shaking.png.
+    and, unless --no-plots, <name>_efforts.png, <name>_reactions.png, <name>_shaking.png,
+    all of them or none; <name> is the model's name, made safe for a file's name.
     The links need mass data; loads come from the file's [dynamics] section.  The inputs'
     positions and rates are in the file's units (--si for m and rad); forces are in N,
     torques in N m, energies in J and powers in W.  With --verify, the efforts, energies,
@@ -125,7 +146,6 @@ def dynamics_command(model, out, samples, si, degrees, gravity, no_plots, verify
                f"{np.nanmax(np.abs(res.shaking_moment)):.6g} N m")
     if res.singular.any():
         click.echo(f"{int(res.singular.sum())} singular sample(s): forces undefined there (NaN)")
-    for path in written:
-        click.echo(f"wrote {shown_path(path)}")
+    said_written(written)
     if certificate is not None:
-        report(certificate, certificate_path(written[0]))
+        report(certificate)

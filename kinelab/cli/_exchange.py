@@ -2,13 +2,16 @@
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 
 import click
 
 from kinelab import io
 from kinelab.cli._analyze import MODEL
-from kinelab.cli._main import errors_from, output_path, read_model, stem, sweep
+from kinelab._files import atomic_write, output
+from kinelab.cli._main import (Number, errors_from, output_path, read_model, said_written, stem,
+                               sweep)
 from kinelab.errors import ModelError, shown, shown_path
 from kinelab.io._text import read_text
 
@@ -30,9 +33,9 @@ UNITS = click.Choice(list(io.LENGTH_UNITS))
                    "model file's).")
 @click.option("--layout", type=click.Choice(("parts", "assembly")), default="parts",
               show_default=True, help="svg/dxf: links laid flat in a row, or as assembled.")
-@click.option("--width", type=click.FloatRange(min=0, min_open=True), default=None,
+@click.option("--width", type=Number(positive=True), default=None,
               help="svg/dxf: bar width (default: 15 % of the median link length).")
-@click.option("--hole", type=click.FloatRange(min=0, min_open=True), default=None,
+@click.option("--hole", type=Number(positive=True), default=None,
               help="svg/dxf: hole diameter (default: 40 % of the width).")
 @click.option("--ground", is_flag=True, help="svg/dxf: draw the ground link too.")
 def export(model, target, out, unit, layout, width, hole, ground):
@@ -45,20 +48,26 @@ def export(model, target, out, unit, layout, width, hole, ground):
     path = output_path(out, stem(model), target)
     if target in ("svg", "dxf"):
         sol = sweep(mf, 181)          # slots span the sliders' travel
-        write = io.to_svg if target == "svg" else io.to_dxf
-        with errors_from(mf):
-            written = write(m, path, unit=unit, layout=layout, ground=ground, sol=sol,
-                            width=None if width is None else width * scale,
-                            hole=None if hole is None else hole * scale)
+        outline = io.to_svg if target == "svg" else io.to_dxf
+
+        def write(p):
+            with errors_from(mf):
+                outline(m, p, unit=unit, layout=layout, ground=ground, sol=sol,
+                        width=None if width is None else width * scale,
+                        hole=None if hole is None else hole * scale)
     elif target == "pyslvs":
         with errors_from(mf):
             text = io.to_pyslvs(m, length=unit)
-        from kinelab._files import atomic_write
-        written = atomic_write(path, lambda f: f.write(text))
+
+        def write(p):
+            atomic_write(p, lambda f: f.write(text))
     else:
         import dataclasses
-        written = io.save(dataclasses.replace(mf, units=io.Units(unit, mf.units.angle)), path)
-    click.echo(f"wrote {shown_path(written)}")
+        converted = dataclasses.replace(mf, units=io.Units(unit, mf.units.angle))
+
+        def write(p):
+            io.save(converted, p)
+    said_written([output(path, write)])
 
 
 @click.command("import")
@@ -88,11 +97,11 @@ def import_(source, out, fmt, unit, inputs, input_joint):
         text = read_text(path)
         pairs = None
         if inputs:
-            try:
-                pairs = [tuple(int(v) for v in p.split(",")) for p in inputs.split(";")]
-            except ValueError:
-                raise ModelError(f"--inputs: expected pairs of joint numbers like '0,1;4,3', got "
-                                 f"{shown(inputs)}") from None
+            pairs = [tuple(int(v) if _JOINT.fullmatch(v) else -1 for v in p.split(","))
+                     for p in inputs.split(";")]
+            if any(-1 in p for p in pairs):
+                raise ModelError(f"--inputs: expected pairs of joint numbers (ASCII digits) like "
+                                 f"'0,1;4,3', got {shown(inputs)}")
         try:
             m = io.from_pyslvs(text, inputs=pairs, length=unit, name=path.stem)
         except ModelError as exc:
@@ -101,10 +110,13 @@ def import_(source, out, fmt, unit, inputs, input_joint):
     if m.inputs:        # what kinelab check would refuse is said now, and nothing is written
         from kinelab.io._imported import planned
         planned(m, path.name, pyslvs=fmt == "pyslvs")
-    written = io.save(io.ModelFile(mechanism=m, units=io.Units(unit, "deg"),
-                                   description=description), out)
+    imported = io.ModelFile(mechanism=m, units=io.Units(unit, "deg"), description=description)
+    written = output(out, lambda p: io.save(imported, p))
     click.echo(f"wrote {shown_path(written)}: {len(m.links)} links, {len(m.joints)} joints, inputs "
                f"{', '.join(m.input_names) or 'none (add one under [[inputs]])'}")
+
+
+_JOINT = re.compile(r"[ \t]*[0-9]{1,9}[ \t]*")      # a Pyslvs joint's number
 
 
 def _speed_note(source: str, unit: str) -> str:

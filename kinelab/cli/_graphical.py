@@ -4,7 +4,6 @@ as tables and figures."""
 from __future__ import annotations
 
 import dataclasses
-import re
 from pathlib import Path
 
 import click
@@ -14,11 +13,13 @@ from kinelab import io, kinematics, solvers
 from kinelab.cli._analyze import MODEL, SAMPLES, configuration, with_speeds
 from kinelab.cli._draw import FIGURE_FORMATS, _agg
 from kinelab.cli._format import _num
-from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, VERIFY, errors_from, output_units,
-                               parse_inputs, read_model, report, stem, sweep)
-from kinelab.errors import ModelError, shown, shown_path
+from kinelab._files import Outputs, outputs, safe_name, write_csv
+from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, VERIFY, Number, errors_from,
+                               output_units, parse_inputs, read_model, report, said_written,
+                               stem, sweep)
+from kinelab.errors import ModelError, shown_path
 from kinelab.model import Units
-from kinelab.solvers._differentiate import MAX_SAMPLES
+from kinelab.solvers._differentiate import MAX_SAMPLES, MIN_WINDOW
 
 __all__ = ["polygons", "centres", "differentiate_command"]
 
@@ -45,11 +46,13 @@ def _vector_row(name: str, v, u: Units, si: str) -> tuple[str, ...]:
     return (name, _num(x), _num(y), _num(float(np.hypot(x, y))))
 
 
-def _save(fig, out: str, name: str, formats) -> list[Path]:
+def _save(fig, files: Outputs, name: str, formats) -> list[Path]:
+    """Write ``fig`` in each of ``formats`` as ``name.<format>``, one of ``files``."""
     from kinelab import plot as kplot
     import matplotlib.pyplot as plt
     try:
-        return [kplot.save(fig, Path(out) / f"{name}.{fmt}") for fmt in formats]
+        return [files.write(f"{name}.{fmt}", lambda p: kplot.save(fig, p))
+                for fmt in dict.fromkeys(formats)]
     finally:
         plt.close(fig)
 
@@ -60,12 +63,12 @@ def _save(fig, out: str, name: str, formats) -> list[Path]:
 @SPEED
 @OUT
 @FORMATS
-@click.option("--velocity-scale", "velocity_scale", type=click.FloatRange(min=0, min_open=True),
+@click.option("--velocity-scale", "velocity_scale", type=Number(positive=True),
               default=None, metavar="VALUE",
               help="Velocity per centimetre of the drawing, in the results' length unit per "
                    "second (default: a round number that fits).")
 @click.option("--acceleration-scale", "acceleration_scale",
-              type=click.FloatRange(min=0, min_open=True), default=None, metavar="VALUE",
+              type=Number(positive=True), default=None, metavar="VALUE",
               help="Acceleration per centimetre of the drawing, in the results' length unit "
                    "per second squared (default: a round number that fits).")
 @SI
@@ -123,14 +126,16 @@ def polygons(model, at, speed, out, formats, velocity_scale, acceleration_scale,
         lines.append(f"{point}' is the point of {guide} under {point}")
     click.echo("\n".join(lines))
     base = stem(model)
-    written = _save(kplot.velocity_polygon(sol, units=units, scale=velocity_scale), out,
-                    f"{base}_velocity_polygon", formats)
-    written += _save(kplot.acceleration_polygon(sol, units=units, scale=acceleration_scale), out,
-                     f"{base}_acceleration_polygon", formats)
-    for path in written:
-        click.echo(f"wrote {shown_path(path)}")
+    with outputs(out) as files:
+        written = _save(kplot.velocity_polygon(sol, units=units, scale=velocity_scale), files,
+                        f"{base}_velocity_polygon", formats)
+        written += _save(kplot.acceleration_polygon(sol, units=units, scale=acceleration_scale),
+                         files, f"{base}_acceleration_polygon", formats)
+        if certificate is not None:
+            written.append(files.write(f"{base}_polygons_certificate.json", certificate.to_json))
+    said_written(written)
     if certificate is not None:
-        report(certificate, Path(out) / f"{base}_polygons_certificate.json")
+        report(certificate)
 
 
 @click.command()
@@ -174,63 +179,41 @@ def centres(model, at, out, formats, with_centrodes, samples, si, change_points)
     lines += _table(rows)
     click.echo("\n".join(lines))
     base = stem(model)
-    written = _save(kplot.instant_centers(sol, units=units), out, f"{base}_centres", formats)
-    if with_centrodes:
-        m = mf.mechanism
-        pinned = {lk for j in m.joints if j.type == "R" and m.ground.name in j.links
-                  for lk in j.links}
-        links = [lk for lk in m.link_names if lk != m.ground.name and lk not in pinned]
-        if not links:
-            raise click.UsageError("--centrodes: every moving link of this mechanism is pinned to "
-                                   "the ground, and its centrodes are its pivot")
-        swept = sweep(mf, samples, change_points=change_points)
-        near = int(np.argmin(np.abs(swept.q[:, 0] - sol.q[0, 0]))) if swept.M == 1 else 0
-        ok = swept.assembled & ~swept.singular
-        if not ok[near]:
-            near = int(np.flatnonzero(ok)[0]) if ok.any() else near
-        for lk in links:
-            with errors_from(mf, "--centrodes"):
-                ax = kplot.centrodes(swept, lk, near, units=units)
-            written += _save(ax.figure, out, f"{base}_centrodes_{lk}", formats)
-    for path in written:
-        click.echo(f"wrote {shown_path(path)}")
+    with outputs(out) as files:
+        written = _save(kplot.instant_centers(sol, units=units), files, f"{base}_centres",
+                        formats)
+        if with_centrodes:
+            written += _centrodes(mf, sol, files, base, formats, samples, units, change_points)
+    said_written(written)
+
+
+def _centrodes(mf, sol, files: Outputs, base: str, formats, samples, units,
+               change_points) -> list[Path]:
+    """The centrodes of each link of ``mf`` not pinned to the ground, over the file's sweep,
+    at the sample nearest ``sol``'s input: one figure each, ``<base>_centrodes_<link>``."""
+    from kinelab import plot as kplot
+    m = mf.mechanism
+    pinned = {lk for j in m.joints if j.type == "R" and m.ground.name in j.links
+              for lk in j.links}
+    links = [lk for lk in m.link_names if lk != m.ground.name and lk not in pinned]
+    if not links:
+        raise click.UsageError("--centrodes: every moving link of this mechanism is pinned to "
+                               "the ground, and its centrodes are its pivot")
+    swept = sweep(mf, samples, change_points=change_points)
+    near = int(np.argmin(np.abs(swept.q[:, 0] - sol.q[0, 0]))) if swept.M == 1 else 0
+    ok = swept.assembled & ~swept.singular
+    if not ok[near]:
+        near = int(np.flatnonzero(ok)[0]) if ok.any() else near
+    written = []
+    for lk in links:
+        with errors_from(mf, "--centrodes"):
+            ax = kplot.centrodes(swept, lk, near, units=units)
+        written += _save(ax.figure, files, f"{base}_centrodes_{safe_name(lk)}", formats)
+    return written
 
 
 PLOTTED = 20_000     # samples a figure of derivatives draws at most (every k-th beyond):
                      # it is about 1,000 pixels wide, and matplotlib slows down past that
-_NOT_A_SAMPLE = re.compile(rb"^[ \t]*(#.*)?\r?$", re.M)     # blank or comment lines
-
-
-def _samples_at_most(path: str, limit: int) -> None:
-    """Refuse a curve file with more than ``limit`` samples before it is read (reading
-    takes a while), counting its lines by chunks, in bounded memory."""
-    lines, tail = 0, b""
-    try:
-        with open(path, "rb") as f:
-            while chunk := f.read(1 << 20):
-                chunk = tail + chunk
-                cut = chunk.rfind(b"\n") + 1
-                whole, tail = chunk[:cut], chunk[cut:]
-                lines += whole.count(b"\n") - len(_NOT_A_SAMPLE.findall(whole)) + \
-                    whole.endswith(b"\n")       # the regex also matches after the last newline
-                if lines - 1 > limit:             # the first line is the header
-                    raise ModelError(f"expected at most {limit:,} samples, got more; cut the "
-                                     "curve into pieces, or keep every k-th sample",
-                                     source=path)
-    except OSError:
-        pass                                      # read_curve says why
-
-
-def _printable(curve) -> None:
-    """Refuse a header whose names or units hold unprintable characters (an escape
-    sequence would reach the table, the figure and the terminal)."""
-    for name, unit in ((curve.x_name, curve.x_unit), (curve.y_name, curve.y_unit)):
-        bad = next((c for c in name + unit if not c.isprintable()), None)
-        if bad is not None:
-            full = f"{name} [{unit}]" if unit else name
-            raise ModelError(f"header: column {shown(full)}: expected printable characters in "
-                             f"a column's name and unit, got {shown(bad)}; remove it",
-                             source=curve.source)
 
 
 @click.command("differentiate")
@@ -239,7 +222,8 @@ def _printable(curve) -> None:
               help="The abscissa's column, by name or number from 1 (default: the first).")
 @click.option("--y", "y_column", default=None, metavar="COLUMN",
               help="The curve's column, by name or number from 1 (default: the second).")
-@click.option("--window", type=int, default=None, metavar="SAMPLES",
+@click.option("--window", type=click.IntRange(MIN_WINDOW, MAX_SAMPLES), default=None,
+              metavar="SAMPLES",
               help="Samples per local fit (odd, at least 11), instead of the one chosen by "
                    "cross-validation.")
 @click.option("--out", "-o", "out", default=".", show_default=True, metavar="DIR",
@@ -252,9 +236,7 @@ def differentiate_command(data, x_column, y_column, window, out, formats):
     figure) and prints how the smoothing was chosen."""
     from kinelab import plot as kplot
     _agg()
-    _samples_at_most(data, MAX_SAMPLES)
     curve = io.read_curve(data, x=x_column, y=y_column)
-    _printable(curve)
     try:
         d = solvers.differentiate(curve.x, curve.y, window=window)
     except ModelError as exc:           # name the file in the message
@@ -271,21 +253,20 @@ def differentiate_command(data, x_column, y_column, window, out, formats):
                f"d{yn}/d{xn}.error{unit(rate)}": d.velocity_error,
                f"d2{yn}/d{xn}2{unit(rate + '^2' if xu else rate)}": d.acceleration,
                f"d2{yn}/d{xn}2.error{unit(rate + '^2' if xu else rate)}": d.acceleration_error}
-    from kinelab._files import write_csv
-    base = Path(data).stem
-    written = [write_csv(columns, Path(out) / f"{base}_derivatives.csv")]
+    base = stem(data)
     k = -(-len(d.x) // PLOTTED)
     drawn = d if k == 1 else dataclasses.replace(d, **{
         f: getattr(d, f)[::k] for f in ("x", "y", "velocity", "acceleration", "velocity_error",
                                        "acceleration_error", "residual")})
-    fig = kplot.derivatives(drawn, x_label=f"{xn}{unit(xu)}", y_label=yn, y_unit=yu or "1",
-                            x_unit=xu or "1")
-    written += _save(fig, out, f"{base}_derivatives", formats)
+    with outputs(out) as files:
+        written = [files.write(f"{base}_derivatives.csv", lambda p: write_csv(columns, p))]
+        fig = kplot.derivatives(drawn, x_label=f"{xn}{unit(xu)}", y_label=yn, y_unit=yu or "1",
+                                x_unit=xu or "1")
+        written += _save(fig, files, f"{base}_derivatives", formats)
     how = ("as --window says" if window is not None else
            f"0.7 of the {d.window_gcv} generalised cross-validation chose")
     click.echo(f"{shown_path(Path(data).name)}: {len(d.x)} samples of {yn} against {xn}; noise about "
                f"{_num(d.noise, 3)} {yu}; local fits of degree 5 over {d.window} samples "
                f"({how}); median error band on the velocity "
                f"{_num(float(np.median(d.velocity_error)), 3)} {rate}".replace(" ;", ";"))
-    for path in written:
-        click.echo(f"wrote {shown_path(path)}")
+    said_written(written)

@@ -2,6 +2,7 @@
 outputs, sweeping with a progress bar, and turning kinelab errors into exit status 2."""
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import re
@@ -12,14 +13,17 @@ import click
 import numpy as np
 
 from kinelab import kinematics
+from kinelab._files import safe_name
 from kinelab.errors import KinelabError, ModelError, one_line, quoted, shown, shown_path
 from kinelab.io import ModelFile
+from kinelab.io._text import NUMBER, PLAIN_NUMBER, number
 from kinelab.io._modelfile import errors_from
 from kinelab.kinematics import KinematicSolution
 from kinelab.model import ANGLE_UNITS, LENGTH_UNITS, Units, range_problem, rate_problem
 
 __all__ = ["main", "read_model", "errors_from", "sweep", "output_path", "parse_inputs", "stem",
-           "SI", "DEGREES", "VERIFY", "report", "certificate_path", "output_units"]
+           "SI", "DEGREES", "VERIFY", "report", "said_written", "certificate_path", "output_units",
+           "Number", "about"]
 
 BAD_INPUT = 2      # exit status for a bad file, option or input value
 
@@ -100,6 +104,20 @@ def read_model(path: str) -> ModelFile:
     return ModelFile.read(path)
 
 
+@contextlib.contextmanager
+def about(path: str | os.PathLike | None, fields: tuple[str, ...] = ()):
+    """Name ``path``, a file the command read, in the errors raised inside that name no file
+    (``designs.csv: designs: missing column(s) ...``): every such error, or (``fields``)
+    those whose problems are all about these fields of it; nothing when ``path`` is None."""
+    try:
+        yield
+    except ModelError as exc:
+        if path is None or exc.source is not None or fields and not all(
+                p.partition(":")[0] in fields for p in exc.problems):
+            raise
+        raise ModelError(exc.problems, source=str(path)) from None
+
+
 SI = click.option("--si", is_flag=True,
                   help="Results in SI (m, rad) instead of the file's units.")
 DEGREES = click.option("--degrees", is_flag=True,
@@ -120,12 +138,15 @@ def certificate_path(written: Path) -> Path:
     return written.with_name(f"{written.stem}_certificate.json")
 
 
-def report(certificate, path: Path | None = None) -> None:
-    """Write a certificate to ``path`` (atomically), print it with its verdict last, and
-    end with exit status 1 when it failed."""
-    if path is not None:
-        certificate.to_json(path)
+def said_written(paths) -> None:
+    """Say which files a command wrote, one line each."""
+    for path in paths:
         click.echo(f"wrote {shown_path(path)}")
+
+
+def report(certificate) -> None:
+    """Print a certificate (written already, with the command's other outputs) with its
+    verdict last, and end with exit status 1 when it failed."""
     click.echo("\n".join(certificate.lines()))
     if not certificate.passed:
         click.get_current_context().exit(1)
@@ -153,7 +174,8 @@ def sweep(mf: ModelFile, samples: int | None = None, *, progress: bool | None = 
     q, qd, qdd = mf.sample_inputs(samples)
     if progress is None:
         progress = sys.stderr.isatty()
-    p = kinematics.plan(m)
+    with errors_from(mf):
+        p = kinematics.plan(m)
     big = len(q) >= (200 if p.uses_newton else 20000)
     if not (progress and big):
         return mf.analyze(samples, at_change_point=change_points)
@@ -186,8 +208,9 @@ def analyze_in_chunks(m, q, qd, qdd, *, chunks: int, label: str = "",
 
 
 def stem(model: str) -> str:
-    """A model file's name without its suffix: what its outputs are named after."""
-    return Path(model).stem
+    """A model file's name without its suffix, made safe (:func:`safe_name`): what its
+    outputs are named after."""
+    return safe_name(Path(model).stem)
 
 
 def output_path(out: str | None, stem: str, suffix: str) -> Path:
@@ -200,7 +223,27 @@ def output_path(out: str | None, stem: str, suffix: str) -> Path:
     return path / f"{stem}.{suffix}"
 
 
-_VALUE = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([a-z]*)\s*$")
+_VALUE = re.compile(rf"[ \t]*({NUMBER})[ \t]*([a-z]*)[ \t]*")     # 30, 30deg, 0.5 rad
+
+
+class Number(click.ParamType):
+    """An option's number, written as every file and option writes one
+    (:data:`kinelab.io._text.NUMBER`: ``1000``, ``-0.5``, ``1.5e3``), finite, and above 0
+    when ``positive``."""
+
+    name = "number"
+
+    def __init__(self, *, positive: bool = False):
+        self.positive = positive
+
+    def convert(self, value, param, ctx):
+        if isinstance(value, float):         # a default
+            return value
+        v = number(value) if isinstance(value, str) else None
+        if v is None or not math.isfinite(v) or (self.positive and v <= 0):
+            kind = "a finite number above 0" if self.positive else "a finite number"
+            self.fail(f"expected {kind} in {PLAIN_NUMBER}, got {shown(str(value))}", param, ctx)
+        return v
 
 
 def parse_inputs(text: str, mf: ModelFile, option: str = "--at", *, rate: bool = False) -> np.ndarray:
@@ -208,20 +251,21 @@ def parse_inputs(text: str, mf: ModelFile, option: str = "--at", *, rate: bool =
     in SI; a bare number is in the file's unit.  The same for rates (``rate``: ``--speed
     60deg`` is 60 deg/s): errors name ``option``.  Values are refused past the sizes a model
     takes (an angle within MAX_TURNS turns of 0, a rate of at most MAX_RATE)."""
-    kinds = kinematics.plan(mf.mechanism).input_kinds
+    with errors_from(mf):
+        kinds = kinematics.plan(mf.mechanism).input_kinds
     parts = text.split(",")
     if len(parts) != len(kinds):
         raise ModelError(f"{option}: expected {len(kinds)} value(s) separated by commas (one per "
                          f"input: {quoted(mf.mechanism.input_names)}), got {shown(text)}")
     out = []
     for part, kind in zip(parts, kinds):
-        match = _VALUE.match(part)
+        match = _VALUE.fullmatch(part)
         unit = match.group(2) if match else ""
         units = ANGLE_UNITS if kind == "angle" else LENGTH_UNITS
         default = mf.units.angle_scale if kind == "angle" else mf.units.length_scale
         if not match or (unit and unit not in units):
-            raise ModelError(f"{option}: expected a number, optionally followed by one of "
-                             f"{', '.join(units)}, got {shown(part.strip())}")
+            raise ModelError(f"{option}: expected a number in {PLAIN_NUMBER}, optionally "
+                             f"followed by one of {', '.join(units)}, got {shown(part.strip())}")
         v = float(match.group(1)) * (units[unit] if unit else default)
         si = "rad" if kind == "angle" else "m"
         why = ("expected a finite number" if not math.isfinite(v) else

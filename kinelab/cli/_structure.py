@@ -11,8 +11,14 @@ import json
 import click
 
 from kinelab import structure
+from kinelab.cli._main import about
 
 __all__ = ["mobility", "types"]
+
+# the largest count an option takes: the structure room says why beyond its own, smaller
+# bounds (12 links, a space's freedoms); this one refuses a huge number before any work
+_MOST = 1_000_000
+_COUNT = click.IntRange(1, _MOST)
 
 
 def _load(path: str):
@@ -27,7 +33,8 @@ def mobility(model: str, as_json: bool) -> None:
     """Mobility of MODEL: Kutzbach-Gruebler's count and the exact value, with the reason
     they differ."""
     m = _load(model)
-    result = structure.mobility(m)
+    with about(model):
+        result = structure.mobility(m)
     if as_json:
         click.echo(json.dumps(result.to_dict(), indent=2, ensure_ascii=False))
         return
@@ -55,7 +62,7 @@ def _print_chains(links: int, mobility_: int, limit: int | None, as_json: bool) 
 @click.command("types")
 @click.option("--space", type=click.Choice(["planar", "spherical", "spatial"]), required=True,
               help="The motion space (lambda = 3, 3, 6).")
-@click.option("--mobility", "mobility_", type=int, default=None,
+@click.option("--mobility", "mobility_", type=_COUNT, default=None,
               help="M, the freedoms of the end link (or of the chain with --links).")
 @click.option("--method", type=click.Choice(["open", "active", "passive", "alternative"]),
               default="active", show_default=True,
@@ -64,11 +71,11 @@ def _print_chains(links: int, mobility_: int, limit: int | None, as_json: bool) 
 @click.option("--motion", default=None,
               help="Wanted motion of the end link, e.g. 'Tx Ty' or 'Rx Ry Tr'.")
 @click.option("--joints", default=None, help="Pair types to use, e.g. RPUS.")
-@click.option("--max-joints", type=int, default=3, show_default=True,
+@click.option("--max-joints", type=_COUNT, default=3, show_default=True,
               help="At most this many pairs per chain.")
-@click.option("--links", type=int, default=None,
+@click.option("--links", type=_COUNT, default=None,
               help="Planar only: list every kinematic chain with this many links instead.")
-@click.option("--limit", type=int, default=50, show_default=True,
+@click.option("--limit", type=_COUNT, default=50, show_default=True,
               help="Print at most this many architectures.")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 def types(space, mobility_, method, motion, joints, max_joints, links, limit, as_json) -> None:

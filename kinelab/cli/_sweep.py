@@ -14,44 +14,43 @@ import numpy as np
 
 from kinelab import sweep as sw
 from kinelab.sweep._family import DesignOffModel
-from kinelab._files import atomic_write
+from kinelab._files import atomic_write, output
+from kinelab.cli._main import Number, about
 from kinelab.errors import ModelError, describe, shown_path
+from kinelab.io._csv import read_table
+from kinelab.io._text import PLAIN_NUMBER, number
+from kinelab.solvers._arguments import MAX_SEED
 from kinelab.sweep._run import MAX_SAMPLES
 
 __all__ = ["sweep_command", "atlas_command"]
 
 _PROBLEMS_SHOWN = 20
+_MOST = 10 ** 9      # designs, designs in a chunk, nearest designs: beyond any memory
 _ANGLES = ("transmission_min", "transmission_max", "reachable_from", "reachable_to")
 
 
-def _read_table(path: str):
+def _read_table(path: str, what: str):
+    """A table of numbers from a CSV or a Parquet file, as a DataFrame; ``what`` its rows
+    are: designs (an empty cell is a design's missing value, NaN) or points."""
     import pandas
 
-    p = Path(path)
-    if not p.is_file():
-        raise ModelError(f"{shown_path(path)}: no such file; give a CSV or Parquet table of designs")
-    try:
-        if p.suffix.lower() in (".parquet", ".pq"):
-            return pandas.read_parquet(p)
-        return pandas.read_csv(p)
-    except (OSError, ValueError, ImportError) as exc:
-        line = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        raise ModelError(f"{shown_path(path)}: cannot read a table: {line}") from None
+    if Path(path).suffix.lower() in (".parquet", ".pq"):
+        return sw.read_parquet(path, "a table")
+    missing = np.nan if what == "designs" else None
+    names, values = read_table(path, what=what, missing=missing)
+    return pandas.DataFrame(values, columns=names)
 
 
 def _range(text: str):
     name, sep, spec = text.partition("=")
     parts = spec.split(":")
-    try:
-        values = [float(v) for v in parts]
-    except ValueError:
-        values = []
-    if not sep or not name or len(values) not in (2, 3):
+    if not sep or not name or len(parts) not in (2, 3):
         raise ModelError(f"--range: expected NAME=LOW:HIGH (or NAME=LOW:HIGH:COUNT for --grid), "
                          f"got {describe(text)}")
-    if not all(np.isfinite(values)):       # nan, inf, and 1e400 (read as inf)
-        raise ModelError(f"--range: expected finite numbers in NAME=LOW:HIGH[:COUNT], got "
-                         f"{describe(text)}")
+    values = [number(v) for v in parts]
+    if None in values or not all(np.isfinite(values)):     # nan, inf, and 1e400 (read as inf)
+        raise ModelError(f"--range: expected finite numbers in NAME=LOW:HIGH[:COUNT], in "
+                         f"{PLAIN_NUMBER}, got {describe(text)}")
     return name.strip(), values
 
 
@@ -65,7 +64,7 @@ def designs_from(table: str | None, sobol: int | None, random: int | None, grid:
     if table is not None:
         if ranges:
             raise ModelError("--range: only with --sobol, --random or --grid, not with a DESIGNS file")
-        return _read_table(table)
+        return _read_table(table, "designs")
     parsed = dict(_range(r) for r in ranges)
     if grid:
         axes = {}
@@ -101,7 +100,9 @@ def _family_of(spec: str, branch: str | None, output: str | None):
         raise ModelError(f"FAMILY: expected a catalogue kind ({', '.join(sw.CATALOGUE)}) or a "
                          f"model file (.toml or .json), got {describe(spec)}")
     from kinelab.io import load
-    return sw.family(load(spec), output=output, **options)
+    model = load(spec)
+    with about(spec):
+        return sw.family(model, output=output, **options)
 
 
 def _labelled(df, degrees: bool, output_is_slide: bool):
@@ -138,19 +139,19 @@ def _report_problems(df) -> None:
 
 
 DESIGNS_OPTIONS = [
-    click.option("--sobol", type=click.IntRange(min=1), default=None, metavar="N",
+    click.option("--sobol", type=click.IntRange(1, _MOST), default=None, metavar="N",
                  help="N designs of a scrambled Sobol sequence in the --range bounds (a power "
                       "of 2 keeps the sequence balanced)."),
-    click.option("--random", "random_n", type=click.IntRange(min=1), default=None, metavar="N",
+    click.option("--random", "random_n", type=click.IntRange(1, _MOST), default=None, metavar="N",
                  help="N designs drawn uniformly in the --range bounds."),
     click.option("--grid", is_flag=True, help="Every combination of --range NAME=LOW:HIGH:COUNT."),
     click.option("--range", "ranges", multiple=True, metavar="NAME=LOW:HIGH[:COUNT]",
                  help="Bounds of a parameter (m or rad), repeated for each one varied."),
-    click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True,
+    click.option("--seed", type=click.IntRange(0, MAX_SEED), default=0, show_default=True,
                  help="Seed of --sobol and --random."),
     click.option("--scheduler", default=None, metavar="ADDRESS",
                  help="Run on the Dask cluster of this scheduler (tcp://host:8786)."),
-    click.option("--chunk-size", type=click.IntRange(min=1), default=None,
+    click.option("--chunk-size", type=click.IntRange(1, _MOST), default=None,
                  help="Designs per chunk (default: what fits in 32 MiB)."),
     click.option("--samples", type=click.IntRange(4, MAX_SAMPLES), default=72, show_default=True,
                  help=f"Input samples over a full turn (at most {MAX_SAMPLES:,})."),
@@ -174,7 +175,7 @@ def _designs_options(f):
               help="Assembly mode of a catalogue family (fourbar: open or crossed ...).")
 @click.option("--output", "output_name", default=None,
               help="Link or prismatic joint whose swing and time ratio are measured.")
-@click.option("--speed", type=float, default=1.0, show_default=True,
+@click.option("--speed", type=Number(), default=1.0, show_default=True,
               help="Input speed for peak_torque, rad/s (at most 1e100 in size).")
 @click.option("--degrees", is_flag=True, help="Angles in degrees in the table.")
 @click.option("--out", "-o", "out", default="sweep.parquet", show_default=True, metavar="PATH",
@@ -191,17 +192,21 @@ def sweep_command(family_spec, table, sobol, random_n, grid, ranges, seed, sched
     designs = designs_from(table, sobol, random_n, grid, ranges, seed)
     names = None if metrics is None else tuple(m.strip() for m in metrics.split(",") if m.strip())
     start = time.perf_counter()
-    try:
-        df = sw.run(fam, designs, samples=samples, metrics=names, client=scheduler,
-                    chunk_size=chunk_size, speed=speed)
-    except DesignOffModel as exc:
-        raise ModelError(f"designs: the design {exc.design} moves points off the places the file "
-                         f"declares ({exc.detail}); vary (--range, DESIGNS columns) only points "
-                         "that no declaration fixes, or remove that declaration (a link's local "
-                         "place or sides, a joint's offset) from the file and run kinelab check "
-                         f"{shown_path(family_spec)}", source=family_spec) from None
+    model_file = None if family_spec in sw.CATALOGUE else family_spec
+    with about(table, ("designs", "metrics")), about(model_file, ("family",)):
+        try:
+            df = sw.run(fam, designs, samples=samples, metrics=names, client=scheduler,
+                        chunk_size=chunk_size, speed=speed)
+        except DesignOffModel as exc:
+            raise ModelError(f"designs: the design {exc.design} moves points off the places the "
+                             f"file declares ({exc.detail}); vary (--range, DESIGNS columns) only "
+                             "points that no declaration fixes, or remove that declaration (a "
+                             "link's local place or sides, a joint's offset) from the file and run "
+                             f"kinelab check {shown_path(family_spec)}",
+                             source=family_spec) from None
     seconds = time.perf_counter() - start
-    _write(_labelled(df, degrees, fam.output_is_slide), path)
+    table = _labelled(df, degrees, fam.output_is_slide)
+    output(path, lambda p: _write(table, p))
     _report_problems(df)
     assembles = f", {int(df['assembles'].sum()):,} assemble over the turn" if "assembles" in df else ""
     click.echo(f"{len(df):,} designs in {seconds:.3g} s{assembles}; wrote {shown_path(path)}")
@@ -225,15 +230,17 @@ def atlas_build(table, sobol, random_n, grid, ranges, seed, scheduler, chunk_siz
     path = _check_out(out, "atlas")
     sw.family("fourbar", branch=branch)       # the branch checked before the designs are made
     designs = designs_from(table, sobol, random_n, grid, ranges, seed)
-    a = sw.atlas(designs, branch=branch, samples=samples, client=scheduler, chunk_size=chunk_size)
-    a.to_parquet(path)
+    with about(table, ("designs", "metrics")):
+        a = sw.atlas(designs, branch=branch, samples=samples, client=scheduler,
+                     chunk_size=chunk_size)
+    output(path, a.to_parquet)
     click.echo(f"{len(a):,} of {len(designs):,} designs turn their crank fully; wrote {shown_path(path)}")
 
 
 @atlas_command.command("find")
 @click.argument("atlas_path", metavar="ATLAS")
 @click.argument("path_file", metavar="PATH")
-@click.option("-k", "k", type=click.IntRange(min=1), default=5, show_default=True,
+@click.option("-k", "k", type=click.IntRange(1, _MOST), default=5, show_default=True,
               help="How many designs.")
 @click.option("--refine", is_flag=True,
               help="Polish the nearest designs into linkages through the path (path synthesis).")
@@ -241,11 +248,15 @@ def atlas_find(atlas_path, path_file, k, refine):
     """The designs of ATLAS whose coupler curves are nearest in shape to the closed path in
     PATH (a CSV of x, y points in order, m)."""
     a = sw.Atlas.from_parquet(atlas_path)
-    points = _read_table(path_file).select_dtypes("number").to_numpy()[:, :2]
-    near = a.nearest(points, k)
-    sols = a.refine(points, k=min(k, 3)) if refine else None    # refused before anything is printed
-    if sols is not None and not len(sols):
-        raise ModelError(f"refine: {sols.reason}")
+    if not len(a):
+        raise ModelError("it holds no design that turns its crank fully; build it from more or "
+                         "other designs", source=atlas_path)
+    points = _read_table(path_file, "points").to_numpy()[:, :2]
+    with about(path_file):      # what is wrong now is the path's
+        near = a.nearest(points, k)
+        sols = a.refine(points, k=min(k, 3)) if refine else None   # refused before any output
+        if sols is not None and not len(sols):
+            raise ModelError(f"refine: {sols.reason}")
     click.echo(near.to_string(float_format=lambda v: f"{v:.6g}"))
     if sols is not None:
         best = sols[0]

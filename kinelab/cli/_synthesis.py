@@ -4,9 +4,9 @@ A click command of the main ``kinelab`` group.  It reads a TOML task file (the f
 ``docs/synthesis.md``) and solves it with :func:`kinelab.io.load_task` and
 :func:`~kinelab.io.solve_task`,
 prints a table of the linkages found and writes each as a model file (``kinelab.io``) with
-a figure, all in the task's units (SI with ``--si``).  Everything is computed before anything is written, and
-every file is written to a temporary name first, so a failure never leaves a half-written
-output behind; the group turns kinelab errors into one-line messages with exit status 2.
+a figure, all in the task's units (SI with ``--si``).  Everything is computed before anything
+is written, and the files are written as one set (:func:`kinelab._files.outputs`): all of
+them, or none; the group turns kinelab errors into one-line messages with exit status 2.
 """
 from __future__ import annotations
 
@@ -87,7 +87,7 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si:
     point and compared with the task and with the table; the certificate is printed last
     (with --json, it is in the JSON) and written as certificate.json and in summary.json.
     """
-    from kinelab._files import atomic_write
+    from kinelab._files import atomic_write, outputs, safe_name
     from kinelab.io import to_toml
 
     task = load_task(task_file)
@@ -106,10 +106,13 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si:
     files["summary.json"] = json.dumps(summary, indent=2, allow_nan=False)
     if figures and sols:
         files.update(_figures(task, sols, extra, u))
-    out = Path(out_dir) if out_dir else Path(task_file).with_name(Path(task_file).stem + "_solutions")
-    for name, content in files.items():
-        binary = isinstance(content, bytes)
-        atomic_write(out / name, lambda f, c=content: f.write(c), binary=binary)
+    out = Path(out_dir) if out_dir else Path(task_file).with_name(
+        safe_name(Path(task_file).stem) + "_solutions")
+    with outputs(out) as written:        # every file, or none
+        for name, content in files.items():
+            binary = isinstance(content, bytes)
+            written.write(name, lambda p, c=content, b=binary: atomic_write(
+                p, lambda f: f.write(c), binary=b))
     if as_json:
         click.echo(files["summary.json"])
         if certificate is not None and not certificate.passed:

@@ -11,12 +11,12 @@ is asked to obtain by hand, obtained for any planar model kinelab analyses:
   or Portuguese, in the notes' order, with the numbers at one input beside the engine's;
 - :func:`loop_equations` -- the position equations alone.
 """
-from kinelab.derive._derivation import (LANGUAGES, MAX_UNKNOWNS, Derivation, DerivationValues,
-                                        Singularity, derive)
+from kinelab.derive._derivation import (LANGUAGES, MAX_UNKNOWNS, TIME_LIMIT, Derivation,
+                                        DerivationValues, Singularity, derive)
 from kinelab.derive._dynamics import Body, KaneDerivation
 from kinelab.derive._loops import Loop, LoopEquations, loop_equations
 from kinelab.derive._simplify import READABLE_OPS, SIMPLIFY_OPS, SIMPLIFY_SECONDS
 
 __all__ = ["derive", "Derivation", "DerivationValues", "Singularity", "KaneDerivation", "Body",
            "loop_equations", "LoopEquations", "Loop", "LANGUAGES", "SIMPLIFY_OPS",
-           "SIMPLIFY_SECONDS", "READABLE_OPS", "MAX_UNKNOWNS"]
+           "SIMPLIFY_SECONDS", "READABLE_OPS", "MAX_UNKNOWNS", "TIME_LIMIT"]

@@ -8,6 +8,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from kinelab._deadline import within
 from kinelab.derive._loops import Loop, LoopEquations, _Names, loop_equations
 from kinelab.derive._notation import notation_of
 from kinelab.derive._simplify import READABLE_OPS, factors, simplified, size
@@ -15,9 +16,14 @@ from kinelab.dynamics._terms import flag
 from kinelab.errors import ModelError, check_choice, describe
 from kinelab.model import Mechanism, real_array
 
-__all__ = ["derive", "Derivation", "DerivationValues", "Singularity", "LANGUAGES"]
+__all__ = ["derive", "Derivation", "DerivationValues", "Singularity", "LANGUAGES", "TIME_LIMIT"]
 
 LANGUAGES = ("en", "pt")
+TIME_LIMIT = 60.0
+"""Seconds a derivation (and, apart, its document) may take by default.  The catalogue's and
+the examples' take seconds; eight unknowns whose expressions stay large (four slider dyads
+with their slide lines at odd angles) take from 15 s to minutes as the machine and its load
+go, and past the limit stop with a message that says how to allow more."""
 MAX_UNKNOWNS = 8
 """The most unknown coordinates a derivation takes: J's determinant and adjugate grow so fast
 in closed form that eight (four dyads) take seconds, ten about twenty and twelve over a minute."""
@@ -239,17 +245,24 @@ class Derivation:
             K_engine=K_engine, L_engine=L_engine, engine_det_J=np.asarray(sol.det_J, float))
 
     # -- documents -----------------------------------------------------------------------------
-    def to_markdown(self, *, at: ArrayLike | None = None, lang: str | None = None) -> str:
+    def to_markdown(self, *, at: ArrayLike | None = None, lang: str | None = None,
+                    time_limit: float | None = TIME_LIMIT) -> str:
         """The derivation as Markdown with LaTeX maths (``$...$``), in the notes' order,
         ending with its numbers at input ``at`` (default: the model's sketch) beside
-        :func:`kinelab.analyze`'s."""
-        from kinelab.derive._document import document
-        return document(self, "md", at=at, lang=lang or self.lang)
+        :func:`kinelab.analyze`'s.  Stopped with a :class:`~kinelab.errors.TimeLimitError`
+        after ``time_limit`` seconds (None: no limit)."""
+        return self._document("md", at, lang, time_limit)
 
-    def to_latex(self, *, at: ArrayLike | None = None, lang: str | None = None) -> str:
+    def to_latex(self, *, at: ArrayLike | None = None, lang: str | None = None,
+                 time_limit: float | None = TIME_LIMIT) -> str:
         """The same as :meth:`to_markdown`, as a standalone LaTeX file."""
+        return self._document("tex", at, lang, time_limit)
+
+    def _document(self, fmt: str, at, lang: str | None, time_limit: float | None) -> str:
         from kinelab.derive._document import document
-        return document(self, "tex", at=at, lang=lang or self.lang)
+        seconds = checked_limit(time_limit)
+        return within(seconds, lambda: document(self, fmt, at=at, lang=lang or self.lang),
+                      message=time_limit_message(self.model, len(self.S), seconds, "its document"))
 
     def __repr__(self) -> str:
         return (f"Derivation('{self.model.name}', q={list(self.q)}, S={list(self.S)}, "
@@ -274,8 +287,32 @@ def inputs(q, M: int, name: str, *, one: bool = False) -> np.ndarray:
     return a.reshape(-1, M)
 
 
+def checked_limit(time_limit) -> float | None:
+    """``time_limit`` as seconds (None: no limit), or a ModelError."""
+    if time_limit is None:
+        return None
+    if isinstance(time_limit, bool) or not isinstance(time_limit, (int, float, np.integer,
+                                                                   np.floating)) \
+            or not time_limit > 0:
+        raise ModelError(f"time_limit: expected a number of seconds > 0 (or None: no limit), "
+                         f"got {describe(time_limit)}")
+    return float(time_limit)
+
+
+def time_limit_message(model: Mechanism, unknowns: int | None, seconds: float | None,
+                       what: str) -> str:
+    """What a derivation (``what``: "it", "its document") stopped at its time limit says."""
+    if seconds is None:
+        return ""
+    size = f" of {unknowns} unknowns" if unknowns else ""
+    return (f"derivation of '{model.name}': {what} took more than {seconds:g} s, the time "
+            f"limit; its expressions{size} grow too large to finish in time: derive a part of "
+            "the mechanism, analyse it numerically (kinelab analyze), or allow more time "
+            "(time_limit=..., kinelab derive --time-limit SECONDS)")
+
+
 def derive(model: Mechanism, lang: Literal["en", "pt"] = "en", *, dynamics: bool = True,
-           loads=None, masses=None) -> Derivation:
+           loads=None, masses=None, time_limit: float | None = TIME_LIMIT) -> Derivation:
     """The notes' derivation of a planar model, in symbols: position equations, J, Q,
     det J and its singular configurations, K and L (and, for a model with masses, the
     Gibbs-Appell / Kane terms).
@@ -301,6 +338,9 @@ def derive(model: Mechanism, lang: Literal["en", "pt"] = "en", *, dynamics: bool
         Default: the model file's ``[dynamics]`` section, else none.
     masses : kinelab.dynamics.MassProperties, optional
         Default: the links' mass data (a lumped model: ``MassProperties.lumped``).
+    time_limit : float or None
+        Seconds the derivation may take (default :data:`TIME_LIMIT`), in whichever thread
+        it runs; None: no limit.
 
     Returns
     -------
@@ -311,6 +351,8 @@ def derive(model: Mechanism, lang: Literal["en", "pt"] = "en", *, dynamics: bool
     ModelError
         The model is not one :func:`kinelab.analyze` can solve (the same error), or an
         argument is wrong.
+    TimeLimitError
+        The derivation took more than ``time_limit`` seconds.
 
     Examples
     --------
@@ -320,12 +362,19 @@ def derive(model: Mechanism, lang: Literal["en", "pt"] = "en", *, dynamics: bool
     >>> d.det_J, d.K.T
     (-B, Matrix([[R*cos(A - q)/B, R*sin(A - q)]]))
     """
-    import sympy as sp
     check_choice("lang", lang, LANGUAGES)
     dynamics = flag(dynamics, "dynamics")
+    seconds = checked_limit(time_limit)
     if not isinstance(model, Mechanism):
         raise ModelError(f"model: expected a kinelab Mechanism, got {type(model).__name__}; "
                          "build one with kinelab.mechanisms or kinelab.load")
+    import sympy  # noqa: F401 -- imported before the clock starts: the limit is the derivation's
+    return within(seconds, _derive, model, lang, dynamics, loads, masses,
+                  message=time_limit_message(model, None, seconds, "it"))
+
+
+def _derive(model: Mechanism, lang: str, dynamics: bool, loads, masses) -> Derivation:
+    import sympy as sp
     bodies = None
     if dynamics:
         from kinelab.derive._dynamics import bodies_of

@@ -6,14 +6,13 @@ rules (Fu, Zhong and Zeng, *Automated and readable simplification of trigonometr
 expressions*, 2006) that does what the notes do by hand: products of sines and cosines of
 the unknowns gathered into ``cos(A - q)``, ``sin^2 + cos^2 = 1``, common factors taken out.
 Two bounds keep it short: an expression larger than :data:`SIMPLIFY_OPS` operations is left
-as derived, and each simplification stops after :data:`SIMPLIFY_SECONDS` (where the clock
-can interrupt it: the main thread of a POSIX system); either way the result is flagged.
+as derived, and each simplification stops after :data:`SIMPLIFY_SECONDS`, in whichever
+thread it runs (:func:`kinelab._deadline.within`); either way the result is flagged.
 """
 from __future__ import annotations
 
-import contextlib
-import signal
-import threading
+from kinelab._deadline import within
+from kinelab.errors import TimeLimitError
 
 __all__ = ["SIMPLIFY_OPS", "SIMPLIFY_SECONDS", "READABLE_OPS", "simplified", "size", "factors"]
 
@@ -26,30 +25,6 @@ SIMPLIFY_SECONDS = 1.0
 READABLE_OPS = 120
 """Operations above which an expression is too large to read in a document: it is shown in
 matrix form with numbers instead."""
-
-
-class _OutOfTime(Exception):
-    pass
-
-
-@contextlib.contextmanager
-def _time_limit(seconds: float):
-    """Raise _OutOfTime in the block after ``seconds``, where a timer signal can do it."""
-    usable = (hasattr(signal, "setitimer") and threading.current_thread() is threading.main_thread()
-              and signal.getitimer(signal.ITIMER_REAL)[0] == 0.0)
-    if not usable:
-        yield
-        return
-
-    def stop(signum, frame):
-        raise _OutOfTime
-    previous = signal.signal(signal.SIGALRM, stop)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0.0)
-        signal.signal(signal.SIGALRM, previous)
 
 
 def size(expr) -> int:
@@ -86,13 +61,17 @@ def simplified(expr, limit: int = SIMPLIFY_OPS, seconds: float = SIMPLIFY_SECOND
     if not expr.free_symbols:
         return expr, True
     try:
-        with _time_limit(seconds):
-            num, den = sp.fraction(sp.together(expr))
-            num, den = _part(num), _part(den)
-            out = sp.factor_terms(num / den)
-    except _OutOfTime:
+        out = within(seconds, _simplify, expr)
+    except TimeLimitError:
         return expr, False
     return (out if size(out) <= n else expr), True
+
+
+def _simplify(expr):
+    import sympy as sp
+    num, den = sp.fraction(sp.together(expr))
+    num, den = _part(num), _part(den)
+    return sp.factor_terms(num / den)
 
 
 def factors(expr, limit: int = SIMPLIFY_OPS, seconds: float = SIMPLIFY_SECONDS):
@@ -100,9 +79,8 @@ def factors(expr, limit: int = SIMPLIFY_OPS, seconds: float = SIMPLIFY_SECONDS):
     import sympy as sp
     if size(expr) <= limit:
         try:
-            with _time_limit(seconds):
-                expr = sp.factor(expr)
-        except _OutOfTime:
+            expr = within(seconds, sp.factor, expr)
+        except TimeLimitError:
             pass
     const, parts = sp.Integer(1), []
     for f in sp.Mul.make_args(expr):

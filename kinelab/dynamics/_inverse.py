@@ -13,9 +13,9 @@ from kinelab.dynamics._terms import System, Terms, build_system, evaluate, flag,
 from kinelab.errors import ModelError, quoted, shown, suggest
 from kinelab.kinematics import KinematicSolution, analyze, plan
 from kinelab.kinematics._columns import Columns
-from kinelab.model import Units
+from kinelab.model import Mechanism, Units
 
-__all__ = ["inverse", "InverseDynamics"]
+__all__ = ["inverse", "InverseDynamics", "table_width"]
 
 
 def _pick(names: tuple[str, ...], name: str, kind: str) -> int:
@@ -117,7 +117,7 @@ class InverseDynamics(MotionResult):
         return self.reaction_moments[:, _pick(self.joint_names, joint, "joint")]
 
     # -- export -------------------------------------------------------------------------
-    def _columns(self, units: Units) -> Columns:
+    def _columns(self, units: Units) -> Columns:     # table_width counts these
         """Time, inputs, efforts, energies, power, shaking force and moment, and each
         joint's reaction (see :meth:`MotionResult.columns`)."""
         cols = self._motion_columns(units)
@@ -402,3 +402,12 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms) -> dict:
             moments[:, c] = x[:, 2 * c + 1]
     return dict(forces=forces, moments=moments, efforts=x[:, 2 * J:], unique=unique,
                 shaking_force=shaking[:, :2], shaking_moment=shaking[:, 2])
+
+
+def table_width(model: Mechanism) -> int:
+    """The columns of :meth:`InverseDynamics.columns` of ``model`` with shaking and
+    reactions, known before the computation: time, each input's q, qd, qdd and effort, two
+    energies and the power, the shaking force and moment, and each joint's reaction (and
+    the moment of each prismatic joint)."""
+    prismatic = sum(j.type == "P" for j in model.joints)
+    return 1 + 4 * len(model.inputs) + 3 + 3 + 2 * len(model.joints) + prismatic

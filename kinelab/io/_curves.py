@@ -2,24 +2,29 @@
 displacement, for :func:`kinelab.solvers.differentiate`."""
 from __future__ import annotations
 
-import csv
-import math
 import numbers
 import os
-import re
 from dataclasses import dataclass
 
 import numpy as np
 
+from kinelab._files import file_path
 from kinelab._memory import require
 from kinelab.errors import ModelError, describe, quoted, shown
-from kinelab._files import file_path
+from kinelab.io._csv import TABLE_BYTES, csv_rows, numbers_of
+from kinelab.io._csv import header as header_names
 from kinelab.io._text import read_text
-from kinelab.solvers._differentiate import MIN_SAMPLES
+from kinelab.solvers._differentiate import MAX_SAMPLES, MIN_SAMPLES
 
 __all__ = ["MeasuredCurve", "read_curve"]
 
-_UNIT = re.compile(r"^\s*(.*?)\s*\[(.*)\]\s*$")      # "t [s]": name t, unit s
+
+def _split(name: str) -> tuple[str, str]:
+    """A column's name and unit: "t [s]" is ("t", "s"), "t" is ("t", "")."""
+    at = name.find("[")
+    if at < 0 or not name.endswith("]"):
+        return name, ""
+    return name[:at].strip(), name[at + 1:-1].strip()
 
 
 @dataclass(frozen=True)
@@ -47,14 +52,6 @@ class MeasuredCurve:
     source: str
 
 
-def _number(text: str) -> float | None:
-    try:
-        v = float(text)
-    except ValueError:
-        return None
-    return v
-
-
 def _choice(value: object, what: str) -> str | int | None:
     """A column as given: None, a name, or a number from 1 (a whole number or its digits)."""
     if value is None or isinstance(value, str):
@@ -67,11 +64,13 @@ def _choice(value: object, what: str) -> str | int | None:
 def _column(header: list[str], choice: str | int | None, default: int, what: str, source: str) -> int:
     if choice is None:
         return default
-    names = [_UNIT.sub(r"\1", h).strip() for h in header]
+    names = [_split(h)[0] for h in header]
     for k, (full, bare) in enumerate(zip(header, names)):
-        if choice in (full.strip(), bare):
+        if choice in (full, bare):
             return k
-    number = choice if isinstance(choice, int) else int(choice) if choice.isdigit() else 0
+    digits = choice if isinstance(choice, int) else choice.strip()
+    number = (digits if isinstance(digits, int) else
+              int(digits) if digits.isascii() and digits.isdigit() and len(digits) < 10 else 0)
     if 1 <= number <= len(header):
         return number - 1
     raise ModelError(f"{what}: expected a column of the file, by name or number from 1, got "
@@ -115,21 +114,13 @@ def read_curve(path: str | os.PathLike, *, x: str | None = None, y: str | None =
     path = file_path(path)
     x, y = _choice(x, "x"), _choice(y, "y")
     source = str(path)
-    try:
-        size = path.stat().st_size
-    except OSError:
-        size = 0
-    # text, rows of Python strings and the arrays: about 20 times the file's size
-    require(20.0 * size, f"reading {path.name}", "cut the file into pieces")
-    text = read_text(path, max_bytes=None)      # bounded by the memory budget above
-    rows = [(line_no, row) for line_no, row in enumerate(csv.reader(text.splitlines()), 1)
-            if row and any(c.strip() for c in row) and not row[0].lstrip().startswith("#")]
-    if not rows:
+    text = read_text(path, max_bytes=TABLE_BYTES, note=f" ({MAX_SAMPLES:,} samples at most)")
+    rows = csv_rows(text, source, max_rows=MAX_SAMPLES, what="samples",
+                    instead="cut the curve into pieces, or keep every k-th sample")
+    first = next(rows, None)
+    if first is None:
         raise ModelError("expected a header row and samples, got an empty file", source=source)
-    header_line, header = rows[0]
-    if all(_number(c) is not None for c in header):
-        raise ModelError(f"line {header_line}: expected a header row naming the columns "
-                         "(such as 't [s], x [mm]'), got numbers; add one", source=source)
+    header_line, header = first[0], header_names(first, source)
     if len(header) < 2:
         raise ModelError(f"line {header_line}: expected at least two columns (the abscissa and "
                          f"the curve), got {len(header)}", source=source)
@@ -137,36 +128,20 @@ def read_curve(path: str | os.PathLike, *, x: str | None = None, y: str | None =
     iy = _column(header, y, 1 if ix != 1 else 0, "y", source)
     if ix == iy:
         raise ModelError(f"y: expected a column other than the abscissa's, got "
-                         f"{shown(header[iy].strip())} for both", source=source)
-    names = [header[ix].strip(), header[iy].strip()]
-    problems, values = [], []
-    for line_no, row in rows[1:]:
-        pair = []
-        for k, name in zip((ix, iy), names):
-            cell = row[k].strip() if k < len(row) else ""
-            v = _number(cell)
-            if v is None or not math.isfinite(v):
-                problems.append(f"line {line_no}, column {shown(name)}: expected a finite number, "
-                                f"got {describe(cell) if cell else 'nothing'}; remove or fill in "
-                                "that sample")
-            pair.append(v)
-        values.append(pair)
-    if problems:
-        raise ModelError(problems, source=source)
-    if len(values) < MIN_SAMPLES:
-        raise ModelError(f"expected at least {MIN_SAMPLES} samples, got {len(values)}; a "
+                         f"{shown(header[iy])} for both", source=source)
+    names = [header[ix] or f"column {ix + 1}", header[iy] or f"column {iy + 1}"]
+    # the text, already read, and the values (16 bytes a sample) with their lines
+    require(8.0 * len(text), "reading it", "cut the file into pieces", source=source)
+    lines, data = numbers_of(rows, [ix, iy], names, source)
+    if len(lines) < MIN_SAMPLES:
+        raise ModelError(f"expected at least {MIN_SAMPLES} samples, got {len(lines)}; a "
                          "derivative of measured data needs several local fits", source=source)
-    data = np.array(values, dtype=float)
     step = np.diff(data[:, 0])
     bad = np.flatnonzero(step <= 0)
     if bad.size:
         k = int(bad[0]) + 1
-        raise ModelError(f"line {rows[k + 1][0]}, column {shown(names[0])}: expected abscissae "
+        raise ModelError(f"line {lines[k]}, column {shown(names[0])}: expected abscissae "
                          f"that increase, got {data[k, 0]:.10g} after {data[k - 1, 0]:.10g}; sort "
                          "the rows and merge repeated ones", source=source)
-
-    def split(name):
-        m = _UNIT.match(name)
-        return (m.group(1), m.group(2).strip()) if m else (name, "")
-    (xn, xu), (yn, yu) = split(names[0]), split(names[1])
+    (xn, xu), (yn, yu) = _split(header[ix]), _split(header[iy])
     return MeasuredCurve(data[:, 0].copy(), data[:, 1].copy(), xn, yn, xu, yu, source)

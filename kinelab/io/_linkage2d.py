@@ -20,8 +20,8 @@ from kinelab.errors import ModelError
 from kinelab.io._fields import Reader, describe, quoted, shown
 from kinelab._files import file_path
 from kinelab.io._text import loads, read_text
-from kinelab.model import (MAX_JOINTS, MAX_LINKS, Input, Joint, Link, Mechanism, Point, angle_problem,
-                           coordinate_problem)
+from kinelab.model import (Input, Joint, Link, Mechanism, Point, angle_problem, coordinate_problem,
+                           size_problems)
 
 __all__ = ["from_linkage2d_json"]
 
@@ -101,10 +101,10 @@ def from_linkage2d_json(source: str | os.PathLike | Mapping[str, Any], *,
         raise ModelError(r.problems, source=where)
     unit = r.string(top.get("unit_length", "m"), "unit_length", choices=_UNITS)
     angle_unit = r.string(top.get("unit_angle", "rad"), "unit_angle", choices=("deg", "rad"))
-    for key, most in (("links", MAX_LINKS), ("joints", MAX_JOINTS)):
-        if isinstance(top[key], list) and len(top[key]) > most:    # before the drawing is solved
-            r.problems.append(f"{key}: expected at most {most:,}, got {len(top[key]):,}; a model "
-                              "that large takes minutes to plan: model the mechanism in parts")
+    links, joints = (top[k] if isinstance(top[k], list) else [] for k in ("links", "joints"))
+    points = sum(len(t["points"]) for t in links      # before the drawing is read and solved
+                 if isinstance(t, Mapping) and isinstance(t.get("points"), list))
+    r.problems.extend(size_problems(points=points, links=len(links), joints=len(joints)))
     if r.problems:
         raise ModelError(r.problems, source=where)
     ls = _UNITS[unit]
@@ -180,7 +180,9 @@ def _joints(r: Reader, value, links: dict[str, dict], ls: float, deg: float) -> 
              "pin-in-slot": ("parent", "child", "line_id_parent", "point_id_child"),
              "weld": ("parent", "child", "relative_pos", "relative_angle"),
              "gear": ("parent", "child", "ratio", "phase_offset")}
-    out = []
+    out: list[dict] = []
+    ids: dict[str, str] = {}          # a joint's id -> the joint that has it
+    same: dict[tuple, str] = {}       # what a joint joins -> the joint that joins it
     for i, t in enumerate(r.array(value, "joints", "tables") or []):
         w = f"joints[{i}]"
         if not isinstance(t, Mapping):
@@ -223,9 +225,29 @@ def _joints(r: Reader, value, links: dict[str, dict], ls: float, deg: float) -> 
                                  check=coordinate_problem)
             j["rel_angle"] = r.number(t["relative_angle"], f"{w}.relative_angle", scale=deg,
                                       check=angle_problem)
-        if all(v is not None for v in j.values()):
-            out.append(j)
+        if not all(v is not None for v in j.values()):
+            continue
+        jid, key = str(j["id"]), _joint_key(j)
+        if jid in ids:
+            r.fail(f"{w}.id", f"{shown(jid)} is already the id of {ids[jid]}; give each joint "
+                   "its own id")
+            continue
+        if key in same:
+            r.fail(w, f"joins the same links at the same places as {same[key]}; remove one")
+            continue
+        ids[jid] = same[key] = w
+        out.append(j)
     return out
+
+
+def _joint_key(j: dict) -> tuple:
+    """What a joint joins, whatever it is called and whichever link is its parent."""
+    sides = {"revolute": (("parent", "p"), ("child", "c")),
+             "prismatic": (("parent", "p", "pd"), ("child", "c", "cd")),
+             "pin-in-slot": (("parent", "line"), ("child", "c")),
+             "weld": (("parent",), ("child",))}[j["kind"]]
+    ends = frozenset(tuple(str(j[k]) for k in side) for side in sides)
+    return (j["kind"], ends, (tuple(j["rel"]), j["rel_angle"]) if j["kind"] == "weld" else ())
 
 
 def _bodies(links: dict[str, dict], joints: list[dict]) -> dict[str, tuple[str, np.ndarray, float]]:

@@ -24,7 +24,7 @@ import numpy as np
 
 from kinelab import mechanisms as catalogue
 from kinelab import _memory as memory
-from kinelab._files import atomic_write, file_path
+from kinelab._files import UnwritableOutput, atomic_write, file_path
 from kinelab.errors import AssemblyError, KinelabError, ModelError
 from kinelab.io import _toml
 from kinelab.io._fields import Reader, describe, quoted, shown, shown_key
@@ -34,7 +34,7 @@ from kinelab.kinematics._assemble import assembly_miss, needs_assembly
 from kinelab.model import (ANGLE_UNITS, JOINT_TYPES, LENGTH_UNITS, SIDE_WORDS, SPACES, Input,
                            Joint, Link, Mechanism, Point, Units, angle_problem,
                            coordinate_problem, length_problem, name_problem, place_problems,
-                           range_problem, rate_problem)
+                           range_problem, rate_problem, size_problems)
 
 __all__ = ["SCHEMA", "LENGTH_UNITS", "ANGLE_UNITS", "Units", "Outputs", "ModelFile", "load",
            "save", "from_toml", "to_toml", "from_json", "to_json", "errors_from"]
@@ -202,6 +202,27 @@ class ModelFile:
             return analyze(self.mechanism, q, qd, qdd, at_singular="flag",
                            at_change_point=at_change_point)
 
+    def sample_count(self, samples: int | None = None) -> int:
+        """The number of samples (rows) of the file's sweep with ``samples`` per input
+        (default the file's): their product for a grid of several inputs.
+
+        >>> kl.io.ModelFile.read("examples/fivebar.toml").sample_count(100)
+        100
+        """
+        counts = self._counts(samples)
+        return math.prod(counts) if (len(counts) > 1 and self.sweep == "grid") else max(counts)
+
+    def _counts(self, samples: int | None) -> list[int]:
+        M = len(self.mechanism.inputs)
+        if M == 0:
+            raise ModelError("inputs: the mechanism has no input; add one under [[inputs]]",
+                             source=self.source)
+        if samples is not None and not (isinstance(samples, int) and not isinstance(samples, bool)
+                                        and 2 <= samples <= MAX_SAMPLES):
+            raise ModelError(f"samples: expected a whole number from 2 to {MAX_SAMPLES:,}, got {describe(samples)}")
+        return [samples] * M if samples is not None else (
+            list(self.samples) if self.samples else [DEFAULT_SAMPLES] * M)
+
     def sample_inputs(self, samples: int | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Input values, rates and accelerations of the file's sweep, SI.
 
@@ -226,14 +247,8 @@ class ModelFile:
         """
         m = self.mechanism
         M = len(m.inputs)
-        if M == 0:
-            raise ModelError("inputs: the mechanism has no input; add one under [[inputs]]",
-                             source=self.source)
-        counts = [samples] * M if samples is not None else (
-            list(self.samples) if self.samples else [DEFAULT_SAMPLES] * M)
-        if samples is not None and not (isinstance(samples, int) and 2 <= samples <= MAX_SAMPLES):
-            raise ModelError(f"samples: expected a whole number from 2 to {MAX_SAMPLES:,}, got {describe(samples)}")
-        total = math.prod(counts) if (M > 1 and self.sweep == "grid") else max(counts)
+        counts = self._counts(samples)
+        total = self.sample_count(samples)
         memory.require(total * M * 8 * 3, f"the inputs of {total:,} samples"
                        + (f" (a grid of {' x '.join(f'{c:,}' for c in counts)})" if M > 1 and
                           self.sweep == "grid" else ""),
@@ -271,13 +286,16 @@ _INSTEAD = {"inputs": "narrow the range of the file's inputs", "--at": "give --a
 def errors_from(mf: ModelFile, field: str = ""):
     """Name the file (and a field) in the errors raised inside: ``crank_rocker.toml:
     inputs: ...`` (``model: ...`` when the file has no name).  Input values that will not
-    do are said in the file's units and with its inputs' names."""
+    do are said in the file's units and with its inputs' names.  An error that names a file
+    of its own (an output that cannot be written) is left as it is."""
     from kinelab.kinematics import SingularInput, UnreachableInput
 
     try:
         yield
     except KinelabError as exc:
         prefix = f"{mf.source or 'model'}: {field + ': ' if field else ''}"
+        if isinstance(exc, UnwritableOutput):
+            raise
         if isinstance(exc, ModelError):
             raise ModelError([prefix + p for p in exc.problems]) from None
         if isinstance(exc, (UnreachableInput, SingularInput)):
@@ -400,6 +418,10 @@ class _Parser:
             raw_points = {}
         elif "points" in top:
             point_names = dict.fromkeys(raw_points)
+        counts = {k: len(v) if isinstance(v, (list, Mapping)) else 0 for k, v in
+                  (("points", raw_points), *((k, top.get(k)) for k in ("links", "joints")))}
+        if too_large := size_problems(**counts):      # before any of them is read
+            self.fail(too_large)
         for pname, xy in raw_points.items():
             v = r.numbers(xy, f"points.{shown_key(pname)}", dim, scale=ls, what="coordinates",
                           unit=units.length, check=coordinate_problem)
@@ -731,9 +753,9 @@ class _Parser:
 
         The assembled coordinates are kept to the digits a model file is written with
         (:func:`_rounded`); a sketch already assembled to those digits is taken as it is."""
-        if assembly_miss(m) <= _ASSEMBLED:
-            return m
         try:
+            if assembly_miss(m) <= _ASSEMBLED:
+                return m
             self.assembly = assemble(m, units=units)
         except AssemblyError as exc:
             self.fail([f"{self.field_of(exc)}: {exc}"])

@@ -25,7 +25,8 @@ from collections.abc import Sequence
 from kinelab.errors import ModelError, describe, expected_one_of, shown
 from kinelab.io._imported import in_expression_terms
 from kinelab.io._modelfile import LENGTH_UNITS
-from kinelab.model import Input, Joint, Link, Mechanism, Point, angle_problem
+from kinelab.io._text import NUMBER
+from kinelab.model import MAX_POINTS, Input, Joint, Link, Mechanism, Point, angle_problem
 
 __all__ = ["from_pyslvs", "to_pyslvs", "IMPORT_SPEEDS"]
 
@@ -34,13 +35,13 @@ __all__ = ["from_pyslvs", "to_pyslvs", "IMPORT_SPEEDS"]
 # speed of the examples (600 deg/s).
 IMPORT_SPEEDS = {"angle": 2.0 * math.pi * 100.0 / 60.0, "slide": 0.1}
 
-_TOKEN = re.compile(r"""
-    (?P<space>\s+|\#\[[\s\S]*?\#\][^\n]*|\#[^\n]*)
+_TOKEN = re.compile(rf"""
+    (?P<space>\s+)
   | (?P<open>(?:M|J|A|P|L|color)\[)
   | (?P<close>\])
   | (?P<comma>,)
   | (?P<paren>[()])
-  | (?P<number>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)
+  | (?P<number>{NUMBER})
   | (?P<name>[A-Za-z_][A-Za-z0-9_-]*)
 """, re.X)
 _CNAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -48,21 +49,40 @@ GROUND = "ground"
 
 
 class _Tokens:
+    """The expression's tokens, each read when the parser comes to it (a long expression is
+    never held as a list of its tokens)."""
+
     def __init__(self, text: str):
-        self.items: list[tuple[str, str, int]] = []
-        pos = 0
+        self.text, self.pos = text, 0
+        self.closing: int | None = None      # the "#]" last found (-1: there is none after)
+        self.current = self._next()
+
+    def _next(self) -> tuple[str, str, int]:
+        text, pos = self.text, self.pos
         while pos < len(text):
+            if text[pos] == "#":
+                # a comment: "#[ ... #]" and the rest of its line, or "#" to the line's end;
+                # one "#]" found serves every "#[" before it (no square work)
+                block = text.startswith("#[", pos)
+                if block and (self.closing is None or 0 <= self.closing < pos + 2):
+                    self.closing = text.find("#]", pos + 2)
+                block = block and self.closing >= pos + 2
+                end = text.find("\n", self.closing + 2 if block else pos)
+                pos = len(text) if end < 0 else end
+                continue
             m = _TOKEN.match(text, pos)
             if m is None:
                 raise ModelError(f"expression: character {pos + 1}: unexpected {describe(text[pos])}; "
                                  "expected the Pyslvs form M[J[R, P[x, y], L[a, b]], ...]")
-            if m.lastgroup != "space":
-                self.items.append((m.lastgroup, m.group(), pos + 1))
             pos = m.end()
-        self.i = 0
+            if m.lastgroup != "space":
+                self.pos = pos
+                return m.lastgroup, m.group(), m.start() + 1
+        self.pos = pos
+        return "end", "the end", -1
 
     def peek(self) -> tuple[str, str, int]:
-        return self.items[self.i] if self.i < len(self.items) else ("end", "the end", -1)
+        return self.current
 
     def take(self, kind: str, value: str | None = None, what: str = "") -> str:
         k, v, pos = self.peek()
@@ -73,13 +93,13 @@ class _Tokens:
                 "paren": "a parenthesis"}.get(kind, kind)
             raise ModelError(f"expression: {where}: expected {expected}{' (' + what + ')' if what else ''}"
                              f", got {shown(v)}")
-        self.i += 1
+        self.current = self._next()
         return v
 
     def accept(self, kind: str, value: str | None = None) -> bool:
         k, v, _ = self.peek()
         if k == kind and (value is None or v == value):
-            self.i += 1
+            self.current = self._next()
             return True
         return False
 
@@ -90,6 +110,9 @@ def _parse(text: str) -> list[tuple[str, float, float, float, tuple[str, ...]]]:
     t.take("open", "M[", "the mechanism")
     joints = []
     while not t.accept("close"):
+        if len(joints) == MAX_POINTS:       # a joint is a point of the model
+            raise ModelError(f"expression: expected at most {MAX_POINTS:,} joints, got more; "
+                             "every point is solved at every sample: model the mechanism in parts")
         t.take("open", "J[", "a joint")
         kind = t.take("name", what="the joint type R, P or RP")
         if kind not in ("R", "P", "RP"):
@@ -262,8 +285,12 @@ def from_pyslvs(expression: str, *, inputs: Sequence[tuple[int, int]] | None = N
         raise ModelError([f"expression: {in_expression_terms(p)}" for p in exc.problems]) from exc
 
 
+_INPUTS_COMMENT = re.compile(r"inputs \(pivot joint, driven joint\) = (\[[0-9\s(),]*\])")
+
+
 def _commented_inputs(expression: str):
-    match = re.search(r"#.*inputs \(pivot joint, driven joint\) = (\[[\d\s(),]*\])", expression)
+    match = next((m for m in _INPUTS_COMMENT.finditer(expression)
+                  if "#" in expression[expression.rfind("\n", 0, m.start()) + 1:m.start()]), None)
     if match is None:
         return None
     import ast

@@ -17,9 +17,28 @@ from kinelab.kinematics import KinematicSolution
 from kinelab.kinematics._solution import takes_solution
 from kinelab.model import Units
 
-__all__ = ["RESULT_FORMATS", "write_results", "result_format", "results_json", "json_ready"]
+__all__ = ["RESULT_FORMATS", "write_results", "result_format", "results_json", "json_ready",
+           "MAX_TABLE_VALUES", "table_too_large"]
 
 RESULT_FORMATS = ("csv", "json", "parquet")
+
+MAX_TABLE_VALUES = {"csv": 12_000_000, "json": 10_000_000}
+"""The most values (rows x columns) ``kinelab analyze`` (and the browser app) writes as CSV or
+JSON.  Each number becomes text by Python's shortest round-trip formatting, about 1 us a
+value on a slow, loaded machine (a little more as JSON), so a table this large takes about
+20 s with its sweep (``benchmarks/tables.py`` prints the rates); Parquet keeps numbers binary
+and is bounded by the memory budget only."""
+
+
+def table_too_large(fmt: str, rows: int, columns: int) -> str | None:
+    """Why a table of ``rows`` x ``columns`` is not written as ``fmt`` (past
+    :data:`MAX_TABLE_VALUES`), in words; None when it may be."""
+    most = MAX_TABLE_VALUES.get(fmt)
+    if most is None or rows * columns <= most:
+        return None
+    return (f"a {fmt.upper()} table of {rows:,} rows x {columns:,} columns is "
+            f"{rows * columns:,} values; kinelab writes at most {most:,} as {fmt.upper()} (about "
+            f"30 s): ask for at most {max(most // max(columns, 1), 1):,} rows")
 
 
 @takes_solution
@@ -154,11 +173,6 @@ def json_ready(value):
 
 
 def _write_json(columns: dict[str, np.ndarray], f) -> None:
-    names = list(columns)
-    data = [np.asarray(columns[n]) for n in names]
-    f.write("[\n")
-    n = len(data[0]) if data else 0
-    for i in range(n):
-        row = {name: json_ready(col[i]) for name, col in zip(names, data)}
-        f.write("  " + json.dumps(row, allow_nan=False) + (",\n" if i < n - 1 else "\n"))
-    f.write("]\n")
+    from kinelab._tables import json_blocks
+    for block in json_blocks(columns):
+        f.write(block)

@@ -20,35 +20,47 @@ from decimal import Decimal, localcontext
 from fractions import Fraction
 from typing import Any
 
-from kinelab._files import file_path
+from kinelab._files import file_path, read_file
 from kinelab.errors import ModelError, describe, shown, shown_key
 
-__all__ = ["MAX_DEPTH", "MAX_BYTES", "read_text", "loads", "Written", "written", "in_si"]
+__all__ = ["MAX_DEPTH", "MAX_BYTES", "NUMBER", "number", "read_text", "loads", "Written", "written",
+           "in_si"]
 
 DIGITS_READ = 100  # characters of a number converted from its digits; a longer one (a file's
                    # stray thousands of zeros) is read as the float nearest it
 MAX_DEPTH = 32     # tables and lists inside each other; a model file needs about 6
 MAX_BYTES = 8 << 20  # a file's size: a model, task or drawing is a few kilobytes, and a TOML
                      # parser reads about a megabyte in a few seconds
+_MODEL_NOTE = " (a model, task or drawing file is a few kilobytes)"
 _SURROGATE = re.compile("[\ud800-\udfff]")
 
+# What a number is, wherever a person writes one (a model or task file, a CSV cell, --at):
+# ASCII digits in decimal or scientific notation, with a sign.  Not 1_000, 0x10, inf or nan
+# (Python's float() reads them all), nor digits of other scripts ('１２', '١٢').
+NUMBER = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
+_NUMBER = re.compile(NUMBER)
+PLAIN_NUMBER = "decimal or scientific notation in ASCII digits (1000, -0.5, 1.5e3)"
 
-def read_text(path: str | os.PathLike, *, max_bytes: int | None = MAX_BYTES) -> str:
-    """The UTF-8 text of a file (a byte-order mark is allowed), refused beyond ``max_bytes``
-    (None: any size, for data such as measured curves, bounded by their reader)."""
+
+def number(text: str) -> float | None:
+    """The number ``text`` writes (spaces and tabs around it allowed) by :data:`NUMBER`, as a
+    float (inf beyond the floats); None when it is not one.
+
+    Examples
+    --------
+    >>> number(" 1.5e3"), number("1_000"), number("\uff11\uff12"), number("nan")
+    (1500.0, None, None, None)
+    """
+    text = text.strip(" \t")
+    return float(text) if _NUMBER.fullmatch(text) else None
+
+
+def read_text(path: str | os.PathLike, *, max_bytes: int = MAX_BYTES,
+              note: str = _MODEL_NOTE) -> str:
+    """The UTF-8 text of a regular file (a byte-order mark is allowed), refused beyond
+    ``max_bytes`` (:func:`kinelab._files.read_file`; ``note`` ends that refusal)."""
     path = file_path(path)
-    try:
-        if max_bytes is not None and path.stat().st_size > max_bytes:   # before reading it
-            raise ModelError(f"the file is {path.stat().st_size / 2**20:,.1f} MiB; expected at "
-                             f"most {max_bytes >> 20} MiB (a model, task or drawing file is a few "
-                             "kilobytes)", source=str(path))
-        raw = path.read_bytes()
-    except FileNotFoundError:
-        raise ModelError("no such file; check the path", source=str(path)) from None
-    except IsADirectoryError:
-        raise ModelError("a directory, not a file; name a file", source=str(path)) from None
-    except OSError as exc:
-        raise ModelError(f"cannot read it: {exc.strerror or exc}", source=str(path)) from None
+    raw = read_file(path, max_bytes, note=note)
     try:
         return raw.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
@@ -160,8 +172,58 @@ def loads(text: str, language: str, *, source: str | None = None) -> Any:
                          "that many levels", source=source) from None
     except ValueError:         # a whole number too long for int(): the only other failure
         raise ModelError(_long_number(text), source=source) from None
+    if language == "TOML" and (why := _toml_number(text)):
+        raise ModelError(why, source=source)
     _check(data, source)
     return data
+
+
+# TOML's numbers beyond NUMBER, which tomllib reads (JSON's grammar has none of them)
+_TOML_OTHER = re.compile(r"[0-9]_|0[xob]")
+_TOML_TOKEN = re.compile(r"""
+    (?P<string>"{3}(?:[^\\]|\\.)*?"{3,5}|'{3}[\s\S]*?'{3,5}|"(?:[^"\\\n]|\\.)*"|'[^'\n]*')
+  | (?P<comment>\#[^\n]*)
+  | (?P<bare>[A-Za-z0-9_+.:-]+)
+  | (?P<mark>[\[\]{}=,\n])
+  | [ \t\r]+
+""", re.X)
+_DATE_OR_TIME = re.compile(r"[0-9]{4}-[0-9]{2}-[0-9]{2}|.*:")
+
+
+def _toml_number(text: str) -> str | None:
+    """Where valid TOML ``text`` writes a number otherwise than :data:`NUMBER` does
+    (``1_000``, ``0x3e8``, ``0o17``, ``0b101``), as a message; None when it does not.
+
+    Keys may hold the same characters (``x_1 = 2``): only values are looked at, told from
+    keys by where they stand (after ``=``, in an array)."""
+    if not _TOML_OTHER.search(text):
+        return None
+    stack: list[str] = []        # the arrays ('[') and inline tables ('{') the place is in
+    value = False                # a value is next (else a key, or a table's header)
+    for m in _TOML_TOKEN.finditer(text):
+        kind, token = m.lastgroup, m.group()
+        if kind == "mark":
+            if token == "=":
+                value = True
+            elif token == "\n" and not stack:
+                value = False
+            elif not value:
+                continue         # a table's header [a.b], [[a]]
+            elif token in "[{":
+                stack.append(token)
+                value = token == "["
+            elif token in "]}" and stack:
+                stack.pop()
+                value = True
+            elif token == ",":
+                value = not stack or stack[-1] == "["
+        elif kind == "bare" and value and token.lstrip("+-")[:1].isdigit() \
+                and not _NUMBER.fullmatch(token) and not _DATE_OR_TIME.match(token):
+            line = text.count("\n", 0, m.start()) + 1
+            column = m.start() - text.rfind("\n", 0, m.start())
+            return (f"line {line}, column {column}: expected a number in {PLAIN_NUMBER}, got "
+                    f"{shown(token)}; write it in plain digits")
+    return None
 
 
 def _long_number(text: str) -> str:

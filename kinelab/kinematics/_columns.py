@@ -16,7 +16,8 @@ from kinelab import _memory as memory
 from kinelab.errors import ModelError, shown_path
 from kinelab.model import Units
 
-__all__ = ["column_name", "Columns", "TableExport", "solution_columns", "INPUT_SI_UNITS"]
+__all__ = ["column_name", "Columns", "TableExport", "solution_columns", "table_width",
+           "INPUT_SI_UNITS"]
 
 INPUT_SI_UNITS = {"angle": "rad", "slide": "m"}      # by kind of input
 _SPACE = re.compile(r"\s")
@@ -95,12 +96,17 @@ class TableExport:
         write_csv(self.columns(degrees=degrees, units=units), path)
 
 
+def table_width(p) -> int:
+    """The columns of the table of a sweep by plan ``p`` (:func:`solution_columns`), known
+    before the sweep: one more ("assembled") when some samples do not close."""
+    M = len(p.input_kinds)
+    per_item = 3 + M + M * M            # value, rates, K and L
+    return 3 * M + (len(p.link_item) + len(p.slide_item) + 2 * len(p.point_item)) * per_item + 3
+
+
 def solution_columns(sol, units: Units) -> Columns:
     """Every result of a :class:`KinematicSolution` as columns (see its ``columns``)."""
-    M = sol.M
-    per_item = 3 + M + M * M            # value, rates, K and L
-    width = 3 * M + len(sol.link_item) * per_item + len(sol.slide_item) * per_item \
-        + 2 * len(sol.point_item) * per_item + 4
+    width = table_width(sol.plan) + 1
     memory.require(8 * width * sol.N, f"a table of {sol.N:,} rows and {width:,} columns",
                    "export fewer samples, or a part of the sweep at a time")
     cols = Columns(units)

@@ -19,9 +19,8 @@ import numpy as np
 from kinelab.errors import PROBLEMS_SHOWN, ModelError, describe, quoted, shown, suggest
 from kinelab.model._joints import JOINT_TYPES
 from kinelab.model._places import place_problems
-from kinelab.model._values import (MAX_INERTIA, MAX_JOINTS, MAX_LINKS, MAX_MASS, is_real,
-                                   length_problem, name_problem, range_problem, rate_problem,
-                                   real)
+from kinelab.model._values import (MAX_INERTIA, MAX_MASS, is_real, length_problem, name_problem,
+                                   range_problem, rate_problem, real, size_problems)
 
 __all__ = ["Point", "Link", "Joint", "Input", "Mechanism", "SPACES"]
 
@@ -502,11 +501,7 @@ def _validate(m: Mechanism) -> list[str]:
         add(f"space: expected one of {quoted(SPACES)}, got {describe(m.space)}")
     if (why := name_problem(m.name)) is not None:
         add(f"name: {why}, got {describe(m.name)}")
-    for kind, items, most in (("links", m.links, MAX_LINKS), ("joints", m.joints, MAX_JOINTS)):
-        if len(items) > most:
-            add(f"{kind}: expected at most {most:,}, got {len(items):,}; a model that large "
-                "takes minutes to plan (its constraint Jacobian grows as the cube of the "
-                "size): model the mechanism in parts")
+    problems.extend(size_problems(points=len(m.points), links=len(m.links), joints=len(m.joints)))
     if problems:
         return problems
     # -- types and names -----------------------------------------------------------------

@@ -36,6 +36,9 @@ MAX_TURNS = 1000
 # take about a second, 800 about a minute.  Points carried by a link cost next to nothing.
 MAX_LINKS = 200
 MAX_JOINTS = 400
+# Points are solved at every sample: a sweep of 361 samples of 2000 points takes a second or
+# two, and a model's points are its joints and the few points it reports or draws.
+MAX_POINTS = 2000
 MAX_MASS = 1e30
 MAX_INERTIA = MAX_MASS * MAX_LENGTH ** 2
 
@@ -110,6 +113,21 @@ def range_problem(start: float, stop: float, angle: bool) -> str | None:
     if not angle and max(abs(start), abs(stop)) > MAX_LENGTH:
         return f"expected a slide within {MAX_LENGTH:g} m of 0"
     return None
+
+
+def size_problems(*, points: int = 0, links: int = 0, joints: int = 0) -> list[str]:
+    """Why a model of so many points, links and joints is refused: one problem per count
+    beyond its limit (MAX_POINTS, MAX_LINKS, MAX_JOINTS), each naming the section."""
+    out = []
+    for kind, n, most in (("links", links, MAX_LINKS), ("joints", joints, MAX_JOINTS)):
+        if n > most:
+            out.append(f"{kind}: expected at most {most:,}, got {n:,}; a model that large "
+                       "takes minutes to plan (its constraint Jacobian grows as the cube of "
+                       "the size): model the mechanism in parts")
+    if points > MAX_POINTS:
+        out.append(f"points: expected at most {MAX_POINTS:,}, got {points:,}; every point is "
+                   "solved at every sample: keep the joints' points and those you report or draw")
+    return out
 
 
 def name_problem(name: Any) -> str | None:

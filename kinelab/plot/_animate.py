@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from kinelab.errors import ModelError, describe, expected_one_of, shown
-from kinelab._files import file_path
+from kinelab._files import atomic_path, file_path
 from kinelab.kinematics import KinematicSolution
 from kinelab.kinematics._solution import takes_solution
 from kinelab.solvers._arguments import flag, whole
@@ -151,17 +151,12 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
         moved = [a for overlay in overlays for a in overlay(i)]
         return list(artists.values()) + list(traced.values()) + moved
 
-    anim = animation.FuncAnimation(fig, draw, frames=len(idx), blit=False)
     writer = (animation.PillowWriter(fps=fps) if suffix == ".gif"
               else animation.FFMpegWriter(fps=fps))
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.stem}.partial{suffix}")
     try:
-        anim.save(tmp, writer=writer)
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
+        with atomic_path(path, suffix=suffix) as tmp:     # the writer goes by the suffix
+            anim = animation.FuncAnimation(fig, draw, frames=len(idx), blit=False)
+            anim.save(tmp, writer=writer)
     finally:
         plt.close(fig)
     return path

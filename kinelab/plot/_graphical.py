@@ -109,13 +109,28 @@ def _tex(name: str) -> str:
     return base + ("'" if "@" in name else "")
 
 
+def _vector_label(letter: str, names, mark: str = "") -> str:
+    """``$V_{AB}$`` (``$A^{n}_{AB}$`` with ``mark``) for the points ``names``; as plain
+    text, ``V_a\\b``, when a name holds more than letters, digits and `` '-./``: mathtext
+    would read the rest as commands, and a name comes from a file."""
+    sub = "".join(_tex(n) for n in names)
+    if all(c.isalnum() or c in " '-./" for c in sub):
+        return f"${letter}{'^' + mark if mark else ''}_{{{sub}}}$"
+    return _text(f"{letter}{mark}_{sub}")
+
+
+def _text(text: str) -> str:
+    """``text`` shown as it is by matplotlib, never read as mathtext (``$`` escaped)."""
+    return text.replace("$", r"\$")
+
+
 def _mechanism_panel(ax, sol, i: int, u: Units, extra=()):
     from kinelab.plot._figures import mechanism
     mechanism(sol, i, ax=ax, units=u)
     pos = np.array([u.convert(sol.position(p)[i] if not sol.single else sol.position(p), "m")
                     for p in sol.point_names])
     for p, xy in zip(sol.point_names, pos):
-        ax.annotate(p, xy, xytext=(4, 4), textcoords="offset points", fontsize=8)
+        ax.annotate(_text(p), xy, xytext=(4, 4), textcoords="offset points", fontsize=8)
     span_xy = np.vstack([pos, *extra]) if len(extra) else pos
     scale = drawing_scale(float(np.ptp(span_xy, axis=0).max()))
     _to_scale(ax, span_xy, scale)
@@ -162,17 +177,16 @@ def _polygon_figure(sol: KinematicSolution, poly, acceleration: bool, units, sca
     for p in sol.point_names:
         v = vertex[p]
         if np.hypot(*v) > tiny:
-            _arrow(ax_p, (0.0, 0.0), v, color="black", label=f"${letter}_{{{_tex(p)}}}$", gid=f"{p}")
+            _arrow(ax_p, (0.0, 0.0), v, color="black", label=_vector_label(letter, [p]), gid=f"{p}")
     for (p, r), side in poly.sides.items():
         start, end = vertex[r], vertex[p]
         if np.hypot(*(end - start)) <= tiny:
             continue
-        sub = f"{_tex(p)}{_tex(r)}"
         if not acceleration:
             if np.hypot(*start) <= tiny:     # from a point at rest: the absolute arrow itself
                 continue
             _arrow(ax_p, start, end, color="tab:gray", ls="--", lw=1.2,
-                   label=f"${letter}_{{{sub}}}$", gid=f"{p} {r}")
+                   label=_vector_label(letter, [p, r]), gid=f"{p} {r}")
             continue
         at = start
         for part, vector in side.parts.items():
@@ -181,7 +195,7 @@ def _polygon_figure(sol: KinematicSolution, poly, acceleration: bool, units, sca
                 continue
             color, ls = _PART_STYLE[part]
             _arrow(ax_p, at, at + vector, color=color, ls=ls, lw=1.2,
-                   label=f"${letter}^{_PART_MARK[part]}_{{{sub}}}$", gid=f"{p} {r} {part}")
+                   label=_vector_label(letter, [p, r], _PART_MARK[part]), gid=f"{p} {r} {part}")
             at = at + vector
     ax_p.plot(0.0, 0.0, "ko", ms=4)
     ax_p.annotate(f"$O_{letter}$", (0.0, 0.0), xytext=(-12, -10), textcoords="offset points")
@@ -191,7 +205,7 @@ def _polygon_figure(sol: KinematicSolution, poly, acceleration: bool, units, sca
     for names in groups.values():
         v = vertex[names[0]]
         ax_p.plot(*v, "o", ms=3, color="black")
-        ax_p.annotate(" = ".join(_tex(n).lower() for n in names), v, xytext=(4, 4),
+        ax_p.annotate(_text(" = ".join(_tex(n).lower() for n in names)), v, xytext=(4, 4),
                       textcoords="offset points", fontsize=9)
     _to_scale(ax_p, xy, scale)
     ax_p.set_xlabel(f"{'a' if acceleration else 'v'}x [{unit}]")

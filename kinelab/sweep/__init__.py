@@ -17,9 +17,10 @@ from kinelab.sweep._batch import Batch
 from kinelab.sweep._designs import grid, random, sobol
 from kinelab.sweep._family import CATALOGUE, Family, family
 from kinelab.sweep._metrics import METRICS, descriptors, evaluate_chunk
-from kinelab.sweep._run import STANDARD_METRICS, connect, run, write_parquet
+from kinelab.sweep._run import STANDARD_METRICS, connect, read_parquet, run, write_parquet
 from kinelab.sweep._tolerance import ToleranceStudy, tolerance
 
 __all__ = ["run", "family", "Family", "Batch", "grid", "random", "sobol", "descriptors",
            "evaluate_chunk", "connect", "atlas", "Atlas", "RefinedPath", "tolerance",
-           "ToleranceStudy", "write_parquet", "METRICS", "STANDARD_METRICS", "CATALOGUE"]
+           "ToleranceStudy", "read_parquet", "write_parquet", "METRICS", "STANDARD_METRICS",
+           "CATALOGUE"]

@@ -18,13 +18,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ModelError, describe, one_line, quoted, shown, shown_path, suggest
+from kinelab.errors import ModelError, describe, quoted, shown, shown_path, suggest
 from kinelab.model import MAX_LENGTH, MIN_LENGTH, real_array
 from kinelab.sweep._metrics import (DEFAULT_HARMONICS, descriptor_names, descriptors,
                                     resample_closed)
 from kinelab.solvers._arguments import seed as check_seed
 from kinelab._files import file_path
-from kinelab.sweep._run import run, write_parquet
+from kinelab.sweep._run import read_parquet, run, write_parquet
 from kinelab.synthesis import (MAX_PATH_POINTS, PathSolution, SolutionList, coupler_curves,
                                path_generation)
 
@@ -251,26 +251,14 @@ class Atlas:
 
     @classmethod
     def from_parquet(cls, path: str | os.PathLike) -> Atlas:
-        """An atlas written by :meth:`to_parquet` (or ``kinelab atlas``), checked: its
-        metadata (harmonics, branch), its columns and finite numbers in them."""
-        import pandas
-
-        path = str(file_path(path))
+        """An atlas written by :meth:`to_parquet` (or ``kinelab atlas``), checked: the file
+        (a regular one of at most 1 GiB, :func:`~kinelab.sweep.read_parquet`), its metadata
+        (harmonics, branch), its columns (those of its harmonics, and no others), finite
+        numbers in them, the bars' lengths and the coupler point within the model's sizes
+        (1e-9 m to 1e9 m), descriptors from 0 to 1."""
+        path = file_path(path)
         where = shown_path(path)
-        if os.path.isdir(path):      # pyarrow would read the files in it as one table
-            raise ModelError(f"{where}: cannot read an atlas: a directory, not a file; name the "
-                             "atlas's file")
-        try:
-            df = pandas.read_parquet(path)
-        except FileNotFoundError:
-            raise ModelError(f"{where}: cannot read an atlas: no such file; check the path") from None
-        except OSError as exc:
-            raise ModelError(f"{where}: cannot read an atlas: "
-                             f"{exc.strerror or one_line(exc, 200)}; check the path") from None
-        except Exception as exc:     # pyarrow's own errors: not a Parquet file, damaged
-            raise ModelError(f"{where}: cannot read an atlas: not a Parquet file written by "
-                             f"kinelab ({one_line(type(exc).__name__)}); build one with kinelab "
-                             "atlas") from None
+        df = read_parquet(path, "an atlas", "build one with kinelab atlas")
         attrs = dict(df.attrs)
         if "harmonics" not in attrs or "branch" not in attrs:
             raise ModelError(f"{where}: not an atlas (no harmonics and branch in its "
@@ -289,15 +277,45 @@ class Atlas:
         if missing:
             raise ModelError(f"{where}: not an atlas of {harmonics} harmonics: no column "
                              f"{quoted(missing, limit=4)}; rebuild it with kinelab atlas")
+        extra = [str(c) for c in df.columns if c not in needed]
+        if extra:
+            raise ModelError(f"{where}: not an atlas of {harmonics} harmonics, as its metadata "
+                             f"says: it also has the column(s) {quoted(extra, limit=4)}; rebuild "
+                             "it with kinelab atlas")
         for c in needed:
             values = df[c].to_numpy()
-            if values.dtype.kind not in "iuf" or not np.isfinite(values).all():
-                bad = np.flatnonzero(~np.isfinite(values)) if values.dtype.kind in "iuf" else [0]
-                raise ModelError(f"{where}: column {shown(c)}: expected finite numbers, got "
-                                 f"{describe(values[bad[0]])} in row {int(bad[0])}; rebuild it "
-                                 "with kinelab atlas")
+            why = _column_problem(c, values)
+            if why is not None:
+                bad, expected = why
+                raise ModelError(f"{where}: column {shown(c)}: expected {expected}, got "
+                                 f"{describe(values[bad])} in row {bad}; rebuild it with "
+                                 "kinelab atlas")
         df.attrs = {}
         return cls(df, harmonics, branch)
+
+
+def _column_problem(name: str, values: np.ndarray) -> tuple[int, str] | None:
+    """(row, what was expected) of the first value of an atlas's column that cannot be: not
+    a finite number, beyond the model's sizes (a bar's length from MIN_LENGTH to
+    MAX_LENGTH, the coupler point within MAX_LENGTH of its base), or a descriptor outside
+    [0, 1] (one so far away would leave the search no finite distance)."""
+    if not len(values):
+        return None
+    if values.dtype.kind not in "iuf":
+        return 0, "finite numbers"
+    bad = np.flatnonzero(~np.isfinite(values))
+    if bad.size:
+        return int(bad[0]), "finite numbers"
+    if name in COLUMNS[:4]:
+        bad = np.flatnonzero((values < MIN_LENGTH) | (values > MAX_LENGTH))
+        what = f"lengths from {MIN_LENGTH:g} m to {MAX_LENGTH:g} m"
+    elif name in COLUMNS:
+        bad = np.flatnonzero(np.abs(values) > MAX_LENGTH)
+        what = f"coordinates of at most {MAX_LENGTH:g} m in size"
+    else:                   # a descriptor: a harmonic's magnitude over the norm of them all
+        bad = np.flatnonzero((values < 0) | (values > 1 + 1e-9))
+        what = "descriptors from 0 to 1 (magnitudes of harmonics over their norm)"
+    return (int(bad[0]), what) if bad.size else None
 
 
 @dataclass(frozen=True, eq=False)

@@ -11,8 +11,8 @@ from typing import Any
 import numpy as np
 
 from kinelab import _memory as memory
-from kinelab._files import atomic_write, file_path
-from kinelab.errors import KinelabError, ModelError, describe, shown
+from kinelab._files import atomic_write, byte_size, file_path, read_file
+from kinelab.errors import KinelabError, ModelError, describe, one_line, shown
 from kinelab.solvers._arguments import flag
 from kinelab.sweep._designs import DesignTable
 from kinelab.sweep._family import Family, family as make_family
@@ -20,7 +20,8 @@ from kinelab.sweep._metrics import (DEFAULT_HARMONICS, MAX_SAMPLES, check_harmon
                                     check_metrics, check_samples, check_speed, evaluate_chunk,
                                     metric_columns)
 
-__all__ = ["run", "connect", "chunk_size_for", "STANDARD_METRICS", "MAX_SAMPLES"]
+__all__ = ["run", "connect", "chunk_size_for", "read_parquet", "write_parquet",
+           "STANDARD_METRICS", "MAX_SAMPLES", "PARQUET_BYTES"]
 
 STANDARD_METRICS = ("assembles", "grashof", "transmission_min", "transmission_max",
                     "time_ratio", "swing")
@@ -29,6 +30,7 @@ _CHUNK_BYTES = 32 << 20      # a chunk's working arrays: large enough that numpy
 _DASK_CHUNKS = 16           # a Dask task holds this many local chunks by default
 _ARRAYS_PER_SAMPLE = 48      # float arrays (D, S) a chunk holds at once, at most (estimate)
 _CONNECT_TIMEOUT = 5.0       # s to reach a scheduler before saying it cannot be reached
+PARQUET_BYTES = 1 << 30      # a Parquet file's size: an atlas of a few million designs
 
 
 def chunk_size_for(samples: int, requested: int | None = None, *, distributed: bool = False) -> int:
@@ -278,6 +280,45 @@ def _on_dask(client, fam, table, chunks, options, report):
 # what an object column may hold to be written as Parquet (pandas' infer_dtype names)
 _PARQUET_OBJECTS = ("string", "empty", "boolean", "integer", "floating", "mixed-integer-float",
                     "bytes")
+
+
+def read_parquet(path, what: str = "a table", instead: str = "") -> "pandas.DataFrame":
+    """The table of a Parquet file, with its metadata (``df.attrs``), read within bounds.
+
+    The file is checked (a regular file of at most ``PARQUET_BYTES``) and read by
+    :func:`kinelab._files.read_file` before pyarrow sees it, and the table its metadata
+    describes must fit the memory budget (a few compressed bytes can unpack into gigabytes).
+    Every refusal is a :class:`ModelError` "PATH: cannot read ``what``: why", ending with
+    ``instead`` (what to do) when the file is not Parquet.
+    """
+    import io
+
+    import pandas
+
+    path = file_path(path)
+    try:
+        import pyarrow.parquet as pq
+    except ImportError:
+        raise ModelError(f"cannot read {what}: Parquet needs the optional dependency pyarrow; "
+                         "install it with pip install 'kinelab[sweep]'", source=str(path)) from None
+    try:
+        data = read_file(path, PARQUET_BYTES, note=" (an atlas of a few million designs)")
+    except ModelError as exc:
+        raise ModelError(f"cannot read {what}: {exc.problems[0]}", source=str(path)) from None
+    try:
+        meta = pq.ParquetFile(io.BytesIO(data)).metadata
+        unpacked = sum(meta.row_group(i).total_byte_size for i in range(meta.num_row_groups))
+        unpacked = max(unpacked, 8 * meta.num_rows * meta.num_columns)
+        # the table twice (Arrow's and pandas') beside the file's bytes
+        memory.require(2.0 * unpacked + len(data), f"reading it ({byte_size(len(data))} "
+                       f"unpacking to {byte_size(unpacked)})", "read a smaller table",
+                       source=str(path))
+        return pandas.read_parquet(io.BytesIO(data))
+    except ModelError:
+        raise
+    except Exception as exc:     # pyarrow's own errors: not a Parquet file, damaged
+        raise ModelError(f"cannot read {what}: not a Parquet file ({one_line(type(exc).__name__)})"
+                         + (f"; {instead}" if instead else ""), source=str(path)) from None
 
 
 def write_parquet(df, path) -> None:

@@ -13,12 +13,12 @@ import dataclasses
 import json
 import math
 import threading
-from collections import OrderedDict
 from pathlib import Path
 
 import numpy as np
 
 from kinelab import io, kinematics
+from kinelab._deadline import within
 from kinelab.errors import AssemblyError, KinelabError, ModelError, describe, quoted, shown
 from kinelab.io import ModelFile
 from kinelab.io._modelfile import errors_from
@@ -26,10 +26,11 @@ from kinelab.io._results import json_ready
 from kinelab.kinematics import KinematicSolution, Tracker
 from kinelab.kinematics._columns import INPUT_SI_UNITS
 from kinelab.model import is_real
+from kinelab.web import _limits
 
 __all__ = ["MAX_SAMPLES", "DEFAULT_SAMPLES", "read_model", "analyze", "study", "configuration",
            "drag", "flip", "catalogue", "example", "load", "save", "derivation", "synthesize",
-           "MAX_SEARCH_EFFORT"]
+           "MAX_SEARCH_EFFORT", "DERIVE_SECONDS"]
 
 MAX_SAMPLES = 20_000
 """The longest sweep the page may ask for: past it a drawing or a plot shows nothing more,
@@ -137,7 +138,9 @@ def analyze(body: dict) -> str:
     """The sweep of ``body["model"]`` over ``body["samples"]`` samples (default the
     file's), as the JSON text ``kinelab analyze MODEL --format json`` writes."""
     mf = read_model(body)
-    sol = mf.analyze(samples_of(body, mf))
+    samples = samples_of(body, mf)
+    _limits.check_sweep(mf, samples, "rows", "the answer")
+    sol = mf.analyze(samples)
     return io.results_json(sol, units=mf.units)
 
 
@@ -151,30 +154,28 @@ class _Prepared:
     lock: threading.Lock
 
 
-_PREPARED: OrderedDict[str, _Prepared] = OrderedDict()
-_PREPARED_LOCK = threading.Lock()
-_PREPARED_KEPT = 16
+_PREPARED = _limits.Kept(most=16)
 
 
-def prepare(body: dict) -> _Prepared:
+def prepare(body: dict, answer: str = "none") -> _Prepared:
     """The model of a request, read, swept and with a :class:`Tracker`; the last few are
-    kept, so that the drags that follow a sweep answer at once."""
+    kept (within the server's cache, in bytes), so that the drags that follow a sweep
+    answer at once.  ``answer``: what the request makes of the sweep (see
+    :func:`kinelab.web._limits.sweep_cost`), refused before the work if too large."""
     mf = read_model(body)
     samples = samples_of(body, mf)
     key = json.dumps([body.get("model"), samples, body.get("source")], sort_keys=True)
-    with _PREPARED_LOCK:
-        ready = _PREPARED.get(key)
-        if ready is not None:
-            _PREPARED.move_to_end(key)
-            return ready
+    ready = _PREPARED.get(key)
+    if ready is not None and answer == "none":
+        return ready
+    _limits.check_sweep(mf, samples, answer, "the answer" if answer != "none" else "the sweep")
+    if ready is not None:
+        return ready
     sol = _sweep(mf, samples)
     with errors_from(mf):
         tracker = Tracker(mf.mechanism, at_singular="flag")
     ready = _Prepared(mf, sol, tracker, threading.Lock())
-    with _PREPARED_LOCK:
-        _PREPARED[key] = ready
-        while len(_PREPARED) > _PREPARED_KEPT:
-            _PREPARED.popitem(last=False)
+    _PREPARED.put(key, ready, _limits.nbytes(sol) + _limits.nbytes(tracker))
     return ready
 
 
@@ -201,7 +202,7 @@ def study(body: dict) -> dict:
     always there), and the transmission angles; ``singular`` and ``change_points`` the
     sample indices where they are; ``drawing`` the links, joints and points to draw.
     """
-    ready = prepare(body)
+    ready = prepare(body, "columns")
     mf, sol = ready.mf, ready.sol
     m, u = mf.mechanism, mf.units
     columns = sol.columns(units=u)
@@ -513,6 +514,11 @@ def synthesize(body: dict) -> dict:
                              f"the page searches at most {MAX_SEARCH_EFFORT:,} (four times the "
                              "default search of ten points): ask for less, or run kinelab synth",
                              source=source)
+        # each round evaluates 32 designs per unit of popsize at every sample, at once
+        designs, samples = 32 * task.search.get("popsize", 15), task.search.get("samples", 180)
+        _limits.require(16 * 8 * designs * samples, f"search: the coupler curves of {designs:,} "
+                        f"designs at {samples:,} crank angles a round", "ask for a smaller "
+                        "popsize or fewer samples")
     solutions, extra = io.solve_task(task)
     summary = io.task_summary(task, solutions, extra)
     summary["models"] = [ModelFile(mechanism=s.model, units=task.units).to_dict()
@@ -521,23 +527,37 @@ def synthesize(body: dict) -> dict:
 
 
 # -- derivation -----------------------------------------------------------------------------
+DERIVE_SECONDS = 30.0
+"""The longest the server works on one derivation, its document and its MathML together."""
+
+
 def derivation(body: dict) -> dict:
     """The derivation of the model in the notes' notation (``body["lang"]``: "en" or
     "pt"): its sections, each a title and equations in presentation MathML, and the whole
-    document as Markdown."""
-    import sympy as sp
-    from sympy.printing.mathml import mathml
+    document as Markdown; stopped after :data:`DERIVE_SECONDS` (422)."""
+    import sympy.printing.mathml  # noqa: F401 -- imported before the clock starts
 
-    from kinelab.derive import LANGUAGES, derive
-    from kinelab.derive._words import WORDS
+    from kinelab.derive import LANGUAGES
+    from kinelab.derive._derivation import time_limit_message
 
     mf = read_model(body)
     lang = body.get("lang", "en")
     if lang not in LANGUAGES:
         raise ModelError(f"lang: expected one of {quoted(LANGUAGES)}, got {describe(lang)}")
+    return within(DERIVE_SECONDS, _derivation, mf, lang,
+                  message=time_limit_message(mf.mechanism, None, DERIVE_SECONDS, "it"))
+
+
+def _derivation(mf: ModelFile, lang: str) -> dict:
+    import sympy as sp
+    from sympy.printing.mathml import mathml
+
+    from kinelab.derive import derive
+    from kinelab.derive._words import WORDS
+
     with errors_from(mf):
-        d = derive(mf.mechanism, lang)
-        markdown = d.to_markdown()
+        d = derive(mf.mechanism, lang, time_limit=None)
+        markdown = d.to_markdown(time_limit=None)
     words = WORDS[lang]
 
     def math(label: str, expr) -> dict:

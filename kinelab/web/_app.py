@@ -1,26 +1,46 @@
 """The HTTP side: Starlette routes over :mod:`kinelab.web._api`, the page's static files,
-request-size caps, and kinelab's errors as JSON with the right status."""
+request-size caps, and kinelab's errors as JSON with the right status.
+
+The app answers its own page only: a request whose ``Host`` is not the address served
+(DNS rebinding) or whose ``Origin`` is another site is refused (403), and so is a POST whose
+body is not declared JSON (415: a form or ``text/plain``, which other sites may send without
+asking).  The work of a request runs in a small pool of threads, off the event loop, so a
+long one never stops the others; what it may cost is estimated before it starts
+(:mod:`kinelab.web._limits`).  Every error is ``{"error": message}``.
+"""
 from __future__ import annotations
 
+import asyncio
 import json
 import logging
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
+from urllib.parse import urlsplit
 
 from starlette.applications import Starlette
 from starlette.exceptions import HTTPException
-from starlette.requests import Request
+from starlette.middleware import Middleware
+from starlette.requests import ClientDisconnect, Request
 from starlette.responses import FileResponse, JSONResponse, Response
 from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
-from kinelab.errors import KinelabError, ModelError, shown_path
-from kinelab.web import _api, _export
+from kinelab.errors import (KinelabError, MemoryBudgetError, ModelError, TimeLimitError, shown,
+                            shown_path)
+from kinelab.web import _api, _export, _limits
 
-__all__ = ["create_app", "MAX_BODY"]
+__all__ = ["create_app", "MAX_BODY", "WORKERS", "LOOPBACK_NAMES"]
 
 STATIC = Path(__file__).parent / "static"
 MAX_BODY = 2 * 1024 * 1024
 """The largest request body, bytes: a model file is a few kilobytes."""
+
+WORKERS = 4
+"""Requests worked on at once (the others wait their turn); their memory is shared as
+:mod:`kinelab.web._limits` says."""
+
+LOOPBACK_NAMES = ("127.0.0.1", "localhost", "[::1]")
+"""The names the page may be reached by when served on loopback (``Host`` without its port)."""
 
 _log = logging.getLogger("kinelab.web")
 
@@ -58,36 +78,68 @@ def _error(message: str, status: int, problems: tuple[str, ...] = ()) -> JSONRes
                         status_code=status)
 
 
-def _route(call, *, raw: bool = False):
-    """A POST endpoint calling ``call(body)`` in a worker thread; kinelab's errors become
-    ``{"error": message}`` (400 for bad input, 422 for an analysis that cannot go on)."""
-    from starlette.concurrency import run_in_threadpool
+def _status(exc: KinelabError) -> int:
+    """413 for a request larger than the server takes, 503 while others hold the memory it
+    needs, 422 for work that cannot go on (or not within its time), 400 for bad input."""
+    if isinstance(exc, (MemoryBudgetError, _limits.TooLarge)):
+        return 413
+    if isinstance(exc, _limits.Busy):
+        return 503
+    if isinstance(exc, TimeLimitError):
+        return 422
+    return 400 if isinstance(exc, ValueError) or type(exc) is KinelabError else 422
 
+
+def _is_json(request: Request) -> bool:
+    media = request.headers.get("content-type", "").split(";")[0].strip().lower()
+    return media == "application/json"
+
+
+def _answer(call, body: dict, raw: bool, path: str) -> Response:
+    """``call(body)`` and its answer's bytes, in a worker thread; what the request reserves
+    is given back once the bytes are made."""
+    with _limits.request():
+        result = call(body)
+        if isinstance(result, Response):
+            return result
+        if raw:
+            return Response(result.encode(), media_type="application/json")
+        try:        # strict JSON: a number that is not finite is kinelab's fault, said as such
+            text = json.dumps(result, allow_nan=False)
+        except ValueError:
+            _log.exception("request %s gave a value that is not finite", path)
+            return _error("internal error: the result holds a value that is not a finite "
+                          "number; the server's log has the details", 500)
+        return Response(text.encode(), media_type="application/json")
+
+
+def _route(call, *, raw: bool = False):
+    """A POST endpoint calling ``call(body)`` in one of the app's worker threads; kinelab's
+    errors become ``{"error": message}`` with their status (see :func:`_status`)."""
     async def endpoint(request: Request) -> Response:
+        if not _is_json(request):
+            return _error(f"{shown_path(request.url.path)}: expected a JSON body (Content-Type: "
+                          "application/json), got "
+                          f"{request.headers.get('content-type') or 'none'}", 415)
         try:
             body = await _body(request)
-            result = await run_in_threadpool(call, body)
+            loop = asyncio.get_running_loop()
+            return await loop.run_in_executor(request.app.state.workers, _answer, call, body, raw,
+                                              request.url.path)
         except _TooLarge:
             return _error(f"body: larger than {MAX_BODY // 1024:,} KiB; a model file is a few "
                           "kilobytes: send less", 413)
+        except ClientDisconnect:     # the client went away: nothing to answer, nothing wrong
+            _log.info("%s: the client closed the connection before its request was read",
+                      shown_path(request.url.path))
+            return _error("the client closed the connection", 400)
         except KinelabError as exc:
-            return _error(str(exc), 400 if isinstance(exc, ValueError) or
-                          type(exc) is KinelabError else 422,
+            return _error(str(exc), _status(exc),
                           exc.problems if isinstance(exc, ModelError) else ())
         except Exception:            # a fault of kinelab's: logged, never a traceback sent
             _log.exception("request %s failed", request.url.path)
             return _error("internal error: the server could not answer this request; "
                           "the server's log has the details", 500)
-        if raw:
-            if isinstance(result, Response):
-                return result
-            return Response(result, media_type="application/json")
-        try:        # strict JSON: a number that is not finite is kinelab's fault, said as such
-            return Response(json.dumps(result, allow_nan=False), media_type="application/json")
-        except ValueError:
-            _log.exception("request %s gave a value that is not finite", request.url.path)
-            return _error("internal error: the result holds a value that is not a finite "
-                          "number; the server's log has the details", 500)
     return endpoint
 
 
@@ -119,9 +171,72 @@ async def _not_found(request: Request, exc: HTTPException) -> Response:
     return _error(exc.detail, exc.status_code)
 
 
-def create_app(start: dict | None = None) -> Starlette:
+async def _fault(request: Request, exc: Exception) -> Response:
+    """A fault that escaped a route (logged by the server): JSON like every other error."""
+    return _error("internal error: the server could not answer this request; the server's "
+                  "log has the details", 500)
+
+
+class Served:
+    """Where the app is served: the names a request's ``Host`` may give (None: any) and the
+    port (None: any, until the server has bound one)."""
+
+    def __init__(self, host: str = "127.0.0.1", port: int | None = None):
+        self.names = served_names(host)
+        self.port = port
+
+
+def _split_host(host: str) -> tuple[str, str]:
+    """``("name", "port")`` of a Host header (the port "" when it gives none)."""
+    if host.startswith("["):
+        end = host.find("]") + 1
+        name, rest = host[:end], host[end:]
+        return name.lower(), rest[1:] if rest.startswith(":") else ""
+    name, _, port = host.partition(":")
+    return name.lower(), port
+
+
+class _SameSite:
+    """Refuse (403) a request whose ``Host`` is not the address the app is served at, or
+    whose ``Origin`` is not the page's own (``http://`` and that address)."""
+
+    def __init__(self, app, served: Served):
+        self.app = app
+        self.served = served
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] == "http":
+            headers = {k.decode("latin-1").lower(): v.decode("latin-1")
+                       for k, v in scope["headers"]}
+            problem = self.problem(headers.get("host", ""), headers.get("origin"))
+            if problem:
+                await _error(problem, 403)(scope, receive, send)
+                return
+        await self.app(scope, receive, send)
+
+    def problem(self, host: str, origin: str | None) -> str | None:
+        name, port = _split_host(host)
+        names, served = self.served.names, self.served.port
+        if (names is not None and name not in names) or (
+                served is not None and (port or "80") != str(served)):
+            return (f"Host: expected the address this server is at, got {shown(host)}; open "
+                    "the address kinelab serve printed")
+        if origin is not None:
+            parts = urlsplit(origin)
+            if parts.scheme != "http" or parts.netloc.lower() != host.lower():
+                return (f"Origin: {shown(origin)} is another site; the app answers its own "
+                        "page only")
+        return None
+
+
+def create_app(start: dict | None = None, *, host: str = "127.0.0.1",
+               port: int | None = None) -> Starlette:
     """The web app: the page at ``/``, its files under ``/static/``, the API under
-    ``/api/``.  ``start``: the model shown first (``{"model": ..., "source": ...}``)."""
+    ``/api/``.  ``start``: the model shown first (``{"model": ..., "source": ...}``).
+
+    Requests must name the app by the address it is served at, ``host`` (on loopback, any of
+    ``127.0.0.1``, ``localhost``, ``[::1]``; on a wildcard address such as ``0.0.0.0``, any
+    name) and ``port`` (None: any port)."""
     routes = [
         Route("/", _index),
         Route("/api/start", _start),
@@ -139,6 +254,21 @@ def create_app(start: dict | None = None) -> Starlette:
         Route("/api/export", _route(_export.export, raw=True), methods=["POST"]),
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]
-    app = Starlette(routes=routes, exception_handlers={HTTPException: _not_found})
+    served = Served(host, port)
+    app = Starlette(routes=routes, middleware=[Middleware(_SameSite, served=served)],
+                    exception_handlers={HTTPException: _not_found, Exception: _fault})
     app.state.start = start
+    app.state.served = served
+    app.state.workers = ThreadPoolExecutor(WORKERS, thread_name_prefix="kinelab-web")
     return app
+
+
+def served_names(host: str) -> frozenset[str] | None:
+    """The names a request's ``Host`` may give for an app served at ``host``: loopback's
+    for loopback, ``host`` itself otherwise, None (any) for a wildcard address."""
+    if host in ("0.0.0.0", "::", ""):
+        return None
+    shown = f"[{host}]" if ":" in host and not host.startswith("[") else host
+    if shown.lower() in LOOPBACK_NAMES:
+        return frozenset(LOOPBACK_NAMES)
+    return frozenset({shown.lower()})

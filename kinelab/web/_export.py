@@ -9,13 +9,18 @@ from pathlib import Path
 from starlette.responses import Response
 
 from kinelab import io
+from kinelab._deadline import within
 from kinelab.errors import ModelError, describe, quoted
 from kinelab.io._modelfile import errors_from
-from kinelab.web import _api
+from kinelab.web import _api, _limits
 
-__all__ = ["export", "KINDS"]
+__all__ = ["export", "KINDS", "ANIMATION_SECONDS"]
 
 _FIGURES = threading.Lock()      # pyplot keeps global state: one figure at a time
+
+ANIMATION_SECONDS = 60.0
+"""The longest the server draws one animation (a few seconds for a six-bar; a chain of 200
+links takes minutes)."""
 
 KINDS = {"csv": "text/csv", "json": "application/json", "gif": "image/gif",
          "dxf": "application/dxf", "svg": "image/svg+xml"}
@@ -34,16 +39,33 @@ def export(body: dict) -> Response:
     with tempfile.TemporaryDirectory(prefix="kinelab-web-") as folder:
         path = Path(folder) / f"result.{kind}"      # the name the user sees is in the header
         if kind in ("csv", "json"):
-            sol = mf.analyze(_api.samples_of(body, mf))
+            samples = _api.samples_of(body, mf)
+            _limits.check_sweep(mf, samples, "csv" if kind == "csv" else "rows", "the table")
+            sol = mf.analyze(samples)
             io.write_results(sol, path, format=kind, units=mf.units)
         elif kind == "gif":
             import matplotlib
             matplotlib.use("Agg")          # files only, from a worker thread: no window
+            import matplotlib.pyplot as plt  # before the clock starts
+
             from kinelab import plot
-            sol = mf.analyze(_api.samples_of(body, mf))
-            with _FIGURES, errors_from(mf):
-                plot.animate(sol, path, frames=60, fps=20, units=mf.units)
+            samples = _api.samples_of(body, mf)
+            _limits.check_sweep(mf, samples, "none", "the animation's sweep")
+            sol = mf.analyze(samples)
+
+            def draw():
+                with errors_from(mf):
+                    plot.animate(sol, path, frames=60, fps=20, units=mf.units)
+            with _FIGURES:
+                try:
+                    within(ANIMATION_SECONDS, draw, message=(
+                        f"kind: the animation of {len(mf.mechanism.links)} links took more than "
+                        f"{ANIMATION_SECONDS:g} s; make it with kinelab animate, which has no "
+                        "such limit"))
+                finally:
+                    plt.close("all")        # a figure an animation stopped midway left open
         else:
+            _limits.check_sweep(mf, 181, "none", "the outlines' sweep")
             sol = mf.analyze(181)          # slots span the sliders' travel, as the CLI's
             write = io.to_svg if kind == "svg" else io.to_dxf
             with errors_from(mf):

@@ -201,9 +201,17 @@ def test_at_prints_one_configuration_in_the_files_units():
     assert float(si["A.y[m]"]) == pytest.approx(0.1, abs=1e-12)
 
 
+A_NUMBER = ("a number in decimal or scientific notation in ASCII digits (1000, -0.5, 1.5e3), "
+            "optionally followed by one of rad, deg")
+
+
 @pytest.mark.parametrize("at, message", [
-    ("abc", "kinelab: error: --at: expected a number, optionally followed by one of rad, deg, got 'abc'"),
-    ("30mm", "kinelab: error: --at: expected a number, optionally followed by one of rad, deg, got '30mm'"),
+    ("abc", f"kinelab: error: --at: expected {A_NUMBER}, got 'abc'"),
+    ("30mm", f"kinelab: error: --at: expected {A_NUMBER}, got '30mm'"),
+    # one rule of numbers, as in files and CSV tables: no underscores, no other scripts' digits
+    ("1_000", f"kinelab: error: --at: expected {A_NUMBER}, got '1_000'"),
+    ("\uff13\uff10", f"kinelab: error: --at: expected {A_NUMBER}, got '\uff13\uff10'"),
+    ("\u0663\u0660deg", f"kinelab: error: --at: expected {A_NUMBER}, got '\u0663\u0660deg'"),
     ("30,40", "kinelab: error: --at: expected 1 value(s) separated by commas (one per input: 'crank "
               "angle'), got '30,40'"),
     # 1e400 is inf; 1e300 deg is finite but no angle a sweep or a sine means anything at
@@ -327,9 +335,10 @@ def test_speed_of_several_inputs(tmp_path):
 
 
 @pytest.mark.parametrize("speed, message", [
-    ("fast", "--speed: expected a number, optionally followed by one of rad, deg, got 'fast'"),
-    ("60mm", "--speed: expected a number, optionally followed by one of rad, deg, got '60mm'"),
-    ("inf", "--speed: expected a number, optionally followed by one of rad, deg, got 'inf'"),
+    ("fast", f"--speed: expected {A_NUMBER}, got 'fast'"),
+    ("60mm", f"--speed: expected {A_NUMBER}, got '60mm'"),
+    ("inf", f"--speed: expected {A_NUMBER}, got 'inf'"),
+    ("6_0", f"--speed: expected {A_NUMBER}, got '6_0'"),
     ("60,30", "--speed: expected 1 value(s) separated by commas (one per input: 'crank angle'), "
               "got '60,30'"),
 ])
@@ -489,7 +498,7 @@ def test_file_paths_are_shown_escaped_on_one_line(tmp_path):
 
 @pytest.mark.parametrize("args, message", [
     (["types", "--space", "planar", "--mobility", "abc"],
-     "Invalid value for '--mobility': 'abc' is not a valid integer. (see 'kinelab types --help')"),
+     "Invalid value for '--mobility': 'abc' is not a valid integer range. (see 'kinelab types --help')"),
     (["check"], "Missing argument 'MODEL'. (see 'kinelab check --help')"),
     (["nosuch"], "No such command 'nosuch'. (see 'kinelab --help')"),
     (["--memory-budget", "0.0000001", "check", "x.toml"],
@@ -527,3 +536,17 @@ def test_an_import_that_check_would_refuse_writes_nothing(tmp_path):
                              "freedom as drawn (exact mobility; Kutzbach-Gruebler counts 1) but 3 "
                              "input(s); give it 1 input(s), or fewer joints\n")
     assert not (tmp_path / "m.toml").exists()
+
+
+@pytest.mark.parametrize("fmt", ["json", "csv"])
+def test_a_table_too_large_to_write_as_text_is_refused_before_the_sweep(tmp_path, fmt):
+    """The documented maximum of samples holds for Parquet; as text, the bound on values
+    (rows x columns) says how many rows fit, before any work."""
+    res = run("analyze", EX / "crank_rocker.toml", "--samples", 1_000_000, "-o", tmp_path / f"big.{fmt}")
+    assert res.exit_code == 2
+    most = kl.io._results.MAX_TABLE_VALUES[fmt]
+    assert res.output == (f"kinelab: error: --samples: a {fmt.upper()} table of 1,000,000 rows x 76 "
+                          f"columns is 76,000,000 values; kinelab writes at most {most:,} as "
+                          f"{fmt.upper()} (about 30 s): ask for at most {most // 76:,} rows; or "
+                          "write Parquet (--format parquet)\n")
+    assert not list(tmp_path.iterdir())

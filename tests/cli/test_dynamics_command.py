@@ -222,3 +222,14 @@ def test_huge_but_finite_efforts_are_summarised_without_overflow(tmp_path):
     result = CliRunner().invoke(main, ["dynamics", path, "--out", str(tmp_path), "--no-plots"])
     assert result.exit_code == 0, result.output
     assert "crank angle: peak |effort| 3.14159e+301 N m, rms 3.14159e+301 N m" in result.output
+
+
+def test_a_table_past_the_bound_is_refused_before_the_work(tmp_path):
+    from kinelab.cli._dynamics import MAX_VALUES
+    path = write(engine(), tmp_path)
+    res = CliRunner().invoke(main, ["dynamics", path, "--samples", "1000000", "--out", str(tmp_path)])
+    assert res.exit_code == 2
+    assert res.output.startswith("kinelab: error: engine.toml: --samples: a table of 1,000,000 "
+                                 "samples x ") and res.output.count("\n") == 1
+    assert f"writes at most {MAX_VALUES:,}" in res.output
+    assert [p.name for p in tmp_path.iterdir()] == ["engine.toml"]

@@ -193,17 +193,21 @@ def test_differentiate_scaled_sine(tmp_path):
     assert np.max(np.abs(table["d2x/dt2 [mm/s^2]"] + 1e-15 * np.sin(t / 1e6))) < 1e-4 * 1e-15
 
 
-def test_differentiate_refuses_too_many_rows_before_reading(tmp_path, monkeypatch):
-    from kinelab.cli import _graphical
-    monkeypatch.setattr(_graphical, "MAX_SAMPLES", 100)
+@pytest.mark.parametrize("end", ["\n", "\r\n", "\r"])
+def test_differentiate_refuses_too_many_rows_as_it_parses_them(tmp_path, monkeypatch, end):
+    """Rows are counted as they are parsed, whatever ends their lines (a CR alone ends one)."""
+    from kinelab.io import _curves
+    monkeypatch.setattr(_curves, "MAX_SAMPLES", 100)
     data = tmp_path / "long.csv"
-    data.write_text("# logged\nt [s],x [mm]\n\n" + _rows((k, k) for k in range(100)))
+    data.write_bytes(("# logged\nt [s],x [mm]\n\n" + _rows((k, k) for k in range(100)))
+                     .replace("\n", end).encode())
     assert run("differentiate", data, "--out", tmp_path).exit_code == 0
-    data.write_text("t [s],x [mm]\n" + _rows((k, k) for k in range(101)))
+    data.write_bytes(("t [s],x [mm]\n" + _rows((k, k) for k in range(101))).replace("\n", end)
+                     .encode())
     result = run("differentiate", data, "--out", tmp_path)
     assert result.exit_code == 2
-    assert result.output.strip() == (f"kinelab: error: {data}: expected at most 100 samples, got "
-                                     "more; cut the curve into pieces, or keep every k-th sample")
+    assert result.output == (f"kinelab: error: {data}: line 102: expected at most 100 samples, "
+                             "got more; cut the curve into pieces, or keep every k-th sample\n")
 
 
 @pytest.mark.parametrize("command", ["polygons", "centres"])

@@ -76,3 +76,33 @@ def configurations(d, count: int, seed: int = 0) -> np.ndarray:
         if len(out) == count:
             return np.array(out)
     raise AssertionError(f"{m.name}: fewer than {count} assembled configurations near the sketch")
+
+
+def four_slider_dyads() -> dict:
+    """A crank driving four slider dyads (RRP) whose slide lines lie at odd angles, as a
+    model file's JSON form: eight unknowns, the most a derivation takes, and expressions
+    that stay large (its derivation takes tens of seconds)."""
+    angles = (17.0, 71.0, 133.0, 251.0)
+    points = {"O": [0.0, 0.0], "A": [0.0, 0.1]}
+    links = [{"name": "crank", "points": ["O", "A"]}]
+    joints = [{"name": "jO", "type": "R", "links": ["ground", "crank"], "point": "O"}]
+    for i, angle in enumerate(angles):
+        a = np.radians(angle)
+        g = 0.2 * np.array([np.cos(a + 1), np.sin(a + 1)])
+        d = np.array([np.cos(a), np.sin(a)])
+        # B on the slide line through G, 0.5 from A
+        b, c = (np.array([0.0, 0.1]) - g) @ d, (np.array([0.0, 0.1]) - g) @ (np.array([0.0, 0.1]) - g) - 0.25
+        points[f"G{i}"] = g.tolist()
+        points[f"B{i}"] = (g + (b + np.sqrt(b * b - c)) * d).tolist()
+        links += [{"name": f"rod{i}", "points": ["A", f"B{i}"]},
+                  {"name": f"slider{i}", "points": [f"B{i}"]}]
+        joints += [{"name": f"jA{i}", "type": "R", "links": ["crank", f"rod{i}"], "point": "A"},
+                   {"name": f"jB{i}", "type": "R", "links": [f"rod{i}", f"slider{i}"],
+                    "point": f"B{i}"},
+                   {"name": f"s{i}", "type": "P", "links": ["ground", f"slider{i}"],
+                    "point": f"B{i}", "axis": angle, "origin": f"G{i}"}]
+    ground = {"name": "ground", "points": ["O"] + [f"G{i}" for i in range(len(angles))],
+              "ground": True}
+    return {"schema": 1, "name": "four sliders", "units": {"length": "m", "angle": "deg"},
+            "points": points, "links": [ground] + links, "joints": joints,
+            "inputs": [{"joint": "jO", "range": [0, 360], "speed": 60}]}

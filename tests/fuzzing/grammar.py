@@ -60,10 +60,15 @@ class Case:
 
     text: str | bytes
     suffix: str
-    command: tuple[str, ...]           # e.g. ("check",): the file's path comes after
+    command: tuple[str, ...]           # e.g. ("check",): the file's path comes after, or
+                                       # where "{file}" stands ("{out}": an output directory;
+                                       # "{atlas}", "{path}": a valid atlas, a valid path)
+    family: str = "model"              # what the file is: model, task, curve, designs, path, atlas
 
-    def args(self, path: str) -> list[str]:
-        return [self.command[0], path, *self.command[1:]]
+    def args(self, file: str, **places: str) -> list[str]:
+        if "{file}" not in self.command:
+            return [self.command[0], file, *self.command[1:]]
+        return [a.format(file=file, **places) for a in self.command]
 
 
 def bases() -> list[tuple[dict, tuple[str, ...]]]:
@@ -242,7 +247,241 @@ def case(rng: random.Random) -> Case:
     data, command = rng.choice(bases())
     mutated = mutate(data, rng, rng.choice([1, 1, 2, 3, 5]))
     text, suffix = render(mutated, rng)
-    return Case(text, suffix, command)
+    return Case(text, suffix, command, "task" if command[0] == "synth" else "model")
+
+
+# -- tasks of every kind -----------------------------------------------------------------------
+# Tasks as the synthesis docs write them, with searches kept short (a search of days is the
+# user's to ask for; a hostile file must not make one by accident too often)
+MORE_TASKS = [
+    *TASKS,
+    {"task": "function", "units": {"angle": "deg"},
+     "function": {"expression": "log10(x)", "x_range": [1, 2], "input_range": [90, 150],
+                  "output_range": [0, 90], "points": 3, "ground": 1.0}},
+    {"task": "path", "positions": {"points": [[0, 0], [0.25, 0.02], [0.5, 0.03], [0.75, 0.02],
+                                              [1, 0]]},
+     "search": {"runs": 1, "maxiter": 3, "popsize": 5, "samples": 24, "seed": 1}},
+    {"task": "crank-rocker", "units": {"length": "mm", "angle": "deg"},
+     "crank_rocker": {"ground": 100, "swing": 45, "time_ratio": 1.25}},
+    {"task": "quick-return", "units": {"length": "mm"},
+     "quick_return": {"mechanism": "offset slider-crank", "stroke": 100, "time_ratio": 1.4}},
+    {"task": "quick-return", "units": {"length": "mm"},
+     "quick_return": {"mechanism": "whitworth", "time_ratio": 1.5, "distance": 50, "stroke": 200}},
+    {"task": "motion", "units": {"length": "cm", "angle": "deg"},
+     "positions": {"points": [[10.2, 18.0], [12.6, 21.2], [13.3, 23.6], [12.1, 25.2], [9.7, 26.0],
+                              [6.5, 25.9]], "angles": [56, 46, 38, 33, 30, 29]},
+     "search": {"dyads": 4}},
+]
+_SYNTH = ("synth", "{file}", "--no-figures", "--out", "{out}/solutions")
+
+
+def task_case(rng: random.Random) -> Case:
+    """A task file of any kind, mutated field by field, as TOML (what synth reads)."""
+    task = rng.choice(MORE_TASKS)
+    mutated = mutate(task, rng, rng.choice([1, 1, 2, 3]))
+    try:
+        text: str | bytes = to_toml(mutated)
+    except (ValueError, RecursionError):
+        text = to_toml(task)
+    text = _damaged(text, rng) if rng.random() < 0.1 else text
+    return Case(text, ".toml", _SYNTH, "task")
+
+
+# -- CSV tables: measured curves, designs, paths -------------------------------------------------
+# what a cell may hold instead of a number
+CELLS = ["1_000", "\uff11\uff12", "\u0661\u0662", "nan", "NaN", "inf", "-inf", "1e999", "1e-400",
+         "0x10", "0b1", "", " ", "--1", "1e", ".", '"1.5"', '"1.5', '1"5', "9" * 5000, "-0", "+.5e-3",
+         "1,5", "\x00", "1\t", "\u00a01", "\u2028", "1e+308", "-1.7976931348623157e308", "5e-324",
+         "abc", "true", "'1'", "1.5\r2", "\ufeff1"]
+NAMES = ["t", "x [mm]", "", " ", "a\x1bb", "\x00", "a\u2028b", "\u0085", 'a"b', '"a"', "#c",
+         "x" * 100_000, "名前 [秒]", "t [s] [m]", "[", "]", "x,y", "1", "1e3", "\ufeffx"]
+
+
+def _curve_text(rng: random.Random) -> str:
+    n = rng.choice([15, 20, 40, 60])
+    fmt = rng.choice(["{:.6g}", "{!r}", "{:.3e}"])
+    header = rng.choice(["t [s],x [mm]", "t,x", "angle [deg],s [mm],extra", '"t [s]","x [mm]"'])
+    width = header.count(",") + 1
+    rows = []
+    for k in range(n):
+        t = 0.01 * k
+        cells = [fmt.format(t), fmt.format(math.sin(10 * t) + 1e-3 * rng.random())]
+        rows.append(",".join(cells + ["0"] * (width - 2)))
+    return header + "\n" + "\n".join(rows) + "\n"
+
+
+def _designs_text(rng: random.Random) -> str:
+    header = "ground,crank,coupler,rocker,coupler_point_along,coupler_point_perpendicular"
+    rows = [",".join(f"{v:.4g}" for v in (rng.uniform(1, 4), rng.uniform(0.3, 1),
+                                         rng.uniform(1, 4), rng.uniform(1, 4),
+                                         rng.uniform(-1, 2), rng.uniform(-1, 1)))
+            for _ in range(rng.randint(1, 6))]
+    return header + "\n" + "\n".join(rows) + "\n"
+
+
+def _path_text(rng: random.Random) -> str:
+    n = rng.choice([20, 40, 80])
+    a, b = rng.uniform(0.5, 2), rng.uniform(0.5, 2)
+    rows = [f"{a * math.cos(2 * math.pi * k / n):.6g},{b * math.sin(2 * math.pi * k / n):.6g}"
+            for k in range(n)]
+    return "x,y\n" + "\n".join(rows) + "\n"
+
+
+def _csv_mutation(text: str, rng: random.Random) -> str:
+    lines = text.split("\n")
+    op = rng.randrange(14)
+    k = rng.randrange(len(lines))
+    if op == 0:                                     # a cell replaced
+        cells = lines[k].split(",")
+        cells[rng.randrange(len(cells))] = rng.choice(CELLS)
+        lines[k] = ",".join(cells)
+    elif op == 1:                                   # a stray quote
+        at = rng.randrange(len(text) + 1)
+        return text[:at] + '"' + text[at:]
+    elif op == 2:                                   # a line break inside quotes
+        lines[k] = '"' + lines[k].replace(",", '\n,', 1) + '"'
+    elif op == 3:                                   # other line ends
+        end = rng.choice(["\r", "\r\n", "\n\r", "\r\r", "\x85", "\u2028", "\x0b"])
+        return text.replace("\n", end) if rng.random() < 0.7 else text.replace("\n", end, 3)
+    elif op == 4:                                   # a name replaced
+        cells = lines[0].split(",")
+        cells[rng.randrange(len(cells))] = rng.choice(NAMES)
+        lines[0] = ",".join(cells)
+    elif op == 5:                                   # the header twice, or none
+        lines = [lines[0]] + lines if rng.random() < 0.5 else lines[1:]
+    elif op == 6:                                   # cells added or removed
+        lines[k] = lines[k] + rng.choice([",", ",,", ",1", ",1,2,3"]) if rng.random() < 0.5 \
+            else lines[k].rsplit(",", 1)[0]
+    elif op == 7:                                   # blank, comment and comma lines
+        lines.insert(k, rng.choice(["", " ", "# note", ",,", "\t", "  #, 1,2", '""', '"",""']))
+    elif op == 8 and len(text) < 1_000_000:         # a very long line
+        lines.insert(k, rng.choice(["1", ",", "9,"]) * rng.choice([10_000, 200_000, 2_000_000]))
+    elif op == 9 and len(text) < 10_000:            # many rows: beyond MAX_ROWS at times
+        body = lines[1:] or ["0,0"]
+        lines = lines[:1] + body * (20_000 if rng.random() < 0.1 else rng.choice([10, 1000]))
+    elif op == 10:                                  # rows out of order
+        body = lines[1:]
+        rng.shuffle(body)
+        lines = lines[:1] + body
+    elif op == 11:                                  # truncated
+        return text[:rng.randrange(len(text) + 1)]
+    elif op == 12:                                  # a byte-order mark, or text in another order
+        return rng.choice(["\ufeff", "\ufeff\ufeff", ""]) + text[::rng.choice([1, -1])]
+    else:                                           # a column named twice
+        lines[0] = lines[0] + "," + lines[0].split(",")[0]
+    return "\n".join(lines)
+
+
+def _damaged(text: str, rng: random.Random) -> bytes:
+    """Bytes that are not UTF-8 text, or not the text at all: corrupted, NUL, cut anywhere."""
+    raw = bytearray(text.encode("utf-8", "surrogatepass"))
+    for _ in range(rng.randint(1, 4)):
+        if raw:
+            raw[rng.randrange(len(raw))] = rng.choice([0, 0xff, 0xc3, 0x80, rng.randrange(256)])
+    return bytes(raw[:rng.randrange(len(raw) + 1)] if rng.random() < 0.3 else raw)
+
+
+_CSV_COMMANDS = {
+    "curve": [("differentiate", "{file}", "--out", "{out}", "--format", "svg")],
+    "designs": [("sweep", "fourbar", "{file}", "--samples", "12", "-o", "{out}/s.csv"),
+                ("atlas", "build", "{file}", "--samples", "24", "-o", "{out}/a.parquet")],
+    "path": [("atlas", "find", "{atlas}", "{file}", "-k", "2")],
+}
+
+
+def csv_case(rng: random.Random) -> Case:
+    """A CSV table (a measured curve, designs or a path) mutated as text."""
+    family = rng.choice(["curve", "curve", "designs", "path"])
+    text = {"curve": _curve_text, "designs": _designs_text, "path": _path_text}[family](rng)
+    for _ in range(rng.choice([1, 1, 2, 3])):
+        text = _csv_mutation(text, rng)
+    data: str | bytes = _damaged(text, rng) if rng.random() < 0.08 else text
+    return Case(data, ".csv", rng.choice(_CSV_COMMANDS[family]), family)
+
+
+# -- atlases ---------------------------------------------------------------------------------------
+_VALUES = [0.0, -0.0, -1.0, 1e-12, 1e300, -1e300, math.inf, -math.inf, math.nan, 5e-324, 1e9,
+           2e9, 7, True, "a", None]
+
+
+def _atlas_frame():
+    """A small valid atlas's table (made once per process)."""
+    global _ATLAS_FRAME
+    if _ATLAS_FRAME is None:
+        import kinelab as kl
+        designs = kl.sweep.sobol(32, seed=1, ground=(1, 4), crank=(0.3, 1), coupler=(1, 4),
+                                 rocker=(1, 4), coupler_point_along=(-1, 2),
+                                 coupler_point_perpendicular=(-1, 1))
+        a = kl.sweep.atlas(designs)
+        _ATLAS_FRAME = a.table.copy()
+        _ATLAS_FRAME.attrs = {"harmonics": a.harmonics, "branch": a.branch}
+    return _ATLAS_FRAME
+
+
+_ATLAS_FRAME = None
+
+
+def atlas_case(rng: random.Random) -> Case:
+    """An atlas file: its table and metadata mutated, written as Parquet, sometimes damaged."""
+    import io
+
+    import pandas as pd
+
+    df = _atlas_frame().copy()
+    attrs = dict(_atlas_frame().attrs)
+    for _ in range(rng.choice([1, 1, 2, 3])):
+        op = rng.randrange(8)
+        column = rng.choice(list(df.columns))
+        if op == 0:                                             # the metadata
+            key = rng.choice(["harmonics", "branch"])
+            attrs[key] = rng.choice([0, -1, 1, 2, 7, 9, 1000, 1001, 10 ** 30, 2.0, True, "8",
+                                     "open", "crossed", "weird", None, [8], {"a": 1}])
+            if attrs[key] is None:
+                del attrs[key]
+        elif op == 1 and len(df):                               # a value
+            df[column] = df[column].astype(object)
+            df.at[rng.randrange(len(df)), column] = rng.choice(_VALUES)
+        elif op == 2:                                           # a column dropped
+            df = df.drop(columns=[column])
+        elif op == 3:                                           # a column added
+            df[rng.choice(["fd+9", "fd-9", "extra", "fd+0", "ground ", "7"])] = 1.0
+        elif op == 4:                                           # rows: none, or many
+            df = df.iloc[:0] if rng.random() < 0.5 else pd.concat([df] * rng.choice([10, 1000]),
+                                                                    ignore_index=True)
+        elif op == 5:                                           # a whole column of a kind
+            df[column] = rng.choice([-1.0, 0.0, math.nan, 1e300, "x"])
+        elif op == 6:                                           # columns renamed, reordered
+            df = df[list(reversed(df.columns))] if rng.random() < 0.5 else df.rename(
+                columns={column: rng.choice(["crank", "fd+1", "x"])})
+        else:                                                   # another index
+            df.index = [f"r{i}" for i in range(len(df))]
+    df.attrs = attrs
+    buffer = io.BytesIO()
+    try:
+        df.to_parquet(buffer)
+        data = buffer.getvalue()
+    except Exception:           # a table pyarrow cannot write: keep the valid one's bytes
+        buffer = io.BytesIO()
+        _atlas_frame().to_parquet(buffer)
+        data = buffer.getvalue()
+    r = rng.random()
+    if r < 0.1:
+        data = _damaged(data.decode("latin-1"), rng)
+    elif r < 0.13:
+        data = data[:rng.randrange(len(data))]
+    elif r < 0.15:
+        data = rng.choice([b"", b"PAR1", b"PAR1" + b"\x00" * 64 + b"PAR1", b"not parquet\n"])
+    command = ("atlas", "find", "{file}", "{path}", "-k", rng.choice(["1", "3", "100000"]))
+    return Case(data, ".parquet", command, "atlas")
+
+
+FAMILIES = {"model": case, "task": task_case, "csv": csv_case, "atlas": atlas_case}
+
+
+def any_case(rng: random.Random, families=("task", "csv", "atlas")) -> Case:
+    """A case of one of ``families`` (the readers of tasks, CSV tables and atlases by
+    default; "model" adds model files)."""
+    return FAMILIES[rng.choice(families)](rng)
 
 
 # -- running a case ---------------------------------------------------------------------------
@@ -254,9 +493,10 @@ def run(c: Case, directory: Path) -> tuple[str, str]:
     """(outcome, detail) of running a case's command in-process.
 
     Outcomes: "success" (exit 0), "error" (exit 2: on standard error one bounded line per
-    problem of the file, each "kinelab: error: ...", at most MAX_LINES of them); anything else
-    is a finding: "traceback" (an exception escaped), "exit 1", "not an error line", "long
-    message", "too many lines", "exit N".
+    problem of the file, each "kinelab: error: FILE: ...", at most MAX_LINES of them);
+    anything else is a finding: "traceback" (an exception escaped), "exit 1", "not an error
+    line", "long message", "too many lines", "unnamed" (an error that does not name the
+    file, about which every error of a case is), "exit N".
     """
     from click.testing import CliRunner
 
@@ -267,13 +507,16 @@ def run(c: Case, directory: Path) -> tuple[str, str]:
         path.write_bytes(c.text)
     else:
         path.write_text(c.text, encoding="utf-8", errors="surrogatepass")
-    args = c.args(str(path))
-    if c.command[0] in ("check",):
-        pass
-    elif c.command[0] == "synth":
-        args += ["--out", str(directory / "synth")]
+    if "{file}" in c.command:
+        args = c.args(str(path), out=str(directory / "out"), **_valid_files())
     else:
-        args += ["--out", str(directory / "out")]
+        args = c.args(str(path))
+        if c.command[0] in ("check",):
+            pass
+        elif c.command[0] == "synth":
+            args += ["--out", str(directory / "synth")]
+        else:
+            args += ["--out", str(directory / "out")]
     result = CliRunner().invoke(main, args)
     err = result.stderr
     if result.exception is not None and not isinstance(result.exception, SystemExit):
@@ -289,6 +532,9 @@ def run(c: Case, directory: Path) -> tuple[str, str]:
             return "too many lines", f"{len(lines)} lines: {err[:200]}"
         if max(len(line) for line in lines) > MAX_MESSAGE:
             return "long message", f"{max(len(line) for line in lines)} characters: {err[:200]}"
+        if not all(line.startswith(f"kinelab: error: {path}: ") or
+                   line.startswith(f"kinelab: error: {path.name}: ") for line in lines):
+            return "unnamed", lines[0][:300]       # every error here is about the file
         return "error", lines[0][:200]
     if result.exit_code == 1:
         return "exit 1", err[:300]
@@ -296,3 +542,23 @@ def run(c: Case, directory: Path) -> tuple[str, str]:
 
 
 FINE = ("success", "error")
+
+
+def _valid_files() -> dict[str, str]:
+    """A valid atlas and a valid path CSV, for the commands that read one beside the case
+    (written once per process)."""
+    global _VALID
+    if _VALID is None:
+        import tempfile
+
+        import kinelab as kl
+        place = Path(tempfile.mkdtemp(prefix="kinelab-fuzz-valid-"))
+        atlas = kl.sweep.Atlas(_atlas_frame().copy(), _atlas_frame().attrs["harmonics"],
+                               _atlas_frame().attrs["branch"])
+        atlas.to_parquet(place / "atlas.parquet")
+        (place / "path.csv").write_text(_path_text(random.Random(0)))
+        _VALID = {"atlas": str(place / "atlas.parquet"), "path": str(place / "path.csv")}
+    return _VALID
+
+
+_VALID = None

@@ -1,6 +1,7 @@
-"""Hostile model files and task files, generated from valid ones field by field (see
-``grammar.py``): each ends in success or in one bounded line with exit status 2, quickly.
-A modest number of cases here; ``benchmarks/fuzz_model_files.py`` runs 10^5 and more."""
+"""Hostile model files, task files, CSV tables and atlases, generated from valid ones (see
+``grammar.py``): each ends in success or in one bounded line per problem naming the file,
+with exit status 2, quickly.  A modest number of cases here;
+``benchmarks/fuzz_model_files.py`` runs 10^5 and more."""
 import random
 import time
 
@@ -21,6 +22,15 @@ def test_a_hostile_file_ends_in_one_line_or_success(rng, tmp_path_factory):
     elapsed = time.perf_counter() - start
     assert outcome in grammar.FINE, (outcome, detail, c.command, c.suffix, c.text[:500])
     assert elapsed < 60.0, (elapsed, c.command)           # generous: a check takes well under 1 s
+
+
+@settings(max_examples=60, suppress_health_check=[HealthCheck.too_slow,
+                                                  HealthCheck.function_scoped_fixture])
+@given(rng=st.randoms(use_true_random=False))
+def test_a_hostile_table_task_or_atlas_ends_in_one_line_naming_it_or_success(rng, tmp_path_factory):
+    c = grammar.any_case(rng)
+    outcome, detail = grammar.run(c, tmp_path_factory.mktemp("case"))
+    assert outcome in grammar.FINE, (outcome, detail, c.family, c.command, c.text[:500])
 
 
 # cases the fuzzing found (benchmarks/fuzz_model_files.py, 100,000 cases): a huge pivot

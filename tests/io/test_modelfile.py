@@ -310,7 +310,9 @@ def test_reading_and_checking_is_linear_in_the_size_of_the_file():
         "big.json: links: expected at most 200, got 20,001; a model that large takes minutes to "
         "plan (its constraint Jacobian grows as the cube of the size): model the mechanism in parts",
         "big.json: joints: expected at most 400, got 20,000; a model that large takes minutes to "
-        "plan (its constraint Jacobian grows as the cube of the size): model the mechanism in parts"]
+        "plan (its constraint Jacobian grows as the cube of the size): model the mechanism in parts",
+        "big.json: points: expected at most 2,000, got 100,001; every point is solved at every "
+        "sample: keep the joints' points and those you report or draw"]
 
 
 def test_a_model_at_the_size_limit_is_planned():

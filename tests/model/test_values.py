@@ -111,7 +111,8 @@ def test_a_model_beyond_the_size_limits_is_refused_by_its_counts():
         pendulums(20_000)
     assert time.perf_counter() - start < 60.0
     assert [p.split(";")[0] for p in info.value.problems] == [
-        "links: expected at most 200, got 20,001", "joints: expected at most 400, got 20,000"]
+        "links: expected at most 200, got 20,001", "joints: expected at most 400, got 20,000",
+        "points: expected at most 2,000, got 100,001"]
     m = pendulums(MAX_LINKS - 1)                # at the limit: the ground and 199 pendulums
     assert len(m.links) == MAX_LINKS and m.links_carrying("p198_0") == ("ground", "l198")
 

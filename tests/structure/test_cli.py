@@ -89,7 +89,19 @@ def test_types_chains():
      "links: 12 links with mobility 1 (5 independent loops) are beyond what is enumerated: at most "
      "12 links and 4 loops"),
     (["--space", "planar", "--mobility", "1", "--links", "1000000"], "(499999 independent loops)"),
+    # counts: negative, zero or huge refused by the option itself, exit status 2
+    (["--space", "spatial", "--mobility", "3", "--limit", "-1"],
+     "Invalid value for '--limit': -1 is not in the range 1<=x<=1000000"),
+    (["--space", "spatial", "--mobility", "3", "--limit", "0"], "Invalid value for '--limit'"),
+    (["--space", "spatial", "--mobility", "3", "--max-joints", "0"],
+     "Invalid value for '--max-joints'"),
+    (["--space", "spatial", "--mobility", "3", "--max-joints", "1" + "0" * 30],
+     "Invalid value for '--max-joints'"),
+    (["--space", "planar", "--mobility", "-1"], "Invalid value for '--mobility'"),
+    (["--space", "planar", "--mobility", "1", "--links", "-4"], "Invalid value for '--links'"),
+    (["--space", "planar", "--mobility", "1", "--links", "9" * 20], "Invalid value for '--links'"),
 ])
 def test_types_errors(args, message):
     out = CliRunner().invoke(main, ["types", *args])
-    assert out.exit_code != 0 and message in out.output
+    assert out.exit_code == 2 and message in out.output
+    assert out.output.count("\n") == 1 and out.output.startswith("kinelab: error: ")

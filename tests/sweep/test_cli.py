@@ -170,8 +170,11 @@ def engine_designs(tmp_path):
 @pytest.mark.parametrize("speed, message", [
     ("1e160", "speed: expected at most 1e+100 rad/s in size"),
     ("-1e101", "speed: expected at most 1e+100 rad/s in size"),
-    ("nan", "speed: expected a finite input speed"),
-    ("inf", "speed: expected a finite input speed"),
+    # what is not a number by the one rule of numbers is refused by the option itself
+    ("nan", "'--speed': expected a finite number in decimal or scientific notation"),
+    ("inf", "'--speed': expected a finite number in decimal or scientific notation"),
+    ("1_000", "'--speed': expected a finite number in decimal or scientific notation"),
+    ("\uff11", "'--speed': expected a finite number in decimal or scientific notation"),
 ])
 def test_speed_is_bounded(engine_designs, speed, message, tmp_path):
     out = tmp_path / "e.csv"

@@ -1,0 +1,112 @@
+"""Time limits that hold in any thread: :func:`within` runs a call and stops it at a deadline.
+
+A timer signal (``SIGALRM``) interrupts only the main thread, so a limit built on it does
+nothing in a web server's worker threads.  Here a watchdog thread raises an exception in the
+working thread when its time is up (``PyThreadState_SetAsyncExc``), which the interpreter
+delivers at its next bytecode boundary: pure-Python work such as sympy's stops within
+milliseconds, wherever it is.  Work inside one long C call stops when that call returns.
+
+The exception is a :class:`BaseException` of a class made for each call, so neither
+sympy's ``except Exception`` nor an inner limit takes it for its own; the watchdog raises
+it again every :data:`_AGAIN` seconds until the call has ended, in case a bare ``except:``
+swallowed it, and holds its shot while the thread imports a module (which a shot would leave
+half made).  The call's end and the watchdog's shot exclude each other without a lock:
+the watchdog tests "ended?" and shoots in one step (no bytecode boundary between the test
+and the C call, so no other thread runs in between), and the working thread marks the end
+and then withdraws a shot not yet delivered, both C calls; so nothing is raised after
+:func:`within` returns.
+"""
+from __future__ import annotations
+
+import ctypes
+import math
+import sys
+import threading
+import time
+
+from kinelab.errors import TimeLimitError
+
+__all__ = ["within"]
+
+_AGAIN = 0.1        # s between shots while the call goes on
+_POLL = 0.05        # s between the watchdog's looks at the clock before the deadline
+
+_shoot = ctypes.pythonapi.PyThreadState_SetAsyncExc
+_shoot.argtypes = (ctypes.c_ulong, ctypes.py_object)
+_shoot.restype = ctypes.c_int
+# the same C function, taking NULL: withdraw the exception not yet delivered
+_withdraw = ctypes.PYFUNCTYPE(ctypes.c_int, ctypes.c_ulong, ctypes.c_void_p)(
+    ("PyThreadState_SetAsyncExc", ctypes.pythonapi))
+
+
+class _Expired(BaseException):
+    """Raised in the working thread at its deadline (a class of its own per call)."""
+
+
+def _importing(thread: int) -> bool:
+    """Whether a thread is importing a module: a module stopped midway would be left out
+    of ``sys.modules`` (or, for a class being made, turned into another error)."""
+    frame = sys._current_frames().get(thread)
+    while frame is not None:
+        if frame.f_code.co_filename.startswith("<frozen importlib"):
+            return True
+        frame = frame.f_back
+    return False
+
+
+def _watch(thread: int, expired: type, ended: list, seconds: float) -> None:
+    deadline = time.monotonic() + seconds
+    while not ended:
+        left = deadline - time.monotonic()
+        if left > 0 or _importing(thread):
+            time.sleep(min(left, _POLL) if left > 0 else _POLL / 5)
+            continue
+        if not ended:                   # the test and the shot: one step under the GIL
+            _shoot(thread, expired)
+        time.sleep(_AGAIN)
+
+
+def _caused_by(exc: BaseException, expired: type) -> bool:
+    """Whether ``exc`` is, or was raised while handling, the deadline's exception (Python
+    turns one raised in ``__set_name__`` into a RuntimeError, and so may code that catches
+    everything)."""
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, expired):
+            return True
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return False
+
+
+def within(seconds: float | None, call, *args, message: str | None = None):
+    """``call(*args)``, stopped after ``seconds`` with a :class:`TimeLimitError` (whose
+    text is ``message``); ``None`` or ``inf`` runs it without a limit.
+
+    Limits nest: an inner one ends the inner call only; an outer one that expires first
+    goes through the inner call as it is.
+
+    >>> within(1.0, sum, [1, 2, 3])
+    6
+    """
+    if seconds is None or math.isinf(seconds):
+        return call(*args)
+    thread = threading.get_ident()
+    expired = type("Expired", (_Expired,), {})
+    ended: list = []
+    watchdog = threading.Thread(target=_watch, args=(thread, expired, ended, max(seconds, 0.0)),
+                                name="kinelab-deadline", daemon=True)
+    try:
+        try:
+            watchdog.start()
+            return call(*args)
+        finally:
+            # Two C calls and nothing in between: after the first the watchdog shoots no
+            # more, and the second withdraws a shot fired before it (if one is delivered
+            # right after the first, it is the one the except clause below takes).
+            ended.append(True)
+            _withdraw(thread, None)
+    except BaseException as exc:
+        if _caused_by(exc, expired):
+            raise TimeLimitError(message or f"stopped after {seconds:g} s, its time limit") from None
+        raise
