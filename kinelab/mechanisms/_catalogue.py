@@ -14,10 +14,11 @@ from typing import Literal
 import numpy as np
 
 from kinelab.errors import ModelError, check_choice, describe, quoted
-from kinelab.model import Input, Joint, Link, Mechanism, Point, is_real, length_problem
+from kinelab.model import (MAX_LENGTH, MIN_LENGTH, Input, Joint, Link, Mechanism, Point, is_real,
+                           length_problem)
 
 __all__ = ["fourbar", "slider_crank", "inverted_slider_crank", "slotted_link", "whitworth",
-           "fivebar", "watt6", "stephenson6", "triad6"]
+           "fivebar", "watt6", "stephenson6", "triad6", "sketches", "SKETCHED"]
 
 
 def _length_problems(**lengths: float) -> list[str]:
@@ -49,32 +50,50 @@ def _finite(**values: float) -> None:
         raise ModelError(problems)
 
 
+_GRID = np.radians(np.arange(0.0, 360.0, 1.0)) + 1e-3    # off the axes: no accidental symmetry
+
+
+def _best_angles(quality: Callable[[np.ndarray], np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """For D designs at once: the input angle, on a 1-degree grid, where each design's
+    closure quality (``quality(q)`` of shape (D, 360) for the grid's q, > 0: assembles) is
+    best, (D,), and whether it closes anywhere, (D,).  Of equally good angles (to rounding),
+    the first from 0: the branch a sketch shows at a change point depends on where it is."""
+    v = quality(_GRID)
+    return _GRID[np.argmax(np.round(v, 12), axis=1)], (v > 0).any(axis=1)
+
+
 def _best_angle(quality: Callable[[np.ndarray], np.ndarray], what: str,
                 near: float | None = None) -> float:
     """The input angle, on a 1-degree grid, where a closure quality (> 0: assembles) is best;
-    of equally good angles (to rounding), the first from 0: the branch a sketch shows at a
-    change point depends on where the sketch is.
+    of equally good angles (to rounding), the first from 0 (see :func:`_best_angles`).
 
     With ``near`` (a sketch's input angle): that angle itself when it assembles, else the
     best angle of the grid's run of assembling angles nearest to it.
     """
-    if near is not None and quality(np.array([near]))[0] > 0:
+    if near is None:
+        q0, closes = _best_angles(lambda q: quality(q)[None, :])
+        if not closes[0]:
+            raise _never_assembles(what)
+        return float(q0[0])
+    if quality(np.array([near]))[0] > 0:
         return float(near)
-    start = 0.0 if near is None else near - math.pi
-    q = start + np.radians(np.arange(0.0, 360.0, 1.0)) + 1e-3   # off the axes: no accidental symmetry
+    q = near - math.pi + _GRID
     v = quality(q)
     closes = v > 0
     if not np.any(closes):
-        raise ModelError(f"{what}: these lengths cannot be assembled at any input angle; check them")
-    if near is not None:
-        i = np.flatnonzero(closes)[np.argmin(np.abs(q[closes] - near))]
-        lo, hi = i, i
-        while lo > 0 and closes[lo - 1]:
-            lo -= 1
-        while hi < len(q) - 1 and closes[hi + 1]:
-            hi += 1
-        q, v = q[lo:hi + 1], v[lo:hi + 1]
+        raise _never_assembles(what)
+    i = np.flatnonzero(closes)[np.argmin(np.abs(q[closes] - near))]
+    lo, hi = i, i
+    while lo > 0 and closes[lo - 1]:
+        lo -= 1
+    while hi < len(q) - 1 and closes[hi + 1]:
+        hi += 1
+    q, v = q[lo:hi + 1], v[lo:hi + 1]
     return float(q[np.argmax(np.round(v, 12))])
+
+
+def _never_assembles(what: str) -> ModelError:
+    return ModelError(f"{what}: these lengths cannot be assembled at any input angle; check them")
 
 
 def _closure(D, lb, lc):
@@ -98,6 +117,37 @@ def _circle_intersection(X, Z, lb, lc, sigma):
 
 def _pins(*names: tuple[str, str, str]) -> tuple[Joint, ...]:
     return tuple(Joint(f"j{p}", "R", (a, b), point=p) for p, a, b in names)
+
+
+def _rows(*values: float) -> tuple[np.ndarray, ...]:
+    """Scalars as the one design of the sketch functions' arrays (D = 1)."""
+    return tuple(np.array([float(v)]) for v in values)
+
+
+def _xy(x, y) -> np.ndarray:
+    """(D,) coordinates (or scalars) as points (D, 2)."""
+    x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
+    return np.stack([x, y], -1)
+
+
+def _fourbar_points(ground, crank, coupler, rocker, sigma, point=None):
+    """The sketches of D four-bars (:func:`fourbar`), lengths (D,) each: the points by name,
+    (D, 2) each, at the best crank angle, and whether each design closes anywhere (D,).
+    ``point``: the coupler point's (along, perpendicular) columns, or None."""
+    def quality(q):
+        ax, ay = crank[:, None] * np.cos(q), crank[:, None] * np.sin(q)
+        return _closure(np.hypot(ground[:, None] - ax, -ay), coupler[:, None], rocker[:, None])
+    q0, closes = _best_angles(quality)
+    A = _xy(crank * np.cos(q0), crank * np.sin(q0))
+    O4 = _xy(ground, 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        B = _circle_intersection(A.T, O4.T, coupler, rocker, sigma).T
+    xy = {"O2": _xy(np.zeros_like(ground), 0.0), "A": A, "B": B, "O4": O4}
+    if point is not None:
+        e = (B - A) / coupler[:, None]
+        n = np.stack([-e[:, 1], e[:, 0]], -1)
+        xy["P"] = A + point[0][:, None] * e + point[1][:, None] * n
+    return xy, closes
 
 
 # --------------------------------------------------------------------------------------
@@ -131,26 +181,17 @@ def fourbar(ground: float, crank: float, coupler: float, rocker: float,
     _positive(ground=ground, crank=crank, coupler=coupler, rocker=rocker)
     check_choice("branch", branch, ("open", "crossed"))
     sigma = 1.0 if branch == "open" else -1.0
-
-    def quality(q):
-        ax, ay = crank * np.cos(q), crank * np.sin(q)
-        return _closure(np.hypot(ground - ax, -ay), coupler, rocker)
-    q0 = _best_angle(quality, "fourbar")
-    A = (crank * math.cos(q0), crank * math.sin(q0))
-    O4 = (float(ground), 0.0)
-    B = _circle_intersection(A, O4, coupler, rocker, sigma).tolist()
-    points = [Point("O2", 0.0, 0.0), Point("A", *A), Point("B", *B), Point("O4", *O4)]
-    coupler_pts = ("A", "B")
     if coupler_point is not None:
         if not isinstance(coupler_point, (tuple, list, np.ndarray)) or len(coupler_point) != 2:
             raise ModelError(f"coupler_point: expected (along, perpendicular), got "
                              f"{describe(coupler_point)}")
         _finite(coupler_point_along=coupler_point[0], coupler_point_perpendicular=coupler_point[1])
-        e = np.subtract(B, A) / coupler
-        n = np.array([-e[1], e[0]])
-        P = np.add(A, coupler_point[0] * e + coupler_point[1] * n)
-        points.append(Point("P", float(P[0]), float(P[1])))
-        coupler_pts = ("A", "B", "P")
+    xy, closes = _fourbar_points(*_rows(ground, crank, coupler, rocker), sigma,
+                                 None if coupler_point is None else _rows(*coupler_point))
+    if not closes[0]:
+        raise _never_assembles("fourbar")
+    points = [Point(name, *(float(v) for v in at[0])) for name, at in xy.items()]
+    coupler_pts = ("A", "B") if coupler_point is None else ("A", "B", "P")
     return Mechanism(
         name="fourbar",
         points=tuple(points),
@@ -194,14 +235,10 @@ def slider_crank(crank: float, rod: float, offset: float = 0.0,
         raise ModelError(f"offset: |{offset}| m is beyond crank + rod = {crank + rod} m; "
                          "the rod cannot reach the slide line")
     sigma = 1.0 if branch == "right" else -1.0
-
-    def quality(q):
-        h = offset - crank * np.sin(q)
-        return 1.0 - np.abs(h) / rod
-    q0 = _best_angle(quality, "slider_crank")
-    A = (crank * math.cos(q0), crank * math.sin(q0))
-    dx = sigma * math.sqrt(rod ** 2 - (offset - A[1]) ** 2)
-    B = (A[0] + dx, float(offset))
+    xy, closes = _slider_crank_points(*_rows(crank, rod, offset), sigma)
+    if not closes[0]:
+        raise _never_assembles("slider_crank")
+    A, B = (tuple(float(v) for v in xy[p][0]) for p in "AB")
     return Mechanism(
         name="slider_crank",
         points=(Point("O2", 0.0, 0.0), Point("A", *A), Point("B", *B)),
@@ -214,6 +251,37 @@ def slider_crank(crank: float, rod: float, offset: float = 0.0,
     )
 
 
+def _slider_crank_points(crank, rod, offset, sigma):
+    """The sketches of D slider-cranks (:func:`slider_crank`), as :func:`_fourbar_points`."""
+    def quality(q):
+        h = offset[:, None] - crank[:, None] * np.sin(q)
+        return 1.0 - np.abs(h) / rod[:, None]
+    q0, closes = _best_angles(quality)
+    A = _xy(crank * np.cos(q0), crank * np.sin(q0))
+    with np.errstate(invalid="ignore"):
+        dx = sigma * np.sqrt(rod ** 2 - (offset - A[:, 1]) ** 2)
+    return {"O2": _xy(np.zeros_like(crank), 0.0), "A": A, "B": _xy(A[:, 0] + dx, offset)}, closes
+
+
+def _slotted_points(x2, y2, crank, offset, arm, sigma):
+    """The sketches of D crank-and-slotted-lever linkages (:func:`_slotted`), as
+    :func:`_fourbar_points`, with the slot's direction (D, 2) before the closure."""
+    def quality(q):
+        ax = x2[:, None] + crank[:, None] * np.cos(q)
+        ay = y2[:, None] + crank[:, None] * np.sin(q)
+        return 1.0 - np.abs(offset[:, None]) / np.maximum(np.hypot(ax, ay), 1e-300)
+    q0, closes = _best_angles(quality)
+    A = _xy(x2 + crank * np.cos(q0), y2 + crank * np.sin(q0))
+    D = np.hypot(A[:, 0], A[:, 1])
+    with np.errstate(invalid="ignore"):
+        t = sigma * np.sqrt(D * D - offset * offset)   # slide of A along the slot, from O4's foot
+    # lever direction u with A = t u + offset n (n = k x u):  rotate A back by atan2(offset, t)
+    phi = np.arctan2(A[:, 1], A[:, 0]) - np.arctan2(offset, t)
+    u = _xy(np.cos(phi), np.sin(phi))
+    xy = {"O4": _xy(np.zeros_like(crank), 0.0), "O2": _xy(x2, y2), "A": A, "C": arm[:, None] * u}
+    return xy, u, closes
+
+
 def _slotted(name: str, ground_xy: tuple[float, float], crank: float, offset: float,
              arm: float, branch: str, lever_name: str = "lever", slot: str = "slot",
              params=None) -> Mechanism:
@@ -222,28 +290,17 @@ def _slotted(name: str, ground_xy: tuple[float, float], crank: float, offset: fl
     The slot is parallel to the lever (O4 -> C) at a perpendicular distance ``offset``.
     """
     sigma = 1.0 if branch in ("positive", "open") else -1.0
-    O2 = np.array(ground_xy, float)
-
-    def quality(q):
-        A = O2[:, None] + crank * np.array([np.cos(q), np.sin(q)])
-        D = np.hypot(*A)
-        return 1.0 - np.abs(offset) / np.maximum(D, 1e-300)
-    q0 = _best_angle(quality, name)
-    A = O2 + crank * np.array([math.cos(q0), math.sin(q0)])
-    D = math.hypot(*A)
-    t = sigma * math.sqrt(D * D - offset * offset)    # slide of A along the slot, from O4's foot
-    # lever direction u with A = t u + offset n (n = k x u):  rotate A back by atan2(offset, t)
-    phi = math.atan2(A[1], A[0]) - math.atan2(offset, t)
-    u = np.array([math.cos(phi), math.sin(phi)])
-    C = arm * u
+    xy, u, closes = _slotted_points(*_rows(*ground_xy, crank, offset, arm), sigma)
+    if not closes[0]:
+        raise _never_assembles(name)
+    O2, A, C, u = (tuple(float(v) for v in a[0]) for a in (xy["O2"], xy["A"], xy["C"], u))
     return Mechanism(
         name=name,
         points=(Point("O4", 0.0, 0.0), Point("O2", *O2), Point("A", *A), Point("C", *C)),
         links=(Link("ground", ("O4", "O2"), ground=True), Link("crank", ("O2", "A")),
                Link("block", ("A",)), Link(lever_name, ("O4", "C"))),
         joints=_pins(("O2", "ground", "crank"), ("A", "crank", "block"), ("O4", "ground", lever_name))
-        + (Joint(slot, "P", (lever_name, "block"), point="A", axis=(float(u[0]), float(u[1])),
-                 origin="O4"),),
+        + (Joint(slot, "P", (lever_name, "block"), point="A", axis=u, origin="O4"),),
         inputs=(Input(joint="jO2"),),
         parameters=params or {},
     )
@@ -327,6 +384,14 @@ def inverted_slider_crank(ground: float, crank: float, offset: float = 0.0, rock
                                      offset=offset, rocker=rocker, branch=branch))
 
 
+def _ram_point(cx, cy, rod, ram_height) -> np.ndarray:
+    """The Whitworth ram's pin D (D, 2): at ``rod`` from the lever's end C, on the ram line,
+    ahead of C; NaN where the rod does not reach the line (or only touches it)."""
+    with np.errstate(invalid="ignore"):
+        dx = np.sqrt(rod ** 2 - (ram_height - cy) ** 2)
+    return _xy(np.where(dx > 0.0, cx + dx, np.nan), ram_height)
+
+
 def whitworth(crank: float, distance: float, lever: float, rod: float,
               ram_height: float = 0.0) -> Mechanism:
     """Whitworth quick-return mechanism: a slotted lever turning full circle drives a ram.
@@ -361,8 +426,8 @@ def whitworth(crank: float, distance: float, lever: float, rod: float,
         raise ModelError("ram_height: the rod cannot reach the ram line; lower it")
     base = _slotted("whitworth", (0.0, distance), crank, 0.0, lever, "positive")
     C = base.point("C")
-    dx = math.sqrt(max(rod ** 2 - (ram_height - C.y) ** 2, 0.0))
-    if dx == 0.0:
+    D = _ram_point(*_rows(C.x, C.y, rod, ram_height))[0]
+    if not np.isfinite(D[0]):
         A, O2 = base.point("A"), base.point("O2")
         q0 = math.degrees(math.atan2(A.y - O2.y, A.x - O2.x))
         raise ModelError(f"rod: expected more than {abs(ram_height - C.y):.6g} m, the distance from "
@@ -370,10 +435,9 @@ def whitworth(crank: float, distance: float, lever: float, rod: float,
                          f"mechanism is first assembled), got {rod:g} m; lengthen it (a rod longer "
                          f"than lever + |ram_height| = {lever + abs(ram_height):.6g} m reaches the "
                          "ram line at every crank angle)")
-    D = (C.x + dx, float(ram_height))
     return Mechanism(
         name="whitworth",
-        points=base.points + (Point("D", *D),),
+        points=base.points + (Point("D", *(float(v) for v in D)),),
         links=base.links + (Link("rod", ("C", "D")), Link("ram", ("D",))),
         joints=base.joints + _pins(("C", "lever", "rod"), ("D", "rod", "ram"))
         + (Joint("ram_slide", "P", ("ground", "ram"), point="D", axis=(1.0, 0.0), origin="O4"),),
@@ -381,6 +445,72 @@ def whitworth(crank: float, distance: float, lever: float, rod: float,
         parameters=dict(kind="whitworth", crank=crank, distance=distance, lever=lever, rod=rod,
                         ram_height=ram_height),
     )
+
+
+# -- many designs at once -----------------------------------------------------------------
+SKETCHED = ("fourbar", "slider_crank", "inverted_slider_crank", "slotted_link", "whitworth")
+
+
+def sketches(kind: str, values: Mapping[str, np.ndarray], options: Mapping[str, object]
+             ) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray], np.ndarray]:
+    """The sketches of D designs of a catalogue kind of :data:`SKETCHED`, in array
+    operations: the points the constructor would place, by name, (D, 2) each; the prismatic
+    joints' axes, by name, (D, 2) each; and which designs it would build, (D,) (the others
+    are the constructor's to explain: call it with their values).
+
+    ``values`` are the constructor's numeric arguments, (D,) each (the four-bar's coupler
+    point as the columns ``coupler_point_along`` and ``coupler_point_perpendicular``);
+    ``options`` its other arguments (a branch, the inverted slider-crank's rocker).
+    """
+    v = {name: np.asarray(a, float) for name, a in values.items()}
+    D = len(next(iter(v.values())))
+    ok = np.ones(D, bool)
+    for a in v.values():
+        ok &= np.abs(a) <= MAX_LENGTH      # NaN fails too
+
+    def lengths(*names):
+        nonlocal ok
+        for n in names:
+            ok &= (v[n] >= MIN_LENGTH)
+    axes: dict[str, np.ndarray] = {}
+    if kind == "fourbar":
+        lengths("ground", "crank", "coupler", "rocker")
+        sigma = 1.0 if options.get("branch", "open") == "open" else -1.0
+        point = tuple(v.get(c) for c in ("coupler_point_along", "coupler_point_perpendicular"))
+        xy, closes = _fourbar_points(v["ground"], v["crank"], v["coupler"], v["rocker"], sigma,
+                                     None if point[0] is None else point)
+    elif kind == "slider_crank":
+        lengths("crank", "rod")
+        ok &= np.abs(v["offset"]) < v["crank"] + v["rod"]
+        sigma = 1.0 if options.get("branch", "right") == "right" else -1.0
+        xy, closes = _slider_crank_points(v["crank"], v["rod"], v["offset"], sigma)
+        axes["slide"] = _xy(np.ones(D), 0.0)
+    elif kind == "whitworth":
+        lengths("crank", "distance", "lever", "rod")
+        ok &= (v["distance"] < v["crank"]) & (np.abs(v["ram_height"]) < v["lever"] + v["rod"])
+        xy, axes["slot"], closes = _slotted_points(np.zeros(D), v["distance"], v["crank"],
+                                                   np.zeros(D), v["lever"], 1.0)
+        xy["D"] = _ram_point(xy["C"][:, 0], xy["C"][:, 1], v["rod"], v["ram_height"])
+        axes["ram_slide"] = _xy(np.ones(D), 0.0)
+    else:
+        positive = options.get("branch", "positive") == "positive"
+        if kind == "slotted_link":
+            lengths("crank", "distance")
+            x2, offset, arm, slot = v["distance"], np.zeros(D), v["crank"] + v["distance"], "slot"
+        else:                              # the inverted slider-crank
+            lengths("ground", "crank")
+            rocker = options.get("rocker")
+            arm = v["ground"] + v["crank"] if rocker is None else np.full(D, float(rocker))
+            ok &= (arm >= MIN_LENGTH) & (arm <= MAX_LENGTH)
+            x2, offset, slot = -v["ground"], v["offset"], "slide"
+        xy, axes[slot], closes = _slotted_points(x2, np.zeros(D), v["crank"], offset, arm,
+                                                 1.0 if positive else -1.0)
+        if kind == "inverted_slider_crank":      # O2 at the origin, O4 at (ground, 0)
+            xy = {n: p + _xy(v["ground"], 0.0) for n, p in xy.items()}
+    ok &= closes
+    for p in xy.values():
+        ok &= np.isfinite(p).all(axis=1)
+    return xy, axes, ok
 
 
 def fivebar(ground: float, crank1: float, coupler1: float, coupler2: float, crank2: float,

@@ -1,9 +1,8 @@
 """The kinematics of many designs at many inputs: arrays of shape (D, S).
 
-Two ways to fill them: the engine (:func:`kinelab.analyze`, one call per design, vectorised
-over its samples) for any family, and closed forms vectorised over designs *and* samples
-for the catalogue four-bar (:class:`FourbarBatch`), where a million designs are one numpy
-computation in chunks.
+Two ways to fill them: the kernel, over a chunk's designs and samples in one call
+(:func:`kinelab.kinematics.analyze_designs`), for any family, and closed forms vectorised
+over designs and samples for the catalogue four-bar (:class:`FourbarBatch`).
 """
 from __future__ import annotations
 
@@ -12,14 +11,14 @@ import functools
 import numpy as np
 
 from kinelab.errors import ModelError, expected_one_of
-from kinelab.kinematics import SINGULAR_TOL
+from kinelab.kinematics import SINGULAR_TOL, analyze, analyze_designs
 # the engine's own tolerances for an RRR dyad at its straight position: the closed form
 # assembles exactly where kinelab.analyze does (change-point four-bars included)
 from kinelab.kinematics._codes import DISC_TOL, FOLDED
 from kinelab.solvers import wrap_angle
 from kinelab.synthesis import coupler_curves
 
-__all__ = ["Batch", "EngineBatch", "FourbarBatch"]
+__all__ = ["Batch", "DesignsBatch", "FourbarBatch"]
 
 
 def _pick(table: dict[str, np.ndarray], name: str, what: str, nan_shape=None) -> np.ndarray:
@@ -87,30 +86,72 @@ class Batch:
         return self.q.shape
 
 
-class EngineBatch(Batch):
-    """Arrays gathered from one :func:`kinelab.analyze` per design (NaN where a design could
-    not be built or does not assemble)."""
+class DesignsBatch(Batch):
+    """A chunk of designs at their samples, from one call of the kernel for all of them
+    (:func:`kinelab.kinematics.analyze_designs`), and one :func:`kinelab.analyze` for each
+    design whose sketch the family's plan cannot take; NaN where a design could not be
+    built or does not assemble.  Each quantity is gathered when first asked."""
 
-    def __init__(self, q, assembled, angles, K, points, slides, singular, *, any_name=False):
-        self.q, self.assembled, self.singular = q, assembled, singular
-        self._angles, self._K, self._points, self._slides = angles, K, points, slides
-        # no design of the chunk could be built, so its names are unknown: all NaN
-        self._nan = (q.shape, q.shape + (2,)) if any_name else (None, None)
+    def __init__(self, designs, q: np.ndarray):
+        self.q = q
+        D, S = q.shape
+        self.template = designs.template
+        good = np.array([not p for p in designs.problems], bool) & (self.template is not None)
+        self._rows = np.flatnonzero(good)
+        self._sol = None
+        self._alone: dict[int, object] = {}
+        self.assembled = np.zeros((D, S), bool)
+        self.singular = np.zeros((D, S), bool)
+        if len(self._rows):
+            axes = {n: a[good] for n, a in designs.axes.items()}
+            sol = analyze_designs(self.template, designs.points[good], q[good], axes=axes or None)
+            self._sol = sol
+            self.assembled[good] = sol.by_design(sol.assembled)
+            self.singular[good] = sol.by_design(sol.singular)
+            for d in self._rows[~sol.valid]:
+                mech = designs.mechanism(d)
+                if mech is not None:
+                    alone = analyze(mech, q[d], unreachable="mask", at_singular="flag")
+                    self._alone[d] = alone
+                    self.assembled[d], self.singular[d] = alone.assembled, alone.singular
+        self._cache: dict[tuple[str, str], np.ndarray] = {}
+
+    def _gather(self, kind: str, name: str, names, what: str) -> np.ndarray:
+        key = (kind, name)
+        if key not in self._cache:
+            tail = (2,) if kind == "position" else ()
+            if self.template is not None and name not in names:
+                raise ModelError(f"{what}: {expected_one_of(name, names)}")
+            out = np.full(self.q.shape + tail, np.nan)
+            if self._sol is not None:
+                out[self._rows] = getattr(self._sol, kind)(name)
+            for d, alone in self._alone.items():
+                out[d] = getattr(alone, kind)(name)
+            self._cache[key] = wrap_angle(out) if kind == "angle" else out
+        return self._cache[key]
+
+    def _names(self, kind: str) -> tuple[str, ...]:
+        t = self.template
+        if t is None:
+            return ()
+        slides = tuple(j.name for j in t.joints if j.type == "P")
+        return {"angle": t.link_names, "K": t.link_names + slides, "position": t.point_names,
+                "slide": slides}[kind]
 
     def angle(self, link):
-        return _pick(self._angles, link, "link", self._nan[0])
+        return self._gather("angle", link, self._names("angle"), "link")
 
     def K(self, name):
-        return _pick(self._K, name, "link or prismatic joint", self._nan[0])
+        return self._gather("K", name, self._names("K"), "link or prismatic joint")
 
     def position(self, point):
-        return _pick(self._points, point, "point", self._nan[1])
+        return self._gather("position", point, self._names("position"), "point")
 
     def slide(self, joint):
-        return _pick(self._slides, joint, "prismatic joint", self._nan[0])
+        return self._gather("slide", joint, self._names("slide"), "prismatic joint")
 
     def value(self, name):
-        return self._angles[name] if name in self._angles else self.slide(name)
+        return self.angle(name) if name in self._names("angle") else self.slide(name)
 
 
 class FourbarBatch(Batch):

@@ -18,10 +18,10 @@ import numpy as np
 
 from kinelab import mechanisms
 from kinelab.errors import KinelabError, ModelError, check_choice, describe, expected_one_of
-from kinelab.kinematics import SketchNotAssembled, analyze, plan
+from kinelab.kinematics import SketchNotAssembled, analyze, analyze_designs, plan
 from kinelab.model import Mechanism, Point
 from kinelab.solvers import wrap_angle
-from kinelab.sweep._batch import Batch, EngineBatch, FourbarBatch
+from kinelab.sweep._batch import Batch, DesignsBatch, FourbarBatch
 
 __all__ = ["Family", "Designs", "family", "CATALOGUE", "DesignOffModel"]
 
@@ -130,7 +130,7 @@ class Family:
         designs that cannot be built."""
         if self.closed_form:
             return _FourbarDesigns(self, columns, problems)
-        return _EngineDesigns(self, columns, problems)
+        return _SketchedDesigns(self, columns, problems)
 
 
 class Designs:
@@ -227,75 +227,125 @@ def _check_design(mech: Mechanism, row: Mapping[str, float], base: Mechanism) ->
         raise DesignOffModel(exc.miss, f"({design}{', ...' if len(moved) > 4 else ''})") from None
 
 
-class _EngineDesigns(Designs):
-    """One engine call per design (the engine is vectorised over the design's samples)."""
+class _SketchedDesigns(Designs):
+    """Designs analysed together: their sketches, the places of the family's points, in
+    one array, and each chunk's samples in one call of the kernel
+    (:func:`kinelab.kinematics.analyze_designs`).
+
+    The sketches are made in array operations for the catalogue's kinds of
+    :data:`kinelab.mechanisms.SKETCHED` and for model files' families whose points no
+    declaration ties (a link's local place or sides, a joint's offset); otherwise each
+    design's mechanism is built (and planned, to check what the file declares) and gives its
+    sketch.  A design whose sketch the family's plan cannot take (a dyad drawn straight, two
+    points at one place) is analysed on its own, with a plan of its own.
+    """
 
     def __init__(self, fam: Family, columns, problems):
-        self.problems = problems
-        self.mechanisms: list[Mechanism | None] = []
-        for d, problem in enumerate(problems):
-            mech = None
-            if not problem:
-                row = {p: float(v[d]) for p, v in columns.items()}
-                try:
-                    mech = fam.build(row)
-                    if fam.base is not None:
-                        _check_design(mech, row, fam.base)
-                    else:
-                        plan(mech)          # cached on the mechanism for the analyses
-                except DesignOffModel:      # the column, not the row: vary another point
-                    raise
-                except KinelabError as exc:     # this design alone cannot be analysed
-                    problems[d] = str(exc).splitlines()[0]
-                    mech = None
-            if mech is not None and len(mech.inputs) != 1:
-                # the family's, not the design's: every sample of a sweep is one input's value
-                raise ModelError(f"family: the mechanisms of {fam.name!r} have {len(mech.inputs)} "
-                                 "inputs, but a sweep turns one input through its samples; sweep "
-                                 "a family with one input (a model file of it with one input, "
-                                 "say)")
-            self.mechanisms.append(mech)
-        # the names of the kinematics, for a chunk where no design could be built too
-        self.template = fam.base or next((m for m in self.mechanisms if m is not None), None)
+        self.fam, self.problems = fam, problems
+        D = len(problems)
+        self.rows = {p: np.asarray(v, float) for p, v in columns.items()}
+        self.template: Mechanism | None = None
+        if fam.make is not None and fam.name in mechanisms.SKETCHED:
+            xy, axes = self._catalogue(D)
+        elif fam.base is not None and not _declares_places(fam.base):
+            xy, axes = self._model(D)
+        else:
+            xy, axes = self._one_by_one(D)
+        names = [] if self.template is None else self.template.point_names
+        self.points = np.stack([xy[n] for n in names], 1) if names else np.zeros((D, 0, 2))
+        self.axes = axes
+        if self.template is not None and len(self.template.inputs) != 1:
+            # the family's, not the design's: every sample of a sweep is one input's value
+            raise ModelError(f"family: the mechanisms of {fam.name!r} have "
+                             f"{len(self.template.inputs)} inputs, but a sweep turns one input "
+                             "through its samples; sweep a family with one input (a model "
+                             "file of it with one input, say)")
 
-    def _take(self, rows):
-        self.mechanisms = [self.mechanisms[r] for r in rows]
+    def _row(self, d: int) -> dict[str, float]:
+        return {p: float(v[d]) for p, v in self.rows.items()}
 
-    def batch(self, q):
-        D, S = q.shape
-        tables: dict[str, dict[str, np.ndarray]] = {k: {} for k in ("angle", "K", "point", "slide")}
+    def _build(self, d: int) -> Mechanism | None:
+        """Design ``d``'s mechanism, planned; None (and its problem said) when it cannot be
+        analysed."""
+        row = self._row(d)
+        try:
+            mech = self.fam.build(row)
+            if self.fam.base is not None:
+                _check_design(mech, row, self.fam.base)
+            else:
+                plan(mech)          # cached on the mechanism for the analyses
+            return mech
+        except DesignOffModel:      # the column, not the row: vary another point
+            raise
+        except KinelabError as exc:     # this design alone cannot be analysed
+            self.problems[d] = str(exc).splitlines()[0]
+            return None
 
-        def column(kind, name, shape=(D, S)):
-            if name not in tables[kind]:
-                tables[kind][name] = np.full(shape, np.nan)
-            return tables[kind][name]
+    def _good(self) -> np.ndarray:
+        return np.array([not p for p in self.problems], bool)
 
-        assembled = np.zeros((D, S), bool)
-        singular = np.zeros((D, S), bool)
-        for d, mech in enumerate(self.mechanisms):
-            if mech is None:
-                continue
-            sol = analyze(mech, q[d], unreachable="mask", at_singular="flag")
-            assembled[d], singular[d] = sol.assembled, sol.singular
-            for link in mech.link_names:
-                column("angle", link)[d] = wrap_angle(sol.angle(link))
-                column("K", link)[d] = sol.K(link)
-            for p in mech.point_names:
-                column("point", p, (D, S, 2))[d] = sol.position(p)
+    def _catalogue(self, D):
+        fam = self.fam
+        values = {p: self.rows[p] if p in self.rows else np.full(D, fam.defaults.get(p, math.nan))
+                  for p in fam.parameters}
+        point = fam.make is mechanisms.fourbar and fam.has_point(self.rows)
+        if fam.make is mechanisms.fourbar:
+            for c in _POINT_COLUMNS:       # no coupler point, or one where a row leaves it out
+                values[c] = np.nan_to_num(values[c]) if point else None
+            values = {k: a for k, a in values.items() if a is not None}
+        xy, axes, ok = mechanisms.sketches(fam.name, values, fam.options)
+        ok &= self._good()
+        for d in np.flatnonzero(~ok & self._good()):     # the constructor says why
+            mech = self._build(d)
+            if mech is not None:
+                ok[d] = True
+                for p in mech.points:
+                    xy[p.name][d] = p.xy[:2]
+                for j in mech.joints:
+                    if j.type == "P":
+                        axes[j.name][d] = j.axis[:2]
+        first = np.flatnonzero(ok)
+        if len(first):
+            self.template = self._build(first[0])
+        return xy, axes
+
+    def _model(self, D):
+        base = self.fam.build({})
+        self.template = base
+        xy = {p.name: np.stack([self.rows.get(f"{p.name}.{c}", np.full(D, getattr(p, c)))
+                                for c in "xy"], -1) for p in base.points}
+        finite = np.all([np.all(np.abs(a) <= 1e300, axis=1) for a in xy.values()], axis=0)
+        for d in np.flatnonzero(~finite & self._good()):
+            self._build(d)          # says why
+        return xy, {}
+
+    def _one_by_one(self, D):
+        built = {d: self._build(d) for d in np.flatnonzero(self._good())}
+        built = {d: m for d, m in built.items() if m is not None}
+        self.template = self.fam.base or next(iter(built.values()), None)
+        if self.template is None:
+            return {}, {}
+        xy = {n: np.full((D, 2), np.nan) for n in self.template.point_names}
+        axes = {j.name: np.full((D, 2), np.nan) for j in self.template.joints if j.type == "P"}
+        for d, mech in built.items():
+            for p in mech.points:
+                xy[p.name][d] = p.xy[:2]
             for j in mech.joints:
                 if j.type == "P":
-                    column("slide", j.name)[d] = sol.slide(j.name)
-                    column("K", j.name)[d] = sol.K(j.name)
-        if self.template is not None:       # every name, NaN where no design gave a value
-            for link in self.template.link_names:
-                column("angle", link), column("K", link)
-            for p in self.template.point_names:
-                column("point", p, (D, S, 2))
-            for j in self.template.joints:
-                if j.type == "P":
-                    column("slide", j.name), column("K", j.name)
-        return EngineBatch(q, assembled, tables["angle"], tables["K"], tables["point"],
-                           tables["slide"], singular, any_name=self.template is None)
+                    axes[j.name][d] = j.axis[:2]
+        return xy, axes
+
+    def _take(self, rows):
+        self.rows = {p: v[rows] for p, v in self.rows.items()}
+        self.points = self.points[rows]
+        self.axes = {n: a[rows] for n, a in self.axes.items()}
+
+    def batch(self, q):
+        return DesignsBatch(self, q)
+
+    def mechanism(self, d: int) -> Mechanism | None:
+        """Design ``d``'s own mechanism (None if it cannot be built)."""
+        return None if self.problems[d] else self._build(d)
 
     def peak_torque(self, q: np.ndarray, speed: float) -> np.ndarray:
         """Largest |input torque| over ``q`` (D, S) at constant input ``speed`` (rad/s), (D,);
@@ -303,7 +353,8 @@ class _EngineDesigns(Designs):
         from kinelab.dynamics import inverse
 
         out = np.full(len(q), np.nan)
-        for d, mech in enumerate(self.mechanisms):
+        for d in range(len(q)):
+            mech = self.mechanism(d)
             if mech is None:
                 continue
             sol = analyze(mech, q[d], unreachable="mask", at_singular="flag")
@@ -315,6 +366,13 @@ class _EngineDesigns(Designs):
                         f"peak_torque: the input torque overflows at {speed:g} rad/s; lower the "
                         "speed or the masses")
         return out
+
+
+def _declares_places(m: Mechanism) -> bool:
+    """Whether a model ties some of its points to others (a link's local place or sides, a
+    joint's offset): its designs must be built one by one, to check they keep them."""
+    return (any(link.local or getattr(link, "sides", None) for link in m.links)
+            or any(j.offset is not None for j in m.joints))
 
 
 def _catalogue_family(kind: str, options: Mapping[str, Any], defaults: Mapping[str, Any]) -> Family:
