@@ -217,6 +217,29 @@ def _op_two_points(J, op, ii, ff, q, M, tally):
                         - 2.0 * (dx * kmy - dy * kmx) * (dx * knx + dy * kny) / (d2 * d2))
 
 
+def rrr_closure(lb, lc, D2):
+    """The closure of RRR dyads with arms ``lb``, ``lc`` whose end joints are ``sqrt(D2)``
+    apart (arrays that broadcast), as the kernel's ``_rrr`` decides it: whether the ends
+    coincide to rounding (``folded``: see :func:`arms_fold`), the middle joint's place along
+    (``alpha``) and across (``beta2``, its square) the line of the ends in units of that
+    distance, whether it is on that line to rounding (``low``), and whether the dyad fails to
+    close (``fail``, beyond rounding; never where folded)."""
+    folded = D2 <= k.FOLDED * lb * lb
+    with np.errstate(divide="ignore", invalid="ignore"):
+        inv_D2 = 1.0 / D2
+        alpha = 0.5 * (lb * lb - lc * lc + D2) * inv_D2
+        beta2 = lb * lb * inv_D2 - alpha * alpha
+    low = beta2 < k.DISC_ZERO * lb * lb * inv_D2
+    fail = low & (beta2 < -k.DISC_TOL * lb * lb * inv_D2) & ~folded
+    return folded, alpha, beta2, low, fail
+
+
+def arms_fold(lb, lc):
+    """Whether an RRR dyad whose end joints coincide closes: only with equal arms (to
+    rounding), folded onto each other."""
+    return np.abs(lb - lc) <= _FOLD_ARMS * lb
+
+
 def _op_rrr(J, op, ii, ff, q, M, tally):
     """Circle-circle dyad (the kernel's ``_rrr`` and ``_rrr_folded``)."""
     b, c, X, Y, Z = ii[1], ii[2], ii[3], ii[4], ii[5]
@@ -224,12 +247,7 @@ def _op_rrr(J, op, ii, ff, q, M, tally):
     dx = J[Z, 0] - J[X, 0]
     dy = J[Z + 1, 0] - J[X + 1, 0]
     D2 = dx * dx + dy * dy
-    folded = D2 <= k.FOLDED * lb * lb
-    inv_D2 = 1.0 / D2
-    alpha = 0.5 * (lb * lb - lc * lc + D2) * inv_D2
-    beta2 = lb * lb * inv_D2 - alpha * alpha
-    low = beta2 < k.DISC_ZERO * lb * lb * inv_D2
-    fail = low & (beta2 < -k.DISC_TOL * lb * lb * inv_D2) & ~folded
+    folded, alpha, beta2, low, fail = rrr_closure(lb, lc, D2)
     gap = np.zeros_like(D2)
     if fail.any():
         D = np.sqrt(D2[fail])
@@ -260,7 +278,7 @@ def _op_rrr(J, op, ii, ff, q, M, tally):
     d = -cr
     ms = np.abs(cr) / (lb * lc)
     if folded.any():
-        if abs(lb - lc) > _FOLD_ARMS * lb:       # unequal arms cannot fold: no assembly
+        if not arms_fold(lb, lc):               # unequal arms cannot fold: no assembly
             gap[folded] = abs(lb - lc) - np.sqrt(D2[folded])
             fail |= folded
         else:

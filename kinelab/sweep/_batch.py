@@ -12,9 +12,9 @@ import numpy as np
 
 from kinelab.errors import ModelError, expected_one_of
 from kinelab.kinematics import SINGULAR_TOL, analyze, analyze_designs
-# the engine's own tolerances for an RRR dyad at its straight position: the closed form
-# assembles exactly where kinelab.analyze does (change-point four-bars included)
-from kinelab.kinematics._codes import DISC_TOL, FOLDED
+# the engine's own closure test for an RRR dyad: the closed form assembles exactly where
+# kinelab.analyze does (change-point four-bars included)
+from kinelab.kinematics._interpreter import arms_fold, rrr_closure
 from kinelab.solvers import wrap_angle
 from kinelab.synthesis import coupler_curves
 
@@ -189,17 +189,9 @@ class FourbarBatch(Batch):
 
     @functools.cached_property
     def assembled(self):
-        # the engine's test (kinelab.kinematics' RRR dyad): the across distance of B over
-        # |O4 A|, squared, may fall below zero by rounding (DISC_TOL) at a straight position
-        lb2, lc2 = self.r3 ** 2, self.r4 ** 2
-        D2 = self._pivot_distance2
-        with np.errstate(divide="ignore", invalid="ignore"):
-            alpha = 0.5 * (lb2 - lc2 + D2) / D2
-            beta2 = lb2 / D2 - alpha * alpha
-            ok = beta2 >= -DISC_TOL * lb2 / D2
-        folded = D2 <= FOLDED * lb2        # A on O4: it closes when coupler = rocker
-        ok = np.where(folded, np.abs(self.r3 - self.r4) <= 1e-12 * self.r3, ok)
-        return ok
+        # the engine's test for an RRR dyad (coupler, rocker) across |O4 A|
+        folded, _, _, _, fail = rrr_closure(self.r3, self.r4, self._pivot_distance2)
+        return ~fail & (~folded | arms_fold(self.r3, self.r4))
 
     @functools.cached_property
     def singular(self):
