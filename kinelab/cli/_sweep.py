@@ -122,6 +122,15 @@ def _labelled(df, degrees: bool, output_is_slide: bool):
     return out.rename(columns=names)
 
 
+def _with_designs(designs, metrics):
+    """The designs' own columns (m), then their metrics: each row traced to its design."""
+    import pandas
+
+    d = pandas.DataFrame(designs)
+    d = d.rename(columns={c: f"{c}[m]" for c in d.columns}).set_index(metrics.index)
+    return pandas.concat([d, metrics], axis=1)
+
+
 def _write(df, path: Path) -> None:
     if path.suffix.lower() == ".csv":      # else .parquet (checked by _check_out)
         atomic_write(path, lambda f: df.to_csv(f, index=False))
@@ -205,7 +214,7 @@ def sweep_command(family_spec, table, sobol, random_n, grid, ranges, seed, sched
                              f"kinelab check {shown_path(family_spec)}",
                              source=family_spec) from None
     seconds = time.perf_counter() - start
-    table = _labelled(df, degrees, fam.output_is_slide)
+    table = _with_designs(designs, _labelled(df, degrees, fam.output_is_slide))
     output(path, lambda p: _write(table, p))
     _report_problems(df)
     assembles = f", {int(df['assembles'].sum()):,} assemble over the turn" if "assembles" in df else ""

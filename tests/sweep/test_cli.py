@@ -22,9 +22,12 @@ def test_sweep_writes_the_library_table_with_units(tmp_path):
     assert r.exit_code == 0, r.output
     assert "64 designs in" in r.output
     table = pd.read_parquet(out)
-    assert list(table.columns) == ["assembles", "grashof", "transmission_min[deg]",
+    assert list(table.columns) == ["ground[m]", "crank[m]", "coupler[m]", "rocker[m]",
+                                   "assembles", "grashof", "transmission_min[deg]",
                                    "transmission_max[deg]", "time_ratio", "swing[deg]"]
     designs = kl.sweep.sobol(64, seed=0, ground=(1, 4), crank=(0.3, 1), coupler=(1, 4), rocker=(1, 4))
+    # each row leads back to its design
+    assert np.array_equal(table[[f"{c}[m]" for c in designs]].to_numpy(), designs.to_numpy())
     df = kl.sweep.run("fourbar", designs)
     assert np.allclose(table["transmission_min[deg]"], np.degrees(df["transmission_min"]), equal_nan=True)
     assert table["grashof"].tolist() == df["grashof"].tolist()
@@ -37,7 +40,8 @@ def test_sweep_of_a_model_file_with_masses(tmp_path):
                "--output", "slide", "-o", tmp_path / "e.csv")
     assert r.exit_code == 0, r.output
     table = pd.read_csv(tmp_path / "e.csv")
-    assert list(table.columns) == ["swing[m]", "peak_torque[N m]"]
+    assert list(table.columns) == ["A.y[m]", "A.x[m]", "swing[m]", "peak_torque[N m]"]
+    assert table["A.y[m]"].tolist() == [0.05, 0.06]
     assert table["swing[m]"].tolist() == pytest.approx([0.1, 0.12], abs=1e-10)
 
 
