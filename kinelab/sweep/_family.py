@@ -85,7 +85,7 @@ class Family:
 
     @property
     def closed_form(self) -> bool:
-        """Designs and samples in one vectorised closed form (else one engine call per design)."""
+        """Designs and samples in the four-bar's closed form (else the kernel, a chunk per call)."""
         return self.make is mechanisms.fourbar and not self.has_masses
 
     def is_slide(self, name: str | None) -> bool:
