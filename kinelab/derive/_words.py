@@ -197,7 +197,7 @@ WORDS: dict[str, dict[str, str]] = {
         "singular_intro": "$\\det J = 0$, e as velocidades ficam indefinidas, quando",
         "sing_slide": "{factor}: o ponto {point} chega a {origin}, a origem do deslocamento {joint}{pivot};",
         "sing_pivot": " (o pivô de {link})",
-        "sing_in_line": "{factor}: {a} e {b} ficam alinhados (ponto morto);",
+        "sing_in_line": "{factor}: {a} e {b} ficam alinhados (ponto morto ou posição de travamento);",
         "sing_perpendicular": "{factor}: {a} e {b} ficam perpendiculares;",
         "sing_angle": "{factor}: {link} fica a {values} do eixo $x$;",
         "sing_other": "{factor}.",
