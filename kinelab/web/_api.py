@@ -24,7 +24,7 @@ from kinelab.io import ModelFile
 from kinelab.io._modelfile import errors_from
 from kinelab.io._results import json_ready
 from kinelab.kinematics import KinematicSolution, Tracker
-from kinelab.kinematics._columns import INPUT_SI_UNITS
+from kinelab.kinematics._columns import INPUT_SI_UNITS, column_name
 from kinelab.model import is_real
 from kinelab.web import _limits
 
@@ -207,19 +207,30 @@ def study(body: dict) -> dict:
     ready = prepare(body, "columns")
     mf, sol = ready.mf, ready.sol
     m, u = mf.mechanism, mf.units
-    columns = sol.columns(units=u)
     wanted = body.get("columns")
-    points = {f"{p}.{c}[{u.length}]" for p in m.point_names for c in "xy"}
-    inputs = [n for n in columns if n.endswith(("q[" + u.angle + "]", "q[" + u.length + "]"))
-              and n.count(".") == 1][:len(m.inputs)]
-    if wanted is not None:
-        if not isinstance(wanted, list) or not all(isinstance(w, str) for w in wanted):
-            raise ModelError(f"columns: expected a list of column names, got {describe(wanted)}")
-        columns = {n: v for n, v in columns.items() if n in points or n in wanted or n in inputs}
-    out_columns = {n: _finite(v) for n, v in columns.items()
-                   if n not in ("singular", "assembled")}
+    if wanted is not None and (not isinstance(wanted, list)
+                               or not all(isinstance(w, str) for w in wanted)):
+        raise ModelError(f"columns: expected a list of column names, got {describe(wanted)}")
     from kinelab.io._summary import _default_pairs, _transmission_values
     pairs = list(mf.outputs.transmission) or _default_pairs(m)
+    # the inputs and the points, as sol.columns names them, without the other columns
+    kinds = kinematics.plan(m).input_kinds
+    inputs = [column_name(n, "q", u.unit(INPUT_SI_UNITS[k])) for n, k in zip(m.input_names, kinds)]
+    q = np.reshape(sol.q, (sol.N, -1))
+    columns = {n: u.convert(q[:, k], INPUT_SI_UNITS[kind])
+               for k, (n, kind) in enumerate(zip(inputs, kinds))}
+    rows = [sol.point_item[p] for p in m.point_names]
+    xy = u.convert(sol.item_jets([i for r in rows for i in (r, r + 1)])[:, :, 0], "m")
+    for k, p in enumerate(m.point_names):
+        columns[column_name(p, "x", u.length)] = xy[:, 2 * k]
+        columns[column_name(p, "y", u.length)] = xy[:, 2 * k + 1]
+    made = {f"{a}-{b}.transmission[{u.angle}]" for a, b in pairs}
+    if wanted is None or not set(wanted) <= set(columns) | made:
+        every = sol.columns(units=u)
+        columns = every if wanted is None else {
+            n: v for n, v in every.items() if n in columns or n in wanted}
+    out_columns = {n: _finite(v) for n, v in columns.items()
+                   if n not in ("singular", "assembled")}
     for a, b in pairs:
         mu = u.convert(_transmission_values(sol, (a, b)), "rad")
         out_columns[f"{a}-{b}.transmission[{u.angle}]"] = _finite(mu)
