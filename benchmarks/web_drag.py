@@ -113,7 +113,8 @@ def drag(page, point, targets, route):
     release; each event's wait for a frame that shows it, and the server's time of each
     request to ``route`` meanwhile (ms)."""
     page.evaluate(f"() => {{ window.__bench.events = []; window.__bench.frames = []; "
-                  f"window.__bench.point = '{point}'; performance.clearResourceTimings(); }}")
+                  f"window.__bench.point = '{point}'; performance.clearResourceTimings(); "
+                  "if (window.kinelab.answers) window.kinelab.answers.length = 0; }")
     x, y = centre(page, point)
     page.mouse.move(x, y)
     page.mouse.down()
@@ -128,12 +129,13 @@ def drag(page, point, targets, route):
     page.wait_for_timeout(300)
     page.mouse.up()
     page.wait_for_function("() => !window.kinelab.busy && !window.kinelab.pending", timeout=120_000)
-    bench = page.evaluate("() => ({events: window.__bench.events, frames: window.__bench.frames})")
+    bench = page.evaluate("() => ({events: window.__bench.events, frames: window.__bench.frames, "
+                          "answers: window.kinelab.answers || []})")
     server = page.evaluate(f"""() => performance.getEntriesByType("resource")
         .filter((e) => e.name.endsWith("{route}") && e.responseStart > 0)
         .map((e) => e.responseStart - e.requestStart)""")
     page.evaluate("() => { window.__bench.point = null; }")
-    return waits(bench["events"], bench["frames"]), server
+    return waits(bench["events"], bench["frames"]), server, bench["answers"]
 
 
 def waits(events, frames):
@@ -166,13 +168,18 @@ def p95(values):
     return statistics.quantiles(values, n=20)[-1] if len(values) > 1 else values[0]
 
 
-def report(label, result, server):
+def report(label, result, server, answers):
     (times, moves) = result
     line = (f"{label}: median {statistics.median(times):.1f} ms, p95 {p95(times):.1f} ms; "
             f"server {statistics.median(server):.1f} ms per request (median, p95 "
             f"{p95(server):.1f} ms; {len(server)} requests for {moves} moves, {len(times)} "
             "shown)")
     print(line, flush=True)
+    if answers and label.startswith("move"):
+        # the move tool draws the sweep's interpolation at once; the server's solve of a
+        # move replaces it when it comes (the page's own clock, from the move's handler)
+        print(f"  {label}, the server's solve drawn: median {statistics.median(answers):.1f} ms, "
+              f"p95 {p95(answers):.1f} ms after the move ({len(answers)} answers drawn)", flush=True)
 
 
 def main(moves: int = 240) -> None:
