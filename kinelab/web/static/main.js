@@ -186,6 +186,7 @@ function redraw() {
 const fmt = (v) => v === null ? "–" : Number(v.toPrecision(6)).toString();
 
 function setIndex(i, {exact = false} = {}) {
+  if (!state.study) return;                 // nothing swept yet (a drawing on its way)
   state.index = Math.max(0, Math.min(state.study.samples - 1, i));
   if (!exact) { state.config = null; state.dragQ = null; }
   state.predicted = null;
@@ -358,6 +359,7 @@ const canvas = new Canvas($("canvas"), {
     canvas.dragging = null;
     const next = draw.apply(t, state.model, name, xy);
     if (next) setModel(next, state.source, {keepDraft: true, refit: !state.study});
+    else redraw();                 // a link's first point, shown waiting for its second
   },
   hover(xy) {                      // a link's first point waits for its second
     if (tool() !== "link" || !draw.pending()) return;
