@@ -167,11 +167,12 @@ def prepare(body: dict, answer: str = "none") -> _Prepared:
     ready = _PREPARED.get(key)
     if ready is not None and answer == "none":
         return ready
+    if ready is not None:         # read and checked when it was kept: the same model, samples
+        _limits.check_sweep(ready.mf, body.get("samples"), answer, "the answer")
+        return ready
     mf = read_model(body)
     samples = samples_of(body, mf)
     _limits.check_sweep(mf, samples, answer, "the answer" if answer != "none" else "the sweep")
-    if ready is not None:
-        return ready
     sol = _sweep(mf, samples)
     with errors_from(mf):
         tracker = Tracker(mf.mechanism, at_singular="flag")
