@@ -201,7 +201,8 @@ def study(body: dict) -> dict:
 
     ``model`` is the model as assembled (its JSON form); ``columns`` every column of
     ``kinelab analyze`` (``body["columns"]``, a list, narrows them; the points' x and y are
-    always there), and the transmission angles; ``singular`` and ``change_points`` the
+    always there, or those of the points ``body["points"]`` lists), and the transmission
+    angles; ``singular`` and ``change_points`` the
     sample indices where they are; ``drawing`` the links, joints and points to draw;
     ``guides`` each prismatic joint's slide direction at every sample (see :func:`guides`).
     """
@@ -212,6 +213,9 @@ def study(body: dict) -> dict:
     if wanted is not None and (not isinstance(wanted, list)
                                or not all(isinstance(w, str) for w in wanted)):
         raise ModelError(f"columns: expected a list of column names, got {describe(wanted)}")
+    shown = body.get("points", list(m.point_names))
+    if not (isinstance(shown, list) and all(isinstance(p, str) and p in m.point_names for p in shown)):
+        raise ModelError(f"points: expected a list of some of {quoted(m.point_names)}, got {describe(shown)}")
     from kinelab.io._summary import _default_pairs, _transmission_values
     pairs = list(mf.outputs.transmission) or _default_pairs(m)
     # the inputs and the points, as sol.columns names them, without the other columns
@@ -220,16 +224,17 @@ def study(body: dict) -> dict:
     q = np.reshape(sol.q, (sol.N, -1))
     columns = {n: u.convert(q[:, k], INPUT_SI_UNITS[kind])
                for k, (n, kind) in enumerate(zip(inputs, kinds))}
-    rows = [sol.point_item[p] for p in m.point_names]
+    shown = [p for p in m.point_names if p in shown]
+    rows = [sol.point_item[p] for p in shown]
     xy = u.convert(sol.item_jets([i for r in rows for i in (r, r + 1)])[:, :, 0], "m")
-    for k, p in enumerate(m.point_names):
+    for k, p in enumerate(shown):
         columns[column_name(p, "x", u.length)] = xy[:, 2 * k]
         columns[column_name(p, "y", u.length)] = xy[:, 2 * k + 1]
     made = {f"{a}-{b}.transmission[{u.angle}]" for a, b in pairs}
     if wanted is None or not set(wanted) <= set(columns) | made:
         every = sol.columns(units=u)
-        columns = every if wanted is None else {
-            n: v for n, v in every.items() if n in columns or n in wanted}
+        columns = {n: v for n, v in every.items() if n in columns or (
+            n in wanted if wanted is not None else not _point_column(n, m, u))}
     out_columns = {n: _finite(v) for n, v in columns.items()
                    if n not in ("singular", "assembled")}
     for a, b in pairs:
@@ -255,6 +260,12 @@ def study(body: dict) -> dict:
             k: u.convert(v, "m") for k, v in mf.assembly.moved.items()},
         "switched": [] if mf.assembly is None else list(mf.assembly.switched),
     }
+
+
+def _point_column(name: str, m, u) -> bool:
+    """Whether a column is a point's x or y (``P.x[mm]``)."""
+    point, _, rest = name.rpartition(".")
+    return point in m.point_names and rest in (f"x[{u.length}]", f"y[{u.length}]")
 
 
 def _drawing(mf: ModelFile) -> dict:

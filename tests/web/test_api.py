@@ -234,6 +234,27 @@ def test_the_guides_turn_with_their_links(client, name):
         kl.analyze(mf.mechanism, np.pi / 2).slide_axes("slot").tolist(), abs=1e-15)
 
 
+@pytest.mark.parametrize("name", ["crank_rocker", "stephenson6", "whitworth"])
+def test_a_narrowed_study_is_the_full_ones_columns_asked_for(client, name):
+    """An edit drag asks for the columns it redraws (and the points it traces): the same
+    numbers as the full study's, in its order, with everything else of the answer."""
+    _, model = model_of(name)
+    full = client.post("/api/study", json={"model": model}).json()
+    names = list(full["columns"])
+    angle = next(n for n in names if ".angle[" in n and not n.startswith("ground"))
+    for columns, points in ((full["inputs"], None), ([angle], ["A"]), ([], [])):
+        body = {"model": model, "columns": columns, **({"points": points} if points is not None else {})}
+        narrow = client.post("/api/study", json=body).json()
+        xy = {f"{p}.{c}[{full['units']['length']}]" for p in (points if points is not None else model["points"])
+              for c in "xy"}
+        assert list(narrow["columns"]) == [n for n in names if n in xy or n in columns or n in full["inputs"]
+                                           or ".transmission[" in n]
+        assert all(narrow["columns"][n] == full["columns"][n] for n in narrow["columns"])
+        assert {k: v for k, v in narrow.items() if k != "columns"} == {k: v for k, v in full.items() if k != "columns"}
+    r = client.post("/api/study", json={"model": model, "points": ["nowhere"]})
+    assert r.status_code == 400 and r.json()["error"].startswith("points: expected a list of some of")
+
+
 def test_flipping_a_dyad_gives_the_other_assembly_mode_with_the_same_lengths(client):
     fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5, coupler_point=(1.5, 1.0))
     model = ModelFile(fb).to_dict()

@@ -25,13 +25,17 @@ function status(text, error = false) {
 // -- the model and its sweep ------------------------------------------------------------
 const lu = () => state.study.units.length;
 const column = (name) => state.study.columns[name];
-const place = (p, i) => [column(`${p}.x[${lu()}]`)[i], column(`${p}.y[${lu()}]`)[i]];
+const place = (p, i) => {             // [null, null] for a point a narrowed sweep leaves out
+  const x = column(`${p}.x[${lu()}]`), y = column(`${p}.y[${lu()}]`);
+  return x && y ? [x[i], y[i]] : [null, null];
+};
 
-// `columns` narrows the sweep's columns to those named (the points' and the inputs' always
-// come): a drag asks only for what it redraws, the rest follows when it ends.
-async function study(model, source, columns = undefined) {
+// `columns` narrows the sweep's columns to those named (the inputs' always come), and
+// `points` to those points' places (all by default): a drag asks only for what it redraws,
+// the rest follows when it ends.
+async function study(model, source, columns = undefined, points = undefined) {
   const t0 = performance.now();
-  const s = await post("/api/study", {model, source, columns});
+  const s = await post("/api/study", {model, source, columns, points});
   state.lastStudyMs = performance.now() - t0;
   return s;
 }
@@ -306,7 +310,8 @@ async function dragTo(name, xy, move = state.moves, at = performance.now()) {
       answered(at);
     } else {
       const model = movePoint(before, name, xy);
-      const s = await study(model, state.source, [$("plot-y").value, $("plot-x").value]);
+      const s = await study(model, state.source, [$("plot-y").value, $("plot-x").value],
+                            state.study.drawing.traced);
       if (state.model !== before) return;
       state.lastDragStudyMs = state.lastStudyMs;
       state.study = s; state.model = s.model; state.config = null; state.dragQ = null; state.draft = false;

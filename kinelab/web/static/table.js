@@ -220,8 +220,8 @@ renderTable.values = (state) => {
   const u = s.units.length;
   const now = {};
   for (const p of Object.keys(s.model.points)) {
-    now[p] = state.config ? state.config.points[p]
-      : [s.columns[`${p}.x[${u}]`][state.index], s.columns[`${p}.y[${u}]`][state.index]];
+    const x = s.columns[`${p}.x[${u}]`], y = s.columns[`${p}.y[${u}]`];   // a narrowed sweep may leave some out
+    now[p] = state.config ? state.config.points[p] : x && y ? [x[state.index], y[state.index]] : [null, null];
   }
   const f = (v) => v === null || v === undefined ? "–" : Number(v.toPrecision(10)).toString();
   for (const tr of document.querySelectorAll("#tab-table tr[data-point]")) {
