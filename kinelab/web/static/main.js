@@ -129,10 +129,11 @@ function newDrawing() {
 const shown = (tab) => $(`tab-${tab}`).classList.contains("active");
 
 async function flip(step) {
+  const ticket = ++state.seq;
   try {
     const r = await post("/api/flip", {model: state.model, source: state.source, step});
-    await setModel(r.model, state.source);
-  } catch (err) { status(err.message, true); }
+    if (ticket === state.seq) await setModel(r.model, state.source);
+  } catch (err) { if (ticket === state.seq) status(err.message, true); }
 }
 
 // -- drawing -------------------------------------------------------------------------------
