@@ -17,6 +17,9 @@ later one) put it; each event's time is the wait until the first such frame, so 
 that a newer one overtakes counts until the newer one shows.  Beside each line: the
 server's time per request (the browser's resource timing, from sending the request to the
 first byte of the answer), and the load average of the machine (the numbers move with it).
+The move tool draws each move at once from the sweep (the page's follow.js) and the
+server's solve replaces it when it comes: under each move line, the time from the move to
+the server's solve drawn, by the page's own clock (``window.kinelab.answers``).
 
 Needs Chromium (Debian's, /usr/bin/chromium, or KINELAB_CHROMIUM) and Playwright.
 """

@@ -202,9 +202,9 @@ def study(body: dict) -> dict:
     ``model`` is the model as assembled (its JSON form); ``columns`` every column of
     ``kinelab analyze`` (``body["columns"]``, a list, narrows them; the points' x and y are
     always there, or those of the points ``body["points"]`` lists), and the transmission
-    angles; ``singular`` and ``change_points`` the
-    sample indices where they are; ``drawing`` the links, joints and points to draw;
-    ``guides`` each prismatic joint's slide direction at every sample (see :func:`guides`).
+    angles; ``singular`` and ``change_points`` the sample indices where they are;
+    ``drawing`` the links, joints and points to draw; ``guides`` each prismatic joint's
+    slide direction at every sample (see :func:`guides`).
     """
     ready = prepare(body, "columns")
     mf, sol = ready.mf, ready.sol
@@ -213,9 +213,9 @@ def study(body: dict) -> dict:
     if wanted is not None and (not isinstance(wanted, list)
                                or not all(isinstance(w, str) for w in wanted)):
         raise ModelError(f"columns: expected a list of column names, got {describe(wanted)}")
-    shown = body.get("points", list(m.point_names))
-    if not (isinstance(shown, list) and all(isinstance(p, str) and p in m.point_names for p in shown)):
-        raise ModelError(f"points: expected a list of some of {quoted(m.point_names)}, got {describe(shown)}")
+    placed = body.get("points", list(m.point_names))
+    if not (isinstance(placed, list) and all(isinstance(p, str) and p in m.point_names for p in placed)):
+        raise ModelError(f"points: expected a list of some of {quoted(m.point_names)}, got {describe(placed)}")
     from kinelab.io._summary import _default_pairs, _transmission_values
     pairs = list(mf.outputs.transmission) or _default_pairs(m)
     # the inputs and the points, as sol.columns names them, without the other columns
@@ -224,10 +224,10 @@ def study(body: dict) -> dict:
     q = np.reshape(sol.q, (sol.N, -1))
     columns = {n: u.convert(q[:, k], INPUT_SI_UNITS[kind])
                for k, (n, kind) in enumerate(zip(inputs, kinds))}
-    shown = [p for p in m.point_names if p in shown]
-    rows = [sol.point_item[p] for p in shown]
+    placed = [p for p in m.point_names if p in placed]
+    rows = [sol.point_item[p] for p in placed]
     xy = u.convert(sol.item_jets([i for r in rows for i in (r, r + 1)])[:, :, 0], "m")
-    for k, p in enumerate(shown):
+    for k, p in enumerate(placed):
         columns[column_name(p, "x", u.length)] = xy[:, 2 * k]
         columns[column_name(p, "y", u.length)] = xy[:, 2 * k + 1]
     made = {f"{a}-{b}.transmission[{u.angle}]" for a, b in pairs}
