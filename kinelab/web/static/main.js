@@ -77,6 +77,7 @@ function accept(s, source, refit) {
   state.study = s; state.model = s.model; state.source = source; state.draft = false;
   state.config = null; state.dragQ = null;     // the last configuration was of the model before
   state.predicted = null;
+  unselect();                                  // names of the model before
   if (state.index >= s.samples) state.index = 0;
   if (s.unassembled.includes(state.index)) {      // show a sample where the loops close
     const good = Array.from({length: s.samples}, (_, i) => i).find((i) => !s.unassembled.includes(i));
@@ -113,6 +114,7 @@ function newDrawing() {
   state.seq++;                     // answers on their way are for the page before
   draw.cancel();
   if (state.model) { state.history.push({model: state.model, source: state.source}); state.future = []; }
+  unselect();
   Object.assign(state, {model: draw.empty(), source: null, study: null, config: null, dragQ: null,
                         predicted: null, draft: true, index: 0, hover: null, derivation: null});
   $("title").textContent = "";
@@ -143,7 +145,7 @@ function scene() {
   if (state.pose) poses.push(state.pose);
   const pending = tool() === "link" ? draw.pending() : null, hover = pending ? state.hover : null;
   if (!state.study) return {points: state.model.points, drawing: draw.drawingOf(state.model), poses,
-                            guides: draw.guidesOf(state.model), pending, hover};
+                            guides: draw.guidesOf(state.model), pending, hover, selected: state.selected};
   const s = state.study, d = s.drawing;
   const sketch = $("canvas").dataset.sketch === "1";
   const points = {};
@@ -154,7 +156,7 @@ function scene() {
   const centres = $("show-centres").checked && state.config && !sketch ? state.config.centres : [];
   const guides = sketch ? {} : (now && now.guides) ||
     Object.fromEntries(Object.entries(s.guides || {}).map(([j, a]) => [j, a[state.index]]));
-  return {points, drawing: d, traces, marks, centres, guides, poses, pending, hover};
+  return {points, drawing: d, traces, marks, centres, guides, poses, pending, hover, selected: state.selected};
 }
 
 // The traced paths and their marks, made once a sweep (the drawing keeps them while the
@@ -346,8 +348,59 @@ function answered(at) {
 const tool = () => document.querySelector("input[name=tool]:checked").value;
 let dragStart = null;
 
+// -- snapping, selection ------------------------------------------------------------------------
+// A place snapped (while *snap* is on) to another point of the sketch within a few pixels,
+// else to the grid's nearest crossing.
+function snapped(xy, except = null) { return snapTo(xy, except).xy; }
+function snapTo(xy, except = null) {
+  if (!$("snap").checked || !canvas.view) return {xy};
+  const near = 10 / canvas.view.s;
+  let best = null, bd = near;
+  for (const [p, q] of Object.entries(state.model.points)) {
+    if (p === except || !q || q[0] === null) continue;
+    const d = Math.hypot(q[0] - xy[0], q[1] - xy[1]);
+    if (d <= bd) { best = p; bd = d; }
+  }
+  if (best) return {xy: [...state.model.points[best]], point: best};
+  const step = canvas.gridStep();
+  return {xy: xy.map((v) => Number((Math.round(v / step) * step).toPrecision(12)))};
+}
+
+// What a click with *select* picks: a link, a slider block, or a point; a point clicked
+// again picks its joints and then its input in turn.
+function pick(target, name) {
+  const m = state.model, was = state.selected;
+  const ds = (target && target.dataset) || {};
+  if (ds.link) return {kind: "link", name: ds.link};
+  if (ds.block) return {kind: "joint", name: ds.block};
+  if (!name) return null;
+  const choices = [{kind: "point", name}];
+  for (const j of m.joints || []) if (j.point === name) {
+    choices.push({kind: "joint", name: j.name, point: name});
+    for (const i of m.inputs || []) if (i.joint === j.name) choices.push({kind: "input", name: i.name || i.joint, point: name});
+  }
+  const k = was ? choices.findIndex((c) => c.kind === was.kind && c.name === was.name) : -1;
+  return choices[(k + 1) % choices.length];
+}
+
+function unselect(sel = null) {
+  state.selected = sel;
+  $("selection").textContent = sel ? `selected: ${sel.kind} ${sel.name}` : "";
+  $("delete").disabled = !sel;
+}
+function select(sel) { unselect(sel); if (state.model) redraw(); }
+
+function deleteSelected() {
+  const sel = state.selected;
+  if (!sel || !state.model) return;
+  select(null);
+  setModel(draw.remove(state.model, sel), state.source, {keepDraft: true, refit: false});
+}
+
 const canvas = new Canvas($("canvas"), {
-  down(name, xy) {
+  down(name, xy, e) {
+    if (tool() === "select") { canvas.dragging = null; select(pick(e && e.target, name)); return; }
+    if (!name) ({xy, point: name} = snapTo(xy));      // on a point snapped to: as a click on it
     if (placing.active()) { state.pose = {xy, angle: 0}; redraw(); return "capture"; }
     const t = tool();
     if (t === "slider") {          // the drag gives the guide's direction
@@ -376,15 +429,17 @@ const canvas = new Canvas($("canvas"), {
     if (!name.from) {
       state.moves += 1;
       if (tool() === "move") predict(name, xy);
-      dragTo(name, xy);
+      dragTo(name, tool() === "edit" ? snapped(xy, name) : xy);
       return;
     }
+    if (tool() === "slider" && !placing.active()) xy = snapped(xy);
     const [x0, y0] = state.pose.xy;
     state.pose = {...state.pose, angle: Math.atan2(xy[1] - y0, xy[0] - x0)};
     redraw();
   },
   async up(name, xy) {
     if (name && name.from && tool() === "slider" && !placing.active()) {
+      xy = snapped(xy);
       const at = state.pose.xy;
       state.pose = null;
       const next = draw.slider(state.model, state.sliderAt, at, xy);
@@ -411,6 +466,8 @@ const canvas = new Canvas($("canvas"), {
     }
     configurationSoon();
   },
+  panning: () => tool() === "pan",
+  viewed: () => { if (state.model) redrawSoon(); },
 });
 
 const plot = new Plot($("plot"), (i) => { pause(); setIndex(i); });
@@ -536,6 +593,9 @@ $("plot-y").onchange = plotNow;
 $("plot-x").onchange = plotNow;
 $("show-centres").onchange = redraw;
 $("undo").onclick = undo;
+$("fit").onclick = () => { if (state.model) { fitView(); redraw(); } };
+$("grid").onchange = () => { canvas.grid = $("grid").checked; if (state.model) redraw(); };
+$("delete").onclick = deleteSelected;
 $("redo").onclick = redo;
 $("save-toml").onclick = () => save("toml");
 $("save-json").onclick = () => save("json");
@@ -563,6 +623,7 @@ for (const b of document.querySelectorAll("#tabs button")) b.onclick = () => {
 for (const r of document.querySelectorAll("input[name=tool]")) r.addEventListener("change", () => {
   draw.cancel();                            // a link's first point waits no more
   state.hover = null;
+  if (tool() !== "select") unselect();
   if (state.model) redraw();
 });
 document.addEventListener("keydown", (e) => {
@@ -570,6 +631,7 @@ document.addEventListener("keydown", (e) => {
   if (e.target.tagName === "INPUT" && e.target.type !== "range" && e.target.type !== "radio") return;
   if ((e.ctrlKey || e.metaKey) && e.key === "z") { e.preventDefault(); undo(); }
   else if ((e.ctrlKey || e.metaKey) && (e.key === "y" || (e.shiftKey && e.key === "Z"))) { e.preventDefault(); redo(); }
+  else if ((e.key === "Delete" || e.key === "Backspace") && state.selected) { e.preventDefault(); deleteSelected(); }
   else if (e.key === " " && e.target.tagName !== "BUTTON") { e.preventDefault(); state.playing ? pause() : play(); }
 });
 window.addEventListener("resize", () => { if (state.model) { fitView(); redraw(); plotNow(); } });
@@ -577,6 +639,7 @@ const placing = synthesisPanel($("tab-synthesis"), {
   open: (model, source) => setModel(model, source), status,
   units: () => state.model && state.model.units, redraw: () => state.model && redraw()});
 state.setIndex = setIndex;
+state.canvas = canvas;
 state.play = play;
 state.pause = pause;
 
