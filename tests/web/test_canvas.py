@@ -190,3 +190,77 @@ def test_a_point_clicked_again_selects_its_joint_then_its_input(page):
     page.keyboard.press("Control+z")
     page.wait_for_function("() => window.kinelab.study && (window.kinelab.model.inputs || []).length === 1",
                            timeout=60_000)
+
+
+def open_in_metres(pg, tmp_path):
+    """The crank-rocker as kinelab holds it, in m and rad (crank 0.1 m), loaded as a file."""
+    import json
+
+    import kinelab as kl
+    d = kl.load("examples/crank_rocker.toml").to_dict()
+    path = tmp_path / "crank_rocker_m.json"
+    path.write_text(json.dumps({**d, "schema": 1, "units": {"length": "m", "angle": "rad"}}))
+    pg.set_input_files("#load", str(path))
+    pg.wait_for_function("() => window.kinelab.source === 'crank_rocker_m.json' && window.kinelab.study "
+                         "&& window.kinelab.config !== null", timeout=120_000)
+
+
+def test_the_unit_switch_shows_a_model_in_metres_in_millimetres(page, tmp_path):
+    open_in_metres(page, tmp_path)
+    model = state(page, "window.kinelab.model")
+    page.select_option("#plot-y", "A.y[m]")
+    page.click("#tabs button[data-tab=table]")
+    crank = "#tab-table tr[data-link=crank] td[data-field=length] input"
+    assert page.input_value(crank) == "0.1"
+    assert page.text_content("#canvas [data-dim=crank]") == "0.1 m"
+    page.select_option("#unit-length", "mm")
+    page.select_option("#unit-angle", "deg")
+    page.shot("in mm")
+    assert page.input_value(crank) == "100"
+    assert page.input_value("#tab-table tr[data-point=A] td[data-field=y] input") == "100"
+    assert page.text_content("#canvas [data-dim=crank]") == "100 mm"
+    assert page.text_content("#canvas [data-dim=input]").endswith(" deg")
+    assert page.text_content("#plot-ylabel") == "A.y[mm]"
+    assert "(mm)" in page.text_content("#tab-table")
+    assert state(page, "window.kinelab.model") == model
+    # a length typed in mm goes into the model in m
+    page.fill(crank, "120")
+    page.press(crank, "Enter")
+    page.wait_for_function("() => window.kinelab.study && window.kinelab.model.links"
+                           ".find((l) => l.name === 'crank').length === 0.12", timeout=60_000)
+    assert state(page, "window.kinelab.model.units") == {"length": "m", "angle": "rad"}
+    page.select_option("#unit-length", "in")
+    assert float(page.input_value(crank)) == pytest.approx(120 / 25.4, rel=1e-11)
+
+
+def test_a_dimension_double_clicked_is_typed_in_place(page):
+    """The crank's length typed on the drawing re-assembles the linkage as the table's edit
+    does; a coupler too long to close is refused with the reason, the model kept; the input's
+    angle typed moves the linkage there."""
+    open_example(page, "crank_rocker")
+    assert page.text_content("#canvas [data-dim=crank]") == "100 mm"
+    page.dblclick("#canvas [data-dim=crank]")
+    assert page.input_value("#dim-edit") == "100"
+    page.fill("#dim-edit", "110")
+    page.press("#dim-edit", "Enter")
+    page.wait_for_function("() => window.kinelab.study && window.kinelab.model.links"
+                           ".find((l) => l.name === 'crank').length === 110", timeout=60_000)
+    page.wait_for_function("() => document.querySelector('#canvas [data-dim=crank]').textContent === '110 mm'",
+                           timeout=30_000)
+    page.shot("crank typed")
+    before = state(page, "window.kinelab.model")
+    page.dblclick("#canvas [data-dim=coupler]")
+    page.fill("#dim-edit", "5000")
+    page.press("#dim-edit", "Enter")
+    page.wait_for_function("() => document.getElementById('status').classList.contains('error')",
+                           timeout=60_000)
+    assert state(page, "window.kinelab.model") == before
+    assert page.locator("#dim-edit").count() == 0
+    page.dblclick("#canvas [data-dim=input]")
+    page.fill("#dim-edit", "90")
+    page.press("#dim-edit", "Enter")
+    page.wait_for_function("() => window.kinelab.config && Math.abs(window.kinelab.config.q[0] - 90) < 1e-9",
+                           timeout=60_000)
+    a = state(page, "window.kinelab.config.points.A")
+    assert a == pytest.approx([0, 110], abs=1e-9)
+    page.shot("input typed")

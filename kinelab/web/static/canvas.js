@@ -30,6 +30,10 @@ export class Canvas {
       this.zoom(Math.exp(-e.deltaY * 0.0015), [e.clientX - r.left, e.clientY - r.top]);
     }, {passive: false});
     svg.addEventListener("auxclick", (e) => e.preventDefault());
+    svg.addEventListener("dblclick", (e) => {
+      const d = e.target.dataset && e.target.dataset.dim;
+      if (d && this.handlers.dimension) this.handlers.dimension(d, e.target);
+    });
   }
 
   // The view only: the model's numbers never change with it.  A new view object each time,
@@ -148,7 +152,7 @@ export class Canvas {
     if (!this.layers) {
       svg.replaceChildren();
       this.layers = {};
-      for (const name of ["grid", "paths", "links", "joints", "points", "poses", "centres"])
+      for (const name of ["grid", "paths", "links", "joints", "dims", "points", "poses", "centres"])
         this.layers[name] = {g: el("g", {"data-layer": name}, svg), byKey: new Map()};
       this.drawn = {};
     }
@@ -221,6 +225,25 @@ export class Canvas {
       points.push([`t ${name}`, "text", {class: "label", x: X + 8, y: Y - 8}, name]);
     }
     patch(L.points, points);
+    // dimensions: along a link (a -> b), upright, a little to its side; an input's at its pivot
+    const dims = [];
+    for (const dm of scene.dims || []) {
+      if (!known(dm.a) || (dm.b && !known(dm.b))) continue;
+      const [X0, Y0] = S(dm.a);
+      let attrs;
+      if (dm.b) {
+        const [X1, Y1] = S(dm.b);
+        let ang = Math.atan2(Y1 - Y0, X1 - X0) * 180 / Math.PI;
+        if (ang > 90) ang -= 180; else if (ang <= -90) ang += 180;
+        const n = Math.hypot(X1 - X0, Y1 - Y0) || 1, off = 10;
+        const X = (X0 + X1) / 2 + off * (Y1 - Y0) / n, Y = (Y0 + Y1) / 2 - off * (X1 - X0) / n;
+        attrs = {x: X, y: Y, "text-anchor": "middle", transform: `rotate(${ang} ${X} ${Y})`};
+      } else {
+        attrs = {x: X0 - 12, y: Y0 + 26, "text-anchor": "end"};
+      }
+      dims.push([`d ${dm.name}`, "text", {class: "dim", "data-dim": dm.name, ...attrs}, dm.text]);
+    }
+    patch(L.dims, dims);
     L.poses.g.replaceChildren();
     scene.poses.forEach((pose, i) => {
       const [X, Y] = S(pose.xy), len = 42;

@@ -9,6 +9,8 @@ import {showCentres, derive} from "./method.js";
 import * as draw from "./draw.js";
 import {synthesisPanel, posesOnDrawing} from "./synth.js";
 import {follower} from "./follow.js";
+import {chosen, shownUnits, shownColumn, toShown, fromShown} from "./units.js";
+import {withLength, num} from "./table.js";
 
 const $ = (id) => document.getElementById(id);
 const state = {model: null, source: null, study: null, index: 0, config: null,
@@ -145,7 +147,8 @@ function scene() {
   if (state.pose) poses.push(state.pose);
   const pending = tool() === "link" ? draw.pending() : null, hover = pending ? state.hover : null;
   if (!state.study) return {points: state.model.points, drawing: draw.drawingOf(state.model), poses,
-                            guides: draw.guidesOf(state.model), pending, hover, selected: state.selected};
+                            guides: draw.guidesOf(state.model), pending, hover, selected: state.selected,
+                            dims: dimensions(state.model.points, draw.drawingOf(state.model))};
   const s = state.study, d = s.drawing;
   const sketch = $("canvas").dataset.sketch === "1";
   const points = {};
@@ -156,7 +159,69 @@ function scene() {
   const centres = $("show-centres").checked && state.config && !sketch ? state.config.centres : [];
   const guides = sketch ? {} : (now && now.guides) ||
     Object.fromEntries(Object.entries(s.guides || {}).map(([j, a]) => [j, a[state.index]]));
-  return {points, drawing: d, traces, marks, centres, guides, poses, pending, hover, selected: state.selected};
+  return {points, drawing: d, traces, marks, centres, guides, poses, pending, hover, selected: state.selected,
+          dims: dimensions(points, d)};
+}
+
+// Each link's length along it (its first two points, as drawn) and the input's value at
+// its pivot, in the units shown.
+function dimensions(points, d) {
+  if (!$("dims").checked) return [];
+  const u = shownUnits(state.model.units), out = [];
+  const f = (v) => Number(v.toPrecision(5));
+  for (const link of d.links) {
+    const [a, b] = link.points;
+    if (!b || !points[a] || !points[b] || points[a][0] === null || points[b][0] === null) continue;
+    out.push({name: link.name, a: points[a], b: points[b],
+              text: `${f(Math.hypot(points[b][0] - points[a][0], points[b][1] - points[a][1]) * u.L)} ${u.length}`});
+  }
+  const s = state.study;
+  if (s && s.inputs.length === 1) {
+    const input = (state.model.inputs || [])[0], j = input && d.joints.find((k) => k.name === input.joint);
+    const q = state.dragQ !== null && !Array.isArray(state.dragQ) ? state.dragQ : column(s.inputs[0])[state.index];
+    if (j && j.type === "R" && q !== null && points[j.point]) {
+      const v = shownColumn(s.inputs[0], [q], s.units);
+      out.push({name: "input", a: points[j.point], text: `${f(v.values[0])} ${unitOf(v.name)}`});
+    }
+  }
+  return out;
+}
+const unitOf = (name) => (/\[([^\]]*)\]$/.exec(name) || ["", ""])[1];
+
+// A dimension typed in place: a link's length goes the table's way (the server
+// re-assembles, or refuses with the reason); the input's value moves the linkage there.
+function editDimension(name, target) {
+  const r = target.getBoundingClientRect();
+  const box = document.createElement("input");
+  box.id = "dim-edit";
+  box.dataset.dim = name;
+  const u = shownUnits(state.model.units);
+  const link = state.model.links.find((l) => l.name === name);
+  box.value = name === "input" ? target.textContent.split(" ")[0]
+    : toShown(link.length ?? Math.hypot(...[0, 1].map((c) => state.model.points[link.points[1]][c] - state.model.points[link.points[0]][c])), u.L);
+  box.style.left = `${r.left}px`; box.style.top = `${r.top - 4}px`;
+  document.body.append(box);
+  box.focus(); box.select();
+  let done = false;
+  const close = () => { if (!done) { done = true; box.remove(); } };
+  box.addEventListener("keydown", (e) => { if (e.key === "Escape") close(); if (e.key === "Enter") box.blur(); });
+  box.addEventListener("blur", close);
+  box.addEventListener("change", () => {
+    const text = box.value;
+    close();
+    try {
+      if (name !== "input") { editModel(withLength(state.model, name, fromShown(num(text, `${name}.length`), u.L))); return; }
+      const s = state.study, k = shownColumn(s.inputs[0], [1], s.units).values[0];   // shown per model unit
+      const q = fromShown(num(text, "input"), k);
+      const qs = column(s.inputs[0]);
+      let best = 0;
+      qs.forEach((v, i) => { if (v !== null && Math.abs(v - q) < Math.abs(qs[best] - q)) best = i; });
+      pause();
+      setIndex(best);
+      state.dragQ = q;                 // exactly there: the server's configuration at q
+      configurationSoon();
+    } catch (err) { refuse(err.message); }
+  });
 }
 
 // The traced paths and their marks, made once a sweep (the drawing keeps them while the
@@ -182,10 +247,14 @@ function redrawSoon() {          // at most once a frame
 }
 
 function redraw() {
+  canvas.unitScale = shownUnits(state.model.units).L;
   canvas.draw(scene());
   if (state.study) {
     $("scrub").value = state.index;
-    const q = state.study.inputs.map((n) => `${n} = ${fmt(column(n)[state.index])}`);
+    const q = state.study.inputs.map((n) => {
+      const c = shownColumn(n, [column(n)[state.index]], state.study.units);
+      return `${c.name} = ${fmt(c.values[0])}`;
+    });
     $("input-value").textContent = q.join(", ");
   }
 }
@@ -213,8 +282,9 @@ function fillPlotChoices() {
   const inputs = state.study.inputs;
   const preferred = names.find((n) => n.endsWith(".transmission[" + state.study.units.angle + "]"))
     || names.find((n) => /\.angle\[/.test(n) && !n.startsWith("ground") && !inputs.includes(n)) || names[0];
-  y.replaceChildren(...names.map((n) => new Option(n, n)));
-  x.replaceChildren(...[...inputs, "sample"].map((n) => new Option(n, n)));
+  const label = (n) => shownColumn(n, null, state.study.units).name;
+  y.replaceChildren(...names.map((n) => new Option(label(n), n)));
+  x.replaceChildren(...[...inputs, "sample"].map((n) => new Option(label(n), n)));
   y.value = names.includes(keepY) ? keepY : preferred;
   x.value = [...inputs, "sample"].includes(keepX) ? keepX : inputs[0];
 }
@@ -222,8 +292,10 @@ function fillPlotChoices() {
 function plotNow() {
   if (!state.study) return;
   const s = state.study, yName = $("plot-y").value, xName = $("plot-x").value;
-  const x = xName === "sample" ? Array.from({length: s.samples}, (_, i) => i) : column(xName);
-  plot.draw({x, y: column(yName), xName, yName, singular: s.singular,
+  const x = xName === "sample" ? {name: xName, values: Array.from({length: s.samples}, (_, i) => i)}
+    : shownColumn(xName, column(xName), s.units);
+  const y = shownColumn(yName, column(yName), s.units);
+  plot.draw({x: x.values, y: y.values, xName: x.name, yName: y.name, singular: s.singular,
              change: s.change_points.map((c) => c.index)});
   plot.at(state.index);
 }
@@ -467,6 +539,7 @@ const canvas = new Canvas($("canvas"), {
     configurationSoon();
   },
   panning: () => tool() === "pan",
+  dimension: (name, target) => editDimension(name, target),
   viewed: () => { if (state.model) redrawSoon(); },
 });
 
@@ -596,6 +669,14 @@ $("undo").onclick = undo;
 $("fit").onclick = () => { if (state.model) { fitView(); redraw(); } };
 $("grid").onchange = () => { canvas.grid = $("grid").checked; if (state.model) redraw(); };
 $("delete").onclick = deleteSelected;
+$("dims").onchange = () => { if (state.model) redraw(); };
+for (const id of ["unit-length", "unit-angle"]) $(id).onchange = () => {
+  chosen.length = $("unit-length").value; chosen.angle = $("unit-angle").value;
+  if (!state.model) return;
+  showTable();
+  if (state.study) { fillPlotChoices(); plotNow(); }
+  redraw();
+};
 $("redo").onclick = redo;
 $("save-toml").onclick = () => save("toml");
 $("save-json").onclick = () => save("json");
