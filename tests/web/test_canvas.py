@@ -10,13 +10,13 @@ from tests.web.test_browser import browser, page, point_on_screen, server, state
 from tests.web.test_studio import open_example
 
 
-def wait_drawn(pg, name, was, timeout=30_000):
-    """Until point `name` is drawn somewhere other than `was` (screen pixels)."""
+def wait_at(pg, name, at, timeout=30_000):
+    """Until point `name` is drawn at `at` (screen pixels, to half a pixel)."""
     pg.wait_for_function(
         f"""() => {{ const c = document.querySelector("#canvas circle[data-point='{name}']");
             const r = document.getElementById("canvas").getBoundingClientRect();
-            return c && Math.hypot(r.left + +c.getAttribute('cx') - {was[0]},
-                                   r.top + +c.getAttribute('cy') - {was[1]}) > 0.5; }}""",
+            return c && Math.hypot(r.left + +c.getAttribute('cx') - {at[0]},
+                                   r.top + +c.getAttribute('cy') - {at[1]}) < 0.5; }}""",
         timeout=timeout)
 
 
@@ -32,16 +32,16 @@ def test_the_wheel_zooms_about_the_pointer_and_the_model_stays(page):
     o2, b = point_on_screen(page, "O2"), point_on_screen(page, "B")
     page.mouse.move(*o2)
     page.mouse.wheel(0, -300)
-    wait_drawn(page, "B", b)
+    k = math.exp(300 * 0.0015)
+    wait_at(page, "B", (o2[0] + k * (b[0] - o2[0]), o2[1] + k * (b[1] - o2[1])))
     page.shot("zoomed")
     o2z, bz = point_on_screen(page, "O2"), point_on_screen(page, "B")
     assert math.dist(o2z, o2) < 0.5
-    k = math.dist(bz, o2z) / math.dist(b, o2)
-    assert k == pytest.approx(math.exp(300 * 0.0015), rel=1e-3)
+    assert math.dist(bz, o2z) / math.dist(b, o2) == pytest.approx(k, rel=1e-3)
     assert state(page, "window.kinelab.model") == model
     # out again: smaller than before
     page.mouse.wheel(0, 600)
-    wait_drawn(page, "B", bz)
+    wait_at(page, "B", (o2[0] + (b[0] - o2[0]) / k, o2[1] + (b[1] - o2[1]) / k))
     assert math.dist(point_on_screen(page, "B"), o2) < math.dist(b, o2)
     assert state(page, "window.kinelab.model") == model
 
@@ -61,15 +61,14 @@ def test_a_drag_pans_and_fit_brings_the_linkage_back(page, how):
     for k in range(1, 11):
         page.mouse.move(start[0] + 6 * k, start[1] - 4 * k)
     page.mouse.up(button="left" if how == "pan tool" else "middle")
-    wait_drawn(page, "B", before["B"])
+    wait_at(page, "B", (before["B"][0] + 60, before["B"][1] - 40))
     page.shot("panned")
     for p in names:
         x, y = point_on_screen(page, p)
         assert (x - before[p][0], y - before[p][1]) == pytest.approx((60, -40), abs=0.5)
     assert state(page, "window.kinelab.model") == model
-    panned = point_on_screen(page, "B")
     page.click("#fit")
-    wait_drawn(page, "B", panned)
+    wait_at(page, "B", before["B"])
     for p in names:
         assert point_on_screen(page, p) == pytest.approx(before[p], abs=0.5)
 
