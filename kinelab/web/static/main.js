@@ -207,6 +207,7 @@ function editDimension(name, target) {
   box.addEventListener("keydown", (e) => { if (e.key === "Escape") close(); if (e.key === "Enter") box.blur(); });
   box.addEventListener("blur", close);
   box.addEventListener("change", () => {
+    if (done) return;                  // left with Esc
     const text = box.value;
     close();
     try {
@@ -538,7 +539,7 @@ const canvas = new Canvas($("canvas"), {
     }
     configurationSoon();
   },
-  panning: () => tool() === "pan",
+  panning: () => tool() === "pan" || (space.held && (space.panned = true)),
   dimension: (name, target) => editDimension(name, target),
   viewed: () => { if (state.model) redrawSoon(); },
 });
@@ -713,7 +714,14 @@ document.addEventListener("keydown", (e) => {
   if ((e.ctrlKey || e.metaKey) && e.key === "z") { e.preventDefault(); undo(); }
   else if ((e.ctrlKey || e.metaKey) && (e.key === "y" || (e.shiftKey && e.key === "Z"))) { e.preventDefault(); redo(); }
   else if ((e.key === "Delete" || e.key === "Backspace") && state.selected) { e.preventDefault(); deleteSelected(); }
-  else if (e.key === " " && e.target.tagName !== "BUTTON") { e.preventDefault(); state.playing ? pause() : play(); }
+  else if (e.key === " " && e.target.tagName !== "BUTTON") { e.preventDefault(); space.held = true; }
+});
+// Space held while dragging pans; pressed and let go without a drag, it plays or pauses.
+const space = {held: false, panned: false};
+document.addEventListener("keyup", (e) => {
+  if (e.key !== " " || !space.held) return;
+  if (!space.panned) state.playing ? pause() : play();
+  space.held = false; space.panned = false;
 });
 window.addEventListener("resize", () => { if (state.model) { fitView(); redraw(); plotNow(); } });
 const placing = synthesisPanel($("tab-synthesis"), {
