@@ -290,3 +290,15 @@ def test_space_held_pans_and_pressed_alone_plays(page):
     assert state(page, "window.kinelab.playing")
     page.keyboard.press(" ")
     assert not state(page, "window.kinelab.playing")
+
+
+def test_the_drawing_exported_leaves_the_grid_out(page, tmp_path):
+    open_example(page, "crank_rocker")
+    assert page.locator("#canvas [data-layer=grid] line").count() > 0
+    with page.expect_download() as d:
+        page.select_option("#export", "drawing-svg")
+    path = tmp_path / "drawing.svg"
+    d.value.save_as(path)
+    text = path.read_text()
+    assert 'data-link="coupler"' in text and 'data-dim="crank"' in text
+    assert 'data-layer="grid"' not in text

@@ -621,6 +621,7 @@ async function save(format) {
 
 function svgText(svg) {
   const clone = svg.cloneNode(true);
+  for (const g of clone.querySelectorAll("[data-layer=grid]")) g.remove();     // a guide for drawing, not part of it
   clone.setAttribute("xmlns", "http://www.w3.org/2000/svg");
   clone.setAttribute("width", svg.clientWidth);
   clone.setAttribute("height", svg.clientHeight);
