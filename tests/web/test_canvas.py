@@ -1,7 +1,7 @@
 """The canvas as a designer uses it, in Chromium: the wheel zooms about the pointer, a drag
 pans, *fit* brings the linkage back, the grid's step follows the zoom and *snap* puts
-points on it, a selection is deleted and undone.  The view never changes the model's
-numbers.  Screenshots of each state go to the test's temporary folder."""
+points on it, a selection is deleted and undone, the units shown change every number shown,
+and a link's length is typed on the drawing.  The view never changes the model's numbers.  Screenshots of each state go to the test's temporary folder."""
 import math
 
 import pytest
