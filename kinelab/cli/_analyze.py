@@ -11,8 +11,8 @@ from kinelab import io, kinematics, solvers, verify
 from kinelab._files import outputs
 from kinelab.cli._format import configuration_text, summary_text
 from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, VERIFY, certificate_path, errors_from,
-                               output_path, output_units, parse_inputs, read_model, report, stem,
-                               sweep)
+                               light_work, output_path, output_units, parse_inputs, read_model,
+                               report, stem, sweep)
 from kinelab.io._modelfile import MAX_SAMPLES
 from kinelab.io._results import table_too_large
 from kinelab.errors import AssemblyError, KinelabError, ModelError, shown_path
@@ -98,6 +98,7 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
     path = output_path(out, stem(model), fmt or "csv")
     kind = io.result_format(path, fmt)       # before the sweep, which can be long
     check_table_size(mf, samples, kind)
+    light_work(mf, samples)
     sol = sweep(mf, samples, change_points=change_points)
     s = None if quiet else summarise(mf, sol)
     certificate = verify.certify(sol) if verify_ else None
@@ -159,6 +160,7 @@ def check(model, si, degrees):
     input range (in the file's units, or SI with --si).  Exit status 2 when something is
     wrong."""
     mf = read_model(model)
+    light_work(mf)
     m = mf.mechanism
     units = output_units(mf.units, si, degrees)
     with errors_from(mf):

@@ -12,7 +12,7 @@ from pathlib import Path
 import click
 import numpy as np
 
-from kinelab import kinematics
+from kinelab import _compiled, kinematics
 from kinelab._files import safe_name
 from kinelab.errors import ModelError, quoted, shown, shown_path
 from kinelab.io import ModelFile
@@ -24,7 +24,7 @@ from kinelab.model import ANGLE_UNITS, LENGTH_UNITS, Units, range_problem, rate_
 
 __all__ = ["main", "read_model", "errors_from", "sweep", "output_path", "parse_inputs", "stem",
            "SI", "DEGREES", "VERIFY", "report", "said_written", "certificate_path", "output_units",
-           "Number", "about"]
+           "Number", "about", "light_work"]
 
 
 def read_model(path: str) -> ModelFile:
@@ -96,6 +96,17 @@ def output_units(file_units: Units, si: bool, degrees: bool) -> Units:
 # a sweep of this many samples shows a progress bar on a terminal (Newton groups: BAR_FROM_NEWTON)
 BAR_FROM = 20000
 BAR_FROM_NEWTON = 200
+
+
+def light_work(mf: ModelFile, samples: int | None = None) -> None:
+    """Run the rest of the command's analyses as light work (``_compiled.light_work``) when
+    the file's plan is closed-form and its sweep shows no progress bar: they take
+    milliseconds on the kernel's numpy form, less than loading the compiled kernel does
+    (numba's start-up).  Newton groups and larger sweeps load it as before."""
+    with errors_from(mf):
+        p = kinematics.plan(mf.mechanism)
+    light = not p.uses_newton and mf.sample_count(samples) < BAR_FROM
+    click.get_current_context().with_resource(_compiled.light_work(light))
 
 
 def sweep(mf: ModelFile, samples: int | None = None, *, progress: bool | None = None,
