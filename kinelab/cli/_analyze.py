@@ -14,7 +14,6 @@ from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, VERIFY, certificate_p
                                light_work, output_path, output_units, parse_inputs, read_model,
                                report, stem, sweep)
 from kinelab.io._modelfile import MAX_SAMPLES
-from kinelab.io._results import table_too_large
 from kinelab.errors import AssemblyError, KinelabError, ModelError, shown_path
 from kinelab.kinematics import KinematicSolution
 from kinelab.kinematics._columns import INPUT_SI_UNITS, table_width
@@ -122,6 +121,7 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
 
 def check_table_size(mf: io.ModelFile, samples: int | None, kind: str) -> None:
     """Refuse, before the sweep, a table too large to write as ``kind`` in about 30 s."""
+    from kinelab.io._results import table_too_large
     with errors_from(mf):
         width = table_width(kinematics.plan(mf.mechanism))
     problem = table_too_large(kind, mf.sample_count(samples), width)
@@ -211,6 +211,8 @@ def check(model, si, degrees):
 def _probe_loads(mf, q, qd):
     """Evaluate the [dynamics] forces and torques on the sweep (inputs q, rates qd), at the
     times `kinelab dynamics` gives them: a law that is not finite there is reported now."""
+    if not mf.mechanism.parameters.get("dynamics"):
+        return          # no [dynamics] section: nothing to evaluate
     from kinelab import dynamics
     from kinelab.cli._dynamics import times
     loads = dynamics.DynamicsSetup.from_model(mf.mechanism).loads
