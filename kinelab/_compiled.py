@@ -15,11 +15,10 @@ of it numba's own start-up, and no other process is involved.
 
 **Light work.**  That half second of loading is far more than work such as ``kinelab
 check`` or ``kinelab analyze`` of a few hundred samples of a closed-form plan takes on the
-numpy form (milliseconds).  Work run
-inside :func:`light_work` therefore runs on the numpy form unless the entry point is loaded
-in this process already; a cold cache still starts the helper, so that heavier work later
-finds the kernel compiled.  The caller says what is light (the command line: a closed-form
-plan over a sweep too short for a progress bar).
+numpy form (milliseconds).  Work run inside :func:`light_work` therefore runs on the numpy
+form unless the entry point is loaded in this process already; a cold cache still starts
+the helper, so that heavier work later finds the kernel compiled.  The caller says what is
+light (the command line: a closed-form plan over a sweep too short for a progress bar).
 
 **Cold cache.**  A call whose entry point has no stamp runs at once on the kernel's numpy
 form (``kinematics/_interpreter.py``, the same numbers, statuses and messages; forward

@@ -86,6 +86,7 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
     mf = read_model(model)
     if speed is not None:
         mf = with_speeds(mf, parse_inputs(speed, mf, "--speed", rate=True))
+    light_work(mf, samples)
     m = mf.mechanism
     units = output_units(mf.units, si, degrees)
     if at is not None:
@@ -97,7 +98,6 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
     path = output_path(out, stem(model), fmt or "csv")
     kind = io.result_format(path, fmt)       # before the sweep, which can be long
     check_table_size(mf, samples, kind)
-    light_work(mf, samples)
     sol = sweep(mf, samples, change_points=change_points)
     s = None if quiet else summarise(mf, sol)
     certificate = verify.certify(sol) if verify_ else None
