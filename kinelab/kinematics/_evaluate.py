@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import functools
 import os
-from concurrent.futures import ThreadPoolExecutor
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -12,6 +12,9 @@ from kinelab import _memory as memory
 from kinelab.kinematics import _codes as k
 from kinelab import _compiled
 from kinelab.kinematics._plan import Plan
+
+if TYPE_CHECKING:
+    from concurrent.futures import ThreadPoolExecutor
 
 __all__ = ["run", "run_compiled", "entry_point", "warm_up"]
 
@@ -32,6 +35,7 @@ def _cpu_count() -> int:
 
 @functools.cache
 def _pool(workers: int) -> ThreadPoolExecutor:
+    from concurrent.futures import ThreadPoolExecutor   # with logging: only for large sweeps
     return ThreadPoolExecutor(max_workers=workers, thread_name_prefix="kinelab")
 
 
