@@ -40,3 +40,12 @@ def test_a_hostile_table_task_or_atlas_ends_in_one_line_naming_it_or_success(rng
 def test_cases_that_once_escaped(seed, tmp_path):
     outcome, detail = grammar.run(grammar.case(random.Random(seed)), tmp_path)
     assert outcome in grammar.FINE, (outcome, detail)
+
+
+# requests and names the fuzzing found (benchmarks/fuzz_model_files.py --files web,names),
+# each with the families it was drawn from: a model of 10,000 problems answered with all of
+# them in "problems", past the 20 lines of its message
+@pytest.mark.parametrize("families, seed", [(("web",), 439)])
+def test_requests_and_names_that_once_escaped(families, seed, tmp_path):
+    outcome, detail = grammar.run(grammar.any_case(random.Random(seed), families), tmp_path)
+    assert outcome in grammar.FINE, (outcome, detail)
