@@ -44,8 +44,9 @@ def test_cases_that_once_escaped(seed, tmp_path):
 
 # requests and names the fuzzing found (benchmarks/fuzz_model_files.py --files web,names),
 # each with the families it was drawn from: a model of 10,000 problems answered with all of
-# them in "problems", past the 20 lines of its message
-@pytest.mark.parametrize("families, seed", [(("web",), 439)])
+# them in "problems", past the 20 lines of its message; a column and a model named with two
+# $ (mathtext) in differentiate's and plot's figures
+@pytest.mark.parametrize("families, seed", [(("web",), 439), (("names",), 3), (("names",), 20)])
 def test_requests_and_names_that_once_escaped(families, seed, tmp_path):
     outcome, detail = grammar.run(grammar.any_case(random.Random(seed), families), tmp_path)
     assert outcome in grammar.FINE, (outcome, detail)
