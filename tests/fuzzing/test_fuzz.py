@@ -1,7 +1,8 @@
 """Hostile model files, task files, CSV tables and atlases, generated from valid ones (see
 ``grammar.py``): each ends in success or in one bounded line per problem naming the file,
-with exit status 2, quickly.  A modest number of cases here;
-``benchmarks/fuzz_model_files.py`` runs 10^5 and more."""
+with exit status 2, quickly; hostile requests to the web app end in 2xx or a one-line JSON
+4xx, and hostile names in files written in --out only, under safe names.  A modest number
+of cases here; ``benchmarks/fuzz_model_files.py`` runs 10^5 and more."""
 import random
 import time
 
@@ -31,6 +32,23 @@ def test_a_hostile_table_task_or_atlas_ends_in_one_line_naming_it_or_success(rng
     c = grammar.any_case(rng)
     outcome, detail = grammar.run(c, tmp_path_factory.mktemp("case"))
     assert outcome in grammar.FINE, (outcome, detail, c.family, c.command, c.text[:500])
+
+
+@settings(max_examples=40, suppress_health_check=[HealthCheck.too_slow])
+@given(rng=st.randoms(use_true_random=False))
+def test_a_hostile_request_gets_json_2xx_or_4xx_in_one_line(rng):
+    c = grammar.web_case(rng)
+    outcome, detail = grammar.run_web(c, seconds=30.0)
+    assert outcome in grammar.FINE, (outcome, detail, c.command, c.text[:500])
+
+
+@settings(max_examples=6, suppress_health_check=[HealthCheck.too_slow,
+                                                 HealthCheck.function_scoped_fixture])
+@given(rng=st.randoms(use_true_random=False))
+def test_hostile_names_are_written_in_out_under_safe_names(rng, tmp_path_factory):
+    c = grammar.names_case(rng)
+    outcome, detail = grammar.run_names(c, tmp_path_factory.mktemp("case"))
+    assert outcome in grammar.FINE, (outcome, detail, c.command, c.stem, c.text[:500])
 
 
 # cases the fuzzing found (benchmarks/fuzz_model_files.py, 100,000 cases): a huge pivot
