@@ -1019,6 +1019,7 @@ def run_names(c: Case, directory: Path) -> tuple[str, str]:
 
     from kinelab.cli import main
 
+    directory = directory.resolve()         # the command runs from elsewhere
     work = directory / "1" / "2" / "3" / "work"
     (work / "src").mkdir(parents=True)
     out = work / "out"
