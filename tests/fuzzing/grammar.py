@@ -14,12 +14,14 @@ or ends with one line on standard error and exit status 2, within a time and mem
 from __future__ import annotations
 
 import copy
+import io
 import json
 import logging
 import math
 import os
 import random
 import resource
+import sys
 import threading
 import tomllib
 from dataclasses import dataclass
@@ -904,7 +906,8 @@ def run_web(c: Case, seconds: float = WEB_SECONDS) -> tuple[str, str]:
     ``{"error": message}``, one bounded line per problem: one line, or one per entry of
     ``problems``); anything else is a finding: "status N" (5xx, or another status),
     "traceback" (an exception escaped the app), "logged" (an error in the server's log),
-    "not json", "not an error", "long message", "too many lines", "timeout", "memory".
+    "not json", "not an error", "long message", "too many lines", "timeout", "memory";
+    "logged" also for a traceback printed on standard error.
     """
     method, path, media = c.command
     headers = {"content-type": media} if media else {}
@@ -920,17 +923,21 @@ def run_web(c: Case, seconds: float = WEB_SECONDS) -> tuple[str, str]:
     logging.getLogger().addHandler(records)
     peak = _peak()
     thread = threading.Thread(target=call, daemon=True)
-    try:
-        thread.start()
+    stderr, sys.stderr = sys.stderr, io.StringIO()      # where Python reports what it
+    try:                                                # cannot raise (a thread's, a
+        thread.start()                                  # finalizer's exception)
         thread.join(seconds)
     finally:
         logging.getLogger().removeHandler(records)
+        printed, sys.stderr = sys.stderr.getvalue(), stderr
     where = f"{method} {path}"
     if thread.is_alive():
         return "timeout", f"{where}: no answer in {seconds:g} s"
     if "exception" in box:
         exc = box["exception"]
         return "traceback", f"{where}: {type(exc).__name__}: {str(exc)[:300]}"
+    if "Traceback" in printed or "Exception ignored" in printed:
+        return "logged", f"{where}: {printed[-300:]!r}"
     if peak < WEB_MEMORY <= _peak():
         return "memory", f"{where}: {_peak():,} bytes resident"
     logged = [r for r in records.records if r.levelno >= logging.ERROR or r.exc_info]
