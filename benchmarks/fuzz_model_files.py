@@ -65,7 +65,10 @@ def _one(job: tuple[int, tuple[str, ...]]) -> tuple[str, str, str, str]:
 
     seed, files = job
     rng = random.Random(seed)
-    c = grammar.case(rng) if files == ("model",) else grammar.any_case(rng, files)
+    try:
+        c = grammar.case(rng) if files == ("model",) else grammar.any_case(rng, files)
+    except MemoryError:         # the generator's own fault: said, and the run goes on
+        return "generator", "memory", "", f"seed {seed}: making the case"
     directory = Path(tempfile.mkdtemp(dir="."))
     # a request is bounded by the app's own limits (up to a minute), then by the case's
     signal.alarm(int(grammar.WEB_SECONDS) + 10 if c.family == "web" else TIMEOUT)
