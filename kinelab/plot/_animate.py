@@ -13,7 +13,7 @@ from kinelab.kinematics import KinematicSolution
 from kinelab.kinematics._solution import takes_solution
 from kinelab.solvers._arguments import flag, whole
 from kinelab.model import Units
-from kinelab.plot._figures import SINGULAR_LABEL, _regular, _singular_samples, mechanism
+from kinelab.plot._figures import SINGULAR_LABEL, _regular, _singular_samples, mechanism, plain
 
 __all__ = ["animate", "can_write_mp4"]
 
@@ -118,11 +118,11 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
     ax.set_xlabel(f"x [{u.length}]")
     ax.set_ylabel(f"y [{u.length}]")
     ax.grid(True, alpha=0.3)
-    ax.set_title(sol.mechanism.name)
+    ax.set_title(plain(sol.mechanism.name))
     paths = {p: _regular(sol, position(p)) for p in trace}
     for p, xy in paths.items():
         ax.plot(xy[:, 0], xy[:, 1], lw=0.8, color="0.75", zorder=1)
-    traced = {p: ax.plot([], [], lw=1.6, color="black", zorder=1, label=f"path of {p}")[0]
+    traced = {p: ax.plot([], [], lw=1.6, color="black", zorder=1, label=plain(f"path of {p}"))[0]
               for p in paths}
     singular = _singular_samples(sol)
     for k, p in enumerate(trace if singular else ()):
