@@ -119,6 +119,17 @@ def _within_limits(p: Plan, q2: np.ndarray, qd2: np.ndarray, qdd2: np.ndarray) -
 def _normalise_q(q, qd, qdd, M: int, p: Plan):
     """q (N, M), qd and qdd (N, M) or (1, M), all new arrays within the limits of the
     plan ``p``'s inputs, and whether q was one sample."""
+    if M == 1 and type(qd) is float and type(qdd) is float and abs(qd) <= MAX_RATE \
+            and abs(qdd) <= MAX_RATE:
+        # the common call, one input swept at a constant rate: checked in a few operations
+        # (NaN fails every comparison, and goes on to the checks below, which name it)
+        limit = Q_LIMITS[p.input_kinds[0]]
+        if type(q) is float:
+            if abs(q) <= limit:
+                return np.array([[q]]), np.array([[qd]]), np.array([[qdd]]), True
+        elif type(q) is np.ndarray and q.dtype == np.float64 and q.ndim == 1 and q.size \
+                and -limit <= q.min() and q.max() <= limit:
+            return q.reshape(-1, 1).copy(), np.array([[qd]]), np.array([[qdd]]), False
     qa = _finite("q", q)
     if M == 1:
         if qa.ndim > 1:
@@ -136,7 +147,12 @@ def _normalise_q(q, qd, qdd, M: int, p: Plan):
 
 def _per_sample(rates: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
     """Rates of shape (N, M) as given, or their single row as a read-only (N, M) view."""
-    return rates if rates.shape == shape else np.broadcast_to(rates, shape)
+    if rates.shape == shape:
+        return rates
+    # np.broadcast_to's view, made directly (it takes ten times as long)
+    view = np.ndarray(shape, rates.dtype, rates, 0, (0, rates.strides[1] if shape[1] > 1 else 0))
+    view.flags.writeable = False
+    return view
 
 
 def change_points(mechanism: Mechanism, lo: float, hi: float, *,
@@ -566,15 +582,17 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
     out = _solve(p, bmap, q2, qd2, qdd2, resume)
     jets, rates, diag = out["jets"], out["rates"], out["diag"]
     ok = out["status"] == k.ST_OK
-    if not ok.all():
+    if np.count_nonzero(out["status"]):          # some sample did not assemble
         bad = np.flatnonzero(~ok)
         if unreachable == "raise":
             raise _unreachable(p, mechanism, method, out, q2, bad)
         jets[bad] = np.nan
         rates[bad] = np.nan
         diag[bad] = np.nan
-    singular = ok & (diag[:, 1] < SINGULAR_TOL)
-    if singular.any():
+        singular = ok & (diag[:, 1] < SINGULAR_TOL)
+    else:
+        singular = diag[:, 1] < SINGULAR_TOL
+    if np.count_nonzero(singular):
         policy = at_singular if at_singular != "auto" else ("raise" if single else "flag")
         if policy == "raise":
             i = int(np.flatnonzero(singular)[0])
@@ -582,12 +600,13 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
                                 **singular_kind(mechanism, q2[i], method, at_change_point))
         jets[singular, :, 1:] = np.nan
         rates[singular] = np.nan
-    sol = KinematicSolution(
+    sol = KinematicSolution._made(
         plan=p, q=q2, qd=_per_sample(qd2, q2.shape), qdd=_per_sample(qdd2, q2.shape),
         stored_jets=jets, stored_rates=rates,
         det_J=diag[:, 0], singularity=diag[:, 1], singular=singular, assembled=ok,
         single=single, newton_state=out.get("state"),
-        change_points=bmap.change_points(float(q2.min()), float(q2.max())) if bmap else ())
+        change_points=bmap.change_points(float(q2.min()), float(q2.max())) if bmap else (),
+        certificate=None, constants=None)
     if p.redundant:
         _check_redundant(p, sol)
     return sol

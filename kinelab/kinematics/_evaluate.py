@@ -93,12 +93,12 @@ def outputs(p: Plan, q, ops_f=None, stored=None) -> tuple[np.ndarray, np.ndarray
     stored = p.stored_items if stored is None else np.asarray(stored, np.int64)
     N, M = q.shape
     n = len(stored)
-    memory.require(N * (8 * n * (3 + M + M * M) + 41),
-                   f"the results of {N:,} samples ({n} coordinates each, with K, L and rates)",
+    nbytes = N * (8 * n * (3 + M + M * M) + 41)
+    memory.require(nbytes, f"the results of {N:,} samples ({n} coordinates each, with K, L and rates)",
                    "analyse fewer samples at a time (a sweep in pieces continues with start=)")
-    out = dict(jets=memory.empty((N, n, 1 + M + M * M)), rates=memory.empty((N, n, 2)),
-               diag=memory.empty((N, 2)), status=memory.empty((N,), np.int8),
-               fail=memory.empty((N, 2)))
+    empty = np.empty if nbytes < memory.SMALLEST else memory.empty    # small: no reuse
+    out = dict(jets=empty((N, n, 1 + M + M * M)), rates=empty((N, n, 2)),
+               diag=empty((N, 2)), status=empty((N,), np.int8), fail=empty((N, 2)))
     return ops_f, stored, out
 
 
@@ -118,6 +118,14 @@ def run_compiled(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None, desig
     from kinelab.kinematics import _kernel
     _, stored, out = outputs(p, q, ops_f, stored)
     N, M = q.shape
+    if p.groups is None and designs is None and M == 1 and N < 2 * _PARALLEL_FROM:
+        # a small sweep of one design: on this thread, with the plan's own numbers
+        _kernel.run_closed_form_one_input(
+            q, qd, qdd, np.array([0, N], np.int64), 0, 1, p.ops_i,
+            (p.ops_f if ops_f is None else ops_f)[None], p.const_items, p.const_values[None],
+            p.n_items, p.n_angles, stored, out["jets"], out["rates"], out["diag"],
+            out["status"], out["fail"])
+        return out
     nums = Numbers(p, N, ops_f, start, designs)
     tail = (out["jets"], out["rates"], out["diag"], out["status"], out["fail"])
     if p.groups is None:
