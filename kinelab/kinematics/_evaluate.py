@@ -184,4 +184,6 @@ def warm_up(name: str) -> None:
         run_compiled(plan(fivebar, method="newton"), two, two, two)
     else:
         from kinelab.kinematics._tracker import Tracker
-        Tracker(fourbar)._positions_kernel.run_compiled(np.zeros((3, 1)), 0)
+        one = Tracker(fourbar)._solution_kernel
+        one.run_one_input(0.1, 0.2, 0.3, 0, np.empty(one.size))
+        Tracker(fivebar)._solution_kernel.run_compiled(np.repeat(two[0:1], 3, axis=0), 0)

@@ -1246,15 +1246,67 @@ def evaluate_one_sample(x, scratch, out, M):
     return st
 
 
-@_jit(nogil=True)
-def run_one_sample(x, plan_i, plan_f, out):
-    """Evaluate one sample of a plan without Newton groups: x (3, M) holds q, q' and q''.
+# A tracker (``_tracker.py``) asks for one sample at a time, each call a few microseconds:
+# its plan is packed with the scratch space of its samples (``_codes.pack_tracked``), in
+# two 2-D arrays whose blocks the kernel takes by slicing (a reshape costs a call), so that
+# a call allocates nothing; its one input comes as three numbers.  These entry points hold
+# the GIL: two threads cannot share that space.
 
-    plan_i and plan_f come from :func:`pack_plan`; ``out`` is laid out as
-    :func:`one_sample_layout` says.  Returns the status.
-    """
+@_jit(inline="always")
+def _tracked(ints, floats, out, M):
+    """Evaluate the sample in the scratch space's x (3, M) of a plan packed by
+    ``_codes.pack_tracked``; ``out`` is laid out as ``_codes.tracked_layout`` says.
+    Returns the singularity measure, or -1.0 where the sample does not assemble."""
+    n_items, n_angles, n_ops, wi, wf, ns = ints[0, 0], ints[0, 1], ints[0, 2], ints[0, 3], \
+        ints[0, 4], ints[0, 5]
+    w = 1 + M + M * M
+    ops_i = ints[1:1 + n_ops, 0:wi]
+    stored = ints[1 + n_ops, 0:ns]
+    lane_i = ints[2 + n_ops:4 + n_ops, 0:1]
+    o_status = ints[4 + n_ops, 0:1]
+    ops_f = floats[0:n_ops, 0:wf]
+    jet = floats[n_ops:n_ops + n_items, 0:w][None]
+    r = n_ops + n_items                     # then res, lane_f (3, 1), Kt, Kt2, Lt (M, M), x (3, M)
+    res = floats[r, 0:4]
+    lane_f = floats[r + 1:r + 4, 0:1]
+    Kt = floats[r + 4, 0:M]
+    Kt2 = floats[r + 5, 0:M]
+    Lt = floats[r + 6:r + 6 + M, 0:M]
+    x = floats[r + 6 + M:r + 9 + M, 0:M]
+    o = out.reshape((2 * ns + 2, w))
+    o_jet = o[0:ns][None]
+    o_rate = o[ns:2 * ns, 0:2][None]
+    o_diag = o[2 * ns:2 * ns + 1, 0:2]
+    o_fail = o[2 * ns + 1:2 * ns + 2, 0:2]
+    # the arrays of Newton groups, which a closed-form plan never touches, stand in as arrays
+    # of their kinds already at hand: each view made here costs the call its reference count
+    st = _evaluate(x, x[1:2], x[2:3], 0, 1, True, ops_i, ops_f, jet, M, Kt, Kt2, Lt, ints,
+                   ints, floats, 1.0, out, floats, jet, floats, out, out, stored, res, lane_f,
+                   lane_i, n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail)
+    o[2 * ns + 1, 2] = st
+    return o[2 * ns, 1] if st == ST_OK else -1.0
+
+
+@_jit()
+def run_tracked_one_input(q, qd, qdd, ints, floats, out):
+    """One sample of a plan without Newton groups and with one input, packed with its
+    scratch space by ``_codes.pack_tracked``: the input q, its rates qd and qdd.  ``out`` is
+    laid out as ``_codes.tracked_layout`` says.  Returns the singularity measure, or -1.0
+    where the sample does not assemble."""
+    r = ints[0, 2] + ints[0, 0] + 7                    # x, after the scratch (see _tracked)
+    floats[r, 0] = q
+    floats[r + 1, 0] = qd
+    floats[r + 2, 0] = qdd
+    return _tracked(ints, floats, out, 1)
+
+
+@_jit()
+def run_tracked(x, ints, floats, out):
+    """:func:`run_tracked_one_input` for M inputs: x (3, M) holds q, q' and q''."""
     M = x.shape[1]
-    return evaluate_one_sample(x, one_sample_scratch(plan_i, plan_f, M), out, M)
+    r = ints[0, 2] + ints[0, 0] + 6 + M
+    floats[r:r + 3, 0:M] = x
+    return _tracked(ints, floats, out, M)
 
 
 @_jit()

@@ -393,12 +393,6 @@ class KinematicSolution(TableExport):
                                                 np.count_nonzero(self.singular) > 0)
         return flags
 
-    def __getstate__(self) -> dict:
-        state = dict(self.__dict__)
-        state.pop("_blocks", None)                # made again on first use
-        state.pop("_status", None)
-        return state
-
     def _value(self, name: str, kinds: str, column: int, source: str = "jets") -> np.ndarray:
         i, w, stored, drive = self._where(name, kinds)
         if stored >= 0:                           # a view of the stored arrays
