@@ -397,6 +397,8 @@ class KinematicSolution(TableExport):
         i, w, stored, drive = self._where(name, kinds)
         if stored >= 0:                           # a view of the stored arrays
             a = self.stored_jets if source == "jets" else self.stored_rates
+            if self.single:
+                return a[0, stored, column] if w == 1 else a[0, stored:stored + w, column]
             return self._out(a[:, stored, column] if w == 1 else a[:, stored:stored + w, column])
         if drive is not None:
             return self._out(self._driven(drive, "angle" if source == "jets" else

@@ -231,6 +231,34 @@ class _OneConfiguration(KinematicSolution):
     assembled = _YES
     single = True
 
+    # The accessors of one input's stored items, read from the kernel's output directly (a
+    # value, or a point's two, as the general accessors give them); the rest as theirs.
+    def _value(self, name: str, kinds: str, column: int, source: str = "jets"):
+        i, w, stored, drive = self._where(name, kinds)
+        d = self.__dict__
+        if stored < 0 or type(d.get("_x")) is not tuple:
+            return super()._value(name, kinds, column, source)
+        width = d["_kernel"].width
+        at = (stored if source == "jets" else d["_kernel"].n + stored) * width + column
+        out = d["_kernel_out"]
+        return out[at] if w == 1 else out[at:at + w * width:width]
+
+    def K(self, name: str):
+        return self._coefficient(name, 1)
+
+    def L(self, name: str):
+        return self._coefficient(name, 2)
+
+    def _coefficient(self, name: str, column: int):
+        i, w, stored, drive = self._where(name, "lsp")
+        d = self.__dict__
+        if stored < 0 or type(d.get("_x")) is not tuple:
+            return super().K(name) if column == 1 else super().L(name)
+        width = d["_kernel"].width
+        at = stored * width + column
+        out = d["_kernel_out"]
+        return out[at] if w == 1 else out[at:at + w * width:width]
+
 
 class _Packed:
     """A closed-form plan packed for the kernel's one-sample entries, writing out the items
