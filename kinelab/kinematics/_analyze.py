@@ -8,6 +8,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from kinelab import _compiled
 from kinelab import _memory as memory
 from kinelab.errors import AssemblyError, ModelError, check_choice, describe, shown
 from kinelab.kinematics import _codes as k
@@ -16,6 +17,7 @@ from kinelab.kinematics._branches import (MAX_PERIODS, BranchMap, ChangePoint, b
                                           branched_ops)
 from kinelab.kinematics._columns import INPUT_SI_UNITS
 from kinelab.kinematics._input_errors import SingularInput, UnreachableInput
+from kinelab.kinematics._evaluate import PARALLEL_FROM
 from kinelab.kinematics._evaluate import run as _run
 from kinelab.kinematics._plan import Plan, build_plan
 from kinelab.kinematics._solution import DesignSolution, KinematicSolution
@@ -92,6 +94,7 @@ def _rates(name: str, value: ArrayLike, M: int, shape: tuple[int, ...]) -> np.nd
 INPUT_TURNS = 1_000_000
 MAX_SEARCH_SAMPLES = 1_000_000    # samples of a turn a search for limit positions may take
 Q_LIMITS = {"angle": INPUT_TURNS * 2 * math.pi, "slide": MAX_LENGTH}
+_SMALL_SWEEP = 2 * PARALLEL_FROM        # samples below which a sweep runs on one thread
 
 
 def _within_limits(p: Plan, q2: np.ndarray, qd2: np.ndarray, qdd2: np.ndarray) -> None:
@@ -232,9 +235,43 @@ def _require_results(p: Plan, shape: tuple[int, ...], M: int) -> None:
     """Refuse a sweep whose results (and copies of its inputs) exceed the memory budget."""
     N = math.prod(shape[:-1] if M > 1 and len(shape) > 1 else shape)
     n = len(p.stored_items)
-    memory.require(N * (8 * n * (3 + M + M * M) + 24 * M + 41),
-                   f"the results of {N:,} samples ({n} coordinates each, with K, L and rates)",
-                   "analyse fewer samples at a time (a sweep in pieces continues with start=)")
+    nbytes = N * (8 * n * (3 + M + M * M) + 24 * M + 41)
+    if nbytes > memory.memory_budget():          # (the message only then)
+        memory.require(nbytes, f"the results of {N:,} samples ({n} coordinates each, with K, "
+                       "L and rates)", "analyse fewer samples at a time (a sweep in pieces "
+                       "continues with start=)")
+
+
+def _run_small(p: Plan, q, qd, qdd):
+    """The analysis of a small sweep of one input at constant rates, a plan in closed form
+    without change points, in one call of the compiled kernel (``run_small_one_input``: the
+    checks of q, the copies, the outputs and the counts of the samples that do not assemble
+    and of those flagged singular); None for anything else, or inputs beyond the limits (the
+    general checks name them).  The numbers are those of the general path, to the bit: the
+    same kernel runs the samples."""
+    if not (p.groups is None and type(qd) is float and type(qdd) is float
+            and abs(qd) <= MAX_RATE and abs(qdd) <= MAX_RATE):
+        return None
+    if type(q) is float:
+        qs, single = np.array([q]), True
+    elif (type(q) is np.ndarray and q.dtype == np.float64 and q.ndim == 1 and q.size
+          and q.flags.c_contiguous):
+        qs, single = q, False
+    else:
+        return None
+    N, n = len(qs), len(p.stored_items)
+    if N * (40 * n + 41) >= memory.SMALLEST or N >= _SMALL_SWEEP or not _compiled.ready(
+            "closed_form_one_input"):
+        return None
+    from kinelab.kinematics import _kernel
+    (checked, q2, qd2, qdd2, jets, rates, diag, status, fail, assembled, singular, failed,
+     flagged) = _kernel.run_small_one_input(
+        qs, qd, qdd, Q_LIMITS[p.input_kinds[0]], p.ops_i, p.ops_f, p.const_items,
+        p.const_values, p.n_items, p.n_angles, p.stored_items, SINGULAR_TOL)
+    if not checked:
+        return None
+    out = dict(jets=jets, rates=rates, diag=diag, status=status, fail=fail)
+    return q2, qd2, qdd2, single, out, assembled, singular, failed, flagged
 
 
 def _branch_map(p: Plan, M: int, followed: str) -> BranchMap | None:
@@ -566,33 +603,42 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
         shape = None
     if shape is not None:
         _require_results(p, shape, M)            # before anything of that size is made
-    q2, qd2, qdd2, single = _normalise_q(q, qd, qdd, M, p)
-    resume = None
-    if start is not None:
-        if not isinstance(start, KinematicSolution) or start.mechanism != mechanism:
-            raise ModelError("start: expected an earlier KinematicSolution of this mechanism")
-        if p.groups is not None:
-            # the state must be of this plan's Newton groups (another method solves others)
-            if start.newton_state is None or start.plan.groups is None or not all(
-                    np.array_equal(a, b) for a, b in zip(start.plan.groups, p.groups)):
-                raise ModelError("start: the earlier analysis used another method; analyze "
-                                 "with the same method to continue from it")
-            resume = start.newton_state
     bmap = _branch_map(p, M, at_change_point)
-    out = _solve(p, bmap, q2, qd2, qdd2, resume)
+    quick = _run_small(p, q, qd, qdd) if start is None and bmap is None and M == 1 else None
+    if quick is not None:
+        q2, qd2, qdd2, single, out, ok, singular, failed, flagged = quick
+    else:
+        q2, qd2, qdd2, single = _normalise_q(q, qd, qdd, M, p)
+        resume = None
+        if start is not None:
+            if not isinstance(start, KinematicSolution) or start.mechanism != mechanism:
+                raise ModelError("start: expected an earlier KinematicSolution of this mechanism")
+            if p.groups is not None:
+                # the state must be of this plan's Newton groups (another method solves others)
+                if start.newton_state is None or start.plan.groups is None or not all(
+                        np.array_equal(a, b) for a, b in zip(start.plan.groups, p.groups)):
+                    raise ModelError("start: the earlier analysis used another method; analyze "
+                                     "with the same method to continue from it")
+                resume = start.newton_state
+        out = _solve(p, bmap, q2, qd2, qdd2, resume)
+        ok = out["status"] == k.ST_OK
+        failed = np.count_nonzero(out["status"])
+        singular = flagged = None
     jets, rates, diag = out["jets"], out["rates"], out["diag"]
-    ok = out["status"] == k.ST_OK
-    if np.count_nonzero(out["status"]):          # some sample did not assemble
+    if failed:                                   # some sample did not assemble
         bad = np.flatnonzero(~ok)
         if unreachable == "raise":
             raise _unreachable(p, mechanism, method, out, q2, bad)
         jets[bad] = np.nan
         rates[bad] = np.nan
         diag[bad] = np.nan
-        singular = ok & (diag[:, 1] < SINGULAR_TOL)
-    else:
+        if singular is None:
+            singular = ok & (diag[:, 1] < SINGULAR_TOL)
+    elif singular is None:
         singular = diag[:, 1] < SINGULAR_TOL
-    if np.count_nonzero(singular):
+    if flagged is None:
+        flagged = np.count_nonzero(singular)
+    if flagged:
         policy = at_singular if at_singular != "auto" else ("raise" if single else "flag")
         if policy == "raise":
             i = int(np.flatnonzero(singular)[0])

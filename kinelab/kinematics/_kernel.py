@@ -1206,6 +1206,76 @@ def run_closed_form_one_input(q, qd, qdd, starts, d0, d1, ops_i, ops_f, const_it
 
 
 @_jit()
+def run_small_one_input(q, qd, qdd, limit, ops_i, ops_f, const_items, const_values, n_items,
+                        n_angles, stored, tol):
+    """A small sweep of one input at constant rates, as ``analyze`` takes it most often: the
+    inputs q (N,) checked (each within ``limit`` in size; else the first output is False and
+    the caller checks them in full) and copied, the outputs allocated, the samples run
+    (:func:`_closed_form`, as :func:`run_closed_form_one_input` runs them), and the samples
+    that assemble and those below the singularity measure ``tol`` counted.  Returns (inputs
+    checked, q (N, 1), qd (1, 1), qdd (1, 1), jets, rates, diag, status, fail, assembled,
+    singular, how many do not assemble, how many are singular)."""
+    N = q.shape[0]
+    ns = stored.shape[0]
+    q2 = np.empty((N, 1))
+    ok = True
+    for i in range(N):
+        q2[i, 0] = q[i]
+        if not abs(q[i]) <= limit:             # NaN too
+            ok = False
+    qd2 = np.full((1, 1), qd)
+    qdd2 = np.full((1, 1), qdd)
+    n = N if ok else 0
+    jets = np.empty((n, ns, 3))
+    rates = np.empty((n, ns, 2))
+    diag = np.empty((n, 2))
+    status = np.empty(n, np.int8)
+    fail = np.empty((n, 2))
+    assembled = np.empty(n, np.bool_)
+    singular = np.empty(n, np.bool_)
+    n_failed = 0
+    n_singular = 0
+    if ok:
+        _closed_form(q2, qd2, qdd2, 0, N, ops_i, ops_f, const_items, const_values, n_items,
+                     n_angles, stored, jets, rates, diag, status, fail, 1)
+        for i in range(N):
+            assembled[i] = status[i] == ST_OK
+            singular[i] = assembled[i] and diag[i, 1] < tol
+            n_failed += not assembled[i]
+            n_singular += singular[i]
+    return (ok, q2, qd2, qdd2, jets, rates, diag, status, fail, assembled, singular, n_failed,
+            n_singular)
+
+
+@njit(cache=True, error_model="numpy")     # no contraction: numpy's arithmetic, to the bit
+def driven_angles(q, m, sign, out):
+    """The angles of a link turned by input m from the ground with the sign ``sign``:
+    ``out[i] = solvers.wrap_angle(q[i, m] * sign)`` to the bit, in numpy's steps (an angle
+    in (-pi, pi] as it is, else ``np.remainder(t + pi, 2 pi) - pi``, -pi written pi; a
+    float's ``%`` is that remainder: fmod's, with the divisor added where the signs
+    differ, +0 for 0).  Within a turn either way the remainder takes one subtraction or
+    addition, as ``solvers.wrapped_angles`` takes it (fmod's loop is slow)."""
+    two_pi = 2.0 * math.pi
+    for i in range(q.shape[0]):
+        t = q[i, m] * sign
+        if -math.pi < t <= math.pi:
+            out[i] = t
+            continue
+        x = t + math.pi
+        if 0.0 <= x < two_pi:
+            r = x
+        elif two_pi <= x < 2.0 * two_pi:
+            r = x - two_pi                         # exact, as fmod is
+        elif -two_pi < x < 0.0:
+            r = x + two_pi
+        else:
+            r = x % two_pi
+        w = r - math.pi
+        out[i] = math.pi if w == -math.pi else w
+    return out
+
+
+@_jit()
 def one_sample_scratch(plan_i, plan_f, M):
     """What :func:`evaluate_one_sample` needs of a plan packed by :func:`pack_plan` (views of
     plan_i and plan_f) and the scratch space of its samples: made once for a run of samples

@@ -9,6 +9,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from kinelab import _compiled
 from kinelab.errors import ModelError, describe, expected_one_of, quoted, shown
 from kinelab.kinematics._columns import TableExport, solution_columns
 from kinelab.kinematics._geometry import k_cross
@@ -365,7 +366,12 @@ class KinematicSolution(TableExport):
         and s q_m'', K = s (for input m), L = 0."""
         m, sign = drive
         if what == "angle":
-            a = wrapped_angles(self.q[:, m] * sign)
+            q = self.q
+            if q.flags.c_contiguous and q.dtype == np.float64 and _compiled.ready("driven_angles"):
+                from kinelab.kinematics import _kernel
+                a = _kernel.driven_angles(q, m, sign, np.empty(self.N))     # the same, to the bit
+            else:
+                a = wrapped_angles(q[:, m] * sign)
         elif what == "rate":
             a = self.qd[:, m] * sign
         elif what == "second":

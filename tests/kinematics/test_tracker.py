@@ -283,3 +283,46 @@ def test_tracker_on_the_numpy_form(monkeypatch):
             if isinstance(value, np.ndarray) and value.dtype == float:
                 assert np.allclose(value, outputs(compiled[name])[key], rtol=1e-12,
                                    atol=1e-12 * kl.kinematics.plan(m).scale), (name, key)
+
+
+@pytest.mark.parametrize("name", CASES)
+@pytest.mark.parametrize("options", [{}, {"at_singular": "flag", "unreachable": "mask"}],
+                         ids=["raise", "flag"])
+def test_small_sweeps_in_one_call_are_the_general_path_to_the_bit(name, options):
+    """analyze runs a small sweep of one input given as a float array in one call of the
+    kernel (checks, outputs and counts included): its numbers, flags and errors are those
+    of the same inputs given as a list, which take the general path."""
+    m = CASES[name]()
+    if len(m.inputs) > 1:
+        pytest.skip("one input")
+    q = np.array(QUICK_Q + [-7.0, 12.5, 1e3])
+    mine, my_error = answer_or_error(lambda: kl.analyze(m, q, 7.0, -3.0, **options))
+    theirs, error = answer_or_error(lambda: kl.analyze(m, q.tolist(), 7.0, -3.0, **options))
+    assert my_error == error
+    if mine is not None:
+        assert_identical(mine, theirs)
+        for name_ in ("jets", "rates"):
+            assert np.array_equal(getattr(mine, name_), getattr(theirs, name_), equal_nan=True)
+
+
+def test_driven_angles_compiled_are_wrap_angle_to_the_bit():
+    """The angle of a link turned by an input, compiled (solution accessors), is
+    solvers.wrap_angle of the input, to the bit, within a turn and far beyond."""
+    from kinelab.kinematics import _kernel
+    from kinelab.solvers._angles import wrapped_angles
+
+    assert _compiled.ready("driven_angles")
+    rng = np.random.default_rng(3)
+    edges = [math.pi, -math.pi, 3 * math.pi, -3 * math.pi, 2 * math.pi, -2 * math.pi, 4 * math.pi,
+             -4 * math.pi, 0.0, -0.0, 1e-300, np.nextafter(math.pi, 4.0), np.nextafter(-math.pi, 0.0),
+             np.nextafter(-math.pi, -4.0), np.nextafter(3 * math.pi, 0.0), 1e17, float("nan")]
+    for a in (rng.uniform(-5 * math.pi, 5 * math.pi, 100_000), rng.uniform(-1e7, 1e7, 10_000),
+              np.array(edges)):
+        q = np.ascontiguousarray(np.stack([a, a[::-1]], axis=1))
+        for m in (0, 1):
+            for sign in (1.0, -1.0):
+                got = _kernel.driven_angles(q, m, sign, np.empty(len(a)))
+                want = wrapped_angles(q[:, m] * sign)
+                assert np.array_equal(got.view(np.int64)[~np.isnan(want)],
+                                      want.view(np.int64)[~np.isnan(want)])
+                assert np.array_equal(np.isnan(got), np.isnan(want))
