@@ -76,6 +76,7 @@ class Tracker:
             self._positions_kernel = _Packed(p, tables, np.array(point_items, np.int64), M)
         self._quick = self._closed_form and M == 1      # one input given as a number: no checks
                                                         # but a few comparisons
+        self._more_to_do = self._bmap is not None or bool(p.redundant)
 
     @property
     def mechanism(self) -> Mechanism:
@@ -98,10 +99,10 @@ class Tracker:
             v = 0 if self._bmap is None else self._variant_at(q)
             if kernel.kernel().run_tracked_one_input(q, qd, qdd, kernel.ints[v], kernel.floats[v],
                                                      out) >= SINGULAR_TOL:
-                sol = object.__new__(_OneConfiguration)
+                sol = _new(_OneConfiguration)
                 sol.__dict__.update(plan=self.plan, _x=(q, qd, qdd), _kernel_out=out,
                                     _kernel=kernel)
-                if self._bmap is not None or self.plan.redundant:
+                if self._more_to_do:
                     self._more(sol, q)
                 return sol
             return self._analyze(q, qd, qdd)              # its errors and flags, in full
@@ -119,7 +120,7 @@ class Tracker:
     def _answer(self, out: np.ndarray, x, q0: float) -> KinematicSolution:
         """The solution of one configuration from the kernel's output ``out`` at the inputs
         ``x`` ((q, qd, qdd) of one input, or their rows (3, M))."""
-        sol = object.__new__(_OneConfiguration)
+        sol = _new(_OneConfiguration)
         sol.__dict__.update(plan=self.plan, _x=x, _kernel_out=out, _kernel=self._solution_kernel)
         return self._more(sol, q0)
 
@@ -185,6 +186,7 @@ class Tracker:
 
 
 _NUMBERS = (float, np.float64)     # inputs a tracker takes as they are, on its quick path
+_new = object.__new__
 _YES = np.ones(1, bool)
 _YES.flags.writeable = False
 _NO = np.zeros(1, bool)
@@ -276,10 +278,11 @@ class _Packed:
 
     def kernel(self):
         """The compiled kernel (imported on first use: importing numba takes a while)."""
-        if self._kernel is None:
-            from kinelab.kinematics import _kernel
-            self._kernel = _kernel
-        return self._kernel
+        kernel = self._kernel
+        if kernel is None:
+            from kinelab.kinematics import _kernel as kernel
+            self._kernel = kernel
+        return kernel
 
     def run(self, x: np.ndarray, variant: int) -> tuple[np.ndarray, float] | None:
         """The kernel's output and the singularity measure (-1 where the sample does not
