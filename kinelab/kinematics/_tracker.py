@@ -23,10 +23,12 @@ class Tracker:
 
     Each call of :func:`analyze` checks its arguments and arranges the kernel's; for a
     sweep that is nothing, for one configuration it is most of the call.  A tracker does it
-    once, and then answers a configuration in a few microseconds: dragging an input in an
-    interactive view, or stepping a simulation.  Its answers are those of ``analyze`` with
-    the same options: a configuration that does not assemble raises (or, with
-    ``unreachable="mask"``, comes out NaN), a singular one follows ``at_singular``.
+    once, and then answers a configuration in a couple of microseconds (one input given as
+    a number, a plan in closed form): dragging an input in an interactive view, the frames
+    of an animation, a control loop, stepping a simulation.  Its answers are those of
+    ``analyze`` with the same options, to the bit: a configuration that does not assemble
+    raises (or, with ``unreachable="mask"``, comes out NaN), a singular one follows
+    ``at_singular``.  See docs/kinematics.md, "One configuration at a time".
 
     Newton groups go on from the configuration of the previous call, as
     ``analyze(start=...)`` does, so a drag stays on the branch it is on; closed-form groups
