@@ -17,7 +17,7 @@ from kinelab.kinematics._branches import (MAX_PERIODS, BranchMap, ChangePoint, b
                                           branched_ops)
 from kinelab.kinematics._columns import INPUT_SI_UNITS
 from kinelab.kinematics._input_errors import SingularInput, UnreachableInput
-from kinelab.kinematics._evaluate import PARALLEL_FROM
+from kinelab.kinematics._evaluate import PARALLEL_FROM, outputs
 from kinelab.kinematics._evaluate import run as _run
 from kinelab.kinematics._plan import Plan, build_plan
 from kinelab.kinematics._solution import DesignSolution, KinematicSolution
@@ -243,12 +243,12 @@ def _require_results(p: Plan, shape: tuple[int, ...], M: int) -> None:
 
 
 def _run_small(p: Plan, q, qd, qdd):
-    """The analysis of a small sweep of one input at constant rates, a plan in closed form
-    without change points, in one call of the compiled kernel (``run_small_one_input``: the
-    checks of q, the copies, the outputs and the counts of the samples that do not assemble
-    and of those flagged singular); None for anything else, or inputs beyond the limits (the
-    general checks name them).  The numbers are those of the general path, to the bit: the
-    same kernel runs the samples."""
+    """The analysis of a sweep of one input at constant rates on one thread, a plan in
+    closed form without change points, in one call of the compiled kernel
+    (``run_small_one_input``: the checks of q, its copy, the samples, and which samples do
+    not assemble and which are singular); None for anything else, or inputs beyond the
+    limits (the general checks name them).  The numbers are those of the general path, to
+    the bit: the same kernel runs the samples."""
     if not (p.groups is None and type(qd) is float and type(qdd) is float
             and abs(qd) <= MAX_RATE and abs(qdd) <= MAX_RATE):
         return None
@@ -259,19 +259,27 @@ def _run_small(p: Plan, q, qd, qdd):
         qs, single = q, False
     else:
         return None
-    N, n = len(qs), len(p.stored_items)
-    if N * (40 * n + 41) >= memory.SMALLEST or N >= _SMALL_SWEEP or not _compiled.ready(
-            "closed_form_one_input"):
+    if len(qs) >= _SMALL_SWEEP or not _compiled.ready("closed_form_one_input"):
         return None
+    done = run_small(p, qs, qd, qdd)
+    return None if done is None else (done[0], np.array([[qd]]), np.array([[qdd]]), single,
+                                      *done[1:])
+
+
+def run_small(p: Plan, q: np.ndarray, qd: float, qdd: float):
+    """The compiled kernel's ``run_small_one_input`` at the inputs q (N,): q (N, 1), the
+    outputs, which samples assemble and which are singular, how many of each; or None where
+    an input is beyond the limits."""
     from kinelab.kinematics import _kernel
-    (checked, q2, qd2, qdd2, jets, rates, diag, status, fail, assembled, singular, failed,
-     flagged) = _kernel.run_small_one_input(
-        qs, qd, qdd, Q_LIMITS[p.input_kinds[0]], p.ops_i, p.ops_f, p.const_items,
-        p.const_values, p.n_items, p.n_angles, p.stored_items, SINGULAR_TOL)
-    if not checked:
-        return None
-    out = dict(jets=jets, rates=rates, diag=diag, status=status, fail=fail)
-    return q2, qd2, qdd2, single, out, assembled, singular, failed, flagged
+    N = len(q)
+    q2 = np.empty((N, 1))
+    _, stored, out = outputs(p, q2)
+    assembled, singular = np.empty(N, bool), np.empty(N, bool)
+    checked, failed, flagged = _kernel.run_small_one_input(
+        q, qd, qdd, Q_LIMITS[p.input_kinds[0]], p.ops_i, p.ops_f, p.const_items,
+        p.const_values, p.n_items, p.n_angles, stored, SINGULAR_TOL, q2, out["jets"],
+        out["rates"], out["diag"], out["status"], out["fail"], assembled, singular)
+    return (q2, out, assembled, singular, failed, flagged) if checked else None
 
 
 def _branch_map(p: Plan, M: int, followed: str) -> BranchMap | None:

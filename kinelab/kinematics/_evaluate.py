@@ -178,12 +178,8 @@ def warm_up(name: str) -> None:
     one, two = np.array([[0.1], [0.2]]), np.array([[1.2, 1.9], [1.25, 1.95]])
     if name == "closed_form_one_input":
         run_compiled(plan(fourbar), one, one, one)
-        p = plan(fourbar)
-        from kinelab.kinematics import _kernel
-        from kinelab.kinematics._analyze import Q_LIMITS, SINGULAR_TOL
-        _kernel.run_small_one_input(np.array([0.1, 0.2]), 0.1, 0.1, Q_LIMITS["angle"], p.ops_i, p.ops_f,
-                                    p.const_items, p.const_values, p.n_items, p.n_angles,
-                                    p.stored_items, SINGULAR_TOL)
+        from kinelab.kinematics._analyze import run_small
+        run_small(plan(fourbar), np.array([0.1, 0.2]), 0.1, 0.1)
     elif name == "driven_angles":
         from kinelab.kinematics import _kernel
         _kernel.driven_angles(two, 1, -1.0, np.empty(2))

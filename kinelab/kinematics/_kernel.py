@@ -1207,44 +1207,33 @@ def run_closed_form_one_input(q, qd, qdd, starts, d0, d1, ops_i, ops_f, const_it
 
 @_jit()
 def run_small_one_input(q, qd, qdd, limit, ops_i, ops_f, const_items, const_values, n_items,
-                        n_angles, stored, tol):
-    """A small sweep of one input at constant rates, as ``analyze`` takes it most often: the
-    inputs q (N,) checked (each within ``limit`` in size; else the first output is False and
-    the caller checks them in full) and copied, the outputs allocated, the samples run
-    (:func:`_closed_form`, as :func:`run_closed_form_one_input` runs them), and the samples
-    that assemble and those below the singularity measure ``tol`` counted.  Returns (inputs
-    checked, q (N, 1), qd (1, 1), qdd (1, 1), jets, rates, diag, status, fail, assembled,
-    singular, how many do not assemble, how many are singular)."""
+                        n_angles, stored, tol, o_q, o_jet, o_rate, o_diag, o_status, o_fail,
+                        o_assembled, o_singular):
+    """A sweep of one input at constant rates on the calling thread, as ``analyze`` takes
+    most: the inputs q (N,) checked (each within ``limit`` in size; else nothing more is
+    done, and the caller checks them in full) and copied to o_q (N, 1), the samples run
+    (:func:`_closed_form`, as :func:`run_closed_form_one_input` runs them) into the outputs
+    o_jet ... o_fail, and the samples that assemble and those below the singularity measure
+    ``tol`` marked (o_assembled, o_singular, (N,) bool).  Returns (inputs checked, how many
+    samples do not assemble, how many are singular)."""
     N = q.shape[0]
-    ns = stored.shape[0]
-    q2 = np.empty((N, 1))
-    ok = True
     for i in range(N):
-        q2[i, 0] = q[i]
+        o_q[i, 0] = q[i]
         if not abs(q[i]) <= limit:             # NaN too
-            ok = False
+            return False, 0, 0
     qd2 = np.full((1, 1), qd)
     qdd2 = np.full((1, 1), qdd)
-    n = N if ok else 0
-    jets = np.empty((n, ns, 3))
-    rates = np.empty((n, ns, 2))
-    diag = np.empty((n, 2))
-    status = np.empty(n, np.int8)
-    fail = np.empty((n, 2))
-    assembled = np.empty(n, np.bool_)
-    singular = np.empty(n, np.bool_)
-    n_failed = 0
-    n_singular = 0
-    if ok:
-        _closed_form(q2, qd2, qdd2, 0, N, ops_i, ops_f, const_items, const_values, n_items,
-                     n_angles, stored, jets, rates, diag, status, fail, 1)
-        for i in range(N):
-            assembled[i] = status[i] == ST_OK
-            singular[i] = assembled[i] and diag[i, 1] < tol
-            n_failed += not assembled[i]
-            n_singular += singular[i]
-    return (ok, q2, qd2, qdd2, jets, rates, diag, status, fail, assembled, singular, n_failed,
-            n_singular)
+    _closed_form(o_q, qd2, qdd2, 0, N, ops_i, ops_f, const_items, const_values, n_items,
+                 n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail, 1)
+    failed = 0
+    flagged = 0
+    for i in range(N):
+        ok = o_status[i] == ST_OK
+        o_assembled[i] = ok
+        o_singular[i] = ok and o_diag[i, 1] < tol
+        failed += not ok
+        flagged += o_singular[i]
+    return True, failed, flagged
 
 
 @njit(cache=True, error_model="numpy")     # no contraction: numpy's arithmetic, to the bit

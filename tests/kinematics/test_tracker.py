@@ -326,3 +326,20 @@ def test_driven_angles_compiled_are_wrap_angle_to_the_bit():
                 assert np.array_equal(got.view(np.int64)[~np.isnan(want)],
                                       want.view(np.int64)[~np.isnan(want)])
                 assert np.array_equal(np.isnan(got), np.isnan(want))
+
+
+@pytest.mark.parametrize("name", ["fourbar", "stephenson6", "slider_crank", "non_grashof"])
+def test_sweeps_of_thousands_in_one_call_are_the_general_path_to_the_bit(name):
+    """Up to the size where a sweep takes threads, in result memory of the pool (1 MiB and
+    over): the same numbers as the general path's."""
+    m = CASES[name]()
+    q = np.linspace(-7.0, 7.0, 5000)
+    mine = kl.analyze(m, q, 7.0, -3.0, unreachable="mask", at_singular="flag")
+    theirs = kl.analyze(m, q.tolist(), 7.0, -3.0, unreachable="mask", at_singular="flag")
+    assert mine.stored_jets.nbytes + mine.stored_rates.nbytes >= 1 << 20 or name != "stephenson6"
+    for field in ("q", "stored_jets", "stored_rates", "det_J", "singularity", "singular",
+                  "assembled"):
+        assert np.array_equal(getattr(mine, field), getattr(theirs, field), equal_nan=True), field
+    for link in mine.link_names:
+        assert np.array_equal(mine.angle(link), theirs.angle(link), equal_nan=True)
+        assert np.array_equal(mine.alpha(link), theirs.alpha(link), equal_nan=True)
