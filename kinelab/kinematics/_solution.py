@@ -461,14 +461,21 @@ class KinematicSolution(TableExport):
         """
         i, w, stored, drive = self._where(name, "lsp")
         M = self.M
+        if stored >= 0:                           # a view of the stored jets
+            j = self.stored_jets
+            if M == 1:
+                a = j[:, stored, 1] if w == 1 else j[:, stored:stored + w, 1]
+            else:
+                a = j[:, stored, 1:1 + M] if w == 1 else j[:, stored:stored + w, 1:1 + M]
+            return self._out(a)
         if drive is not None:
             return self._out(self._driven(drive, "K"))
-        block = self.stored_jets[:, stored:stored + w] if stored >= 0 else self._gathered(i, w, True)
+        block = self._gathered(i, w, True)
         if M == 1:
             a = block[:, 0, 1] if w == 1 else block[:, :, 1]
         else:
             a = block[:, 0, 1:1 + M] if w == 1 else block[:, :, 1:1 + M]
-        return self._out(a.copy() if stored < 0 else a)
+        return self._out(a.copy())
 
     def L(self, name: str) -> np.ndarray:
         """Acceleration coefficients d2S/dq2 = dK/dq, shaped like :meth:`K` with one more
@@ -477,6 +484,9 @@ class KinematicSolution(TableExport):
         M = self.M
         if drive is not None:
             return self._out(self._driven(drive, "L"))
+        if stored >= 0 and M == 1:               # a view of the stored jets
+            j = self.stored_jets
+            return self._out(j[:, stored, 2] if w == 1 else j[:, stored:stored + w, 2])
         block = self.stored_jets[:, stored:stored + w] if stored >= 0 else self._gathered(i, w, True)
         if M == 1:
             a = block[:, 0, 2] if w == 1 else block[:, :, 2]
