@@ -189,6 +189,7 @@ class Tracker:
 
 _NUMBERS = (float, np.float64)     # inputs a tracker takes as they are, on its quick path
 _new = object.__new__
+_KERNEL = []                       # the compiled kernel's module, once imported
 _YES = np.ones(1, bool)
 _YES.flags.writeable = False
 _NO = np.zeros(1, bool)
@@ -276,15 +277,14 @@ class _Packed:
         self.floats = [f for _, f in packed]
         self.n = n = len(stored)
         self.width, self.size = k.tracked_layout(n, M)
-        self._kernel = None
 
-    def kernel(self):
+    @staticmethod
+    def kernel():
         """The compiled kernel (imported on first use: importing numba takes a while)."""
-        kernel = self._kernel
-        if kernel is None:
-            from kinelab.kinematics import _kernel as kernel
-            self._kernel = kernel
-        return kernel
+        if not _KERNEL:
+            from kinelab.kinematics import _kernel
+            _KERNEL.append(_kernel)
+        return _KERNEL[0]
 
     def run(self, x: np.ndarray, variant: int) -> tuple[np.ndarray, float] | None:
         """The kernel's output and the singularity measure (-1 where the sample does not
