@@ -76,6 +76,7 @@ ENTRIES = {"closed_form_one_input": "kinelab.kinematics._evaluate",
            "closed_form": "kinelab.kinematics._evaluate",
            "continuation_one_input": "kinelab.kinematics._evaluate",
            "continuation": "kinelab.kinematics._evaluate",
+           "driven_angles": "kinelab.kinematics._evaluate",
            "dynamics_one_input": "kinelab.dynamics._compiled",
            "dynamics": "kinelab.dynamics._compiled"}
 _MODES = ("auto", "compiled", "numpy")
