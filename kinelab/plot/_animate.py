@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from kinelab import _progress as progress
 from kinelab.errors import ModelError, describe, expected_one_of, shown
 from kinelab._files import atomic_path, file_path
 from kinelab.kinematics import KinematicSolution
@@ -156,7 +157,8 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
     try:
         with atomic_path(path, suffix=suffix) as tmp:     # the writer goes by the suffix
             anim = animation.FuncAnimation(fig, draw, frames=len(idx), blit=False)
-            anim.save(tmp, writer=writer)
+            anim.save(tmp, writer=writer, progress_callback=lambda k, n: progress.report(
+                f"frame {k + 1} of {n}", k / n))
     finally:
         plt.close(fig)
     return path
