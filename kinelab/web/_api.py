@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from kinelab import _progress as progress
 from kinelab import io, kinematics
 from kinelab._deadline import within
 from kinelab.errors import AssemblyError, KinelabError, ModelError, describe, quoted, shown
@@ -556,8 +557,11 @@ def _derivation(mf: ModelFile, lang: str) -> dict:
     from kinelab.derive._words import WORDS
 
     with errors_from(mf):
-        d = derive(mf.mechanism, lang, time_limit=None)
+        with progress.part(0.0, 0.65):
+            d = derive(mf.mechanism, lang, time_limit=None)
+        progress.report("the document", 0.65)
         markdown = d.to_markdown(time_limit=None)
+    progress.report("MathML", 0.98)
     words = WORDS[lang]
 
     def math(label: str, expr) -> dict:
