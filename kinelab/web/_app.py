@@ -33,7 +33,7 @@ from kinelab import _progress as progress
 from kinelab._deadline import within
 from kinelab.errors import (CancellationError, KinelabError, MemoryBudgetError, ModelError,
                             TimeLimitError, shown, shown_path)
-from kinelab.web import _api, _export, _jobs, _limits
+from kinelab.web import _api, _dynamics, _export, _jobs, _limits
 
 __all__ = ["create_app", "MAX_BODY", "WORKERS", "LONG_WORKERS", "LOOPBACK_NAMES"]
 
@@ -338,6 +338,7 @@ def create_app(start: dict | None = None, *, host: str = "127.0.0.1",
         Route("/api/synthesize", _route(_api.synthesize, long=True), methods=["POST"]),
         Route("/api/export", _route(_export.export, raw=True, long=_export.is_long),
               methods=["POST"]),
+        Route("/api/dynamics", _route(_dynamics.dynamics, raw=True), methods=["POST"]),
         Route("/api/progress", _progress, methods=["POST"]),
         Route("/api/cancel", _cancel, methods=["POST"]),
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
