@@ -8,6 +8,7 @@ import {renderTable} from "./table.js";
 import {showCentres, derive} from "./method.js";
 import * as draw from "./draw.js";
 import {synthesisPanel, posesOnDrawing} from "./synth.js";
+import {forcesPanel} from "./dynamics.js";
 
 const $ = (id) => document.getElementById(id);
 const state = {model: null, source: null, study: null, index: 0, config: null,
@@ -122,6 +123,7 @@ function scene() {
 
 function redraw() {
   canvas.draw(scene());
+  forces.draw();
   if (state.study) {
     $("scrub").value = state.index;
     const q = state.study.inputs.map((n) => `${n} = ${fmt(column(n)[state.index])}`);
@@ -281,6 +283,7 @@ const canvas = new Canvas($("canvas"), {
 });
 
 const plot = new Plot($("plot"), (i) => { pause(); setIndex(i); });
+const forces = forcesPanel($("tab-forces"), {state, edit: editModel, status, canvas});
 
 // -- animation -------------------------------------------------------------------------------
 let last = null, phase = 0;
