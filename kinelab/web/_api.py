@@ -31,7 +31,7 @@ from kinelab.web import _limits
 
 __all__ = ["MAX_SAMPLES", "DEFAULT_SAMPLES", "read_model", "analyze", "study", "configuration",
            "drag", "flip", "catalogue", "example", "load", "save", "derivation", "synthesize",
-           "MAX_SEARCH_EFFORT", "DERIVE_SECONDS"]
+           "is_search", "MAX_SEARCH_EFFORT", "DERIVE_SECONDS"]
 
 MAX_SAMPLES = 20_000
 """The longest sweep the page may ask for: past it a drawing or a plot shows nothing more,
@@ -494,6 +494,13 @@ MAX_SEARCH_EFFORT = 4 * (3 * 300 * 15 * 180 * 10)
 samples x target points): four times the default search of ten points (a round's work grows
 with each); the command line has no such cap."""
 _SEARCH_DEFAULTS = {"runs": 3, "maxiter": 300, "popsize": 15, "samples": 180}
+
+
+def is_search(body: dict) -> bool:
+    """Whether a synthesis request is a path-generation search (seconds to minutes of
+    work; the other tasks are solved in closed form, at once)."""
+    task = body.get("task")
+    return isinstance(task, dict) and task.get("task") == "path"
 
 
 def synthesize(body: dict) -> dict:

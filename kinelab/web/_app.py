@@ -4,10 +4,11 @@ request-size caps, and kinelab's errors as JSON with the right status.
 The app answers its own page only: a request whose ``Host`` is not the address served
 (DNS rebinding) or whose ``Origin`` is another site is refused (403), and so is a POST whose
 body is not declared JSON (415: a form or ``text/plain``, which other sites may send without
-asking).  The work of a request runs in worker threads, off the event loop: long work
-(a derivation, a synthesis, an animation) in a pool of its own, so that it never keeps
-the others waiting for a worker; what it may cost is estimated before it starts
-(:mod:`kinelab.web._limits`).  Each request's work is a job (:mod:`kinelab.web._jobs`): how
+asking).  The work of a request runs in worker threads, off the event loop; long work (a
+derivation, a path-generation search, an animation) in worker processes of its own
+(:mod:`kinelab.web._apart`), waited for by threads of their own, so that it neither keeps
+the others waiting for a worker nor slows their work; what it may cost is estimated before
+it starts (:mod:`kinelab.web._limits`).  Each request's work is a job (:mod:`kinelab.web._jobs`): how
 far it has come is asked at ``/api/progress``, and it is stopped by ``/api/cancel`` or when
 its request is closed.  Every error is ``{"error": message}``.
 """
@@ -33,7 +34,7 @@ from kinelab import _progress as progress
 from kinelab._deadline import within
 from kinelab.errors import (CancellationError, KinelabError, MemoryBudgetError, ModelError,
                             TimeLimitError, shown, shown_path)
-from kinelab.web import _api, _dynamics, _export, _jobs, _limits
+from kinelab.web import _apart, _api, _dynamics, _export, _jobs, _limits
 
 __all__ = ["create_app", "MAX_BODY", "WORKERS", "LONG_WORKERS", "LOOPBACK_NAMES"]
 
@@ -46,8 +47,9 @@ WORKERS = 4
 :mod:`kinelab.web._limits` says."""
 
 LONG_WORKERS = 2
-"""Long requests (derivations, syntheses, animations) worked on at once, in threads of their
-own beside the :data:`WORKERS`: however many come, the others never wait for them."""
+"""Long requests (derivations, path-generation searches, animations) worked on at once,
+each in a worker process (:mod:`kinelab.web._apart`) waited for by a thread of its own
+beside the :data:`WORKERS`: however many come, the others never wait for them."""
 
 LOOPBACK_NAMES = ("127.0.0.1", "localhost", "[::1]")
 """The names the page may be reached by when served on loopback (``Host`` without its port)."""
@@ -106,12 +108,14 @@ def _is_json(request: Request) -> bool:
     return media == "application/json"
 
 
-def _answer(call, body: dict, raw: bool, path: str, job: _jobs.Job, jobs: _jobs.Jobs) -> Response:
-    """``call(body)`` and its answer's bytes, in a worker thread, as ``job``: its progress
-    kept, stopped when it is cancelled; what the request reserves is given back once the
-    bytes are made, and the job is closed once its work has ended."""
+def _answer(call, body: dict, raw: bool, path: str, job: _jobs.Job, jobs: _jobs.Jobs,
+            apart: str | None = None) -> Response:
+    """``call(body)`` and its answer's bytes, in a worker thread (or, with ``apart``, the
+    call of that name in a worker process, :func:`kinelab.web._apart.run`), as ``job``: its
+    progress kept, stopped when it is cancelled; what the request reserves is given back
+    once the bytes are made, and the job is closed once its work has ended."""
     def work() -> Response:
-        result = call(body)
+        result = _apart.run(apart, body, job) if apart else call(body)
         if isinstance(result, Response):
             return result
         if raw:
@@ -126,6 +130,8 @@ def _answer(call, body: dict, raw: bool, path: str, job: _jobs.Job, jobs: _jobs.
     try:
         job.start()
         with _limits.request(), progress.watching(job.report):
+            if apart:                   # its process is ended when the job is cancelled
+                return work()
             return within(None, work, cancel=job.cancel,
                           cancelled=f"{shown_path(path)}: cancelled after "
                                     f"{time.monotonic() - job.read:.1f} s, as asked")
@@ -146,11 +152,13 @@ def _retrieved(future) -> None:
         future.exception()
 
 
-def _route(call, *, raw: bool = False, long=False):
-    """A POST endpoint calling ``call(body)`` in one of the app's worker threads (the long
-    ones' when ``long``, a bool or a function of the body, says so), as a job whose id is
-    the body's ``"job"`` (taken out of it); kinelab's errors become ``{"error": message}``
-    with their status (see :func:`_status`).  The client closing the request cancels it."""
+def _route(call, *, raw: bool = False, apart=None):
+    """A POST endpoint calling ``call(body)`` in one of the app's worker threads, as a job
+    whose id is the body's ``"job"`` (taken out of it); kinelab's errors become ``{"error":
+    message}`` with their status (see :func:`_status`).  The client closing the request
+    cancels it.  ``apart`` (a name of :data:`kinelab.web._apart.CALLS`, or a function of
+    the body giving one or None) sends long work to a worker process instead, waited for by
+    one of the long workers' threads."""
     async def endpoint(request: Request) -> Response:
         if not _is_json(request):
             return _error(f"{shown_path(request.url.path)}: expected a JSON body (Content-Type: "
@@ -161,9 +169,11 @@ def _route(call, *, raw: bool = False, long=False):
             jobs = request.app.state.jobs
             job = jobs.open(body.pop("job", None), request.url.path)
             state = request.app.state
-            pool = state.long_workers if (long(body) if callable(long) else long) else state.workers
+            name = apart(body) if callable(apart) else apart
+            pool = state.long_workers if name else state.workers
             loop = asyncio.get_running_loop()
-            work = loop.run_in_executor(pool, _answer, call, body, raw, request.url.path, job, jobs)
+            work = loop.run_in_executor(pool, _answer, call, body, raw, request.url.path, job,
+                                        jobs, name)
             closed = asyncio.ensure_future(_closed(request))
             try:
                 await asyncio.wait({work, closed}, return_when=asyncio.FIRST_COMPLETED)
@@ -334,10 +344,11 @@ def create_app(start: dict | None = None, *, host: str = "127.0.0.1",
         Route("/api/configuration", _route(_api.configuration), methods=["POST"]),
         Route("/api/drag", _route(_api.drag), methods=["POST"]),
         Route("/api/flip", _route(_api.flip), methods=["POST"]),
-        Route("/api/derive", _route(_api.derivation, long=True), methods=["POST"]),
-        Route("/api/synthesize", _route(_api.synthesize, long=True), methods=["POST"]),
-        Route("/api/export", _route(_export.export, raw=True, long=_export.is_long),
-              methods=["POST"]),
+        Route("/api/derive", _route(_api.derivation, apart="derive"), methods=["POST"]),
+        Route("/api/synthesize", _route(_api.synthesize, apart=lambda body: "synthesize"
+                                        if _api.is_search(body) else None), methods=["POST"]),
+        Route("/api/export", _route(_export.export, raw=True, apart=lambda body: "export"
+                                    if _export.is_long(body) else None), methods=["POST"]),
         Route("/api/dynamics", _route(_dynamics.dynamics, raw=True), methods=["POST"]),
         Route("/api/progress", _progress, methods=["POST"]),
         Route("/api/cancel", _cancel, methods=["POST"]),
