@@ -200,3 +200,36 @@ def test_a_matrix_wider_than_the_tab_scrolls_sideways(browser, server):  # noqa:
             .find((d) => d.scrollWidth > d.clientWidth + 1); d.scrollLeft = 1e6; return d.scrollLeft > 0; }""")
     finally:
         context.close()
+
+
+def point_on_screen(pg, name):
+    box = pg.locator(f"#canvas circle[data-point='{name}']").bounding_box()
+    return box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+
+
+def test_a_centre_of_mass_and_a_force_placed_on_the_drawing(page):
+    """*place* beside a link, then a click half way along the crank: its centre of mass is a
+    new point there, in the crank's own frame (50 mm along O2 -> A, to a pixel); *+ force at
+    a point of the drawing*, then a click on B: a force at B, to be typed."""
+    page.wait_for_function("() => window.kinelab.config !== null", timeout=LONG)
+    page.click("#tabs button[data-tab=forces]")
+    page.wait_for_selector("#forces-message.error", timeout=LONG)
+    (x0, y0), (x1, y1) = point_on_screen(page, "O2"), point_on_screen(page, "A")
+    pixel = 100.0 / np.hypot(x1 - x0, y1 - y0)           # mm: the crank is 100 mm
+    page.click("#tab-forces tr[data-link=crank] button.place")
+    assert "centre of mass of crank" in page.inner_text("#forces-place-hint")
+    page.mouse.click((x0 + x1) / 2, (y0 + y1) / 2)
+    page.wait_for_function("() => window.kinelab.model.links[1].center_of_mass === 'G_crank'",
+                           timeout=LONG)
+    crank = state(page, "window.kinelab.model.links[1]")
+    assert crank["points"] == ["O2", "A", "G_crank"]
+    np.testing.assert_allclose(crank["local"]["G_crank"], [50.0, 0.0], atol=1.5 * pixel)
+    assert page.inner_text("#forces-place-hint") == ""
+    page.click("#forces-place-force")
+    page.mouse.click(*point_on_screen(page, "B"))
+    page.wait_for_function("() => ((window.kinelab.model.dynamics || {}).forces || []).length === 1",
+                           timeout=LONG)
+    assert state(page, "window.kinelab.model.dynamics.forces[0]") == {"point": "B", "fx": 0, "fy": 0}
+    assert page.locator("#tab-forces tr[data-force='0']").count() == 1
+    # the press went to the forces tab, not to the drawing's tool: nothing was dragged
+    assert state(page, "window.kinelab.model.points.B") == state(page, "window.kinelab.study.model.points.B")

@@ -35,6 +35,7 @@ export function forcesPanel(root, {state, edit, status, canvas}) {
       <button id="forces-csv" title="The table kinelab dynamics writes">export .csv</button>
       <label><input type="checkbox" id="forces-arrows" checked> forces on the drawing</label></div>
     <div id="forces-message" role="alert"></div>
+    <div id="forces-place-hint" class="hint"></div>
     <div id="forces-results">
       <div class="row"><label>y <select id="forces-y"></select></label>
         <label>x <select id="forces-x"></select></label></div>
@@ -56,6 +57,16 @@ export function forcesPanel(root, {state, edit, status, canvas}) {
   const tab = document.querySelector("#tabs button[data-tab=forces]");
   if (tab) tab.addEventListener("click", () => { renderData(panel); ensure(panel); });
   panel.active = () => root.classList.contains("active");
+  // a centre of mass or a force being placed on the drawing takes the next press on it
+  // (before the drawing's own tools see it)
+  canvas.svg.parentNode.addEventListener("pointerdown", (e) => {
+    if (!panel.placing || !panel.active() || !canvas.svg.contains(e.target) || !canvas.view) return;
+    e.stopPropagation();
+    e.preventDefault();
+    const r = canvas.svg.getBoundingClientRect();
+    placeAt(panel, canvas.toModel([e.clientX - r.left, e.clientY - r.top]),
+            e.target.dataset ? e.target.dataset.point : undefined);
+  }, {capture: true});
   // Called after every redraw of the drawing: a new model is solved again (at once if the
   // tab is open, else when it opens), and the arrows are drawn at the configuration shown.
   panel.draw = () => {
@@ -299,7 +310,7 @@ function renderData(panel) {
   };
 
   h(`masses of the links (kg; inertia in kg ${u}² about the centre of mass)`);
-  const lt = table(["link", "massless", "mass", "centre of mass", "inertia"]);
+  const lt = table(["link", "massless", "mass", "centre of mass", "", "inertia"]);
   m.links.forEach((link, k) => {
     if (link.ground) return;
     const none = make("input", {type: "checkbox"});
@@ -318,7 +329,10 @@ function renderData(panel) {
       if (v === "") { delete n.links[k].center_of_mass; return; }
       n.links[k].center_of_mass = v === "+ new point" ? centreOfMassPoint(n, k) : v;
     }), "–");
-    row(lt, [link.name, ["massless", none], ["mass", field("mass")], ["center_of_mass", G],
+    const put = make("button", {class: "place", title: "Click on the drawing where its centre of mass is"}, "place");
+    put.onclick = () => startPlacing(panel, {kind: "centre", link: link.name},
+                                     `click on the drawing where the centre of mass of ${link.name} is`);
+    row(lt, [link.name, ["massless", none], ["mass", field("mass")], ["center_of_mass", G], put,
              ["inertia", field("inertia")]], {link: link.name});
   });
 
@@ -356,6 +370,9 @@ function renderData(panel) {
              ["fy", text(f.fy ?? 0, (v) => change((n, d) => { d.forces[k].fy = law(v); }))],
              remove((n, d) => { d.forces.splice(k, 1); })], {force: k});
   });
+  const onDrawing = make("button", {class: "add", id: "forces-place-force"}, "+ force at a point of the drawing");
+  onDrawing.onclick = () => startPlacing(panel, {kind: "force"}, "click on the point of the drawing the force acts at");
+  box.append(onDrawing);
   adder("+ force", (n, d) => {
     const moving = m.links.find((l) => !l.ground && l.points.length);
     d.forces = [...(d.forces || []), {point: moving ? moving.points[moving.points.length - 1] : pointNames[0], fx: 0, fy: 0}];
@@ -391,6 +408,75 @@ function renderData(panel) {
                                                        : {points: [a, b], damping: 0}];
     });
   }
+}
+
+// -- placing on the drawing ---------------------------------------------------------------
+function startPlacing(panel, what, hint) {
+  endPlacing(panel);
+  panel.placing = what;
+  panel.root.querySelector("#forces-place-hint").textContent = hint + " (Esc: never mind)";
+  panel.escape = (e) => { if (e.key === "Escape") endPlacing(panel); };
+  document.addEventListener("keydown", panel.escape);
+}
+
+function endPlacing(panel) {
+  panel.placing = null;
+  if (panel.escape) document.removeEventListener("keydown", panel.escape);
+  panel.escape = null;
+  panel.root.querySelector("#forces-place-hint").textContent = "";
+}
+
+// The place of each point in the drawing now: the configuration shown, or the sketch.
+function shownPlaces(panel) {
+  const {state, canvas} = panel, out = {};
+  for (const p of Object.keys(state.model.points))
+    out[p] = (canvas.svg.dataset.sketch !== "1" && state.study && place(state, p)) || state.model.points[p];
+  return out;
+}
+
+async function placeAt(panel, xy, point) {
+  const what = panel.placing;
+  endPlacing(panel);
+  const {state} = panel;
+  const next = structuredClone(state.model);
+  delete next.catalogue;
+  if (what.kind === "force") {
+    if (!point) { message(panel, "a force acts at a point: click on one of the drawing's points"); return; }
+    next.dynamics = {...(next.dynamics || {})};
+    next.dynamics.forces = [...(next.dynamics.forces || []), {point, fx: 0, fy: 0}];
+  } else {
+    const k = next.links.findIndex((l) => l.name === what.link);
+    const at = shownPlaces(panel);
+    next.links[k].center_of_mass = centreOfMassAt(next, k, at, xy);
+  }
+  message(panel, "");
+  const ok = await panel.edit(next);
+  if (!ok) message(panel, document.getElementById("status").textContent);
+}
+
+// The centre of mass of link k at `xy` (in the drawing as shown, `at` its points' places
+// there): its point (one of its own, moved, when it is carried by this link alone and no
+// joint is there; else a new one), placed in the sketch where it lies in the link's frame,
+// and, where the link's shape is given exactly, in its `local` places.  Its name.
+function centreOfMassAt(model, k, at, xy) {
+  const link = model.links[k];
+  if (link.points.length < 2) return link.points[0];
+  const [a, b] = link.points;
+  const mine = link.center_of_mass;
+  const own = mine && link.points.indexOf(mine) > 1 && !(model.joints || []).some((j) => j.point === mine)
+    && model.links.filter((l) => l.points.includes(mine)).length === 1;
+  const name = own ? mine : fresh(`G_${link.name}`.replace(/[^A-Za-z0-9_]/g, "_"), Object.keys(model.points));
+  const [along, left] = local(at[a], at[b], xy);
+  const A = model.points[a], B = model.points[b];
+  const L = Math.hypot(B[0] - A[0], B[1] - A[1]), ex = (B[0] - A[0]) / L, ey = (B[1] - A[1]) / L;
+  const r = (v) => Number(v.toPrecision(10));
+  model.points[name] = [r(A[0] + along * ex - left * ey), r(A[1] + along * ey + left * ex)];
+  if (link.length !== undefined || link.local) {
+    link.local = {...(link.local || {}), [name]: [r(along), r(left)]};
+  }
+  if (link.sides) { delete link.sides[name]; if (!Object.keys(link.sides).length) delete link.sides; }
+  if (!own) link.points.push(name);
+  return name;
 }
 
 // A new point at the middle of link k's first two points (its only point for a slider),
