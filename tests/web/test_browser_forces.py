@@ -119,7 +119,7 @@ def test_masses_and_loads_typed_in_the_forces_tab(page, tmp_path):
                                timeout=LONG)
     page.click("#forces-standard-gravity")
     page.wait_for_function("() => (window.kinelab.model.dynamics || {}).gravity", timeout=LONG)
-    page.click("#tab-forces button.add:has-text('+ force')")
+    page.click("#forces-add-force")
     page.wait_for_selector("#tab-forces tr[data-force='0']", timeout=LONG)
     type_in(page, "tr[data-force='0'] td[data-field=fx] input", "-20 * cos(q)")
     page.wait_for_function("() => window.kinelab.model.dynamics.forces[0].fx === '-20 * cos(q)'",

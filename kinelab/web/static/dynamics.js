@@ -15,10 +15,9 @@ const make = (tag, attrs = {}, text = "") => {
   return e;
 };
 const fmt = (v) => v === null || v === undefined ? "–" : Number(Number(v).toPrecision(6)).toString();
-// A number where the text is one, else the text itself (an expression of t, q, qd): the
-// server reads it as a model file's law, and says what is wrong with it.
-const law = (text) => { const t = text.trim(); return t !== "" && Number.isFinite(Number(t)) ? Number(t) : t; };
-const number = (text) => { const t = text.trim(); return t !== "" && Number.isFinite(Number(t)) ? Number(t) : t; };
+// A number where the text is one, else the text itself (a law's expression of t, q, qd, or
+// a mistake): the server reads it as the model file's value, and says what is wrong with it.
+const value = (text) => { const t = text.trim(); return t !== "" && Number.isFinite(Number(t)) ? Number(t) : t; };
 
 function fresh(prefix, taken) {
   if (!taken.includes(prefix)) return prefix;
@@ -27,9 +26,8 @@ function fresh(prefix, taken) {
 
 // The panel in `root`.  `state` is the page's (model, study, index); `edit(model)` makes a
 // model the page's (false when the server refuses it); `canvas` is the drawing's.
-export function forcesPanel(root, {state, edit, status, canvas}) {
-  const panel = {root, state, edit, status, canvas, model: null, answer: null, pending: null,
-                 error: ""};
+export function forcesPanel(root, {state, edit, canvas}) {
+  const panel = {root, state, edit, canvas, model: null, answer: null};
   root.innerHTML = `
     <div class="row"><button id="forces-compute" title="Solve the forces again">compute</button>
       <button id="forces-csv" title="The table kinelab dynamics writes">export .csv</button>
@@ -81,21 +79,24 @@ export function forcesPanel(root, {state, edit, status, canvas}) {
 }
 
 // -- the server's answer ------------------------------------------------------------------
+// The forces of the model shown, asked for once per model: a moment after its last change
+// (an edit drag changes it at every step), one request at a time.
 function ensure(panel) {
-  if (panel.asked === panel.state.model) return;
-  panel.asked = panel.state.model;
-  compute(panel);
+  if (panel.state.dynamicsOf === panel.state.model) return;
+  clearTimeout(panel.soon);
+  panel.soon = setTimeout(() => compute(panel), 120);
 }
 
 async function compute(panel) {
   const {state} = panel;
   if (!state.model || !state.study) return;
+  if (panel.asking) { panel.again = true; return; }
   const model = state.model;
-  const ticket = panel.pending = {};
+  panel.asking = true;
   message(panel, "");
   try {
     const answer = await post("/api/dynamics", {model, source: state.source});
-    if (panel.pending !== ticket || state.model !== model) return;   // a newer one is coming
+    if (state.model !== model) return;               // the model changed meanwhile: again
     panel.answer = answer;
     state.dynamics = answer;
     state.dynamicsOf = model;         // the model these forces are of
@@ -105,7 +106,7 @@ async function compute(panel) {
     drawArrows(panel);
     panel.root.querySelector("#forces-results").hidden = false;
   } catch (err) {
-    if (panel.pending !== ticket) return;
+    if (state.model !== model) return;
     panel.answer = null;
     state.dynamics = null;
     state.dynamicsOf = model;
@@ -114,6 +115,9 @@ async function compute(panel) {
     message(panel, (/mass: missing/.test(err.message)
       ? "Give each moving link its mass, centre of mass and inertia below, or mark it massless.\n" : "")
       + err.message);
+  } finally {
+    panel.asking = false;
+    if (panel.again) { panel.again = false; compute(panel); }
   }
 }
 
@@ -204,7 +208,8 @@ function drawArrows(panel) {
   if (old) old.remove();
   const a = panel.answer;
   if (!a || !panel.active() || !panel.root.querySelector("#forces-arrows").checked || !state.study
-      || a.samples !== state.study.samples || svg.dataset.sketch === "1" || !canvas.view) return;
+      || state.dynamicsOf !== state.model || a.samples !== state.study.samples
+      || svg.dataset.sketch === "1" || !canvas.view) return;
   const i = state.index, c = a.columns;
   const g = el("g", {class: "forces"}, svg);
   const defs = el("defs", {}, g);
@@ -322,7 +327,7 @@ function renderData(panel) {
       d.massless = [...set];
     });
     const field = (key) => text(link[key], (v) => change((n, d) => {
-      if (v.trim() === "") delete n.links[k][key]; else n.links[k][key] = number(v);
+      if (v.trim() === "") delete n.links[k][key]; else n.links[k][key] = value(v);
       if (key === "mass" && v.trim() !== "") d.massless = (d.massless || []).filter((x) => x !== link.name);
     }));
     const G = choose([...link.points, "+ new point"], link.center_of_mass, (v) => change((n) => {
@@ -341,10 +346,15 @@ function renderData(panel) {
   const gt = table(["gx", "gy", ""]);
   const standard = make("button", {id: "forces-standard-gravity"}, "0, −9.81");
   standard.onclick = change((n, d) => { d.gravity = [0, -9.81]; });
-  row(gt, [["gx", text(g[0], (v) => change((n, d) => { d.gravity = [number(v), g[1]]; }))],
-           ["gy", text(g[1], (v) => change((n, d) => { d.gravity = [g[0], number(v)]; }))], standard]);
+  row(gt, [["gx", text(g[0], (v) => change((n, d) => { d.gravity = [value(v), g[1]]; }))],
+           ["gy", text(g[1], (v) => change((n, d) => { d.gravity = [g[0], value(v)]; }))], standard]);
 
-  const adder = (label, f) => { const b = make("button", {class: "add"}, label); b.onclick = change(f); box.append(b); };
+  // "+ force" and the like: a row added to the section (its id: forces-add-force, ...)
+  const adder = (label, f) => {
+    const b = make("button", {class: "add", id: `forces-add-${label.slice(2).replace(" ", "-")}`}, label);
+    b.onclick = change(f);
+    box.append(b);
+  };
 
   h("point masses (kg)");
   const pm = dyn.point_masses || {};
@@ -352,7 +362,7 @@ function renderData(panel) {
   for (const [p, v] of Object.entries(pm)) {
     row(pt, [choose(pointNames, p, (w) => change((n, d) => {
       const next = {}; for (const [q, x] of Object.entries(d.point_masses)) next[q === p ? w : q] = x; d.point_masses = next;
-    })), ["mass", text(v, (w) => change((n, d) => { d.point_masses[p] = number(w); }))],
+    })), ["mass", text(v, (w) => change((n, d) => { d.point_masses[p] = value(w); }))],
       remove((n, d) => { delete d.point_masses[p]; })], {pointMass: p});
   }
   adder("+ point mass", (n, d) => {
@@ -366,8 +376,8 @@ function renderData(panel) {
     const carriers = m.links.filter((l) => l.points.includes(f.point)).map((l) => l.name);
     row(ft, [["point", choose(pointNames, f.point, (v) => change((n, d) => { d.forces[k].point = v; delete d.forces[k].link; }))],
              ["link", choose(carriers, f.link, (v) => change((n, d) => { if (v) d.forces[k].link = v; else delete d.forces[k].link; }), "first moving")],
-             ["fx", text(f.fx ?? 0, (v) => change((n, d) => { d.forces[k].fx = law(v); }))],
-             ["fy", text(f.fy ?? 0, (v) => change((n, d) => { d.forces[k].fy = law(v); }))],
+             ["fx", text(f.fx ?? 0, (v) => change((n, d) => { d.forces[k].fx = value(v); }))],
+             ["fy", text(f.fy ?? 0, (v) => change((n, d) => { d.forces[k].fy = value(v); }))],
              remove((n, d) => { d.forces.splice(k, 1); })], {force: k});
   });
   const onDrawing = make("button", {class: "add", id: "forces-place-force"}, "+ force at a point of the drawing");
@@ -382,7 +392,7 @@ function renderData(panel) {
   const tt = table(["link", "torque", "reacting link", ""]);
   (dyn.torques || []).forEach((t, k) => {
     row(tt, [["link", choose(linkNames, t.link, (v) => change((n, d) => { d.torques[k].link = v; }))],
-             ["torque", text(t.torque, (v) => change((n, d) => { d.torques[k].torque = law(v); }))],
+             ["torque", text(t.torque, (v) => change((n, d) => { d.torques[k].torque = value(v); }))],
              ["reacting", choose(linkNames, t.reacting, (v) => change((n, d) => { if (v) d.torques[k].reacting = v; else delete d.torques[k].reacting; }), "none")],
              remove((n, d) => { d.torques.splice(k, 1); })], {torque: k});
   });
@@ -397,8 +407,8 @@ function renderData(panel) {
     (dyn[kind] || []).forEach((s, k) => {
       const cells = [["from", choose(pointNames, s.points[0], (v) => change((n, d) => { d[kind][k].points[0] = v; }))],
                      ["to", choose(pointNames, s.points[1], (v) => change((n, d) => { d[kind][k].points[1] = v; }))],
-                     [key, text(s[key], (v) => change((n, d) => { d[kind][k][key] = number(v); }))]];
-      if (kind === "springs") cells.push(["free_length", text(s.free_length ?? 0, (v) => change((n, d) => { d[kind][k].free_length = number(v); }))]);
+                     [key, text(s[key], (v) => change((n, d) => { d[kind][k][key] = value(v); }))]];
+      if (kind === "springs") cells.push(["free_length", text(s.free_length ?? 0, (v) => change((n, d) => { d[kind][k].free_length = value(v); }))]);
       cells.push(remove((n, d) => { d[kind].splice(k, 1); }));
       row(st, cells, {[kind === "springs" ? "spring" : "damper"]: k});
     });
