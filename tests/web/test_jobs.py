@@ -9,6 +9,7 @@ import subprocess
 import sys
 import threading
 import time
+import traceback
 from pathlib import Path
 
 import pytest
@@ -86,6 +87,32 @@ def test_a_derivation_shows_its_progress_and_a_cancel_stops_its_work(client):
     # and the server goes on
     r = client.post("/api/analyze", json={"model": CRANK_ROCKER, "samples": 5})
     assert r.status_code == 200
+
+
+def working_on(function: str) -> list[int]:
+    """The threads whose stack is in ``function`` of the web app's API now."""
+    return [t for t, frame in sys._current_frames().items()
+            if any(f.name == function and "kinelab/web/_api.py" in f.filename.replace("\\", "/")
+                   for f in traceback.extract_stack(frame))]
+
+
+def test_a_large_sweep_is_stopped_in_its_thread(client):
+    """A study of a chain of 200 links (seconds of work in one of the server's threads):
+    cancelled, the thread that ran it stops where it is and is free again."""
+    from tests.web.test_server_bounds import CHAIN
+    worker, out = in_background(lambda: client.post(
+        "/api/study", json={"model": CHAIN, "samples": 3000, "source": "chain.json", "job": "big"}))
+    wait_for(lambda: client.post("/api/progress", json={"job": "big"}).json().get("seconds", 0) > 1.0
+             and working_on("study"))
+    assert client.post("/api/cancel", json={"job": "big"}).json()["cancelled"] is True
+    worker.join(MARGIN)
+    assert not worker.is_alive()
+    assert out["answer"].status_code == 422
+    assert out["answer"].json()["error"].startswith("/api/study: cancelled after")
+    wait_for(lambda: not client.post("/api/progress", json={}).json()["jobs"])
+    assert not working_on("study")
+    r = client.post("/api/study", json={"model": CRANK_ROCKER, "samples": 9})
+    assert r.status_code == 200 and r.json()["samples"] == 9
 
 
 def test_a_job_cancelled_before_its_request_arrives_never_runs(client):
