@@ -163,20 +163,30 @@ def _response(value):
 
 
 # -- in the worker process ----------------------------------------------------------------
+def _orphaned(parent: int) -> None:
+    """End this worker as soon as the server has gone, whatever it is doing (a server ended
+    by a signal does not end its worker processes itself)."""
+    while os.getppid() == parent:
+        time.sleep(0.5)
+    os._exit(0)
+
+
 def _serve(conn) -> None:
     """A worker process: calls, one at a time, until the server's end of the pipe closes or
     no call comes for :data:`IDLE` seconds."""
-    import importlib
     import signal
+    threading.Thread(target=_orphaned, args=(os.getppid(),), name="kinelab-parent",
+                     daemon=True).start()
+    signal.signal(signal.SIGINT, signal.SIG_IGN)     # Ctrl-C is the server's to take
+    if hasattr(os, "nice"):             # the server's own requests come first on a busy processor
+        os.nice(NICENESS)
+    import importlib
     import traceback
 
     from kinelab import _memory
     from kinelab import _progress as progress
     from kinelab.errors import KinelabError
     from kinelab.web import _limits
-    signal.signal(signal.SIGINT, signal.SIG_IGN)     # Ctrl-C is the server's to take
-    if hasattr(os, "nice"):             # the server's own requests come first on a busy processor
-        os.nice(NICENESS)
     calls = {name: getattr(importlib.import_module(module), attr)
              for name, (module, attr) in CALLS.items()}
     while True:
