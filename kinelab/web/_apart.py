@@ -28,7 +28,7 @@ IDLE = 300.0
 """Seconds a worker process waits for work before it ends (the next long request starts
 another, which takes a second or two)."""
 
-NICENESS = 10
+NICENESS = 5
 """How much lower the worker processes' scheduling priority is than the server's (POSIX
 ``nice``): on a busy processor, the short requests the server answers itself go first."""
 

@@ -151,7 +151,7 @@ def test_progress_and_cancel_refuse_what_is_not_json(client):
 
 def test_an_animation_reports_its_frames(client):
     worker, out = in_background(lambda: client.post(
-        "/api/export", json={"model": SIX_BAR, "kind": "gif", "job": "gif-1"}))
+        "/api/export", json={"model": CRANK_ROCKER, "kind": "gif", "job": "gif-1"}))
     seen = wait_for(lambda: (lambda p: p if p.get("label", "").startswith("frame") else None)(
         client.post("/api/progress", json={"job": "gif-1"}).json()), every=0.02)
     assert re.fullmatch(r"frame \d+ of 60", seen["label"]) and 0.1 <= seen["fraction"] <= 1
