@@ -2,9 +2,9 @@
 
     .venv/bin/python benchmarks/families.py [DESIGNS]        (default 20,000)
 
-For each family (the catalogue's kinds with one input, and model files of a Stephenson
-six-bar and of the triad six-bar, whose designs move their points), DESIGNS designs x 72
-input angles:
+For each family (the catalogue's kinds with one input, and Stephenson, Watt and triad
+six-bars whose designs move their points), DESIGNS designs x 72 input angles, and the
+two-input five-bar's designs on 72 pairs of crank angles:
 
 1. ``kl.kinematics.analyze_designs``: the full analysis (positions, velocities,
    accelerations) of every design at every sample in one call;
@@ -98,7 +98,10 @@ def main(n: int) -> None:
     s6 = kl.load(ROOT / "examples" / "stephenson6.toml")
     families.append(("Stephenson six-bar",) + moved(s6, n, rng, 0.002, output="output",
                                                    transmission=("link5", "output")))
-    triad = dataclasses.replace(kl.mechanisms.triad6(), parameters={})    # its points as columns
+    watt = dataclasses.replace(kl.mechanisms.watt6(), parameters={})      # its points as columns
+    families.append(("Watt six-bar",) + moved(watt, n, rng, 0.002, output="output",
+                                             transmission=("link5", "output")))
+    triad = dataclasses.replace(kl.mechanisms.triad6(), parameters={})
     families.append(("triad six-bar (Newton)",) + moved(triad, n, rng, 0.002, output="link5"))
     print(f"  {'family':28s} {'analyze_designs':>16s} {'sweep.run':>16s} {'loop of analyze':>16s}"
           "   (design-samples/s of processor time; x: of the plain-numpy four-bar)")
@@ -115,6 +118,21 @@ def main(n: int) -> None:
         rate = [len(points) * SAMPLES / full, n * SAMPLES / swept, len(few) * SAMPLES / looped]
         print(f"  {label:28s} " + " ".join(f"{r:10,.0f} x{r * ref / (n * SAMPLES):4.2f}"
                                            for r in rate))
+    # the five-bar has two inputs: no sweep of one input's turn, the analysis of its designs
+    # on a circle of both cranks' angles about the sketch
+    five = kl.mechanisms.fivebar(ground=1.0, crank1=1.0, coupler1=1.5, coupler2=1.5, crank2=1.0)
+    sketch = np.array([p.xy[:2] for p in five.points])
+    points = sketch + rng.normal(0.0, 0.002, (n,) + sketch.shape)
+    q = kl.kinematics.plan(five).q_sketch + 0.3 * np.stack([np.cos(Q), np.sin(Q)], -1)
+    kl.kinematics.analyze_designs(five, points[:10], q, 1.0)
+    _, full = cpu(lambda: kl.kinematics.analyze_designs(five, points, q, 1.0))
+    built = [dataclasses.replace(five, points=tuple(dataclasses.replace(p, x=x, y=y) for p, (x, y)
+                                                    in zip(five.points, d))) for d in points[:200]]
+    _, looped = cpu(lambda: [kl.analyze(m, q, 1.0, unreachable="mask", at_singular="flag")
+                             for m in built], repeats=1)
+    rate = [n * SAMPLES / full, 200 * SAMPLES / looped]
+    print(f"  {'fivebar (two inputs)':28s} {rate[0]:10,.0f} x{rate[0] * ref / (n * SAMPLES):4.2f} "
+          f"{'':16s} {rate[1]:10,.0f} x{rate[1] * ref / (n * SAMPLES):4.2f}")
 
 
 if __name__ == "__main__":

@@ -68,6 +68,57 @@ def _name_latex(name: str) -> str:
     return out + "'" * primes
 
 
+def _over(accent: str, tex: str) -> str:
+    """An accent over a symbol's letter, not over its subscript: ``\\dot{\\theta}_{\\text{rod}}``."""
+    depth = 0
+    for i, ch in enumerate(tex):
+        depth += (ch == "{") - (ch == "}")
+        if ch == "_" and depth == 0:
+            return f"\\{accent}{{{tex[:i]}}}{tex[i:]}"
+    return f"\\{accent}{{{tex}}}"
+
+
+_WIDTH = 90          # characters of LaTeX on a line of a displayed equation, about a page's width
+
+
+def _broken(e, tex, width: int = _WIDTH) -> list[str]:
+    """The LaTeX of a sum as pieces to set on lines one after the other: its terms, gathered
+    up to ``width`` characters a line, each line but the first starting with its sign; a
+    term longer than a line that is a factor times a sum, ``c (a + b + ...)``, is broken
+    inside its brackets (``\\left( ... \\right.`` on one line, ``\\left. ... \\right)`` on
+    the last)."""
+    import sympy as sp
+
+    pieces: list[str] = []
+    for term in (e.as_ordered_terms() if isinstance(e, sp.Add) else [e]):
+        text = tex(term)
+        sums = [f for f in sp.Mul.make_args(term) if isinstance(f, sp.Add)]
+        if len(text) > width and isinstance(term, sp.Mul) and len(sums) == 1:
+            factor = tex(sp.Mul(*(f for f in sp.Mul.make_args(term) if f is not sums[0])))
+            inner = _broken(sums[0], tex, width)
+            if len(inner) > 1:
+                last = len(inner) - 1
+                pieces += [("" if k else factor + " ") + (r"\left(" if k == 0 else r"\left.")
+                           + " " + line + " " + (r"\right)" if k == last else r"\right.")
+                           for k, line in enumerate(inner)]
+                continue
+        pieces.append(text)
+    lines: list[str] = []
+    for piece in pieces:
+        signed = piece if not lines else (piece if piece.startswith(("- ", r"\left.")) else "+ " + piece)
+        if lines and not piece.startswith(r"\left.") and len(lines[-1]) + len(signed) < width:
+            lines[-1] += " " + signed
+        else:
+            lines.append(signed)
+    return lines
+
+
+def _equation(lhs: str, e, tex) -> list[str]:
+    """The lines of ``lhs = e`` in an alignment, broken where the right side is long."""
+    lines = _broken(e, tex)
+    return [lhs + " &= " + lines[0]] + [r"&\quad " + line for line in lines[1:]]
+
+
 def symbol_latex(d) -> dict:
     """The LaTeX of every symbol of a derivation (and of its dynamics)."""
     eq = d.equations
@@ -75,8 +126,8 @@ def symbol_latex(d) -> dict:
     for s in tuple(eq.q) + tuple(eq.S) + tuple(eq.parameters):
         names[s] = _name_latex(str(s))
     for s in tuple(eq.q) + tuple(eq.S):
-        names[d.dot(s)] = r"\dot{" + names[s] + "}"
-        names[d.ddot(s)] = r"\ddot{" + names[s] + "}"
+        names[d.dot(s)] = _over("dot", names[s])
+        names[d.ddot(s)] = _over("ddot", names[s])
     M = len(eq.q)
     for i, s in enumerate(eq.S):
         for k in range(M):
@@ -118,7 +169,7 @@ class _Markdown:
         self.out.append(text)
 
     def display(self, lines: list[str]) -> None:
-        body = lines[0] if len(lines) == 1 else (
+        body = lines[0] if len(lines) == 1 and "&" not in lines[0] else (
             "\\begin{aligned}\n" + " \\\\\n".join(lines) + "\n\\end{aligned}")
         self.out.append("$$\n" + body + "\n$$")
 
@@ -171,7 +222,7 @@ class _Latex:
         self.out.append(text)
 
     def display(self, lines: list[str]) -> None:
-        if len(lines) == 1:
+        if len(lines) == 1 and "&" not in lines[0]:
             self.out.append("\\[\n" + lines[0] + "\n\\]")
         else:
             self.out.append("\\begin{align*}\n" + " \\\\\n".join(lines) + "\n\\end{align*}")
@@ -227,7 +278,8 @@ def document(d, fmt: str, *, at=None, lang: str = "en") -> str:
     if not eq.loops:
         w.para(T("no_loops"))
     else:
-        w.para(T("loops_count", links=nl, joints=nj, loops=len(eq.loops)))
+        w.para(T("loops_count_one" if len(eq.loops) == 1 else "loops_count", links=nl,
+                 joints=nj, loops=len(eq.loops)))
         row = 0
         for k, lp in enumerate(eq.loops, start=1):
             path = w.arrow.join(N(x) for x in lp.links)
@@ -238,7 +290,8 @@ def document(d, fmt: str, *, at=None, lang: str = "en") -> str:
                 row += 1
             w.display(lines)
         if d.redundant:
-            w.para(T("redundant", rows=", ".join(f"({i + 1})" for i in d.redundant)))
+            w.para(T("redundant_one" if len(d.redundant) == 1 else "redundant",
+                     rows=", ".join(f"({i + 1})" for i in d.redundant)))
     if n:
         _velocity(d, w, T, N, tex)
         _coefficients(d, w, T, tex)
@@ -373,7 +426,7 @@ def _coefficients(d, w, T, tex) -> None:
         for i in range(len(eq.S)):
             for k in range(len(eq.q)):
                 sym = d.K_symbols[i * len(eq.q) + k]
-                lines.append(tex(sym) + " &= " + tex(d.K[i, k]))
+                lines += _equation(tex(sym), d.K[i, k], tex)
         w.display(lines)
     else:
         w.para(T("K_large", ops=size(d.K)))
@@ -402,7 +455,7 @@ def _accelerations(d, w, T, tex) -> None:
                     e = L[i] if M == 1 else L[i, a, b]
                     label = ("L_{" + tex(s) + "}" if M == 1
                              else "L_{" + tex(s) + f",{a + 1}{b + 1}}}")
-                    out.append(label + " &= " + tex(e))
+                    out += _equation(label, e, tex)
         return out
     if d.readable["L_in_K"]:
         w.display(lines_of(d.L_in_K))
@@ -455,12 +508,12 @@ def _dynamics(d, w, T, N, tex) -> None:
         w.para(T("matrix_large", what="$D$", ops=size(kd.D)))
     w.para(T("f_intro"))
     if max((size(e) for e in kd.f), default=0) <= READABLE_OPS:
-        w.display([f"f_{{{k + 1}}} &= " + tex(e) for k, e in enumerate(kd.f)])
+        w.display([line for k, e in enumerate(kd.f) for line in _equation(f"f_{{{k + 1}}}", e, tex)])
     else:
         w.para(T("matrix_large", what="$f$", ops=size(kd.f)))
     w.para(T("tau_intro"))
     if max(size(e) for e in kd.equations) <= 6 * READABLE_OPS:
-        w.display([tex(t) + " &= " + tex(e) for t, e in zip(kd.tau, kd.equations)])
+        w.display([line for t, e in zip(kd.tau, kd.equations) for line in _equation(tex(t), e, tex)])
     else:
         w.para(T("tau_large", ops=size(kd.equations)))
 
@@ -476,7 +529,12 @@ def _numbers(d, w, T, N, tex, at) -> None:
     eq, m = d.equations, d.model
     M, n = len(eq.q), len(eq.S)
     if at is None:
+        # the sketch's inputs, assembled: an angle within rounding of a whole degree (the
+        # sketch drew 0, assembly left -8e-10) is that degree
         q = np.array([eq.sketch[s] for s in eq.q])
+        whole = np.radians(np.round(np.degrees(q)))
+        angles = np.array([inp.joint is None or m.joint(inp.joint).type != "P" for inp in m.inputs])
+        q = np.where(angles & (np.abs(q - whole) < 1e-9), whole, q)
     else:
         from kinelab.derive._derivation import inputs
         q = inputs(at, M, "at", one=True)[0]

@@ -19,8 +19,11 @@ __all__ = ["SIMPLIFY_OPS", "SIMPLIFY_SECONDS", "READABLE_OPS", "simplified", "si
 SIMPLIFY_OPS = 300
 """Operations above which an expression is not simplified."""
 
-SIMPLIFY_SECONDS = 1.0
-"""Time after which one simplification gives up and keeps the expression as derived."""
+SIMPLIFY_SECONDS = 5.0
+"""Time after which one simplification gives up and keeps the expression as derived: a
+safety net, far above what the operations' bound lets through (the engine's torque's speed
+term, 0.6 s on an idle machine), so that a busy machine writes the same document as an idle
+one."""
 
 READABLE_OPS = 120
 """Operations above which an expression is too large to read in a document: it is shown in

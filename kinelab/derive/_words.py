@@ -10,7 +10,7 @@ __all__ = ["WORDS"]
 
 _ERTHAL = "Erthal, *Mecanismos com 1 GL: análise geral de velocidade e aceleração*"
 _NOTES = "the course notes *Mecanismos*"
-_NOTAS = "as notas de aula *Mecanismos*"
+_DAS_NOTAS = "das notas de aula *Mecanismos*"
 
 WORDS: dict[str, dict[str, str]] = {
     "en": {
@@ -45,14 +45,20 @@ WORDS: dict[str, dict[str, str]] = {
         "y": "$y$ of the fixed point {point}",
         "position": "Position equations",
         "loops_count": ("The link graph has {links} links and {joints} joints, so "
-                        "{loops} independent loop(s) ({joints} $-$ {links} $+$ 1).  Each loop "
+                        "{loops} independent loops ({joints} $-$ {links} $+$ 1).  Each loop "
                         "is a closed vector polygon; its projections on $x$ and $y$ are two "
                         "position equations."),
+        "loops_count_one": ("The link graph has {links} links and {joints} joints, so one "
+                            "independent loop ({joints} $-$ {links} $+$ 1), a closed vector "
+                            "polygon; its projections on $x$ and $y$ are two position "
+                            "equations."),
         "loop": "Loop {k}, going round {path}:",
         "no_loops": ("The model has no closed loop: every coordinate follows from the inputs "
                      "directly, and $S$ is empty."),
-        "redundant": ("Equation(s) {rows} follow from the others (a redundant constraint, as in "
+        "redundant": ("Equations {rows} follow from the others (a redundant constraint, as in "
                       "a parallelogram's extra link); they are left out of $\\Phi$."),
+        "redundant_one": ("Equation {rows} follows from the others (a redundant constraint, as "
+                          "in a parallelogram's extra link); it is left out of $\\Phi$."),
         "velocity": "Velocity equations",
         "velocity_intro": "Differentiating the position equations with respect to time:",
         "matrix_form": "In matrix form, $J \\dot S + Q \\dot q = 0$, with",
@@ -164,14 +170,20 @@ WORDS: dict[str, dict[str, str]] = {
         "y": "$y$ do ponto fixo {point}",
         "position": "Equações de posição",
         "loops_count": ("O grafo das peças tem {links} peças e {joints} juntas, logo "
-                        "{loops} malha(s) independente(s) ({joints} $-$ {links} $+$ 1).  Cada "
+                        "{loops} malhas independentes ({joints} $-$ {links} $+$ 1).  Cada "
                         "malha é um polígono vetorial fechado; suas projeções em $x$ e $y$ são "
                         "duas equações de posição."),
+        "loops_count_one": ("O grafo das peças tem {links} peças e {joints} juntas, logo uma "
+                            "malha independente ({joints} $-$ {links} $+$ 1), um polígono "
+                            "vetorial fechado; suas projeções em $x$ e $y$ são duas equações "
+                            "de posição."),
         "loop": "Malha {k}, percorrida por {path}:",
         "no_loops": ("O modelo não tem malha fechada: toda coordenada decorre diretamente das "
                      "entradas, e $S$ é vazio."),
-        "redundant": ("A(s) equação(ões) {rows} decorre(m) das outras (um vínculo redundante, "
-                      "como a peça extra de um paralelogramo); fica(m) fora de $\\Phi$."),
+        "redundant": ("As equações {rows} decorrem das outras (um vínculo redundante, como a "
+                      "peça extra de um paralelogramo); ficam fora de $\\Phi$."),
+        "redundant_one": ("A equação {rows} decorre das outras (um vínculo redundante, como a "
+                          "peça extra de um paralelogramo); fica fora de $\\Phi$."),
         "velocity": "Equações de velocidade",
         "velocity_intro": "Obtidas através das derivadas das equações de posição em relação ao tempo:",
         "matrix_form": "Na forma matricial, $J \\dot S + Q \\dot q = 0$, com",
@@ -185,7 +197,7 @@ WORDS: dict[str, dict[str, str]] = {
         "singular_intro": "$\\det J = 0$, e as velocidades ficam indefinidas, quando",
         "sing_slide": "{factor}: o ponto {point} chega a {origin}, a origem do deslocamento {joint}{pivot};",
         "sing_pivot": " (o pivô de {link})",
-        "sing_in_line": "{factor}: {a} e {b} ficam alinhados (ponto morto);",
+        "sing_in_line": "{factor}: {a} e {b} ficam alinhados (ponto morto ou posição de travamento);",
         "sing_perpendicular": "{factor}: {a} e {b} ficam perpendiculares;",
         "sing_angle": "{factor}: {link} fica a {values} do eixo $x$;",
         "sing_other": "{factor}.",
@@ -215,7 +227,7 @@ WORDS: dict[str, dict[str, str]] = {
         "L_large": ("Com $K$ substituído, $L$ é grande demais para ler aqui ({ops} operações); "
                     "seu valor na entrada escolhida está na última seção."),
         "dynamics": "Dinâmica: Gibbs-Appell e Kane",
-        "dynamics_intro": (f"As equações dinâmicas na forma de {_NOTAS} (§5), $C^T D f = 0$, "
+        "dynamics_intro": (f"As equações dinâmicas na forma {_DAS_NOTAS} (§5), $C^T D f = 0$, "
                            "com as coordenadas generalizadas $x = (q, S)$, as velocidades "
                            "generalizadas $u = \\dot x$ e os corpos ($N = {bodies}$):"),
         "bodies_head": "Corpos",

@@ -19,7 +19,7 @@ import numpy as np
 from kinelab import mechanisms
 from kinelab.errors import KinelabError, ModelError, check_choice, describe, expected_one_of
 from kinelab.kinematics import SketchNotAssembled, analyze, analyze_designs, plan
-from kinelab.model import Mechanism, Point
+from kinelab.model import MAX_LENGTH, Mechanism, Point
 from kinelab.solvers import wrap_angle
 from kinelab.sweep._batch import Batch, DesignsBatch, FourbarBatch
 
@@ -85,7 +85,7 @@ class Family:
 
     @property
     def closed_form(self) -> bool:
-        """Designs and samples in one vectorised closed form (else one engine call per design)."""
+        """Designs and samples in the four-bar's closed form (else the kernel, a chunk per call)."""
         return self.make is mechanisms.fourbar and not self.has_masses
 
     def is_slide(self, name: str | None) -> bool:
@@ -314,8 +314,8 @@ class _SketchedDesigns(Designs):
         self.template = base
         xy = {p.name: np.stack([self.rows.get(f"{p.name}.{c}", np.full(D, getattr(p, c)))
                                 for c in "xy"], -1) for p in base.points}
-        finite = np.all([np.all(np.abs(a) <= 1e300, axis=1) for a in xy.values()], axis=0)
-        for d in np.flatnonzero(~finite & self._good()):
+        drawable = np.all([np.all(np.abs(a) <= MAX_LENGTH, axis=1) for a in xy.values()], axis=0)
+        for d in np.flatnonzero(~drawable & self._good()):
             self._build(d)          # says why
         return xy, {}
 

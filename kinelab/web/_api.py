@@ -25,7 +25,7 @@ from kinelab.io import ModelFile
 from kinelab.io._modelfile import errors_from
 from kinelab.io._results import json_ready
 from kinelab.kinematics import KinematicSolution, Tracker
-from kinelab.kinematics._columns import INPUT_SI_UNITS
+from kinelab.kinematics._columns import INPUT_SI_UNITS, column_name
 from kinelab.model import is_real
 from kinelab.web import _limits
 
@@ -163,15 +163,17 @@ def prepare(body: dict, answer: str = "none") -> _Prepared:
     kept (within the server's cache, in bytes), so that the drags that follow a sweep
     answer at once.  ``answer``: what the request makes of the sweep (see
     :func:`kinelab.web._limits.sweep_cost`), refused before the work if too large."""
-    mf = read_model(body)
-    samples = samples_of(body, mf)
-    key = json.dumps([body.get("model"), samples, body.get("source")], sort_keys=True)
+    # looked up before the model is read: a drag asks again and again of the same model
+    key = json.dumps([body.get("model"), body.get("samples"), body.get("source")], sort_keys=True)
     ready = _PREPARED.get(key)
     if ready is not None and answer == "none":
         return ready
-    _limits.check_sweep(mf, samples, answer, "the answer" if answer != "none" else "the sweep")
-    if ready is not None:
+    if ready is not None:         # read and checked when it was kept: the same model, samples
+        _limits.check_sweep(ready.mf, body.get("samples"), answer, "the answer")
         return ready
+    mf = read_model(body)
+    samples = samples_of(body, mf)
+    _limits.check_sweep(mf, samples, answer, "the answer" if answer != "none" else "the sweep")
     sol = _sweep(mf, samples)
     with errors_from(mf):
         tracker = Tracker(mf.mechanism, at_singular="flag")
@@ -200,25 +202,42 @@ def study(body: dict) -> dict:
 
     ``model`` is the model as assembled (its JSON form); ``columns`` every column of
     ``kinelab analyze`` (``body["columns"]``, a list, narrows them; the points' x and y are
-    always there), and the transmission angles; ``singular`` and ``change_points`` the
-    sample indices where they are; ``drawing`` the links, joints and points to draw.
+    always there, or those of the points ``body["points"]`` lists), and the transmission
+    angles; ``singular`` and ``change_points`` the sample indices where they are;
+    ``drawing`` the links, joints and points to draw; ``guides`` each prismatic joint's
+    slide direction at every sample (see :func:`guides`).
     """
     ready = prepare(body, "columns")
     mf, sol = ready.mf, ready.sol
     m, u = mf.mechanism, mf.units
-    columns = sol.columns(units=u)
     wanted = body.get("columns")
-    points = {f"{p}.{c}[{u.length}]" for p in m.point_names for c in "xy"}
-    inputs = [n for n in columns if n.endswith(("q[" + u.angle + "]", "q[" + u.length + "]"))
-              and n.count(".") == 1][:len(m.inputs)]
-    if wanted is not None:
-        if not isinstance(wanted, list) or not all(isinstance(w, str) for w in wanted):
-            raise ModelError(f"columns: expected a list of column names, got {describe(wanted)}")
-        columns = {n: v for n, v in columns.items() if n in points or n in wanted or n in inputs}
-    out_columns = {n: _finite(v) for n, v in columns.items()
-                   if n not in ("singular", "assembled")}
+    if wanted is not None and (not isinstance(wanted, list)
+                               or not all(isinstance(w, str) for w in wanted)):
+        raise ModelError(f"columns: expected a list of column names, got {describe(wanted)}")
+    placed = body.get("points", list(m.point_names))
+    if not (isinstance(placed, list) and all(isinstance(p, str) and p in m.point_names for p in placed)):
+        raise ModelError(f"points: expected a list of some of {quoted(m.point_names)}, got {describe(placed)}")
     from kinelab.io._summary import _default_pairs, _transmission_values
     pairs = list(mf.outputs.transmission) or _default_pairs(m)
+    # the inputs and the points, as sol.columns names them, without the other columns
+    kinds = kinematics.plan(m).input_kinds
+    inputs = [column_name(n, "q", u.unit(INPUT_SI_UNITS[k])) for n, k in zip(m.input_names, kinds)]
+    q = np.reshape(sol.q, (sol.N, -1))
+    columns = {n: u.convert(q[:, k], INPUT_SI_UNITS[kind])
+               for k, (n, kind) in enumerate(zip(inputs, kinds))}
+    placed = [p for p in m.point_names if p in placed]
+    rows = [sol.point_item[p] for p in placed]
+    xy = u.convert(sol.item_jets([i for r in rows for i in (r, r + 1)])[:, :, 0], "m")
+    for k, p in enumerate(placed):
+        columns[column_name(p, "x", u.length)] = xy[:, 2 * k]
+        columns[column_name(p, "y", u.length)] = xy[:, 2 * k + 1]
+    made = {f"{a}-{b}.transmission[{u.angle}]" for a, b in pairs}
+    if wanted is None or not set(wanted) <= set(columns) | made:
+        every = sol.columns(units=u)
+        columns = {n: v for n, v in every.items() if n in columns or (
+            n in wanted if wanted is not None else not _point_column(n, m, u))}
+    out_columns = {n: _finite(v) for n, v in columns.items()
+                   if n not in ("singular", "assembled")}
     for a, b in pairs:
         mu = u.convert(_transmission_values(sol, (a, b)), "rad")
         out_columns[f"{a}-{b}.transmission[{u.angle}]"] = _finite(mu)
@@ -236,11 +255,18 @@ def study(body: dict) -> dict:
         "unassembled": np.flatnonzero(~sol.assembled).tolist(),
         "change_points": change,
         "drawing": _drawing(mf),
+        "guides": guides(sol),
         "branches": _branches(mf),
         "moved": {} if mf.assembly is None else {
             k: u.convert(v, "m") for k, v in mf.assembly.moved.items()},
         "switched": [] if mf.assembly is None else list(mf.assembly.switched),
     }
+
+
+def _point_column(name: str, m, u) -> bool:
+    """Whether a column is a point's x or y (``P.x[mm]``)."""
+    point, _, rest = name.rpartition(".")
+    return point in m.point_names and rest in (f"x[{u.length}]", f"y[{u.length}]")
 
 
 def _drawing(mf: ModelFile) -> dict:
@@ -283,16 +309,27 @@ def _input(body: dict, mf: ModelFile, key: str = "q"):
     return si[0] if len(si) == 1 else np.array(si)
 
 
+_PARTS = ("values", "centres", "guides", "polygons")
+
+
+def _parts(body: dict) -> tuple[str, ...]:
+    parts = body.get("parts", list(_PARTS))
+    if not (isinstance(parts, list) and all(isinstance(p, str) and p in _PARTS for p in parts)):
+        raise ModelError(f"parts: expected a list of some of {quoted(_PARTS)}, got {describe(parts)}")
+    return tuple(parts)
+
+
 def configuration(body: dict) -> dict:
     """One configuration (``body["q"]``, in the model's units), solved by the tracker: every
-    point's place, every column's value, the instant centres and, where kinelab draws them,
-    the velocity and acceleration polygons."""
+    point's place, every column's value, the instant centres, each prismatic joint's slide
+    direction and, where kinelab draws them, the velocity and acceleration polygons
+    (``body["parts"]`` narrows them, as for :func:`drag`)."""
     ready = prepare(body)
     q = _input(body, ready.mf)
-    return _configuration(ready, q)
+    return _configuration(ready, q, _parts(body))
 
 
-def _configuration(ready: _Prepared, q) -> dict:
+def _configuration(ready: _Prepared, q, parts: tuple[str, ...] = _PARTS) -> dict:
     mf, tracker = ready.mf, ready.tracker
     m, u = mf.mechanism, mf.units
     M = len(m.inputs)
@@ -300,18 +337,33 @@ def _configuration(ready: _Prepared, q) -> dict:
     qdd = float(m.inputs[0].acceleration) if M == 1 else np.array([i.acceleration for i in m.inputs])
     with ready.lock, errors_from(mf, "q"):
         sol = tracker(q, qd, qdd)
-    values = {n: v[0] for n, v in sol.columns(units=u).items()}
-    return {
+    rows = [sol.point_item[p] for p in m.point_names]
+    xy = u.convert(sol.item_jets([i for r in rows for i in (r, r + 1)])[0, :, 0], "m")
+    out = {
         "q": [u.convert(v, k) for v, k in zip(np.atleast_1d(q).tolist(),
                                               [INPUT_SI_UNITS[k] for k in tracker.plan.input_kinds])],
-        "points": {p: _finite(u.convert(np.reshape(sol.position(p), 2), "m"))
-                   for p in m.point_names},
-        "values": {n: (bool(v) if n in ("singular", "assembled") else
-                       (float(v) if math.isfinite(float(v)) else None)) for n, v in values.items()},
+        "points": dict(zip(m.point_names, _finite(np.reshape(xy, (-1, 2))))),
         "singular": bool(sol.singular[0]),
-        "centres": _centres(sol, u),
-        "polygons": polygons(sol, u),
     }
+    if "values" in parts:
+        out["values"] = {n: (bool(v[0]) if n in ("singular", "assembled") else
+                             (float(v[0]) if math.isfinite(float(v[0])) else None))
+                         for n, v in sol.columns(units=u).items()}
+    if "centres" in parts:
+        out["centres"] = _centres(sol, u)
+    if "guides" in parts:
+        out["guides"] = {j: a[0] for j, a in guides(sol).items()}
+    if "polygons" in parts:
+        out["polygons"] = polygons(sol, u)
+    return out
+
+
+def guides(sol: KinematicSolution) -> dict[str, list]:
+    """Each prismatic joint's slide direction (a unit vector, turning with its guide link)
+    at every sample: ``{joint: [[ux, uy], ...]}``, None where the loops do not close."""
+    m = sol.mechanism
+    return {j.name: _finite(np.reshape(sol.slide_axes(j.name), (-1, 2)))
+            for j in m.joints if j.type == "P" and j.name in sol.slide_item}
 
 
 def _centres(sol: KinematicSolution, u) -> list[dict]:
@@ -368,8 +420,15 @@ def _polygon_data(polygon, u, unit: str) -> dict:
 def drag(body: dict) -> dict:
     """The configuration where point ``body["point"]`` comes nearest to ``body["to"]`` (x, y
     in the model's units) on its path: the linkage follows the pointer, lengths kept.
-    One input: the nearest sample of the sweep, then refined by the tracker between its
-    neighbours (golden section); several inputs: the nearest sample."""
+
+    One input: the nearest sample of the sweep, then the nearest place on the point's path
+    between its neighbours, found on the path's second-order expansion about the sample
+    (its velocity and acceleration coefficients, K and L, which the sweep holds), and solved
+    there by the tracker: one solve a drag.  Several inputs: the nearest sample.
+
+    ``body["parts"]`` (optional) narrows the answer to the points, the input and those
+    named of ``"values"``, ``"centres"``, ``"guides"`` and ``"polygons"`` (by default
+    all): a drag asks for what it redraws."""
     ready = prepare(body)
     mf, sol = ready.mf, ready.sol
     m = mf.mechanism
@@ -379,46 +438,44 @@ def drag(body: dict) -> dict:
     to = body.get("to")
     if not (isinstance(to, list) and len(to) == 2 and all(is_real(v) for v in to)):
         raise ModelError(f"to: expected [x, y], two finite numbers, got {describe(to)}")
+    parts = _parts(body)
     target = np.array(to, float) * mf.units.length_scale
     path = sol.position(point)
     gap = np.hypot(*(path - target).T)
     gap[~sol.assembled] = np.inf
     i = int(np.argmin(gap))
-    q = sol.q[i]
-    if len(m.inputs) == 1 and sol.N > 2:
-        q = _refine(ready, point, target, sol.q[max(i - 1, 0), 0], sol.q[min(i + 1, sol.N - 1), 0])
-    return _configuration(ready, float(q[0]) if np.ndim(q) else float(q)) if len(m.inputs) == 1 \
-        else _configuration(ready, np.asarray(q, float))
+    if len(m.inputs) > 1:
+        return _configuration(ready, np.asarray(sol.q[i], float), parts)
+    q, sample = _nearest_on_path(sol, point, target, i), float(sol.q[i, 0])
+    answer = _configuration(ready, q, parts)
+    xy = answer["points"][point]
+    near = math.dist(xy, to) * mf.units.length_scale if None not in xy else math.inf
+    if q != sample and not near <= gap[i] * (1 + 1e-9):
+        # the expansion misled (near a cusp or a fold of the path): the sample itself
+        answer = _configuration(ready, sample, parts)
+    return answer
 
 
-_GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
-
-
-def _refine(ready: _Prepared, point: str, target: np.ndarray, lo: float, hi: float) -> float:
-    """The input in [lo, hi] where ``point`` is nearest to ``target`` (golden section on
-    the tracker's positions, to 1e-12 of the interval)."""
-    row = ready.tracker.point_names.index(point)
-
-    def gap(q: float) -> float:
-        with ready.lock:
-            xy = ready.tracker.positions(float(q))[row]
-        d = np.hypot(*(xy - target))
-        return float(d) if math.isfinite(d) else math.inf
-    a, b = float(lo), float(hi)
-    c, d = b - _GOLDEN * (b - a), a + _GOLDEN * (b - a)
-    fc, fd = gap(c), gap(d)
-    for _ in range(60):
-        if abs(b - a) <= 1e-12 * (1 + abs(a)):
-            break
-        if fc < fd:
-            b, d, fd = d, c, fc
-            c = b - _GOLDEN * (b - a)
-            fc = gap(c)
-        else:
-            a, c, fc = c, d, fd
-            d = a + _GOLDEN * (b - a)
-            fd = gap(d)
-    return c if fc < fd else d
+def _nearest_on_path(sol: KinematicSolution, point: str, target: np.ndarray, i: int) -> float:
+    """The input (SI) near sample ``i`` where ``point`` comes nearest to ``target``, on the
+    path's expansion P(q_i + h) = P + K h + L h^2 / 2, h between the neighbouring samples
+    (those that close): the real roots of d|P(q_i + h) - target|^2 / dh, a cubic in h."""
+    q = sol.q[:, 0]
+    lo = q[i - 1] - q[i] if i > 0 and sol.assembled[i - 1] else 0.0
+    hi = q[i + 1] - q[i] if i + 1 < sol.N and sol.assembled[i + 1] else 0.0
+    row = sol.point_item[point]
+    jets = sol.item_jets([row, row + 1])[i]          # (2, 3): P, K, L of x and y
+    P, K, L = jets[:, 0], jets[:, 1], jets[:, 2]
+    if not np.all(np.isfinite(jets)) or lo == hi:
+        return float(q[i])                            # singular here: no expansion
+    d = P - target
+    # d/dh |d + K h + L h^2 / 2|^2 / 2 = (d + K h + L h^2 / 2) . (K + L h)
+    cubic = [0.5 * L @ L, 1.5 * K @ L, K @ K + d @ L, d @ K]
+    candidates = [lo, hi, 0.0] + [r.real for r in np.roots(cubic)
+                                  if abs(r.imag) <= 1e-12 * (1 + abs(r.real))
+                                  and min(lo, hi) < r.real < max(lo, hi)]
+    h = min(candidates, key=lambda h: float(np.hypot(*(d + K * h + 0.5 * L * h * h))))
+    return float(q[i] + h)
 
 
 # -- editing --------------------------------------------------------------------------------

@@ -114,3 +114,28 @@ def test_a_model_without_loops():
     assert d.S == () and d.Phi.shape == (0, 1) and d.K.shape == (0, 1)
     text = d.to_markdown()
     assert "The model has no closed loop" in text and "## Dynamics" in text
+
+
+def test_print_ready_equations_and_words():
+    engine = derive(kl.load("examples/engine.toml"))
+    for lang in ("en", "pt"):
+        text = engine.to_markdown(lang=lang)
+        assert "(s)" not in text and "(ões)" not in text        # a count said with its number
+        # dots over the letter, not over its subscript
+        assert r"\dot{\theta}_{\text{rod}}" in text and r"\dot{\theta_" not in text
+        # the input torque broken over lines of about a page's width, inside an alignment
+        block = text[text.index(r"\tau_{"):]
+        block = block[:block.index("$$")]
+        lines = block.splitlines()
+        assert len(lines) > 5 and max(map(len, lines)) < 200
+        assert all(line.startswith(r"&\quad ") for line in lines[1:-1])
+        assert text.count(r"\left(") == text.count(r"\right)")
+    pt = engine.to_markdown(lang="pt")
+    assert "na forma das notas" in pt and "de as" not in pt
+    assert "uma malha independente" in pt
+
+
+def test_a_sketch_drawn_at_a_whole_degree_is_shown_there():
+    # assembly leaves the Whitworth's crank within rounding of the 0 drawn: 0, not -8e-10
+    text = derive(kl.load("examples/whitworth.toml")).to_markdown()
+    assert "Numbers at $q = 0$ (0°)" in text

@@ -117,10 +117,11 @@ def test_ex_4_3_real_points_are_where_the_ellipse_meets_the_circle(ex_4_3):
 
 # --- §4.7, Ex. 4.4: Newton-Raphson on the slider-crank ------------------------------------
 # Eqs. 38-41 with L2 = L3 = 1 and θ2 = 45°, unknowns x = (θ3, l), start (-60°, 1).  The
-# Jacobian below (eq. 44) is right.  Slips in the notes' text:
-#   - "θ2⁽⁰⁾ = 60°" just after "θ2 seja 45°": θ2 is 45° (the worked Φ⁽⁰⁾ use cos 45);
-#   - eq. 45 divides by cos θ3⁽ᵏ⁺¹⁾; Newton's step uses the current iterate, cos θ3⁽ᵏ⁾
-#     (and the worked row 0 does divide by cos(-60°) = 0.5).
+# Jacobian below (eq. 44) is right.  The start "θ2⁽⁰⁾ = 60°, θ3⁽⁰⁾ = -60°, l⁽⁰⁾ = 1" is the
+# known configuration of the mechanism at θ2 = 60° (it closes the loop), the guess for
+# θ2 = 45°: not a slip.  Slip in the notes' text (docs/errata.md, M-3): eq. 45 divides by
+# cos θ3⁽ᵏ⁺¹⁾; Newton's step uses the current iterate, cos θ3⁽ᵏ⁾ (and the worked row 0 does
+# divide by cos(-60°) = 0.5).
 
 TH2 = np.radians(45.0)
 

@@ -156,6 +156,105 @@ def test_a_drag_follows_the_pointer_along_the_path_and_keeps_the_lengths(client)
         assert np.hypot(*(pts[a] - pts[b])) == pytest.approx(length, rel=1e-12)
 
 
+@pytest.mark.parametrize("name, point", [("crank_rocker", "P"), ("stephenson6", "C"),
+                                         ("stephenson6", "A"), ("whitworth", "D"), ("jansen", "G")])
+def test_a_drag_is_one_solve_and_as_near_as_a_search_along_the_path(client, monkeypatch, name, point):
+    """The nearest place on the path between the nearest sample's neighbours, found on the
+    path's expansion about the sample (K and L of the sweep), then one solve by the tracker:
+    as near to the pointer as a golden-section search of the tracker's positions (to 1e-7
+    of the path's size), and never farther than the nearest sample."""
+    mf, model = model_of(name)
+    ready = _api.prepare({"model": model})
+    solves = []
+    tracker = ready.tracker
+
+    class Counting:
+        def __getattr__(self, attr):
+            return getattr(tracker, attr)
+
+        def __call__(self, *args, **kwargs):
+            solves.append(args)
+            return tracker(*args, **kwargs)
+    monkeypatch.setattr(ready, "tracker", Counting())
+    ls = mf.units.length_scale
+    path = ready.sol.position(point) / ls
+    size = float(np.max(np.ptp(path[ready.sol.assembled], axis=0)))
+    row = tracker.point_names.index(point)
+    rng = np.random.default_rng(7)
+    for k in range(12):
+        j = int(rng.integers(ready.sol.N))
+        to = (path[j] + rng.normal(size=2) * 0.03 * size).tolist()
+        solves.clear()
+        c = client.post("/api/drag", json={"model": model, "point": point, "to": to,
+                                           "parts": []}).json()
+        assert len(solves) == 1 and set(c) == {"q", "points", "singular"}
+        near = math.dist(c["points"][point], to)
+        gaps = np.hypot(*(path - to).T)
+        i = int(np.nanargmin(gaps))
+        assert near <= gaps[i] * (1 + 1e-9)
+        # golden section on the tracker's positions between the neighbours, to 1e-13
+        a, b = ready.sol.q[max(i - 1, 0), 0], ready.sol.q[min(i + 1, ready.sol.N - 1), 0]
+        gap = lambda q: math.dist(tracker.positions(float(q))[row] / ls, to)     # noqa: E731
+        g = (math.sqrt(5) - 1) / 2
+        while b - a > 1e-13:
+            c1, c2 = b - g * (b - a), a + g * (b - a)
+            a, b = (a, c2) if gap(c1) < gap(c2) else (c1, b)
+        assert near <= gap(a) + 1e-7 * size
+
+
+def test_a_drag_narrowed_to_parts_answers_them_as_the_configuration_does(client):
+    mf, model = model_of("whitworth")
+    c = client.post("/api/drag", json={"model": model, "point": "C", "to": [10.0, 95.0],
+                                       "parts": ["guides", "centres"]}).json()
+    assert set(c) == {"q", "points", "singular", "guides", "centres"}
+    full = client.post("/api/configuration", json={"model": model, "q": c["q"][0]}).json()
+    assert full["points"] == c["points"] and full["guides"] == c["guides"]
+    assert full["centres"] == c["centres"]
+    r = client.post("/api/drag", json={"model": model, "point": "C", "to": [10.0, 95.0],
+                                       "parts": ["everything"]})
+    assert r.status_code == 400 and r.json()["error"].startswith(
+        "parts: expected a list of some of 'values', 'centres', 'guides', 'polygons', got")
+
+
+@pytest.mark.parametrize("name", ["whitworth", "slotted_link"])
+def test_the_guides_turn_with_their_links(client, name):
+    """Each prismatic joint's slide direction, in the sweep and in one configuration: along
+    the guide link as it turns (the slot along the lever O4-C), kinelab's slide_axes."""
+    mf, model = model_of(name)
+    s = client.post("/api/study", json={"model": model}).json()
+    sol = kl.analyze(mf.mechanism, np.radians(s["columns"]["jO2.q[deg]"]))
+    for joint in ("slot", "ram_slide") if name == "whitworth" else ("slot",):
+        np.testing.assert_allclose(s["guides"][joint], sol.slide_axes(joint), rtol=0, atol=1e-15)
+    lever = np.array([s["columns"]["C.x[mm]"], s["columns"]["C.y[mm]"]]).T
+    along = lever / np.hypot(*lever.T)[:, None]                 # O4 is at the origin
+    np.testing.assert_allclose(np.abs(np.sum(along * np.array(s["guides"]["slot"]), axis=1)), 1.0,
+                               rtol=0, atol=1e-12)
+    c = client.post("/api/configuration", json={"model": model, "q": 90}).json()
+    assert c["guides"]["slot"] == pytest.approx(
+        kl.analyze(mf.mechanism, np.pi / 2).slide_axes("slot").tolist(), abs=1e-15)
+
+
+@pytest.mark.parametrize("name", ["crank_rocker", "stephenson6", "whitworth"])
+def test_a_narrowed_study_is_the_full_ones_columns_asked_for(client, name):
+    """An edit drag asks for the columns it redraws (and the points it traces): the same
+    numbers as the full study's, in its order, with everything else of the answer."""
+    _, model = model_of(name)
+    full = client.post("/api/study", json={"model": model}).json()
+    names = list(full["columns"])
+    angle = next(n for n in names if ".angle[" in n and not n.startswith("ground"))
+    for columns, points in ((full["inputs"], None), ([angle], ["A"]), ([], [])):
+        body = {"model": model, "columns": columns, **({"points": points} if points is not None else {})}
+        narrow = client.post("/api/study", json=body).json()
+        xy = {f"{p}.{c}[{full['units']['length']}]" for p in (points if points is not None else model["points"])
+              for c in "xy"}
+        assert list(narrow["columns"]) == [n for n in names if n in xy or n in columns or n in full["inputs"]
+                                           or ".transmission[" in n]
+        assert all(narrow["columns"][n] == full["columns"][n] for n in narrow["columns"])
+        assert {k: v for k, v in narrow.items() if k != "columns"} == {k: v for k, v in full.items() if k != "columns"}
+    r = client.post("/api/study", json={"model": model, "points": ["nowhere"]})
+    assert r.status_code == 400 and r.json()["error"].startswith("points: expected a list of some of")
+
+
 def test_flipping_a_dyad_gives_the_other_assembly_mode_with_the_same_lengths(client):
     fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5, coupler_point=(1.5, 1.0))
     model = ModelFile(fb).to_dict()

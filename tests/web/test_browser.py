@@ -458,8 +458,11 @@ def test_a_slider_crank_drawn_from_scratch_is_kinelabs_slider_crank(page):
     page.wait_for_function("() => !window.kinelab.draft && window.kinelab.study.model.links[1].length === 100")
     page.shot("slider_crank_typed")
     s = state(page, "window.kinelab.study")
+    # the input drawn turns once a second (360 deg/s), shown in the table
+    assert s["model"]["inputs"][0]["speed"] == 360
+    assert page.input_value("#tab-table td[data-field=speed] input") == "360"
     q = np.radians(s["columns"][s["inputs"][0]])
-    sc = kl.analyze(kl.mechanisms.slider_crank(crank / 1000, rod / 1000), q=q)
+    sc = kl.analyze(kl.mechanisms.slider_crank(crank / 1000, rod / 1000), q=q, qd=2 * np.pi)
     for mine, theirs in (("P2", "A"), ("P3", "B")):
         drawn = np.array([s["columns"][f"{mine}.x[mm]"], s["columns"][f"{mine}.y[mm]"]]).T
         np.testing.assert_allclose(drawn, 1000 * sc.position(theirs), rtol=0, atol=1e-9)

@@ -11,7 +11,7 @@ export function el(name, attrs = {}, parent = null) {
 export class Canvas {
   constructor(svg, handlers) {
     this.svg = svg;
-    this.handlers = handlers;      // {down(name, xy, event), move(xy), up(xy), click(xy)}
+    this.handlers = handlers;      // {down(name, xy, event), move(name, xy), up(name, xy), hover(xy)}
     this.view = null;
     this.dragging = null;
     svg.addEventListener("pointerdown", (e) => this.pointer(e, "down"));
@@ -44,6 +44,8 @@ export class Canvas {
       if (this.dragging) this.svg.setPointerCapture(e.pointerId);
     } else if (kind === "move" && this.dragging) {
       this.handlers.move(this.dragging, xy);
+    } else if (kind === "move" && this.handlers.hover) {
+      this.handlers.hover(xy);
     } else if (kind === "up") {
       const name = this.dragging;
       this.dragging = null;
@@ -52,57 +54,88 @@ export class Canvas {
   }
 
   // scene: {points: {name: [x, y]}, drawing, traces: {name: [[x, y], ...]}, marks, centres,
+  //         guides: {joint: [ux, uy]} (each P joint's slide direction now),
+  //         pending: a point waiting for the second click of a link, hover: [x, y],
   //         poses: [{xy, angle, label}] (angle in rad; arrows, numbered unless labelled)}
+  // The elements are kept and changed in place: a drag changes a few attributes, and the
+  // paths (hundreds of samples) are drawn again only when they, or the view, change.
   draw(scene) {
     const svg = this.svg;
-    svg.replaceChildren();
-    if (!this.view) return;
-    const P = scene.points, d = scene.drawing;
+    if (!this.view) { svg.replaceChildren(); this.layers = null; return; }
+    if (!this.layers) {
+      svg.replaceChildren();
+      this.layers = {};
+      for (const name of ["paths", "links", "joints", "points", "poses", "centres"])
+        this.layers[name] = {g: el("g", {"data-layer": name}, svg), byKey: new Map()};
+      this.drawn = {};
+    }
+    const P = scene.points, d = scene.drawing, L = this.layers;
     const S = (p) => this.toScreen(p);
-    for (const [name, path] of Object.entries(scene.traces || {})) {
-      const pts = path.filter((p) => p && p[0] !== null && p[1] !== null).map(S);
-      if (pts.length > 1) el("polyline", {class: "trace", points: pts.join(" "), "data-trace": name}, svg);
-    }
-    for (const m of scene.marks || []) {
-      const [X, Y] = S(m.xy);
-      if (m.kind === "singular") el("circle", {class: "mark-singular", cx: X, cy: Y, r: 4}, svg);
-      else el("rect", {class: "mark-change", x: X - 5, y: Y - 5, width: 10, height: 10}, svg);
-    }
-    for (const link of d.links) {
-      const pts = link.points.filter((p) => P[p] && P[p][0] !== null);
-      if (pts.length < 2) continue;
-      const shape = pts.length > 2 ? "polygon" : "polyline";
-      el(shape, {class: "link" + (link.ground ? " ground" : ""), "data-link": link.name,
-                 points: pts.map((p) => S(P[p])).join(" ")}, svg);
-    }
-    for (const j of d.joints) {
-      if (!P[j.point]) continue;
-      const [X, Y] = S(P[j.point]);
-      if (j.type === "P") {
-        const a = Array.isArray(j.axis) ? j.axis : [1, 0], ang = Math.atan2(-a[1], a[0]) * 180 / Math.PI;
-        el("line", {class: "guide", x1: X - 60, y1: Y, x2: X + 60, y2: Y, "data-guide": j.name,
-                    transform: `rotate(${ang} ${X} ${Y})`}, svg);
-        el("rect", {class: "joint P", x: X - 10, y: Y - 6, width: 20, height: 12,
-                    transform: `rotate(${ang} ${X} ${Y})`}, svg);
+    const known = (xy) => xy && xy[0] !== null && xy[1] !== null;
+    if (scene.traces !== this.drawn.traces || scene.marks !== this.drawn.marks || this.view !== this.drawn.view) {
+      const items = [];
+      for (const [name, path] of Object.entries(scene.traces || {})) {
+        const pts = path.filter(known).map(S);
+        if (pts.length > 1) items.push([`t ${name}`, "polyline", {class: "trace", points: pts.join(" "), "data-trace": name}]);
       }
+      (scene.marks || []).forEach((m, i) => {
+        const [X, Y] = S(m.xy);
+        if (m.kind === "singular") items.push([`m ${i}`, "circle", {class: "mark-singular", cx: X, cy: Y, r: 4}]);
+        else items.push([`m ${i}`, "rect", {class: "mark-change", x: X - 5, y: Y - 5, width: 10, height: 10}]);
+      });
+      patch(L.paths, items);
+      this.drawn = {traces: scene.traces, marks: scene.marks, view: this.view};
     }
+    const links = [];
+    for (const link of d.links) {
+      const pts = link.points.filter((p) => known(P[p]));
+      if (pts.length < 2) continue;
+      links.push([`l ${link.name}`, pts.length > 2 ? "polygon" : "polyline",
+                  {class: "link" + (link.ground ? " ground" : ""), "data-link": link.name,
+                   points: pts.map((p) => S(P[p])).join(" ")}]);
+    }
+    patch(L.links, links);
+    const joints = [];
+    for (const j of d.joints) {
+      if (j.type !== "P" || !known(P[j.point])) continue;
+      const [X, Y] = S(P[j.point]);
+      const a = (scene.guides && scene.guides[j.name]) || (Array.isArray(j.axis) ? j.axis : [1, 0]);
+      if (!known(a)) continue;
+      const n = Math.hypot(a[0], a[1]), ux = a[0] / n, uy = -a[1] / n;     // on the screen, y down
+      const ang = Math.atan2(uy, ux) * 180 / Math.PI;
+      joints.push([`g ${j.name}`, "line", {class: "guide", x1: X - 60 * ux, y1: Y - 60 * uy,
+                                           x2: X + 60 * ux, y2: Y + 60 * uy, "data-guide": j.name}]);
+      joints.push([`b ${j.name}`, "rect", {class: "joint P", x: X - 10, y: Y - 6, width: 20, height: 12,
+                                           transform: `rotate(${ang} ${X} ${Y})`, "data-block": j.name}]);
+    }
+    patch(L.joints, joints);
     const inputPoints = new Set((d.inputs || []).map((i) => {
       const j = d.joints.find((k) => k.name === i.joint); return j ? j.point : null; }));
+    const jointed = new Set(d.joints.map((j) => j.point));
+    const points = [];
     for (const [name, xy] of Object.entries(P)) {
-      if (!xy || xy[0] === null) continue;
+      if (!known(xy)) continue;
       const [X, Y] = S(xy);
       const ground = d.ground_points.includes(name);
-      if (ground) el("path", {class: "link ground", d: `M${X - 9},${Y + 12} L${X + 9},${Y + 12} M${X},${Y} L${X - 7},${Y + 12} M${X},${Y} L${X + 7},${Y + 12}`}, svg);
-      const jointed = d.joints.some((j) => j.point === name);
-      el("circle", {class: (jointed ? "joint " : "") + "point" + (ground ? " ground" : "") +
-                    (inputPoints.has(name) ? " input" : ""),
-                    cx: X, cy: Y, r: jointed ? 6 : 4.5, "data-point": name}, svg);
-      el("text", {class: "label", x: X + 8, y: Y - 8}, svg).textContent = name;
+      if (ground) points.push([`g ${name}`, "path", {class: "link ground", d: `M${X - 9},${Y + 12} L${X + 9},${Y + 12} M${X},${Y} L${X - 7},${Y + 12} M${X},${Y} L${X + 7},${Y + 12}`}]);
+      if (name === scene.pending) {
+        points.push(["pending ring", "circle", {class: "pending", cx: X, cy: Y, r: 11, "data-pending": name}]);
+        if (scene.hover) {
+          const [U, V] = S(scene.hover);
+          points.push(["pending line", "line", {class: "pending-link", x1: X, y1: Y, x2: U, y2: V}]);
+        }
+      }
+      points.push([`c ${name}`, "circle", {class: (jointed.has(name) ? "joint " : "") + "point" + (ground ? " ground" : "") +
+                                            (inputPoints.has(name) ? " input" : ""),
+                                           cx: X, cy: Y, r: jointed.has(name) ? 6 : 4.5, "data-point": name}]);
+      points.push([`t ${name}`, "text", {class: "label", x: X + 8, y: Y - 8}, name]);
     }
+    patch(L.points, points);
+    L.poses.g.replaceChildren();
     scene.poses.forEach((pose, i) => {
-      const [X, Y] = S(pose.xy), L = 42;
-      const [U, V] = [X + L * Math.cos(pose.angle), Y - L * Math.sin(pose.angle)];
-      const g = el("g", {class: "pose", "data-pose": i + 1}, svg);
+      const [X, Y] = S(pose.xy), len = 42;
+      const [U, V] = [X + len * Math.cos(pose.angle), Y - len * Math.sin(pose.angle)];
+      const g = el("g", {class: "pose", "data-pose": i + 1}, L.poses.g);
       el("line", {x1: X, y1: Y, x2: U, y2: V}, g);
       const head = [[-10, 5], [-10, -5]].map(([a, b]) =>
         [U + a * Math.cos(pose.angle) + b * Math.sin(pose.angle), V - a * Math.sin(pose.angle) + b * Math.cos(pose.angle)]);
@@ -110,14 +143,39 @@ export class Canvas {
       el("circle", {cx: X, cy: Y, r: 3.5}, g);
       el("text", {class: "pose-label", x: X - 14, y: Y + 14}, g).textContent = pose.label ?? String(i + 1);
     });
+    const centres = [];
     for (const c of scene.centres || []) {
       if (c.at_infinity || !c.position) continue;
       const [X, Y] = S(c.position);
       if (!isFinite(X) || !isFinite(Y) || Math.abs(X) > 1e5 || Math.abs(Y) > 1e5) continue;
-      el("circle", {class: "centre", cx: X, cy: Y, r: 3, "data-centre": c.links.join("-")}, svg);
-      el("text", {class: "centre-label", x: X + 4, y: Y + 12}, svg).textContent = `I ${c.links.join(",")}`;
+      const key = c.links.join("-");
+      centres.push([`c ${key}`, "circle", {class: "centre", cx: X, cy: Y, r: 3, "data-centre": key}]);
+      centres.push([`t ${key}`, "text", {class: "centre-label", x: X + 4, y: Y + 12}, `I ${c.links.join(",")}`]);
     }
+    patch(L.centres, centres);
   }
+}
+
+// A layer's elements made as `items` say ([key, tag, attributes, text]), in that order:
+// those of a key drawn before are kept, only their changed attributes set.
+function patch(layer, items) {
+  const now = new Map(), kids = [];
+  for (const [key, tag, attrs, text] of items) {
+    let e = layer.byKey.get(key);
+    if (!e || e.localName !== tag) { e = document.createElementNS(NS, tag); e.drawn = {}; }
+    const was = e.drawn;
+    for (const k in attrs) {
+      const v = String(attrs[k]);
+      if (was[k] !== v) { e.setAttribute(k, v); was[k] = v; }
+    }
+    for (const k in was) if (!(k in attrs)) { e.removeAttribute(k); delete was[k]; }
+    if (text !== undefined && e.textContent !== text) e.textContent = text;
+    now.set(key, e);
+    kids.push(e);
+  }
+  layer.byKey = now;
+  const c = layer.g.children;
+  if (c.length !== kids.length || kids.some((e, i) => c[i] !== e)) layer.g.replaceChildren(...kids);
 }
 
 // The bounding box of every place in a list of [x, y] (nulls skipped).

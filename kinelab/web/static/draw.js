@@ -2,6 +2,14 @@
 const round = (v) => Number(v.toPrecision(8));
 let linkStart = null;          // the first point of a link being drawn
 
+// The point a link waits at for its second click (null when none), and forgetting it.
+export const pending = () => linkStart;
+export function cancel() { const was = linkStart; linkStart = null; return was !== null; }
+
+// An input drawn turns once a second: its velocities and accelerations are not zero, and
+// the table shows the speed to change.
+export const defaultSpeed = (units) => (units && units.angle === "rad" ? 2 * Math.PI : 360);
+
 export function empty() {
   return {schema: 1, name: "sketch", units: {length: "mm", angle: "deg"}, points: {},
           links: [{name: "ground", points: [], ground: true}], joints: []};
@@ -12,6 +20,19 @@ export function drawingOf(model) {
   const ground = model.links.find((l) => l.ground);
   return {links: model.links, joints: model.joints || [], traced: [],
           ground_points: ground ? ground.points : [], inputs: model.inputs || []};
+}
+
+// Each prismatic joint's slide direction as the sketch has it (an axis [x, y], or an angle
+// in the model's unit).
+export function guidesOf(model) {
+  const toRad = model.units && model.units.angle === "rad" ? 1 : Math.PI / 180;
+  const out = {};
+  for (const j of model.joints || []) {
+    if (j.type !== "P") continue;
+    if (Array.isArray(j.axis)) out[j.name] = j.axis;
+    else if (typeof j.axis === "number") out[j.name] = [Math.cos(j.axis * toRad), Math.sin(j.axis * toRad)];
+  }
+  return out;
 }
 
 function fresh(prefix, taken) {
@@ -63,7 +84,8 @@ export function apply(tool, model, name, xy) {
     const ground = m.links.find((l) => l.ground);
     const j = m.joints.find((k) => k.point === name && k.type === "R" && ground && k.links.includes(ground.name));
     if (!j) return null;
-    m.inputs = [{joint: j.name}];
+    const speed = m.inputs && m.inputs.length ? m.inputs[0].speed : undefined;
+    m.inputs = [{joint: j.name, speed: speed ?? defaultSpeed(m.units)}];
     return m;
   }
   return null;

@@ -8,12 +8,14 @@ import {renderTable} from "./table.js";
 import {showCentres, derive} from "./method.js";
 import * as draw from "./draw.js";
 import {synthesisPanel, posesOnDrawing} from "./synth.js";
+import {follower} from "./follow.js";
 import {forcesPanel} from "./dynamics.js";
 
 const $ = (id) => document.getElementById(id);
 const state = {model: null, source: null, study: null, index: 0, config: null,
                history: [], future: [], playing: false, busy: false, pending: null,
-               draft: false, frames: 0, lastUpdateMs: null};
+               draft: false, frames: 0, lastUpdateMs: null, seq: 0, dragQ: null, hover: null,
+               moves: 0, predicted: null, followGap: 0, answers: []};
 window.kinelab = state;
 
 function status(text, error = false) {
@@ -24,22 +26,29 @@ function status(text, error = false) {
 // -- the model and its sweep ------------------------------------------------------------
 const lu = () => state.study.units.length;
 const column = (name) => state.study.columns[name];
-const place = (p, i) => [column(`${p}.x[${lu()}]`)[i], column(`${p}.y[${lu()}]`)[i]];
+const place = (p, i) => {             // [null, null] for a point a narrowed sweep leaves out
+  const x = column(`${p}.x[${lu()}]`), y = column(`${p}.y[${lu()}]`);
+  return x && y ? [x[i], y[i]] : [null, null];
+};
 
-// `columns` narrows the sweep's columns to those named (the points' and the inputs' always
-// come): a drag asks only for what it redraws, the rest follows when it ends.
-async function study(model, source, columns = undefined) {
+// `columns` narrows the sweep's columns to those named (the inputs' always come), and
+// `points` to those points' places (all by default): a drag asks only for what it redraws,
+// the rest follows when it ends.
+async function study(model, source, columns = undefined, points = undefined) {
   const t0 = performance.now();
-  const s = await post("/api/study", {model, source, columns});
+  const s = await post("/api/study", {model, source, columns, points});
   state.lastStudyMs = performance.now() - t0;
   return s;
 }
 
 // Show `model`; on success it becomes the model (as assembled), else `onError` decides.
+// The page shows the model asked for last: an answer for one asked for before it is dropped.
 async function setModel(model, source, {record = true, refit = true, keepDraft = false} = {}) {
+  const ticket = ++state.seq;
   const before = state.model;
   try {
     const s = await study(model, source);
+    if (ticket !== state.seq) return false;
     if (record && before) { state.history.push({model: before, source: state.source}); state.future = []; }
     accept(s, source, refit);
     const moved = Object.entries(s.moved)
@@ -52,12 +61,13 @@ async function setModel(model, source, {record = true, refit = true, keepDraft =
       .filter(Boolean).join("; "));
     return true;
   } catch (err) {
+    if (ticket !== state.seq) return false;
     if (keepDraft) {           // a drawing on its way: kept as it is, the reason shown
       if (record && before) { state.history.push({model: before, source: state.source}); state.future = []; }
       state.model = model; state.source = source; state.study = null; state.draft = true;
       redraw();
     } else if (state.model) {  // refused: the model stays, and the table shows it again
-      renderTable($("tab-table"), state, {edit: editModel, flip, setIndex});
+      showTable();
     }
     status(err.message, true);
     return false;
@@ -66,7 +76,8 @@ async function setModel(model, source, {record = true, refit = true, keepDraft =
 
 function accept(s, source, refit) {
   state.study = s; state.model = s.model; state.source = source; state.draft = false;
-  state.config = null;             // the last configuration was of the model before
+  state.config = null; state.dragQ = null;     // the last configuration was of the model before
+  state.predicted = null;
   if (state.index >= s.samples) state.index = 0;
   if (s.unassembled.includes(state.index)) {      // show a sample where the loops close
     const good = Array.from({length: s.samples}, (_, i) => i).find((i) => !s.unassembled.includes(i));
@@ -76,7 +87,7 @@ function accept(s, source, refit) {
   $("title").textContent = `${s.model.name}${source ? " — " + source : ""}`;
   if (refit) fitView();
   fillPlotChoices();
-  renderTable($("tab-table"), state, {edit: editModel, flip, setIndex});
+  showTable();
   redraw();
   plotNow();
   configurationSoon();
@@ -92,11 +103,38 @@ function fitView() {
 
 function editModel(model) { return setModel(model, state.source); }
 
+// The table drawn again from the model: a value refused (here or by the server) is
+// replaced by the model's own, and the reason shown.
+function showTable() { renderTable($("tab-table"), state, {edit: editModel, flip, setIndex, refuse}); }
+function refuse(message) { status(message, true); showTable(); }
+
+// An empty page to draw on: no model, no sweep, no plot; undo brings the last model back.
+function newDrawing() {
+  pause();
+  state.seq++;                     // answers on their way are for the page before
+  draw.cancel();
+  if (state.model) { state.history.push({model: state.model, source: state.source}); state.future = []; }
+  Object.assign(state, {model: draw.empty(), source: null, study: null, config: null, dragQ: null,
+                        predicted: null, draft: true, index: 0, hover: null, derivation: null});
+  $("title").textContent = "";
+  $("input-value").textContent = "";
+  $("scrub").max = 0; $("scrub").value = 0;
+  $("plot-y").replaceChildren(); $("plot-x").replaceChildren();
+  plot.clear();
+  $("centres").replaceChildren(); $("polygons").replaceChildren(); $("derivation").replaceChildren();
+  showTable();
+  status("");
+  redraw();
+}
+
+const shown = (tab) => $(`tab-${tab}`).classList.contains("active");
+
 async function flip(step) {
+  const ticket = ++state.seq;
   try {
     const r = await post("/api/flip", {model: state.model, source: state.source, step});
-    await setModel(r.model, state.source);
-  } catch (err) { status(err.message, true); }
+    if (ticket === state.seq) await setModel(r.model, state.source);
+  } catch (err) { if (ticket === state.seq) status(err.message, true); }
 }
 
 // -- drawing -------------------------------------------------------------------------------
@@ -104,21 +142,42 @@ function scene() {
   const poses = document.querySelector("#tabs button[data-tab=synthesis]").classList.contains("active")
     ? posesOnDrawing($("tab-synthesis"), state.model.units) : [];
   if (state.pose) poses.push(state.pose);
-  if (!state.study) return {points: state.model.points, drawing: draw.drawingOf(state.model), poses};
+  const pending = tool() === "link" ? draw.pending() : null, hover = pending ? state.hover : null;
+  if (!state.study) return {points: state.model.points, drawing: draw.drawingOf(state.model), poses,
+                            guides: draw.guidesOf(state.model), pending, hover};
   const s = state.study, d = s.drawing;
   const sketch = $("canvas").dataset.sketch === "1";
   const points = {};
+  const now = state.predicted || state.config;     // a drag's place drawn at once, then the server's
   for (const p of Object.keys(s.model.points))
-    points[p] = sketch ? s.model.points[p] : (state.config && state.config.points[p]) || place(p, state.index);
-  const traces = {};
+    points[p] = sketch ? s.model.points[p] : (now && now.points[p]) || place(p, state.index);
+  const {traces, marks} = paths(s);
+  const centres = $("show-centres").checked && state.config && !sketch ? state.config.centres : [];
+  const guides = sketch ? {} : (now && now.guides) ||
+    Object.fromEntries(Object.entries(s.guides || {}).map(([j, a]) => [j, a[state.index]]));
+  return {points, drawing: d, traces, marks, centres, guides, poses, pending, hover};
+}
+
+// The traced paths and their marks, made once a sweep (the drawing keeps them while the
+// linkage moves).
+let drawnPaths = {study: null};
+function paths(s) {
+  if (drawnPaths.study === s) return drawnPaths;
+  const d = s.drawing, traces = {}, marks = [];
   for (const p of d.traced) traces[p] = Array.from({length: s.samples}, (_, i) => place(p, i));
-  const marks = [];
   for (const p of d.traced) {
     for (const i of s.singular) marks.push({kind: "singular", xy: place(p, i)});
     for (const c of s.change_points) marks.push({kind: "change", xy: place(p, c.index)});
   }
-  const centres = $("show-centres").checked && state.config && !sketch ? state.config.centres : [];
-  return {points, drawing: d, traces, marks, centres, poses};
+  drawnPaths = {study: s, traces, marks};
+  return drawnPaths;
+}
+
+let redrawAsked = false;
+function redrawSoon() {          // at most once a frame
+  if (redrawAsked) return;
+  redrawAsked = true;
+  requestAnimationFrame(() => { redrawAsked = false; if (state.model) redraw(); });
 }
 
 function redraw() {
@@ -134,13 +193,15 @@ function redraw() {
 const fmt = (v) => v === null ? "–" : Number(v.toPrecision(6)).toString();
 
 function setIndex(i, {exact = false} = {}) {
+  if (!state.study) return;                 // nothing swept yet (a drawing on its way)
   state.index = Math.max(0, Math.min(state.study.samples - 1, i));
-  if (!exact) state.config = null;
+  if (!exact) { state.config = null; state.dragQ = null; }
+  state.predicted = null;
   $("canvas").dataset.sketch = "0";
   redraw();
   plot.at(state.index);
   $("plot").dataset.index = state.index;
-  renderTable.values && renderTable.values(state);
+  if (shown("table")) renderTable.values(state);
   if (!state.playing) configurationSoon();
 }
 
@@ -174,29 +235,73 @@ function configurationSoon() {
   configTimer = setTimeout(configuration, 60);
 }
 
+// At the sample shown, or where a drag left the linkage (between samples).
 async function configuration() {
   if (!state.study) return;
-  const q = state.study.inputs.map((n) => column(n)[state.index]);
+  const {model, study, index, dragQ} = state;
+  const q = dragQ !== null ? [dragQ].flat() : study.inputs.map((n) => column(n)[index]);
   if (q.some((v) => v === null)) return;
   try {
-    const c = await post("/api/configuration", {model: state.model, source: state.source,
-                                                 q: q.length === 1 ? q[0] : q});
+    const c = await post("/api/configuration", {model, source: state.source, q: q.length === 1 ? q[0] : q});
+    if (state.model !== model || state.study !== study || state.index !== index || state.dragQ !== dragQ) return;
     state.config = c;
     showCentres($("centres"), $("polygons"), c, state.study);
     redraw();
-  } catch (err) { status(err.message, true); }
+    if (shown("table")) renderTable.values(state);
+  } catch (err) { if (state.model === model) status(err.message, true); }
 }
 
 // -- pointer: move (the linkage follows), edit (the sketch changes), draw ------------------
-async function dragTo(name, xy) {
-  if (state.busy) { state.pending = [name, xy]; return; }
+// The move tool draws the linkage where the sweep puts it at once (follow.js), in the frame
+// of the pointer's move, and asks the server to solve the same drag: its answer, the
+// tracker's configuration, replaces the drawing when it comes.
+let following = {study: null, follower: null};
+function predict(name, xy) {
+  const s = state.study;
+  if (following.study !== s) following = {study: s, follower: follower(s)};
+  const p = following.follower && following.follower.nearest(name, xy);
+  state.predicted = p ? {...p, move: state.moves} : null;
+  if (!p) return;
+  state.index = p.index;
+  $("canvas").dataset.sketch = "0";
+  redraw();
+  plot.at(p.index);
+}
+
+// How far the drawing drawn at once was from the server's solve, over the drags of this
+// page (a fraction of the drawing's size; about 1e-12).
+function check(c) {
+  const f = following.study === state.study && following.follower;
+  const at = f && c.q.length === 1 ? f.at(c.q[0]) : null;
+  if (!at) return;
+  const size = Math.max(1e-300, ...Object.values(at.points).flat().map(Math.abs));
+  for (const [p, xy] of Object.entries(c.points))
+    if (xy[0] !== null && at.points[p])
+      state.followGap = Math.max(state.followGap, Math.hypot(xy[0] - at.points[p][0], xy[1] - at.points[p][1]) / size);
+}
+
+// One request at a time: a pointer move made while one is answered waits, and only the
+// newest waiting move is sent when the answer is drawn.
+async function dragTo(name, xy, move = state.moves, at = performance.now()) {
+  if (state.busy) { state.pending = [name, xy, move, at]; return; }
   state.busy = true;
   const t0 = performance.now();
+  const before = state.model;
   try {
     if (tool() === "move") {
-      const c = await post("/api/drag", {model: state.model, source: state.source, point: name, to: xy});
+      // what the drawing shows, and the polygons while their tab is open; the rest of the
+      // configuration comes when the drag ends
+      const method = shown("method");
+      const parts = ["guides", ...($("show-centres").checked || method ? ["centres"] : []),
+                     ...(method ? ["polygons"] : [])];
+      const c = await post("/api/drag", {model: before, source: state.source, point: name, to: xy, parts});
+      if (state.model !== before) return;         // another model since: not this one's drag
       state.config = c;
-      showCentres($("centres"), $("polygons"), c, state.study);
+      state.dragQ = c.q.length === 1 ? c.q[0] : c.q;
+      check(c);
+      if (method) showCentres($("centres"), $("polygons"), c, state.study);
+      if (state.predicted && state.predicted.move > move) return;    // a newer move is drawn
+      state.predicted = null;
       const q0 = c.q[0], qs = column(state.study.inputs[0]);
       let best = 0;
       qs.forEach((v, i) => { if (v !== null && Math.abs(v - q0) < Math.abs(qs[best] - q0)) best = i; });
@@ -204,26 +309,40 @@ async function dragTo(name, xy) {
       $("canvas").dataset.sketch = "0";
       redraw();
       plot.at(best);
-      renderTable.values && renderTable.values(state);
+      if (shown("table")) renderTable.values(state);
+      answered(at);
     } else {
-      const model = movePoint(state.model, name, xy);
-      const s = await study(model, state.source, [$("plot-y").value, $("plot-x").value]);
+      const model = movePoint(before, name, xy);
+      const s = await study(model, state.source, [$("plot-y").value, $("plot-x").value],
+                            state.study.drawing.traced);
+      if (state.model !== before) return;
       state.lastDragStudyMs = state.lastStudyMs;
-      state.study = s; state.model = s.model; state.config = null; state.draft = false;
+      state.study = s; state.model = s.model; state.config = null; state.dragQ = null; state.draft = false;
       if (state.index >= s.samples) state.index = 0;
       state.narrowed = true;          // every column again when the drag ends
       $("canvas").dataset.sketch = "1";
       redraw();
       plotNow();
+      answered(at);
     }
-    status("");
+    if ($("status").textContent) status("");
   } catch (err) {
-    status(`drag refused: ${err.message}`, true);      // the last good configuration stays
+    if (state.model === before) {           // the last good configuration stays
+      state.predicted = null;
+      redraw();
+      status(`drag refused: ${err.message}`, true);
+    }
   } finally {
     state.lastUpdateMs = performance.now() - t0;
     state.busy = false;
-    if (state.pending) { const [n, p] = state.pending; state.pending = null; dragTo(n, p); }
+    if (state.pending) { const [n, p, m, t] = state.pending; state.pending = null; dragTo(n, p, m, t); }
   }
+}
+
+// The times from a pointer move to the server's answer for it drawn (the last 1,000).
+function answered(at) {
+  state.answers.push(performance.now() - at);
+  if (state.answers.length > 1000) state.answers.splice(0, state.answers.length - 1000);
 }
 
 const tool = () => document.querySelector("input[name=tool]:checked").value;
@@ -248,9 +367,20 @@ const canvas = new Canvas($("canvas"), {
     canvas.dragging = null;
     const next = draw.apply(t, state.model, name, xy);
     if (next) setModel(next, state.source, {keepDraft: true, refit: !state.study});
+    else redraw();                 // a link's first point, shown waiting for its second
+  },
+  hover(xy) {                      // a link's first point waits for its second
+    if (tool() !== "link" || !draw.pending()) return;
+    state.hover = xy;
+    redrawSoon();
   },
   move(name, xy) {
-    if (!name.from) { dragTo(name, xy); return; }
+    if (!name.from) {
+      state.moves += 1;
+      if (tool() === "move") predict(name, xy);
+      dragTo(name, xy);
+      return;
+    }
     const [x0, y0] = state.pose.xy;
     state.pose = {...state.pose, angle: Math.atan2(xy[1] - y0, xy[0] - x0)};
     redraw();
@@ -273,8 +403,11 @@ const canvas = new Canvas($("canvas"), {
     dragStart = null;
     if (state.narrowed) {
       state.narrowed = false;
-      try { accept(await study(state.model, state.source), state.source, false); }
-      catch (err) { status(err.message, true); }
+      const model = state.model;
+      try {
+        const s = await study(model, state.source);
+        if (state.model === model) accept(s, state.source, false);
+      } catch (err) { if (state.model === model) status(err.message, true); }
       $("canvas").dataset.sketch = "1";
       redraw();
     }
@@ -315,6 +448,7 @@ function pause() {
 async function undo() {
   const prev = state.history.pop();
   if (!prev) return;
+  draw.cancel();
   const now = {model: state.model, source: state.source};
   if (await setModel(prev.model, prev.source, {record: false, keepDraft: true})) state.future.push(now);
   else state.future.push(now);
@@ -322,23 +456,31 @@ async function undo() {
 async function redo() {
   const next = state.future.pop();
   if (!next) return;
+  draw.cancel();
   state.history.push({model: state.model, source: state.source});
   await setModel(next.model, next.source, {record: false, keepDraft: true});
 }
 
+// The model chosen last is the one shown, whatever order the answers come in.
 async function open(name) {
+  const ticket = ++state.seq;
   try {
     const r = await get(`/api/examples/${encodeURIComponent(name)}`);
+    if (ticket !== state.seq) return;
+    draw.cancel();
     await setModel(r.model, r.source);
-  } catch (err) { status(err.message, true); }
+  } catch (err) { if (ticket === state.seq) status(err.message, true); }
 }
 
 async function loadFile(f) {
+  const ticket = ++state.seq;
   try {
     const text = await f.text();
     const r = await post("/api/load", {text, source: f.name});
+    if (ticket !== state.seq) return;
+    draw.cancel();
     await setModel(r.model, r.source);
-  } catch (err) { status(err.message, true); }
+  } catch (err) { if (ticket === state.seq) status(err.message, true); }
 }
 
 async function save(format) {
@@ -400,7 +542,7 @@ $("undo").onclick = undo;
 $("redo").onclick = redo;
 $("save-toml").onclick = () => save("toml");
 $("save-json").onclick = () => save("json");
-$("new").onclick = () => setModel(draw.empty(), null, {keepDraft: true});
+$("new").onclick = newDrawing;
 $("open").onchange = (e) => { if (e.target.value) open(e.target.value); e.target.value = ""; };
 $("load").onchange = (e) => { if (e.target.files[0]) loadFile(e.target.files[0]); e.target.value = ""; };
 $("export").onchange = (e) => { if (e.target.value) exportAs(e.target.value); e.target.value = ""; };
@@ -414,9 +556,20 @@ for (const b of document.querySelectorAll("#tabs button")) b.onclick = () => {
   for (const o of document.querySelectorAll("#tabs button")) o.classList.toggle("active", o === b);
   for (const t of document.querySelectorAll(".tab")) t.classList.toggle("active", t.id === "tab-" + b.dataset.tab);
   if (b.dataset.tab === "plot") plotNow();
+  if (b.dataset.tab === "table" && state.study) renderTable.values(state);
+  if (b.dataset.tab === "method" && state.study) {       // drags leave the polygons out while it is closed
+    if (state.config && state.config.polygons !== undefined) showCentres($("centres"), $("polygons"), state.config, state.study);
+    else configurationSoon();
+  }
   if (state.model) redraw();                // the poses show with the synthesis tab
 };
+for (const r of document.querySelectorAll("input[name=tool]")) r.addEventListener("change", () => {
+  draw.cancel();                            // a link's first point waits no more
+  state.hover = null;
+  if (state.model) redraw();
+});
 document.addEventListener("keydown", (e) => {
+  if (e.key === "Escape" && draw.pending()) { draw.cancel(); state.hover = null; if (state.model) redraw(); return; }
   if (e.target.tagName === "INPUT" && e.target.type !== "range" && e.target.type !== "radio") return;
   if ((e.ctrlKey || e.metaKey) && e.key === "z") { e.preventDefault(); undo(); }
   else if ((e.ctrlKey || e.metaKey) && (e.key === "y" || (e.shiftKey && e.key === "Z"))) { e.preventDefault(); redo(); }

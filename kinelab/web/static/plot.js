@@ -53,6 +53,12 @@ export class Plot {
     this.dot = el("circle", {class: "cursor", r: 3.5, fill: "#d1600a"}, svg);
   }
 
+  // Nothing drawn (a new, empty page).
+  clear() {
+    this.svg.replaceChildren();
+    this.data = null; this.scale = null; this.cursor = null; this.dot = null;
+  }
+
   // Move the cursor to sample i.
   at(i) {
     if (!this.cursor || !this.data) return;

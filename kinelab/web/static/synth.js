@@ -1,6 +1,7 @@
 // The synthesis panel: a task typed in a form (the content of a `kinelab synth` task file),
 // solved on the server, its linkages listed; any of them opens as the model.
 import {post} from "./api.js";
+import {DECIMAL} from "./table.js";
 
 const LENGTHS = ["m", "cm", "mm", "in"], ANGLES = ["deg", "rad"];
 
@@ -55,8 +56,9 @@ const make = (tag, attrs = {}, text = "") => {
   return e;
 };
 
-// A number where the text is one, else the text itself: the server names what is wrong.
-const value = (text) => { const t = text.trim(); return t !== "" && Number.isFinite(Number(t)) ? Number(t) : t; };
+// A number where the text is a decimal one, else the text itself: the server names what
+// is wrong ("0x10" is not read as 16).
+const value = (text) => { const t = text.trim(); return DECIMAL.test(t) && Number.isFinite(Number(t)) ? Number(t) : t; };
 const numbers = (text) => text.split(/[\s,;]+/).filter((t) => t !== "").map(value);
 const rows = (text) => text.split("\n").map((l) => l.trim()).filter((l) => l && !l.startsWith("#")).map(numbers);
 

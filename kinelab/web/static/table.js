@@ -26,13 +26,25 @@ function table(head) {
   return t;
 }
 
-const num = (text) => { const v = Number(text); if (!Number.isFinite(v)) throw new Error(`expected a number, got '${text}'`); return v; };
+// A number as a model file writes one: decimal digits, a point, an exponent; nothing else
+// (JavaScript's Number would read "" as 0, "0x10" as 16 and "1e999" as Infinity).
+export const DECIMAL = /^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/;
+export function num(text, what = "value") {
+  const t = String(text).trim();
+  if (t === "") throw new Error(`${what}: expected a number, got an empty field; type a value (the model keeps its own)`);
+  const v = Number(t);
+  if (!DECIMAL.test(t) || !Number.isFinite(v))
+    throw new Error(`${what}: expected a decimal number such as 12.5 or 1e3, got '${t}'`);
+  return v;
+}
 
-export function renderTable(root, state, {edit, flip}) {
+// `refuse(message)`: a value refused here (not a number, not a pair of points) is shown
+// with the reason, and the table drawn again from the model.
+export function renderTable(root, state, {edit, flip, refuse}) {
   root.replaceChildren();
   const m = state.model, u = m.units || {length: "m", angle: "rad"};
   const h = (text) => { const e = document.createElement("h3"); e.textContent = text; root.append(e); };
-  const guarded = (f) => (v) => { try { f(v); } catch (err) { state.error = err.message; document.getElementById("status").textContent = err.message; } };
+  const guarded = (f) => (v) => { try { f(v); } catch (err) { state.error = err.message; refuse(err.message); } };
 
   h(`points (sketch, ${u.length}) and now`);
   const pt = table(["point", "x", "y", "x now", "y now"]);
@@ -43,8 +55,8 @@ export function renderTable(root, state, {edit, flip}) {
     // a pivot moves with every link keeping its dimensions; another point changes the
     // links that carry it
     const move = ground && ground.points.includes(p) ? movePivot : movePoint;
-    cell(tr, input(xy[0], guarded((v) => edit(move(m, p, [num(v), xy[1]]))))).dataset.field = "x";
-    cell(tr, input(xy[1], guarded((v) => edit(move(m, p, [xy[0], num(v)]))))).dataset.field = "y";
+    cell(tr, input(xy[0], guarded((v) => edit(move(m, p, [num(v, `${p}.x`), xy[1]]))))).dataset.field = "x";
+    cell(tr, input(xy[1], guarded((v) => edit(move(m, p, [xy[0], num(v, `${p}.y`)]))))).dataset.field = "y";
     cell(tr, "").className = "now-x"; cell(tr, "").className = "now-y";
     pt.append(tr);
   }
@@ -62,9 +74,9 @@ export function renderTable(root, state, {edit, flip}) {
     })));
     const current = link.length ?? (link.points.length > 1 ? dist(m.points[link.points[0]], m.points[link.points[1]]) : "");
     cell(tr, link.points.length > 1 ? input(current, guarded((v) => {
-      if (link.ground) { edit(groundLength(m, num(v))); return; }
+      if (link.ground) { edit(groundLength(m, num(v, `${link.name}.length`))); return; }
       const next = structuredClone(m); delete next.catalogue;
-      next.links[k].length = num(v);
+      next.links[k].length = num(v, `${link.name}.length`);
       edit(next);
     })) : "").dataset.field = "length";
     cell(tr, "").className = "now-length";
@@ -100,12 +112,12 @@ export function renderTable(root, state, {edit, flip}) {
     const axis = Array.isArray(j.axis) ? Math.atan2(j.axis[1], j.axis[0]) * toAngle : j.axis;
     cell(tr, j.type === "P" ? input(axis === undefined ? "" : Number(axis.toPrecision(12)), guarded((v) => {
       const next = structuredClone(m); delete next.catalogue;
-      next.joints[k].axis = num(v);          // an angle in the model's unit, as a file has it
+      next.joints[k].axis = num(v, `${j.name}.axis`);   // an angle in the model's unit, as a file has it
       edit(next);
     })) : "").dataset.field = "axis";
     cell(tr, j.type === "P" && j.axis !== undefined ? input(offsetOf(m, j, toAngle), guarded((v) => {
       const next = structuredClone(m); delete next.catalogue;
-      next.joints[k].offset = num(v);
+      next.joints[k].offset = num(v, `${j.name}.offset`);
       edit(next);
     })) : "").dataset.field = "offset";
     tr.dataset.joint = j.name;
@@ -115,19 +127,20 @@ export function renderTable(root, state, {edit, flip}) {
 
   if (m.inputs && m.inputs.length) {
     h(`input (${u.angle} or ${u.length})`);
-    const it = table(["input", "joint", "range", "speed /s"]);
+    const it = table(["input", "joint", "range", `speed (${u.angle}/s or ${u.length}/s)`]);
     for (const [k, i] of m.inputs.entries()) {
       const tr = document.createElement("tr");
       cell(tr, i.name || i.joint); cell(tr, i.joint || (i.links || []).join("-"));
       cell(tr, input((i.range || []).join(", "), guarded((v) => {
         const next = structuredClone(m);
-        const r = v.split(",").map((s) => s.trim()).filter(Boolean).map(num);
+        const r = v.split(",").map((s) => s.trim()).filter(Boolean).map((t) => num(t, "range"));
         if (r.length) next.inputs[k].range = r; else delete next.inputs[k].range;
         edit(next);
       })));
       cell(tr, input(i.speed ?? 0, guarded((v) => {
-        const next = structuredClone(m); next.inputs[k].speed = num(v); edit(next);
-      })));
+        const next = structuredClone(m); next.inputs[k].speed = num(v, "speed"); edit(next);
+      }))).dataset.field = "speed";
+      tr.dataset.input = i.name || i.joint;
       it.append(tr);
     }
     root.append(it);
@@ -185,7 +198,7 @@ function sidesTable(root, m, u, h, guarded, edit) {
     side.value = given.side || sideOf(m.points[refs[0]], m.points[refs[1]], m.points[p]) || "left";
     side.onchange = () => write({...given, side: side.value});
     const distance = (slot) => input(f(given[refs[slot]]), guarded((v) => write(
-      {...given, side: side.value, [refs[slot]]: num(v)})));
+      {...given, side: side.value, [refs[slot]]: num(v, `${p} from ${refs[slot]}`)})));
     const tr = document.createElement("tr");
     tr.dataset.ofLink = link.name; tr.dataset.linkPoint = p; tr.dataset.refs = JSON.stringify(refs);
     cell(tr, link.name); cell(tr, p);
@@ -207,8 +220,8 @@ renderTable.values = (state) => {
   const u = s.units.length;
   const now = {};
   for (const p of Object.keys(s.model.points)) {
-    now[p] = state.config ? state.config.points[p]
-      : [s.columns[`${p}.x[${u}]`][state.index], s.columns[`${p}.y[${u}]`][state.index]];
+    const x = s.columns[`${p}.x[${u}]`], y = s.columns[`${p}.y[${u}]`];   // a narrowed sweep may leave some out
+    now[p] = state.config ? state.config.points[p] : x && y ? [x[state.index], y[state.index]] : [null, null];
   }
   const f = (v) => v === null || v === undefined ? "–" : Number(v.toPrecision(10)).toString();
   for (const tr of document.querySelectorAll("#tab-table tr[data-point]")) {
