@@ -171,7 +171,7 @@ function plotNow(panel) {
 
 function showNow(panel) {
   const a = panel.answer, t = panel.root.querySelector("#forces-now");
-  if (!a || !t || a.samples !== (panel.state.study && panel.state.study.samples)) return;
+  if (!a || !t || !panel.active() || a.samples !== (panel.state.study && panel.state.study.samples)) return;
   const i = panel.state.index, c = a.columns;
   panel.plot.at(i);
   const rows = [["", "x", "y", "magnitude"]];
