@@ -71,6 +71,48 @@ def _watch(thread: int, expired: type, ended: list, seconds: float, cancel,
         time.sleep(_AGAIN)
 
 
+class _Cancellable:
+    """The calls only a cancel can stop (no deadline), watched by one thread for them all:
+    a thread of their own each would cost more than a short call (the web app's drags)."""
+
+    def __init__(self):
+        self._lock = threading.Lock()
+        self._calls: dict = {}
+        self._thread: threading.Thread | None = None
+
+    def watch(self, key, thread: int, expired: type, ended: list, cancel, cancelled: list) -> None:
+        with self._lock:
+            self._calls[key] = (thread, expired, ended, cancel, cancelled, [0.0])
+            if self._thread is None or not self._thread.is_alive():
+                self._thread = threading.Thread(target=self._run, name="kinelab-cancel",
+                                                daemon=True)
+                self._thread.start()
+
+    def forget(self, key) -> None:
+        with self._lock:
+            self._calls.pop(key, None)
+
+    def _run(self) -> None:
+        while True:
+            time.sleep(_POLL)
+            with self._lock:
+                calls = list(self._calls.values())
+            for thread, expired, ended, cancel, cancelled, shot in calls:
+                if ended or not cancel.is_set() or _importing(thread):
+                    continue
+                now = time.monotonic()
+                if now - shot[0] < _AGAIN:
+                    continue
+                shot[0] = now
+                if not cancelled:
+                    cancelled.append(True)
+                if not ended:           # the test and the shot: one step under the GIL
+                    _shoot(thread, expired)
+
+
+_cancellable = _Cancellable()
+
+
 def _caused_by(exc: BaseException, expired: type) -> bool:
     """Whether ``exc`` is, or was raised while handling, the deadline's exception (Python
     turns one raised in ``__set_name__`` into a RuntimeError, and so may code that catches
@@ -107,12 +149,16 @@ def within(seconds: float | None, call, *args, message: str | None = None,
     expired = type("Expired", (_Expired,), {})
     ended: list = []
     stopped: list = []          # the watchdog's shot was a cancellation, not the deadline
-    watchdog = threading.Thread(target=_watch, args=(thread, expired, ended, seconds, cancel,
-                                                     stopped),
-                                name="kinelab-deadline", daemon=True)
+    shared = math.isinf(seconds)        # a cancel only: the watcher of all such calls
+    key = object()
     try:
         try:
-            watchdog.start()
+            if shared:
+                _cancellable.watch(key, thread, expired, ended, cancel, stopped)
+            else:
+                threading.Thread(target=_watch, args=(thread, expired, ended, seconds, cancel,
+                                                      stopped),
+                                 name="kinelab-deadline", daemon=True).start()
             return call(*args)
         finally:
             # Two C calls and nothing in between: after the first the watchdog shoots no
@@ -120,6 +166,8 @@ def within(seconds: float | None, call, *args, message: str | None = None,
             # right after the first, it is the one the except clause below takes).
             ended.append(True)
             _withdraw(thread, None)
+            if shared:
+                _cancellable.forget(key)
     except BaseException as exc:
         if _caused_by(exc, expired):
             if stopped:
