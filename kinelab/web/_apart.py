@@ -22,7 +22,7 @@ import time
 
 from kinelab.errors import CancellationError
 
-__all__ = ["run", "prestart", "CALLS", "IDLE", "workers"]
+__all__ = ["run", "prestart", "Unavailable", "CALLS", "IDLE", "workers"]
 
 IDLE = 300.0
 """Seconds a worker process waits for work before it ends (the next long request starts
@@ -46,15 +46,29 @@ _CONTEXT = multiprocessing.get_context("spawn")     # a fork of a threaded serve
 _log = logging.getLogger("kinelab.web")
 
 
+class Unavailable(Exception):
+    """No worker process can start here (a script that starts the app without the
+    ``if __name__ == "__main__":`` guard a new process needs, say): the long work runs in
+    the server's threads instead."""
+
+
 class _Worker:
-    """A worker process and the server's end of its pipe."""
+    """A worker process and the server's end of its pipe; ``ready`` once it has said so
+    (its imports done)."""
 
     def __init__(self):
         self.conn, child = _CONTEXT.Pipe()
         self.process = _CONTEXT.Process(target=_serve, args=(child,), daemon=True,
                                         name="kinelab-long-work")
-        self.process.start()
-        child.close()
+        self.ready = False
+        try:
+            self.process.start()
+        except Exception as exc:        # noqa: BLE001 -- said as why there is no worker
+            self.conn.close()
+            raise Unavailable(f"a worker process cannot start here ({exc})".replace("\n", " ")
+                              ) from None
+        finally:
+            child.close()
 
     def alive(self) -> bool:
         return self.process.is_alive()
@@ -69,6 +83,7 @@ class _Worker:
 _idle: list[_Worker] = []
 _busy: set[_Worker] = set()
 _lock = threading.Lock()
+_broken: list[str] = []         # why worker processes cannot start here, once found
 
 
 def workers() -> dict:
@@ -82,25 +97,72 @@ def prestart() -> None:
     """Start a worker process ahead of the first long request (the server does at its
     start), unless one is there."""
     with _lock:
-        if any(w.alive() for w in _idle) or _busy:
+        if any(w.alive() for w in _idle) or _busy or _broken:
             return
-    worker = _Worker()
+    try:
+        worker = _Worker()
+    except Unavailable as exc:
+        _broke(str(exc))
+        return
     with _lock:
         _idle.append(worker)
 
 
-def _take() -> _Worker:
+def _broke(why: str) -> None:
+    if not _broken:
+        _broken.append(why)
+        _log.warning("long work runs in the server's threads: %s", why)
+
+
+def _take(job) -> _Worker:
+    """A worker process ready for a call (an idle one, or one started now), busy."""
     with _lock:
-        while _idle:
+        worker = None
+        while _idle and worker is None:
             worker = _idle.pop()
-            if worker.alive():
-                _busy.add(worker)
-                return worker
-            worker.conn.close()
-    worker = _Worker()          # outside the lock: starting a process takes a while
-    with _lock:
-        _busy.add(worker)
+            if not worker.alive():
+                worker.conn.close()
+                worker = None
+        if worker is not None:
+            _busy.add(worker)
+    if worker is None:
+        job.report("starting a worker process", None)
+        try:
+            worker = _Worker()      # outside the lock: starting a process takes a while
+        except Unavailable as exc:
+            _broke(str(exc))
+            raise
+        with _lock:
+            _busy.add(worker)
+    try:
+        while not worker.ready:     # its imports done: it says so
+            _check_cancel(job)
+            if worker.conn.poll(_POLL):
+                kind, _ = _received(worker)
+                worker.ready = kind == "ready"
+            elif not worker.alive():
+                raise Unavailable(f"a worker process ended as it started (exit code "
+                                  f"{worker.process.exitcode}); see the server's log")
+    except BaseException as exc:
+        _give_back(worker, False)
+        if isinstance(exc, Unavailable):
+            _broke(str(exc))
+        raise
     return worker
+
+
+def _received(worker: _Worker):
+    try:
+        return worker.conn.recv()
+    except (EOFError, OSError):
+        raise RuntimeError(f"the worker process ended (exit code "
+                           f"{worker.process.exitcode})") from None
+
+
+def _check_cancel(job) -> None:
+    if job.cancel.is_set():
+        raise CancellationError(f"{job.what}: cancelled after "
+                                f"{time.monotonic() - job.read:.1f} s, as asked")
 
 
 def _give_back(worker: _Worker, healthy: bool) -> None:
@@ -114,29 +176,28 @@ def _give_back(worker: _Worker, healthy: bool) -> None:
 
 def run(name: str, body: dict, job) -> object:
     """``CALLS[name](body)`` in a worker process, for ``job`` (its progress kept, the
-    process ended when the job is cancelled): its answer, or the error it raised."""
+    process ended when the job is cancelled): its answer, or the error it raised.  Raises
+    :class:`Unavailable` where no worker process can start."""
+    if _broken:
+        raise Unavailable(_broken[0])
     import importlib
     settings = {f"{module}.{attr}": getattr(importlib.import_module(module), attr)
                 for module, attr in _SETTINGS}
     from kinelab import _memory
     settings["memory_budget"] = _memory.memory_budget()
-    if job.cancel.is_set():
-        raise CancellationError(f"{job.what}: cancelled before it started, as asked")
-    job.report("starting", None)
-    worker = _take()
+    _check_cancel(job)
+    worker = _take(job)
     healthy = False
     try:
         worker.conn.send((name, body, settings))
         while True:
-            if job.cancel.is_set():
-                raise CancellationError(f"{job.what}: cancelled after "
-                                        f"{time.monotonic() - job.read:.1f} s, as asked")
+            _check_cancel(job)
             if not worker.conn.poll(_POLL):
                 if not worker.alive():
                     raise RuntimeError(f"the worker process of {name} ended with code "
                                        f"{worker.process.exitcode}")
                 continue
-            kind, value = worker.conn.recv()
+            kind, value = _received(worker)
             if kind == "progress":
                 job.report(*value)
             elif kind == "answer":
@@ -189,6 +250,10 @@ def _serve(conn) -> None:
     from kinelab.web import _limits
     calls = {name: getattr(importlib.import_module(module), attr)
              for name, (module, attr) in CALLS.items()}
+    try:
+        conn.send(("ready", None))
+    except (EOFError, OSError):
+        return
     while True:
         try:
             if not conn.poll(IDLE):

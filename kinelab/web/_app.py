@@ -114,7 +114,7 @@ def _answer(call, body: dict, raw: bool, path: str, job: _jobs.Job, jobs: _jobs.
     call of that name in a worker process, :func:`kinelab.web._apart.run`), as ``job``: its
     progress kept, stopped when it is cancelled; what the request reserves is given back
     once the bytes are made, and the job is closed once its work has ended."""
-    def work() -> Response:
+    def work(apart: str | None) -> Response:
         result = _apart.run(apart, body, job) if apart else call(body)
         if isinstance(result, Response):
             return result
@@ -131,8 +131,11 @@ def _answer(call, body: dict, raw: bool, path: str, job: _jobs.Job, jobs: _jobs.
         job.start()
         with _limits.request(), progress.watching(job.report):
             if apart:                   # its process is ended when the job is cancelled
-                return work()
-            return within(None, work, cancel=job.cancel,
+                try:
+                    return work(apart)
+                except _apart.Unavailable:
+                    pass                # no worker process here: in this thread, then
+            return within(None, work, None, cancel=job.cancel,
                           cancelled=f"{shown_path(path)}: cancelled after "
                                     f"{time.monotonic() - job.read:.1f} s, as asked")
     finally:

@@ -115,6 +115,23 @@ def test_a_large_sweep_is_stopped_in_its_thread(client):
     assert r.status_code == 200 and r.json()["samples"] == 9
 
 
+def test_where_no_worker_process_can_start_long_work_runs_in_a_thread(client, monkeypatch):
+    """A derivation where worker processes cannot start (a script without the main guard
+    a new process needs): answered all the same, from one of the server's threads, and
+    the server's log says why, once."""
+    class NoProcess:
+        def __init__(self):
+            raise _apart.Unavailable("a worker process cannot start here (a test)")
+    monkeypatch.setattr(_apart, "_Worker", NoProcess)
+    monkeypatch.setattr(_apart, "_idle", [])
+    monkeypatch.setattr(_apart, "_broken", [])
+    r = client.post("/api/derive", json={"model": CRANK_ROCKER})
+    assert r.status_code == 200 and r.json()["sections"]
+    assert _apart._broken == ["a worker process cannot start here (a test)"]
+    r = client.post("/api/derive", json={"model": CRANK_ROCKER, "lang": "pt"})
+    assert r.status_code == 200 and r.json()["lang"] == "pt"
+
+
 def test_a_job_cancelled_before_its_request_arrives_never_runs(client):
     assert client.post("/api/cancel", json={"job": "early"}).json() == {"job": "early",
                                                                          "cancelled": False}
