@@ -150,9 +150,12 @@ async def _closed(request: Request) -> None:
 
 def _retrieved(future) -> None:
     """The outcome of work no one waits for any more, taken so that asyncio does not call
-    it lost."""
-    if not future.cancelled():
-        future.exception()
+    it lost (a fault of kinelab's logged all the same)."""
+    if future.cancelled():
+        return
+    exc = future.exception()
+    if exc is not None and not isinstance(exc, KinelabError):
+        _log.error("a request whose client had gone failed", exc_info=exc)
 
 
 def _route(call, *, raw: bool = False, apart=None):
