@@ -1,4 +1,5 @@
-"""Time limits that hold in any thread: :func:`within` runs a call and stops it at a deadline.
+"""Time limits that hold in any thread: :func:`within` runs a call and stops it at a deadline,
+or when another thread asks it to stop (an event set: the web app's *cancel*).
 
 A timer signal (``SIGALRM``) interrupts only the main thread, so a limit built on it does
 nothing in a web server's worker threads.  Here a watchdog thread raises an exception in the
@@ -25,7 +26,7 @@ import sys
 import threading
 import time
 
-from kinelab.errors import TimeLimitError
+from kinelab.errors import CancellationError, TimeLimitError
 
 __all__ = ["within"]
 
@@ -68,16 +69,62 @@ def _importing(thread: int) -> bool:
     return False
 
 
-def _watch(thread: int, expired: type, ended: list, seconds: float) -> None:
+def _watch(thread: int, expired: type, ended: list, seconds: float, cancel,
+           cancelled: list) -> None:
     deadline = time.monotonic() + seconds
     while not ended:
         left = deadline - time.monotonic()
-        if left > 0 or _importing(thread):
-            time.sleep(min(left, _POLL) if left > 0 else _POLL / 5)
+        stop = cancel is not None and cancel.is_set()
+        if (left > 0 and not stop) or _importing(thread):
+            time.sleep(min(left, _POLL) if left > 0 and not stop else _POLL / 5)
             continue
+        if stop and not cancelled:
+            cancelled.append(True)      # said before the shot: the call's end reads it
         if not ended:                   # the test and the shot: one step under the GIL
             _shoot(thread, expired)
         time.sleep(_AGAIN)
+
+
+class _Cancellable:
+    """The calls only a cancel can stop (no deadline), watched by one thread for them all:
+    a thread of their own each would cost more than a short call (the web app's drags)."""
+
+    def __init__(self):
+        self._lock = threading.Lock()
+        self._calls: dict = {}
+        self._thread: threading.Thread | None = None
+
+    def watch(self, key, thread: int, expired: type, ended: list, cancel, cancelled: list) -> None:
+        with self._lock:
+            self._calls[key] = (thread, expired, ended, cancel, cancelled, [0.0])
+            if self._thread is None or not self._thread.is_alive():
+                self._thread = threading.Thread(target=self._run, name="kinelab-cancel",
+                                                daemon=True)
+                self._thread.start()
+
+    def forget(self, key) -> None:
+        with self._lock:
+            self._calls.pop(key, None)
+
+    def _run(self) -> None:
+        while True:
+            time.sleep(_POLL)
+            with self._lock:
+                calls = list(self._calls.values())
+            for thread, expired, ended, cancel, cancelled, shot in calls:
+                if ended or not cancel.is_set() or _importing(thread):
+                    continue
+                now = time.monotonic()
+                if now - shot[0] < _AGAIN:
+                    continue
+                shot[0] = now
+                if not cancelled:
+                    cancelled.append(True)
+                if not ended:           # the test and the shot: one step under the GIL
+                    _shoot(thread, expired)
+
+
+_cancellable = _Cancellable()
 
 
 def _caused_by(exc: BaseException, expired: type) -> bool:
@@ -93,26 +140,39 @@ def _caused_by(exc: BaseException, expired: type) -> bool:
     return False
 
 
-def within(seconds: float | None, call, *args, message: str | None = None):
+def within(seconds: float | None, call, *args, message: str | None = None,
+           cancel: threading.Event | None = None, cancelled: str | None = None):
     """``call(*args)``, stopped after ``seconds`` with a :class:`TimeLimitError` (whose
-    text is ``message``); ``None`` or ``inf`` runs it without a limit.
+    text is ``message``); ``None`` or ``inf`` runs it without a limit.  With ``cancel``,
+    it is also stopped as soon as that event is set (by another thread), with a
+    :class:`CancellationError` whose text is ``cancelled``; an event set before the call
+    stops it before it starts.
 
     Limits nest: an inner one ends the inner call only; an outer one that expires first
-    goes through the inner call as it is.
+    (or is cancelled) goes through the inner call as it is.
 
     >>> within(1.0, sum, [1, 2, 3])
     6
     """
-    if seconds is None or math.isinf(seconds):
+    if cancel is not None and cancel.is_set():
+        raise CancellationError(cancelled or "cancelled before it started")
+    if (seconds is None or math.isinf(seconds)) and cancel is None:
         return call(*args)
+    seconds = math.inf if seconds is None else max(seconds, 0.0)
     thread = threading.get_ident()
     expired = type("Expired", (_Expired,), {})
     ended: list = []
-    watchdog = threading.Thread(target=_watch, args=(thread, expired, ended, max(seconds, 0.0)),
-                                name="kinelab-deadline", daemon=True)
+    stopped: list = []          # the watchdog's shot was a cancellation, not the deadline
+    shared = math.isinf(seconds)        # a cancel only: the watcher of all such calls
+    key = object()
     try:
         try:
-            watchdog.start()
+            if shared:
+                _cancellable.watch(key, thread, expired, ended, cancel, stopped)
+            else:
+                threading.Thread(target=_watch, args=(thread, expired, ended, seconds, cancel,
+                                                      stopped),
+                                 name="kinelab-deadline", daemon=True).start()
             return call(*args)
         finally:
             # Two C calls and nothing in between: after the first the watchdog shoots no
@@ -120,7 +180,11 @@ def within(seconds: float | None, call, *args, message: str | None = None):
             # right after the first, it is the one the except clause below takes).
             ended.append(True)
             _withdraw(thread, None)
+            if shared:
+                _cancellable.forget(key)
     except BaseException as exc:
         if _caused_by(exc, expired):
+            if stopped:
+                raise CancellationError(cancelled or "cancelled") from None
             raise TimeLimitError(message or f"stopped after {seconds:g} s, its time limit") from None
         raise

@@ -23,6 +23,7 @@ __all__ = [
     "SingularityError",
     "MemoryBudgetError",
     "TimeLimitError",
+    "CancellationError",
 ]
 
 
@@ -102,6 +103,11 @@ class TimeLimitError(KinelabError, ValueError):
     """Work stopped at its time limit (a derivation whose expressions grow too large to
     finish in time); the message says which limit and how to change it.  Like
     :class:`MemoryBudgetError`, a request too large for its bound: a ValueError."""
+
+
+class CancellationError(KinelabError):
+    """Work stopped before its end because whoever asked for it no longer wants it (the
+    browser app's *cancel*, or a page that went away); the message says what was stopped."""
 
 
 class SingularityError(KinelabError, ValueError):

@@ -11,12 +11,11 @@ from pathlib import Path
 import click
 import numpy as np
 
-from kinelab import dynamics
 from kinelab._files import outputs, safe_name
 from kinelab.cli._main import (DEGREES, SI, VERIFY, certificate_path, errors_from, output_units,
                                read_model, report, said_written)
 from kinelab.io import ModelFile
-from kinelab.io._modelfile import MAX_SAMPLES
+from kinelab.io._modelfile import MAX_SAMPLES, sweep_times
 from kinelab.model import Units
 from kinelab.errors import ModelError, describe, shown_path
 
@@ -29,11 +28,8 @@ loaded machine (250,000 samples of the engine example's 20 columns; ``benchmarks
 prints the rates)."""
 
 
-def times(q: np.ndarray, speed: float, acceleration: float) -> np.ndarray:
-    """Time along a one-input sweep at constant speed (zero otherwise), s."""
-    if q.ndim == 1 and speed != 0.0 and acceleration == 0.0:
-        return (q - q[0]) / speed
-    return np.zeros(q.shape[0])
+times = sweep_times
+"""Time along a one-input sweep at constant speed (zero otherwise), s."""
 
 
 def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
@@ -55,19 +51,11 @@ def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
                          f"dynamics writes at most {MAX_VALUES:,} (about 20 s): ask for at most "
                          f"{MAX_VALUES // width:,} samples",
                          source=None if samples is not None else mf.source)
-    setup = dynamics.DynamicsSetup.from_model(m)
-    loads = setup.loads
-    if gravity is not None:
-        loads = dynamics.Loads(gravity=gravity, forces=loads.forces, torques=loads.torques,
-                               springs=loads.springs, dampers=loads.dampers)
-    q, qd, qdd = mf.sample_inputs(samples)
-    inp = m.inputs[0]
-    masses = setup.masses(m)
-    res = dynamics.inverse(m, q, qd, qdd, loads=loads, masses=masses,
-                           t=times(q, inp.speed, inp.acceleration))
+    res = mf.inverse_dynamics(samples, gravity=gravity)     # the browser app's forces too
     certificate = None
     if verify:          # before anything is written: a model the routes refuse writes nothing
         from kinelab.verify import certify
+        loads, masses = mf.dynamics_setup(gravity)
         certificate = certify(res, loads=loads, masses=masses)
     name = safe_name(m.name)
     with outputs(out) as files:

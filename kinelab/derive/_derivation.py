@@ -8,6 +8,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from kinelab import _progress as progress
 from kinelab._deadline import within
 from kinelab.derive._loops import Loop, LoopEquations, _Names, loop_equations
 from kinelab.derive._notation import notation_of
@@ -376,6 +377,7 @@ def derive(model: Mechanism, lang: Literal["en", "pt"] = "en", *, dynamics: bool
 def _derive(model: Mechanism, lang: str, dynamics: bool, loads, masses) -> Derivation:
     import sympy as sp
     bodies = None
+    progress.report("loop equations", 0.0)
     if dynamics:
         from kinelab.derive._dynamics import bodies_of
         bodies = bodies_of(model, loads, masses)
@@ -388,21 +390,26 @@ def _derive(model: Mechanism, lang: str, dynamics: bool, loads, masses) -> Deriv
                          f"most {MAX_UNKNOWNS} (four dyads): beyond, it takes minutes and pages; "
                          "analyse the mechanism numerically (kinelab analyze), or derive a part "
                          "of it")
+    progress.report("J and Q", _SHARE["J"][0])
     Phi = sp.Matrix([eq.rows[i] for i in eq.independent]) if n else sp.zeros(0, 1)
     J = Phi.jacobian(S) if n else sp.zeros(0, 0)
     Q = Phi.jacobian(q) if n else sp.zeros(0, M)
     readable = {}
+    progress.report("det J", _SHARE["det J"][0])
     det_raw = J.det(method="berkowitz") if n else sp.Integer(1)
     det_J, ok = simplified(det_raw)
     readable["det_J"] = ok and size(det_J) <= READABLE_OPS
+    progress.report("adjugate of J", _SHARE["adjugate"][0])
     adj = J.adjugate(method="berkowitz") if n > 1 else (sp.Matrix([[1]]) if n else sp.zeros(0, 0))
     K_raw = -(adj * Q) / det_J if n else sp.zeros(0, M)
-    K, readable["K"] = _each(K_raw)
+    with progress.part(*_SHARE["K"]):
+        K, readable["K"] = _each(K_raw, "K")
     names = _Names({str(s) for s in eq.q + eq.S} | {str(s) for s in eq.parameters})
     K_symbols = tuple(names(f"K_{s}" if M == 1 else f"K_{s},{k + 1}")
                       for s in eq.S for k in range(M))
     Ks = sp.Matrix(n, M, K_symbols) if n else sp.zeros(0, M)
     # L from J L = -(dJ/dq K + dQ/dq), the total derivatives taken with K as symbols
+    progress.report("dL/dq", _SHARE["dL"][0])
     L_in_K_cols = {}
     L_cols = {}
     for a in range(M):
@@ -416,8 +423,10 @@ def _derive(model: Mechanism, lang: str, dynamics: bool, loads, masses) -> Deriv
             # the total derivative of K itself: dK/dq_b + dK/dS K_b
             col = K[:, a].diff(q[b]) + (K[:, a].jacobian(S) * K[:, b] if n else sp.zeros(0, 1))
             L_cols[a, b] = col
-    L_in_K, readable["L_in_K"] = _each(_assemble(L_in_K_cols, n, M))
-    L, readable["L"] = _each(_assemble(L_cols, n, M))
+    with progress.part(*_SHARE["L in K"]):
+        L_in_K, readable["L_in_K"] = _each(_assemble(L_in_K_cols, n, M), "L (in K)")
+    with progress.part(*_SHARE["L"]):
+        L, readable["L"] = _each(_assemble(L_cols, n, M), "L")
     if M == 1:
         L, L_in_K = sp.Matrix(L), sp.Matrix(L_in_K)
     rates = {s: (names(f"{s}_dot"), names(f"{s}_ddot")) for s in eq.q + eq.S}
@@ -425,20 +434,30 @@ def _derive(model: Mechanism, lang: str, dynamics: bool, loads, masses) -> Deriv
                    L=L, K_symbols=K_symbols, L_in_K=L_in_K, readable=readable,
                    singularities=_singularities(eq, det_J), rates=rates)
     if bodies is not None:
+        progress.report("Kane's terms", _SHARE["dynamics"][0])
         from kinelab.derive._dynamics import kane_terms
         object.__setattr__(d, "dynamics", kane_terms(d, bodies))
     return d
 
 
-def _each(mat):
+# The share of a derivation's time each of its steps takes (measured on the six-bars), for
+# the fraction done that :mod:`kinelab._progress` reports.
+_SHARE = {"J": (0.05, 0.07), "det J": (0.07, 0.09), "adjugate": (0.09, 0.12),
+          "K": (0.12, 0.22), "dL": (0.22, 0.28), "L in K": (0.28, 0.52), "L": (0.52, 0.90),
+          "dynamics": (0.90, 1.0)}
+
+
+def _each(mat, name: str = "entries"):
     """Every entry simplified within the bounds; and whether all of them were, and are
-    small enough to read."""
+    small enough to read (each entry reported as progress, under ``name``)."""
     import sympy as sp
     if 0 in mat.shape:
         return mat, True
     ok = True
     out = []
-    for e in (sp.flatten(mat.tolist()) if isinstance(mat, sp.NDimArray) else mat):
+    entries = sp.flatten(mat.tolist()) if isinstance(mat, sp.NDimArray) else list(mat)
+    for k, e in enumerate(entries):
+        progress.report(f"{name}: entry {k + 1} of {len(entries)}", k / len(entries))
         s, done = simplified(e)
         out.append(s)
         ok &= done and size(s) <= READABLE_OPS

@@ -202,6 +202,39 @@ class ModelFile:
             return analyze(self.mechanism, q, qd, qdd, at_singular="flag",
                            at_change_point=at_change_point)
 
+    def dynamics_setup(self, gravity: tuple[float, float] | None = None):
+        """The loads and the mass properties of the file's ``[dynamics]`` section and its
+        links' mass data, gravity replaced by ``gravity`` (m/s^2) if given: ``(loads,
+        masses)``, as :func:`kinelab.dynamics.inverse` takes them."""
+        from kinelab import dynamics
+
+        setup = dynamics.DynamicsSetup.from_model(self.mechanism)
+        loads = setup.loads
+        if gravity is not None:
+            loads = dynamics.Loads(gravity=gravity, forces=loads.forces, torques=loads.torques,
+                                   springs=loads.springs, dampers=loads.dampers)
+        return loads, setup.masses(self.mechanism)
+
+    def inverse_dynamics(self, samples: int | None = None, *,
+                         gravity: tuple[float, float] | None = None):
+        """The inverse dynamics of the file's sweep (:meth:`sample_inputs`) under its
+        :meth:`dynamics_setup`, time running along the sweep (:func:`sweep_times`): what
+        ``kinelab dynamics`` writes, and the browser app's *forces* tab shows.
+
+        Examples
+        --------
+        >>> res = kl.io.ModelFile.read("examples/engine.toml").inverse_dynamics(5)
+        >>> res.input_forces.shape, round(float(res.input_forces[0, 0]), 4)      # N m
+        ((5, 1), 0.6867)
+        """
+        from kinelab import dynamics
+
+        loads, masses = self.dynamics_setup(gravity)
+        q, qd, qdd = self.sample_inputs(samples)
+        inp = self.mechanism.inputs[0]
+        return dynamics.inverse(self.mechanism, q, qd, qdd, loads=loads, masses=masses,
+                                t=sweep_times(q, inp.speed, inp.acceleration))
+
     def sample_count(self, samples: int | None = None) -> int:
         """The number of samples (rows) of the file's sweep with ``samples`` per input
         (default the file's): their product for a grid of several inputs.
@@ -274,6 +307,18 @@ class ModelFile:
         qdd = np.broadcast_to(np.array([i.acceleration for i in m.inputs]).reshape(shape[1:] or ()),
                               shape)
         return q, np.array(qd), np.array(qdd)
+
+
+def sweep_times(q: np.ndarray, speed: float, acceleration: float) -> np.ndarray:
+    """Time along a one-input sweep ``q`` (N,) at constant ``speed``, s, from 0 at its first
+    sample; zeros for several inputs, a speed of zero or an acceleration.
+
+    >>> sweep_times(np.radians([0.0, 90.0, 180.0]), np.pi, 0.0)
+    array([0. , 0.5, 1. ])
+    """
+    if q.ndim == 1 and speed != 0.0 and acceleration == 0.0:
+        return (q - q[0]) / speed
+    return np.zeros(q.shape[0])
 
 
 # what a model file's user is asked for instead of input values that will not do, by the

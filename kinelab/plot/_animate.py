@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from kinelab import _progress as progress
 from kinelab.errors import ModelError, describe, expected_one_of, shown
 from kinelab._files import atomic_path, file_path
 from kinelab.kinematics import KinematicSolution
@@ -154,16 +155,24 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
     try:
         with atomic_path(path, suffix=suffix) as tmp:     # the writer goes by the suffix
             if suffix == ".gif":
-                _write_gif(tmp, _frames(fig, ax, draw, len(idx)), fps)
+                _write_gif(tmp, _reported(_frames(fig, ax, draw, len(idx)), len(idx)), fps)
             else:
                 writer = animation.FFMpegWriter(fps=fps)
                 with writer.saving(fig, tmp, fig.dpi):
                     for k in range(len(idx)):
                         draw(k)
                         writer.grab_frame()
+                        progress.report(f"frame {k + 1} of {len(idx)}", (k + 1) / len(idx))
     finally:
         plt.close(fig)
     return path
+
+
+def _reported(frames, n: int):
+    """The frames, each reported as done (to whoever watches this thread's work)."""
+    for k, frame in enumerate(frames):
+        progress.report(f"frame {k + 1} of {n}", k / n)
+        yield frame
 
 
 def _frames(fig, ax, draw, n: int):

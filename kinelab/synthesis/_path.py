@@ -21,6 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab import _memory as memory
+from kinelab import _progress as progress
 from kinelab.errors import ModelError, describe
 from kinelab.kinematics import analyze
 from kinelab.mechanisms import Grashof
@@ -793,7 +794,9 @@ def path_generation(points: ArrayLike, *, runs: int = 3, maxiter: int = 15, pops
     for r in range(runs):
         search = _Search(obj, popsize, seed + r, bounds, starts)
         sol = low = None        # the best valid linkage; the best one only the limit rejects
-        for _ in range(maxiter):
+        for k in range(maxiter):
+            progress.report(f"run {r + 1} of {runs}, round {k + 1} of {maxiter}",
+                            (r * maxiter + k) / (runs * maxiter))
             for design, q, rms in search.round(refine):
                 if sol is not None and rms * scale >= sol.rms_error:
                     continue

@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from kinelab import _progress as progress
 from kinelab import io, kinematics
 from kinelab._deadline import within
 from kinelab.errors import AssemblyError, KinelabError, ModelError, describe, quoted, shown
@@ -30,7 +31,7 @@ from kinelab.web import _limits
 
 __all__ = ["MAX_SAMPLES", "DEFAULT_SAMPLES", "read_model", "analyze", "study", "configuration",
            "drag", "flip", "catalogue", "example", "load", "save", "derivation", "synthesize",
-           "MAX_SEARCH_EFFORT", "DERIVE_SECONDS"]
+           "is_search", "MAX_SEARCH_EFFORT", "DERIVE_SECONDS"]
 
 MAX_SAMPLES = 20_000
 """The longest sweep the page may ask for: past it a drawing or a plot shows nothing more,
@@ -552,6 +553,13 @@ with each); the command line has no such cap."""
 _SEARCH_DEFAULTS = {"runs": 3, "maxiter": 300, "popsize": 15, "samples": 180}
 
 
+def is_search(body: dict) -> bool:
+    """Whether a synthesis request is a path-generation search (seconds to minutes of
+    work; the other tasks are solved in closed form, at once)."""
+    task = body.get("task")
+    return isinstance(task, dict) and task.get("task") == "path"
+
+
 def synthesize(body: dict) -> dict:
     """A synthesis task (``body["task"]``: a task file's content as plain data, as
     ``kinelab synth`` reads it; ``body["source"]``, a file name, names it in messages)
@@ -613,8 +621,11 @@ def _derivation(mf: ModelFile, lang: str) -> dict:
     from kinelab.derive._words import WORDS
 
     with errors_from(mf):
-        d = derive(mf.mechanism, lang, time_limit=None)
+        with progress.part(0.0, 0.65):
+            d = derive(mf.mechanism, lang, time_limit=None)
+        progress.report("the document", 0.65)
         markdown = d.to_markdown(time_limit=None)
+    progress.report("MathML", 0.98)
     words = WORDS[lang]
 
     def math(label: str, expr) -> dict:

@@ -4,15 +4,20 @@ request-size caps, and kinelab's errors as JSON with the right status.
 The app answers its own page only: a request whose ``Host`` is not the address served
 (DNS rebinding) or whose ``Origin`` is another site is refused (403), and so is a POST whose
 body is not declared JSON (415: a form or ``text/plain``, which other sites may send without
-asking).  The work of a request runs in a small pool of threads, off the event loop, so a
-long one never stops the others; what it may cost is estimated before it starts
-(:mod:`kinelab.web._limits`).  Every error is ``{"error": message}``.
+asking).  The work of a request runs in worker threads, off the event loop; long work (a
+derivation, a path-generation search, an animation) in worker processes of its own
+(:mod:`kinelab.web._apart`), waited for by threads of their own, so that it neither keeps
+the others waiting for a worker nor slows their work; what it may cost is estimated before
+it starts (:mod:`kinelab.web._limits`).  Each request's work is a job (:mod:`kinelab.web._jobs`): how
+far it has come is asked at ``/api/progress``, and it is stopped by ``/api/cancel`` or when
+its request is closed.  Every error is ``{"error": message}``.
 """
 from __future__ import annotations
 
 import asyncio
 import json
 import logging
+import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from urllib.parse import urlsplit
@@ -25,11 +30,13 @@ from starlette.responses import FileResponse, JSONResponse, Response
 from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
-from kinelab.errors import (KinelabError, MemoryBudgetError, ModelError, TimeLimitError, shown,
-                            shown_path)
-from kinelab.web import _api, _export, _limits
+from kinelab import _progress as progress
+from kinelab._deadline import within
+from kinelab.errors import (CancellationError, KinelabError, MemoryBudgetError, ModelError,
+                            TimeLimitError, shown, shown_path)
+from kinelab.web import _apart, _api, _dynamics, _export, _jobs, _limits
 
-__all__ = ["create_app", "MAX_BODY", "WORKERS", "LOOPBACK_NAMES"]
+__all__ = ["create_app", "MAX_BODY", "WORKERS", "LONG_WORKERS", "LOOPBACK_NAMES"]
 
 STATIC = Path(__file__).parent / "static"
 MAX_BODY = 2 * 1024 * 1024
@@ -38,6 +45,11 @@ MAX_BODY = 2 * 1024 * 1024
 WORKERS = 4
 """Requests worked on at once (the others wait their turn); their memory is shared as
 :mod:`kinelab.web._limits` says."""
+
+LONG_WORKERS = 2
+"""Long requests (derivations, path-generation searches, animations) worked on at once,
+each in a worker process (:mod:`kinelab.web._apart`) waited for by a thread of its own
+beside the :data:`WORKERS`: however many come, the others never wait for them."""
 
 LOOPBACK_NAMES = ("127.0.0.1", "localhost", "[::1]")
 """The names the page may be reached by when served on loopback (``Host`` without its port)."""
@@ -81,12 +93,13 @@ def _error(message: str, status: int, problems: tuple[str, ...] = ()) -> JSONRes
 
 def _status(exc: KinelabError) -> int:
     """413 for a request larger than the server takes, 503 while others hold the memory it
-    needs, 422 for work that cannot go on (or not within its time), 400 for bad input."""
+    needs, 422 for work that cannot go on (or not within its time, or cancelled), 400 for
+    bad input."""
     if isinstance(exc, (MemoryBudgetError, _limits.TooLarge)):
         return 413
     if isinstance(exc, _limits.Busy):
         return 503
-    if isinstance(exc, TimeLimitError):
+    if isinstance(exc, (TimeLimitError, CancellationError)):
         return 422
     return 400 if isinstance(exc, ValueError) or type(exc) is KinelabError else 422
 
@@ -96,11 +109,14 @@ def _is_json(request: Request) -> bool:
     return media == "application/json"
 
 
-def _answer(call, body: dict, raw: bool, path: str) -> Response:
-    """``call(body)`` and its answer's bytes, in a worker thread; what the request reserves
-    is given back once the bytes are made."""
-    with _limits.request():
-        result = call(body)
+def _answer(call, body: dict, raw: bool, path: str, job: _jobs.Job, jobs: _jobs.Jobs,
+            apart: str | None = None) -> Response:
+    """``call(body)`` and its answer's bytes, in a worker thread (or, with ``apart``, the
+    call of that name in a worker process, :func:`kinelab.web._apart.run`), as ``job``: its
+    progress kept, stopped when it is cancelled; what the request reserves is given back
+    once the bytes are made, and the job is closed once its work has ended."""
+    def work(apart: str | None) -> Response:
+        result = _apart.run(apart, body, job) if apart else call(body)
         if isinstance(result, Response):
             return result
         if raw:
@@ -112,11 +128,44 @@ def _answer(call, body: dict, raw: bool, path: str) -> Response:
             return _error("internal error: the result holds a value that is not a finite "
                           "number; the server's log has the details", 500)
         return Response(text.encode(), media_type="application/json")
+    try:
+        job.start()
+        with _limits.request(), progress.watching(job.report):
+            if apart:                   # its process is ended when the job is cancelled
+                try:
+                    return work(apart)
+                except _apart.Unavailable:
+                    pass                # no worker process here: in this thread, then
+            return within(None, work, None, cancel=job.cancel,
+                          cancelled=f"{shown_path(path)}: cancelled after "
+                                    f"{time.monotonic() - job.read:.1f} s, as asked")
+    finally:
+        jobs.close(job)
 
 
-def _route(call, *, raw: bool = False):
-    """A POST endpoint calling ``call(body)`` in one of the app's worker threads; kinelab's
-    errors become ``{"error": message}`` with their status (see :func:`_status`)."""
+async def _closed(request: Request) -> None:
+    """Returns when the client closes the request's connection (its body already read)."""
+    while (await request.receive())["type"] != "http.disconnect":
+        pass
+
+
+def _retrieved(future) -> None:
+    """The outcome of work no one waits for any more, taken so that asyncio does not call
+    it lost (a fault of kinelab's logged all the same)."""
+    if future.cancelled():
+        return
+    exc = future.exception()
+    if exc is not None and not isinstance(exc, KinelabError):
+        _log.error("a request whose client had gone failed", exc_info=exc)
+
+
+def _route(call, *, raw: bool = False, apart=None):
+    """A POST endpoint calling ``call(body)`` in one of the app's worker threads, as a job
+    whose id is the body's ``"job"`` (taken out of it); kinelab's errors become ``{"error":
+    message}`` with their status (see :func:`_status`).  The client closing the request
+    cancels it.  ``apart`` (a name of :data:`kinelab.web._apart.CALLS`, or a function of
+    the body giving one or None) sends long work to a worker process instead, waited for by
+    one of the long workers' threads."""
     async def endpoint(request: Request) -> Response:
         if not _is_json(request):
             return _error(f"{shown_path(request.url.path)}: expected a JSON body (Content-Type: "
@@ -124,9 +173,26 @@ def _route(call, *, raw: bool = False):
                           f"{request.headers.get('content-type') or 'none'}", 415)
         try:
             body = await _body(request)
+            jobs = request.app.state.jobs
+            job = jobs.open(body.pop("job", None), request.url.path)
+            state = request.app.state
+            name = apart(body) if callable(apart) else apart
+            pool = state.long_workers if name else state.workers
             loop = asyncio.get_running_loop()
-            return await loop.run_in_executor(request.app.state.workers, _answer, call, body, raw,
-                                              request.url.path)
+            work = loop.run_in_executor(pool, _answer, call, body, raw, request.url.path, job,
+                                        jobs, name)
+            closed = asyncio.ensure_future(_closed(request))
+            try:
+                await asyncio.wait({work, closed}, return_when=asyncio.FIRST_COMPLETED)
+            finally:
+                closed.cancel()
+            if not work.done():     # no one to answer: stop the work, and wait no more
+                job.cancel.set()
+                work.add_done_callback(_retrieved)
+                _log.info("%s: the client closed the connection; its work is stopped",
+                          shown_path(request.url.path))
+                return _error("the client closed the connection", 400)
+            return work.result()
         except _TooLarge:
             return _error(f"body: larger than {MAX_BODY // 1024:,} KiB; a model file is a few "
                           "kilobytes: send less", 413)
@@ -142,6 +208,41 @@ def _route(call, *, raw: bool = False):
             return _error("internal error: the server could not answer this request; "
                           "the server's log has the details", 500)
     return endpoint
+
+
+async def _progress(request: Request) -> Response:
+    """``/api/progress``: what job ``{"job": id}`` is doing (``"state": "not running"`` when
+    it is not listed: not arrived yet, or ended), or with no id every job listed
+    (``"jobs"``).  Answered on the event loop, never behind the work it reports."""
+    def answer(jobs: _jobs.Jobs, body: dict) -> dict:
+        if body.get("job") is None:
+            return {"jobs": [j.view() for j in jobs.listed()]}
+        job = jobs.get(body["job"])
+        return job.view() if job is not None else {"job": body["job"], "state": "not running"}
+    return await _on_loop(request, answer)
+
+
+async def _cancel(request: Request) -> Response:
+    """``/api/cancel``: stop the work of job ``{"job": id}``; ``cancelled`` says whether it
+    was running (if its request has not arrived yet, it will be stopped when it does)."""
+    return await _on_loop(request, lambda jobs, body: {
+        "job": body.get("job"), "cancelled": jobs.cancel(body.get("job"))})
+
+
+async def _on_loop(request: Request, answer) -> Response:
+    """A small POST answered on the event loop: ``answer(jobs, body)``, JSON out."""
+    if not _is_json(request):
+        return _error(f"{shown_path(request.url.path)}: expected a JSON body (Content-Type: "
+                      f"application/json), got {request.headers.get('content-type') or 'none'}",
+                      415)
+    try:
+        return JSONResponse(answer(request.app.state.jobs, await _body(request)))
+    except _TooLarge:
+        return _error(f"body: larger than {MAX_BODY // 1024:,} KiB", 413)
+    except ClientDisconnect:
+        return _error("the client closed the connection", 400)
+    except KinelabError as exc:
+        return _error(str(exc), _status(exc))
 
 
 def _get(call):
@@ -250,9 +351,14 @@ def create_app(start: dict | None = None, *, host: str = "127.0.0.1",
         Route("/api/configuration", _route(_api.configuration), methods=["POST"]),
         Route("/api/drag", _route(_api.drag), methods=["POST"]),
         Route("/api/flip", _route(_api.flip), methods=["POST"]),
-        Route("/api/derive", _route(_api.derivation), methods=["POST"]),
-        Route("/api/synthesize", _route(_api.synthesize), methods=["POST"]),
-        Route("/api/export", _route(_export.export, raw=True), methods=["POST"]),
+        Route("/api/derive", _route(_api.derivation, apart="derive"), methods=["POST"]),
+        Route("/api/synthesize", _route(_api.synthesize, apart=lambda body: "synthesize"
+                                        if _api.is_search(body) else None), methods=["POST"]),
+        Route("/api/export", _route(_export.export, raw=True, apart=lambda body: "export"
+                                    if _export.is_long(body) else None), methods=["POST"]),
+        Route("/api/dynamics", _route(_dynamics.dynamics, raw=True), methods=["POST"]),
+        Route("/api/progress", _progress, methods=["POST"]),
+        Route("/api/cancel", _cancel, methods=["POST"]),
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]
     served = Served(host, port)
@@ -261,6 +367,8 @@ def create_app(start: dict | None = None, *, host: str = "127.0.0.1",
     app.state.start = start
     app.state.served = served
     app.state.workers = ThreadPoolExecutor(WORKERS, thread_name_prefix="kinelab-web")
+    app.state.long_workers = ThreadPoolExecutor(LONG_WORKERS, thread_name_prefix="kinelab-long")
+    app.state.jobs = _jobs.Jobs()
     return app
 
 

@@ -8,13 +8,14 @@ from pathlib import Path
 
 from starlette.responses import Response
 
+from kinelab import _progress as progress
 from kinelab import io
 from kinelab._deadline import within
 from kinelab.errors import ModelError, describe, quoted
 from kinelab.io._modelfile import errors_from
 from kinelab.web import _api, _limits
 
-__all__ = ["export", "KINDS", "ANIMATION_SECONDS"]
+__all__ = ["export", "is_long", "KINDS", "ANIMATION_SECONDS"]
 
 _FIGURES = threading.Lock()      # pyplot keeps global state: one figure at a time
 
@@ -27,6 +28,11 @@ KINDS = {"csv": "text/csv", "json": "application/json", "gif": "image/gif",
 """What can be downloaded: the sweep's table (as ``kinelab analyze`` writes it), the
 animation (``kinelab animate --format gif``), the links' outlines (``kinelab export --to
 dxf`` / ``svg``)."""
+
+
+def is_long(body: dict) -> bool:
+    """Whether an export is long work (an animation: seconds to minutes of drawing)."""
+    return body.get("kind") == "gif"
 
 
 def export(body: dict) -> Response:
@@ -51,10 +57,11 @@ def export(body: dict) -> Response:
             from kinelab import plot
             samples = _api.samples_of(body, mf)
             _limits.check_sweep(mf, samples, "none", "the animation's sweep")
+            progress.report("the sweep", 0.0)
             sol = mf.analyze(samples)
 
             def draw():
-                with errors_from(mf):
+                with errors_from(mf), progress.part(0.1, 1.0):
                     plot.animate(sol, path, frames=60, fps=20, units=mf.units)
             with _FIGURES:
                 try:

@@ -1,10 +1,12 @@
 """Running the app: uvicorn on loopback unless another host is asked for."""
 from __future__ import annotations
 
+import threading
 import warnings
 
 from kinelab._memory import reuse_result_memory
 from kinelab.errors import ModelError
+from kinelab.web import _apart
 from kinelab.web._limits import cache_bytes
 
 __all__ = ["serve", "LOOPBACK"]
@@ -48,6 +50,8 @@ def serve(start: dict | None = None, *, host: str = "127.0.0.1", port: int = 800
             shown = f"[{bound[0]}]" if ":" in bound[0] else bound[0]
             announce(f"http://{shown}:{bound[1]}/")
     server.startup = startup
+    # the first derivation need not wait for its worker process to start
+    threading.Thread(target=_apart.prestart, name="kinelab-prestart", daemon=True).start()
     try:
         server.run()
     finally:

@@ -1,10 +1,14 @@
 // The server's API: JSON in, JSON out; an answer with an error throws it, message intact.
+// Every POST is a job (progress.js): shown with its progress and a cancel button when it
+// takes more than a moment.
+import {tracked} from "./progress.js";
+
 export async function post(path, body) {
-  const r = await fetch(path, {method: "POST", headers: {"Content-Type": "application/json"},
-                               body: JSON.stringify(body)});
-  const data = await r.json().catch(() => ({error: `${path}: the server sent no JSON (${r.status})`}));
-  if (!r.ok) throw new Error(data.error || `${path}: HTTP ${r.status}`);
-  return data;
+  return tracked(path, body, async (r) => {
+    const data = await r.json().catch(() => ({error: `${path}: the server sent no JSON (${r.status})`}));
+    if (!r.ok) throw new Error(data.error || `${path}: HTTP ${r.status}`);
+    return data;
+  });
 }
 
 export async function get(path) {
@@ -16,13 +20,13 @@ export async function get(path) {
 
 // A download of what the server makes (a file the command line writes), as a Blob.
 export async function file(path, body) {
-  const r = await fetch(path, {method: "POST", headers: {"Content-Type": "application/json"},
-                               body: JSON.stringify(body)});
-  if (!r.ok) {
-    const data = await r.json().catch(() => ({}));
-    throw new Error(data.error || `${path}: HTTP ${r.status}`);
-  }
-  return r.blob();
+  return tracked(path, body, async (r) => {
+    if (!r.ok) {
+      const data = await r.json().catch(() => ({}));
+      throw new Error(data.error || `${path}: HTTP ${r.status}`);
+    }
+    return r.blob();
+  });
 }
 
 export function download(blob, name) {

@@ -11,6 +11,7 @@ import {synthesisPanel, posesOnDrawing} from "./synth.js";
 import {follower} from "./follow.js";
 import {chosen, shownUnits, shownColumn, toShown, fromShown} from "./units.js";
 import {withLength, num} from "./table.js";
+import {forcesPanel} from "./dynamics.js";
 
 const $ = (id) => document.getElementById(id);
 const state = {model: null, source: null, study: null, index: 0, config: null,
@@ -250,6 +251,7 @@ function redrawSoon() {          // at most once a frame
 function redraw() {
   canvas.unitScale = shownUnits(state.model.units).L;
   canvas.draw(scene());
+  forces.draw();
   if (state.study) {
     $("scrub").value = state.index;
     const q = state.study.inputs.map((n) => {
@@ -545,6 +547,7 @@ const canvas = new Canvas($("canvas"), {
 });
 
 const plot = new Plot($("plot"), (i) => { pause(); setIndex(i); });
+const forces = forcesPanel($("tab-forces"), {state, edit: editModel, status, canvas});
 
 // -- animation -------------------------------------------------------------------------------
 let last = null, phase = 0;
