@@ -343,3 +343,52 @@ def test_sweeps_of_thousands_in_one_call_are_the_general_path_to_the_bit(name):
     for link in mine.link_names:
         assert np.array_equal(mine.angle(link), theirs.angle(link), equal_nan=True)
         assert np.array_equal(mine.alpha(link), theirs.alpha(link), equal_nan=True)
+
+
+_NUMPY_FORM = """
+import json, sys
+import numpy as np
+import kinelab as kl
+from kinelab import _compiled
+assert _compiled.mode() == "numpy"
+out = {}
+for path in sys.argv[1:]:
+    m = kl.mechanisms.stephenson6() if path == "stephenson6" else kl.load(path)
+    track = kl.kinematics.Tracker(m)
+    rows = []
+    for q in (0.3, 1.1, 2.5):
+        q = float(q) if len(m.inputs) == 1 else np.array([q, q + 1.0])
+        a, b = track(q, 2.0, 0.5), kl.analyze(m, q, 2.0, 0.5)
+        same = all(np.array_equal(getattr(a, g)(n), getattr(b, g)(n), equal_nan=True)
+                   for n in a.point_names for g in ("position", "velocity", "acceleration", "K", "L"))
+        rows.append([same, [np.asarray(a.acceleration(n)).tolist() for n in a.point_names]])
+    out[path] = rows
+print(json.dumps(out))
+"""
+
+
+def test_tracker_with_the_kernel_set_to_numpy():
+    """KINELAB_KERNEL=numpy: a tracker answers as analyze does there, to the bit, and as the
+    compiled kernel does, to rounding."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    names = ["stephenson6"] + [str(p) for p in EXAMPLES if p.stem in ("crank_rocker", "jansen",
+                                                                       "fivebar", "slotted_link")]
+    done = subprocess.run([sys.executable, "-c", _NUMPY_FORM, *names], capture_output=True,
+                          text=True, env={**os.environ, "KINELAB_KERNEL": "numpy"}, timeout=600)
+    assert done.returncode == 0, done.stderr
+    got = json.loads(done.stdout.strip().splitlines()[-1])
+    for name in names:
+        m = kl.mechanisms.stephenson6() if name == "stephenson6" else kl.load(name)
+        track = kl.kinematics.Tracker(m)
+        scale = kl.kinematics.plan(m).scale
+        for q, (same, accelerations) in zip((0.3, 1.1, 2.5), got[name]):
+            assert same, (name, q)
+            q = float(q) if len(m.inputs) == 1 else np.array([q, q + 1.0])
+            sol = track(q, 2.0, 0.5)
+            for point, a in zip(sol.point_names, accelerations):
+                assert np.allclose(a, sol.acceleration(point), rtol=1e-9, atol=1e-9 * scale), \
+                    (name, q, point)
