@@ -6,11 +6,17 @@ kind (``synth``), CSV tables as text (a measured curve for ``differentiate``, de
 ``sweep`` and ``atlas build``, a path for ``atlas find``) and atlases as Parquet tables and
 bytes (``atlas find``).  The property: the command succeeds, or ends with one bounded line
 per problem, each naming the file, and exit status 2, within TIMEOUT seconds and MEMORY
-bytes.  Prints the count of each outcome for each kind of file and a few examples of every
-finding.
+bytes.  Two more kinds of input: requests to the web app (``web``: the page's requests
+mutated as JSON and as bytes, other methods; each answered 2xx, or 4xx with a one-line
+``{"error": ...}``, never 5xx, a traceback or an error in the server's log) and hostile names
+(``names``: models, points, links, tasks and tables named with paths, separators, device
+names, controls and mathtext, through every command that writes files; nothing written
+outside ``--out``, no unsafe file name, no staging directory left).  Prints the count of
+each outcome for each kind of file and a few examples of every finding.
 
     python benchmarks/fuzz_model_files.py                  # 100,000 cases on every core
     python benchmarks/fuzz_model_files.py --cases 2000 --seed 7 --files csv,atlas
+    python benchmarks/fuzz_model_files.py --cases 2000 --files web,names
 
 Cases run in worker processes (one per core), each with its address space limited to MEMORY
 and each case interrupted after TIMEOUT seconds (SIGALRM).
@@ -51,7 +57,7 @@ def _start_worker():
     os.chdir(tempfile.mkdtemp(prefix="kinelab-fuzz-"))
 
 
-FILES = ("model", "task", "csv", "atlas")
+FILES = ("model", "task", "csv", "atlas", "web", "names")
 
 
 def _one(job: tuple[int, tuple[str, ...]]) -> tuple[str, str, str, str]:
@@ -59,9 +65,13 @@ def _one(job: tuple[int, tuple[str, ...]]) -> tuple[str, str, str, str]:
 
     seed, files = job
     rng = random.Random(seed)
-    c = grammar.case(rng) if files == ("model",) else grammar.any_case(rng, files)
+    try:
+        c = grammar.case(rng) if files == ("model",) else grammar.any_case(rng, files)
+    except MemoryError:         # the generator's own fault: said, and the run goes on
+        return "generator", "memory", "", f"seed {seed}: making the case"
     directory = Path(tempfile.mkdtemp(dir="."))
-    signal.alarm(TIMEOUT)
+    # a request is bounded by the app's own limits (up to a minute), then by the case's
+    signal.alarm(int(grammar.WEB_SECONDS) + 10 if c.family == "web" else TIMEOUT)
     try:
         outcome, detail = grammar.run(c, directory)
     except _Timeout:
@@ -71,7 +81,9 @@ def _one(job: tuple[int, tuple[str, ...]]) -> tuple[str, str, str, str]:
     finally:
         signal.alarm(0)
         shutil.rmtree(directory, ignore_errors=True)     # a case's files: up to a few MB
-    return c.family, outcome, detail, f"seed {seed}: {' '.join(c.command)} on a {c.suffix} file"
+    where = " ".join(c.command) if c.family == "web" else \
+        f"{' '.join(c.command)} on a {c.suffix} file"
+    return c.family, outcome, detail, f"seed {seed}: {where}"
 
 
 def main() -> None:

@@ -9,17 +9,28 @@ any loop of analyses; the four-bar is also timed with every result in fresh memo
 first touch the operating system pays for by zeroing pages (on a virtual machine that can
 cost about as much as the analysis).
 
-    python benchmarks/kinematics.py [--quick]
+Small calls (360 and 3,600 angles) are timed apart, in processor time: one call of the
+baseline against one ``kl.analyze`` with every quantity the baseline computes read from
+its result (angle, omega, alpha, K and L of the crank, coupler and rocker; position,
+velocity, acceleration, K and L of A, B and P), the two taking turns, repeated; best and
+median of the repeats, and the baseline's median over kinelab's (> 1: kinelab is faster).
+On a shared machine only the ratios compare, and the load average is printed beside them.
+
+    python benchmarks/kinematics.py [--quick] [--small]
 """
 from __future__ import annotations
 
+import os
 import sys
 import time
 
 import numba
 import numpy as np
 
-import kinelab as kl
+# the steady state: the compiled kernel, compiled (or loaded from numba's cache) by the
+# first call, which waits for it; benchmarks/cold_start.py measures the first calls
+os.environ.setdefault("KINELAB_KERNEL", "compiled")
+import kinelab as kl  # noqa: E402
 
 GROUND, CRANK, COUPLER, ROCKER, CP = 3.0, 1.0, 3.0, 2.5, (1.5, 1.0)
 
@@ -82,14 +93,65 @@ def best_time(f, repeat):
     return best
 
 
+LINKS = ("crank", "coupler", "rocker")
+POINTS = ("A", "B", "P")
+
+
+def read_all(sol):
+    """Every quantity of the baseline, read from a solution by its accessors."""
+    links = {name: (sol.angle(name), sol.omega(name), sol.alpha(name), sol.K(name), sol.L(name))
+             for name in LINKS}
+    points = {name: (sol.position(name), sol.velocity(name), sol.acceleration(name),
+                     sol.K(name), sol.L(name)) for name in POINTS}
+    return links, points
+
+
+def per_call(calls, n_calls: int, repeat: int) -> list[np.ndarray]:
+    """Processor time of one call (s) of each of ``calls``, for each of ``repeat`` rounds;
+    in each round every call is timed over ``n_calls`` calls, the calls taking turns."""
+    times = [[] for _ in calls]
+    for _ in range(repeat):
+        for t, call in zip(times, calls):
+            t0 = time.process_time()
+            for _ in range(n_calls):
+                call()
+            t.append((time.process_time() - t0) / n_calls)
+    return [np.array(t) for t in times]
+
+
+def small_calls(fb, repeat: int) -> None:
+    """The four-bar over 360 and 3,600 angles, one call at a time, against the baseline."""
+    load = os.getloadavg()
+    print(f"small calls, processor time per call (best, median of {repeat}; the baseline's "
+          f"median over this one's), load average {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}")
+    for n in (360, 3600):
+        q = np.linspace(0.0, 2 * np.pi, n, endpoint=False)
+        whole = lambda: read_all(kl.analyze(fb, q, 10.0, 0.0))       # noqa: E731
+        alone = lambda: kl.analyze(fb, q, 10.0, 0.0)                 # noqa: E731
+        base = lambda: numpy_fourbar(q, 10.0, 0.0)                   # noqa: E731
+        for f in (whole, base):
+            f()
+        t_base, t_whole, t_alone = per_call([base, whole, alone], max(1, 36_000 // n), repeat)
+        ref = np.median(t_base)
+        for label, t in ((f"numpy closed form (baseline), N = {n:,}", t_base),
+                         (f"kinelab analyze + every accessor, N = {n:,}", t_whole),
+                         (f"kinelab analyze alone, N = {n:,}", t_alone)):
+            ratio = "" if t is t_base else f"{ref / np.median(t):6.2f} x"
+            print(f"  {label:46s}: {np.min(t) * 1e6:9.1f} {np.median(t) * 1e6:9.1f} us  {ratio}")
+
+
 def main() -> None:
     quick = "--quick" in sys.argv
+    fb = kl.mechanisms.fourbar(GROUND, CRANK, COUPLER, ROCKER, coupler_point=CP)
+    if "--small" in sys.argv:
+        kl.analyze(fb, q=np.linspace(0.0, 1.0, 10))                    # compile
+        small_calls(fb, 7 if quick else 21)
+        return
     n = 10 ** 5 if quick else 10 ** 6
     n_newton = 10 ** 4 if quick else 10 ** 5
     repeat = 3 if quick else 7
     print(f"kinelab kinematics benchmark: {numba.get_num_threads()} threads, N = {n:,}")
     q = np.linspace(0.0, 2 * np.pi, n, endpoint=False)
-    fb = kl.mechanisms.fourbar(GROUND, CRANK, COUPLER, ROCKER, coupler_point=CP)
 
     # agreement first: the baseline must compute the same numbers
     ref = numpy_fourbar(q[:1000], 10.0, 0.0)
@@ -117,6 +179,7 @@ def main() -> None:
             report("four-bar, results in fresh memory", n,
                    best_time(lambda: kl.analyze(fb, q=q, qd=10.0), repeat), rate_base)
             kl.reuse_result_memory(kept)
+    small_calls(fb, 7 if quick else 21)
 
 
 def report(label, n, seconds, rate_base):

@@ -48,7 +48,9 @@ one four-bar configuration per call (pylinkage's step against kinelab's ``Tracke
 ``analyze``), a sweep of 3600 crank angles, and path synthesis on two 10-point tasks, each
 method's time to an error of 3e-2, 1e-2 and 1e-3 of the path's size over several seeds.
 
-    python benchmarks/peers.py
+    python benchmarks/peers.py [--one]
+
+(``--one``: the comparison of one configuration per call only.)
 """
 from __future__ import annotations
 
@@ -247,6 +249,20 @@ def pylinkage_one_step(linkage: PylinkageFourbar, angle: float) -> np.ndarray:
     pos[1, 1] = linkage.crank * math.sin(angle)
     step_single(pos, *linkage.kernel_args, 0.0)
     return pos.copy()
+
+
+def pylinkage_with_kinematics(linkage: PylinkageFourbar, omega: float, alpha: float = 0.0):
+    """pylinkage's one step with velocities and accelerations,
+    ``Linkage.step_fast_with_kinematics(iterations=1)``, at the linkage's configuration and
+    the crank's speed ``omega`` (rad/s) and acceleration ``alpha``: a function of no
+    arguments returning (positions, velocities, accelerations), each (1, 5, 2) (rows
+    :data:`NAMES`).  The crank's own angular velocity, by which a step turns it, is 0: each
+    call answers the same configuration, as a tracker's call answers the one it is given."""
+    from pylinkage.actuators import Crank
+
+    crank = next(c for c in linkage.linkage.components if isinstance(c, Crank))
+    linkage.linkage.set_input_velocity(crank, float(omega), float(alpha))
+    return lambda: linkage.linkage.step_fast_with_kinematics(iterations=1)
 
 
 def pylinkage_sweep(linkage: PylinkageFourbar, angles) -> np.ndarray:
@@ -496,29 +512,50 @@ def _per_call(call, args, repeats: int = 15) -> np.ndarray:
     return np.array(out)
 
 
-def _row(name: str, t: np.ndarray, ref: np.ndarray | None, unit: float = 1e6) -> str:
-    """best, median, and the reference's median over this one's (> 1: this is faster)."""
-    ratio = "" if ref is None else f"{np.median(ref) / np.median(t):9.2f}x"
-    return f"  {name:56s} {np.min(t) * unit:9.3f} {np.median(t) * unit:9.3f} {ratio}"
+def _row(name: str, t: np.ndarray, *refs: np.ndarray | None, unit: float = 1e6) -> str:
+    """best, median, and each reference's median over this one's (> 1: this is faster)."""
+    ratios = "".join("" if ref is None else f"{np.median(ref) / np.median(t):9.2f}x" for ref in refs)
+    return f"  {name:56s} {np.min(t) * unit:9.3f} {np.median(t) * unit:9.3f} {ratios}"
 
 
 def compare_one_configuration(model, fb, repeats: int = 15):
-    """kinelab's Tracker and analyze against pylinkage's one step, one crank angle a call."""
+    """kinelab's Tracker and analyze against pylinkage's one step, one crank angle a call:
+    positions against ``step_single``, the whole analysis against
+    ``step_fast_with_kinematics(iterations=1)``; and a tracker of the Stephenson six-bar."""
     import kinelab as kl
 
     q = [float(x) for x in np.linspace(0.0, 2 * np.pi, 2000)]
     track = kl.kinematics.Tracker(model)
+    six = kl.mechanisms.stephenson6()
+    track6 = kl.kinematics.Tracker(six)
+    q6 = [float(x) for x in np.linspace(0.0, 2 * np.pi, 2000)]
     track(q[0], 10.0, 0.0), track.positions(q[0]), kl.analyze(model, q[0], 10.0, 0.0)   # warm
+    track6(q6[0], 10.0, 0.0)
     pylinkage_one_step(fb, q[0])
+    kinematics = pylinkage_with_kinematics(fb, 10.0)
+    kinematics()
+    load = os.getloadavg()
+    print(f"one configuration per call, processor time, us (best, median; pylinkage's "
+          f"medians over this one's: step_single, step_fast_with_kinematics), load average "
+          f"{load[0]:.2f} {load[1]:.2f} {load[2]:.2f}")
     ref = _per_call(lambda x: pylinkage_one_step(fb, x), q, repeats)
-    print("one configuration per call, us (best, median; pylinkage's median / this one's)")
-    print(_row(f"pylinkage {pylinkage.__version__} step_single (O2, A, B, O4, P)", ref, None))
+    ref_kin = _per_call(lambda x: kinematics(), q, repeats)
+    print(_row(f"pylinkage {pylinkage.__version__} step_single (O2, A, B, O4, P)", ref))
+    print(_row("pylinkage step_fast_with_kinematics(iterations=1)", ref_kin))
     print(_row("kinelab Tracker.positions(q) (every point)", _per_call(track.positions, q, repeats),
-               ref))
+               ref, ref_kin))
     print(_row("kinelab Tracker(q, qd, qdd) (whole analysis)",
-               _per_call(lambda x: track(x, 10.0, 0.0), q, repeats), ref))
+               _per_call(lambda x: track(x, 10.0, 0.0), q, repeats), ref, ref_kin))
+    print(_row("kinelab Tracker(q, qd, qdd), then P's position, velocity, acc.",
+               _per_call(lambda x: _read_p(track(x, 10.0, 0.0)), q, repeats), ref, ref_kin))
+    print(_row("kinelab Tracker(q, qd, qdd), Stephenson six-bar",
+               _per_call(lambda x: track6(x, 10.0, 0.0), q6, repeats), ref, ref_kin))
     print(_row("kinelab analyze(model, q, qd, qdd)",
-               _per_call(lambda x: kl.analyze(model, x, 10.0, 0.0), q[:500], repeats), ref))
+               _per_call(lambda x: kl.analyze(model, x, 10.0, 0.0), q[:500], repeats), ref, ref_kin))
+
+
+def _read_p(sol):
+    return sol.position("P"), sol.velocity("P"), sol.acceleration("P")
 
 
 def compare_sweep(model, fb, n: int = 3600, repeats: int = 15):
@@ -609,7 +646,16 @@ def main():
     # the steady state: kinelab's compiled kernel, compiled (or loaded from the cache) by the
     # first call, which waits for it; benchmarks/cold_start.py measures the first calls
     os.environ.setdefault("KINELAB_KERNEL", "compiled")
+    import sys
+
     import kinelab as kl
+    if "--one" in sys.argv:                     # one configuration per call only
+        if not HAVE_PYLINKAGE:
+            print("pylinkage: not installed (pip install -e .[bench])")
+            return
+        compare_one_configuration(kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0)),
+                                  pylinkage_fourbar(3.0, 1.0, 3.0, 2.5, (1.5, 1.0)))
+        return
 
     print(f"kinelab against its peers, one process; numpy {np.__version__}")
     if HAVE_PYLINKAGE:

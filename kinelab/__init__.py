@@ -8,28 +8,30 @@
 """
 from importlib import import_module as _import_module
 
-from kinelab import errors, io, kinematics, mechanisms, model, solvers, verify
-from kinelab._memory import memory_budget, reuse_result_memory
-from kinelab.io import load
-from kinelab.kinematics import KinematicSolution
-from kinelab.verify import analyze
-from kinelab.model import Mechanism
-
 __all__ = ["errors", "model", "solvers", "mechanisms", "kinematics", "spatial", "structure",
            "synthesis", "dynamics", "derive", "verify", "sweep", "io",
            "plot", "analyze", "load",
            "Mechanism", "KinematicSolution", "reuse_result_memory", "memory_budget"]
 
-# the rooms that bring in sympy, scipy.spatial, matplotlib or dask load on first use (kl.derive, ...),
-# so that a command that does not need them starts quicker
-_ON_FIRST_USE = ("derive", "dynamics", "plot", "spatial", "structure", "sweep", "synthesis")
+# Every name is loaded on first use (PEP 562), rooms included: `import kinelab` costs next to
+# nothing, and a command imports only the rooms it works with (`kinelab --help` none of them).
+_ROOMS = ("errors", "model", "solvers", "mechanisms", "kinematics", "spatial", "structure",
+          "synthesis", "dynamics", "derive", "verify", "sweep", "io", "plot")
+_NAMES = {"analyze": "kinelab.verify", "load": "kinelab.io",
+          "Mechanism": "kinelab.model", "KinematicSolution": "kinelab.kinematics",
+          "reuse_result_memory": "kinelab._memory", "memory_budget": "kinelab._memory"}
 
 
 def __getattr__(name):
-    if name in _ON_FIRST_USE:
-        return _import_module(f"kinelab.{name}")
-    raise AttributeError(f"module 'kinelab' has no attribute {name!r}")
+    if name in _ROOMS:
+        value = _import_module(f"kinelab.{name}")
+    elif name in _NAMES:
+        value = getattr(_import_module(_NAMES[name]), name)
+    else:
+        raise AttributeError(f"module 'kinelab' has no attribute {name!r}")
+    globals()[name] = value
+    return value
 
 
 def __dir__():
-    return sorted({n for n in globals() if not n.startswith("_")} | set(_ON_FIRST_USE))
+    return sorted({n for n in globals() if not n.startswith("_")} | set(__all__))

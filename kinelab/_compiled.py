@@ -13,6 +13,13 @@ writes it).  A process that finds the stamp loads the entry point itself, in the
 that first needs it, and runs that call compiled: loading takes about half a second, most
 of it numba's own start-up, and no other process is involved.
 
+**Light work.**  That half second of loading is far more than work such as ``kinelab
+check`` or ``kinelab analyze`` of a few hundred samples of a closed-form plan takes on the
+numpy form (milliseconds).  Work run inside :func:`light_work` therefore runs on the numpy
+form unless the entry point is loaded in this process already; a cold cache still starts
+the helper, so that heavier work later finds the kernel compiled.  The caller says what is
+light (the command line: a closed-form plan over a sweep too short for a progress bar).
+
 **Cold cache.**  A call whose entry point has no stamp runs at once on the kernel's numpy
 form (``kinematics/_interpreter.py``, the same numbers, statuses and messages; forward
 dynamics on scipy's solve_ivp with a numpy right-hand side) and starts the helper process,
@@ -45,6 +52,8 @@ The environment variable ``KINELAB_KERNEL`` chooses:
 from __future__ import annotations
 
 import atexit
+import contextlib
+import contextvars
 import functools
 import hashlib
 import os
@@ -57,7 +66,8 @@ import warnings
 
 from kinelab.errors import ModelError
 
-__all__ = ["ENTRIES", "mode", "set_mode", "ready", "wait", "wait_for", "cache_place", "helpers_at_work"]
+__all__ = ["ENTRIES", "mode", "set_mode", "ready", "wait", "wait_for", "light_work", "cache_place",
+           "helpers_at_work"]
 
 # each entry point, and the module whose warm_up(entry) runs it once with the argument types
 # of every call (this module sits below the rooms and names them only here)
@@ -66,6 +76,7 @@ ENTRIES = {"closed_form_one_input": "kinelab.kinematics._evaluate",
            "closed_form": "kinelab.kinematics._evaluate",
            "continuation_one_input": "kinelab.kinematics._evaluate",
            "continuation": "kinelab.kinematics._evaluate",
+           "driven_angles": "kinelab.kinematics._evaluate",
            "dynamics_one_input": "kinelab.dynamics._compiled",
            "dynamics": "kinelab.dynamics._compiled"}
 _MODES = ("auto", "compiled", "numpy")
@@ -86,6 +97,7 @@ _in_progress: set[str] = set()     # entry points being made ready (by the threa
 _starting = threading.Lock()
 _helper: subprocess.Popen | None = None
 _mode = ""
+_light = contextvars.ContextVar("kinelab_light_work", default=False)
 
 
 def mode() -> str:
@@ -104,11 +116,23 @@ def set_mode(value: str) -> None:
     _mode = value
 
 
+@contextlib.contextmanager
+def light_work(light: bool = True):
+    """Inside (when ``light``), in "auto" mode: entry points not loaded in this process run on
+    the numpy form rather than being loaded (see the module); a cold cache still starts the
+    helper.  "compiled" and "numpy" modes are unchanged."""
+    token = _light.set(bool(light) or _light.get())
+    try:
+        yield
+    finally:
+        _light.reset(token)
+
+
 def ready(entry: str) -> bool:
     """Whether to run this entry point compiled now.  In "auto" mode an entry point in the
-    cache is loaded here, in this thread; one that is not starts the helper (unless one is
-    at work on the cache) and runs on the numpy form meanwhile.  In "compiled" mode it is
-    loaded or compiled here."""
+    cache is loaded here, in this thread (unless the work is light: :func:`light_work`); one
+    that is not starts the helper (unless one is at work on the cache) and runs on the numpy
+    form meanwhile.  In "compiled" mode it is loaded or compiled here."""
     if _ready[entry].is_set():
         return True
     chosen = mode()
@@ -125,7 +149,7 @@ def ready(entry: str) -> bool:
     if now < _next_look[entry]:
         return False
     _next_look[entry] = now + _LOOK_EVERY
-    return _look(entry, start=True)
+    return _look(entry, start=True, load=not _light.get())
 
 
 def wait_for(entry: str) -> bool:
@@ -169,15 +193,16 @@ def _await(entry: str, deadline: float | None) -> bool:
     return _ready[entry].is_set()
 
 
-def _look(entry: str, start: bool) -> bool:
-    """Load the entry point if its stamp says it is in the cache; note a failure to compile
-    it; else (``start``) have the helper compile it.  Whether it is ready."""
+def _look(entry: str, start: bool, load: bool = True) -> bool:
+    """Load the entry point if its stamp says it is in the cache (and ``load``); note a
+    failure to compile it; else (``start``) have the helper compile it.  Whether it is
+    ready."""
     place = cache_place()
     if place is None:
         return False
     state = _stamp(place, entry)
     if state == "":
-        return _load(entry, blocking=False)
+        return load and _load(entry, blocking=False)
     if state is not None:
         _fail(entry, state)
     elif start:

@@ -10,8 +10,9 @@ milliseconds, wherever it is.  Work inside one long C call stops when that call 
 The exception is a :class:`BaseException` of a class made for each call, so neither
 sympy's ``except Exception`` nor an inner limit takes it for its own; the watchdog raises
 it again every :data:`_AGAIN` seconds until the call has ended, in case a bare ``except:``
-swallowed it, and holds its shot while the thread imports a module (which a shot would leave
-half made).  The call's end and the watchdog's shot exclude each other without a lock:
+swallowed it (or it landed in a finalizer or a weak reference's callback, which cannot
+raise: Python reports it as unraisable, and kinelab's hook says nothing of it), and holds its
+shot while the thread imports a module (which a shot would leave half made).  The call's end and the watchdog's shot exclude each other without a lock:
 the watchdog tests "ended?" and shoots in one step (no bytecode boundary between the test
 and the C call, so no other thread runs in between), and the working thread marks the end
 and then withdraws a shot not yet delivered, both C calls; so nothing is raised after
@@ -42,6 +43,19 @@ _withdraw = ctypes.PYFUNCTYPE(ctypes.c_int, ctypes.c_ulong, ctypes.c_void_p)(
 
 class _Expired(BaseException):
     """Raised in the working thread at its deadline (a class of its own per call)."""
+
+
+def _unraisable(previous):
+    """A ``sys.unraisablehook`` that passes everything to ``previous`` but a deadline's shot
+    delivered where it cannot be raised (a finalizer, a weak reference's callback: the
+    watchdog shoots again), which would otherwise print a traceback in a server's log."""
+    def hook(unraisable):
+        if not isinstance(unraisable.exc_value, _Expired):
+            previous(unraisable)
+    return hook
+
+
+sys.unraisablehook = _unraisable(sys.unraisablehook)
 
 
 def _importing(thread: int) -> bool:

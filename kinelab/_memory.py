@@ -27,7 +27,7 @@ import numpy as np
 from kinelab._files import byte_size
 from kinelab.errors import MemoryBudgetError, ModelError, describe
 
-_SMALLEST = 1 << 20                 # smaller arrays come from the allocator's own free lists
+SMALLEST = 1 << 20                  # smaller arrays come from the allocator's own free lists
 _DEFAULT_LIMIT = 1 << 30
 
 
@@ -47,7 +47,7 @@ class _Pool:
     def empty(self, shape: tuple[int, ...], dtype=float) -> np.ndarray:
         dtype = np.dtype(dtype)
         nbytes = math.prod(shape) * dtype.itemsize
-        if nbytes < _SMALLEST or nbytes > self.limit:
+        if nbytes < SMALLEST or nbytes > self.limit:
             return np.empty(shape, dtype)
         with self._lock:
             block = self._take(nbytes)

@@ -56,11 +56,14 @@ class ModelError(KinelabError, ValueError):
         self.problems = tuple(problems)
         self.source = source
         prefix = f"{shown_path(source)}: " if source else ""
-        lines = [prefix + p for p in self.problems[:PROBLEMS_SHOWN]]
-        if len(self.problems) > PROBLEMS_SHOWN:
-            lines.append(f"{prefix}and {len(self.problems) - PROBLEMS_SHOWN:,} more problems; "
-                         "fix these first")
-        super().__init__("\n".join(lines))
+        super().__init__("\n".join(prefix + p for p in self.shown_problems()))
+
+    def shown_problems(self) -> tuple[str, ...]:
+        """The lines of the message, without the file's name: the first
+        :data:`PROBLEMS_SHOWN` problems, then how many more there are."""
+        more = len(self.problems) - PROBLEMS_SHOWN
+        return self.problems[:PROBLEMS_SHOWN] + (
+            (f"and {more:,} more problems; fix these first",) if more > 0 else ())
 
 
 class AssemblyError(KinelabError, ValueError):

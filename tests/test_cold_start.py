@@ -2,10 +2,10 @@
 
 Each check runs in a fresh Python process, as a user's first command does.  Timings are
 the benchmark's (benchmarks/cold_start.py); here: which form of the kernel answers, that
-a warm cache is loaded in the process itself, that at most one helper process compiles
-for a cache however many processes start together, that a killed helper blocks nobody,
-that processes exit cleanly whatever the helper is doing, and that both forms give the
-same numbers.  A helper started on a cache of a test's own is stopped by that test.
+a warm cache is loaded in the process itself (unless the work is light), that at most one
+helper process compiles for a cache however many processes start together, that a killed
+helper blocks nobody, that processes exit cleanly whatever the helper is doing, and that
+both forms give the same numbers.  A helper started on a cache of a test's own is stopped by that test.
 """
 from __future__ import annotations
 
@@ -167,6 +167,10 @@ _SHORT = textwrap.dedent("""
         threading.Thread(target=kl.analyze, args=(fb, np.linspace(0.0, 1.0, 10)),
                          daemon=True).start()
         time.sleep(0.05)
+    elif "light" in sys.argv[1:]:        # a short command's analysis
+        with _compiled.light_work():
+            kl.analyze(fb, np.linspace(0.0, 2.0 * np.pi, 361))
+            kl.kinematics.reachable_ranges(fb)
     else:
         kl.analyze(fb, np.linspace(0.0, 2.0 * np.pi, 361))
     first = time.perf_counter() - t
@@ -183,7 +187,8 @@ _SHORT = textwrap.dedent("""
         simulate(pendulum, (0.0, 0.2), 0.5, 0.0, loads=Loads(gravity=(0.0, -9.81)))
     helper = _compiled._helper
     print(json.dumps({"compiled": sorted(n for n, e in _compiled._ready.items() if e.is_set()),
-                      "helper": None if helper is None else helper.pid, "first": first}))
+                      "helper": None if helper is None else helper.pid, "first": first,
+                      "numba": "numba" in sys.modules}))
 """)
 
 
@@ -283,6 +288,23 @@ def test_a_warm_cache_is_loaded_in_the_process(warm):
     assert [r["helper"] for r in reports] == [None] * 8
     assert all("closed_form_one_input" in r["compiled"] for r in reports)
     assert set(_compiled.helpers_at_work(warm)) <= before
+
+
+@POSIX
+def test_light_work_leaves_a_warm_cache_unloaded(warm):
+    """Light work (a short command's few hundred samples of a closed-form plan) runs on the
+    numpy form: numba is not even imported, and no helper is started."""
+    light = _report(_short("light"))
+    assert light["compiled"] == [] and light["helper"] is None and not light["numba"]
+
+
+@POSIX
+def test_light_work_on_a_cold_cache_starts_the_helper(cold):
+    """Light work on an empty cache still has the helper compile the kernel for later."""
+    cache, place = cold
+    light = _report(_short("light", cache=cache))
+    assert light["compiled"] == [] and not light["numba"]
+    assert light["helper"] is not None and _compiled.helpers_at_work(place) == [light["helper"]]
 
 
 @POSIX

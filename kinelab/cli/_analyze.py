@@ -11,10 +11,9 @@ from kinelab import io, kinematics, solvers, verify
 from kinelab._files import outputs
 from kinelab.cli._format import configuration_text, summary_text
 from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, VERIFY, certificate_path, errors_from,
-                               output_path, output_units, parse_inputs, read_model, report, stem,
-                               sweep)
+                               light_work, output_path, output_units, parse_inputs, read_model,
+                               report, stem, sweep)
 from kinelab.io._modelfile import MAX_SAMPLES
-from kinelab.io._results import table_too_large
 from kinelab.errors import AssemblyError, KinelabError, ModelError, shown_path
 from kinelab.kinematics import KinematicSolution
 from kinelab.kinematics._columns import INPUT_SI_UNITS, table_width
@@ -87,6 +86,7 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
     mf = read_model(model)
     if speed is not None:
         mf = with_speeds(mf, parse_inputs(speed, mf, "--speed", rate=True))
+    light_work(mf, samples)
     m = mf.mechanism
     units = output_units(mf.units, si, degrees)
     if at is not None:
@@ -121,6 +121,7 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
 
 def check_table_size(mf: io.ModelFile, samples: int | None, kind: str) -> None:
     """Refuse, before the sweep, a table too large to write as ``kind`` in about 30 s."""
+    from kinelab.io._results import table_too_large
     with errors_from(mf):
         width = table_width(kinematics.plan(mf.mechanism))
     problem = table_too_large(kind, mf.sample_count(samples), width)
@@ -159,6 +160,7 @@ def check(model, si, degrees):
     input range (in the file's units, or SI with --si).  Exit status 2 when something is
     wrong."""
     mf = read_model(model)
+    light_work(mf)
     m = mf.mechanism
     units = output_units(mf.units, si, degrees)
     with errors_from(mf):
@@ -209,6 +211,8 @@ def check(model, si, degrees):
 def _probe_loads(mf, q, qd):
     """Evaluate the [dynamics] forces and torques on the sweep (inputs q, rates qd), at the
     times `kinelab dynamics` gives them: a law that is not finite there is reported now."""
+    if not mf.mechanism.parameters.get("dynamics"):
+        return          # no [dynamics] section: nothing to evaluate
     from kinelab import dynamics
     from kinelab.cli._dynamics import times
     loads = dynamics.DynamicsSetup.from_model(mf.mechanism).loads

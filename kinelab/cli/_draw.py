@@ -6,8 +6,8 @@ import click
 from kinelab import io
 from kinelab._files import output, outputs, safe_name
 from kinelab.cli._analyze import MODEL, SAMPLES
-from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, errors_from, output_path, output_units,
-                               read_model, said_written, stem, sweep)
+from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, errors_from, light_work, output_path,
+                               output_units, read_model, said_written, stem, sweep)
 from kinelab.errors import ModelError, quoted, shown, suggest
 
 __all__ = ["plot", "animate"]
@@ -64,6 +64,7 @@ def plot(model, out, formats, names, samples, si, degrees, change_points):
     # checked before the sweep, which can be long
     _check_names("--outputs", chosen, [*m.link_names, *(j.name for j in m.joints if j.type == "P"),
                                        *m.point_names], f"links, slides or points of {shown(m.name)}")
+    light_work(mf, samples)
     sol = sweep(mf, samples, change_points=change_points)
     figures = []
     with errors_from(mf, "outputs"):
@@ -121,6 +122,7 @@ def animate(model, out, fmt, trace, frames, fps, centers, velocities, samples, s
         fmt = "mp4" if kplot.can_write_mp4() else "gif"
     _check_names("--trace", _names(trace), mf.mechanism.point_names,
                  f"points of {shown(mf.mechanism.name)}")
+    light_work(mf, samples)
     sol = sweep(mf, samples, change_points=change_points)
 
     def write(path):

@@ -16,7 +16,6 @@ from kinelab.cli._main import (DEGREES, SI, VERIFY, certificate_path, errors_fro
                                read_model, report, said_written)
 from kinelab.io import ModelFile
 from kinelab.io._modelfile import MAX_SAMPLES, sweep_times
-from kinelab.dynamics._inverse import table_width
 from kinelab.model import Units
 from kinelab.errors import ModelError, describe, shown_path
 
@@ -41,6 +40,8 @@ def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
     them, ``<name>`` being the model's name made safe (:func:`safe_name`); with ``verify``,
     the result's certificate too, as ``<name>_dynamics_certificate.json``.  Returns the
     result, the paths written (the certificate's last) and the certificate."""
+    from kinelab.dynamics._inverse import table_width   # not needed by times (kinelab check)
+
     units = mf.units if units is None else units
     m = mf.mechanism
     rows, width = mf.sample_count(samples), table_width(m)

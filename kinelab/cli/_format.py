@@ -2,11 +2,14 @@
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
-from kinelab.io import Summary
 from kinelab.kinematics import KinematicSolution
 from kinelab.kinematics._columns import column_name
 from kinelab.model import Units
+
+if TYPE_CHECKING:       # io's summary module is only needed by the commands that print one
+    from kinelab.io import Summary
 
 __all__ = ["summary_text", "configuration_text"]
 

@@ -1,5 +1,5 @@
-"""The ``kinelab`` command group and what its commands share: reading a model file, naming
-outputs, sweeping with a progress bar, and turning kinelab errors into exit status 2."""
+"""What the ``kinelab`` commands share: reading a model file, naming outputs, sweeping with a
+progress bar, options and their checks.  The group itself is in ``_group.py``."""
 from __future__ import annotations
 
 import contextlib
@@ -12,92 +12,19 @@ from pathlib import Path
 import click
 import numpy as np
 
-from kinelab import kinematics
+from kinelab import _compiled, kinematics
 from kinelab._files import safe_name
-from kinelab.errors import KinelabError, ModelError, one_line, quoted, shown, shown_path
+from kinelab.errors import ModelError, quoted, shown, shown_path
 from kinelab.io import ModelFile
 from kinelab.io._text import NUMBER, PLAIN_NUMBER, number
 from kinelab.io._modelfile import errors_from
+from kinelab.cli._group import main
 from kinelab.kinematics import KinematicSolution
 from kinelab.model import ANGLE_UNITS, LENGTH_UNITS, Units, range_problem, rate_problem
 
 __all__ = ["main", "read_model", "errors_from", "sweep", "output_path", "parse_inputs", "stem",
            "SI", "DEGREES", "VERIFY", "report", "said_written", "certificate_path", "output_units",
-           "Number", "about"]
-
-BAD_INPUT = 2      # exit status for a bad file, option or input value
-
-
-class _Group(click.Group):
-    """A click group whose commands report kinelab errors in one line each, no traceback:
-    exit status 2 for bad input (the errors that are also ValueErrors, and outputs that
-    cannot be written, and options the command line cannot parse), 1 otherwise."""
-
-    def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
-        """click's main, with its usage errors (an unknown option, a value of the wrong
-        type, a missing file) on one line like every other error, pointing to --help."""
-        if not standalone_mode:
-            return super().main(args, prog_name, complete_var, False, **extra)
-        try:
-            code = super().main(args, prog_name, complete_var, False, **extra)
-        except click.exceptions.NoArgsIsHelpError as exc:     # a bare 'kinelab': the help
-            exc.show()
-            sys.exit(exc.exit_code)
-        except click.ClickException as exc:
-            ctx = getattr(exc, "ctx", None)
-            hint = f" (see '{ctx.command_path} --help')" if ctx is not None else ""
-            click.echo(f"kinelab: error: {one_line(exc.format_message())}{hint}", err=True)
-            sys.exit(exc.exit_code)
-        except click.Abort:
-            click.echo("Aborted!", err=True)
-            sys.exit(1)
-        sys.exit(code if isinstance(code, int) else 0)
-
-    def invoke(self, ctx: click.Context):
-        try:
-            return super().invoke(ctx)
-        except KinelabError as exc:
-            for line in str(exc).splitlines() or [type(exc).__name__]:
-                click.echo(f"kinelab: error: {line}", err=True)
-            ctx.exit(BAD_INPUT if isinstance(exc, ValueError) else 1)
-        except BrokenPipeError:     # the reader went away (| head): nothing more to say
-            devnull = os.open(os.devnull, os.O_WRONLY)
-            os.dup2(devnull, sys.stdout.fileno())
-            ctx.exit(1)
-        except OSError as exc:      # an output that cannot be written: say where, no traceback
-            where = f" {exc.filename}" if exc.filename else ""
-            click.echo(f"kinelab: error: cannot write{where}: {exc.strerror or exc}", err=True)
-            ctx.exit(BAD_INPUT)
-
-
-def _set_budget(ctx, param, value):
-    from kinelab._memory import memory_budget
-    if value is not None:
-        try:
-            memory_budget(value)
-        except KinelabError as exc:
-            raise click.BadParameter(str(exc).removeprefix("max_bytes: ")) from None
-    else:       # the environment's budget, read now: a bad one is said before any work
-        try:
-            memory_budget()
-        except KinelabError as exc:
-            raise click.UsageError(str(exc)) from None
-    return value
-
-
-@click.group("kinelab", cls=_Group, context_settings={"help_option_names": ["-h", "--help"]})
-@click.version_option(package_name="kinelab")
-@click.option("--memory-budget", metavar="SIZE", default=None, expose_value=False, is_eager=True,
-              callback=_set_budget,
-              help="Largest result kinelab builds, e.g. 8G (default 2G, or the environment "
-                   "variable KINELAB_MEMORY_BUDGET); larger requests are refused, with the "
-                   "estimate.")
-def main() -> None:
-    """kinelab: analysis of planar mechanisms described in model files.
-
-    A model file (TOML or JSON, see docs/model-format.md) describes a linkage; the commands
-    check it, sweep its input and write tables, plots and animations.
-    """
+           "Number", "about", "light_work"]
 
 
 def read_model(path: str) -> ModelFile:
@@ -166,6 +93,22 @@ def output_units(file_units: Units, si: bool, degrees: bool) -> Units:
     return Units(u.length, "deg") if degrees else u
 
 
+# a sweep of this many samples shows a progress bar on a terminal (Newton groups: BAR_FROM_NEWTON)
+BAR_FROM = 20000
+BAR_FROM_NEWTON = 200
+
+
+def light_work(mf: ModelFile, samples: int | None = None) -> None:
+    """Run the rest of the command's analyses as light work (``_compiled.light_work``) when
+    the file's plan is closed-form and its sweep shows no progress bar: they take
+    milliseconds on the kernel's numpy form, less than loading the compiled kernel does
+    (numba's start-up).  Newton groups and larger sweeps load it as before."""
+    with errors_from(mf):
+        p = kinematics.plan(mf.mechanism)
+    light = not p.uses_newton and mf.sample_count(samples) < BAR_FROM
+    click.get_current_context().with_resource(_compiled.light_work(light))
+
+
 def sweep(mf: ModelFile, samples: int | None = None, *, progress: bool | None = None,
           change_points: str = "smooth") -> KinematicSolution:
     """Analyse the file's sweep; on a terminal, in chunks with a progress bar; through
@@ -176,7 +119,7 @@ def sweep(mf: ModelFile, samples: int | None = None, *, progress: bool | None = 
         progress = sys.stderr.isatty()
     with errors_from(mf):
         p = kinematics.plan(m)
-    big = len(q) >= (200 if p.uses_newton else 20000)
+    big = len(q) >= (BAR_FROM_NEWTON if p.uses_newton else BAR_FROM)
     if not (progress and big):
         return mf.analyze(samples, at_change_point=change_points)
     with errors_from(mf, "inputs"):

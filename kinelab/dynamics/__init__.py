@@ -13,15 +13,20 @@ vectorised product of K, L and the mass data over the samples.
 - :func:`flywheel` -- flywheel sizing from a torque curve;
 - :func:`equations_of_motion` -- the equations in symbols (sympy), for open chains.
 """
-from kinelab._expressions import parse_expression, parse_table, to_sympy
-from kinelab.dynamics._flywheel import Flywheel, flywheel
-from kinelab.dynamics._forward import Simulation, SimulationBatch, simulate
-from kinelab.dynamics._inverse import InverseDynamics, inverse
-from kinelab.dynamics._loads import (STANDARD_GRAVITY, Damper, Law, Loads, PointForce, Spring,
-                                     Torque)
-from kinelab.dynamics._masses import LinkMass, MassProperties, PointMass
-from kinelab.dynamics._setup import DynamicsSetup
-from kinelab.dynamics._symbolic import EquationsOfMotion, equations_of_motion
+from kinelab._lazy import exports
+
+# each public name, imported from its module on first use (see kinelab._lazy)
+__getattr__, __dir__ = exports(__name__, {
+    "kinelab._expressions": ("parse_expression", "parse_table", "to_sympy"),
+    "kinelab.dynamics._flywheel": ("Flywheel", "flywheel"),
+    "kinelab.dynamics._forward": ("Simulation", "SimulationBatch", "simulate"),
+    "kinelab.dynamics._inverse": ("InverseDynamics", "inverse"),
+    "kinelab.dynamics._loads": ("STANDARD_GRAVITY", "Damper", "Law", "Loads", "PointForce",
+                                "Spring", "Torque"),
+    "kinelab.dynamics._masses": ("LinkMass", "MassProperties", "PointMass"),
+    "kinelab.dynamics._setup": ("DynamicsSetup",),
+    "kinelab.dynamics._symbolic": ("EquationsOfMotion", "equations_of_motion"),
+})
 
 __all__ = ["inverse", "InverseDynamics", "simulate", "Simulation", "SimulationBatch", "Loads", "PointForce", "Torque", "Spring", "Damper",
            "Law", "STANDARD_GRAVITY", "MassProperties", "LinkMass", "PointMass",

@@ -14,16 +14,23 @@
   :func:`summary` (a sweep at a glance,
   as data).
 """
-from kinelab.io._modelfile import (ANGLE_UNITS, LENGTH_UNITS, SCHEMA, ModelFile, Outputs, Units,
-                                   from_json, from_toml, load, save, to_json, to_toml)
-from kinelab.io._curves import MeasuredCurve, read_curve
-from kinelab.io._linkage2d import from_linkage2d_json
-from kinelab.io._outline import Outline, outlines, to_dxf, to_svg
-from kinelab.io._pyslvs import IMPORT_SPEEDS, from_pyslvs, to_pyslvs
-from kinelab.io._results import RESULT_FORMATS, result_format, results_json, write_results
-from kinelab.io._task import Task, TASK_KINDS, load_task, read_task, solve_task, task_summary
-from kinelab.io._summary import (Extreme, QuickReturn, Summary, Transmission, default_outputs,
-                                 summary)
+from kinelab._lazy import exports
+
+# each public name, imported from its module on first use (see kinelab._lazy)
+__getattr__, __dir__ = exports(__name__, {
+    "kinelab.io._modelfile": ("ANGLE_UNITS", "LENGTH_UNITS", "SCHEMA", "ModelFile", "Outputs",
+                              "Units", "from_json", "from_toml", "load", "save", "to_json",
+                              "to_toml"),
+    "kinelab.io._curves": ("MeasuredCurve", "read_curve"),
+    "kinelab.io._linkage2d": ("from_linkage2d_json",),
+    "kinelab.io._outline": ("Outline", "outlines", "to_dxf", "to_svg"),
+    "kinelab.io._pyslvs": ("IMPORT_SPEEDS", "from_pyslvs", "to_pyslvs"),
+    "kinelab.io._results": ("RESULT_FORMATS", "result_format", "results_json", "write_results"),
+    "kinelab.io._task": ("Task", "TASK_KINDS", "load_task", "read_task", "solve_task",
+                         "task_summary"),
+    "kinelab.io._summary": ("Extreme", "QuickReturn", "Summary", "Transmission", "default_outputs",
+                            "summary"),
+})
 
 __all__ = ["load", "save", "ModelFile", "Units", "Outputs", "SCHEMA", "LENGTH_UNITS",
            "ANGLE_UNITS", "from_toml", "to_toml", "from_json", "to_json", "write_results",

@@ -11,27 +11,32 @@ Velocidades*, §4.6; Badan (IFG), *Análise de aceleração*) as data:
 :func:`acceleration_polygon`, :func:`kennedy_construction`, :func:`centrodes`,
 :func:`velocity_ratio`, and :func:`differentiate` for measured curves.
 """
-from kinelab.kinematics._analyze import (SINGULAR_TOL, AssemblyStatus, analyze, analyze_designs,
-                                         assembly_status, change_points, plan, reachable_ranges,
-                                         turns_fully)
-from kinelab.kinematics._assemble import (Assembly, SketchNotAssembled, assemble, pose,
-                                          reassemble)
-from kinelab.kinematics._branches import ChangePoint
-from kinelab.kinematics._centrodes import (Centrodes, KennedyConstruction, KennedyStep, centrodes,
-                                          kennedy_construction, velocity_ratio)
-from kinelab.kinematics._input_errors import SingularInput, UnreachableInput
-from kinelab.kinematics._instant_centers import (InstantCenter, InstantCenters, instant_center,
-                                                 instant_centers)
-from kinelab.kinematics._measures import TimeRatio, time_ratio, transmission_angle
-from kinelab.kinematics._plan import Plan, Step
-from kinelab.kinematics._polygons import (AccelerationDifference, AccelerationPolygon, LinkImage,
-                                         RelativeAcceleration, Side, VelocityPolygon,
-                                         acceleration_difference, acceleration_polygon,
-                                         relative_acceleration, velocity_polygon)
-from kinelab.kinematics._solution import (AccelerationComponents, DesignSolution, GuidePoint,
-                                          KinematicSolution)
-from kinelab.kinematics._tracker import Tracker
-from kinelab.solvers import Derivatives, differentiate
+from kinelab._lazy import exports
+
+# each public name, imported from its module on first use (see kinelab._lazy)
+__getattr__, __dir__ = exports(__name__, {
+    "kinelab.kinematics._analyze": ("SINGULAR_TOL", "AssemblyStatus", "analyze", "analyze_designs",
+                                    "assembly_status", "change_points", "plan", "reachable_ranges",
+                                    "turns_fully"),
+    "kinelab.kinematics._assemble": ("Assembly", "SketchNotAssembled", "assemble", "pose",
+                                     "reassemble"),
+    "kinelab.kinematics._branches": ("ChangePoint",),
+    "kinelab.kinematics._centrodes": ("Centrodes", "KennedyConstruction", "KennedyStep",
+                                      "centrodes", "kennedy_construction", "velocity_ratio"),
+    "kinelab.kinematics._input_errors": ("SingularInput", "UnreachableInput"),
+    "kinelab.kinematics._instant_centers": ("InstantCenter", "InstantCenters", "instant_center",
+                                            "instant_centers"),
+    "kinelab.kinematics._measures": ("TimeRatio", "time_ratio", "transmission_angle"),
+    "kinelab.kinematics._plan": ("Plan", "Step"),
+    "kinelab.kinematics._polygons": ("AccelerationDifference", "AccelerationPolygon", "LinkImage",
+                                     "RelativeAcceleration", "Side", "VelocityPolygon",
+                                     "acceleration_difference", "acceleration_polygon",
+                                     "relative_acceleration", "velocity_polygon"),
+    "kinelab.kinematics._solution": ("AccelerationComponents", "DesignSolution", "GuidePoint",
+                                     "KinematicSolution"),
+    "kinelab.kinematics._tracker": ("Tracker",),
+    "kinelab.solvers": ("Derivatives", "differentiate"),
+})
 
 __all__ = ["analyze", "analyze_designs", "DesignSolution", "plan", "reachable_ranges", "turns_fully",
            "KinematicSolution", "AccelerationComponents",

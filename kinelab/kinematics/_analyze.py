@@ -8,6 +8,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from kinelab import _compiled
 from kinelab import _memory as memory
 from kinelab.errors import AssemblyError, ModelError, check_choice, describe, shown
 from kinelab.kinematics import _codes as k
@@ -16,6 +17,7 @@ from kinelab.kinematics._branches import (MAX_PERIODS, BranchMap, ChangePoint, b
                                           branched_ops)
 from kinelab.kinematics._columns import INPUT_SI_UNITS
 from kinelab.kinematics._input_errors import SingularInput, UnreachableInput
+from kinelab.kinematics._evaluate import PARALLEL_FROM, outputs
 from kinelab.kinematics._evaluate import run as _run
 from kinelab.kinematics._plan import Plan, build_plan
 from kinelab.kinematics._solution import DesignSolution, KinematicSolution
@@ -92,6 +94,7 @@ def _rates(name: str, value: ArrayLike, M: int, shape: tuple[int, ...]) -> np.nd
 INPUT_TURNS = 1_000_000
 MAX_SEARCH_SAMPLES = 1_000_000    # samples of a turn a search for limit positions may take
 Q_LIMITS = {"angle": INPUT_TURNS * 2 * math.pi, "slide": MAX_LENGTH}
+_SMALL_SWEEP = 2 * PARALLEL_FROM        # samples below which a sweep runs on one thread
 
 
 def _within_limits(p: Plan, q2: np.ndarray, qd2: np.ndarray, qdd2: np.ndarray) -> None:
@@ -119,6 +122,17 @@ def _within_limits(p: Plan, q2: np.ndarray, qd2: np.ndarray, qdd2: np.ndarray) -
 def _normalise_q(q, qd, qdd, M: int, p: Plan):
     """q (N, M), qd and qdd (N, M) or (1, M), all new arrays within the limits of the
     plan ``p``'s inputs, and whether q was one sample."""
+    if M == 1 and type(qd) is float and type(qdd) is float and abs(qd) <= MAX_RATE \
+            and abs(qdd) <= MAX_RATE:
+        # the common call, one input swept at a constant rate: checked in a few operations
+        # (NaN fails every comparison, and goes on to the checks below, which name it)
+        limit = Q_LIMITS[p.input_kinds[0]]
+        if type(q) is float:
+            if abs(q) <= limit:
+                return np.array([[q]]), np.array([[qd]]), np.array([[qdd]]), True
+        elif type(q) is np.ndarray and q.dtype == np.float64 and q.ndim == 1 and q.size \
+                and -limit <= q.min() and q.max() <= limit:
+            return q.reshape(-1, 1).copy(), np.array([[qd]]), np.array([[qdd]]), False
     qa = _finite("q", q)
     if M == 1:
         if qa.ndim > 1:
@@ -136,7 +150,12 @@ def _normalise_q(q, qd, qdd, M: int, p: Plan):
 
 def _per_sample(rates: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
     """Rates of shape (N, M) as given, or their single row as a read-only (N, M) view."""
-    return rates if rates.shape == shape else np.broadcast_to(rates, shape)
+    if rates.shape == shape:
+        return rates
+    # np.broadcast_to's view, made directly (it takes ten times as long)
+    view = np.ndarray(shape, rates.dtype, rates, 0, (0, rates.strides[1] if shape[1] > 1 else 0))
+    view.flags.writeable = False
+    return view
 
 
 def change_points(mechanism: Mechanism, lo: float, hi: float, *,
@@ -216,9 +235,51 @@ def _require_results(p: Plan, shape: tuple[int, ...], M: int) -> None:
     """Refuse a sweep whose results (and copies of its inputs) exceed the memory budget."""
     N = math.prod(shape[:-1] if M > 1 and len(shape) > 1 else shape)
     n = len(p.stored_items)
-    memory.require(N * (8 * n * (3 + M + M * M) + 24 * M + 41),
-                   f"the results of {N:,} samples ({n} coordinates each, with K, L and rates)",
-                   "analyse fewer samples at a time (a sweep in pieces continues with start=)")
+    nbytes = N * (8 * n * (3 + M + M * M) + 24 * M + 41)
+    if nbytes > memory.memory_budget():          # (the message only then)
+        memory.require(nbytes, f"the results of {N:,} samples ({n} coordinates each, with K, "
+                       "L and rates)", "analyse fewer samples at a time (a sweep in pieces "
+                       "continues with start=)")
+
+
+def _run_small(p: Plan, q, qd, qdd):
+    """The analysis of a sweep of one input at constant rates on one thread, a plan in
+    closed form without change points, in one call of the compiled kernel
+    (``run_small_one_input``: the checks of q, its copy, the samples, and which samples do
+    not assemble and which are singular); None for anything else, or inputs beyond the
+    limits (the general checks name them).  The numbers are those of the general path, to
+    the bit: the same kernel runs the samples."""
+    if not (p.groups is None and type(qd) is float and type(qdd) is float
+            and abs(qd) <= MAX_RATE and abs(qdd) <= MAX_RATE):
+        return None
+    if type(q) is float:
+        qs, single = np.array([q]), True
+    elif (type(q) is np.ndarray and q.dtype == np.float64 and q.ndim == 1 and q.size
+          and q.flags.c_contiguous):
+        qs, single = q, False
+    else:
+        return None
+    if len(qs) >= _SMALL_SWEEP or not _compiled.ready("closed_form_one_input"):
+        return None
+    done = run_small(p, qs, qd, qdd)
+    return None if done is None else (done[0], np.array([[qd]]), np.array([[qdd]]), single,
+                                      *done[1:])
+
+
+def run_small(p: Plan, q: np.ndarray, qd: float, qdd: float):
+    """The compiled kernel's ``run_small_one_input`` at the inputs q (N,): q (N, 1), the
+    outputs, which samples assemble and which are singular, how many of each; or None where
+    an input is beyond the limits."""
+    from kinelab.kinematics import _kernel
+    N = len(q)
+    q2 = np.empty((N, 1))
+    _, stored, out = outputs(p, q2)
+    assembled, singular = np.empty(N, bool), np.empty(N, bool)
+    checked, failed, flagged = _kernel.run_small_one_input(
+        q, qd, qdd, Q_LIMITS[p.input_kinds[0]], p.ops_i, p.ops_f, p.const_items,
+        p.const_values, p.n_items, p.n_angles, stored, SINGULAR_TOL, q2, out["jets"],
+        out["rates"], out["diag"], out["status"], out["fail"], assembled, singular)
+    return (q2, out, assembled, singular, failed, flagged) if checked else None
 
 
 def _branch_map(p: Plan, M: int, followed: str) -> BranchMap | None:
@@ -550,31 +611,42 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
         shape = None
     if shape is not None:
         _require_results(p, shape, M)            # before anything of that size is made
-    q2, qd2, qdd2, single = _normalise_q(q, qd, qdd, M, p)
-    resume = None
-    if start is not None:
-        if not isinstance(start, KinematicSolution) or start.mechanism != mechanism:
-            raise ModelError("start: expected an earlier KinematicSolution of this mechanism")
-        if p.groups is not None:
-            # the state must be of this plan's Newton groups (another method solves others)
-            if start.newton_state is None or start.plan.groups is None or not all(
-                    np.array_equal(a, b) for a, b in zip(start.plan.groups, p.groups)):
-                raise ModelError("start: the earlier analysis used another method; analyze "
-                                 "with the same method to continue from it")
-            resume = start.newton_state
     bmap = _branch_map(p, M, at_change_point)
-    out = _solve(p, bmap, q2, qd2, qdd2, resume)
+    quick = _run_small(p, q, qd, qdd) if start is None and bmap is None and M == 1 else None
+    if quick is not None:
+        q2, qd2, qdd2, single, out, ok, singular, failed, flagged = quick
+    else:
+        q2, qd2, qdd2, single = _normalise_q(q, qd, qdd, M, p)
+        resume = None
+        if start is not None:
+            if not isinstance(start, KinematicSolution) or start.mechanism != mechanism:
+                raise ModelError("start: expected an earlier KinematicSolution of this mechanism")
+            if p.groups is not None:
+                # the state must be of this plan's Newton groups (another method solves others)
+                if start.newton_state is None or start.plan.groups is None or not all(
+                        np.array_equal(a, b) for a, b in zip(start.plan.groups, p.groups)):
+                    raise ModelError("start: the earlier analysis used another method; analyze "
+                                     "with the same method to continue from it")
+                resume = start.newton_state
+        out = _solve(p, bmap, q2, qd2, qdd2, resume)
+        ok = out["status"] == k.ST_OK
+        failed = np.count_nonzero(out["status"])
+        singular = flagged = None
     jets, rates, diag = out["jets"], out["rates"], out["diag"]
-    ok = out["status"] == k.ST_OK
-    if not ok.all():
+    if failed:                                   # some sample did not assemble
         bad = np.flatnonzero(~ok)
         if unreachable == "raise":
             raise _unreachable(p, mechanism, method, out, q2, bad)
         jets[bad] = np.nan
         rates[bad] = np.nan
         diag[bad] = np.nan
-    singular = ok & (diag[:, 1] < SINGULAR_TOL)
-    if singular.any():
+        if singular is None:
+            singular = ok & (diag[:, 1] < SINGULAR_TOL)
+    elif singular is None:
+        singular = diag[:, 1] < SINGULAR_TOL
+    if flagged is None:
+        flagged = np.count_nonzero(singular)
+    if flagged:
         policy = at_singular if at_singular != "auto" else ("raise" if single else "flag")
         if policy == "raise":
             i = int(np.flatnonzero(singular)[0])
@@ -582,12 +654,13 @@ def analyze(mechanism: Mechanism, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayL
                                 **singular_kind(mechanism, q2[i], method, at_change_point))
         jets[singular, :, 1:] = np.nan
         rates[singular] = np.nan
-    sol = KinematicSolution(
+    sol = KinematicSolution._made(
         plan=p, q=q2, qd=_per_sample(qd2, q2.shape), qdd=_per_sample(qdd2, q2.shape),
         stored_jets=jets, stored_rates=rates,
         det_J=diag[:, 0], singularity=diag[:, 1], singular=singular, assembled=ok,
         single=single, newton_state=out.get("state"),
-        change_points=bmap.change_points(float(q2.min()), float(q2.max())) if bmap else ())
+        change_points=bmap.change_points(float(q2.min()), float(q2.max())) if bmap else (),
+        certificate=None, constants=None)
     if p.redundant:
         _check_redundant(p, sol)
     return sol

@@ -80,7 +80,7 @@ HEADER = 7  # plan_i starts with n_items, n_angles, ops, ops_i columns, ops_f co
 
 
 def pack_plan(ops_i, ops_f, const_items, const_values, n_items, n_angles, stored):
-    """The arguments of the kernel's ``run_one_sample`` describe a plan: (plan_i, plan_f)."""
+    """A plan for the kernel's one-sample entries (``evaluate_one_sample``): (plan_i, plan_f)."""
     head = [n_items, n_angles, ops_i.shape[0], ops_i.shape[1], ops_f.shape[1],
             len(const_items), len(stored)]
     plan_i = np.concatenate([head, ops_i.ravel(), const_items, stored]).astype(np.int64)
@@ -89,9 +89,39 @@ def pack_plan(ops_i, ops_f, const_items, const_values, n_items, n_angles, stored
 
 
 def one_sample_layout(n_stored, M):
-    """Where the kernel's ``run_one_sample`` writes in ``out``: the slices of the jets (n_stored,
+    """Where the kernel's one-sample entries write in ``out``: the slices of the jets (n_stored,
     1 + M + M*M), the rates (n_stored, 2), det J and the singularity measure, the gap and the
     failed operation, and the status; and the length of ``out``."""
     w = n_stored * (1 + M + M * M)
     r = w + 2 * n_stored
     return slice(0, w), slice(w, r), slice(r, r + 2), slice(r + 2, r + 4), r + 4, r + 5
+
+
+def pack_tracked(ops_i, ops_f, const_items, const_values, n_items, n_angles, stored, M):
+    """A plan for the kernel's ``run_tracked`` entries with the scratch space of its samples:
+    (ints, floats), two 2-D arrays.  ints: a row (n_items, n_angles, operations, ops_i
+    columns, ops_f columns, stored items), ops_i, a row of the stored items, two rows for the
+    lanes' status and failed operation, one for the status.  floats: ops_f, the jet of every
+    item (n_items rows of 1 + M + M*M: the constant items' values set, as each sample leaves
+    the others all written), then rows of scratch (see ``_kernel._tracked``) and the sample
+    x (3 rows of M)."""
+    n_ops, wi = ops_i.shape
+    wf = ops_f.shape[1]
+    w = 1 + M + M * M
+    ints = np.zeros((5 + n_ops, max(wi, len(stored), 8)), np.int64)
+    ints[0, :6] = n_items, n_angles, n_ops, wi, wf, len(stored)
+    ints[1:1 + n_ops, :wi] = ops_i
+    ints[1 + n_ops, :len(stored)] = stored
+    floats = np.zeros((n_ops + n_items + 9 + M, max(wf, w, 8)))
+    floats[:n_ops, :wf] = ops_f
+    floats[n_ops + np.asarray(const_items, np.int64), 0] = const_values
+    return ints, floats
+
+
+def tracked_layout(n_stored, M):
+    """Where the kernel's ``run_tracked`` entries write in ``out`` (2 n_stored + 2 rows of
+    1 + M + M*M, flat): the jets (rows 0 .. n_stored - 1), the rates (the next n_stored rows,
+    first two columns), det J and the singularity measure (the next row), the gap, the
+    failed operation and the status (the last row); and the length of ``out``."""
+    w = 1 + M + M * M
+    return w, (2 * n_stored + 2) * w

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import functools
 import os
-from concurrent.futures import ThreadPoolExecutor
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -13,9 +13,12 @@ from kinelab.kinematics import _codes as k
 from kinelab import _compiled
 from kinelab.kinematics._plan import Plan
 
+if TYPE_CHECKING:
+    from concurrent.futures import ThreadPoolExecutor
+
 __all__ = ["run", "run_compiled", "entry_point", "warm_up"]
 
-_PARALLEL_FROM = 4096      # samples per thread below which a sweep runs on the calling thread
+PARALLEL_FROM = 4096       # samples per thread below which a sweep runs on the calling thread
 _PIECE = 1 << 16           # samples a thread takes at a time: a thread that the system
                            # slows down leaves more of the sweep to the others
 
@@ -32,6 +35,7 @@ def _cpu_count() -> int:
 
 @functools.cache
 def _pool(workers: int) -> ThreadPoolExecutor:
+    from concurrent.futures import ThreadPoolExecutor   # with logging: only for large sweeps
     return ThreadPoolExecutor(max_workers=workers, thread_name_prefix="kinelab")
 
 
@@ -93,12 +97,14 @@ def outputs(p: Plan, q, ops_f=None, stored=None) -> tuple[np.ndarray, np.ndarray
     stored = p.stored_items if stored is None else np.asarray(stored, np.int64)
     N, M = q.shape
     n = len(stored)
-    memory.require(N * (8 * n * (3 + M + M * M) + 41),
-                   f"the results of {N:,} samples ({n} coordinates each, with K, L and rates)",
-                   "analyse fewer samples at a time (a sweep in pieces continues with start=)")
-    out = dict(jets=memory.empty((N, n, 1 + M + M * M)), rates=memory.empty((N, n, 2)),
-               diag=memory.empty((N, 2)), status=memory.empty((N,), np.int8),
-               fail=memory.empty((N, 2)))
+    nbytes = N * (8 * n * (3 + M + M * M) + 41)
+    if nbytes > memory.memory_budget():          # (the message only then)
+        memory.require(nbytes, f"the results of {N:,} samples ({n} coordinates each, with K, "
+                       "L and rates)", "analyse fewer samples at a time (a sweep in pieces "
+                       "continues with start=)")
+    empty = np.empty if nbytes < memory.SMALLEST else memory.empty    # small: no reuse
+    out = dict(jets=empty((N, n, 1 + M + M * M)), rates=empty((N, n, 2)),
+               diag=empty((N, 2)), status=empty((N,), np.int8), fail=empty((N, 2)))
     return ops_f, stored, out
 
 
@@ -118,6 +124,14 @@ def run_compiled(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None, desig
     from kinelab.kinematics import _kernel
     _, stored, out = outputs(p, q, ops_f, stored)
     N, M = q.shape
+    if p.groups is None and designs is None and M == 1 and N < 2 * PARALLEL_FROM:
+        # a small sweep of one design: on this thread, with the plan's own numbers
+        _kernel.run_closed_form_one_input(
+            q, qd, qdd, np.array([0, N], np.int64), 0, 1, p.ops_i,
+            (p.ops_f if ops_f is None else ops_f)[None], p.const_items, p.const_values[None],
+            p.n_items, p.n_angles, stored, out["jets"], out["rates"], out["diag"],
+            out["status"], out["fail"])
+        return out
     nums = Numbers(p, N, ops_f, start, designs)
     tail = (out["jets"], out["rates"], out["diag"], out["status"], out["fail"])
     if p.groups is None:
@@ -128,7 +142,7 @@ def run_compiled(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None, desig
 
         def piece(starts, d0, d1):
             run(q, qd, qdd, starts, d0, d1, *plan_args, *more)
-        workers = min(_threads(), N // _PARALLEL_FROM) if N >= 2 * _PARALLEL_FROM else 1
+        workers = min(_threads(), N // PARALLEL_FROM) if N >= 2 * PARALLEL_FROM else 1
         if workers <= 1:
             piece(nums.starts, 0, nums.D)
         elif nums.D == 1:   # the kernel releases the GIL: threads take pieces of the sweep in turn
@@ -168,6 +182,11 @@ def warm_up(name: str) -> None:
     one, two = np.array([[0.1], [0.2]]), np.array([[1.2, 1.9], [1.25, 1.95]])
     if name == "closed_form_one_input":
         run_compiled(plan(fourbar), one, one, one)
+        from kinelab.kinematics._analyze import run_small
+        run_small(plan(fourbar), np.array([0.1, 0.2]), 0.1, 0.1)
+    elif name == "driven_angles":
+        from kinelab.kinematics import _kernel
+        _kernel.driven_angles(two, 1, -1.0, np.empty(2))
     elif name == "closed_form":
         run_compiled(plan(fivebar), two, two, two)
     elif name == "continuation_one_input":
@@ -176,4 +195,6 @@ def warm_up(name: str) -> None:
         run_compiled(plan(fivebar, method="newton"), two, two, two)
     else:
         from kinelab.kinematics._tracker import Tracker
-        Tracker(fourbar)._positions_kernel.run_compiled(np.zeros((3, 1)), 0)
+        one = Tracker(fourbar)._solution_kernel
+        one.run_one_input(0.1, 0.2, 0.3, 0, np.empty(one.size))
+        Tracker(fivebar)._solution_kernel.run_compiled(np.repeat(two[0:1], 3, axis=0), 0)

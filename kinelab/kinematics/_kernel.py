@@ -1206,6 +1206,65 @@ def run_closed_form_one_input(q, qd, qdd, starts, d0, d1, ops_i, ops_f, const_it
 
 
 @_jit()
+def run_small_one_input(q, qd, qdd, limit, ops_i, ops_f, const_items, const_values, n_items,
+                        n_angles, stored, tol, o_q, o_jet, o_rate, o_diag, o_status, o_fail,
+                        o_assembled, o_singular):
+    """A sweep of one input at constant rates on the calling thread, as ``analyze`` takes
+    most: the inputs q (N,) checked (each within ``limit`` in size; else nothing more is
+    done, and the caller checks them in full) and copied to o_q (N, 1), the samples run
+    (:func:`_closed_form`, as :func:`run_closed_form_one_input` runs them) into the outputs
+    o_jet ... o_fail, and the samples that assemble and those below the singularity measure
+    ``tol`` marked (o_assembled, o_singular, (N,) bool).  Returns (inputs checked, how many
+    samples do not assemble, how many are singular)."""
+    N = q.shape[0]
+    for i in range(N):
+        o_q[i, 0] = q[i]
+        if not abs(q[i]) <= limit:             # NaN too
+            return False, 0, 0
+    qd2 = np.full((1, 1), qd)
+    qdd2 = np.full((1, 1), qdd)
+    _closed_form(o_q, qd2, qdd2, 0, N, ops_i, ops_f, const_items, const_values, n_items,
+                 n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail, 1)
+    failed = 0
+    flagged = 0
+    for i in range(N):
+        ok = o_status[i] == ST_OK
+        o_assembled[i] = ok
+        o_singular[i] = ok and o_diag[i, 1] < tol
+        failed += not ok
+        flagged += o_singular[i]
+    return True, failed, flagged
+
+
+@njit(cache=True, error_model="numpy")     # no contraction: numpy's arithmetic, to the bit
+def driven_angles(q, m, sign, out):
+    """The angles of a link turned by input m from the ground with the sign ``sign``:
+    ``out[i] = solvers.wrap_angle(q[i, m] * sign)`` to the bit, in numpy's steps (an angle
+    in (-pi, pi] as it is, else ``np.remainder(t + pi, 2 pi) - pi``, -pi written pi; a
+    float's ``%`` is that remainder: fmod's, with the divisor added where the signs
+    differ, +0 for 0).  Within a turn either way the remainder takes one subtraction or
+    addition, as ``solvers.wrapped_angles`` takes it (fmod's loop is slow)."""
+    two_pi = 2.0 * math.pi
+    for i in range(q.shape[0]):
+        t = q[i, m] * sign
+        if -math.pi < t <= math.pi:
+            out[i] = t
+            continue
+        x = t + math.pi
+        if 0.0 <= x < two_pi:
+            r = x
+        elif two_pi <= x < 2.0 * two_pi:
+            r = x - two_pi                         # exact, as fmod is
+        elif -two_pi < x < 0.0:
+            r = x + two_pi
+        else:
+            r = x % two_pi
+        w = r - math.pi
+        out[i] = math.pi if w == -math.pi else w
+    return out
+
+
+@_jit()
 def one_sample_scratch(plan_i, plan_f, M):
     """What :func:`evaluate_one_sample` needs of a plan packed by :func:`pack_plan` (views of
     plan_i and plan_f) and the scratch space of its samples: made once for a run of samples
@@ -1246,15 +1305,67 @@ def evaluate_one_sample(x, scratch, out, M):
     return st
 
 
-@_jit(nogil=True)
-def run_one_sample(x, plan_i, plan_f, out):
-    """Evaluate one sample of a plan without Newton groups: x (3, M) holds q, q' and q''.
+# A tracker (``_tracker.py``) asks for one sample at a time, each call a few microseconds:
+# its plan is packed with the scratch space of its samples (``_codes.pack_tracked``), in
+# two 2-D arrays whose blocks the kernel takes by slicing (a reshape costs a call), so that
+# a call allocates nothing; its one input comes as three numbers.  These entry points hold
+# the GIL: two threads cannot share that space.
 
-    plan_i and plan_f come from :func:`pack_plan`; ``out`` is laid out as
-    :func:`one_sample_layout` says.  Returns the status.
-    """
+@_jit(inline="always")
+def _tracked(ints, floats, out, M):
+    """Evaluate the sample in the scratch space's x (3, M) of a plan packed by
+    ``_codes.pack_tracked``; ``out`` is laid out as ``_codes.tracked_layout`` says.
+    Returns the singularity measure, or -1.0 where the sample does not assemble."""
+    n_items, n_angles, n_ops, wi, wf, ns = ints[0, 0], ints[0, 1], ints[0, 2], ints[0, 3], \
+        ints[0, 4], ints[0, 5]
+    w = 1 + M + M * M
+    ops_i = ints[1:1 + n_ops, 0:wi]
+    stored = ints[1 + n_ops, 0:ns]
+    lane_i = ints[2 + n_ops:4 + n_ops, 0:1]
+    o_status = ints[4 + n_ops, 0:1]
+    ops_f = floats[0:n_ops, 0:wf]
+    jet = floats[n_ops:n_ops + n_items, 0:w][None]
+    r = n_ops + n_items                     # then res, lane_f (3, 1), Kt, Kt2, Lt (M, M), x (3, M)
+    res = floats[r, 0:4]
+    lane_f = floats[r + 1:r + 4, 0:1]
+    Kt = floats[r + 4, 0:M]
+    Kt2 = floats[r + 5, 0:M]
+    Lt = floats[r + 6:r + 6 + M, 0:M]
+    x = floats[r + 6 + M:r + 9 + M, 0:M]
+    o = out.reshape((2 * ns + 2, w))
+    o_jet = o[0:ns][None]
+    o_rate = o[ns:2 * ns, 0:2][None]
+    o_diag = o[2 * ns:2 * ns + 1, 0:2]
+    o_fail = o[2 * ns + 1:2 * ns + 2, 0:2]
+    # the arrays of Newton groups, which a closed-form plan never touches, stand in as arrays
+    # of their kinds already at hand: each view made here costs the call its reference count
+    st = _evaluate(x, x[1:2], x[2:3], 0, 1, True, ops_i, ops_f, jet, M, Kt, Kt2, Lt, ints,
+                   ints, floats, 1.0, out, floats, jet, floats, out, out, stored, res, lane_f,
+                   lane_i, n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail)
+    o[2 * ns + 1, 2] = st
+    return o[2 * ns, 1] if st == ST_OK else -1.0
+
+
+@_jit()
+def run_tracked_one_input(q, qd, qdd, ints, floats, out):
+    """One sample of a plan without Newton groups and with one input, packed with its
+    scratch space by ``_codes.pack_tracked``: the input q, its rates qd and qdd.  ``out`` is
+    laid out as ``_codes.tracked_layout`` says.  Returns the singularity measure, or -1.0
+    where the sample does not assemble."""
+    r = ints[0, 2] + ints[0, 0] + 7                    # x, after the scratch (see _tracked)
+    floats[r, 0] = q
+    floats[r + 1, 0] = qd
+    floats[r + 2, 0] = qdd
+    return _tracked(ints, floats, out, 1)
+
+
+@_jit()
+def run_tracked(x, ints, floats, out):
+    """:func:`run_tracked_one_input` for M inputs: x (3, M) holds q, q' and q''."""
     M = x.shape[1]
-    return evaluate_one_sample(x, one_sample_scratch(plan_i, plan_f, M), out, M)
+    r = ints[0, 2] + ints[0, 0] + 6 + M
+    floats[r:r + 3, 0:M] = x
+    return _tracked(ints, floats, out, M)
 
 
 @_jit()

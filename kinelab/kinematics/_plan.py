@@ -92,6 +92,7 @@ class Plan:
     input_kinds: tuple[str, ...] = field(default=())   # "angle" or "slide" per input
     recipe: _Recipe | None = field(default=None, repr=False, compare=False)
     _columns: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    _found: dict = field(default_factory=dict, init=False, repr=False, compare=False)
     memo: dict = field(default_factory=dict, init=False, repr=False, compare=False)
     """What analyses derive from the plan once (its change points, its packed form)."""
 

@@ -9,12 +9,13 @@ from typing import NamedTuple
 
 import numpy as np
 
+from kinelab import _compiled
 from kinelab.errors import ModelError, describe, expected_one_of, quoted, shown
 from kinelab.kinematics._columns import TableExport, solution_columns
 from kinelab.kinematics._geometry import k_cross
 from kinelab.kinematics._plan import Plan
 from kinelab.model import Mechanism, Units
-from kinelab.solvers import wrap_angle
+from kinelab.solvers._angles import wrapped_angles
 
 
 @dataclass(frozen=True)
@@ -185,6 +186,15 @@ class KinematicSolution(TableExport):
                                              # the plan's constants, its samples D equal
                                              # blocks of the N (designs), else the plan's
 
+    @classmethod
+    def _made(cls, **fields) -> KinematicSolution:
+        """The solution with these fields (every one without a default), as ``cls(**fields)``
+        makes it, in a fraction of the time: a frozen dataclass's ``__init__`` sets each
+        field through ``object.__setattr__``, which counts in an analysis of a few samples."""
+        sol = object.__new__(cls)
+        sol.__dict__.update(fields)
+        return sol
+
     # -- what was solved -----------------------------------------------------------------
     @property
     def mechanism(self) -> Mechanism:
@@ -249,8 +259,9 @@ class KinematicSolution(TableExport):
         if not len(c.others):
             return stored[:, c.slots]
         out = np.zeros((self.N, len(c.slots), stored.shape[2]))
-        out[:, c.solved_cols] = stored[:, c.slots[c.solved_cols]]
         signs, inputs = c.driven_signs, c.driven_inputs
+        if len(c.solved_cols):
+            out[:, c.solved_cols] = stored[:, c.slots[c.solved_cols]]
         if values:
             if self.constants is None:
                 out[:, c.fixed_cols, 0] = c.fixed_values
@@ -259,18 +270,24 @@ class KinematicSolution(TableExport):
                 blocks = out.reshape((D, self.N // D) + out.shape[1:])
                 for col, const in zip(c.fixed_cols, c.fixed_constants):
                     blocks[:, :, col, 0] = self.constants[:, const, None]
-            out[:, c.driven_cols, 0] = wrap_angle(self.q[:, inputs] * signs)
-            out[:, c.driven_cols, 1 + inputs] = signs        # K = sign, L = 0
-        else:
+            if len(c.driven_cols):
+                out[:, c.driven_cols, 0] = wrapped_angles(self.q[:, inputs] * signs)
+                out[:, c.driven_cols, 1 + inputs] = signs        # K = sign, L = 0
+        elif len(c.driven_cols):
             out[:, c.driven_cols, 0] = self.qd[:, inputs] * signs
             out[:, c.driven_cols, 1] = self.qdd[:, inputs] * signs
-        # the same rule as the solved items: nothing where the loops do not close, no
-        # derivatives at a singular configuration
-        if not self.assembled.all():
-            out[np.ix_(~self.assembled, c.others)] = np.nan
-        if self.singular.any():
-            derivatives = np.arange(1 if values else 0, stored.shape[2])
-            out[np.ix_(self.singular, c.others, derivatives)] = np.nan
+        return self._masked(out, c.others, values)
+
+    def _masked(self, out: np.ndarray, others: np.ndarray, values: bool) -> np.ndarray:
+        """Gathered items ``others`` (columns of ``out``) by the same rule as the solved
+        items: nothing where the loops do not close, no derivatives at a singular
+        configuration."""
+        not_assembled, singular = self._flags()
+        if not_assembled:
+            out[np.ix_(~self.assembled, others)] = np.nan
+        if singular:
+            derivatives = np.arange(1 if values else 0, out.shape[2])
+            out[np.ix_(self.singular, others, derivatives)] = np.nan
         return out
 
     @functools.cached_property
@@ -299,23 +316,101 @@ class KinematicSolution(TableExport):
 
     def _find(self, name: str, kinds: str) -> tuple[int, int]:
         """(first item, number of items) of a link ("l"), point ("p") or slide ("s")."""
+        return self._where(name, kinds)[:2]
+
+    def _where(self, name: str, kinds: str) -> tuple[int, int, int, tuple | None]:
+        """(first item, number of items, first stored column, drive) of a link ("l"), point
+        ("p") or slide ("s"): the column is -1 unless all its items are stored, in
+        consecutive columns; drive is (input, sign) for a link turned by an input from the
+        ground, else None.  Kept on the plan: the accessors ask for the same names again and
+        again."""
+        found = self.plan._found
+        if type(name) is str:
+            hit = found.get((name, kinds))
+            if hit is not None:
+                return hit
         tables = {"l": (self.link_item, 1, "link"), "p": (self.point_item, 2, "point"),
                   "s": (self.slide_item, 1, "prismatic joint")}
         for kind in kinds:
             items, width, _ = tables[kind]
             if name in items:
-                return items[name], width
+                i = items[name]
+                c = self.plan.item_columns(range(i, i + width))
+                column = c.contiguous.start if c.contiguous is not None else -1
+                drive = self.plan.driven_items.get(i) if width == 1 else None
+                found[(name, kinds)] = hit = (i, width, column, drive)
+                return hit
         names = [n for kind in kinds for n in tables[kind][0]]
         label = " or ".join(tables[kind][2] for kind in kinds)
         if not names:
             raise ModelError(f"{label}: got {shown(name)}, but the mechanism has no {label}")
         raise ModelError(f"{label}: {expected_one_of(name, names)}")
 
+    def _gathered(self, i: int, w: int, jets: bool) -> np.ndarray:
+        """``item_jets`` (or ``item_rates``) of the items i .. i + w - 1 that are not all
+        stored (fixed points), gathered on first use and kept: the accessors hand out
+        copies of it."""
+        kept = self.__dict__.get("_blocks")
+        if kept is None:
+            kept = self.__dict__["_blocks"] = {}
+        key = (i, w, jets)
+        block = kept.get(key)
+        if block is None:
+            block = kept[key] = self._gather(range(i, i + w), self.stored_jets if jets
+                                             else self.stored_rates, values=jets)
+        return block
+
+    def _driven(self, drive: tuple[int, float], what: str) -> np.ndarray:
+        """A quantity of a link turned by input m from the ground with the sign s, (N, ...)
+        as ``item_jets`` and ``item_rates`` give it: its angle wrap(s q_m), its rates s q_m'
+        and s q_m'', K = s (for input m), L = 0."""
+        m, sign = drive
+        if what == "angle":
+            q = self.q
+            if q.flags.c_contiguous and q.dtype == np.float64 and _compiled.ready("driven_angles"):
+                from kinelab.kinematics import _kernel
+                a = _kernel.driven_angles(q, m, sign, np.empty(self.N))     # the same, to the bit
+            else:
+                a = wrapped_angles(q[:, m] * sign)
+        elif what == "rate":
+            a = self.qd[:, m] * sign
+        elif what == "second":
+            a = self.qdd[:, m] * sign
+        elif what == "K":
+            if self.M == 1:
+                a = np.full(self.N, sign)
+            else:
+                a = np.zeros((self.N, self.M))
+                a[:, m] = sign
+        else:
+            a = np.zeros(self.N if self.M == 1 else (self.N, self.M, self.M))
+        flags = self._flags()
+        if flags[0]:
+            a[~self.assembled] = np.nan
+        if flags[1] and what != "angle":
+            a[self.singular] = np.nan
+        return a
+
+    def _flags(self) -> tuple[bool, bool]:
+        """Whether some sample is not assembled, and whether some is singular."""
+        flags = self.__dict__.get("_status")
+        if flags is None:
+            flags = self.__dict__["_status"] = (np.count_nonzero(self.assembled) < self.N,
+                                                np.count_nonzero(self.singular) > 0)
+        return flags
+
     def _value(self, name: str, kinds: str, column: int, source: str = "jets") -> np.ndarray:
-        i, w = self._find(name, kinds)
-        take = self.item_jets if source == "jets" else self.item_rates
-        a = take(range(i, i + w))[:, :, column]
-        return self._out(a if w > 1 else a[:, 0])
+        i, w, stored, drive = self._where(name, kinds)
+        if stored >= 0:                           # a view of the stored arrays
+            a = self.stored_jets if source == "jets" else self.stored_rates
+            if self.single:
+                return a[0, stored, column] if w == 1 else a[0, stored:stored + w, column]
+            return self._out(a[:, stored, column] if w == 1 else a[:, stored:stored + w, column])
+        if drive is not None:
+            return self._out(self._driven(drive, "angle" if source == "jets" else
+                                          "rate" if column == 0 else "second"))
+        block = self._gathered(i, w, source == "jets")
+        return self._out((block[:, 0, column] if w == 1 else block[:, :, column]).copy())
 
     # -- links --------------------------------------------------------------------------
     def angle(self, link: str) -> np.ndarray:
@@ -364,20 +459,41 @@ class KinematicSolution(TableExport):
         inputs; a point adds an axis of 2 before the input axis: (2,), (N, 2), (N, 2, M).
         Units: rad/rad, rad/m, m/rad or m/m.
         """
-        i, w = self._find(name, "lsp")
+        i, w, stored, drive = self._where(name, "lsp")
         M = self.M
-        a = self.item_jets(range(i, i + w))[:, :, 1:1 + M]
-        a = a if w > 1 else a[:, 0]
-        return self._out(a[..., 0] if M == 1 else a)
+        if stored >= 0:                           # a view of the stored jets
+            j = self.stored_jets
+            if M == 1:
+                a = j[:, stored, 1] if w == 1 else j[:, stored:stored + w, 1]
+            else:
+                a = j[:, stored, 1:1 + M] if w == 1 else j[:, stored:stored + w, 1:1 + M]
+            return self._out(a)
+        if drive is not None:
+            return self._out(self._driven(drive, "K"))
+        block = self._gathered(i, w, True)
+        if M == 1:
+            a = block[:, 0, 1] if w == 1 else block[:, :, 1]
+        else:
+            a = block[:, 0, 1:1 + M] if w == 1 else block[:, :, 1:1 + M]
+        return self._out(a.copy())
 
     def L(self, name: str) -> np.ndarray:
         """Acceleration coefficients d2S/dq2 = dK/dq, shaped like :meth:`K` with one more
         input axis when M > 1; then ``S'' = K q'' + q'^T L q'``."""
-        i, w = self._find(name, "lsp")
+        i, w, stored, drive = self._where(name, "lsp")
         M = self.M
-        a = self.item_jets(range(i, i + w))[:, :, 1 + M:].reshape(self.N, w, M, M)
-        a = a if w > 1 else a[:, 0]
-        return self._out(a[..., 0, 0] if M == 1 else a)
+        if drive is not None:
+            return self._out(self._driven(drive, "L"))
+        if stored >= 0 and M == 1:               # a view of the stored jets
+            j = self.stored_jets
+            return self._out(j[:, stored, 2] if w == 1 else j[:, stored:stored + w, 2])
+        block = self.stored_jets[:, stored:stored + w] if stored >= 0 else self._gathered(i, w, True)
+        if M == 1:
+            a = block[:, 0, 2] if w == 1 else block[:, :, 2]
+        else:
+            a = block[:, :, 1 + M:].reshape(self.N, w, M, M)
+            a = a if w > 1 else a[:, 0]
+        return self._out(a.copy() if stored < 0 else a)
 
     def acceleration_components(self, point: str, joint: str | None = None) -> AccelerationComponents:
         """Normal, tangential, Coriolis and sliding parts of the acceleration of a point that

@@ -11,7 +11,7 @@ import numpy as np
 
 from kinelab.dynamics import InverseDynamics, Simulation
 from kinelab.model import Units
-from kinelab.plot._figures import _legend, _x_axis
+from kinelab.plot._figures import _legend, _x_axis, plain
 
 __all__ = ["effort_curves", "reaction_curves", "shaking_curves", "energy_curves"]
 
@@ -67,10 +67,10 @@ def effort_curves(res: InverseDynamics | Simulation, *, degrees: bool = False,
     x = _abscissa(axes, res, degrees, units)
     for ax, name, kind, y in zip(axes, res.input_names, kinds, res.input_forces.T):
         ax.plot(x, y)
-        ax.set_ylabel(f"{name} [{'N m' if kind == 'angle' else 'N'}]")
+        ax.set_ylabel(plain(f"{name} [{'N m' if kind == 'angle' else 'N'}]"))
         ax.grid(True, alpha=0.3)
     _legend(axes[0], always=False)
-    axes[0].set_title(f"{res.mechanism.name}: actuator efforts")
+    axes[0].set_title(plain(f"{res.mechanism.name}: actuator efforts"))
     return fig
 
 
@@ -82,14 +82,14 @@ def reaction_curves(res: InverseDynamics, joints=None, *, degrees: bool = False,
     fig, axes = _figure(figure, 2 if any(res.mechanism.joint(j).type == "P" for j in joints) else 1)
     x = _abscissa(axes, res, degrees, units)
     for j in joints:
-        axes[0].plot(x, np.hypot(*res.reactions(j).T), label=j)
+        axes[0].plot(x, np.hypot(*res.reactions(j).T), label=plain(j))
     axes[0].set_ylabel("|reaction| [N]")
     _legend(axes[0], loc="best")
-    axes[0].set_title(f"{res.mechanism.name}: joint reactions")
+    axes[0].set_title(plain(f"{res.mechanism.name}: joint reactions"))
     if len(axes) > 1:
         for j in joints:
             if res.mechanism.joint(j).type == "P":
-                axes[1].plot(x, res.reaction_moment(j), label=j)
+                axes[1].plot(x, res.reaction_moment(j), label=plain(j))
         axes[1].set_ylabel("slide moment [N m]")
         _legend(axes[1], loc="best")
     for ax in axes:
@@ -117,7 +117,7 @@ def shaking_curves(res: InverseDynamics, *, degrees: bool = False,
     _legend(right, always=False)
     for ax in (left, right):
         ax.grid(True, alpha=0.3)
-    fig.suptitle(res.mechanism.name)
+    fig.suptitle(plain(res.mechanism.name))
     return fig
 
 
@@ -132,7 +132,7 @@ def energy_curves(sim: Simulation, *, figure=None):
             axes[0].plot(sim.t, y, label=label.replace("_", " "))
     axes[0].set_ylabel("J")
     axes[0].legend(loc="best", fontsize="small")
-    axes[0].set_title(f"{sim.mechanism.name}: energy")
+    axes[0].set_title(plain(f"{sim.mechanism.name}: energy"))
     axes[1].plot(sim.t, sim.energy_balance)
     axes[1].set_ylabel("balance [J]")
     axes[1].set_xlabel("t [s]")

@@ -64,6 +64,19 @@ def _pyplot():
     return plt
 
 
+def plain(text: str) -> str:
+    """``text`` shown as it is by matplotlib, never read as mathtext: a figure's text that
+    holds a name (of a model, point, link, joint, input or column) comes from a file, and
+    mathtext would read ``$...$`` in it as commands (and fail on ``\\frac{``).
+
+    Examples
+    --------
+    >>> print(plain("crank-rocker: path of $x$"))
+    crank-rocker: path of \\$x\\$
+    """
+    return text.replace("$", r"\$")
+
+
 def _label(units: Units, si_unit: str) -> str:
     """An axis label's unit: ``deg/s²``."""
     return units.unit(si_unit).replace("^2", "²")
@@ -99,7 +112,7 @@ def _input(sol: KinematicSolution, u: Units) -> tuple[np.ndarray, str, str]:
 def _x_axis(ax, sol: KinematicSolution, u: Units) -> np.ndarray:
     """Label ``ax``'s x axis with the input, mark the singular positions; the x values."""
     x, label, unit = _input(sol, u)
-    ax.set_xlabel(label)
+    ax.set_xlabel(plain(label))
     if np.ptp(x) > 0:
         ax.set_xlim(np.min(x), np.max(x))      # the sweep, edge to edge
     _turn_ticks(ax.xaxis, x, unit)
@@ -233,18 +246,18 @@ def curves(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
             x = _x_axis(ax, sol, u)
             for name in names:
                 y = _series(sol, name, attr, si, u)
-                ax.plot(x, y, label=name)
+                ax.plot(x, y, label=plain(name))
                 if row == 0:
                     _turn_ticks(ax.yaxis, y, u.unit(si))
             what = f"{names[0]} {label}".strip() if len(names) == 1 else (
                 label or "slide") if kind == "link" else f"slide {label}".strip()
-            ax.set_ylabel(f"{what} [{_label(u, si)}]")
+            ax.set_ylabel(plain(f"{what} [{_label(u, si)}]"))
             ax.grid(True, alpha=0.3)
             if row == 0:            # names the curves and the singular positions for the column
                 _legend(ax, always=len(names) > 1)
         for ax in axes[:-1, col]:
             ax.set_xlabel("")       # shared: the bottom row names it
-    fig.suptitle(f"{sol.mechanism.name}: position, velocity and acceleration")
+    fig.suptitle(plain(f"{sol.mechanism.name}: position, velocity and acceleration"))
     return fig
 
 
@@ -283,8 +296,8 @@ def coefficients(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
         su = "rad" if name in links else "m"
         k_units.append(f"{su}/{qu}")
         l_units.append(f"{su}/{qu}^2")
-        ax_k.plot(x, u.convert(_regular(sol, K), k_units[-1]), label=name)
-        ax_l.plot(x, u.convert(_regular(sol, L), l_units[-1]), label=name)
+        ax_k.plot(x, u.convert(_regular(sol, K), k_units[-1]), label=plain(name))
+        ax_l.plot(x, u.convert(_regular(sol, L), l_units[-1]), label=plain(name))
     ax_k.set_ylabel(f"K = dS/dq [{' | '.join(sorted({_label(u, k) for k in k_units}))}]")
     ax_l.set_ylabel(f"L = dK/dq [{' | '.join(sorted({_label(u, k) for k in l_units}))}]")
     for ax in (ax_k, ax_l):
@@ -292,7 +305,7 @@ def coefficients(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
         ax.axhline(0.0, color="0.5", lw=0.6)
     _legend(ax_k)
     ax_k.set_xlabel("")
-    fig.suptitle(f"{sol.mechanism.name}: velocity and acceleration coefficients")
+    fig.suptitle(plain(f"{sol.mechanism.name}: velocity and acceleration coefficients"))
     return fig
 
 
@@ -320,7 +333,7 @@ def coupler_curve(sol: KinematicSolution, point: str = "P", *, ax=None, sample: 
     if sample is not None:
         mechanism(sol, sample_of(sol, sample, "sample"), ax=ax, units=u)
     xy = u.convert(sol.position(point), "m")
-    ax.plot(*_regular(sol, xy).T, lw=1.3, color="black", label=f"path of {point}")
+    ax.plot(*_regular(sol, xy).T, lw=1.3, color="black", label=plain(f"path of {point}"))
     singular = _singular_samples(sol)
     if singular:
         ax.plot(*xy[singular].T, "x", color="tab:red", ms=8, mew=1.5, label=SINGULAR_LABEL)
@@ -329,7 +342,7 @@ def coupler_curve(sol: KinematicSolution, point: str = "P", *, ax=None, sample: 
     ax.set_ylabel(f"y [{u.length}]")
     ax.grid(True, alpha=0.3)
     _legend(ax, loc="best")
-    ax.set_title(f"{sol.mechanism.name}: path of {point}")
+    ax.set_title(plain(f"{sol.mechanism.name}: path of {point}"))
     return ax
 
 
@@ -361,12 +374,12 @@ def transmission(sol: KinematicSolution, pairs=None, *, degrees: bool | None = N
     x = _x_axis(ax, sol, u)
     for a, b in pairs:
         mu = _regular(sol, _transmission_values(sol, (a, b)))
-        ax.plot(x, u.convert(mu, "rad"), label=f"{a}-{b}")
+        ax.plot(x, u.convert(mu, "rad"), label=plain(f"{a}-{b}"))
     ax.set_ylim(0, u.convert(math.pi / 2, "rad"))
     ax.set_ylabel(f"transmission angle [{u.angle}]")
     ax.grid(True, alpha=0.3)
     _legend(ax)
-    ax.set_title(f"{sol.mechanism.name}: transmission angle")
+    ax.set_title(plain(f"{sol.mechanism.name}: transmission angle"))
     return ax
 
 
@@ -410,7 +423,7 @@ def mechanism(sol: KinematicSolution, i: int = 0, *, ax=None, artists: dict | No
         if first:
             store[("link", link.name)] = ax.plot(closed[:, 0], closed[:, 1], lw=4, alpha=0.85,
                                                  solid_capstyle="round", color=colors[k % len(colors)],
-                                                 label=link.name, zorder=2)[0]
+                                                 label=plain(link.name), zorder=2)[0]
         else:
             store[("link", link.name)].set_data(closed[:, 0], closed[:, 1])
     for k, j in enumerate(m.joints):

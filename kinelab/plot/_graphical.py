@@ -22,6 +22,7 @@ from kinelab.kinematics import centrodes as centrodes_data
 from kinelab.kinematics import velocity_polygon as velocity_polygon_data
 from kinelab.kinematics._polygons import sample_index
 from kinelab.model import Units
+from kinelab.plot._figures import plain
 from kinelab.solvers import Derivatives
 
 __all__ = ["velocity_polygon", "acceleration_polygon", "instant_centers", "centrodes",
@@ -116,12 +117,7 @@ def _vector_label(letter: str, names, mark: str = "") -> str:
     sub = "".join(_tex(n) for n in names)
     if all(c.isalnum() or c in " '-./" for c in sub):
         return f"${letter}{'^' + mark if mark else ''}_{{{sub}}}$"
-    return _text(f"{letter}{mark}_{sub}")
-
-
-def _text(text: str) -> str:
-    """``text`` shown as it is by matplotlib, never read as mathtext (``$`` escaped)."""
-    return text.replace("$", r"\$")
+    return plain(f"{letter}{mark}_{sub}")
 
 
 def _mechanism_panel(ax, sol, i: int, u: Units, extra=()):
@@ -130,14 +126,14 @@ def _mechanism_panel(ax, sol, i: int, u: Units, extra=()):
     pos = np.array([u.convert(sol.position(p)[i] if not sol.single else sol.position(p), "m")
                     for p in sol.point_names])
     for p, xy in zip(sol.point_names, pos):
-        ax.annotate(_text(p), xy, xytext=(4, 4), textcoords="offset points", fontsize=8)
+        ax.annotate(plain(p), xy, xytext=(4, 4), textcoords="offset points", fontsize=8)
     span_xy = np.vstack([pos, *extra]) if len(extra) else pos
     scale = drawing_scale(float(np.ptp(span_xy, axis=0).max()))
     _to_scale(ax, span_xy, scale)
     ax.set_xlabel(f"x [{u.length}]")
     ax.set_ylabel(f"y [{u.length}]")
-    ax.set_title(f"{sol.mechanism.name}, {_q_label(sol, i, u)}\n"
-                 f"lengths: {_scale_text(scale, u.length)}", fontsize=9)
+    ax.set_title(plain(f"{sol.mechanism.name}, {_q_label(sol, i, u)}\n"
+                       f"lengths: {_scale_text(scale, u.length)}"), fontsize=9)
     return scale
 
 
@@ -205,7 +201,7 @@ def _polygon_figure(sol: KinematicSolution, poly, acceleration: bool, units, sca
     for names in groups.values():
         v = vertex[names[0]]
         ax_p.plot(*v, "o", ms=3, color="black")
-        ax_p.annotate(_text(" = ".join(_tex(n).lower() for n in names)), v, xytext=(4, 4),
+        ax_p.annotate(plain(" = ".join(_tex(n).lower() for n in names)), v, xytext=(4, 4),
                       textcoords="offset points", fontsize=9)
     _to_scale(ax_p, xy, scale)
     ax_p.set_xlabel(f"{'a' if acceleration else 'v'}x [{unit}]")
@@ -406,7 +402,7 @@ def _circle_diagram(ax, kc, order) -> None:
     for lk, p in xy.items():
         ax.plot(*p, "o", ms=16, mfc="white", mec="black", zorder=3)
         ax.annotate(str(kc.numbers[lk]), p, ha="center", va="center", fontsize=9, zorder=4)
-        ax.annotate(lk, 1.22 * p, ha="center", va="center", fontsize=8)
+        ax.annotate(plain(lk), 1.22 * p, ha="center", va="center", fontsize=8)
     ax.set_xlim(-1.6, 1.6)
     ax.set_ylim(-1.6, 1.6)
     ax.set_axis_off()
@@ -471,7 +467,7 @@ def centrodes(sol: KinematicSolution, link: str, sample: int = 0, *, ax=None,
     ax.set_ylabel(f"y [{u.length}]")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize="small")
-    ax.set_title(f"{sol.mechanism.name}: centrodes of {link}")
+    ax.set_title(plain(f"{sol.mechanism.name}: centrodes of {link}"))
     return ax
 
 
@@ -496,7 +492,7 @@ def derivatives(d: Derivatives, *, x_label: str = "t [s]", y_label: str = "x",
     var = x_label.split(" ")[0]
     axes[0].plot(d.x, d.y + d.residual, ".", ms=2.5, color="0.55", label="data")
     axes[0].plot(d.x, d.y, lw=1.4, color="black", label=f"smoothed ({d.window} samples a fit)")
-    axes[0].set_ylabel(f"{y_label} [{y_unit}]")
+    axes[0].set_ylabel(plain(f"{y_label} [{y_unit}]"))
     axes[0].legend(fontsize="small")
     for ax, value, error, label, unit in (
             (axes[1], d.velocity, d.velocity_error, f"d{y_label}/d{var}", f"{y_unit}/{x_unit}"),
@@ -505,10 +501,10 @@ def derivatives(d: Derivatives, *, x_label: str = "t [s]", y_label: str = "x",
         ax.fill_between(d.x, value - error, value + error, color="tab:blue", alpha=0.25,
                         lw=0, label="error band")
         ax.plot(d.x, value, lw=1.4, color="tab:blue", label="estimate")
-        ax.set_ylabel(f"{label} [{unit}]")
+        ax.set_ylabel(plain(f"{label} [{unit}]"))
         ax.legend(fontsize="small")
     for ax in axes:
         ax.grid(True, alpha=0.3)
-    axes[-1].set_xlabel(x_label)
-    axes[0].set_title(f"derivatives of a measured curve (noise ≈ {d.noise:.3g} {y_unit})")
+    axes[-1].set_xlabel(plain(x_label))
+    axes[0].set_title(plain(f"derivatives of a measured curve (noise ≈ {d.noise:.3g} {y_unit})"))
     return fig

@@ -5,7 +5,7 @@ import numpy as np
 
 from kinelab import _memory as memory
 from kinelab.errors import ModelError, describe
-from kinelab.plot._figures import _pyplot
+from kinelab.plot._figures import _pyplot, plain
 from kinelab.solvers._arguments import flag, whole
 
 __all__ = ["tolerance_band", "error_histogram"]
@@ -49,7 +49,7 @@ def tolerance_band(study, *, ax=None, degrees: bool = False):
     ax.plot(x, p50, color="tab:blue", lw=1.2, label="median")
     ax.axhline(0.0, color="k", lw=0.8)
     ax.set_xlabel(f"input [{'deg' if degrees else 'rad'}]")
-    ax.set_ylabel(f"{study.output} error [{unit}]")
+    ax.set_ylabel(plain(f"{study.output} error [{unit}]"))
     ax.set_title(f"tolerance study: {len(study.errors)} designs, "
                  f"{int(study.assembles.sum())} assemble")
     ax.grid(True, alpha=0.3)
@@ -76,7 +76,7 @@ def error_histogram(study, *, ax=None, degrees: bool = False, bins: int = 40):
     ax = _axes(ax)
     ax.hist(m, bins=bins, color="tab:blue", alpha=0.7)
     ax.axvline(np.percentile(m, 95), color="tab:red", lw=1.0, label="95th percentile")
-    ax.set_xlabel(f"largest |{study.output} error| over the cycle [{unit}]")
+    ax.set_xlabel(plain(f"largest |{study.output} error| over the cycle [{unit}]"))
     ax.set_ylabel("designs")
     ax.grid(True, alpha=0.3)
     ax.legend(loc="best", fontsize=8)

@@ -10,23 +10,22 @@
 - :func:`wrap_angle` — angles into (-π, π]; :func:`turn_intervals` — angle intervals
   shifted by whole turns near a given angle.
 """
-from kinelab.solvers._angles import turn_intervals, wrap_angle
-from kinelab.solvers._bisect import bisect
-from kinelab.solvers._continuation import ContinuationResult, continuation
-from kinelab.solvers._differentiate import Derivatives, differentiate
-from kinelab.solvers._half_angle import HalfAngleSolution, half_angle
-from kinelab.solvers._newton import NewtonHistory, NewtonResult, iteration_table, newton
+from kinelab._lazy import exports
+
+# each public name, imported from its module on first use (see kinelab._lazy); dialytic
+# elimination needs sympy, which takes a second to import, so it too loads only when used
+__getattr__, __dir__ = exports(__name__, {
+    "kinelab.solvers._angles": ("turn_intervals", "wrap_angle"),
+    "kinelab.solvers._bisect": ("bisect",),
+    "kinelab.solvers._continuation": ("ContinuationResult", "continuation"),
+    "kinelab.solvers._dialytic": ("DialyticSolution", "dialytic"),
+    "kinelab.solvers._differentiate": ("Derivatives", "differentiate"),
+    "kinelab.solvers._half_angle": ("HalfAngleSolution", "half_angle"),
+    "kinelab.solvers._newton": ("NewtonHistory", "NewtonResult", "iteration_table", "newton"),
+})
 
 __all__ = ["bisect", "ContinuationResult", "continuation", "DialyticSolution", "dialytic",
            "Derivatives", "differentiate",
            "HalfAngleSolution", "half_angle",
            "NewtonHistory", "NewtonResult", "iteration_table", "newton", "wrap_angle",
            "turn_intervals"]
-
-
-def __getattr__(name: str):
-    # dialytic elimination needs sympy, which takes a second to import: only when it is used
-    if name in ("dialytic", "DialyticSolution"):
-        from kinelab.solvers import _dialytic
-        return getattr(_dialytic, name)
-    raise AttributeError(f"module 'kinelab.solvers' has no attribute {name!r}")

@@ -22,14 +22,34 @@ def wrap_angle(angle: ArrayLike) -> np.ndarray | float:
     if np.isinf(a).any():
         raise ModelError(f"angle: expected finite angles (rad), got {describe(a[np.isinf(a)][0])}; "
                          f"an infinite angle has no direction")
-    inside = (a > -np.pi) & (a <= np.pi)
-    if inside.all():
-        wrapped = np.array(a)
-    else:
-        wrapped = np.remainder(a + np.pi, 2.0 * np.pi) - np.pi
-        wrapped = np.where(wrapped == -np.pi, np.pi, wrapped)
-        wrapped = np.where(inside, a, wrapped)
+    wrapped = wrapped_angles(a)
     return float(wrapped) if wrapped.ndim == 0 else wrapped
+
+
+_TURN = 2.0 * np.pi
+
+
+def wrapped_angles(a: np.ndarray) -> np.ndarray:
+    """:func:`wrap_angle` of a float array of finite numbers (or NaN), unchecked: a new
+    array of the same shape."""
+    if a.ndim == 0:
+        return wrapped_angles(a.reshape(1)).reshape(())
+    lo, hi = (a.min(), a.max()) if a.size else (0.0, 0.0)
+    if -np.pi < lo and hi <= np.pi:
+        return np.array(a)
+    above, below = a > np.pi, a <= -np.pi
+    if -2.5 * np.pi < lo and hi < 2.5 * np.pi:
+        # within a turn either way: np.remainder(a + pi, 2 pi) - pi to the bit, in fewer
+        # passes (x = a + pi; from 2 pi to 4 pi, x - 2 pi is exact, as remainder's result
+        # is; below 0 remainder adds 2 pi, as here; at x = 0 both end at pi)
+        x = a + np.pi
+        x -= _TURN * above
+        x += _TURN * below
+    else:
+        x = np.remainder(a + np.pi, _TURN)
+    x -= np.pi
+    x[x == -np.pi] = np.pi
+    return np.where(above | below, x, a)
 
 
 def turn_intervals(intervals, around: float = 0.0) -> list[tuple[float, float]]:

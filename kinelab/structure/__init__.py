@@ -1,15 +1,20 @@
 """Structure: mobility, connectivity, number and type synthesis (topology only)."""
-from kinelab.structure._chains import (Inversion, KinematicChain, chain_of, count_chains,
-                                       planar_chains)
-from kinelab.structure._connectivity import (Chain, Connectivity, LieMobility, connectivity,
-                                             lie_mobility)
-from kinelab.structure._count import (LAMBDAS, PairClass, joint_catalogue, kutzbach_gruebler,
-                                      pair_counts, pair_freedoms, space_dimension)
-from kinelab.structure._groups import DisplacementGroup, displacement_group, generated_group
-from kinelab.structure._mobility import Mobility, mobility
-from kinelab.structure._types import (Architecture, ChainType, Motion, TypeSynthesis,
-                                      active_chains, alternative_method, chain_types,
-                                      number_synthesis, passive_chain, type_synthesis)
+from kinelab._lazy import exports
+
+# each public name, imported from its module on first use (see kinelab._lazy)
+__getattr__, __dir__ = exports(__name__, {
+    "kinelab.structure._chains": ("Inversion", "KinematicChain", "chain_of", "count_chains",
+                                  "planar_chains"),
+    "kinelab.structure._connectivity": ("Chain", "Connectivity", "LieMobility", "connectivity",
+                                        "lie_mobility"),
+    "kinelab.structure._count": ("LAMBDAS", "PairClass", "joint_catalogue", "kutzbach_gruebler",
+                                 "pair_counts", "pair_freedoms", "space_dimension"),
+    "kinelab.structure._groups": ("DisplacementGroup", "displacement_group", "generated_group"),
+    "kinelab.structure._mobility": ("Mobility", "mobility"),
+    "kinelab.structure._types": ("Architecture", "ChainType", "Motion", "TypeSynthesis",
+                                 "active_chains", "alternative_method", "chain_types",
+                                 "number_synthesis", "passive_chain", "type_synthesis"),
+})
 
 __all__ = [
     # counting (*Mecanismos*, §2.1)

@@ -23,23 +23,28 @@ All lengths in metres and angles in radians (``degrees=True`` where people type 
 The notes' examples in centimetres are reproduced in metres: the synthesis is
 scale-free, so every length simply scales by 0.01.
 """
-from kinelab.synthesis._approximate import approximate_positions, fit_dyads
-from kinelab.synthesis._burmester import (BurmesterCurves, burmester_curves, center_point_cubic,
-                                          center_points, four_positions)
-from kinelab.synthesis._five_positions import burmester_points, five_positions
-from kinelab.synthesis._function import (FunctionSolution, chebyshev_points, freudenstein,
-                                         function_generation)
-from kinelab.synthesis._linkage import TRANSMISSION_LIMIT, fourbar_model
-from kinelab.synthesis._motion import (MotionSolution, TwoPositions, three_positions,
-                                       two_positions)
-from kinelab.synthesis._path import (MAX_PATH_POINTS, PathSolution, coupler_curves,
-                                     curve_distances, path_generation)
-from kinelab.synthesis._pivots import fixed_pivot, moving_pivot
-from kinelab.synthesis._positions import Poles, Positions, pole, poles
-from kinelab.synthesis._quick_return import (CrankRocker, QuickReturn, crank_rocker, crank_rockers,
-                                             imbalance_angle, max_time_ratio, offset_slider_crank,
-                                             slotted_lever, whitworth)
-from kinelab.synthesis._results import SolutionList
+from kinelab._lazy import exports
+
+# each public name, imported from its module on first use (see kinelab._lazy)
+__getattr__, __dir__ = exports(__name__, {
+    "kinelab.synthesis._approximate": ("approximate_positions", "fit_dyads"),
+    "kinelab.synthesis._burmester": ("BurmesterCurves", "burmester_curves", "center_point_cubic",
+                                     "center_points", "four_positions"),
+    "kinelab.synthesis._five_positions": ("burmester_points", "five_positions"),
+    "kinelab.synthesis._function": ("FunctionSolution", "chebyshev_points", "freudenstein",
+                                    "function_generation"),
+    "kinelab.synthesis._linkage": ("TRANSMISSION_LIMIT", "fourbar_model"),
+    "kinelab.synthesis._motion": ("MotionSolution", "TwoPositions", "three_positions",
+                                  "two_positions"),
+    "kinelab.synthesis._path": ("MAX_PATH_POINTS", "PathSolution", "coupler_curves",
+                                "curve_distances", "path_generation"),
+    "kinelab.synthesis._pivots": ("fixed_pivot", "moving_pivot"),
+    "kinelab.synthesis._positions": ("Poles", "Positions", "pole", "poles"),
+    "kinelab.synthesis._quick_return": ("CrankRocker", "QuickReturn", "crank_rocker",
+                                        "crank_rockers", "imbalance_angle", "max_time_ratio",
+                                        "offset_slider_crank", "slotted_lever", "whitworth"),
+    "kinelab.synthesis._results": ("SolutionList",),
+})
 
 __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "two_positions", "TwoPositions", "three_positions", "MotionSolution",

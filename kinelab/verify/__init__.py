@@ -17,13 +17,18 @@ This room sits above :mod:`kinelab.derive`, :mod:`kinelab.synthesis` and
 :mod:`kinelab.sweep`, :mod:`kinelab.io` and the command line, which print and store its
 certificates.  It imports sympy, the dynamics and the synthesis only when a route needs them.
 """
-from kinelab.verify._analyze import analyze, certify
-from kinelab.verify._certificate import Certificate, Comparison, Quantity
-from kinelab.verify._kinematics import (CLOSURE_EVERY, CLOSURE_STRIDE, EVERY, NEAR_SAMPLES,
-                                        NEAR_SINGULAR, NEWTON_EVERY, NEWTON_STRIDE, SAMPLES,
-                                        STRIDE, certify_kinematics, checked_samples)
-from kinelab.verify._symbolic import MAX_SECOND_DERIVATIVES
-from kinelab.verify._synthesis import certify_solutions
+from kinelab._lazy import exports
+
+# each public name, imported from its module on first use (see kinelab._lazy)
+__getattr__, __dir__ = exports(__name__, {
+    "kinelab.verify._analyze": ("analyze", "certify"),
+    "kinelab.verify._certificate": ("Certificate", "Comparison", "Quantity"),
+    "kinelab.verify._kinematics": ("CLOSURE_EVERY", "CLOSURE_STRIDE", "EVERY", "NEAR_SAMPLES",
+                                   "NEAR_SINGULAR", "NEWTON_EVERY", "NEWTON_STRIDE", "SAMPLES",
+                                   "STRIDE", "certify_kinematics", "checked_samples"),
+    "kinelab.verify._symbolic": ("MAX_SECOND_DERIVATIVES",),
+    "kinelab.verify._synthesis": ("certify_solutions",),
+})
 
 __all__ = ["analyze", "certify", "certify_kinematics", "certify_solutions", "checked_samples",
            "Certificate",

@@ -85,7 +85,8 @@ async def _body(request: Request) -> dict:
 
 
 def _error(message: str, status: int, problems: tuple[str, ...] = ()) -> JSONResponse:
-    """``{"error": message}``, with ``problems`` one by one when a model has several."""
+    """``{"error": message}``, with ``problems`` one by one when a model has several (one
+    for each line of the message)."""
     return JSONResponse({"error": message, **({"problems": list(problems)} if problems else {})},
                         status_code=status)
 
@@ -201,7 +202,7 @@ def _route(call, *, raw: bool = False, apart=None):
             return _error("the client closed the connection", 400)
         except KinelabError as exc:
             return _error(str(exc), _status(exc),
-                          exc.problems if isinstance(exc, ModelError) else ())
+                          exc.shown_problems() if isinstance(exc, ModelError) else ())
         except Exception:            # a fault of kinelab's: logged, never a traceback sent
             _log.exception("request %s failed", request.url.path)
             return _error("internal error: the server could not answer this request; "

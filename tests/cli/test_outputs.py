@@ -331,3 +331,24 @@ def test_a_symbolic_link_at_an_outputs_name_is_refused(tmp_path):
                              "over it; remove the link or choose another directory\n")
     assert outside.read_text() == "keep\n" and (out / "crank_rocker.csv").is_symlink()
     assert [p.name for p in out.iterdir()] == ["crank_rocker.csv"]
+
+
+def test_names_mathtext_would_read_are_drawn_in_every_figure(tmp_path):
+    """A model, points, links, joints and columns named with $ (and a backslash, a brace):
+    each command's figures show them as text (mathtext failed on them)."""
+    names = {"crank-rocker": "$m$", "P": "a$b", "coupler": "$x$", "B": "\\frac{",
+             "crank angle": "$\\alpha{$"}
+    (tmp_path / "crank_rocker.json").write_text(json.dumps(renamed(example("crank_rocker"), names)))
+    names = {"engine": "$m$", "rod": "$x$", "jB": "$j$", "crank angle": "$\\alpha{$"}
+    (tmp_path / "engine.json").write_text(json.dumps(renamed(example("engine"), names)))
+    data = curve(tmp_path / "c.csv")
+    data.write_text(data.read_text().replace("../../x [mm]", "$x$ [mm]"))
+    for args in (["plot", "crank_rocker.json", "--samples", "7"],
+                 ["polygons", "crank_rocker.json", "--at", "30"],
+                 ["centres", "crank_rocker.json", "--at", "30", "--centrodes", "--samples", "7"],
+                 ["animate", "crank_rocker.json", "--samples", "5", "--frames", "2", "--format",
+                  "gif"],
+                 ["dynamics", "engine.json", "--samples", "7"],
+                 ["differentiate", "c.csv"]):
+        result = run(*args[:1], tmp_path / args[1], *args[2:], "--out", tmp_path / "out")
+        assert result.exit_code == 0, (args, result.output)

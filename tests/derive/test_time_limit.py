@@ -141,3 +141,41 @@ def test_the_deadline_is_known_behind_another_error():
             raise RuntimeError("something else") from exc
     with pytest.raises(TimeLimitError):
         within(0.2, wrapped)
+
+
+def test_a_shot_that_lands_in_a_weak_references_callback_prints_nothing():
+    """A deadline's shot delivered in a weak reference's callback (or a finalizer) cannot be
+    raised there: Python reports it on standard error, a traceback in a server's log.  The
+    watchdog shoots again, so kinelab's hook says nothing of it (a subprocess: pytest puts
+    a hook of its own in place)."""
+    import subprocess
+    import sys
+    import textwrap
+    script = textwrap.dedent("""
+        import weakref
+        from kinelab._deadline import within
+        from kinelab.errors import TimeLimitError
+
+        class Thing:
+            pass
+
+        def callback(ref):
+            s = 0
+            for i in range(2000):
+                s += i
+
+        def work():
+            while True:
+                t = Thing()
+                r = weakref.ref(t, callback)
+                del t
+
+        for _ in range(5):
+            try:
+                within(0.05, work)
+            except TimeLimitError:
+                print("stopped")
+        """)
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=120)
+    assert (done.stdout, done.stderr) == ("stopped\n" * 5, "")

@@ -14,9 +14,15 @@ or ends with one line on standard error and exit status 2, within a time and mem
 from __future__ import annotations
 
 import copy
+import io
 import json
+import logging
 import math
+import os
 import random
+import resource
+import sys
+import threading
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -63,7 +69,10 @@ class Case:
     command: tuple[str, ...]           # e.g. ("check",): the file's path comes after, or
                                        # where "{file}" stands ("{out}": an output directory;
                                        # "{atlas}", "{path}": a valid atlas, a valid path)
-    family: str = "model"              # what the file is: model, task, curve, designs, path, atlas
+    family: str = "model"              # what the file is: model, task, curve, designs, path,
+                                       # atlas; web (a request: text is its body, command its
+                                       # method, path and media type); names
+    stem: str = "case"                 # the file's name, but its suffix
 
     def args(self, file: str, **places: str) -> list[str]:
         if "{file}" not in self.command:
@@ -445,9 +454,10 @@ def atlas_case(rng: random.Random) -> Case:
             df = df.drop(columns=[column])
         elif op == 3:                                           # a column added
             df[rng.choice(["fd+9", "fd-9", "extra", "fd+0", "ground ", "7"])] = 1.0
-        elif op == 4:                                           # rows: none, or many
-            df = df.iloc[:0] if rng.random() < 0.5 else pd.concat([df] * rng.choice([10, 1000]),
-                                                                    ignore_index=True)
+        elif op == 4:                   # rows: none, or many (at most 32,000: more is gigabytes)
+            none = rng.random() < 0.5
+            df = df.iloc[:0] if none or len(df) > 32 else pd.concat(
+                [df] * rng.choice([10, 1000]), ignore_index=True)
         elif op == 5:                                           # a whole column of a kind
             df[column] = rng.choice([-1.0, 0.0, math.nan, 1e300, "x"])
         elif op == 6:                                           # columns renamed, reordered
@@ -475,12 +485,275 @@ def atlas_case(rng: random.Random) -> Case:
     return Case(data, ".parquet", command, "atlas")
 
 
-FAMILIES = {"model": case, "task": task_case, "csv": csv_case, "atlas": atlas_case}
+# -- requests to the web app ---------------------------------------------------------------------
+# The page's requests (as tests/web sends them) mutated as JSON, then sometimes as bytes: cut,
+# in another encoding, with a huge number, deep nesting, a duplicated key, a body of another
+# media type or no object at all; and the routes asked with other methods or other paths.
+_WEB_MODELS: dict | None = None
+_DERIVED = ("crank_rocker", "offset_slider_crank", "slotted_link", "engine",
+            "inverted_slider_crank")    # derivations of a second or less
+_ROUTES = ["analyze", "study", "study", "configuration", "drag", "drag", "flip", "derive",
+           "synthesize", "export", "export", "load", "save", "get"]
+_GETS = ["/api/catalogue", "/api/start", "/api/examples/crank_rocker", "/api/examples/nothing",
+         "/api/examples/catalogue:fourbar", "/api/examples/catalogue:x",
+         "/api/examples/..%2fREADME", "/api/examples/%00", "/api/examples/" + "x" * 5000, "/",
+         "/static/app.css", "/static/../pyproject.toml", "/static/%2e%2e/_api.py",
+         "/api/analyze/", "/api/ANALYZE", "/api", "/api/examples/crank_rocker.toml",
+         "/api/examples/%ff%fe", "/api/%1b%5b2J"]
+_MEDIA = ["text/plain", "application/x-www-form-urlencoded", "multipart/form-data; boundary=x",
+          "", "application/json; charset=utf-16", "Application/JSON ; charset=latin-1",
+          "application/jsonx", "application/json, text/plain"]
+_BODIES = [b"", b" ", b"[]", b"1", b'"x"', b"null", b"{}", b"\x00", b"NaN", b'{"model": NaN}',
+           b'{"model": Infinity, "samples": -Infinity}', b"{" * 3, b"\xef\xbb\xbf{}",
+           b"\xff\xfe{\x00}\x00"]
+
+
+def _web_models() -> dict[str, tuple[dict, list[str], str]]:
+    """Each example's JSON form, its dyads' steps and its text (made once per process)."""
+    global _WEB_MODELS
+    if _WEB_MODELS is None:
+        from kinelab.io import ModelFile
+        from kinelab.web import _api
+        _WEB_MODELS = {}
+        for path in sorted((ROOT / "examples").glob("*.toml")):
+            mf = ModelFile.read(path)
+            _WEB_MODELS[path.stem] = (mf.to_dict(), [b["step"] for b in _api._branches(mf)],
+                                      path.read_text())
+    return _WEB_MODELS
+
+
+def _web_request(rng: random.Random) -> tuple[str, str, dict | None]:
+    """(method, path, body) of a valid request."""
+    route = rng.choice(_ROUTES)
+    if route == "get":
+        return "GET", rng.choice(_GETS), None
+    models = _web_models()
+    name = rng.choice(sorted(_DERIVED) if route == "derive" else sorted(models))
+    model, steps, text = copy.deepcopy(models[name])
+    if route == "analyze":
+        body = {"model": model, "samples": rng.choice([5, 7, 37])}
+    elif route == "study":
+        body = {"model": model, "samples": rng.choice([9, 37, None])}
+        if rng.random() < 0.3:
+            body["columns"] = [f"{rng.choice([lk['name'] for lk in model['links']])}.omega[deg/s]"]
+    elif route == "configuration":
+        body = {"model": model, "q": rng.choice([0, 40, 90, 359.5, -30])}
+    elif route == "drag":
+        point = rng.choice(list(model["points"]))
+        xy = model["points"][point]
+        body = {"model": model, "point": point, "to": [xy[0] + 10, xy[1] - 5]}
+    elif route == "flip":
+        body = {"model": model, "step": rng.choice(steps or ["x"])}
+    elif route == "derive":
+        body = {"model": model, "lang": rng.choice(["en", "pt"])}
+    elif route == "synthesize":
+        body = {"task": copy.deepcopy(rng.choice(MORE_TASKS)), "source": "task.toml"}
+    elif route == "export":
+        body = {"model": model, "kind": rng.choice(["csv", "json", "svg", "dxf", "csv", "gif"]),
+                "samples": 5, "source": f"{name}.toml"}
+    elif route == "load":
+        body = {"text": text, "source": f"{name}.toml"} if rng.random() < 0.7 else {
+            "text": json.dumps(model), "format": "json"}
+    else:
+        body = {"model": model, "format": rng.choice(["toml", "json"])}
+    if "samples" in body and body["samples"] is None:
+        del body["samples"]
+    return "POST", "/api/" + route, body
+
+
+def _web_bytes(text: str, rng: random.Random) -> bytes:
+    """A request's JSON text as damaged bytes."""
+    op = rng.randrange(9)
+    if op == 0:                                                 # cut
+        return text.encode()[:rng.randrange(len(text) + 1)]
+    if op == 1:                                                 # a key given twice
+        return text.replace("{", '{"model": ' + rng.choice(['1', '"x"', "null", "{}"]) + ", ",
+                            1).encode() if rng.random() < 0.5 else \
+            (text[:-1] + ', "model": null}').encode()
+    if op == 2:                                                 # a huge number
+        number = rng.choice(["9" * 5000, "1" + "0" * 4300, "1e999", "-1e400", "1e-400",
+                             "0." + "0" * 5000 + "1", "123456789" * 400, "-0"])
+        digits = [i for i in range(len(text)) if text[i].isdigit() and not text[i - 1].isalnum()
+                  and text[i - 1] != "."]
+        at = rng.choice(digits) if digits else len(text) - 1
+        end = at
+        while end < len(text) and (text[end].isdigit() or text[end] in ".eE+-"):
+            end += 1
+        return (text[:at] + number + text[end:]).encode()
+    if op == 3:                                                 # deep nesting
+        depth = rng.choice([500, 990, 5000, 100_000])
+        nest = rng.choice(["[", '{"a": '])
+        close = "]" if nest == "[" else "}"
+        value = nest * depth + "1" + close * depth
+        if rng.random() < 0.5:
+            return ('{"model": ' + value + ', "q": 1}').encode()
+        return (text[:-1] + ', "deep": ' + value + "}").encode()
+    if op == 4:                                                 # not UTF-8
+        return _damaged(text, rng)
+    if op == 5:                                                 # another encoding
+        how = rng.choice(["utf-16", "utf-16-le", "utf-32", "utf-8-sig", "latin-1"])
+        return text.replace('"', '"\u00e9', 1).encode(how, "replace") if how == "latin-1" else \
+            text.encode(how, "surrogatepass")
+    if op == 6:                                                 # no object at all
+        return rng.choice(_BODIES)
+    if op == 7:                                                 # a NUL byte, or a control
+        at = rng.randrange(len(text) + 1)
+        return (text[:at] + rng.choice(["\x00", "\x1b", "\ufeff", "\\u0000"]) + text[at:]).encode()
+    return (text + " " * (2 * 1024 * 1024)).encode()            # past the server's cap
+
+
+def web_case(rng: random.Random) -> Case:
+    """A request to the web app (``kinelab serve``): a valid one mutated as JSON, then
+    sometimes as bytes, with another media type or another method.  The case's command is
+    (method, path, media type); its text, the body's bytes."""
+    method, path, body = _web_request(rng)
+    if body is not None and rng.random() < 0.8:
+        body = mutate(body, rng, rng.choice([1, 1, 2, 3]))
+    text = "" if body is None else _json(body)
+    data = text.encode("utf-8", "surrogatepass")
+    if body is not None and rng.random() < 0.3:
+        data = _web_bytes(text, rng)
+    media = "application/json" if body is not None else ""
+    r = rng.random()
+    if r < 0.08:
+        media = rng.choice(_MEDIA)
+    elif r < 0.14:                                              # another method
+        method = rng.choice(["GET", "PUT", "DELETE", "PATCH", "HEAD", "OPTIONS"]) if \
+            method == "POST" else rng.choice(["POST", "PUT", "DELETE"])
+    return Case(data, "", (method, path, media), "web")
+
+
+# -- hostile names in what the commands write ----------------------------------------------------
+# Model files whose model, points, links, joints and inputs are named with paths, separators,
+# device names, controls, very long names, names that differ only in case or normalisation and
+# mathtext, run through every command that writes files (a task's name through synth, a
+# table's file and column names through differentiate).  ABSOLUTE stands for an absolute path
+# inside the case's directory, filled in when the case runs.
+ABSOLUTE = "@ABSOLUTE@"
+HOSTILE_NAMES = [ABSOLUTE, ABSOLUTE + "/x", "/", "..", ".", "../../escaped", "../x", "a/b", "a\\b",
+                 "\\\\server\\share", "C:\\x", "C:x", "x:y", "a\x00b", "\x1b[2J", "a\nb", "\t",
+                 "\r", "\u202e", "\ufeff", "CON", "nul", "Nul.txt", "COM1", "com\u00b9", "LPT9 ",
+                 "aux.", "x" * 300, "\u00e9" * 200, "x" * 10_000, "$", "a$b", "$x$", "$\\alpha{",
+                 "\\frac{", "{", "}", "^", "_", "_x", "%", "#", "~", "*", "?", "<>", "|", '"', "'",
+                 " ", " x", "x ", "x.", ".hidden", "-rf", "--out", "\u540d\u524d", "\U0001f642",
+                 "\\", "a\\$b$", "$$", r"\$", "${HOME}", "$(true)", "e\u0301", "\u00e9", "Q", "q"]
+STEMS = ["case", "a\\b", "m\x1b[2Jx", "..x", "nul", "CON", "COM1.x", "$x$", "a$b", "x" * 200,
+         " x", "-x", "\u00e9", "e\u0301", "{x}", "..", "x.", "\\frac{"]
+_NAMED = {       # example: commands that write what it is named after
+    "crank_rocker": ["plot", "centres", "polygons", "analyze", "animate", "export"],
+    "slotted_link": ["plot", "polygons", "analyze", "export"],
+    "offset_slider_crank": ["plot", "centres", "polygons", "animate"],
+    "stephenson6": ["plot", "centres", "analyze"],
+    "engine": ["dynamics", "dynamics", "plot", "polygons"],
+}
+_WRITERS = {
+    "dynamics": lambda rng: ("dynamics", "{file}", "--samples", "7", "--out", "{out}",
+                             *rng.choice([(), ("--no-plots",), ("--verify",)])),
+    "plot": lambda rng: ("plot", "{file}", "--samples", "7", "--format", rng.choice(["png", "svg"]),
+                         "--out", "{out}"),
+    "centres": lambda rng: ("centres", "{file}", "--at", "30", "--centrodes", "--samples", "7",
+                            "--format", rng.choice(["png", "svg"]), "--out", "{out}"),
+    "polygons": lambda rng: ("polygons", "{file}", "--at", "30", "--format",
+                             rng.choice(["png", "svg"]), "--out", "{out}",
+                             *rng.choice([(), ("--verify",)])),
+    "analyze": lambda rng: ("analyze", "{file}", "--samples", "5", "-q", "-o", "{out}",
+                            *rng.choice([(), ("--verify",), ("--format", "json")])),
+    "animate": lambda rng: ("animate", "{file}", "--samples", "5", "--frames", "2", "--format",
+                            "gif", "--out", "{out}", *rng.choice([(), ("--centres",),
+                                                                   ("--velocities",)])),
+    "export": lambda rng: ("export", "{file}", "--to", rng.choice(["svg", "dxf", "toml"]),
+                           "--out", "{out}"),
+}
+_RESERVED_WORDS = {"R", "P", "C", "G", "m", "mm", "cm", "deg", "rad", "in"}
+
+
+def _names(data: dict) -> list[str]:
+    """The names a model file gives: its points', links', joints' and inputs'."""
+    names = list(data.get("points", {}))
+    for section in ("links", "joints", "inputs"):
+        names += [x["name"] for x in data.get(section, []) if "name" in x]
+    return [n for n in names if n not in _RESERVED_WORDS]
+
+
+def _hostile_name(rng: random.Random, taken: list[str]) -> str:
+    """A hostile name; at times one that differs from a name given already only in case or
+    in Unicode normalisation."""
+    import unicodedata
+    if taken and rng.random() < 0.25:
+        other = rng.choice(taken)
+        variant = rng.choice([other.swapcase(), unicodedata.normalize("NFD", other),
+                              unicodedata.normalize("NFC", other), other + " "])
+        if variant != other:
+            return variant
+    return rng.choice(HOSTILE_NAMES)
+
+
+def _renamed(data, names: dict, keyed: bool = False):
+    """``data`` with every name in ``names`` replaced where it is a value, and where it is a
+    key of a table keyed by names (``keyed``: points, a link's local places and sides)."""
+    if isinstance(data, dict):
+        return {(names.get(k, k) if keyed else k): _renamed(
+            v, names, k in ("points", "local", "sides") and isinstance(v, dict))
+            for k, v in data.items()}
+    if isinstance(data, list):
+        return [_renamed(v, names) for v in data]
+    return names.get(data, data) if isinstance(data, str) else data
+
+
+def _render_names(data: dict, rng: random.Random) -> tuple[str, str]:
+    if rng.random() < 0.5:
+        return to_toml(data), ".toml"
+    return json.dumps(data, ensure_ascii=rng.random() < 0.5), ".json"
+
+
+def names_case(rng: random.Random) -> Case:
+    """A model file (a task file for synth, a table for differentiate) whose names are
+    hostile, and a command that writes files named after them."""
+    stem = rng.choice(STEMS) if rng.random() < 0.3 else "case"
+    r = rng.random()
+    if r < 0.1:                                         # a task's name, through synth
+        task = copy.deepcopy(rng.choice([t for t in MORE_TASKS if t["task"] in (
+            "motion", "crank-rocker", "quick-return") and "search" not in t]))
+        task["name"] = _hostile_name(rng, [])
+        text, suffix = to_toml(task), ".toml"
+        command = ("synth", "{file}", "--out", "{out}", *rng.choice([(), ("--no-figures",),
+                                                                     ("--verify",)]))
+        return Case(text, suffix, command, "names", stem)
+    if r < 0.2:                                         # a table's names, through differentiate
+        header = [_hostile_name(rng, []) + rng.choice(["", " [s]", " [mm]"]) for _ in range(2)]
+        text = _curve_text(rng).split("\n", 1)[1]
+        text = ",".join(json.dumps(h) if ("," in h or '"' in h or "\n" in h) else h
+                        for h in header) + "\n" + text
+        command = ("differentiate", "{file}", "--out", "{out}", "--format",
+                   rng.choice(["png", "svg"]))
+        return Case(text.replace("\x00", ""), ".csv", command, "names", stem)
+    example = rng.choice(sorted(_NAMED))
+    original = tomllib.loads((ROOT / "examples" / f"{example}.toml").read_text())
+    for joint in original["joints"]:        # the name a joint is given by default, written
+        joint.setdefault("name", f"j{joint['point']}")      # (its point's may change)
+    chosen: dict[str, str] = {}
+    for old in rng.sample(_names(original), rng.choice([1, 1, 2, 3, 5])):
+        chosen[old] = _hostile_name(rng, list(chosen.values()))
+    data = _renamed(original, chosen)
+    if rng.random() < 0.6:
+        data["name"] = _hostile_name(rng, list(chosen.values()))
+    if "outputs" in data and rng.random() < 0.5:        # every renamed point reported, traced
+        points = [new for old, new in chosen.items() if old in original["points"]]
+        data["outputs"]["report"] = list(dict.fromkeys([*data["outputs"].get("report", []),
+                                                        *points]))
+    text, suffix = _render_names(data, rng)
+    command = _WRITERS[rng.choice(_NAMED[example])](rng)
+    return Case(text, suffix, command, "names", stem)
+
+
+FAMILIES = {"model": case, "task": task_case, "csv": csv_case, "atlas": atlas_case,
+            "web": web_case, "names": names_case}
 
 
 def any_case(rng: random.Random, families=("task", "csv", "atlas")) -> Case:
     """A case of one of ``families`` (the readers of tasks, CSV tables and atlases by
-    default; "model" adds model files)."""
+    default; "model" adds model files, "web" requests to the web app, "names" hostile names
+    through the commands that write files)."""
     return FAMILIES[rng.choice(families)](rng)
 
 
@@ -496,17 +769,18 @@ def run(c: Case, directory: Path) -> tuple[str, str]:
     problem of the file, each "kinelab: error: FILE: ...", at most MAX_LINES of them);
     anything else is a finding: "traceback" (an exception escaped), "exit 1", "not an error
     line", "long message", "too many lines", "unnamed" (an error that does not name the
-    file, about which every error of a case is), "exit N".
+    file, about which every error of a case is), "exit N".  A request to the web app
+    (family "web") is judged by :func:`run_web`, hostile names by :func:`run_names`.
     """
+    if c.family == "web":
+        return run_web(c)
+    if c.family == "names":
+        return run_names(c, directory)
     from click.testing import CliRunner
 
     from kinelab.cli import main
 
-    path = directory / f"case{c.suffix}"
-    if isinstance(c.text, bytes):
-        path.write_bytes(c.text)
-    else:
-        path.write_text(c.text, encoding="utf-8", errors="surrogatepass")
+    path = _written(c, directory)
     if "{file}" in c.command:
         args = c.args(str(path), out=str(directory / "out"), **_valid_files())
     else:
@@ -517,7 +791,23 @@ def run(c: Case, directory: Path) -> tuple[str, str]:
             args += ["--out", str(directory / "synth")]
         else:
             args += ["--out", str(directory / "out")]
-    result = CliRunner().invoke(main, args)
+    return _judged(CliRunner().invoke(main, args), path)
+
+
+def _written(c: Case, directory: Path, text: str | bytes | None = None) -> Path:
+    """The case's file, written in ``directory``."""
+    path = directory / f"{c.stem}{c.suffix}"
+    text = c.text if text is None else text
+    if isinstance(text, bytes):
+        path.write_bytes(text)
+    else:
+        path.write_text(text, encoding="utf-8", errors="surrogatepass")
+    return path
+
+
+def _judged(result, path: Path, named: bool = True) -> tuple[str, str]:
+    """The outcome of a command's ``result`` (see :func:`run`); ``named``: every error
+    line must name the file ``path``."""
     err = result.stderr
     if result.exception is not None and not isinstance(result.exception, SystemExit):
         return "traceback", f"{type(result.exception).__name__}: {str(result.exception)[:300]}"
@@ -532,8 +822,8 @@ def run(c: Case, directory: Path) -> tuple[str, str]:
             return "too many lines", f"{len(lines)} lines: {err[:200]}"
         if max(len(line) for line in lines) > MAX_MESSAGE:
             return "long message", f"{max(len(line) for line in lines)} characters: {err[:200]}"
-        if not all(line.startswith(f"kinelab: error: {path}: ") or
-                   line.startswith(f"kinelab: error: {path.name}: ") for line in lines):
+        if named and not all(line.startswith(f"kinelab: error: {path}: ") or
+                             line.startswith(f"kinelab: error: {path.name}: ") for line in lines):
             return "unnamed", lines[0][:300]       # every error here is about the file
         return "error", lines[0][:200]
     if result.exit_code == 1:
@@ -562,3 +852,214 @@ def _valid_files() -> dict[str, str]:
 
 
 _VALID = None
+
+
+# -- running a request to the web app -------------------------------------------------------------
+WEB_SECONDS = 90.0          # an answer within: longer than the server's own longest limit on
+                            # its work (an animation's 60 s), so a request past it hangs
+WEB_MEMORY = 3 * 2**30      # resident bytes of the process a request may take it to
+
+
+class _Records(logging.Handler):
+    """The records logged while a request is answered."""
+
+    def __init__(self):
+        super().__init__(logging.WARNING)
+        self.records: list[logging.LogRecord] = []
+
+    def emit(self, record: logging.LogRecord) -> None:
+        self.records.append(record)
+
+
+def _web_client():
+    """The web app, and a client of it (made once per process, as a server runs once)."""
+    global _CLIENT
+    if _CLIENT is None:
+        import warnings
+
+        from kinelab.web import create_app
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")         # starlette's note on httpx
+            from starlette.testclient import TestClient
+            _CLIENT = TestClient(create_app(), base_url="http://127.0.0.1:8000")
+    return _CLIENT
+
+
+_CLIENT = None
+
+
+def _peak() -> int:
+    """The most resident memory this process has held, bytes."""
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+
+
+def _strict(text: bytes):
+    """JSON as a browser reads it: no NaN or Infinity."""
+    def refuse(constant):
+        raise ValueError(f"{constant} is not JSON")
+    return json.loads(text, parse_constant=refuse)
+
+
+def run_web(c: Case, seconds: float = WEB_SECONDS) -> tuple[str, str]:
+    """(outcome, detail) of a request to the web app, answered within ``seconds``.
+
+    Outcomes: "success" (2xx; strict JSON when it says it is JSON), "error" (4xx, and
+    ``{"error": message}``, one bounded line per problem: one line, or one per entry of
+    ``problems``); anything else is a finding: "status N" (5xx, or another status),
+    "traceback" (an exception escaped the app), "logged" (an error in the server's log),
+    "not json", "not an error", "long message", "too many lines", "timeout", "memory";
+    "logged" also for a traceback printed on standard error.
+    """
+    method, path, media = c.command
+    headers = {"content-type": media} if media else {}
+    box: dict = {}
+
+    def call():
+        try:
+            box["answer"] = _web_client().request(method, path, content=c.text or None,
+                                                  headers=headers)
+        except BaseException as exc:        # noqa: BLE001 -- what escaped is the finding
+            box["exception"] = exc
+    records = _Records()
+    logging.getLogger().addHandler(records)
+    peak = _peak()
+    thread = threading.Thread(target=call, daemon=True)
+    stderr, sys.stderr = sys.stderr, io.StringIO()      # where Python reports what it
+    try:                                                # cannot raise (a thread's, a
+        thread.start()                                  # finalizer's exception)
+        thread.join(seconds)
+    finally:
+        logging.getLogger().removeHandler(records)
+        printed, sys.stderr = sys.stderr.getvalue(), stderr
+    where = f"{method} {path}"
+    if thread.is_alive():
+        return "timeout", f"{where}: no answer in {seconds:g} s"
+    if "exception" in box:
+        exc = box["exception"]
+        return "traceback", f"{where}: {type(exc).__name__}: {str(exc)[:300]}"
+    if "Traceback" in printed or "Exception ignored" in printed:
+        return "logged", f"{where}: {printed[-300:]!r}"
+    if peak < WEB_MEMORY <= _peak():
+        return "memory", f"{where}: {_peak():,} bytes resident"
+    logged = [r for r in records.records if r.levelno >= logging.ERROR or r.exc_info]
+    if logged:
+        r = logged[0]
+        kind = f"{r.exc_info[0].__name__}: " if r.exc_info and r.exc_info[0] else ""
+        return "logged", f"{where}: {kind}{r.getMessage()[:300]}"
+    answer = box["answer"]
+    status = answer.status_code
+    media = answer.headers.get("content-type", "").split(";")[0].strip()
+    if 200 <= status < 300:
+        if media == "application/json" and method != "HEAD":
+            try:
+                _strict(answer.content)
+            except ValueError as exc:
+                return "not json", f"{where}: {status}: {exc}"
+        return "success", ""
+    if not 400 <= status < 500:
+        return f"status {status}", f"{where}: {answer.text[:300]}"
+    if method == "HEAD":                    # no body
+        return "error", f"{status}"
+    if media != "application/json":
+        return "not json", f"{where}: {status} {media}: {answer.text[:300]}"
+    try:
+        data = _strict(answer.content)
+    except ValueError as exc:
+        return "not json", f"{where}: {status}: {exc}: {answer.text[:300]}"
+    message = data.get("error") if isinstance(data, dict) else None
+    if not isinstance(message, str) or not message.strip():
+        return "not an error", f"{where}: {status}: {answer.text[:300]}"
+    lines = message.splitlines()
+    problems = data.get("problems")
+    if len(lines) > 1 and not (isinstance(problems, list) and len(problems) == len(lines)):
+        return "not one line", f"{where}: {status}: {message[:300]!r}"
+    if len(lines) > MAX_LINES:
+        return "too many lines", f"{where}: {len(lines)} lines: {message[:200]!r}"
+    if max(len(line) for line in lines) > MAX_MESSAGE:
+        return "long message", f"{where}: {max(len(line) for line in lines)} characters: " \
+                               f"{message[:200]!r}"
+    return "error", f"{status} {lines[0][:200]}"
+
+
+# -- running hostile names ------------------------------------------------------------------------
+_DEVICES = frozenset(["con", "prn", "aux", "nul", *(f"{d}{k}" for d in ("com", "lpt")
+                                                   for k in "0123456789\u00b9\u00b2\u00b3")])
+
+
+def unsafe_file_name(name: str) -> bool:
+    """Whether ``name`` is not one plain file's name on every file system (see "Output
+    files" in docs/command-line.md): a separator or a character Windows refuses, a control
+    or format character, two dots in a row, a dot or a space at either end, a device's name,
+    more than 255 bytes."""
+    import unicodedata
+    if name in ("", ".", "..") or name.startswith((".", " ")) or name.endswith((".", " ")):
+        return True
+    if ".." in name or len(name.encode("utf-8", "surrogatepass")) > 255:
+        return True
+    if any(ch in '/\\:*?"<>|' or unicodedata.category(ch) in ("Cc", "Cf", "Cs", "Zl", "Zp")
+           for ch in name):
+        return True
+    return name.split(".", 1)[0].rstrip(" ").casefold() in _DEVICES
+
+
+def _tree(root: Path) -> set[Path]:
+    """Every file and directory under ``root``."""
+    found = set()
+    for here, dirs, files in os.walk(root):
+        found.update(Path(here) / n for n in dirs + files)
+    return found
+
+
+def run_names(c: Case, directory: Path) -> tuple[str, str]:
+    """(outcome, detail) of a command writing files named after hostile names, run from
+    ``directory/1/2/3/work`` (so that a path climbing out of it still lands in
+    ``directory``), the file in ``work/src``, ``--out`` ``work/out``.
+
+    Outcomes as :func:`run`'s (errors may name an output rather than the file), and the
+    findings "written outside --out" (a file or directory that appeared in ``directory``
+    but not in ``--out``), "staging left" (a ``.kinelab-*`` directory after the command
+    ended), "unsafe name" (see :func:`unsafe_file_name`) and "names meet" (two outputs
+    whose names differ only in case or Unicode normalisation).
+    """
+    import unicodedata
+
+    from click.testing import CliRunner
+
+    from kinelab.cli import main
+
+    directory = directory.resolve()         # the command runs from elsewhere
+    work = directory / "1" / "2" / "3" / "work"
+    (work / "src").mkdir(parents=True)
+    out = work / "out"
+    text = c.text.replace(ABSOLUTE, json.dumps(str(directory / "victim"))[1:-1])
+    path = _written(c, work / "src", text)
+    args = [a.format(file=str(path), out=str(out)) for a in c.command]
+    before = _tree(directory)
+    here = os.getcwd()
+    os.chdir(work)
+    try:
+        result = CliRunner().invoke(main, args)
+    finally:
+        os.chdir(here)
+    outcome, detail = _judged(result, path, named=False)
+    if outcome not in FINE:
+        return outcome, detail
+    after = _tree(directory)
+    new = sorted(after - before)
+    outside = [p for p in new if p != out and out not in p.parents]
+    if outside:
+        return "written outside --out", f"{c.command[0]}: {str(outside[0])!r}"[:300]
+    staged = [p for p in after if p.name.startswith(".kinelab-")]
+    if staged:
+        return "staging left", f"{c.command[0]}: {str(staged[0])!r}"
+    seen: dict[str, str] = {}
+    for p in new:
+        if p == out:
+            continue
+        if p.parent != out or unsafe_file_name(p.name):
+            return "unsafe name", f"{c.command[0]}: {str(p.relative_to(out))!r}"[:300]
+        key = unicodedata.normalize("NFC", p.name).casefold()
+        if key in seen:
+            return "names meet", f"{c.command[0]}: {seen[key]!r} and {p.name!r}"[:300]
+        seen[key] = p.name
+    return outcome, detail

@@ -165,3 +165,109 @@ def test_slide_axes_follow_the_shape_rule():
     for name in ("origin", "tangential", "normal", "coriolis", "sliding"):
         assert getattr(parts, name).shape == (2,)
         np.testing.assert_array_equal(getattr(parts, name), getattr(parts_n, name)[7])
+
+
+def by_items(sol, name, kinds):
+    """A link's, point's or slide's (value, K, L, rate, second rate) read from ``item_jets``
+    and ``item_rates``, the general gather, shaped as the accessors shape them."""
+    tables = {"l": (sol.link_item, 1), "p": (sol.point_item, 2), "s": (sol.slide_item, 1)}
+    i, w = next((t[0][name], t[1]) for kind, t in tables.items() if kind in kinds and name in t[0])
+    jets, rates = sol.item_jets(list(range(i, i + w))), sol.item_rates(list(range(i, i + w)))
+    N, M = sol.N, sol.M
+    parts = [jets[:, :, 0], jets[:, :, 1:1 + M], jets[:, :, 1 + M:].reshape(N, w, M, M),
+             rates[:, :, 0], rates[:, :, 1]]
+    parts = [p if w > 1 else p[:, 0] for p in parts]
+    parts[1] = parts[1][..., 0] if M == 1 else parts[1]
+    parts[2] = parts[2][..., 0, 0] if M == 1 else parts[2]
+    return [p[0] if sol.single else p for p in parts]
+
+
+ACCESSORS = {"l": ("angle", "K", "L", "omega", "alpha"),
+             "p": ("position", "K", "L", "velocity", "acceleration"),
+             "s": ("slide", "K", "L", "slide_velocity", "slide_acceleration")}
+
+
+def non_grashof():
+    return kl.mechanisms.fourbar(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)
+
+
+@pytest.mark.parametrize("make, q", [
+    (coupler_fourbar, Q),
+    (coupler_fourbar, 0.7),
+    (coupler_fourbar, [-7.0, -3.2, 3.3, 9.0, 20.0]),                    # wrapped angles
+    (non_grashof, "limits"),                                            # masked, singular
+    (non_grashof, 3.0),
+    (lambda: kl.mechanisms.slider_crank(1.0, 3.0, offset=0.5), Q),
+    (lambda: kl.mechanisms.whitworth(1.0, 0.5, 1.0, 2.0), Q),
+    (kl.mechanisms.stephenson6, Q),
+    (kl.mechanisms.triad6, Q[:4]),
+    (lambda: kl.mechanisms.fivebar(1.0, 1.0, 1.5, 1.5, 1.0), [[1.2, 1.3], [1.6, 1.5], [2.0, 1.9]]),
+    (lambda: kl.mechanisms.fivebar(1.0, 1.0, 1.5, 1.5, 1.0), [1.2, 1.3]),
+], ids=["fourbar", "one sample", "turns", "masked and singular", "one masked", "slider-crank",
+        "whitworth", "stephenson6", "triad6", "fivebar", "fivebar one sample"])
+def test_every_accessor_is_the_general_gather(make, q):
+    """The accessors read stored items as views, turn an input into its link's angle, rates,
+    K and L, and gather fixed points once: to the bit what item_jets and item_rates give,
+    NaN rules and shapes included; and what they gather they hand out as copies."""
+    m = make()
+    M = len(m.inputs)
+    if isinstance(q, str):                  # either end of the reach, and beyond
+        lo, hi = kl.kinematics.reachable_ranges(m)[0]
+        q = [0.0, hi, 3.0, lo, 1.0]
+    qd, qdd = (2.0, 0.5) if M == 1 else (np.array([2.0, -1.0]), np.array([0.5, 0.25]))
+    sol = kl.analyze(m, q=q, qd=qd, qdd=qdd, unreachable="mask", at_singular="flag")
+    if make is non_grashof and sol.N > 1:
+        assert sol.singular.any() and not sol.assembled.all()
+    names = [(n, "l") for n in sol.link_names] + [(n, "p") for n in sol.point_names] + \
+        [(n, "s") for n in sol.slide_names]
+    for name, kind in names:
+        expected = by_items(sol, name, kind)
+        got = [getattr(sol, a)(name) for a in ACCESSORS[kind]]
+        for a, x, y in zip(ACCESSORS[kind], got, expected):
+            assert type(x) is type(y) and np.shape(x) == np.shape(y), (name, a)
+            np.testing.assert_array_equal(x, y, err_msg=f"{name}.{a}")
+        for a in ACCESSORS[kind]:                 # what one caller changes, no other sees
+            x = getattr(sol, a)(name)
+            if isinstance(x, np.ndarray) and x.base is not None and not np.shares_memory(
+                    x, sol.stored_jets) and not np.shares_memory(x, sol.stored_rates):
+                x[...] = 1234.5
+        for a, y in zip(ACCESSORS[kind], expected):
+            np.testing.assert_array_equal(getattr(sol, a)(name), y, err_msg=f"{name}.{a}")
+
+
+def test_designs_accessors_are_the_general_gather():
+    sc = kl.mechanisms.slider_crank(crank=1.0, rod=3.0)
+    r = np.array([1.0, 1.2, 1.4])
+    xy = np.array([[[0, 0], [0, c], [np.sqrt(9 - c * c), 0]] for c in r])
+    sol = kl.kinematics.analyze_designs(sc, xy, q=np.radians([0.0, 90.0, 400.0]), qd=2.0)
+    for link in sol.link_names:
+        np.testing.assert_array_equal(sol.angle(link), sol.by_design(sol.item_jets([sol.link_item[link]])[:, 0, 0]))
+        np.testing.assert_array_equal(sol.omega(link), sol.by_design(sol.item_rates([sol.link_item[link]])[:, 0, 0]))
+    for point in sol.point_names:
+        i = sol.point_item[point]
+        np.testing.assert_array_equal(sol.position(point), sol.by_design(sol.item_jets([i, i + 1])[:, :, 0]))
+
+
+def test_a_solution_made_quickly_has_every_field():
+    """analyze builds its solution without the dataclass's __init__: every field is set."""
+    import dataclasses
+    sol = kl.analyze(coupler_fourbar(), q=Q, qd=2.0)
+    assert {f.name for f in dataclasses.fields(KinematicSolution)} <= set(vars(sol))
+
+
+@pytest.mark.parametrize("q", [0.7, np.float64(0.7), [0.7], np.array([0.7, 2.0, -7.0]),
+                               np.linspace(0.0, 12.0, 40)[::3], [1, 2, 3], np.float32(0.5)])
+def test_inputs_checked_quickly_or_not_give_the_same_numbers(q):
+    """One input swept at constant rates takes a quicker check: its numbers are those of the
+    same inputs given in another form (which takes the general checks)."""
+    fb = coupler_fourbar()
+    a = kl.analyze(fb, q, 2.0, 0.5)
+    as_list = np.asarray(q, float).tolist()
+    b = kl.analyze(fb, as_list, np.array(2.0), np.array(0.5))
+    assert a.q.shape == b.q.shape and a.qd.shape == b.qd.shape and a.qd.strides == b.qd.strides
+    assert not a.qd.flags.writeable and not b.qd.flags.writeable or a.N == 1
+    for name in ("B", "P"):
+        np.testing.assert_array_equal(a.position(name), b.position(name))
+        np.testing.assert_array_equal(a.acceleration(name), b.acceleration(name))
+    np.testing.assert_array_equal(a.q, b.q)
+    assert a.single == b.single

@@ -215,3 +215,46 @@ def test_poles_of_few_positions_are_named():
     assert names == ["P12", "P13", "P14", "P23", "P24", "P34"]
     marks = [line for line in ax.lines if line.get_marker() == "x"]
     assert len(marks) == 1 and len(marks[0].get_xdata()) == 6
+
+
+# names that mathtext would read as commands ($...$, a backslash, a brace): a figure shows
+# them as the file writes them
+MATH_NAMES = {"crank-rocker": "$m$ {", "P": "a$b", "coupler": "$x$", "B": "\\frac{",
+              "crank angle": "$\\alpha{$"}
+
+
+def _renamed(data, names):
+    if isinstance(data, dict):
+        return {names.get(k, k): _renamed(v, names) for k, v in data.items()}
+    if isinstance(data, list):
+        return [_renamed(v, names) for v in data]
+    return names.get(data, data) if isinstance(data, str) else data
+
+
+def _shown(text):
+    """A text as matplotlib shows it, None when it would read it as mathtext."""
+    from matplotlib import cbook
+    return None if cbook.is_math_text(text) else text.replace(r"\$", "$")
+
+
+def test_names_that_mathtext_would_read_are_drawn_as_they_are():
+    import tomllib
+    from matplotlib.text import Text
+    from kinelab.io import ModelFile
+    data = tomllib.loads(open("examples/crank_rocker.toml").read())
+    mf = ModelFile.from_dict(_renamed(data, MATH_NAMES))
+    sol = mf.analyze(19)
+    one = kl.analyze(mf.mechanism, q=np.radians(30.0), qd=1.0)
+    figures = [kl.plot.curves(sol, ["$x$", "rocker"]), kl.plot.coefficients(sol, ["$x$"]),
+               kl.plot.coupler_curve(sol, "a$b").figure, kl.plot.transmission(sol).figure,
+               kl.plot.velocity_polygon(one), kl.plot.acceleration_polygon(one),
+               kl.plot.instant_centers(one), kl.plot.centrodes(sol, "$x$", 3).figure]
+    for fig in figures:
+        fig.canvas.draw()                       # mathtext would fail here
+        shown = [_shown(t.get_text()) for t in fig.findobj(Text)]
+        assert any(s and "$m$ {" in s for s in shown), shown          # in the title
+    assert _shown(figures[2].axes[0].get_title()) == "$m$ {: path of a$b"
+    legend = [_shown(t.get_text()) for t in figures[2].axes[0].get_legend().get_texts()]
+    assert "$x$" in legend and "path of a$b" in legend
+    assert _shown(figures[0].axes[-1].get_xlabel()) == "$\\alpha{$ [rad]"
+    assert "\\frac{" in [_shown(t.get_text()) for t in figures[4].axes[0].texts]

@@ -11,12 +11,51 @@ export function el(name, attrs = {}, parent = null) {
 export class Canvas {
   constructor(svg, handlers) {
     this.svg = svg;
-    this.handlers = handlers;      // {down(name, xy, event), move(name, xy), up(name, xy), hover(xy)}
+    // {down(name, xy, event), move(name, xy), up(name, xy), hover(xy), panning(), viewed()}
+    this.handlers = handlers;
     this.view = null;
     this.dragging = null;
+    this.panning = null;           // a pan under way: the pointer's last screen place
+    this.touches = new Map();      // touch pointers down, for a pinch
+    this.grid = true;
+    this.unitScale = 1;            // shown units per model unit (the grid's steps are in those)
     svg.addEventListener("pointerdown", (e) => this.pointer(e, "down"));
     svg.addEventListener("pointermove", (e) => this.pointer(e, "move"));
     svg.addEventListener("pointerup", (e) => this.pointer(e, "up"));
+    svg.addEventListener("pointercancel", (e) => this.pointer(e, "up"));
+    svg.addEventListener("wheel", (e) => {
+      if (!this.view) return;
+      e.preventDefault();
+      const r = svg.getBoundingClientRect();
+      this.zoom(Math.exp(-e.deltaY * 0.0015), [e.clientX - r.left, e.clientY - r.top]);
+    }, {passive: false});
+    svg.addEventListener("auxclick", (e) => e.preventDefault());
+    svg.addEventListener("dblclick", (e) => {
+      const d = e.target.dataset && e.target.dataset.dim;
+      if (d && this.handlers.dimension) this.handlers.dimension(d, e.target);
+    });
+  }
+
+  // The view only: the model's numbers never change with it.  A new view object each time,
+  // so that the paths are drawn again.
+  zoom(k, [X, Y]) {
+    const v = this.view;
+    this.view = {s: v.s * k, ox: X - (X - v.ox) * k, oy: Y - (Y - v.oy) * k};
+    if (this.handlers.viewed) this.handlers.viewed();
+  }
+  pan(dX, dY) {
+    const v = this.view;
+    this.view = {s: v.s, ox: v.ox + dX, oy: v.oy + dY};
+    if (this.handlers.viewed) this.handlers.viewed();
+  }
+
+  // The grid's step in model units: 1, 2 or 5 times a power of ten in the units shown,
+  // at least `px` pixels apart.
+  gridStep(px = 36) {
+    const shown = px / this.view.s * this.unitScale;
+    const e = Math.pow(10, Math.floor(Math.log10(shown)));
+    const step = [1, 2, 5, 10].map((k) => k * e).find((v) => v >= shown * (1 - 1e-9));
+    return step / this.unitScale;
   }
 
   // Fit the view to a box [xmin, ymin, xmax, ymax] (model units), y upwards.
@@ -35,7 +74,20 @@ export class Canvas {
   pointer(e, kind) {
     if (!this.view) return;
     const r = this.svg.getBoundingClientRect();
-    const xy = this.toModel([e.clientX - r.left, e.clientY - r.top]);
+    const here = [e.clientX - r.left, e.clientY - r.top];
+    const xy = this.toModel(here);
+    if (e.pointerType === "touch" && this.pinch(e, kind, here)) return;
+    if (kind === "down" && (e.button === 1 || (this.handlers.panning && this.handlers.panning()))) {
+      e.preventDefault();
+      this.panning = here;
+      this.svg.setPointerCapture(e.pointerId);
+      return;
+    }
+    if (this.panning) {
+      if (kind === "move") { this.pan(here[0] - this.panning[0], here[1] - this.panning[1]); this.panning = here; }
+      if (kind === "up") this.panning = null;
+      return;
+    }
     if (kind === "down") {
       const name = e.target.dataset ? e.target.dataset.point : undefined;
       this.dragging = name || null;
@@ -53,6 +105,41 @@ export class Canvas {
     }
   }
 
+  // Two fingers: zoom about their middle by the change of their distance, pan with it.
+  pinch(e, kind, here) {
+    const T = this.touches;
+    if (kind === "down") T.set(e.pointerId, here);
+    if (kind === "up") { T.delete(e.pointerId); this.pinched = T.size > 0 && this.pinched; return this.pinched; }
+    if (T.size < 2) return false;
+    if (kind === "down") { this.dragging = null; this.pinched = true; return true; }
+    const [a0, b0] = [...T.values()];
+    T.set(e.pointerId, here);
+    const [a1, b1] = [...T.values()];
+    const d0 = Math.hypot(b0[0] - a0[0], b0[1] - a0[1]), d1 = Math.hypot(b1[0] - a1[0], b1[1] - a1[1]);
+    const m0 = [(a0[0] + b0[0]) / 2, (a0[1] + b0[1]) / 2], m1 = [(a1[0] + b1[0]) / 2, (a1[1] + b1[1]) / 2];
+    this.pan(m1[0] - m0[0], m1[1] - m0[1]);
+    if (d0 > 0 && d1 > 0) this.zoom(d1 / d0, m1);
+    return true;
+  }
+
+  // The grid's lines over the whole canvas, the axes through the origin darker.
+  gridLines() {
+    const w = this.svg.clientWidth || 600, h = this.svg.clientHeight || 400;
+    const step = this.gridStep();
+    const [x0, y1] = this.toModel([0, 0]), [x1, y0] = this.toModel([w, h]);
+    const items = [];
+    for (let i = Math.ceil(x0 / step); i <= Math.floor(x1 / step); i++) {
+      const [X] = this.toScreen([i * step, 0]);
+      items.push([`x ${i}`, "line", {class: i === 0 ? "grid-axis" : "grid-line", x1: X, y1: 0, x2: X, y2: h}]);
+    }
+    for (let i = Math.ceil(y0 / step); i <= Math.floor(y1 / step); i++) {
+      const [, Y] = this.toScreen([0, i * step]);
+      items.push([`y ${i}`, "line", {class: i === 0 ? "grid-axis" : "grid-line", x1: 0, y1: Y, x2: w, y2: Y}]);
+    }
+    this.svg.dataset.gridStep = step;
+    return items;
+  }
+
   // scene: {points: {name: [x, y]}, drawing, traces: {name: [[x, y], ...]}, marks, centres,
   //         guides: {joint: [ux, uy]} (each P joint's slide direction now),
   //         pending: a point waiting for the second click of a link, hover: [x, y],
@@ -65,12 +152,16 @@ export class Canvas {
     if (!this.layers) {
       svg.replaceChildren();
       this.layers = {};
-      for (const name of ["paths", "links", "joints", "points", "poses", "centres"])
+      for (const name of ["grid", "paths", "links", "joints", "dims", "points", "poses", "centres"])
         this.layers[name] = {g: el("g", {"data-layer": name}, svg), byKey: new Map()};
       this.drawn = {};
     }
     const P = scene.points, d = scene.drawing, L = this.layers;
     const S = (p) => this.toScreen(p);
+    if (this.view !== this.drawn.gridView || this.grid !== this.drawn.grid) {
+      patch(L.grid, this.grid ? this.gridLines() : []);
+      this.drawn.gridView = this.view; this.drawn.grid = this.grid;
+    }
     const known = (xy) => xy && xy[0] !== null && xy[1] !== null;
     if (scene.traces !== this.drawn.traces || scene.marks !== this.drawn.marks || this.view !== this.drawn.view) {
       const items = [];
@@ -84,14 +175,16 @@ export class Canvas {
         else items.push([`m ${i}`, "rect", {class: "mark-change", x: X - 5, y: Y - 5, width: 10, height: 10}]);
       });
       patch(L.paths, items);
-      this.drawn = {traces: scene.traces, marks: scene.marks, view: this.view};
+      Object.assign(this.drawn, {traces: scene.traces, marks: scene.marks, view: this.view});
     }
+    const sel = scene.selected || {};
+    const picked = (kind, name) => sel.kind === kind && sel.name === name ? " selected" : "";
     const links = [];
     for (const link of d.links) {
       const pts = link.points.filter((p) => known(P[p]));
       if (pts.length < 2) continue;
       links.push([`l ${link.name}`, pts.length > 2 ? "polygon" : "polyline",
-                  {class: "link" + (link.ground ? " ground" : ""), "data-link": link.name,
+                  {class: "link" + (link.ground ? " ground" : "") + picked("link", link.name), "data-link": link.name,
                    points: pts.map((p) => S(P[p])).join(" ")}]);
     }
     patch(L.links, links);
@@ -105,7 +198,7 @@ export class Canvas {
       const ang = Math.atan2(uy, ux) * 180 / Math.PI;
       joints.push([`g ${j.name}`, "line", {class: "guide", x1: X - 60 * ux, y1: Y - 60 * uy,
                                            x2: X + 60 * ux, y2: Y + 60 * uy, "data-guide": j.name}]);
-      joints.push([`b ${j.name}`, "rect", {class: "joint P", x: X - 10, y: Y - 6, width: 20, height: 12,
+      joints.push([`b ${j.name}`, "rect", {class: "joint P" + picked("joint", j.name), x: X - 10, y: Y - 6, width: 20, height: 12,
                                            transform: `rotate(${ang} ${X} ${Y})`, "data-block": j.name}]);
     }
     patch(L.joints, joints);
@@ -126,11 +219,31 @@ export class Canvas {
         }
       }
       points.push([`c ${name}`, "circle", {class: (jointed.has(name) ? "joint " : "") + "point" + (ground ? " ground" : "") +
-                                            (inputPoints.has(name) ? " input" : ""),
+                                            (inputPoints.has(name) ? " input" : "") +
+                                            (picked("point", name) || (sel.point === name ? " selected" : "")),
                                            cx: X, cy: Y, r: jointed.has(name) ? 6 : 4.5, "data-point": name}]);
       points.push([`t ${name}`, "text", {class: "label", x: X + 8, y: Y - 8}, name]);
     }
     patch(L.points, points);
+    // dimensions: along a link (a -> b), upright, a little to its side; an input's at its pivot
+    const dims = [];
+    for (const dm of scene.dims || []) {
+      if (!known(dm.a) || (dm.b && !known(dm.b))) continue;
+      const [X0, Y0] = S(dm.a);
+      let attrs;
+      if (dm.b) {
+        const [X1, Y1] = S(dm.b);
+        let ang = Math.atan2(Y1 - Y0, X1 - X0) * 180 / Math.PI;
+        if (ang > 90) ang -= 180; else if (ang <= -90) ang += 180;
+        const n = Math.hypot(X1 - X0, Y1 - Y0) || 1, off = 10;
+        const X = (X0 + X1) / 2 + off * (Y1 - Y0) / n, Y = (Y0 + Y1) / 2 - off * (X1 - X0) / n;
+        attrs = {x: X, y: Y, "text-anchor": "middle", transform: `rotate(${ang} ${X} ${Y})`};
+      } else {
+        attrs = {x: X0 - 12, y: Y0 + 26, "text-anchor": "end"};
+      }
+      dims.push([`d ${dm.name}`, "text", {class: "dim", "data-dim": dm.name, ...attrs}, dm.text]);
+    }
+    patch(L.dims, dims);
     L.poses.g.replaceChildren();
     scene.poses.forEach((pose, i) => {
       const [X, Y] = S(pose.xy), len = 42;

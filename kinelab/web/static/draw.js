@@ -114,3 +114,38 @@ export function slider(model, name, at, to) {
                  point: p, axis: axis.map((v) => Math.round(1e6 * v / norm) / 1e6 + 0)});   // a pixel's worth
   return m;
 }
+
+// The model without a point, a link, a joint or an input (sel: {kind, name}), and without
+// what refers to it: a point's joints and its places on links, a link's joints, a joint's
+// input.  The server says whether what is left is a model.
+export function remove(model, sel) {
+  const m = structuredClone(model);
+  delete m.catalogue;
+  m.joints = m.joints || [];
+  let joints = [];
+  if (sel.kind === "point") {
+    delete m.points[sel.name];
+    for (const l of m.links) {
+      const i = l.points.indexOf(sel.name);
+      if (i < 0) continue;
+      l.points.splice(i, 1);
+      if (i < 2) delete l.length;
+      if (l.local) delete l.local[sel.name];
+      if (l.sides) delete l.sides[sel.name];
+    }
+    m.links = m.links.filter((l) => l.ground || l.points.length);
+    joints = m.joints.filter((j) => j.point === sel.name || j.links.some((n) => !m.links.find((l) => l.name === n)));
+  } else if (sel.kind === "link") {
+    m.links = m.links.filter((l) => l.name !== sel.name);
+    joints = m.joints.filter((j) => j.links.includes(sel.name));
+  } else if (sel.kind === "joint") {
+    joints = m.joints.filter((j) => j.name === sel.name);
+  } else if (sel.kind === "input") {
+    m.inputs = (m.inputs || []).filter((i) => (i.name || i.joint) !== sel.name);
+  }
+  const gone = new Set(joints.map((j) => j.name));
+  m.joints = m.joints.filter((j) => !gone.has(j.name));
+  if (m.inputs) m.inputs = m.inputs.filter((i) => !gone.has(i.joint));
+  if (m.inputs && !m.inputs.length) delete m.inputs;
+  return m;
+}

@@ -9,6 +9,8 @@ import {showCentres, derive} from "./method.js";
 import * as draw from "./draw.js";
 import {synthesisPanel, posesOnDrawing} from "./synth.js";
 import {follower} from "./follow.js";
+import {chosen, shownUnits, shownColumn, toShown, fromShown} from "./units.js";
+import {withLength, num} from "./table.js";
 import {forcesPanel} from "./dynamics.js";
 
 const $ = (id) => document.getElementById(id);
@@ -78,6 +80,7 @@ function accept(s, source, refit) {
   state.study = s; state.model = s.model; state.source = source; state.draft = false;
   state.config = null; state.dragQ = null;     // the last configuration was of the model before
   state.predicted = null;
+  unselect();                                  // names of the model before
   if (state.index >= s.samples) state.index = 0;
   if (s.unassembled.includes(state.index)) {      // show a sample where the loops close
     const good = Array.from({length: s.samples}, (_, i) => i).find((i) => !s.unassembled.includes(i));
@@ -114,6 +117,7 @@ function newDrawing() {
   state.seq++;                     // answers on their way are for the page before
   draw.cancel();
   if (state.model) { state.history.push({model: state.model, source: state.source}); state.future = []; }
+  unselect();
   Object.assign(state, {model: draw.empty(), source: null, study: null, config: null, dragQ: null,
                         predicted: null, draft: true, index: 0, hover: null, derivation: null});
   $("title").textContent = "";
@@ -144,7 +148,8 @@ function scene() {
   if (state.pose) poses.push(state.pose);
   const pending = tool() === "link" ? draw.pending() : null, hover = pending ? state.hover : null;
   if (!state.study) return {points: state.model.points, drawing: draw.drawingOf(state.model), poses,
-                            guides: draw.guidesOf(state.model), pending, hover};
+                            guides: draw.guidesOf(state.model), pending, hover, selected: state.selected,
+                            dims: dimensions(state.model.points, draw.drawingOf(state.model))};
   const s = state.study, d = s.drawing;
   const sketch = $("canvas").dataset.sketch === "1";
   const points = {};
@@ -155,7 +160,70 @@ function scene() {
   const centres = $("show-centres").checked && state.config && !sketch ? state.config.centres : [];
   const guides = sketch ? {} : (now && now.guides) ||
     Object.fromEntries(Object.entries(s.guides || {}).map(([j, a]) => [j, a[state.index]]));
-  return {points, drawing: d, traces, marks, centres, guides, poses, pending, hover};
+  return {points, drawing: d, traces, marks, centres, guides, poses, pending, hover, selected: state.selected,
+          dims: dimensions(points, d)};
+}
+
+// Each link's length along it (its first two points, as drawn) and the input's value at
+// its pivot, in the units shown.
+function dimensions(points, d) {
+  if (!$("dims").checked) return [];
+  const u = shownUnits(state.model.units), out = [];
+  const f = (v) => Number(v.toPrecision(5));
+  for (const link of d.links) {
+    const [a, b] = link.points;
+    if (!b || !points[a] || !points[b] || points[a][0] === null || points[b][0] === null) continue;
+    out.push({name: link.name, a: points[a], b: points[b],
+              text: `${f(Math.hypot(points[b][0] - points[a][0], points[b][1] - points[a][1]) * u.L)} ${u.length}`});
+  }
+  const s = state.study;
+  if (s && s.inputs.length === 1) {
+    const input = (state.model.inputs || [])[0], j = input && d.joints.find((k) => k.name === input.joint);
+    const q = state.dragQ !== null && !Array.isArray(state.dragQ) ? state.dragQ : column(s.inputs[0])[state.index];
+    if (j && j.type === "R" && q !== null && points[j.point]) {
+      const v = shownColumn(s.inputs[0], [q], s.units);
+      out.push({name: "input", a: points[j.point], text: `${f(v.values[0])} ${unitOf(v.name)}`});
+    }
+  }
+  return out;
+}
+const unitOf = (name) => (/\[([^\]]*)\]$/.exec(name) || ["", ""])[1];
+
+// A dimension typed in place: a link's length goes the table's way (the server
+// re-assembles, or refuses with the reason); the input's value moves the linkage there.
+function editDimension(name, target) {
+  const r = target.getBoundingClientRect();
+  const box = document.createElement("input");
+  box.id = "dim-edit";
+  box.dataset.dim = name;
+  const u = shownUnits(state.model.units);
+  const link = state.model.links.find((l) => l.name === name);
+  box.value = name === "input" ? target.textContent.split(" ")[0]
+    : toShown(link.length ?? Math.hypot(...[0, 1].map((c) => state.model.points[link.points[1]][c] - state.model.points[link.points[0]][c])), u.L);
+  box.style.left = `${r.left}px`; box.style.top = `${r.top - 4}px`;
+  document.body.append(box);
+  box.focus(); box.select();
+  let done = false;
+  const close = () => { if (!done) { done = true; box.remove(); } };
+  box.addEventListener("keydown", (e) => { if (e.key === "Escape") close(); if (e.key === "Enter") box.blur(); });
+  box.addEventListener("blur", close);
+  box.addEventListener("change", () => {
+    if (done) return;                  // left with Esc
+    const text = box.value;
+    close();
+    try {
+      if (name !== "input") { editModel(withLength(state.model, name, fromShown(num(text, `${name}.length`), u.L))); return; }
+      const s = state.study, k = shownColumn(s.inputs[0], [1], s.units).values[0];   // shown per model unit
+      const q = fromShown(num(text, "input"), k);
+      const qs = column(s.inputs[0]);
+      let best = 0;
+      qs.forEach((v, i) => { if (v !== null && Math.abs(v - q) < Math.abs(qs[best] - q)) best = i; });
+      pause();
+      setIndex(best);
+      state.dragQ = q;                 // exactly there: the server's configuration at q
+      configurationSoon();
+    } catch (err) { refuse(err.message); }
+  });
 }
 
 // The traced paths and their marks, made once a sweep (the drawing keeps them while the
@@ -181,11 +249,15 @@ function redrawSoon() {          // at most once a frame
 }
 
 function redraw() {
+  canvas.unitScale = shownUnits(state.model.units).L;
   canvas.draw(scene());
   forces.draw();
   if (state.study) {
     $("scrub").value = state.index;
-    const q = state.study.inputs.map((n) => `${n} = ${fmt(column(n)[state.index])}`);
+    const q = state.study.inputs.map((n) => {
+      const c = shownColumn(n, [column(n)[state.index]], state.study.units);
+      return `${c.name} = ${fmt(c.values[0])}`;
+    });
     $("input-value").textContent = q.join(", ");
   }
 }
@@ -213,8 +285,9 @@ function fillPlotChoices() {
   const inputs = state.study.inputs;
   const preferred = names.find((n) => n.endsWith(".transmission[" + state.study.units.angle + "]"))
     || names.find((n) => /\.angle\[/.test(n) && !n.startsWith("ground") && !inputs.includes(n)) || names[0];
-  y.replaceChildren(...names.map((n) => new Option(n, n)));
-  x.replaceChildren(...[...inputs, "sample"].map((n) => new Option(n, n)));
+  const label = (n) => shownColumn(n, null, state.study.units).name;
+  y.replaceChildren(...names.map((n) => new Option(label(n), n)));
+  x.replaceChildren(...[...inputs, "sample"].map((n) => new Option(label(n), n)));
   y.value = names.includes(keepY) ? keepY : preferred;
   x.value = [...inputs, "sample"].includes(keepX) ? keepX : inputs[0];
 }
@@ -222,8 +295,10 @@ function fillPlotChoices() {
 function plotNow() {
   if (!state.study) return;
   const s = state.study, yName = $("plot-y").value, xName = $("plot-x").value;
-  const x = xName === "sample" ? Array.from({length: s.samples}, (_, i) => i) : column(xName);
-  plot.draw({x, y: column(yName), xName, yName, singular: s.singular,
+  const x = xName === "sample" ? {name: xName, values: Array.from({length: s.samples}, (_, i) => i)}
+    : shownColumn(xName, column(xName), s.units);
+  const y = shownColumn(yName, column(yName), s.units);
+  plot.draw({x: x.values, y: y.values, xName: x.name, yName: y.name, singular: s.singular,
              change: s.change_points.map((c) => c.index)});
   plot.at(state.index);
 }
@@ -348,8 +423,59 @@ function answered(at) {
 const tool = () => document.querySelector("input[name=tool]:checked").value;
 let dragStart = null;
 
+// -- snapping, selection ------------------------------------------------------------------------
+// A place snapped (while *snap* is on) to another point of the sketch within a few pixels,
+// else to the grid's nearest crossing.
+function snapped(xy, except = null) { return snapTo(xy, except).xy; }
+function snapTo(xy, except = null) {
+  if (!$("snap").checked || !canvas.view) return {xy};
+  const near = 10 / canvas.view.s;
+  let best = null, bd = near;
+  for (const [p, q] of Object.entries(state.model.points)) {
+    if (p === except || !q || q[0] === null) continue;
+    const d = Math.hypot(q[0] - xy[0], q[1] - xy[1]);
+    if (d <= bd) { best = p; bd = d; }
+  }
+  if (best) return {xy: [...state.model.points[best]], point: best};
+  const step = canvas.gridStep();
+  return {xy: xy.map((v) => Number((Math.round(v / step) * step).toPrecision(12)))};
+}
+
+// What a click with *select* picks: a link, a slider block, or a point; a point clicked
+// again picks its joints and then its input in turn.
+function pick(target, name) {
+  const m = state.model, was = state.selected;
+  const ds = (target && target.dataset) || {};
+  if (ds.link) return {kind: "link", name: ds.link};
+  if (ds.block) return {kind: "joint", name: ds.block};
+  if (!name) return null;
+  const choices = [{kind: "point", name}];
+  for (const j of m.joints || []) if (j.point === name) {
+    choices.push({kind: "joint", name: j.name, point: name});
+    for (const i of m.inputs || []) if (i.joint === j.name) choices.push({kind: "input", name: i.name || i.joint, point: name});
+  }
+  const k = was ? choices.findIndex((c) => c.kind === was.kind && c.name === was.name) : -1;
+  return choices[(k + 1) % choices.length];
+}
+
+function unselect(sel = null) {
+  state.selected = sel;
+  $("selection").textContent = sel ? `selected: ${sel.kind} ${sel.name}` : "";
+  $("delete").disabled = !sel;
+}
+function select(sel) { unselect(sel); if (state.model) redraw(); }
+
+function deleteSelected() {
+  const sel = state.selected;
+  if (!sel || !state.model) return;
+  select(null);
+  setModel(draw.remove(state.model, sel), state.source, {keepDraft: true, refit: false});
+}
+
 const canvas = new Canvas($("canvas"), {
-  down(name, xy) {
+  down(name, xy, e) {
+    if (tool() === "select") { canvas.dragging = null; select(pick(e && e.target, name)); return; }
+    if (!name) ({xy, point: name} = snapTo(xy));      // on a point snapped to: as a click on it
     if (placing.active()) { state.pose = {xy, angle: 0}; redraw(); return "capture"; }
     const t = tool();
     if (t === "slider") {          // the drag gives the guide's direction
@@ -378,15 +504,17 @@ const canvas = new Canvas($("canvas"), {
     if (!name.from) {
       state.moves += 1;
       if (tool() === "move") predict(name, xy);
-      dragTo(name, xy);
+      dragTo(name, tool() === "edit" ? snapped(xy, name) : xy);
       return;
     }
+    if (tool() === "slider" && !placing.active()) xy = snapped(xy);
     const [x0, y0] = state.pose.xy;
     state.pose = {...state.pose, angle: Math.atan2(xy[1] - y0, xy[0] - x0)};
     redraw();
   },
   async up(name, xy) {
     if (name && name.from && tool() === "slider" && !placing.active()) {
+      xy = snapped(xy);
       const at = state.pose.xy;
       state.pose = null;
       const next = draw.slider(state.model, state.sliderAt, at, xy);
@@ -413,6 +541,9 @@ const canvas = new Canvas($("canvas"), {
     }
     configurationSoon();
   },
+  panning: () => tool() === "pan" || (space.held && (space.panned = true)),
+  dimension: (name, target) => editDimension(name, target),
+  viewed: () => { if (state.model) redrawSoon(); },
 });
 
 const plot = new Plot($("plot"), (i) => { pause(); setIndex(i); });
@@ -493,6 +624,7 @@ async function save(format) {
 
 function svgText(svg) {
   const clone = svg.cloneNode(true);
+  for (const g of clone.querySelectorAll("[data-layer=grid]")) g.remove();     // a guide for drawing, not part of it
   clone.setAttribute("xmlns", "http://www.w3.org/2000/svg");
   clone.setAttribute("width", svg.clientWidth);
   clone.setAttribute("height", svg.clientHeight);
@@ -539,6 +671,17 @@ $("plot-y").onchange = plotNow;
 $("plot-x").onchange = plotNow;
 $("show-centres").onchange = redraw;
 $("undo").onclick = undo;
+$("fit").onclick = () => { if (state.model) { fitView(); redraw(); } };
+$("grid").onchange = () => { canvas.grid = $("grid").checked; if (state.model) redraw(); };
+$("delete").onclick = deleteSelected;
+$("dims").onchange = () => { if (state.model) redraw(); };
+for (const id of ["unit-length", "unit-angle"]) $(id).onchange = () => {
+  chosen.length = $("unit-length").value; chosen.angle = $("unit-angle").value;
+  if (!state.model) return;
+  showTable();
+  if (state.study) { fillPlotChoices(); plotNow(); }
+  redraw();
+};
 $("redo").onclick = redo;
 $("save-toml").onclick = () => save("toml");
 $("save-json").onclick = () => save("json");
@@ -566,6 +709,7 @@ for (const b of document.querySelectorAll("#tabs button")) b.onclick = () => {
 for (const r of document.querySelectorAll("input[name=tool]")) r.addEventListener("change", () => {
   draw.cancel();                            // a link's first point waits no more
   state.hover = null;
+  if (tool() !== "select") unselect();
   if (state.model) redraw();
 });
 document.addEventListener("keydown", (e) => {
@@ -573,13 +717,22 @@ document.addEventListener("keydown", (e) => {
   if (e.target.tagName === "INPUT" && e.target.type !== "range" && e.target.type !== "radio") return;
   if ((e.ctrlKey || e.metaKey) && e.key === "z") { e.preventDefault(); undo(); }
   else if ((e.ctrlKey || e.metaKey) && (e.key === "y" || (e.shiftKey && e.key === "Z"))) { e.preventDefault(); redo(); }
-  else if (e.key === " " && e.target.tagName !== "BUTTON") { e.preventDefault(); state.playing ? pause() : play(); }
+  else if ((e.key === "Delete" || e.key === "Backspace") && state.selected) { e.preventDefault(); deleteSelected(); }
+  else if (e.key === " " && e.target.tagName !== "BUTTON") { e.preventDefault(); space.held = true; }
+});
+// Space held while dragging pans; pressed and let go without a drag, it plays or pauses.
+const space = {held: false, panned: false};
+document.addEventListener("keyup", (e) => {
+  if (e.key !== " " || !space.held) return;
+  if (!space.panned) state.playing ? pause() : play();
+  space.held = false; space.panned = false;
 });
 window.addEventListener("resize", () => { if (state.model) { fitView(); redraw(); plotNow(); } });
 const placing = synthesisPanel($("tab-synthesis"), {
   open: (model, source) => setModel(model, source), status,
   units: () => state.model && state.model.units, redraw: () => state.model && redraw()});
 state.setIndex = setIndex;
+state.canvas = canvas;
 state.play = play;
 state.pause = pause;
 

@@ -3,6 +3,7 @@
 // leaves the model, and the table, as they were).
 import {movePoint, movePivot, groundLength, offsetOf, dist, sideOf, sideRefs,
         measuredSides} from "./geometry.js";
+import {shownUnits, toShown, fromShown} from "./units.js";
 
 function cell(row, content) {
   const td = document.createElement("td");
@@ -42,7 +43,8 @@ export function num(text, what = "value") {
 // with the reason, and the table drawn again from the model.
 export function renderTable(root, state, {edit, flip, refuse}) {
   root.replaceChildren();
-  const m = state.model, u = m.units || {length: "m", angle: "rad"};
+  const m = state.model, u = shownUnits(m.units), L = u.L;
+  const len = (v) => toShown(v, L), typed = (v, what) => fromShown(num(v, what), L);
   const h = (text) => { const e = document.createElement("h3"); e.textContent = text; root.append(e); };
   const guarded = (f) => (v) => { try { f(v); } catch (err) { state.error = err.message; refuse(err.message); } };
 
@@ -55,8 +57,8 @@ export function renderTable(root, state, {edit, flip, refuse}) {
     // a pivot moves with every link keeping its dimensions; another point changes the
     // links that carry it
     const move = ground && ground.points.includes(p) ? movePivot : movePoint;
-    cell(tr, input(xy[0], guarded((v) => edit(move(m, p, [num(v, `${p}.x`), xy[1]]))))).dataset.field = "x";
-    cell(tr, input(xy[1], guarded((v) => edit(move(m, p, [xy[0], num(v, `${p}.y`)]))))).dataset.field = "y";
+    cell(tr, input(len(xy[0]), guarded((v) => edit(move(m, p, [typed(v, `${p}.x`), xy[1]]))))).dataset.field = "x";
+    cell(tr, input(len(xy[1]), guarded((v) => edit(move(m, p, [xy[0], typed(v, `${p}.y`)]))))).dataset.field = "y";
     cell(tr, "").className = "now-x"; cell(tr, "").className = "now-y";
     pt.append(tr);
   }
@@ -73,22 +75,19 @@ export function renderTable(root, state, {edit, flip, refuse}) {
       edit(next);
     })));
     const current = link.length ?? (link.points.length > 1 ? dist(m.points[link.points[0]], m.points[link.points[1]]) : "");
-    cell(tr, link.points.length > 1 ? input(current, guarded((v) => {
-      if (link.ground) { edit(groundLength(m, num(v, `${link.name}.length`))); return; }
-      const next = structuredClone(m); delete next.catalogue;
-      next.links[k].length = num(v, `${link.name}.length`);
-      edit(next);
+    cell(tr, link.points.length > 1 ? input(len(current), guarded((v) => {
+      edit(withLength(m, link.name, typed(v, `${link.name}.length`)));
     })) : "").dataset.field = "length";
     cell(tr, "").className = "now-length";
     lt.append(tr);
   }
   root.append(lt);
-  sidesTable(root, m, u, h, guarded, edit);
+  sidesTable(root, m, u, h, guarded, edit, len, typed);
 
   h("joints");
   const jt = table(["joint", "type", "links (P: guide, slider)", "point", `P axis (${u.angle})`,
                     `P offset (${u.length})`]);
-  const toAngle = u.angle === "deg" ? 180 / Math.PI : 1;
+  const toAngle = m.units && m.units.angle === "rad" ? 1 : 180 / Math.PI;    // the model's unit
   for (const [k, j] of (m.joints || []).entries()) {
     const tr = document.createElement("tr");
     cell(tr, j.name);
@@ -110,14 +109,15 @@ export function renderTable(root, state, {edit, flip, refuse}) {
     }))).dataset.field = "links";
     cell(tr, j.point);
     const axis = Array.isArray(j.axis) ? Math.atan2(j.axis[1], j.axis[0]) * toAngle : j.axis;
-    cell(tr, j.type === "P" ? input(axis === undefined ? "" : Number(axis.toPrecision(12)), guarded((v) => {
+    cell(tr, j.type === "P" ? input(axis === undefined ? "" : toShown(axis, u.A), guarded((v) => {
       const next = structuredClone(m); delete next.catalogue;
-      next.joints[k].axis = num(v, `${j.name}.axis`);   // an angle in the model's unit, as a file has it
+      // an angle in the model's unit, as a file has it
+      next.joints[k].axis = fromShown(num(v, `${j.name}.axis`), u.A);
       edit(next);
     })) : "").dataset.field = "axis";
-    cell(tr, j.type === "P" && j.axis !== undefined ? input(offsetOf(m, j, toAngle), guarded((v) => {
+    cell(tr, j.type === "P" && j.axis !== undefined ? input(len(offsetOf(m, j, toAngle)), guarded((v) => {
       const next = structuredClone(m); delete next.catalogue;
-      next.joints[k].offset = num(v, `${j.name}.offset`);
+      next.joints[k].offset = typed(v, `${j.name}.offset`);
       edit(next);
     })) : "").dataset.field = "offset";
     tr.dataset.joint = j.name;
@@ -131,14 +131,16 @@ export function renderTable(root, state, {edit, flip, refuse}) {
     for (const [k, i] of m.inputs.entries()) {
       const tr = document.createElement("tr");
       cell(tr, i.name || i.joint); cell(tr, i.joint || (i.links || []).join("-"));
-      cell(tr, input((i.range || []).join(", "), guarded((v) => {
+      const ij = (m.joints || []).find((j) => j.name === i.joint);
+      const f = ij && ij.type === "P" ? L : u.A;          // a slide's input is a length
+      cell(tr, input((i.range || []).map((v) => toShown(v, f)).join(", "), guarded((v) => {
         const next = structuredClone(m);
-        const r = v.split(",").map((s) => s.trim()).filter(Boolean).map((t) => num(t, "range"));
+        const r = v.split(",").map((s) => s.trim()).filter(Boolean).map((t) => fromShown(num(t, "range"), f));
         if (r.length) next.inputs[k].range = r; else delete next.inputs[k].range;
         edit(next);
       })));
-      cell(tr, input(i.speed ?? 0, guarded((v) => {
-        const next = structuredClone(m); next.inputs[k].speed = num(v, "speed"); edit(next);
+      cell(tr, input(toShown(i.speed ?? 0, f), guarded((v) => {
+        const next = structuredClone(m); next.inputs[k].speed = fromShown(num(v, "speed"), f); edit(next);
       }))).dataset.field = "speed";
       tr.dataset.input = i.name || i.joint;
       it.append(tr);
@@ -164,7 +166,7 @@ export function renderTable(root, state, {edit, flip, refuse}) {
 // the link placed before it and its side of the line from the first of them to the second
 // (those it is given by, else its first two points' as the sketch draws them).  Typing one
 // gives the point by its sides (instead of its local place), and the server re-assembles.
-function sidesTable(root, m, u, h, guarded, edit) {
+function sidesTable(root, m, u, h, guarded, edit, len, typed) {
   const rows = m.links.flatMap((link, k) => link.points.slice(2).map((p) => [k, link, p]));
   if (!rows.length) return;
   h(`points of links, by their sides (${u.length})`);
@@ -197,8 +199,8 @@ function sidesTable(root, m, u, h, guarded, edit) {
     for (const s of ["left", "right"]) side.append(new Option(s, s));
     side.value = given.side || sideOf(m.points[refs[0]], m.points[refs[1]], m.points[p]) || "left";
     side.onchange = () => write({...given, side: side.value});
-    const distance = (slot) => input(f(given[refs[slot]]), guarded((v) => write(
-      {...given, side: side.value, [refs[slot]]: num(v, `${p} from ${refs[slot]}`)})));
+    const distance = (slot) => input(len(f(given[refs[slot]])), guarded((v) => write(
+      {...given, side: side.value, [refs[slot]]: typed(v, `${p} from ${refs[slot]}`)})));
     const tr = document.createElement("tr");
     tr.dataset.ofLink = link.name; tr.dataset.linkPoint = p; tr.dataset.refs = JSON.stringify(refs);
     cell(tr, link.name); cell(tr, p);
@@ -213,17 +215,27 @@ function sidesTable(root, m, u, h, guarded, edit) {
   root.append(st);
 }
 
+// The model with a link's length set (the ground's: its second point moves along the line
+// from its first); the table and the drawing's dimensions change lengths through this.
+export function withLength(m, name, length) {
+  const k = m.links.findIndex((l) => l.name === name);
+  if (m.links[k].ground) return groundLength(m, length);
+  const next = structuredClone(m); delete next.catalogue;
+  next.links[k].length = length;
+  return next;
+}
+
 // The current configuration's exact values in the table.
 renderTable.values = (state) => {
   const s = state.study;
   if (!s) return;
-  const u = s.units.length;
+  const u = s.units.length, L = shownUnits(s.units).L;
   const now = {};
   for (const p of Object.keys(s.model.points)) {
     const x = s.columns[`${p}.x[${u}]`], y = s.columns[`${p}.y[${u}]`];   // a narrowed sweep may leave some out
     now[p] = state.config ? state.config.points[p] : x && y ? [x[state.index], y[state.index]] : [null, null];
   }
-  const f = (v) => v === null || v === undefined ? "–" : Number(v.toPrecision(10)).toString();
+  const f = (v) => v === null || v === undefined ? "–" : Number((v * L).toPrecision(10)).toString();
   for (const tr of document.querySelectorAll("#tab-table tr[data-point]")) {
     const xy = now[tr.dataset.point] || [null, null];
     tr.querySelector(".now-x").textContent = f(xy[0]);
