@@ -544,6 +544,9 @@ def test_dragging_a_point_given_by_its_sides_keeps_them_measured(page):
     page.mouse.up()
     page.wait_for_function("() => window.kinelab.model.links[2].sides.P.A !== 180")
     page.wait_for_function("() => !window.kinelab.busy && !window.kinelab.pending")
+    # the drag's narrowed sweep is followed by the whole one once the drag has ended
+    page.wait_for_function("() => 'A.x[mm]' in window.kinelab.study.columns"
+                           " && window.kinelab.study.model === window.kinelab.model")
     page.shot("sides_dragged")
     sides = state(page, "window.kinelab.model.links[2].sides.P")
     pts = state(page, "window.kinelab.model.points")
