@@ -1,5 +1,32 @@
-"""Comparing the models the web app sends with the files kinelab writes."""
+"""Comparing the models the web app sends with the files kinelab writes; a real server."""
+import contextlib
 import math
+import re
+import subprocess
+import sys
+import threading
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@contextlib.contextmanager
+def serving():
+    """``kinelab serve --port 0`` on loopback, ended on leaving: (its port, the lines of its
+    log, standard error, as they come)."""
+    command = [sys.executable, "-c", "from kinelab.cli import main; main()", "serve", "--port", "0"]
+    proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            cwd=ROOT)
+    log = []
+    try:
+        line = proc.stdout.readline()
+        match = re.search(r"serving at http://127\.0\.0\.1:(\d+)/", line)
+        assert match, line
+        threading.Thread(target=lambda: log.extend(proc.stderr), daemon=True).start()
+        yield int(match.group(1)), log
+    finally:
+        proc.terminate()
+        proc.wait(timeout=20)
 
 
 def assert_same_model(a, b) -> None:

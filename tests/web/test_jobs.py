@@ -5,7 +5,6 @@ short requests waiting."""
 import json
 import re
 import socket
-import subprocess
 import sys
 import threading
 import time
@@ -17,6 +16,7 @@ from starlette.testclient import TestClient
 
 from kinelab.io import ModelFile
 from kinelab.web import _apart, _app, create_app
+from tests.web.models import serving
 
 ROOT = Path(__file__).resolve().parents[2]
 ADDRESS = "http://127.0.0.1:8000"
@@ -179,19 +179,9 @@ def test_an_animation_reports_its_frames(client):
 # -- a real server ----------------------------------------------------------------------------
 @pytest.fixture(scope="module")
 def server():
-    command = [sys.executable, "-c", "from kinelab.cli import main; main()", "serve", "--port", "0"]
-    proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            cwd=ROOT)
-    log = []
-    try:
-        line = proc.stdout.readline()
-        match = re.search(r"serving at http://127\.0\.0\.1:(\d+)/", line)
-        assert match, line
-        threading.Thread(target=lambda: log.extend(proc.stderr), daemon=True).start()
-        yield int(match.group(1)), log
-    finally:
-        proc.terminate()
-        proc.wait(timeout=20)
+    """``kinelab serve --port 0`` with its log (standard error) kept: (port, log lines)."""
+    with serving() as running:
+        yield running
 
 
 def post(port, path, data, timeout=600):

@@ -5,8 +5,6 @@ Content-Type), and a client that goes away is not a fault.  Every error is JSON.
 import json
 import re
 import socket
-import subprocess
-import sys
 import threading
 import time
 from pathlib import Path
@@ -20,6 +18,7 @@ from kinelab.io import ModelFile
 from kinelab.model import MAX_LINKS
 from kinelab.web import _api, _limits, create_app
 from tests.derive.cases import four_slider_dyads
+from tests.web.models import serving
 
 ROOT = Path(__file__).resolve().parents[2]
 ADDRESS = "http://127.0.0.1:8000"
@@ -215,20 +214,9 @@ def test_a_fault_is_json_too(monkeypatch):
 # -- a real server on loopback ------------------------------------------------------------------
 @pytest.fixture(scope="module")
 def server():
-    """``kinelab serve --port 0`` with its log (standard error) kept."""
-    command = [sys.executable, "-c", "from kinelab.cli import main; main()", "serve", "--port", "0"]
-    proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            cwd=ROOT)
-    log = []
-    try:
-        line = proc.stdout.readline()
-        match = re.search(r"serving at http://127\.0\.0\.1:(\d+)/", line)
-        assert match, line
-        threading.Thread(target=lambda: log.extend(proc.stderr), daemon=True).start()
-        yield int(match.group(1)), log
-    finally:
-        proc.terminate()
-        proc.wait(timeout=20)
+    """``kinelab serve --port 0`` with its log (standard error) kept: (port, log lines)."""
+    with serving() as running:
+        yield running
 
 
 def http(port: int, method: str, path: str, body: bytes = b"", headers=None):
