@@ -96,21 +96,35 @@ def working_on(function: str) -> list[int]:
                    for f in traceback.extract_stack(frame))]
 
 
-def test_a_large_sweep_is_stopped_in_its_thread(client):
-    """A study of a chain of 200 links (seconds of work in one of the server's threads):
-    cancelled, the thread that ran it stops where it is and is free again."""
-    from tests.web.test_server_bounds import CHAIN
+def test_a_sweep_is_stopped_in_its_thread(client, monkeypatch):
+    """A study whose sweep would go on for ever (Python work in one of the server's
+    threads): cancelled, the thread stops where it is, ends the work and is free again."""
+    from kinelab.web import _api
+    started, ended = threading.Event(), threading.Event()
+
+    def endless(mf, samples):
+        started.set()
+        try:
+            while True:
+                pass
+        finally:
+            ended.set()
+    monkeypatch.setattr(_api, "_sweep", endless)
     worker, out = in_background(lambda: client.post(
-        "/api/study", json={"model": CHAIN, "samples": 3000, "source": "chain.json", "job": "big"}))
-    wait_for(lambda: client.post("/api/progress", json={"job": "big"}).json().get("seconds", 0) > 1.0
-             and working_on("study"))
+        "/api/study", json={"model": CRANK_ROCKER, "samples": 77, "source": "endless.toml",
+                            "job": "big"}))
+    assert started.wait(MARGIN)
+    assert working_on("study")
+    assert client.post("/api/progress", json={"job": "big"}).json()["state"] == "running"
     assert client.post("/api/cancel", json={"job": "big"}).json()["cancelled"] is True
+    assert ended.wait(MARGIN)
     worker.join(MARGIN)
     assert not worker.is_alive()
     assert out["answer"].status_code == 422
     assert out["answer"].json()["error"].startswith("/api/study: cancelled after")
     wait_for(lambda: not client.post("/api/progress", json={}).json()["jobs"])
     assert not working_on("study")
+    monkeypatch.undo()
     r = client.post("/api/study", json={"model": CRANK_ROCKER, "samples": 9})
     assert r.status_code == 200 and r.json()["samples"] == 9
 
