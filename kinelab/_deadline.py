@@ -16,7 +16,9 @@ shot while the thread imports a module (which a shot would leave half made).  Th
 the watchdog tests "ended?" and shoots in one step (no bytecode boundary between the test
 and the C call, so no other thread runs in between), and the working thread marks the end
 and then withdraws a shot not yet delivered, both C calls; so nothing is raised after
-:func:`within` returns.
+:func:`within` returns.  A call with no deadline that only a cancel can stop is watched
+the same way by one thread shared by all such calls, so that a short call does not pay
+for a thread of its own.
 """
 from __future__ import annotations
 
