@@ -125,3 +125,24 @@ def test_a_system_too_large_is_refused_before_the_work(client):
     r = client.post("/api/dynamics", json={"model": chain, "samples": 2000})
     assert r.status_code == 413
     assert "free-body equations of 2,000 samples of 200 links" in r.json()["error"]
+
+
+HOSTILE = [
+    {}, {"model": None}, {"model": "engine"}, {"model": {}}, {"model": {"schema": 1}},
+    {"format": None}, {"format": ["csv"]}, {"samples": "many"}, {"samples": 10 ** 30},
+    {"samples": True}, {"samples": 3.5}, {"job": "bad id"}, {"job": ["x"]}, {"job": "x" * 65},
+    {"source": 5}, {"source": "../../etc/passwd"},
+]
+
+
+@pytest.mark.parametrize("change", HOSTILE)
+@pytest.mark.parametrize("route", ["/api/dynamics", "/api/progress", "/api/cancel"])
+def test_hostile_requests_get_json_4xx_never_500(client, route, change):
+    body = {"model": ModelFile.read(ROOT / "examples" / "engine.toml").to_dict(), **change}
+    if route != "/api/dynamics":
+        body = {k: v for k, v in change.items() if k == "job"} or {"job": change.get("model", 7)}
+    r = client.post(route, json=body)
+    assert r.headers["content-type"].startswith(("application/json", "text/csv")), r.text
+    assert r.status_code < 500, r.text
+    if r.status_code >= 400:
+        assert set(r.json()) <= {"error", "problems"} and r.json()["error"]
