@@ -10,15 +10,21 @@ milliseconds, wherever it is.  Work inside one long C call stops when that call 
 The exception is a :class:`BaseException` of a class made for each call, so neither
 sympy's ``except Exception`` nor an inner limit takes it for its own; the watchdog raises
 it again every :data:`_AGAIN` seconds until the call has ended, in case a bare ``except:``
-swallowed it (or it landed in a finalizer or a weak reference's callback, which cannot
-raise: Python reports it as unraisable, and kinelab's hook says nothing of it), and holds its
-shot while the thread imports a module (which a shot would leave half made).  The call's end and the watchdog's shot exclude each other without a lock:
+swallowed it, and holds its shot while the thread imports a module (which a shot would
+leave half made).  A shot that lands in a finalizer or a weak reference's callback cannot
+be raised there (Python reports it as unraisable); kinelab's hook says nothing of it and
+raises it again at the next line of the frame that ran the callback (a trace function on
+that frame alone), so work that spends nearly all its time in callbacks stops as promptly
+as any other.  The call's end and the watchdog's shot exclude each other without a lock:
 the watchdog tests "ended?" and shoots in one step (no bytecode boundary between the test
 and the C call, so no other thread runs in between), and the working thread marks the end
-and then withdraws a shot not yet delivered, both C calls; so nothing is raised after
-:func:`within` returns.  A call with no deadline that only a cancel can stop is watched
-the same way by one thread shared by all such calls, so that a short call does not pay
-for a thread of its own.
+and then replaces a shot not yet delivered by one of its own, which it takes at once; so
+nothing is raised after :func:`within` returns.  (Withdrawing the shot instead, by
+``PyThreadState_SetAsyncExc`` with no exception, leaves Python 3.11 signalling an
+exception that is not there, and a thread with a trace function set, a debugger's or a
+coverage tool's, then loops for ever at its next call.)  A call with no deadline that only
+a cancel can stop is watched the same way by one thread shared by all such calls, so that
+a short call does not pay for a thread of its own.
 """
 from __future__ import annotations
 
@@ -38,23 +44,59 @@ _POLL = 0.05        # s between the watchdog's looks at the clock before the dea
 _shoot = ctypes.pythonapi.PyThreadState_SetAsyncExc
 _shoot.argtypes = (ctypes.c_ulong, ctypes.py_object)
 _shoot.restype = ctypes.c_int
-# the same C function, taking NULL: withdraw the exception not yet delivered
-_withdraw = ctypes.PYFUNCTYPE(ctypes.c_int, ctypes.c_ulong, ctypes.c_void_p)(
-    ("PyThreadState_SetAsyncExc", ctypes.pythonapi))
 
 
 class _Expired(BaseException):
     """Raised in the working thread at its deadline (a class of its own per call)."""
 
 
+class _Withdrawn(BaseException):
+    """Put in place of a shot not yet delivered when the call ends, and taken at once."""
+
+
+def _checkpoint() -> None:
+    """Nothing: Python delivers a pending asynchronous exception as a function starts."""
+
+
 def _unraisable(previous):
     """A ``sys.unraisablehook`` that passes everything to ``previous`` but a deadline's shot
-    delivered where it cannot be raised (a finalizer, a weak reference's callback: the
-    watchdog shoots again), which would otherwise print a traceback in a server's log."""
+    delivered where it cannot be raised (a finalizer, a weak reference's callback), which
+    would otherwise print a traceback in a server's log: that one is raised again in the
+    frame that ran the callback (the hook's caller)."""
     def hook(unraisable):
-        if not isinstance(unraisable.exc_value, _Expired):
+        if isinstance(unraisable.exc_value, _Expired):
+            _raise_at_next_line(type(unraisable.exc_value), sys._getframe(1))
+        else:
             previous(unraisable)
     return hook
+
+
+def _raise_at_next_line(expired: type, frame) -> None:
+    """Raise ``expired`` at the next line ``frame`` runs, unless its call has ended by then.
+
+    A trace function set on that frame alone (Python calls a frame's own trace function
+    only while one is set for the thread, so the thread gets one that traces nothing, or
+    keeps the one it had); :func:`within` puts the thread's trace function back as it
+    found it.  Raising from a trace function unsets the thread's, which is why it is put
+    back at the end, not at the raise."""
+    if expired.ended or frame is None:
+        return
+
+    def line(frame, event, arg):
+        if not expired.ended:
+            raise expired
+        return None
+
+    if not expired.tracing:
+        expired.tracing.append(sys.gettrace())
+    frame.f_trace = line
+    if sys.gettrace() is None:
+        sys.settrace(_nothing)
+
+
+def _nothing(frame, event, arg):
+    """The thread's trace function while one frame has its own: new frames are not traced."""
+    return None
 
 
 sys.unraisablehook = _unraisable(sys.unraisablehook)
@@ -162,8 +204,9 @@ def within(seconds: float | None, call, *args, message: str | None = None,
         return call(*args)
     seconds = math.inf if seconds is None else max(seconds, 0.0)
     thread = threading.get_ident()
-    expired = type("Expired", (_Expired,), {})
     ended: list = []
+    # the thread's trace function before a shot was raised again by tracing (see _unraisable)
+    expired = type("Expired", (_Expired,), {"ended": ended, "tracing": []})
     stopped: list = []          # the watchdog's shot was a cancellation, not the deadline
     shared = math.isinf(seconds)        # a cancel only: the watcher of all such calls
     key = object()
@@ -177,11 +220,17 @@ def within(seconds: float | None, call, *args, message: str | None = None,
                                  name="kinelab-deadline", daemon=True).start()
             return call(*args)
         finally:
-            # Two C calls and nothing in between: after the first the watchdog shoots no
-            # more, and the second withdraws a shot fired before it (if one is delivered
-            # right after the first, it is the one the except clause below takes).
+            # After the first C call the watchdog shoots no more (a shot delivered right
+            # after it is the one the except clause below takes); a shot fired before it
+            # and not yet delivered is replaced by one taken here.
             ended.append(True)
-            _withdraw(thread, None)
+            try:
+                _shoot(thread, _Withdrawn)
+                _checkpoint()
+            except _Withdrawn:
+                pass
+            if expired.tracing:
+                sys.settrace(expired.tracing[0])
             if shared:
                 _cancellable.forget(key)
     except BaseException as exc:

@@ -145,9 +145,11 @@ def test_the_deadline_is_known_behind_another_error():
 
 def test_a_shot_that_lands_in_a_weak_references_callback_prints_nothing():
     """A deadline's shot delivered in a weak reference's callback (or a finalizer) cannot be
-    raised there: Python reports it on standard error, a traceback in a server's log.  The
-    watchdog shoots again, so kinelab's hook says nothing of it (a subprocess: pytest puts
-    a hook of its own in place)."""
+    raised there: Python reports it on standard error, a traceback in a server's log.
+    kinelab's hook says nothing of it and raises it again in the frame that ran the
+    callback, so work that is nearly all callbacks stops too, and the thread's trace
+    function is as it was before (none, or one of a debugger's kind).
+    A subprocess: pytest puts a hook of its own in place."""
     import subprocess
     import sys
     import textwrap
@@ -170,12 +172,49 @@ def test_a_shot_that_lands_in_a_weak_references_callback_prints_nothing():
                 r = weakref.ref(t, callback)
                 del t
 
+        import sys
+        tracer = TRACER
+        sys.settrace(tracer)
         for _ in range(5):
             try:
                 within(0.05, work)
             except TimeLimitError:
                 print("stopped")
+        print(sys.gettrace() is tracer)
+        """)
+    for tracer in ("None", "lambda frame, event, arg: None"):
+        done = subprocess.run([sys.executable, "-c", script.replace("TRACER", tracer)],
+                              capture_output=True, text=True, timeout=120)
+        assert (done.stdout, done.stderr) == ("stopped\n" * 5 + "True\n", "")
+
+
+def test_limits_hold_under_a_debuggers_trace_function():
+    """With a trace function set (a debugger, a coverage tool), a call that ends in time and
+    one stopped at its limit both leave the thread able to go on: Python 3.11 loops for ever
+    at the next call if a shot is withdrawn rather than taken (a subprocess: the trace
+    function is the process's)."""
+    import subprocess
+    import sys
+    import textwrap
+    script = textwrap.dedent("""
+        import sys
+        from kinelab._deadline import within
+        from kinelab.errors import TimeLimitError
+
+        def spin():
+            while True:
+                pass
+
+        def double(x):
+            return 2 * x
+
+        sys.settrace(lambda frame, event, arg: None)
+        print(within(5.0, double, 3), double(4))
+        try:
+            within(0.05, spin)
+        except TimeLimitError:
+            print("stopped", double(5))
         """)
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
                           timeout=120)
-    assert (done.stdout, done.stderr) == ("stopped\n" * 5, "")
+    assert (done.stdout, done.stderr) == ("6 8\nstopped 10\n", "")

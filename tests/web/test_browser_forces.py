@@ -22,9 +22,11 @@ FORCES_NOW = ("() => window.kinelab.dynamics && window.kinelab.dynamicsOf === wi
 
 
 def open_example(pg, name):
+    pg.evaluate("() => { window.studyBefore = window.kinelab.study; }")
     pg.select_option("#open", name)
-    pg.wait_for_function(f"() => (window.kinelab.source || '').includes('{name}')", timeout=LONG)
-    pg.wait_for_function("() => window.kinelab.study && !window.kinelab.draft", timeout=LONG)
+    pg.wait_for_function(f"() => (window.kinelab.source || '').includes('{name}') "
+                         "&& window.kinelab.study && window.kinelab.study !== window.studyBefore "
+                         "&& !window.kinelab.draft", timeout=LONG)
 
 
 def open_forces(pg):

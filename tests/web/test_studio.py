@@ -12,9 +12,13 @@ from tests.web.test_browser import browser, page, point_on_screen, server, state
 
 
 def open_example(pg, name):
+    """Open an example and wait for its own study (not that of the model shown before,
+    which may be the same example: the page opens with the crank-rocker)."""
+    pg.evaluate("() => { window.studyBefore = window.kinelab.study; }")
     pg.select_option("#open", name)
     pg.wait_for_function(f"() => (window.kinelab.source || '').startsWith('{name}') "
-                         "&& window.kinelab.study && window.kinelab.config !== null", timeout=120_000)
+                         "&& window.kinelab.study && window.kinelab.study !== window.studyBefore "
+                         "&& window.kinelab.config !== null", timeout=120_000)
 
 
 def idle(pg):
