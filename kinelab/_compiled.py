@@ -84,6 +84,13 @@ _MODES = ("auto", "compiled", "numpy")
 # are read in when compiling): a change to any of them asks for a new compile
 _SOURCES = ("kinematics/_kernel.py", "kinematics/_codes.py", "dynamics/_kernel.py",
             "dynamics/_codes.py", "_expressions.py")
+# numba keys its cache of a function on the text of the function's own file, yet freezes into
+# the compiled code the constants it reads and the functions it calls from other files: each
+# kernel file carries the digest of the files it is compiled from besides itself
+# (``COMPILED_FROM``, kept true by a test), so that a change to any of them changes its text
+_COMPILED_FROM = {"kinematics/_kernel.py": ("kinematics/_codes.py",),
+                  "dynamics/_kernel.py": ("kinematics/_kernel.py", "kinematics/_codes.py",
+                                          "dynamics/_codes.py", "_expressions.py")}
 _LOOK_EVERY = 0.5          # s between two looks for a stamp, while an entry point is not ready
 _WAIT_STEP = 0.2           # s between two looks while waiting for one
 _LOCK = "kinelab-kernel.lock"
@@ -294,6 +301,17 @@ def _cache_place(numba_cache_dir: str) -> tuple[str, str] | None:
             continue
         return path, _key(package)
     return None
+
+
+def compiled_from(kernel: str) -> str:
+    """The digest of the files a kernel file (``_COMPILED_FROM``'s key) is compiled from
+    besides itself: the value of its ``COMPILED_FROM``."""
+    package = os.path.dirname(os.path.abspath(__file__))
+    digest = hashlib.sha256()
+    for name in _COMPILED_FROM[kernel]:
+        with open(os.path.join(package, name), "rb") as f:
+            digest.update(f.read())
+    return digest.hexdigest()[:16]
 
 
 def _key(package: str) -> str:

@@ -24,11 +24,14 @@ from kinelab.dynamics._codes import (FAIL_ASSEMBLY, FAIL_BUDGET, FAIL_DIVERGED, 
                                      FAIL_LAW, FAIL_MASS, FAIL_PACE, FAIL_SINGULAR, FAIL_SPRING,
                                      FAIL_STEP, PACE_CHECK, PACE_MARGIN, RUN_FINISHED,
                                      RUN_SINGULAR)
-from kinelab.kinematics import SINGULAR_TOL
 from kinelab.kinematics import _kernel as kin
-from kinelab.kinematics._codes import HEADER, OP_SLIDE_POINT
+from kinelab.kinematics._codes import HEADER, OP_SLIDE_POINT, SINGULAR_TOL
 from kinelab.kinematics._kernel import (_jit, _lu_factor, _lu_solve, evaluate_one_sample,
                                         one_sample_scratch)
+
+# numba's cache of this file knows its text only: the digest of the files whose constants and
+# functions it compiles in (kinelab._compiled.compiled_from; a test keeps it true)
+COMPILED_FROM = "41e8b0748b71437c"
 
 _A = np.ascontiguousarray(DOP853.A, dtype=np.float64)
 _B = np.ascontiguousarray(DOP853.B, dtype=np.float64)

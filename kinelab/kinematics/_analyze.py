@@ -12,6 +12,7 @@ from kinelab import _compiled
 from kinelab import _memory as memory
 from kinelab.errors import AssemblyError, ModelError, check_choice, describe, shown
 from kinelab.kinematics import _codes as k
+from kinelab.kinematics._codes import SINGULAR_TOL
 from kinelab.kinematics._assemble import check_assembled
 from kinelab.kinematics._branches import (MAX_PERIODS, BranchMap, ChangePoint, branch_map,
                                           branched_ops)
@@ -29,17 +30,6 @@ __all__ = ["analyze", "analyze_designs", "plan", "reachable_ranges", "turns_full
            "change_points", "assembly_status", "AssemblyStatus"]
 
 _NOTHING = np.empty(0, np.int64)   # items written out where only the status matters
-
-SINGULAR_TOL = 5e-3
-"""Singularity measure (a sine, see ``KinematicSolution.singularity``) below which a sample is
-flagged singular.  Rounding in the positions, of relative size eps = 2.2e-16, reaches K with
-a factor of about eps / s**2 and L with about eps / s**3 near a singular configuration of
-measure s (near a limit position s**2 shrinks like the distance to it, so there both are
-about eps / s**2).  At s = 5e-3 that is 1e-11 for K and 1e-8 for L: every K and L that is
-not flagged is accurate to 1e-8 relative (tests/kinematics/test_conditioning.py checks it
-against 60-digit references).  A change point is flagged within about 5e-3 rad of it; a
-limit position within about 1e-5 rad."""
-
 
 def plan(mechanism: Mechanism, *, method: Literal["auto", "newton"] = "auto") -> Plan:
     """The solution plan of a mechanism: how its position problem is decomposed.

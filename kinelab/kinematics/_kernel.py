@@ -34,6 +34,10 @@ from kinelab.kinematics._codes import (BASE_MIN, C_DRIVE_ANGLE, C_DRIVE_SLIDE, C
                                        OP_SLIDE_OUT, OP_SLIDE_POINT, OP_TWO_POINTS,
                                        ST_NO_ASSEMBLY, ST_NO_CONVERGENCE, ST_OK)
 
+# numba's cache of this file knows its text only: the digest of the files whose constants and
+# functions it compiles in (kinelab._compiled.compiled_from; a test keeps it true)
+COMPILED_FROM = "6f18d34dd565ad05"
+
 
 def _jit(**options):
     # error_model="numpy": a division by zero at an exact singularity gives inf/nan (then
