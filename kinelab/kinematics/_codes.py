@@ -63,8 +63,11 @@ BASE_MIN = 1e-6           # a group solved where its measure is
                           # singular configuration K and L are rounding
 NODE_STEP = 1e-3          # a sample on a singular configuration the motion passes (a change
                           # point) is placed from this fraction of a continuation step either side
-CONTINUATION_STEP = 0.05  # largest continuation step of a Newton group: rad, or sizes of the
-                          # mechanism for a slide (the input's unit, ``input_units``)
+CONTINUATION_STEP = 0.1   # largest continuation step of a Newton group: rad, or sizes of the
+                          # mechanism for a slide (the input's unit, ``input_units``).  The
+                          # second-order predictor misses by about step**3 there, which Newton
+                          # closes in three or four steps and the jump test tells from a
+                          # branch change; samples 5 degrees apart take one step each
 
 SINGULAR_TOL = 5e-3
 """Singularity measure (a sine, see ``KinematicSolution.singularity``) below which a sample is

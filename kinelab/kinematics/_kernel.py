@@ -36,7 +36,7 @@ from kinelab.kinematics._codes import (BASE_MIN, C_DRIVE_ANGLE, C_DRIVE_SLIDE, C
 
 # numba's cache of this file knows its text only: the digest of the files whose constants and
 # functions it compiles in (kinelab._compiled.compiled_from; a test keeps it true)
-COMPILED_FROM = "6f18d34dd565ad05"
+COMPILED_FROM = "bd22e08979c787b9"
 
 
 def _jit(**options):
