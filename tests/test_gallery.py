@@ -289,3 +289,14 @@ def test_cli_out_without_name_is_refused(tmp_path):
     result = run("gallery", "--out", tmp_path / "x")
     assert result.exit_code == 2 and len(result.output.strip().splitlines()) == 1
     assert not (tmp_path / "x").exists()
+
+
+def test_ackermann_steering_turns_the_inner_wheel_more():
+    _, sol = sweep("ackermann_steering")
+    middle = len(sol.q) // 2                     # the input range is centred on straight ahead
+    left = sol.q[:, 0] - sol.q[middle, 0]
+    right = np.unwrap(sol.angle("right_arm")) - np.unwrap(sol.angle("right_arm"))[middle]
+    assert np.sign(left[0]) == np.sign(right[0]) and np.sign(left[-1]) == np.sign(right[-1])
+    turning_left, turning_right = left > 0, left < 0
+    assert np.all(np.abs(left[turning_left]) > np.abs(right[turning_left]))
+    assert np.all(np.abs(right[turning_right]) > np.abs(left[turning_right]))
