@@ -77,6 +77,7 @@ def test_entry_assembles_over_its_inputs_with_rigid_links(name):
 # as a fraction of the input link.
 STRAIGHT = [
     ("watt_linkage", "P", None, 0.02, 0.4),                 # arms swinging +-12 deg
+    ("beam_engine", "P", None, 0.03, 1.5),                  # Watt's linkage, beam +-16 deg
     ("chebyshev_straight_line", "P", None, 0.003, 0.4),     # rockers +-15 deg
     ("roberts", "P", None, 0.006, 1.0),                     # rockers +-15 deg
     ("hoeken", "P", (90, 270), 0.0015, 3.5),                # half a turn of the crank

@@ -1,6 +1,6 @@
 """A gallery of classic mechanisms, each a model file shipped in the package.
 
-Watt's and Chebyshev's straight-line linkages, the exact inversors of Peaucellier-Lipkin and
+Watt's and Chebyshev's straight-line linkages and Watt's beam engine, the exact inversors of Peaucellier-Lipkin and
 Hart, Jansen's leg, quick returns, Grashof's classes of the four-bar, slider-cranks, presses,
 six-bars and more: :func:`names` lists them, :func:`entry` gives one's title, a note of its
 history and the path of its model file, and :func:`load` reads that file as
