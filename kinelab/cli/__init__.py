@@ -28,6 +28,9 @@ main.add_lazy_command("export", "kinelab.cli._exchange:export",
 main.add_lazy_command("import", "kinelab.cli._exchange:import_",
                       'Convert SOURCE, a Pyslvs mechanism expression or a linkage2d JSON file, '
                       'into a kinelab model file (the assembly of the drawing is kept).')
+main.add_lazy_command("gallery", "kinelab.cli._gallery:gallery",
+                      "List the gallery of classic mechanisms, or print NAME's history and "
+                      "write its model file, NAME.toml, into --out.")
 main.add_lazy_command("mobility", "kinelab.cli._structure:mobility",
                       "Mobility of MODEL: Kutzbach-Gruebler's count and the exact value, with "
                       "the reason they differ.")

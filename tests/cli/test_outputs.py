@@ -140,6 +140,7 @@ def commands(work: Path, out: Path, names: list[str]) -> list[tuple[list, set | 
         *[(["export", m["points3"], "--to", to, "--out", out], {f"points3.{to}"})
           for to in ("svg", "dxf", "pyslvs", "toml", "json")],
         (["import", pyslvs, "--out", out / "imported.toml"], {"imported.toml"}),
+        (["gallery", "hoeken", "--out", out], {"hoeken.toml"}),
         (["derive", stems["..x"], "--out", out], {odd["..x"] + "_derivation.md"}),
         (["polygons", stems["nul"], "--at", "30", "--out", out],
          {odd["nul"] + "_velocity_polygon.png", odd["nul"] + "_acceleration_polygon.png"}),
@@ -164,7 +165,7 @@ def commands(work: Path, out: Path, names: list[str]) -> list[tuple[list, set | 
 
 
 WRITERS = {"analyze", "plot", "animate", "export", "import", "derive", "polygons", "centres",
-           "differentiate", "dynamics", "synth", "sweep", "atlas"}
+           "differentiate", "dynamics", "synth", "sweep", "atlas", "gallery"}
 READERS = {"check", "mobility", "types", "serve"}     # write no file (serve: see tests/web)
 
 
