@@ -1,0 +1,333 @@
+"""The two kinds of singular position of a one-input mechanism, kept apart as the notes keep
+them (*Mecanismos*, §4.6, Ex. 4.6; Erthal, *Mecanismos com 1 GL*, "Singularidades"):
+
+- a **toggle** (posição de travamento, or de alinhamento): det J = 0 of the position
+  equations, where two links of the driven chain fall in line; the chain locks there (the
+  input's motion ends: a limit position) or may change branch (a change point);
+- a **dead centre** of an output (ponto morto): K = 0 of that output's coordinate, where the
+  output stops and turns back (a rocker's extreme positions, a slider's top and bottom dead
+  centres; the notes' J_I = 0 of the slider-crank driven by its slide).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+
+from kinelab.errors import ModelError, SingularityError, expected_one_of
+from kinelab.model import Mechanism
+from kinelab.solvers._arguments import number, whole
+
+__all__ = ["DeadCentres", "Toggle", "dead_centres", "toggles", "input_span"]
+
+_SWEEP_SAMPLES = 721          # samples of the range where sign changes are looked for
+_SAME = 1e-9                  # two roots closer than this (rad, or sizes of the mechanism) are one
+
+
+@dataclass(frozen=True)
+class DeadCentres:
+    """Where an output of a one-input mechanism stops and turns back: its velocity
+    coefficient K = dS/dq is zero and changes sign.
+
+    Attributes
+    ----------
+    output : str
+        The link (its angle) or prismatic joint (its slide).
+    kind : {"angle", "slide"}
+        What ``value`` is.
+    q : ndarray, shape (D,)
+        Input values at the dead centres, rad or m, increasing.
+    value : ndarray, shape (D,)
+        The output there: the link's angle (rad) or the slide (m).
+    """
+
+    output: str
+    kind: Literal["angle", "slide"]
+    q: np.ndarray
+    value: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.q)
+
+
+@dataclass(frozen=True)
+class Toggle:
+    """A toggle (posição de travamento): a configuration where det J = 0.
+
+    Attributes
+    ----------
+    q : float
+        Input value, rad or m.
+    kind : {"limit position", "change point"}
+        "limit position": the input cannot go on (the range it reaches ends here);
+        "change point": the input goes on, and the two assembly modes of a dyad meet.
+    links : tuple of str
+        The links that fall in line there (empty where the plan does not say).
+    label : str
+        The step of the plan whose dyad folds (e.g. "RRR A-B-O4"), or "".
+    """
+
+    q: float
+    kind: Literal["limit position", "change point"]
+    links: tuple[str, ...] = ()
+    label: str = ""
+
+
+def input_span(mechanism: Mechanism) -> tuple[float, float]:
+    """The input range a study of singular positions covers by default: the input's
+    ``range`` if the model gives one, else a turn from the sketch for a crank that turns
+    fully, else the reachable interval around the sketch; rad or m."""
+    from kinelab.kinematics._analyze import plan, reachable_ranges, turns_fully
+    p = plan(mechanism)
+    _one_input(mechanism, p)
+    inp = mechanism.inputs[0]
+    if inp.range is not None:
+        lo, hi = sorted(float(v) for v in inp.range)
+        return lo, hi
+    ranges = reachable_ranges(mechanism)
+    q0 = float(p.q_sketch[0])
+    if turns_fully(mechanism, ranges):
+        return q0, q0 + 2 * math.pi
+    for lo, hi in ranges:
+        if lo - 1e-12 <= q0 <= hi + 1e-12:
+            return lo, hi
+    return ranges[0]
+
+
+def dead_centres(mechanism: Mechanism, output: str, lo: float | None = None,
+                 hi: float | None = None, *, samples: int = _SWEEP_SAMPLES) -> DeadCentres:
+    """The dead centres (pontos mortos) of an output over an input range: where the output's
+    velocity coefficient K vanishes and changes sign, so that it stops and turns back.
+
+    The range is swept (one vectorised analysis), the sign changes of K between assembled,
+    non-singular samples are bracketed, and each is refined by Brent's method on K(q)
+    (exact, from the kernel) to about 1e-12.  A sign change across a singular
+    configuration (K through infinity) is not a dead centre and is left out.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        One input.
+    output : str
+        A moving link (its angle) or a prismatic joint (its slide).
+    lo, hi : float, optional
+        The input range, rad or m; by default the model's input range, else a turn from
+        the sketch for a crank that turns fully, else the reachable interval
+        (:func:`input_span`).
+    samples : int
+        Samples of the range searched for sign changes, 3 to 1,000,000.
+
+    Returns
+    -------
+    DeadCentres
+
+    Raises
+    ------
+    ModelError
+        Not one input; ``output`` not a link or a prismatic joint; a bad range.
+
+    Examples
+    --------
+    An in-line slider-crank, crank 1, rod 3: the slider's dead centres are where crank and
+    rod fall in line, at 0 (x = 4) and 180 deg (x = 2).
+
+    >>> sc = kl.mechanisms.slider_crank(crank=1.0, rod=3.0)
+    >>> dc = kl.kinematics.dead_centres(sc, "slide", 0.0, 2 * np.pi)
+    >>> np.degrees(dc.q).round(9) + 0.0, dc.value.round(12) + 0.0
+    (array([  0., 180.]), array([4., 2.]))
+
+    (At 360 deg the slider is at 0 deg's dead centre again: a configuration a turn after
+    another is listed once.)
+    """
+    from kinelab.kinematics._analyze import MAX_SEARCH_SAMPLES, analyze, plan
+    from kinelab.kinematics._tracker import Tracker
+    from scipy.optimize import brentq
+
+    p = plan(mechanism)
+    _one_input(mechanism, p)
+    samples = whole("samples", samples, 3, MAX_SEARCH_SAMPLES)
+    if output in p.link_item and not mechanism.link(output).ground:
+        kind = "angle"
+    elif output in p.slide_item:
+        kind = "slide"
+    else:
+        choices = [n for n in p.link_item if not mechanism.link(n).ground] + list(p.slide_item)
+        hint = ("; a point has no dead centre of its own: give the link or the prismatic joint "
+                "that carries it" if output in p.point_item else "")
+        raise ModelError(f"output: {expected_one_of(output, choices)}{hint}")
+    lo, hi = _range(mechanism, lo, hi)
+    # one step beyond each end, so that a dead centre at an end (where K is zero at the
+    # sample itself) is seen between its two neighbours
+    step = (hi - lo) / (samples - 1)
+    q = np.linspace(lo - step, hi + step, samples + 2)
+    sweep = analyze(mechanism, q, unreachable="mask", at_singular="flag")
+    k = np.asarray(sweep.K(output), float)
+    usable = sweep.assembled & ~sweep.singular & np.isfinite(k)
+    tracker = Tracker(mechanism, unreachable="raise", at_singular="raise")
+
+    def K(x: float) -> float:
+        return float(tracker(float(x)).K(output))
+
+    roots = []
+    sign = np.sign(k)
+    for i in range(len(q) - 1):
+        if not (usable[i] and usable[i + 1]):
+            continue
+        if sign[i] * sign[i + 1] < 0:
+            try:
+                roots.append(brentq(K, q[i], q[i + 1], xtol=1e-14, rtol=4 * np.finfo(float).eps))
+            except SingularityError:      # a singular configuration between the samples
+                continue
+        elif sign[i] == 0 and 0 < i and usable[i - 1] and sign[i - 1] * sign[i + 1] < 0:
+            roots.append(float(q[i]))
+    size = 1.0 if p.input_kinds[0] == "angle" else p.scale
+    kept: list[float] = []
+    for r in sorted(roots):
+        if lo - _SAME * size <= r <= hi + _SAME * size and not (
+                kept and abs(r - kept[-1]) <= _SAME * size):
+            kept.append(float(min(max(r, lo), hi)))
+    qs = np.array(kept)
+    value = np.empty(0)
+    if len(qs):
+        at = analyze(mechanism, qs, at_singular="flag")
+        value = np.reshape(np.asarray(at.angle(output) if kind == "angle" else at.slide(output),
+                                      float), -1)
+        if p.input_kinds[0] == "angle":
+            # a turn later, the same configuration (a range of a whole turn has it at both ends)
+            again = np.array([any(abs(r - 2 * math.pi - s) <= _SAME and _same_value(v, w, kind, size)
+                                  for s, w in zip(qs, value)) for r, v in zip(qs, value)], bool)
+            qs, value = qs[~again], value[~again]
+    return DeadCentres(output=output, kind=kind, q=qs, value=value)
+
+
+def _same_value(a: float, b: float, kind: str, size: float) -> bool:
+    d = a - b
+    if kind == "angle":
+        d = math.remainder(d, 2 * math.pi)
+    return abs(d) <= 1e-7 * (1.0 if kind == "angle" else size)
+
+
+def toggles(mechanism: Mechanism, lo: float | None = None, hi: float | None = None, *,
+            samples: int = _SWEEP_SAMPLES) -> tuple[Toggle, ...]:
+    """The toggles (posições de travamento) over an input range: where det J = 0 is reached.
+
+    They are the limit positions inside the range (the ends of
+    :func:`reachable_ranges`, located by bisection to 1e-12), the change points
+    (:func:`change_points`) and any other sign change of det J along a sweep of the range,
+    refined by Brent's method on det J.  An empty tuple says that det J = 0 is not reached
+    (a slider-crank whose crank is shorter than its rod less the offset; a crank-rocker
+    driven by its crank).
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        One input.
+    lo, hi : float, optional
+        As :func:`dead_centres`.
+    samples : int
+        Samples of the range searched for sign changes of det J, 3 to 1,000,000.
+
+    Returns
+    -------
+    tuple of Toggle
+        In increasing q.
+
+    Examples
+    --------
+    A non-Grashof four-bar driven by its longest link rocks between two limit positions,
+    where coupler and rocker fall in line (|A O4| = 2.5, so cos q = -0.3125):
+
+    >>> fb = kl.mechanisms.fourbar(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)
+    >>> [(round(t.q, 9), t.kind, t.links) for t in kl.kinematics.toggles(fb)]
+    [(-1.888620031, 'limit position', ('coupler', 'rocker')), (1.888620031, 'limit position', ('coupler', 'rocker'))]
+    >>> kl.kinematics.toggles(kl.mechanisms.slider_crank(crank=1.0, rod=3.0))  # never reached
+    ()
+    """
+    from kinelab.kinematics._analyze import (MAX_SEARCH_SAMPLES, analyze, change_points, plan,
+                                             reachable_ranges, turns_fully)
+    from scipy.optimize import brentq
+
+    p = plan(mechanism)
+    _one_input(mechanism, p)
+    samples = whole("samples", samples, 3, MAX_SEARCH_SAMPLES)
+    lo, hi = _range(mechanism, lo, hi)
+    angle = p.input_kinds[0] == "angle"
+    size = 1.0 if angle else p.scale
+    pad = _SAME * size
+    found: list[Toggle] = []
+    ranges = reachable_ranges(mechanism)
+    if not turns_fully(mechanism, ranges):
+        turns = range(-3, 4) if angle else (0,)
+        for bound in sorted({b + 2 * math.pi * t for span in ranges for b in span for t in turns}):
+            if lo - pad <= bound <= hi + pad:
+                found.append(Toggle(float(bound), "limit position",
+                                    *_folded(mechanism, p, bound, ranges)))
+    for c in change_points(mechanism, lo, hi):
+        found.append(Toggle(float(c.q), "change point", tuple(c.links), c.step))
+    # any other zero of det J that the sweep sees change sign (Newton groups, for instance)
+    q = np.linspace(lo, hi, samples)
+    sweep = analyze(mechanism, q, unreachable="mask", at_singular="flag")
+    det = np.where(sweep.assembled, sweep.det_J, np.nan)
+
+    def det_J(x: float) -> float:
+        return float(analyze(mechanism, float(x), at_singular="flag").det_J[0])
+
+    for i in np.flatnonzero(np.sign(det[:-1]) * np.sign(det[1:]) < 0):
+        r = brentq(det_J, q[i], q[i + 1], xtol=1e-14, rtol=4 * np.finfo(float).eps)
+        if not any(abs(r - t.q) <= 1e-6 * size for t in found):
+            found.append(Toggle(float(r), "change point"))
+    found.sort(key=lambda t: t.q)
+    out: list[Toggle] = []
+    for t in found:
+        if not (out and abs(t.q - out[-1].q) <= pad):
+            out.append(t)
+    return tuple(out)
+
+
+def _folded(mechanism: Mechanism, p, bound: float, ranges) -> tuple[tuple[str, ...], str]:
+    """The links of the dyad that folds at a limit position ``bound`` and its step's label:
+    the branched operation whose signed measure is smallest just inside the range."""
+    from kinelab.kinematics._branches import _Walker
+    if p.groups is not None:
+        return (), ""
+    walker = _Walker(p, "smooth")
+    if not walker.ops:
+        return (), ""
+    inside = next(((a + b) / 2 for a, b in ranges if a - 1e-9 <= bound <= b + 1e-9), bound)
+    near = bound + 1e-7 * math.copysign(1.0, inside - bound) * (1.0 if walker.angle else p.scale)
+    from kinelab.kinematics._analyze import _branch_map
+    bmap = _branch_map(p, 1, "smooth")
+    ops_f = p.ops_f if bmap is None else bmap.variants(np.array([near]))[1][
+        int(bmap.variants(np.array([near]))[0][0])]
+    ok, m, _, _ = walker.evaluate(ops_f, np.array([near]))
+    if not ok[0] or not np.isfinite(m[0]).any():
+        return (), ""
+    op = walker.ops[int(np.nanargmin(np.abs(m[0])))]
+    step = p.step_of_op(op)
+    return (tuple(step.links), step.label) if step else ((), "")
+
+
+def _one_input(mechanism: Mechanism, p) -> None:
+    if len(p.input_kinds) != 1:
+        raise ModelError(f"mechanism: expected one input, got {len(p.input_kinds)} "
+                         f"({', '.join(repr(n) for n in mechanism.input_names)}); dead centres "
+                         "and toggles are found for mechanisms of one input")
+
+
+def _range(mechanism: Mechanism, lo, hi) -> tuple[float, float]:
+    """(lo, hi) checked, or the default :func:`input_span` where not given."""
+    if lo is None or hi is None:
+        span = input_span(mechanism)
+        lo = span[0] if lo is None else lo
+        hi = span[1] if hi is None else hi
+    lo, hi = number("lo", lo), number("hi", hi)
+    if not hi > lo:
+        raise ModelError(f"lo, hi: expected lo < hi, got lo = {lo:g}, hi = {hi:g}")
+    from kinelab.kinematics._analyze import Q_LIMITS, plan
+    limit = Q_LIMITS[plan(mechanism).input_kinds[0]]
+    for name, v in (("lo", lo), ("hi", hi)):
+        if abs(v) > limit:
+            raise ModelError(f"{name}: expected an input within {limit:g} of 0, got {v:g}")
+    return lo, hi
