@@ -143,7 +143,7 @@ def dead_centres(mechanism: Mechanism, output: str, lo: float | None = None,
     (At 360 deg the slider is at 0 deg's dead centre again: a configuration a turn after
     another is listed once.)
     """
-    from kinelab.kinematics._analyze import MAX_SEARCH_SAMPLES, analyze, plan
+    from kinelab.kinematics._analyze import MAX_SEARCH_SAMPLES, _branch_map, analyze, plan
 
     p = plan(mechanism)
     _one_input(mechanism, p)
@@ -162,18 +162,20 @@ def dead_centres(mechanism: Mechanism, output: str, lo: float | None = None,
     # sample itself) is seen between its two neighbours
     step = (hi - lo) / (samples - 1)
     q = np.linspace(lo - step, hi + step, samples + 2)
-    sweep = analyze(mechanism, q, unreachable="mask", at_singular="flag")
-    k = np.asarray(sweep.K(output), float)
-    usable = sweep.assembled & ~sweep.singular & np.isfinite(k)
+    item = p.link_item[output] if kind == "angle" else p.slide_item[output]
+    if item not in set(p.stored_items.tolist()):
+        # turned by the input itself (K = +-1) or fixed (K = 0): it never turns back
+        return DeadCentres(output=output, kind=kind, q=np.empty(0), value=np.empty(0))
+    bmap = _branch_map(p, 1, "smooth")
+
+    def K(x: np.ndarray) -> np.ndarray:
+        return _sweep(p, bmap, x, item)[2]
+    usable, _, k = _sweep(p, bmap, q, item)
     sign = np.sign(np.where(usable, k, np.nan))
     both = usable[:-1] & usable[1:]
     brackets = np.flatnonzero(both & (sign[:-1] * sign[1:] < 0))
     on_sample = 1 + np.flatnonzero(both[:-1] & both[1:] & (sign[1:-1] == 0)
                                    & (sign[:-2] * sign[2:] < 0))
-
-    def K(x: np.ndarray) -> np.ndarray:
-        return np.asarray(analyze(mechanism, x, unreachable="mask", at_singular="flag").K(output),
-                          float).reshape(-1)
     roots = list(q[on_sample])
     if len(brackets):
         found = _refined(K, q[brackets], q[brackets + 1], sign[brackets])
@@ -244,8 +246,8 @@ def toggles(mechanism: Mechanism, lo: float | None = None, hi: float | None = No
     >>> kl.kinematics.toggles(kl.mechanisms.slider_crank(crank=1.0, rod=3.0))  # never reached
     ()
     """
-    from kinelab.kinematics._analyze import (MAX_SEARCH_SAMPLES, analyze, change_points, plan,
-                                             reachable_ranges, turns_fully)
+    from kinelab.kinematics._analyze import (MAX_SEARCH_SAMPLES, _branch_map, change_points,
+                                             plan, reachable_ranges, turns_fully)
 
     p = plan(mechanism)
     _one_input(mechanism, p)
@@ -266,12 +268,11 @@ def toggles(mechanism: Mechanism, lo: float | None = None, hi: float | None = No
         found.append(Toggle(float(c.q), "change point", tuple(c.links), c.step))
     # any other zero of det J that the sweep sees change sign (Newton groups, for instance)
     q = np.linspace(lo, hi, samples)
-    sweep = analyze(mechanism, q, unreachable="mask", at_singular="flag")
-    det = np.where(sweep.assembled, sweep.det_J, np.nan)
+    bmap = _branch_map(p, 1, "smooth")
 
     def det_J(x: np.ndarray) -> np.ndarray:
-        return analyze(mechanism, x, unreachable="mask", at_singular="flag").det_J
-
+        return _sweep(p, bmap, x)[1]
+    det = det_J(q)
     brackets = np.flatnonzero(np.sign(det[:-1]) * np.sign(det[1:]) < 0)
     if len(brackets):
         for r in _refined(det_J, q[brackets], q[brackets + 1], np.sign(det[brackets])):
@@ -283,6 +284,27 @@ def toggles(mechanism: Mechanism, lo: float | None = None, hi: float | None = No
         if not (out and abs(t.q - out[-1].q) <= pad):
             out.append(t)
     return tuple(out)
+
+
+def _sweep(p, bmap, q: np.ndarray, item: int | None = None):
+    """(usable, det J, K of ``item``) at the input values q (N,), each on the branch the
+    analysis follows there; only that one coordinate is written out, so that a sweep of a
+    model with many points takes a few bytes a sample.  ``usable``: assembled and not
+    singular; det J is NaN where the loops do not close, K where the sample is not usable."""
+    from kinelab.kinematics import _codes as codes
+    from kinelab.kinematics._analyze import SINGULAR_TOL, _solve
+    q2 = np.ascontiguousarray(np.reshape(q, (-1, 1)), float)
+    zero = np.zeros((1, 1))
+    stored = np.array([] if item is None else [item], np.int64)
+    out = _solve(p, bmap, q2, zero, zero, stored=stored)
+    assembled = out["status"] == codes.ST_OK
+    det = np.where(assembled, out["diag"][:, 0], np.nan)
+    usable = assembled & (out["diag"][:, 1] >= SINGULAR_TOL)
+    if item is None:
+        return usable, det, None
+    k = np.where(usable, out["jets"][:, 0, 1], np.nan)
+    usable &= np.isfinite(k)
+    return usable, det, k
 
 
 def _refined(f, a: np.ndarray, b: np.ndarray, sign_a: np.ndarray) -> np.ndarray:
