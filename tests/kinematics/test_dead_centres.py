@@ -18,6 +18,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import kinelab as kl
 from kinelab.errors import ModelError
@@ -200,3 +202,21 @@ def test_toggles_refuse_two_inputs():
     five = kl.load(EXAMPLES / "fivebar.toml")
     with pytest.raises(ModelError, match=r"mechanism: expected one input, got 2"):
         kl.kinematics.toggles(five)
+
+
+@settings(max_examples=25)
+@given(r=st.floats(0.05, 1.0), rest=st.floats(0.2, 3.0), e_frac=st.floats(-0.9, 0.9))
+def test_random_slider_cranks_against_the_closed_form(r, rest, e_frac):
+    """Any slider-crank whose crank turns fully (r + |e| < l): two dead centres where crank
+    and rod are collinear, and no toggle."""
+    e = e_frac * rest            # |e| < l - r = rest
+    l = r + rest + abs(e)
+    sc = kl.mechanisms.slider_crank(crank=r, rod=l, offset=e)
+    dc = kl.kinematics.dead_centres(sc, "slide", 0.0, 2 * np.pi)
+    expected = sorted([turn(math.asin(e / (l + r))), turn(math.pi + math.asin(e / (l - r)))])
+    assert len(dc) == 2
+    assert sorted(turn(dc.q)) == pytest.approx(expected, abs=RAD_TOL)
+    assert sorted(dc.value) == pytest.approx(
+        sorted([math.sqrt((l + r) ** 2 - e * e), math.sqrt((l - r) ** 2 - e * e)]),
+        rel=1e-12)
+    assert kl.kinematics.toggles(sc, 0.0, 2 * np.pi) == ()
