@@ -1,5 +1,5 @@
 """The two kinds of singular position of a one-input mechanism, kept apart as the notes keep
-them (*Mecanismos*, §4.6, Ex. 4.6; Erthal, *Mecanismos com 1 GL*, "Singularidades"):
+them (*Mecanismos*, §4.8, Ex. 4.6; Erthal, *Mecanismos com 1 GL*, "Singularidades"):
 
 - a **toggle** (posição de travamento, or de alinhamento): det J = 0 of the position
   equations, where two links of the driven chain fall in line; the chain locks there (the
