@@ -260,10 +260,13 @@ def toggles(mechanism: Mechanism, lo: float | None = None, hi: float | None = No
     ranges = reachable_ranges(mechanism)
     if not turns_fully(mechanism, ranges):
         turns = range(-3, 4) if angle else (0,)
-        for bound in sorted({b + 2 * math.pi * t for span in ranges for b in span for t in turns}):
-            if lo - pad <= bound <= hi + pad:
-                found.append(Toggle(float(bound), "limit position",
-                                    *_folded(mechanism, p, bound, ranges)))
+        for a, b in ranges:
+            for bound, inwards in ((a, 1.0), (b, -1.0)):
+                for t in turns:
+                    at = bound + 2 * math.pi * t
+                    if lo - pad <= at <= hi + pad:
+                        found.append(Toggle(float(at), "limit position",
+                                            *_folded(p, at, inwards)))
     for c in change_points(mechanism, lo, hi):
         found.append(Toggle(float(c.q), "change point", tuple(c.links), c.step))
     # any other zero of det J that the sweep sees change sign (Newton groups, for instance)
@@ -315,26 +318,27 @@ def _refined(f, a: np.ndarray, b: np.ndarray, sign_a: np.ndarray) -> np.ndarray:
     return 0.5 * (lo + hi)
 
 
-def _folded(mechanism: Mechanism, p, bound: float, ranges) -> tuple[tuple[str, ...], str]:
+def _folded(p, bound: float, inwards: float) -> tuple[tuple[str, ...], str]:
     """The links of the dyad that folds at a limit position ``bound`` and its step's label:
-    the branched operation whose signed measure is smallest just inside the range."""
+    the branched operation whose signed measure is smallest just inside the reachable range
+    (``inwards``: +1 where the range lies above the bound, -1 below)."""
+    from kinelab.kinematics._analyze import _branch_map
     from kinelab.kinematics._branches import _Walker
     if p.groups is not None:
         return (), ""
     walker = _Walker(p, "smooth")
     if not walker.ops:
         return (), ""
-    inside = next(((a + b) / 2 for a, b in ranges if a - 1e-9 <= bound <= b + 1e-9), bound)
-    near = bound + 1e-7 * math.copysign(1.0, inside - bound) * (1.0 if walker.angle else p.scale)
-    from kinelab.kinematics._analyze import _branch_map
+    near = np.array([bound + 1e-7 * inwards * (1.0 if walker.angle else p.scale)])
     bmap = _branch_map(p, 1, "smooth")
-    ops_f = p.ops_f if bmap is None else bmap.variants(np.array([near]))[1][
-        int(bmap.variants(np.array([near]))[0][0])]
-    ok, m, _, _ = walker.evaluate(ops_f, np.array([near]))
+    ops_f = p.ops_f
+    if bmap is not None:
+        index, tables = bmap.variants(near)
+        ops_f = tables[int(index[0])]
+    ok, m, _, _ = walker.evaluate(ops_f, near)
     if not ok[0] or not np.isfinite(m[0]).any():
         return (), ""
-    op = walker.ops[int(np.nanargmin(np.abs(m[0])))]
-    step = p.step_of_op(op)
+    step = p.step_of_op(walker.ops[int(np.nanargmin(np.abs(m[0])))])
     return (tuple(step.links), step.label) if step else ((), "")
 
 

@@ -220,3 +220,13 @@ def test_random_slider_cranks_against_the_closed_form(r, rest, e_frac):
         sorted([math.sqrt((l + r) ** 2 - e * e), math.sqrt((l - r) ** 2 - e * e)]),
         rel=1e-12)
     assert kl.kinematics.toggles(sc, 0.0, 2 * np.pi) == ()
+
+
+@pytest.mark.parametrize("scale", [1e-4, 1.0, 1e4])
+def test_toggles_the_same_at_any_scale(scale):
+    fb = kl.mechanisms.fourbar(ground=1.0 * scale, crank=2.0 * scale, coupler=1.0 * scale,
+                               rocker=1.5 * scale)
+    found = kl.kinematics.toggles(fb)
+    assert [t.q for t in found] == pytest.approx([-math.acos(-0.3125), math.acos(-0.3125)],
+                                                 abs=RAD_TOL)
+    assert all(t.links == ("coupler", "rocker") for t in found)
