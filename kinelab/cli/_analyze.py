@@ -235,8 +235,10 @@ def singular_positions(mf: io.ModelFile, units, lang: str = "en") -> list[str]:
         parts = []
         for t in found:
             what = words[t.kind]
-            if t.links:
-                what += ": " + words["in_line"].format(a=t.links[0], b=t.links[-1])
+            if t.group in ("RRR", "RRP") and len(t.links) == 2:
+                what += ": " + words[t.group].format(a=t.links[0], b=t.links[1])
+            elif t.label:
+                what += ": " + words["folds"].format(label=t.label)
             parts.append(f"{q_text(t.q)} ({what})")
         lines = [words["toggles"] + f"{name} = " + ", ".join(parts)]
     else:
@@ -276,7 +278,9 @@ SINGULAR_WORDS = {
         "not_reached": "not reached for {name} in {span}",
         "limit position": "limit position",
         "change point": "change point",
-        "in_line": "{a} and {b} in line",
+        "RRR": "{a} and {b} in line",
+        "RRP": "{a} perpendicular to the slide of {b}",
+        "folds": "{label} singular",
         "dead_slide": "slide '{output}' dead centres (K = 0, it stops and turns back): ",
         "dead_link": "link '{output}' dead centres (K = 0, its angle stops and turns back): ",
         "none": "none for {name} in {span}",
@@ -288,7 +292,9 @@ SINGULAR_WORDS = {
         "not_reached": "não atingidas para {name} em {span}",
         "limit position": "posição limite",
         "change point": "ponto de mudança de ramo",
-        "in_line": "{a} e {b} alinhados",
+        "RRR": "{a} e {b} alinhados",
+        "RRP": "{a} perpendicular à guia de {b}",
+        "folds": "{label} singular",
         "dead_slide": "pontos mortos do deslizamento '{output}' (K = 0, para e inverte o "
                       "sentido): ",
         "dead_link": "pontos mortos do membro '{output}' (K = 0, seu ângulo para e inverte o "

@@ -67,13 +67,18 @@ class Toggle:
     links : tuple of str
         The links that fall in line there (empty where the plan does not say).
     label : str
-        The step of the plan whose dyad folds (e.g. "RRR A-B-O4"), or "".
+        The step of the plan whose dyad folds (e.g. "dyad 'coupler'-'rocker' (RRR A-B-O4)"),
+        or "".
+    group : str
+        That step's kind: "RRR" (its two links in line), "RRP" (its arm perpendicular to
+        the slide), "RPR", ...; "" where the plan does not say.
     """
 
     q: float
     kind: Literal["limit position", "change point"]
     links: tuple[str, ...] = ()
     label: str = ""
+    group: str = ""
 
 
 def input_span(mechanism: Mechanism) -> tuple[float, float]:
@@ -267,8 +272,10 @@ def toggles(mechanism: Mechanism, lo: float | None = None, hi: float | None = No
                     if lo - pad <= at <= hi + pad:
                         found.append(Toggle(float(at), "limit position",
                                             *_folded(p, at, inwards)))
+    kinds = {step.label: step.kind for step in p.steps}
     for c in change_points(mechanism, lo, hi):
-        found.append(Toggle(float(c.q), "change point", tuple(c.links), c.step))
+        found.append(Toggle(float(c.q), "change point", tuple(c.links), c.step,
+                            kinds.get(c.step, "")))
     # any other zero of det J that the sweep sees change sign (Newton groups, for instance)
     q = np.linspace(lo, hi, samples)
     bmap = _branch_map(p, 1, "smooth")
@@ -318,17 +325,18 @@ def _refined(f, a: np.ndarray, b: np.ndarray, sign_a: np.ndarray) -> np.ndarray:
     return 0.5 * (lo + hi)
 
 
-def _folded(p, bound: float, inwards: float) -> tuple[tuple[str, ...], str]:
-    """The links of the dyad that folds at a limit position ``bound`` and its step's label:
+def _folded(p, bound: float, inwards: float) -> tuple[tuple[str, ...], str, str]:
+    """The links of the dyad that folds at a limit position ``bound``, its step's label and
+    kind:
     the branched operation whose signed measure is smallest just inside the reachable range
     (``inwards``: +1 where the range lies above the bound, -1 below)."""
     from kinelab.kinematics._analyze import _branch_map
     from kinelab.kinematics._branches import _Walker
     if p.groups is not None:
-        return (), ""
+        return (), "", ""
     walker = _Walker(p, "smooth")
     if not walker.ops:
-        return (), ""
+        return (), "", ""
     near = np.array([bound + 1e-7 * inwards * (1.0 if walker.angle else p.scale)])
     bmap = _branch_map(p, 1, "smooth")
     ops_f = p.ops_f
@@ -337,9 +345,9 @@ def _folded(p, bound: float, inwards: float) -> tuple[tuple[str, ...], str]:
         ops_f = tables[int(index[0])]
     ok, m, _, _ = walker.evaluate(ops_f, near)
     if not ok[0] or not np.isfinite(m[0]).any():
-        return (), ""
+        return (), "", ""
     step = p.step_of_op(walker.ops[int(np.nanargmin(np.abs(m[0])))])
-    return (tuple(step.links), step.label) if step else ((), "")
+    return (tuple(step.links), step.label, step.kind) if step else ((), "", "")
 
 
 def _one_input(mechanism: Mechanism, p) -> None:

@@ -105,3 +105,19 @@ def test_check_refuses_an_unknown_language():
     result = run("check", EX / "engine.toml", "--lang", "fr")
     assert result.exit_code == 2
     assert "'fr' is not one of 'en', 'pt'" in result.output
+
+
+def test_slider_crank_that_cannot_turn_reports_its_rod_perpendicular_to_the_slide(tmp_path):
+    """Crank 2, rod 1.5, offset 0.25 (m): the rod stands perpendicular to the slide line at
+    the limit positions, |r sin q - e| = l: sin q = (e - l) / r and (e + l) / r."""
+    import kinelab as kl
+    path = tmp_path / "short_rod.toml"
+    kl.io.save(kl.mechanisms.slider_crank(crank=2.0, rod=1.5, offset=0.25), path,
+               units={"length": "m", "angle": "deg"})
+    result = run("check", path)
+    assert result.exit_code == 0, result.output
+    toggles = line(result.stdout, "toggles (det J = 0")
+    q = [float(v) for v in re.findall(r"(-?[\d.]+) deg \(limit position: rod perpendicular to "
+                                      r"the slide of slider\)", toggles)]
+    assert q == pytest.approx([math.degrees(math.asin((0.25 - 1.5) / 2)),
+                               math.degrees(math.asin((0.25 + 1.5) / 2))], abs=DEG_TOL)
