@@ -84,7 +84,19 @@ class Toggle:
 def input_span(mechanism: Mechanism) -> tuple[float, float]:
     """The input range a study of singular positions covers by default: the input's
     ``range`` if the model gives one, else a turn from the sketch for a crank that turns
-    fully, else the reachable interval around the sketch; rad or m."""
+    fully, else the reachable interval around the sketch; rad or m.
+
+    Raises
+    ------
+    ModelError
+        The mechanism has more than one input.
+
+    Examples
+    --------
+    >>> fb = kl.mechanisms.fourbar(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)  # non-Grashof
+    >>> [round(v, 9) for v in kl.kinematics.input_span(fb)]        # +-acos(-0.3125)
+    [-1.888620031, 1.888620031]
+    """
     from kinelab.kinematics._analyze import plan, reachable_ranges, turns_fully
     p = plan(mechanism)
     _one_input(mechanism, p)
