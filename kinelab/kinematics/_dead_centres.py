@@ -188,7 +188,13 @@ def dead_centres(mechanism: Mechanism, output: str, lo: float | None = None,
     def K(x: np.ndarray) -> np.ndarray:
         return _sweep(p, bmap, x, item)[2]
     usable, _, k = _sweep(p, bmap, q, item)
-    sign = np.sign(np.where(usable, k, np.nan))
+    # K within its rounding of zero is zero: a link that only translates (a parallelogram's
+    # coupler) has K = 0 to rounding everywhere, and no dead centre.  A K that is not
+    # flagged singular is accurate to 1e-8 (docs/kinematics.md, "Singular and limit
+    # positions"), in rad or sizes of the mechanism per rad or size.
+    per_input = 1.0 if p.input_kinds[0] == "angle" else 1.0 / p.scale
+    noise = 1e-8 * per_input * (1.0 if kind == "angle" else p.scale)
+    sign = np.sign(np.where(usable, np.where(np.abs(k) <= noise, 0.0, k), np.nan))
     both = usable[:-1] & usable[1:]
     brackets = np.flatnonzero(both & (sign[:-1] * sign[1:] < 0))
     on_sample = 1 + np.flatnonzero(both[:-1] & both[1:] & (sign[1:-1] == 0)

@@ -230,3 +230,13 @@ def test_toggles_the_same_at_any_scale(scale):
     assert [t.q for t in found] == pytest.approx([-math.acos(-0.3125), math.acos(-0.3125)],
                                                  abs=RAD_TOL)
     assert all(t.links == ("coupler", "rocker") for t in found)
+
+
+def test_a_translating_coupler_has_no_dead_centre():
+    """A parallelogram's coupler keeps its angle (K = 0 to rounding, over 1e-12 next to its
+    change points): it never turns back, and its rocker turns with the crank."""
+    pg = kl.mechanisms.fourbar(ground=100, crank=60, coupler=100, rocker=60)
+    assert len(kl.kinematics.dead_centres(pg, "coupler", 0.0, 2 * np.pi)) == 0
+    assert len(kl.kinematics.dead_centres(pg, "rocker", 0.0, 2 * np.pi)) == 0
+    double = kl.load(Path(__file__).resolve().parent / "double_parallelogram.toml")
+    assert len(kl.kinematics.dead_centres(double, "coupler")) == 0
