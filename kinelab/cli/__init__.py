@@ -13,8 +13,10 @@ main.add_lazy_command("analyze", "kinelab.cli._analyze:analyze",
                       "link's angle, omega, alpha; every slide and its rates; every point's x, "
                       "y, vx, vy, ax, ay; K and L of each; det J and the singular flag.")
 main.add_lazy_command("check", "kinelab.cli._analyze:check",
-                      "Validate MODEL, assemble it at its sketch, and report its mobility and "
-                      "the reachable input range (in the file's units, or SI with --si).")
+                      "Validate MODEL, assemble it at its sketch, and report its mobility, the "
+                      "reachable input range and its singular positions over the input range: "
+                      "the toggles (det J = 0) and the dead centres of each reported output "
+                      "(K = 0), in the file's units, or SI with --si.")
 main.add_lazy_command("plot", "kinelab.cli._draw:plot",
                       "Write MODEL's figures: outputs' position, velocity and acceleration "
                       "against the input; K and L; coupler curves; transmission angle.")

@@ -155,10 +155,13 @@ def with_speeds(mf, qd) -> io.ModelFile:
 @MODEL
 @SI
 @DEGREES
-def check(model, si, degrees):
-    """Validate MODEL, assemble it at its sketch, and report its mobility and the reachable
-    input range (in the file's units, or SI with --si).  Exit status 2 when something is
-    wrong."""
+@click.option("--lang", type=click.Choice(("en", "pt")), default="en", show_default=True,
+              help="Language of the lines on singular positions (toggles, dead centres).")
+def check(model, si, degrees, lang):
+    """Validate MODEL, assemble it at its sketch, and report its mobility, the reachable
+    input range and its singular positions over the input range: the toggles (det J = 0)
+    and the dead centres of each reported output (K = 0), in the file's units, or SI with
+    --si.  Exit status 2 when something is wrong."""
     mf = read_model(model)
     light_work(mf)
     m = mf.mechanism
@@ -205,7 +208,102 @@ def check(model, si, degrees):
     n_sing = int(status.singular.sum())
     click.echo(f"sweep: {len(q)} samples assemble" + (f", {n_sing} singular" if n_sing else
                                                       ", none singular"))
+    if len(m.inputs) == 1:
+        for line in singular_positions(mf, units, lang):
+            click.echo(line)
     click.echo("ok")
+
+
+def singular_positions(mf: io.ModelFile, units, lang: str = "en") -> list[str]:
+    """The lines of ``check`` on the singular positions over the input range of a one-input
+    model: where det J = 0 is reached (toggles) and the dead centres (K = 0) of each output
+    the file reports (else of every moving link and slide), input and output values in
+    ``units``, in the language ``lang``."""
+    m = mf.mechanism
+    words = SINGULAR_WORDS[lang]
+    with errors_from(mf):
+        p = kinematics.plan(m)
+        lo, hi = kinematics.input_span(m)
+        found = kinematics.toggles(m, lo, hi)
+    u = INPUT_SI_UNITS[p.input_kinds[0]]
+    name = m.input_names[0]
+
+    def q_text(v):
+        return f"{_short(units.convert(v, u))} {units.unit(u)}"
+    span = f"[{_short(units.convert(lo, u))}, {_short(units.convert(hi, u))}] {units.unit(u)}"
+    if found:
+        parts = []
+        for t in found:
+            what = words[t.kind]
+            if t.group in ("RRR", "RRP") and len(t.links) == 2:
+                what += ": " + words[t.group].format(a=t.links[0], b=t.links[1])
+            elif t.label:
+                what += ": " + words["folds"].format(label=t.label)
+            parts.append(f"{q_text(t.q)} ({what})")
+        lines = [words["toggles"] + f"{name} = " + ", ".join(parts)]
+    else:
+        lines = [words["toggles"] + words["not_reached"].format(name=name, span=span)]
+    report = mf.outputs.report or io.default_outputs(m)
+    for output in report:
+        if output in p.slide_item:
+            kind, si_unit = "slide", "m"
+        elif output in p.link_item and not m.link(output).ground:
+            kind, si_unit = "link", "rad"
+        else:
+            continue                 # a point has no dead centre of its own
+        with errors_from(mf, "outputs.report"):
+            dc = kinematics.dead_centres(m, output, lo, hi)
+        head = words["dead_" + kind].format(output=output)
+        if not len(dc):
+            lines.append(head + words["none"].format(name=name, span=span))
+            continue
+        value = words["value_" + kind]
+        lines.append(head + f"{name} = " + ", ".join(
+            f"{q_text(a)} ({value} = {_short(units.convert(b, si_unit))} {units.unit(si_unit)})"
+            for a, b in zip(dc.q, dc.value)))
+    return lines
+
+
+def _short(x: float) -> str:
+    """A refined value to nine figures, rounding noise at zero shown as 0."""
+    x = float(f"{x:.9g}")
+    return f"{0.0 if abs(x) < 1e-9 else x:.9g}"
+
+
+# The words of check's lines on singular positions, one table per language: the notes'
+# terms, "posição de travamento" (or de alinhamento) for det J = 0, "ponto morto" for K = 0.
+SINGULAR_WORDS = {
+    "en": {
+        "toggles": "toggles (det J = 0, dead centres of the chain): ",
+        "not_reached": "not reached for {name} in {span}",
+        "limit position": "limit position",
+        "change point": "change point",
+        "RRR": "{a} and {b} in line",
+        "RRP": "{a} perpendicular to the slide of {b}",
+        "folds": "{label} singular",
+        "dead_slide": "slide '{output}' dead centres (K = 0, it stops and turns back): ",
+        "dead_link": "link '{output}' dead centres (K = 0, its angle stops and turns back): ",
+        "none": "none for {name} in {span}",
+        "value_slide": "slide",
+        "value_link": "angle",
+    },
+    "pt": {
+        "toggles": "posições de travamento (det J = 0, cadeia alinhada): ",
+        "not_reached": "não atingidas para {name} em {span}",
+        "limit position": "posição limite",
+        "change point": "ponto de mudança de ramo",
+        "RRR": "{a} e {b} alinhados",
+        "RRP": "{a} perpendicular à guia de {b}",
+        "folds": "{label} singular",
+        "dead_slide": "pontos mortos do deslizamento '{output}' (K = 0, para e inverte o "
+                      "sentido): ",
+        "dead_link": "pontos mortos do membro '{output}' (K = 0, seu ângulo para e inverte o "
+                     "sentido): ",
+        "none": "nenhum para {name} em {span}",
+        "value_slide": "deslocamento",
+        "value_link": "ângulo",
+    },
+}
 
 
 def _probe_loads(mf, q, qd):

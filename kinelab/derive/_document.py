@@ -294,6 +294,7 @@ def document(d, fmt: str, *, at=None, lang: str = "en") -> str:
                      rows=", ".join(f"({i + 1})" for i in d.redundant)))
     if n:
         _velocity(d, w, T, N, tex)
+        _singular_positions(d, w, T, tex)
         _coefficients(d, w, T, tex)
         _accelerations(d, w, T, tex)
     if d.dynamics is not None:
@@ -415,6 +416,101 @@ def _singular_words(s, d, w, T, N, tex) -> str:
         values = f" {T('or')} ".join(f"{_fmt(v)}{w.degree}" for v in s.values)
         return T("sing_angle", factor=f, link=N(s.names[0]), values=values)
     return T("sing_other", factor=f)
+
+
+def _singular_positions(d, w, T, tex) -> None:
+    """Over the model's input range, which conditions det J = 0 are reached and where (the
+    toggles), and where each secondary coordinate turns back (its dead centres, K = 0): the
+    numbers of :func:`kinelab.kinematics.toggles` and :func:`kinelab.kinematics.dead_centres`."""
+    import sympy as sp
+    from kinelab import kinematics
+    from kinelab.errors import KinelabError
+    eq, m = d.equations, d.model
+    w.heading(T("reach"), level=3)
+    if len(eq.q) != 1:
+        w.para(T("reach_many"))
+        return
+    q_sym = eq.q[0]
+    slide_input = m.inputs[0].joint is not None and m.joint(m.inputs[0].joint).type == "P"
+
+    def at(v: float) -> str:
+        v = 0.0 if abs(v) < 1e-9 * max(1.0, abs(hi - lo)) else v
+        shown = f"${tex(q_sym)} = {_fmt(v)}$"
+        return shown + (" m" if slide_input else f" ({_fmt(round(math.degrees(v), 7))}{w.degree})")
+
+    def value(s, v: float, kind: str) -> str:
+        if kind == "angle":
+            return f"${tex(s)} = {_fmt(v)}$ ({_fmt(round(math.degrees(v), 7))}{w.degree})"
+        return f"${tex(s)} = {_fmt(v)}$ m"
+    try:
+        lo, hi = kinematics.input_span(m)
+        found = kinematics.toggles(m, lo, hi)
+        turns = []
+        for s in eq.S:
+            kind, name = eq.unknowns[s]
+            if kind == "angle" or name in kinematics.plan(m).slide_item:
+                turns.append((s, kinematics.dead_centres(m, name, lo, hi)))
+        reached = _factors_reached(d, found, lo, hi) if d.singularities else []
+    except KinelabError as exc:
+        w.para(T("reach_failed", why=_tex_or_md(w, str(exc))))
+        return
+    span = f"${tex(q_sym)} \\in [{_fmt(lo)}, {_fmt(hi)}]$" + (
+        " m" if slide_input else
+        f" ([{_fmt(round(math.degrees(lo), 7))}, {_fmt(round(math.degrees(hi), 7))}]{w.degree})")
+    w.para(T("reach_intro", span=span))
+    rows = []
+    for s, hits in zip(d.singularities, reached):
+        f = "$" + tex(s.factor) + " = 0$"
+        if hits:
+            where = "; ".join(f"{at(t.q)}, {T(t.kind)}" for t in hits)
+            rows.append(T("toggle_reached", factor=f, where=where))
+        else:
+            rows.append(T("toggle_not_reached", factor=f))
+    if rows:
+        w.para(T("toggle_intro"))
+        w.items(rows)
+    else:
+        w.para(T("toggle_none"))
+    w.para(T("dead_intro"))
+    rows = []
+    for s, dc in turns:
+        if len(dc):
+            where = "; ".join(T("dead_where", q=at(a), value=value(s, b, dc.kind))
+                              for a, b in zip(dc.q, dc.value))
+            rows.append(T("dead_at", symbol=f"${tex(s)}$", where=where))
+        else:
+            rows.append(T("dead_none", symbol=f"${tex(s)}$"))
+    w.items(rows)
+
+
+def _factors_reached(d, found, lo: float, hi: float) -> list[list]:
+    """For each factor of det J the derivation lists, the toggles of ``found`` at which it is
+    zero: its value there, against its largest over a sweep of the range, below 1e-4 (at a
+    limit position a factor falls like the square root of the distance to it)."""
+    import sympy as sp
+    from kinelab.kinematics import analyze
+    eq, m = d.equations, d.model
+    f = sp.lambdify(list(eq.q) + list(eq.S) + list(d.parameters),
+                    [s.factor for s in d.singularities], modules="numpy")
+    constants = list(d.parameters.values())
+
+    def values(q: np.ndarray) -> np.ndarray:
+        sol = analyze(m, q, unreachable="mask", at_singular="flag")
+        S = [sol.angle(name) if kind == "angle" else sol.slide(name)
+             for kind, name in (eq.unknowns[s] for s in eq.S)]
+        with np.errstate(invalid="ignore"):
+            out = [np.broadcast_to(np.asarray(v, float), q.shape)
+                   for v in f(q, *S, *constants)]
+        return np.abs(np.array(out))              # (factors, N)
+    scale = np.nanmax(values(np.linspace(lo, hi, 181)), axis=1)
+    if not found:
+        return [[] for _ in d.singularities]
+    there = values(np.array([t.q for t in found]))
+    return [[t for t, v in zip(found, row) if v <= 1e-4 * big] for row, big in zip(there, scale)]
+
+
+def _tex_or_md(w, text: str) -> str:
+    return text if w.fmt == "md" else _tex_text(text)
 
 
 def _coefficients(d, w, T, tex) -> None:

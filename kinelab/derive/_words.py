@@ -73,7 +73,26 @@ WORDS: dict[str, dict[str, str]] = {
         "singular_intro": "$\\det J = 0$, and the velocities are undefined, where",
         "sing_slide": "{factor}: the point {point} reaches {origin}, the origin of the slide {joint}{pivot};",
         "sing_pivot": " (the pivot of {link})",
-        "sing_in_line": "{factor}: {a} and {b} are in line (a dead centre or a toggle);",
+        "sing_in_line": "{factor}: {a} and {b} are in line (a toggle: a dead centre of the chain);",
+        "reach": "Toggles and dead centres over the input range",
+        "reach_intro": ("Over the model's input range, {span}, the two kinds of singular "
+                        "position the notes tell apart (found by `kinelab.kinematics`)."),
+        "reach_many": ("Toggles and dead centres are found for mechanisms of one input; this "
+                       "one has more."),
+        "reach_failed": "Toggles and dead centres could not be found: {why}",
+        "toggle_intro": ("*Toggles* (dead centres of the chain, $\\det J = 0$: the chain "
+                         "locks, or may change branch), for each condition above:"),
+        "toggle_reached": "{factor} is reached at {where};",
+        "toggle_not_reached": "{factor} is not reached over this range;",
+        "toggle_none": "$\\det J = 0$ is not reached over this range.",
+        "limit position": "a limit position (the input cannot go on)",
+        "change point": "a change point (the input goes on; the branch may change)",
+        "dead_intro": ("*Dead centres* ($K = 0$: the coordinate stops and turns back; not a "
+                       "singular configuration, $\\det J \\neq 0$ there), apart from the "
+                       "toggles:"),
+        "dead_at": "{symbol} turns back at {where};",
+        "dead_where": "{q}, where {value}",
+        "dead_none": "{symbol} does not turn back over this range;",
         "sing_perpendicular": "{factor}: {a} and {b} are perpendicular;",
         "sing_angle": "{factor}: {link} is at {values} from the $x$ axis;",
         "sing_other": "{factor}.",
@@ -197,7 +216,26 @@ WORDS: dict[str, dict[str, str]] = {
         "singular_intro": "$\\det J = 0$, e as velocidades ficam indefinidas, quando",
         "sing_slide": "{factor}: o ponto {point} chega a {origin}, a origem do deslocamento {joint}{pivot};",
         "sing_pivot": " (o pivô de {link})",
-        "sing_in_line": "{factor}: {a} e {b} ficam alinhados (ponto morto ou posição de travamento);",
+        "sing_in_line": "{factor}: {a} e {b} ficam alinhados (posição de travamento, ou de alinhamento);",
+        "reach": "Posições de travamento e pontos mortos na faixa de entrada",
+        "reach_intro": ("Na faixa de entrada do modelo, {span}, os dois tipos de posição "
+                        "singular que as notas distinguem (calculados por `kinelab.kinematics`)."),
+        "reach_many": ("Posições de travamento e pontos mortos são calculados para mecanismos "
+                       "de uma entrada; este tem mais."),
+        "reach_failed": "Não foi possível calcular as posições de travamento e os pontos mortos: {why}",
+        "toggle_intro": ("*Posições de travamento* (ou de alinhamento; $\\det J = 0$: a "
+                         "cadeia trava, ou pode mudar de ramo), para cada condição acima:"),
+        "toggle_reached": "{factor} é atingida em {where};",
+        "toggle_not_reached": "{factor} não é atingida nesta faixa;",
+        "toggle_none": "$\\det J = 0$ não é atingido nesta faixa.",
+        "limit position": "posição limite (a entrada não pode avançar)",
+        "change point": "ponto de mudança de ramo (a entrada avança; o ramo pode mudar)",
+        "dead_intro": ("*Pontos mortos* ($K = 0$: a coordenada para e inverte o sentido; não "
+                       "é configuração singular, $\\det J \\neq 0$ ali), à parte das posições "
+                       "de travamento:"),
+        "dead_at": "{symbol} inverte o sentido em {where};",
+        "dead_where": "{q}, com {value}",
+        "dead_none": "{symbol} não inverte o sentido nesta faixa;",
         "sing_perpendicular": "{factor}: {a} e {b} ficam perpendiculares;",
         "sing_angle": "{factor}: {link} fica a {values} do eixo $x$;",
         "sing_other": "{factor}.",

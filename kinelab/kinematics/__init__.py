@@ -21,6 +21,8 @@ __getattr__, __dir__ = exports(__name__, {
     "kinelab.kinematics._assemble": ("Assembly", "SketchNotAssembled", "assemble", "pose",
                                      "reassemble"),
     "kinelab.kinematics._branches": ("ChangePoint",),
+    "kinelab.kinematics._dead_centres": ("DeadCentres", "Toggle", "dead_centres", "toggles",
+                                         "input_span"),
     "kinelab.kinematics._centrodes": ("Centrodes", "KennedyConstruction", "KennedyStep",
                                       "centrodes", "kennedy_construction", "velocity_ratio"),
     "kinelab.kinematics._input_errors": ("SingularInput", "UnreachableInput"),
@@ -49,4 +51,5 @@ __all__ = ["analyze", "analyze_designs", "DesignSolution", "plan", "reachable_ra
            "RelativeAcceleration", "velocity_polygon", "VelocityPolygon", "acceleration_polygon",
            "AccelerationPolygon", "Side", "LinkImage", "kennedy_construction",
            "KennedyConstruction", "KennedyStep", "centrodes", "Centrodes", "velocity_ratio",
-           "differentiate", "Derivatives"]
+           "differentiate", "Derivatives", "dead_centres", "DeadCentres", "toggles", "Toggle",
+           "input_span"]
