@@ -73,3 +73,13 @@ def test_messages_are_one_line(make):
 def test_parse_function_refuses_text():
     with pytest.raises(ModelError, match=r"expected real numbers for x, got 'a'"):
         parse_function("x + 1")("a")
+
+
+def test_lists_nested_deeper_than_numpy_allows_are_not_real_arrays():
+    """A list nested 58 deep (a hostile request's range): no array, not a numpy fault."""
+    from kinelab.model._values import real_array
+    deep = 1
+    for _ in range(58):
+        deep = [deep]
+    assert real_array(deep) is None
+    assert real_array([deep, 2]) is None

@@ -60,7 +60,8 @@ def real(value: Any) -> float | None:
 
 def real_array(value: Any) -> np.ndarray | None:
     """``value`` as a float array when it holds real numbers only, else None: numpy itself
-    would turn True into 1.0, "3" into 3.0 and drop the imaginary part of a complex number."""
+    would turn True into 1.0, "3" into 3.0 and drop the imaginary part of a complex number,
+    and lists nested more than 32 deep (numpy's most dimensions) are no array at all."""
     try:
         a = np.asarray(value)
         if a.dtype == object and a.size and all(
@@ -69,7 +70,7 @@ def real_array(value: Any) -> np.ndarray | None:
         if a.dtype.kind in "iuf" and isinstance(value, (list, tuple)) and a.size and any(
                 isinstance(v, (bool, np.bool_)) for v in np.asarray(value, dtype=object).flat):
             return None                 # numpy made a True among numbers into 1
-    except (TypeError, ValueError, OverflowError):
+    except (TypeError, ValueError, OverflowError, RuntimeError, RecursionError):
         return None
     return a.astype(float) if a.dtype.kind in "iuf" else None
 

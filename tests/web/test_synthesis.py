@@ -121,3 +121,17 @@ def test_bad_tasks_are_refused_in_one_line(client, task, message):
     answer = client.post("/api/synthesize", json={"task": task})
     assert answer.status_code == 400
     assert message in answer.json()["error"]
+
+
+def test_a_range_nested_deeper_than_numpy_allows_is_refused_in_one_line(client):
+    """A function task whose input range is a list nested 58 deep: a 4xx naming the field,
+    not an internal error."""
+    deep = 1
+    for _ in range(58):
+        deep = [deep]
+    task = {"task": "function", "units": {"angle": "deg"},
+            "function": {"expression": "log10(x)", "x_range": [1, 2], "input_range": deep,
+                         "output_range": [0, 90], "points": 3, "ground": 1.0}}
+    r = client.post("/api/synthesize", json={"task": task, "source": "task.toml"})
+    assert 400 <= r.status_code < 500, r.text
+    assert "function.input_range" in r.json()["error"]
