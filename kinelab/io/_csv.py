@@ -32,6 +32,7 @@ from kinelab._files import file_path
 from kinelab._memory import require
 from kinelab.errors import PROBLEMS_SHOWN, ModelError, describe, shown
 from kinelab.io._text import PLAIN_NUMBER, number, read_text
+from kinelab.model import MAX_NAME   # a column is named as a point or link is
 
 __all__ = ["TABLE_BYTES", "MAX_ROWS", "csv_rows", "header", "numbers_of", "read_table"]
 
@@ -39,8 +40,6 @@ TABLE_BYTES = 64 << 20   # a CSV file's size: a million rows of a few numbers ea
 MAX_ROWS = 1_000_000     # rows of a CSV file (besides its header): a curve's samples, a
                          # path's points, designs (more designs: a Parquet table)
 MAX_LINE = 1 << 20       # characters of a line: a row of a few thousand numbers
-MAX_NAME = 200           # characters of a column's name and unit: they label tables and
-                         # figures (a label of 10^5 characters takes matplotlib half a minute)
 
 _LINE_ENDS = re.compile(r"\r\n?")
 # a line to parse: not blank (spaces, tabs, commas), not a comment (# first)

@@ -12,7 +12,7 @@ from typing import Any
 
 from kinelab.errors import PROBLEMS_SHOWN, describe, quoted, shown, shown_key, suggest
 from kinelab.io._text import in_si
-from kinelab.model import name_problem
+from kinelab.model import MAX_NAME, name_problem
 
 __all__ = ["Reader", "quoted", "suggest", "describe", "shown", "shown_key"]
 
@@ -88,9 +88,13 @@ class Reader:
     # -- scalars --------------------------------------------------------------------------
     def _text(self, value: Any, field: str, what: str, options: Iterable[str] | None,
               complaint) -> str | None:
-        """Non-empty printable text, one of ``options`` when given (else
-        ``complaint(value, options)``)."""
+        """Non-empty printable text of at most ``MAX_NAME`` characters, one of ``options``
+        when given (else ``complaint(value, options)``)."""
         if name_problem(value) is not None:
+            if isinstance(value, str) and len(value) > MAX_NAME:
+                self.fail(field, f"expected {what} of at most {MAX_NAME} characters, got "
+                          f"{len(value):,}; shorten it")
+                return None
             printable = isinstance(value, str) and value.strip()
             self.fail(field, f"expected {what}{' of printable characters' if printable else ''}, "
                       f"got {describe(value)}")

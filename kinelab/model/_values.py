@@ -15,7 +15,7 @@ import numpy as np
 
 __all__ = ["MIN_LENGTH", "MAX_LENGTH", "MAX_RATE", "MAX_TURNS", "is_real", "real", "real_array",
            "coordinate_problem", "angle_problem",
-           "length_problem", "rate_problem", "range_problem", "name_problem"]
+           "length_problem", "rate_problem", "range_problem", "name_problem", "MAX_NAME"]
 
 # Sizes kinelab computes with, in SI.  Lengths: a nanometre to a million kilometres; with
 # them, squared lengths and products of lengths stay far from overflow (1e308) and underflow
@@ -131,12 +131,19 @@ def size_problems(*, points: int = 0, links: int = 0, joints: int = 0) -> list[s
     return out
 
 
+MAX_NAME = 200     # characters of a name: names head table columns, label figures and make
+                   # file names (a label of 10^4 characters takes matplotlib half a minute)
+
+
 def name_problem(name: Any) -> str | None:
     """Why ``name`` cannot name a point, link, joint, input or mechanism, or None: names
-    head table columns and lines of messages, so they are non-empty, printable text (no
-    newline, tab, control or escape character, lone surrogate)."""
+    head table columns, lines of messages and labels of figures, so they are non-empty,
+    printable text (no newline, tab, control or escape character, lone surrogate) of at
+    most :data:`MAX_NAME` characters."""
     if not isinstance(name, str) or not name.strip():
         return "expected a non-empty name"
     if not name.isprintable():
         return "expected a name of printable characters (no newline, tab, control character)"
+    if len(name) > MAX_NAME:
+        return f"expected a name of at most {MAX_NAME} characters, got {len(name):,}; shorten it"
     return None

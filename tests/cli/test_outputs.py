@@ -13,6 +13,7 @@ from click.testing import CliRunner
 
 from kinelab._files import NAME_BYTES, Outputs, safe_name
 from kinelab.cli import main
+from kinelab.model import MAX_NAME
 from tests.synthesis.test_cli import NOTES_6_5
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -20,7 +21,8 @@ EX = ROOT / "examples"
 
 # what a model file from elsewhere may call its model, points and links ("ABSOLUTE" is
 # replaced by the absolute path of a file beside --out): the model checker takes them all
-HOSTILE = ["ABSOLUTE", "../../escaped", "a/b", "a\\b", "a_b", ".", "..", "CON", "x" * 10_000,
+# (the longest name it takes: longer ones are refused, see the test below)
+HOSTILE = ["ABSOLUTE", "../../escaped", "a/b", "a\\b", "a_b", ".", "..", "CON", "x" * MAX_NAME,
            "\u03a1"]       # Greek capital rho, which looks like P: kept as it is
 # and what a file's own name may hold on this system
 HOSTILE_STEMS = ["a\\b", "m\x1b[2Jx", "..x", "nul"]
@@ -173,11 +175,12 @@ def test_every_command_is_classed_as_writing_files_or_not():
     assert set(main.commands) == WRITERS | READERS
 
 
-@pytest.mark.filterwarnings("ignore:constrained_layout not applied")    # 10,000-character legends
+@pytest.mark.filterwarnings("ignore:constrained_layout not applied")    # 200-character legends
 def test_no_command_writes_outside_out_whatever_the_names_in_its_files(sandbox):
-    """Absolute paths, '..', separators of either system, '.', device names, 10,000
-    characters, escape sequences: as a model's, a point's, a link's, a task's or a file's
-    own name, each gives one safe file name in --out, and nothing is written elsewhere."""
+    """Absolute paths, '..', separators of either system, '.', device names, the longest
+    name a model may have, escape sequences: as a model's, a point's, a link's, a task's or a
+    file's own name, each gives one safe file name in --out, and nothing is written
+    elsewhere."""
     root, work, out, names = sandbox
     cases = commands(work, out, names)
     assert {c[0][0] for c in cases} == WRITERS
@@ -199,6 +202,21 @@ def test_no_command_writes_outside_out_whatever_the_names_in_its_files(sandbox):
                 not name.startswith(".") and name.isprintable() and "\\" not in name, name
             assert len(name.encode()) <= 255
     assert not (root / "victim").exists() and not (root / "escaped").exists()
+
+
+def test_a_name_longer_than_a_model_takes_is_refused_and_nothing_is_written(tmp_path):
+    """A point named with 10,000 characters (its figure's legend alone would take matplotlib
+    half a minute): one line naming the file and the field, nothing in --out."""
+    text = (ROOT / "examples" / "crank_rocker.toml").read_text().replace(
+        '"P"', '"' + "x" * 10_000 + '"').replace("P = [", '"' + "x" * 10_000 + '" = [')
+    path = tmp_path / "long.toml"
+    path.write_text(text)
+    out = tmp_path / "out"
+    result = run("polygons", path, "--at", "30", "--out", out)
+    assert result.exit_code == 2
+    assert result.output.startswith("kinelab: error: long.toml: ")
+    assert "expected a name of at most 200 characters, got 10,000" in result.output
+    assert not out.exists() or not any(out.iterdir())
 
 
 @pytest.mark.parametrize("name", ["x" * 10_000, "/" * 300, "é" * 5000, "a\x00b", "\ud800\x1b",

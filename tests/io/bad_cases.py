@@ -354,9 +354,12 @@ CASES = [
      "fb.toml: joints[3].point: expected a name of printable characters, got '\\x1b[2JO4'"),
     ("a name with a tab and NUL", _replace('name = "fb"', 'name = "f\\tb\\u0000"'),
      "fb.toml: name: expected a non-empty text of printable characters, got 'f\\tb\\x00'"),
-    ("a long unknown name", _replace('points = ["A", "B"]', 'points = ["A", "' + 'Q' * 1000 + '"]'),
+    ("a long unknown name", _replace('points = ["A", "B"]', 'points = ["A", "' + 'Q' * 200 + '"]'),
      "fb.toml: links[2].points[1]: expected a declared point, got '" + "Q" * 57 + "\u2026'; "
      "declared points are 'O2', 'A', 'B', 'O4'"),
+    ("a name of pages", _replace('points = ["A", "B"]', 'points = ["A", "' + 'Q' * 10_000 + '"]'),
+     "fb.toml: links[2].points[1]: expected a name of at most 200 characters, got 10,000; "
+     "shorten it"),
     ("an unknown name among many", _replace('O4 = [300, 0]', 'O4 = [300, 0]\n'
                                             + "".join(f"X{i} = [{i}, 500]\n" for i in range(100)))
      .replace('points = ["A", "B"]', 'points = ["A", "Q"]'),
