@@ -34,3 +34,36 @@ def test_the_page_fits_the_window_from_a_phone_to_4k(page, size):
         button.click()
         assert page.locator(f"#tab-{name}").is_visible()
         assert state(page, "document.documentElement.scrollWidth") <= width, name
+
+
+def overlaps(boxes):
+    """The pairs of boxes (x, y, width, height, text) that overlap by more than a pixel."""
+    found = []
+    for i, a in enumerate(boxes):
+        for b in boxes[i + 1:]:
+            w = min(a[0] + a[2], b[0] + b[2]) - max(a[0], b[0])
+            h = min(a[1] + a[3], b[1] + b[3]) - max(a[1], b[1])
+            if w > 1 and h > 1:
+                found.append((a[4], b[4]))
+    return found
+
+
+@pytest.mark.parametrize("example", ["crank_rocker", "stephenson6", "whitworth"])
+def test_labels_of_points_and_instant_centres_do_not_overlap(page, example):
+    """Every point's name and every instant centre's label drawn where no other label is
+    (their boxes as Chromium lays the text out), at the sketch and half a turn on."""
+    open_example(page, example)
+    if not page.locator("#show-centres").is_checked():
+        page.check("#show-centres")
+    page.wait_for_function("() => document.querySelectorAll('#canvas text.centre-label').length > 0",
+                           timeout=120_000)
+    for index in (0, "half"):
+        if index == "half":
+            page.evaluate("() => window.kinelab.setIndex(Math.floor(window.kinelab.study.samples / 2))")
+            page.wait_for_timeout(500)
+        boxes = page.evaluate("""() => [...document.querySelectorAll(
+            '#canvas text.label, #canvas text.centre-label')].map((t) => {
+                const b = t.getBBox(); return [b.x, b.y, b.width, b.height, t.textContent]; })""")
+        assert len(boxes) > 4
+        assert not overlaps(boxes), overlaps(boxes)
+    page.shot(f"labels {example}")

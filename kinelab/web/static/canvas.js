@@ -22,7 +22,7 @@ export class Canvas {
     svg.addEventListener("pointerdown", (e) => this.pointer(e, "down"));
     svg.addEventListener("pointermove", (e) => this.pointer(e, "move"));
     svg.addEventListener("pointerup", (e) => this.pointer(e, "up"));
-    svg.addEventListener("pointercancel", (e) => this.pointer(e, "up"));
+    svg.addEventListener("pointercancel", (e) => this.pointer(e, "cancel"));
     svg.addEventListener("wheel", (e) => {
       if (!this.view) return;
       e.preventDefault();
@@ -74,7 +74,10 @@ export class Canvas {
   pointer(e, kind) {
     if (!this.view) return;
     const r = this.svg.getBoundingClientRect();
-    const here = [e.clientX - r.left, e.clientY - r.top];
+    let here = [e.clientX - r.left, e.clientY - r.top];
+    // a drag the browser took over (a pointercancel, whose place may be 0, 0) ends where the
+    // pointer last was
+    if (kind === "cancel") { kind = "up"; here = this.lastHere || here; } else this.lastHere = here;
     const xy = this.toModel(here);
     if (e.pointerType === "touch" && this.pinch(e, kind, here)) return;
     if (kind === "down" && (e.button === 1 || (this.handlers.panning && this.handlers.panning()))) {
@@ -202,6 +205,7 @@ export class Canvas {
                                            transform: `rotate(${ang} ${X} ${Y})`, "data-block": j.name}]);
     }
     patch(L.joints, joints);
+    const place = labelPlacer(Object.values(P).filter(known).map(S));
     const inputPoints = new Set((d.inputs || []).map((i) => {
       const j = d.joints.find((k) => k.name === i.joint); return j ? j.point : null; }));
     const jointed = new Set(d.joints.map((j) => j.point));
@@ -222,7 +226,8 @@ export class Canvas {
                                             (inputPoints.has(name) ? " input" : "") +
                                             (picked("point", name) || (sel.point === name ? " selected" : "")),
                                            cx: X, cy: Y, r: jointed.has(name) ? 6 : 4.5, "data-point": name}]);
-      points.push([`t ${name}`, "text", {class: "label", x: X + 8, y: Y - 8}, name]);
+      const [x, y] = place(X, Y, name, 12);
+      points.push([`t ${name}`, "text", {class: "label", x, y}, name]);
     }
     patch(L.points, points);
     // dimensions: along a link (a -> b), upright, a little to its side; an input's at its pivot
@@ -263,10 +268,38 @@ export class Canvas {
       if (!isFinite(X) || !isFinite(Y) || Math.abs(X) > 1e5 || Math.abs(Y) > 1e5) continue;
       const key = c.links.join("-");
       centres.push([`c ${key}`, "circle", {class: "centre", cx: X, cy: Y, r: 3, "data-centre": key}]);
-      centres.push([`t ${key}`, "text", {class: "centre-label", x: X + 4, y: Y + 12}, `I ${c.links.join(",")}`]);
+      const text = `I ${c.links.join(",")}`, [x, y] = place(X, Y, text, 10);
+      centres.push([`t ${key}`, "text", {class: "centre-label", x, y}, text]);
     }
     patch(L.centres, centres);
   }
+}
+
+// Labels placed so that they cover no label placed before them and no point: each at the
+// first of a few places around its anchor that is free, else at the least covered one.  A
+// label's box is estimated (a character about 0.6 of the font's size wide), which is
+// cheap enough for every frame of a drag.
+const SPOTS = [[8, -8, 0], [8, 17, 0], [-8, -8, 1], [-8, 17, 1], [0, -12, 0.5], [0, 22, 0.5],
+               [16, -16, 0], [16, 26, 0], [-16, -16, 1], [-16, 26, 1], [0, -24, 0.5], [0, 34, 0.5]];
+
+function labelPlacer(points) {
+  const taken = points.map(([X, Y]) => [X - 7, Y - 7, X + 7, Y + 7]);
+  const covered = (b) => taken.reduce((s, t) =>
+    s + Math.max(0, Math.min(b[2], t[2]) - Math.max(b[0], t[0])) *
+        Math.max(0, Math.min(b[3], t[3]) - Math.max(b[1], t[1])), 0);
+  // where the baseline of a label of `text` in a font of `size` px starts, about (X, Y)
+  return (X, Y, text, size) => {
+    const w = 0.6 * size * text.length;
+    let best = null, least = Infinity;
+    for (const [dx, dy, align] of SPOTS) {
+      const x = X + dx - align * w, y = Y + dy;
+      const b = [x, y - 0.8 * size, x + w, y + 0.2 * size];
+      const c = covered(b);
+      if (c < least) { best = [x, y, b]; least = c; if (c === 0) break; }
+    }
+    taken.push(best[2]);
+    return best;
+  };
 }
 
 // A layer's elements made as `items` say ([key, tag, attributes, text]), in that order:
