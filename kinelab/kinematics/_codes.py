@@ -63,11 +63,17 @@ BASE_MIN = 1e-6           # a group solved where its measure is
                           # singular configuration K and L are rounding
 NODE_STEP = 1e-3          # a sample on a singular configuration the motion passes (a change
                           # point) is placed from this fraction of a continuation step either side
-CONTINUATION_STEP = 0.1   # largest continuation step of a Newton group: rad, or sizes of the
+CONTINUATION_STEP = 0.3   # largest continuation step of a Newton group: rad, or sizes of the
                           # mechanism for a slide (the input's unit, ``input_units``).  The
-                          # second-order predictor misses by about step**3 there, which Newton
-                          # closes in three or four steps and the jump test tells from a
-                          # branch change; samples 5 degrees apart take one step each
+                          # second-order predictor misses by about step**3 / 6 there, which
+                          # Newton closes in four steps and the jump test tells from a branch
+                          # change; samples up to 17 degrees apart take one step each
+LIKELY_LAST = 1e-5        # a Newton step after one this small (in those units) is likely the
+                          # last: the singularity measure's scalings are taken there
+HERMITE_REACH = 2.0       # with one input, a step at most this many times the one before is
+                          # predicted by the quintic through the last two states (their S, K
+                          # and L), which misses by about step**6: samples 5 degrees apart
+                          # then converge in two Newton steps
 
 SINGULAR_TOL = 5e-3
 """Singularity measure (a sine, see ``KinematicSolution.singularity``) below which a sample is

@@ -669,7 +669,8 @@ def _rates(G, x, kn, A, q, M):
 
 class _State:
     """The Newton groups' state along a continuation: their unknowns x with K and L, the
-    input where they were solved and their det (the kernel's gx, gK, gL, gq, gdet)."""
+    input where they were solved and their det (the kernel's gx, gK, gL, gq, gdet), and the
+    state before it (x1, K1, L1, q1; q1 NaN where there is none), for the predictor."""
 
     def __init__(self, x0, ng, M):
         self.x = np.array(x0, float)
@@ -677,6 +678,8 @@ class _State:
         self.L = np.zeros((len(x0), M, M))
         self.q = np.zeros((ng, M))
         self.det = np.zeros(ng)
+        self.x1, self.K1, self.L1 = self.x.copy(), self.K.copy(), self.L.copy()
+        self.q1 = np.full((ng, M), np.nan)
 
     def copy(self):
         other = object.__new__(_State)
@@ -686,6 +689,39 @@ class _State:
     def set(self, other):
         self.x, self.K, self.L = other.x.copy(), other.K.copy(), other.L.copy()
         self.q, self.det = other.q.copy(), other.det.copy()
+        self.x1, self.K1, self.L1 = other.x1.copy(), other.K1.copy(), other.L1.copy()
+        self.q1 = other.q1.copy()
+
+    def store(self, G, x, K, L, q, det):
+        """Group G solved at q: its last state becomes the one before."""
+        o, n = G.o, G.n
+        for last, before, new in ((self.x, self.x1, x), (self.K, self.K1, K), (self.L, self.L1, L)):
+            before[o:o + n] = last[o:o + n]
+            last[o:o + n] = new
+        self.q1[G.g] = self.q[G.g]
+        self.q[G.g] = q
+        self.det[G.g] = det
+
+    def hermite_terms(self, G, q, M):
+        """What the quintic through group G's last two states adds to the second-order
+        predictor at q (the kernel's ``_hermite_reach`` and ``_hermite_terms``), or None."""
+        if M != 1:
+            return None
+        h = float(self.q[G.g, 0] - self.q1[G.g, 0])
+        if not (h != 0.0 and math.isfinite(h)):
+            return None
+        u = float(q[0] - self.q[G.g, 0]) / h
+        if abs(u) > k.HERMITE_REACH:
+            return None
+        o, n = G.o, G.n
+        x0, k0, l0 = self.x[o:o + n], self.K[o:o + n, 0], self.L[o:o + n, 0, 0]
+        a = self.x1[o:o + n] - (x0 - k0 * h + 0.5 * l0 * h * h)
+        b = (self.K1[o:o + n, 0] - (k0 - l0 * h)) * h
+        c = (self.L1[o:o + n, 0, 0] - l0) * h * h
+        a5 = -0.5 * c - 3.0 * b - 6.0 * a
+        a4 = -c - 7.0 * b - 15.0 * a
+        a3 = -0.5 * c - 4.0 * b - 10.0 * a
+        return u * u * u * (a3 + u * (a4 + u * a5))
 
 
 def _newton_group(G, state, q, jc, M, scale):
@@ -702,6 +738,9 @@ def _newton_group(G, state, q, jc, M, scale):
         xp = xp + sK[:, m] * dq[m]
         for j in range(M):
             xp = xp + 0.5 * sL[:, m, j] * dq[m] * dq[j]
+    quintic = state.hermite_terms(G, q, M)  # ... and the quintic through the last two states
+    if quintic is not None:
+        xp = xp + quintic
     unit = np.where(np.arange(n) % 3 == 2, 1.0, scale)     # of each unknown
     step = math.sqrt(float(np.sum(((xp - sx) / unit) ** 2)))
     kn = _Known(G, jc, M)
@@ -734,11 +773,7 @@ def _newton_group(G, state, q, jc, M, scale):
     Kw, Lw = _rates(G, x, kn, A, q, M)
     measure = _smallest_singular_value(G, A, scale)
     if measure >= k.BASE_MIN:
-        state.x[o:o + n] = x
-        state.K[o:o + n] = Kw
-        state.L[o:o + n] = Lw
-        state.q[G.g] = q
-        state.det[G.g] = det
+        state.store(G, x, Kw, Lw, q, det)
     a, links = G.anchors, G.links
     jc[a, 0], jc[a + 1, 0], jc[links, 0] = x[0::3], x[1::3], x[2::3]
     jc[a, 1:1 + M], jc[a + 1, 1:1 + M], jc[links, 1:1 + M] = Kw[0::3], Kw[1::3], Kw[2::3]

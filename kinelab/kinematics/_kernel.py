@@ -27,8 +27,10 @@ import numpy as np
 from numba import njit
 
 from kinelab.kinematics._codes import (BASE_MIN, C_DRIVE_ANGLE, C_DRIVE_SLIDE, C_PRISMATIC,
-                                       C_REVOLUTE, CONTINUATION_STEP, JUMP_FLOOR, SINGULAR_STEPS, DISC_TOL, DISC_ZERO, FOLDED, HEADER,
-                                       JUMP_RATIO, NEWTON_MAX_ITER, NEWTON_STALL, NEWTON_TOL, NODE_STEP,
+                                       C_REVOLUTE, CONTINUATION_STEP, DISC_TOL, DISC_ZERO,
+                                       FOLDED, HEADER, HERMITE_REACH, JUMP_FLOOR, JUMP_RATIO,
+                                       LIKELY_LAST, NEWTON_MAX_ITER, NEWTON_STALL, NEWTON_TOL,
+                                       NODE_STEP, SINGULAR_STEPS,
                                        OP_DRIVE_ANGLE, OP_FRAME_POINT, OP_LINES, OP_LOCK_ANGLE,
                                        OP_NEWTON, OP_RIGID_POINT, OP_RPR, OP_RRP, OP_RRR,
                                        OP_SLIDE_OUT, OP_SLIDE_POINT, OP_TWO_POINTS,
@@ -36,7 +38,7 @@ from kinelab.kinematics._codes import (BASE_MIN, C_DRIVE_ANGLE, C_DRIVE_SLIDE, C
 
 # numba's cache of this file knows its text only: the digest of the files whose constants and
 # functions it compiles in (kinelab._compiled.compiled_from; a test keeps it true)
-COMPILED_FROM = "bd22e08979c787b9"
+COMPILED_FROM = "58d192cbe0849fdf"
 
 
 def _jit(**options):
@@ -396,7 +398,9 @@ def _two_points(jet, lane, b, p1, p2, offset, M):
 # --------------------------------------------------------------------------------------
 @_jit()
 def _lu_factor(A, piv, n):
-    """In-place LU with partial pivoting of A[:n, :n]; returns the determinant."""
+    """In-place LU with partial pivoting of A[:n, :n]; returns the determinant.  U's
+    diagonal is kept as its reciprocals (0.0 for a zero pivot), so that the solves multiply
+    where they would divide: a division's latency is several multiplications'."""
     det = 1.0
     for k in range(n):
         p = k
@@ -416,9 +420,13 @@ def _lu_factor(A, piv, n):
         det *= d
         if d == 0.0:
             continue
+        r = 1.0 / d
+        A[k, k] = r
         for i in range(k + 1, n):
-            f = A[i, k] / d
+            f = A[i, k] * r
             A[i, k] = f
+            if f == 0.0:                    # (a sparse Jacobian's rows often need none)
+                continue
             for j in range(k + 1, n):
                 A[i, j] -= f * A[k, j]
     return det
@@ -441,7 +449,7 @@ def _lu_solve(A, piv, b, n):
         s = b[i]
         for j in range(i + 1, n):
             s -= A[i, j] * b[j]
-        b[i] = s / A[i, i]
+        b[i] = s * A[i, i]
 
 
 # The group's unknowns x = (x_anchor, y_anchor, theta) per link live in gx; their K and L
@@ -678,13 +686,49 @@ def _group_rhs(c0, c1, con_i, con_f, x, cs, gK, jet, m, n, second, M, rhs):
 
 
 @_jit()
+def _hermite_reach(q, gq, g, ng, M):
+    """The step to q from group g's last state in units of the step between its last two
+    states, u = (q - q0) / (q0 - q1); 0.0 where the quintic predictor does not apply: more
+    than one input, no state before, or a step more than HERMITE_REACH such steps long."""
+    if M != 1:
+        return 0.0
+    h = gq[g, 0] - gq[ng + g, 0]
+    if not (h != 0.0 and math.isfinite(h)):
+        return 0.0
+    u = (q[0] - gq[g, 0]) / h
+    return u if abs(u) <= HERMITE_REACH else 0.0
+
+
+@_jit()
+def _hermite_terms(gx, gK, gL, gq, g, ng, i0, i1, u):
+    """What the quintic through the last state (x0, K0, L0 of row i0, at q0) and the one
+    before (row i1, at q1 = q0 - h) adds to the second-order predictor S + K dq + 1/2 L dq**2
+    at q = q0 + u h: a3 u**3 + a4 u**4 + a5 u**5, with a_k = c_k h**k from the states' misfit
+    to the parabola of the last one (a at x1, b h at K1, c h**2 at L1).  Its error is in
+    h**6, against h**3 of the parabola (one input only)."""
+    h = gq[g, 0] - gq[ng + g, 0]
+    x0 = gx[i0]
+    k0 = gK[i0, 0]
+    l0 = gL[i0, 0, 0]
+    a = gx[i1] - (x0 - k0 * h + 0.5 * l0 * h * h)
+    b = (gK[i1, 0] - (k0 - l0 * h)) * h
+    c = (gL[i1, 0, 0] - l0) * h * h
+    a5 = -0.5 * c - 3.0 * b - 6.0 * a
+    a4 = -c - 7.0 * b - 15.0 * a
+    a3 = -0.5 * c - 4.0 * b - 10.0 * a
+    return u * u * u * (a3 + u * (a4 + u * a5))
+
+
+@_jit()
 def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet, M, work, piv):
     """Solve group g at input q by continuation from its stored state; write the result.
 
     ``groups_i`` rows: (first unknown, number of links, first constraint, end constraint,
     then for each link its angle item and anchor item are in ``groups_i[g, 4:]`` order:
     link items start at column 4, anchors follow).  Returns (status, det, measure).  The
-    stored state (gx, gK, gL, gq, gdet) changes only on success.
+    stored state (gx, gK, gL, gq, gdet) changes only on success.  gx, gK, gL and gq hold two
+    states one above the other: the last solved (rows 0:nx, 0:ng) and the one before it
+    (rows nx:2nx, ng:2ng; its input NaN where there is none), which the predictor uses.
     """
     o = groups_i[g, 0]
     nlk = groups_i[g, 1]
@@ -697,8 +741,12 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
     xp = work[n * n + 2 * n:n * n + 3 * n]
     Kw = work[n * n + 3 * n:n * n + 3 * n + n * M].reshape((n, M))
     Lw = work[n * n + 3 * n + n * M:n * n + 3 * n + n * M + n * M * M].reshape((n, M, M))
-    # second-order predictor S + K dq + 1/2 dq L dq.  Steps are measured in the unknowns'
-    # own units: an anchor's x and y in sizes of the mechanism, an angle in radians
+    nx = gx.shape[0] >> 1
+    ng = gq.shape[0] >> 1
+    # the predictor: S + K dq + 1/2 dq L dq, and with one input and the state before at hand,
+    # the quintic through both states' S, K and L (``_hermite_terms``).  Steps are measured in
+    # the unknowns' own units: an anchor's x and y in sizes of the mechanism, an angle in rad
+    u = _hermite_reach(q, gq, g, ng, M)
     inv = 1.0 / scale
     step = 0.0
     for i in range(n):
@@ -708,6 +756,8 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
             v += gK[o + i, m] * dm
             for k in range(M):
                 v += 0.5 * gL[o + i, m, k] * dm * (q[k] - gq[g, k])
+        if u != 0.0:
+            v += _hermite_terms(gx, gK, gL, gq, g, ng, o + i, nx + o + i, u)
         xp[i] = v
         x[i] = v
         step += ((v - gx[o + i]) * (1.0 if i % 3 == 2 else inv)) ** 2
@@ -721,11 +771,14 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
     converged = False
     det = 0.0
     last = math.inf
+    normed = False      # whether cn, rn are of the Jacobian factorised last
     for it in range(NEWTON_MAX_ITER):
         A[:, :] = 0.0
         _link_trig(x, nlk, cs)
         _group_residual(c0, c1, con_i, con_f, x, cs, q, jet, A, phi, True)
-        _norms(c0, c1, con_i, A, n, scale, cn, rn)
+        normed = last <= LIKELY_LAST        # the scalings, where this step is likely the last
+        if normed:
+            _norms(c0, c1, con_i, A, n, scale, cn, rn)
         det = _lu_factor(A, piv, n)
         if _lu_singular(A, n):
             break
@@ -734,6 +787,7 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
         _lu_solve(A, piv, phi, n)
         dn = 0.0
         for i in range(n):
+            w[i] = x[i]                     # where the Jacobian was taken
             x[i] += phi[i]
             dn += (phi[i] * (1.0 if i % 3 == 2 else inv)) ** 2
         dn = math.sqrt(dn)
@@ -745,6 +799,12 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
         last = dn
     if not converged:
         return ST_NO_CONVERGENCE, 0.0, 0.0
+    if not normed:      # converged sooner than foreseen: that Jacobian again, for its scalings
+        A[:, :] = 0.0
+        _link_trig(w, nlk, cs)
+        _group_residual(c0, c1, con_i, con_f, w, cs, q, jet, A, phi, True)
+        _norms(c0, c1, con_i, A, n, scale, cn, rn)
+        _lu_factor(A, piv, n)
     corr = 0.0
     for i in range(n):
         corr += ((x[i] - xp[i]) * (1.0 if i % 3 == 2 else inv)) ** 2
@@ -770,12 +830,16 @@ def _newton_group(g, groups_i, con_i, con_f, scale, q, jet, gx, gK, gL, gq, gdet
     # and write the links' angles and anchor points
     if measure >= BASE_MIN:
         for i in range(n):
+            gx[nx + o + i] = gx[o + i]
             gx[o + i] = x[i]
             for m in range(M):
+                gK[nx + o + i, m] = gK[o + i, m]
                 gK[o + i, m] = Kw[i, m]
                 for k in range(M):
+                    gL[nx + o + i, m, k] = gL[o + i, m, k]
                     gL[o + i, m, k] = Lw[i, m, k]
         for m in range(M):
+            gq[ng + g, m] = gq[g, m]
             gq[g, m] = q[m]
         gdet[g] = det
     for j in range(nlk):
@@ -865,7 +929,7 @@ def _lu_solve_transposed(A, piv, b, n):
         t = b[i]
         for j in range(i):
             t -= A[j, i] * b[j]
-        b[i] = t / A[i, i]
+        b[i] = t * A[i, i]
     for i in range(n - 1, -1, -1):
         t = b[i]
         for j in range(i + 1, n):
@@ -1398,24 +1462,22 @@ def _continuation(q, qd, qdd, q_start, q_unit, ops_i, ops_f, const_items, const_
     res = np.zeros(4)
     lane_f = np.zeros((3, 1))
     lane_i = np.zeros((2, 1), np.int64)
-    gx = grp_x0.copy()
-    gK = np.zeros((nx, M))
-    gL = np.zeros((nx, M, M))
-    gq = np.zeros((ng, M))
-    gdet = np.zeros(ng)
-    bx = gx.copy()
-    bK = gK.copy()
-    bL = gL.copy()
-    bq = gq.copy()
-    bdet = gdet.copy()
+    # the groups' state (gx, gK, gL, gq, gdet: see ``_newton_group``), as views of one array
+    # that is copied whole: the last state and the one before it, whose input is NaN (none)
+    size = 2 * nx * (1 + M + M * M) + 2 * ng * M + ng
+    state = np.zeros(size)
+    gx = state[:2 * nx]
+    gK = state[2 * nx:2 * nx * (1 + M)].reshape((2 * nx, M))
+    gL = state[2 * nx * (1 + M):2 * nx * (1 + M + M * M)].reshape((2 * nx, M, M))
+    gq = state[2 * nx * (1 + M + M * M):size - ng].reshape((2 * ng, M))
+    gdet = state[size - ng:]
+    gx[:nx] = grp_x0
+    gq[:, :] = np.nan
+    before = state.copy()       # before a step, to go back to should it fail
+    clear = state.copy()        # on the current sample's path, well clear of it
     work = np.zeros(nmax * nmax + 3 * nmax + nmax * M + nmax * M * M + 5 * nmax)
     piv = np.zeros(nmax, np.int64)
     jet_b = np.empty_like(jet)
-    sx = gx.copy()              # the groups' state on the current sample's path, well clear of it
-    sK = gK.copy()
-    sL = gL.copy()
-    sq = gq.copy()
-    sdet = gdet.copy()
     for g in range(ng):
         for m in range(M):
             gq[g, m] = q_start[m]
@@ -1443,20 +1505,12 @@ def _continuation(q, qd, qdd, q_start, q_unit, ops_i, ops_f, const_items, const_
             h = max_step / dist
         t = 0.0
         st = ST_OK
-        sx[:] = gx
-        sK[:] = gK
-        sL[:] = gL
-        sq[:] = gq
-        sdet[:] = gdet
+        clear[:] = state
         while t < 1.0:
             tt = min(1.0, t + h)
             for m in range(M):
                 qt[0, m] = qprev[m] + tt * (q[i, m] - qprev[m])
-            bx[:] = gx
-            bK[:] = gK
-            bL[:] = gL
-            bq[:] = gq
-            bdet[:] = gdet
+            before[:] = state
             st = _evaluate(qt, qd, qdd, 0, 1, False, ops_i, ops_f, jet, M, Kt, Kt2, Lt, groups_i,
                            con_i, con_f, scale, gx, gK, gL, gq, gdet, work, piv, res, lane_f,
                            lane_i, n_angles, stored, o_jet, o_rate, o_diag, o_status, o_fail)
@@ -1464,17 +1518,10 @@ def _continuation(q, qd, qdd, q_start, q_unit, ops_i, ops_f, const_items, const_
                 t = tt
                 h = min(2.0 * h, max_step / dist) if dist > 0.0 else 1.0
                 if (1.0 - t) * dist >= 10.0 * NODE_STEP * max_step:
-                    sx[:] = gx          # still well clear of the sample: a state to place it
-                    sK[:] = gK          # from, should it sit on a singular configuration
-                    sL[:] = gL
-                    sq[:] = gq
-                    sdet[:] = gdet
+                    clear[:] = state    # still well clear of the sample: a state to place
+                                        # it from, should it sit on a singular configuration
             else:
-                gx[:] = bx
-                gK[:] = bK
-                gL[:] = bL
-                gq[:] = bq
-                gdet[:] = bdet
+                state[:] = before
                 if st == ST_NO_ASSEMBLY or h < 1e-9:
                     break
                 h *= 0.5
@@ -1482,11 +1529,7 @@ def _continuation(q, qd, qdd, q_start, q_unit, ops_i, ops_f, const_items, const_
             # stopped right at the sample: a singular configuration the motion passes.  Its
             # place comes from either side, predicted from a state well clear of it (those
             # next to it are too near the singularity to predict from)
-            gx[:] = sx
-            gK[:] = sK
-            gL[:] = sL
-            gq[:] = sq
-            gdet[:] = sdet
+            state[:] = clear
             eps = NODE_STEP * max_step / dist
             if _place_between(q, i, qprev, eps, qt, jet, jet_b, qd, qdd, ops_i, ops_f, M, Kt,
                               Kt2, Lt, groups_i, con_i, con_f, scale, gx, gK, gL, gq, gdet,
@@ -1504,7 +1547,7 @@ def _continuation(q, qd, qdd, q_start, q_unit, ops_i, ops_f, const_items, const_
         # the next sample starts where the mechanism last assembled
         for m in range(M):
             qprev[m] = qprev[m] + t * (q[i, m] - qprev[m])
-    o_state[:nx] = gx
+    o_state[:nx] = gx[:nx]
     o_state[nx:] = qprev
 
 
