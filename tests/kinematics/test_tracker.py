@@ -237,7 +237,16 @@ def test_bad_numbers_named_as_analyze_names_them(q):
     assert str(mine.value) == str(theirs.value)
 
 
-def test_numpy_numbers_take_the_quick_path():
+@pytest.fixture
+def compiled_mode():
+    """The compiled kernel, whatever KINELAB_KERNEL says (the quick path is its own)."""
+    before = _compiled.mode()
+    _compiled.set_mode("compiled")
+    yield
+    _compiled.set_mode(before)
+
+
+def test_numpy_numbers_take_the_quick_path(compiled_mode):
     fb = kl.mechanisms.fourbar(**FOURBAR)
     track = kl.kinematics.Tracker(fb)
     sol = track(np.float64(0.7), np.float64(2.0), 1.0)
@@ -304,7 +313,7 @@ def test_small_sweeps_in_one_call_are_the_general_path_to_the_bit(name, options)
             assert np.array_equal(getattr(mine, name_), getattr(theirs, name_), equal_nan=True)
 
 
-def test_driven_angles_compiled_are_wrap_angle_to_the_bit():
+def test_driven_angles_compiled_are_wrap_angle_to_the_bit(compiled_mode):
     """The angle of a link turned by an input, compiled (solution accessors), is
     solvers.wrap_angle of the input, to the bit, within a turn and far beyond."""
     from kinelab.kinematics import _kernel
