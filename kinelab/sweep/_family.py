@@ -349,22 +349,45 @@ class _SketchedDesigns(Designs):
 
     def peak_torque(self, q: np.ndarray, speed: float) -> np.ndarray:
         """Largest |input torque| over ``q`` (D, S) at constant input ``speed`` (rad/s), (D,);
-        NaN where a design does not assemble or is singular somewhere."""
+        NaN where a design does not assemble or is singular somewhere.  Kane's terms of the
+        family's masses and loads (its model file's) over every design's analysis at once
+        (:func:`kinelab.kinematics.analyze_designs`, the designs' own places of the centres
+        of mass), and one :func:`kinelab.dynamics.inverse` for each design whose sketch the
+        family's plan cannot take."""
         from kinelab.dynamics import inverse
+        from kinelab.dynamics._terms import build_system, evaluate
 
         out = np.full(len(q), np.nan)
-        for d in range(len(q)):
+        clean = np.zeros(len(q), bool)      # designs that assemble, never singular
+        good = self._good() & (self.template is not None)
+        alone = ()
+        if good.any():
+            rows = np.flatnonzero(good)
+            axes = {n: a[good] for n, a in self.axes.items()}
+            sol = analyze_designs(self.template, self.points[good], q[good], qd=speed,
+                                  axes=axes or None)
+            with np.errstate(over="ignore", invalid="ignore"):
+                terms = evaluate(build_system(self.template, None, None), sol,
+                                 np.zeros(sol.q.shape[0]))
+                tau = sol.by_design(np.abs(terms.inertia - terms.applied)[:, 0])
+            ok = sol.by_design(sol.assembled & ~sol.singular).all(axis=1) & sol.valid
+            clean[rows[ok]] = True
+            out[rows[ok]] = tau[ok].max(axis=1)
+            alone = rows[~sol.valid]
+        for d in alone:         # a design with a plan of its own
             mech = self.mechanism(d)
             if mech is None:
                 continue
             sol = analyze(mech, q[d], unreachable="mask", at_singular="flag")
             if sol.assembled.all() and not sol.singular.any():
+                clean[d] = True
                 with np.errstate(over="ignore", invalid="ignore"):
                     out[d] = np.abs(inverse(mech, q[d], qd=speed, reactions=False).input_forces).max()
-                if not np.isfinite(out[d]):       # an overflow: said, never a silent NaN
-                    self.problems[d] = self.problems[d] or (
-                        f"peak_torque: the input torque overflows at {speed:g} rad/s; lower the "
-                        "speed or the masses")
+        for d in np.flatnonzero(clean & ~np.isfinite(out)):   # an overflow: said, never a silent NaN
+            out[d] = np.nan
+            self.problems[d] = self.problems[d] or (
+                f"peak_torque: the input torque overflows at {speed:g} rad/s; lower the "
+                "speed or the masses")
         return out
 
 

@@ -149,6 +149,28 @@ def test_peak_torque_of_a_family_with_masses():
     assert df["peak_torque"][1] > df["peak_torque"][0]
 
 
+def test_peak_torque_of_many_designs_at_once_is_each_designs_own():
+    # the designs' analyses in one call, their centres of mass where each design puts them:
+    # every design's torque as kl.dynamics.inverse gives it for that design alone
+    engine = kl.load("examples/engine.toml")
+    fam = kl.sweep.family(engine, output="slide")
+    rng = np.random.default_rng(3)
+    rows = {"A.y": rng.uniform(0.04, 0.07, 12), "G3.x": rng.uniform(0.03, 0.09, 12),
+            "G2.y": rng.uniform(0.0, 0.02, 12)}
+    rows["A.x"] = np.zeros(12)
+    rows["A.x"][5] = 0.15           # crank 250 mm, rod 201 mm: not at every crank angle
+    rows["A.y"][5] = 0.2
+    df = kl.sweep.run(fam, rows, metrics=("peak_torque",), speed=40.0, progress=False)
+    q = np.linspace(0, 2 * np.pi, 72, endpoint=False)
+    for d in range(12):
+        if d == 5:
+            assert np.isnan(df["peak_torque"][d])
+            continue
+        design = fam.build({c: v[d] for c, v in rows.items()})
+        tau = kl.dynamics.inverse(design, q, qd=40.0, reactions=False).input_forces
+        assert df["peak_torque"][d] == pytest.approx(np.abs(tau).max(), rel=1e-11)
+
+
 def test_descriptors_are_invariant_and_tell_curves_apart():
     t = np.linspace(0, 2 * np.pi, 90, endpoint=False)
     ellipse = np.column_stack([2 * np.cos(t), np.sin(t)])
