@@ -122,12 +122,13 @@ def _labelled(df, degrees: bool, output_is_slide: bool):
     return out.rename(columns=names)
 
 
-def _with_designs(designs, metrics):
-    """The designs' own columns (m), then their metrics: each row traced to its design."""
+def _with_designs(designs, metrics, unit):
+    """The designs' own columns (m; kg and kg m^2 for masses and inertias: ``unit`` of a
+    column's name), then their metrics: each row traced to its design."""
     import pandas
 
     d = pandas.DataFrame(designs)
-    d = d.rename(columns={c: f"{c}[m]" for c in d.columns}).set_index(metrics.index)
+    d = d.rename(columns={c: f"{c}[{unit(c)}]" for c in d.columns}).set_index(metrics.index)
     return pandas.concat([d, metrics], axis=1)
 
 
@@ -214,7 +215,7 @@ def sweep_command(family_spec, table, sobol, random_n, grid, ranges, seed, sched
                              f"kinelab check {shown_path(family_spec)}",
                              source=family_spec) from None
     seconds = time.perf_counter() - start
-    table = _with_designs(designs, _labelled(df, degrees, fam.output_is_slide))
+    table = _with_designs(designs, _labelled(df, degrees, fam.output_is_slide), fam.unit)
     output(path, lambda p: _write(table, p))
     _report_problems(df)
     assembles = f", {int(df['assembles'].sum()):,} assemble over the turn" if "assembles" in df else ""

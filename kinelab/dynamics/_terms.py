@@ -41,6 +41,7 @@ class System:
     items: np.ndarray         # (k,) every coordinate with inertia: x, y of each mass, angles
     weights: np.ndarray       # (k,) its mass or moment of inertia
     weight: np.ndarray        # (k,) the gravity force along it (zero for angles), N
+    gravity_along: np.ndarray  # (k,) gravity's component along it (zero for angles), m/s^2
     force_items: np.ndarray   # (nf,) x item of each point force
     torque_items: np.ndarray  # (nt, 2) angle items of the link and the reacting link (-1: none)
     spring_items: np.ndarray  # (ns, 2) x items of the ends of springs, then dampers
@@ -77,7 +78,8 @@ def build_system(model: Mechanism, loads: Loads | None, masses: MassProperties |
     gravity = np.array(loads.gravity, float)
     items = [i + d for i in t_items for d in (0, 1)] + [r[0] for r in rot]
     weights = [m for m in t_mass for _ in (0, 1)] + [r[1] for r in rot]
-    weight = [m * gravity[d] for m in t_mass for d in (0, 1)] + [0.0] * len(rot)
+    along = [gravity[d] for _ in t_mass for d in (0, 1)] + [0.0] * len(rot)
+    weight = [m * g for m, g in zip(weights, along)]
     ends, k, l0, c, names = [], [], [], [], []
     for kind, pairs in (("spring", loads.springs), ("damper", loads.dampers)):
         for s in pairs:
@@ -91,7 +93,7 @@ def build_system(model: Mechanism, loads: Loads | None, masses: MassProperties |
         t_items=np.array(t_items, np.int64), t_mass=np.array(t_mass, float), t_links=t_links,
         r_items=np.array([r[0] for r in rot], np.int64), r_inertia=np.array([r[1] for r in rot], float),
         gravity=gravity, items=np.array(items, np.int64), weights=np.array(weights, float),
-        weight=np.array(weight, float),
+        weight=np.array(weight, float), gravity_along=np.array(along, float),
         force_items=np.array([pt[f.point] for f in loads.forces], np.int64),
         torque_items=np.array([[li[tq.link], li[tq.reacting] if tq.reacting else -1]
                                for tq in loads.torques], np.int64).reshape(-1, 2),
@@ -128,21 +130,32 @@ class Terms:
 
 
 def evaluate(system: System, sol: KinematicSolution, t: np.ndarray, *,
-             mass_matrix: bool = False) -> Terms:
-    """Kane's terms at every sample of ``sol`` (times ``t``, shape (N,))."""
+             mass_matrix: bool = False, weights: np.ndarray | None = None) -> Terms:
+    """Kane's terms at every sample of ``sol`` (times ``t``, shape (N,)); ``weights`` (N, k),
+    the masses and moments of inertia of ``system.items`` sample by sample, where they differ
+    from the system's (the designs of a sweep)."""
     q, qd = sol.q, sol.qd
     N, M = q.shape
     # every x, y of a mass and every angle of a link with inertia, weighted by m or I
     jets, rates = sol.item_jets(system.items), sol.item_rates(system.items)
     K = jets[:, :, 1:1 + M]
     value, rate, accel = jets[:, :, 0], rates[:, :, 0], rates[:, :, 1]
-    w, weight = system.weights, system.weight
-    inertia = np.einsum("nkm,k,nk->nm", K, w, accel)
-    applied = np.einsum("nkm,k->nm", K, weight)
-    kinetic = 0.5 * np.einsum("k,nk,nk->n", w, rate, rate)
-    potential = -(value @ weight)
-    energy_rate = np.einsum("k,nk,nk->n", w, rate, accel) - rate @ weight
-    MM = np.einsum("nkm,k,nkl->nml", K, w, K) if mass_matrix else None
+    if weights is None:
+        w, weight = system.weights, system.weight
+        inertia = np.einsum("nkm,k,nk->nm", K, w, accel)
+        applied = np.einsum("nkm,k->nm", K, weight)
+        kinetic = 0.5 * np.einsum("k,nk,nk->n", w, rate, rate)
+        potential = -(value @ weight)
+        energy_rate = np.einsum("k,nk,nk->n", w, rate, accel) - rate @ weight
+        MM = np.einsum("nkm,k,nkl->nml", K, w, K) if mass_matrix else None
+    else:
+        w, weight = weights, weights * system.gravity_along
+        inertia = np.einsum("nkm,nk,nk->nm", K, w, accel)
+        applied = np.einsum("nkm,nk->nm", K, weight)
+        kinetic = 0.5 * np.einsum("nk,nk,nk->n", w, rate, rate)
+        potential = -np.einsum("nk,nk->n", value, weight)
+        energy_rate = np.einsum("nk,nk,nk->n", w, rate, accel) - np.einsum("nk,nk->n", rate, weight)
+        MM = np.einsum("nkm,nk,nkl->nml", K, w, K) if mass_matrix else None
     applied_power = np.zeros(N)
     loads = system.loads
     forces = np.zeros((N, len(loads.forces), 2))

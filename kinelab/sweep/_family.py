@@ -2,7 +2,8 @@
 
 A family is either a catalogue constructor (``"fourbar"``, ``"slider_crank"`` ...: the
 design columns are its numeric arguments) or a model file (its ``[catalogue]`` table when it
-has one, else the sketch coordinates of its points, ``"B.x"``, ``"B.y"``, as parameters).
+has one, else the sketch coordinates of its points, ``"B.x"``, ``"B.y"``, and its links'
+masses and moments of inertia, ``"crank.mass"``, ``"crank.inertia"``, as parameters).
 """
 from __future__ import annotations
 
@@ -19,7 +20,7 @@ import numpy as np
 from kinelab import mechanisms
 from kinelab.errors import KinelabError, ModelError, check_choice, describe, expected_one_of
 from kinelab.kinematics import SketchNotAssembled, analyze, analyze_designs, plan
-from kinelab.model import MAX_LENGTH, Mechanism, Point
+from kinelab.model import MAX_INERTIA, MAX_LENGTH, MAX_MASS, Mechanism, Point
 from kinelab.solvers import wrap_angle
 from kinelab.sweep._batch import Batch, DesignsBatch, FourbarBatch
 
@@ -40,6 +41,8 @@ _SLIDE_OUTPUTS = ("slide", "ram_slide")
 
 # The four-bar's coupler point is one constructor argument, (along, perpendicular): two columns.
 _POINT_COLUMNS = ("coupler_point_along", "coupler_point_perpendicular")
+# A model's link with mass data has its mass and moment of inertia as columns, in these units.
+_MASS_DATA = {"mass": "kg", "inertia": "kg m^2"}
 
 
 def _real(value) -> bool:
@@ -120,9 +123,17 @@ class Family:
             return self.make(**kwargs)
         points = tuple(Point(p.name, values.get(f"{p.name}.x", p.x), values.get(f"{p.name}.y", p.y),
                              p.z) for p in self.base.points)
-        # the points make the lengths: a length the file declares is the sketch's, not the design's
-        links = tuple(dataclasses.replace(link, length=None) for link in self.base.links)
+        # the points make the lengths: a length the file declares is the sketch's, not the
+        # design's; a link's mass and inertia are the design's where its columns give them
+        links = tuple(dataclasses.replace(
+            link, length=None, **{k: values[f"{link.name}.{k}"] for k in _MASS_DATA
+                                  if f"{link.name}.{k}" in values})
+            for link in self.base.links)
         return dataclasses.replace(self.base, points=points, links=links)
+
+    def unit(self, parameter: str) -> str:
+        """The SI unit of a design column: m, or kg and kg m^2 for a link's mass data."""
+        return _MASS_DATA.get(parameter.rpartition(".")[2], "m") if self.base is not None else "m"
 
     def prepare(self, columns: Mapping[str, np.ndarray], problems: list[str]) -> Designs:
         """D designs ready to evaluate: ``columns`` parameter -> (D,) values, ``problems`` the
@@ -315,6 +326,11 @@ class _SketchedDesigns(Designs):
         xy = {p.name: np.stack([self.rows.get(f"{p.name}.{c}", np.full(D, getattr(p, c)))
                                 for c in "xy"], -1) for p in base.points}
         drawable = np.all([np.all(np.abs(a) <= MAX_LENGTH, axis=1) for a in xy.values()], axis=0)
+        for c, v in self.rows.items():  # masses and inertias the model would refuse
+            kind = c.rpartition(".")[2]
+            if kind in _MASS_DATA:
+                limit = MAX_MASS if kind == "mass" else MAX_INERTIA
+                drawable &= (v > 0) & (v <= limit)
         for d in np.flatnonzero(~drawable & self._good()):
             self._build(d)          # says why
         return xy, {}
@@ -347,6 +363,25 @@ class _SketchedDesigns(Designs):
         """Design ``d``'s own mechanism (None if it cannot be built)."""
         return None if self.problems[d] else self._build(d)
 
+    def _weights(self, system, rows: np.ndarray, samples: int) -> np.ndarray | None:
+        """The masses and moments of inertia of ``system.items`` for designs ``rows`` at
+        each of their samples, (len(rows) samples, k), where the designs give them; else
+        None (the family's own)."""
+        columns = [(c, v) for c, v in self.rows.items() if c.rpartition(".")[2] in _MASS_DATA]
+        if not columns:
+            return None
+        w = np.tile(system.weights, (len(rows), 1))
+        links = [b.link for b in system.masses.links]
+        turning = [b.link for b in system.masses.links if b.inertia > 0]
+        for c, v in columns:
+            link, _, kind = c.rpartition(".")
+            if kind == "mass":
+                i = 2 * links.index(link)
+                w[:, i:i + 2] = v[rows, None]
+            else:
+                w[:, 2 * len(system.t_mass) + turning.index(link)] = v[rows]
+        return np.repeat(w, samples, axis=0)
+
     def peak_torque(self, q: np.ndarray, speed: float) -> np.ndarray:
         """Largest |input torque| over ``q`` (D, S) at constant input ``speed`` (rad/s), (D,);
         NaN where a design does not assemble or is singular somewhere.  Kane's terms of the
@@ -366,9 +401,10 @@ class _SketchedDesigns(Designs):
             axes = {n: a[good] for n, a in self.axes.items()}
             sol = analyze_designs(self.template, self.points[good], q[good], qd=speed,
                                   axes=axes or None)
+            system = build_system(self.template, None, None)
             with np.errstate(over="ignore", invalid="ignore"):
-                terms = evaluate(build_system(self.template, None, None), sol,
-                                 np.zeros(sol.q.shape[0]))
+                terms = evaluate(system, sol, np.zeros(sol.q.shape[0]),
+                                 weights=self._weights(system, rows, q.shape[1]))
                 tau = sol.by_design(np.abs(terms.inertia - terms.applied)[:, 0])
             ok = sol.by_design(sol.assembled & ~sol.singular).all(axis=1) & sol.valid
             clean[rows[ok]] = True
@@ -471,7 +507,9 @@ def family(spec: str | Mechanism | Family, *, output: str | None = None,
         (``kl.load(path)``): one built by the catalogue (a file with a ``[catalogue]`` table)
         is that kind with its values as defaults; any other has the sketch coordinates of its
         points as parameters, ``"<point>.x"`` and ``"<point>.y"`` (m), defaulting to the
-        sketch's, and keeps its assembly mode, masses and inertias.
+        sketch's, and for each link with mass data its mass and moment of inertia about its
+        centre of mass, ``"<link>.mass"`` (kg) and ``"<link>.inertia"`` (kg m^2), defaulting
+        to the model's; it keeps the model's assembly mode.
     output, transmission, point : optional
         What the metrics measure (see :class:`Family`); the catalogue sets them for its
         four-bar (rocker; coupler and rocker; P) and slider-cranks.
@@ -537,8 +575,10 @@ def _mechanism_family(mech: Mechanism, options) -> Family:
     if options:
         raise ModelError(f"{mech.name}: options {', '.join(map(repr, options))}: the family of a "
                          "model takes none (its assembly mode is the sketch's)")
-    names = tuple(f"{p.name}.{c}" for p in mech.points for c in "xy")
     defaults = {f"{p.name}.{c}": getattr(p, c) for p in mech.points for c in "xy"}
+    defaults.update({f"{link.name}.{k}": getattr(link, k) for link in mech.links
+                     for k in _MASS_DATA if getattr(link, k)})
+    names = tuple(defaults)
     output, transmission, point = _ROLES.get(kind, (None, None, None))
     return Family(mech.name, names, defaults, (), output, transmission, point,
                   has_masses=has_masses, base=mech)

@@ -45,6 +45,17 @@ def test_sweep_of_a_model_file_with_masses(tmp_path):
     assert table["swing[m]"].tolist() == pytest.approx([0.1, 0.12], abs=1e-10)
 
 
+def test_mass_columns_are_labelled_with_their_units(tmp_path):
+    designs = tmp_path / "d.csv"
+    pd.DataFrame({"crank.mass": [3.0, 1.5], "crank.inertia": [0.004, 0.002]}).to_csv(designs, index=False)
+    r = invoke("sweep", "examples/engine.toml", designs, "--metrics", "peak_torque",
+               "--output", "slide", "-o", tmp_path / "e.csv")
+    assert r.exit_code == 0, r.output
+    table = pd.read_csv(tmp_path / "e.csv")
+    assert list(table.columns) == ["crank.mass[kg]", "crank.inertia[kg m^2]", "peak_torque[N m]"]
+    assert table["peak_torque[N m]"][1] < table["peak_torque[N m]"][0]
+
+
 def test_bad_rows_are_warnings(tmp_path):
     designs = tmp_path / "d.csv"
     pd.DataFrame({"ground": [3.0, 3.0], "crank": [1.0, -1.0], "coupler": [3.0, 3.0],

@@ -171,6 +171,28 @@ def test_peak_torque_of_many_designs_at_once_is_each_designs_own():
         assert df["peak_torque"][d] == pytest.approx(np.abs(tau).max(), rel=1e-11)
 
 
+def test_masses_and_inertias_per_design():
+    # a counterweight study: the crank's mass and inertia as columns beside a point; each
+    # design's peak torque is that of the model with those masses, and a mass the model
+    # would refuse is that row's problem
+    engine = kl.load("examples/engine.toml")
+    fam = kl.sweep.family(engine, output="slide")
+    assert {"crank.mass", "crank.inertia", "rod.mass", "rod.inertia", "slider.mass"} <= set(fam.parameters)
+    assert fam.defaults["crank.inertia"] == pytest.approx(0.004)     # 4000 kg mm^2 in the file
+    assert (fam.unit("crank.mass"), fam.unit("rod.inertia"), fam.unit("A.y")) == ("kg", "kg m^2", "m")
+    rows = {"crank.mass": np.array([1.0, 3.0, 9.0, -2.0]), "crank.inertia": np.array([0.001, 0.004, 0.02, 0.004]),
+            "slider.mass": np.array([0.8, 0.5, 2.0, 0.8]), "A.y": np.array([0.05, 0.055, 0.06, 0.05])}
+    df = kl.sweep.run(fam, rows, metrics=("peak_torque",), speed=40.0, progress=False)
+    q = np.linspace(0, 2 * np.pi, 72, endpoint=False)
+    for d in range(3):
+        design = fam.build({c: v[d] for c, v in rows.items()})
+        assert design.link("crank").mass == rows["crank.mass"][d]
+        tau = kl.dynamics.inverse(design, q, qd=40.0, reactions=False).input_forces
+        assert df["peak_torque"][d] == pytest.approx(np.abs(tau).max(), rel=1e-11)
+    assert np.isnan(df["peak_torque"][3])
+    assert "mass" in df.attrs["problems"][3]
+
+
 def test_descriptors_are_invariant_and_tell_curves_apart():
     t = np.linspace(0, 2 * np.pi, 90, endpoint=False)
     ellipse = np.column_stack([2 * np.cos(t), np.sin(t)])
