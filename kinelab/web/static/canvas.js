@@ -146,7 +146,10 @@ export class Canvas {
   // scene: {points: {name: [x, y]}, drawing, traces: {name: [[x, y], ...]}, marks, centres,
   //         guides: {joint: [ux, uy]} (each P joint's slide direction now),
   //         pending: a point waiting for the second click of a link, hover: [x, y],
-  //         poses: [{xy, angle, label}] (angle in rad; arrows, numbered unless labelled)}
+  //         poses: [{xy, angle, label, key}] (angle in rad; arrows, numbered unless labelled;
+  //                 without an angle a point marked as `mark` says, "fixed" (a pivot),
+  //                 "moving" or "point" (a path's points, joined); one with a key has a
+  //                 handle to drag it by, data-target its key)}
   // The elements are kept and changed in place: a drag changes a few attributes, and the
   // paths (hundreds of samples) are drawn again only when they, or the view, change.
   draw(scene) {
@@ -250,17 +253,34 @@ export class Canvas {
     }
     patch(L.dims, dims);
     L.poses.g.replaceChildren();
-    scene.poses.forEach((pose, i) => {
-      const [X, Y] = S(pose.xy), len = 42;
+    const path = scene.poses.filter((t) => t.mark === "point").map((t) => S(t.xy));
+    if (path.length > 1) el("polyline", {class: "target-path", points: path.join(" ")}, L.poses.g);
+    let n = 0;
+    for (const pose of scene.poses) {
+      const [X, Y] = S(pose.xy);
+      // a handle to drag it by, over it
+      const handle = (g) => { if (pose.key) el("circle", {class: "handle", cx: X, cy: Y, r: 9, "data-target": pose.key}, g); };
+      if (pose.angle === undefined) {
+        const g = el("g", {class: `target ${pose.mark}`, "data-target": pose.key}, L.poses.g);
+        if (pose.mark === "fixed") el("path", {d: `M${X - 9},${Y + 12} L${X + 9},${Y + 12} M${X},${Y} L${X - 7},${Y + 12} M${X},${Y} L${X + 7},${Y + 12}`}, g);
+        el("circle", {cx: X, cy: Y, r: pose.mark === "point" ? 3.5 : 5}, g);
+        const [x, y] = place(X, Y, pose.label, 12);
+        el("text", {class: "target-label", x, y}, g).textContent = pose.label;
+        handle(g);
+        continue;
+      }
+      n += 1;
+      const len = 42;
       const [U, V] = [X + len * Math.cos(pose.angle), Y - len * Math.sin(pose.angle)];
-      const g = el("g", {class: "pose", "data-pose": i + 1}, L.poses.g);
+      const g = el("g", {class: "pose", "data-pose": n}, L.poses.g);
       el("line", {x1: X, y1: Y, x2: U, y2: V}, g);
       const head = [[-10, 5], [-10, -5]].map(([a, b]) =>
         [U + a * Math.cos(pose.angle) + b * Math.sin(pose.angle), V - a * Math.sin(pose.angle) + b * Math.cos(pose.angle)]);
       el("polygon", {points: [[U, V], ...head].join(" ")}, g);
       el("circle", {cx: X, cy: Y, r: 3.5}, g);
-      el("text", {class: "pose-label", x: X - 14, y: Y + 14}, g).textContent = pose.label ?? String(i + 1);
-    });
+      el("text", {class: "pose-label", x: X - 14, y: Y + 14}, g).textContent = pose.label ?? String(n);
+      handle(g);
+    }
     const centres = [];
     for (const c of scene.centres || []) {
       if (c.at_infinity || !c.position) continue;
