@@ -474,9 +474,9 @@ function deleteSelected() {
 
 const canvas = new Canvas($("canvas"), {
   down(name, xy, e) {
+    if (placing.down(xy, e && e.target)) return "capture";     // the synthesis task's targets
     if (tool() === "select") { canvas.dragging = null; select(pick(e && e.target, name)); return; }
     if (!name) ({xy, point: name} = snapTo(xy));      // on a point snapped to: as a click on it
-    if (placing.active()) { state.pose = {xy, angle: 0}; redraw(); return "capture"; }
     const t = tool();
     if (t === "slider") {          // the drag gives the guide's direction
       state.sliderAt = name;
@@ -501,6 +501,7 @@ const canvas = new Canvas($("canvas"), {
     redrawSoon();
   },
   move(name, xy) {
+    if (placing.move(xy)) return;
     if (!name.from) {
       state.moves += 1;
       if (tool() === "move") predict(name, xy);
@@ -513,6 +514,7 @@ const canvas = new Canvas($("canvas"), {
     redraw();
   },
   async up(name, xy) {
+    if (placing.up(xy)) return;
     if (name && name.from && tool() === "slider" && !placing.active()) {
       xy = snapped(xy);
       const at = state.pose.xy;
@@ -522,7 +524,6 @@ const canvas = new Canvas($("canvas"), {
       else redraw();
       return;
     }
-    if (name && name.from) { state.pose = null; placing.add(name.from, xy); return; }
     if (!name || !dragStart) return;
     while (state.busy || state.pending) await new Promise((r) => setTimeout(r, 10));
     if (tool() === "edit" && state.model !== dragStart.model) {
@@ -730,7 +731,8 @@ document.addEventListener("keyup", (e) => {
 window.addEventListener("resize", () => { if (state.model) { fitView(); redraw(); plotNow(); } });
 const placing = synthesisPanel($("tab-synthesis"), {
   open: (model, source) => setModel(model, source), status,
-  units: () => state.model && state.model.units, redraw: () => state.model && redraw()});
+  units: () => state.model && state.model.units, redraw: () => state.model && redraw(),
+  pixel: () => 1 / canvas.view.s});
 state.setIndex = setIndex;
 state.canvas = canvas;
 state.play = play;

@@ -62,54 +62,181 @@ const value = (text) => { const t = text.trim(); return DECIMAL.test(t) && Numbe
 const numbers = (text) => text.split(/[\s,;]+/).filter((t) => t !== "").map(value);
 const rows = (text) => text.split("\n").map((l) => l.trim()).filter((l) => l && !l.startsWith("#")).map(numbers);
 
-// Poses placed on the drawing: each a click for its point and a drag for its angle, in the
-// drawing's units; written into the form, where they stay editable, and drawn as arrows.
+// The task's targets on the drawing: the poses, the path's points and the pivots, written
+// into the form in the task's units (where they stay editable) and drawn in the drawing's.
+// A placing asks for them on the drawing: a press for each pose's point and a drag for its
+// angle, a press for each point (a drag before letting go moves it).  Any target drawn is
+// dragged to move it (a pose keeps its angle).  Esc cancels a placing or a drag: the form
+// is as it was before it.
 const METRES = {m: 1, cm: 0.01, mm: 0.001, in: 0.0254};
+const short = (v) => Number(v.toPrecision(6)) + 0;          // + 0: no "-0" in the form
 const placed = {
-  root: null, kind: null, left: 0, units: () => null, redraw: () => {},
-  active() { return this.left > 0; },
-  start(root, kind) {
-    const u = this.units();
+  root: null, units: () => null, redraw: () => {}, pixel: () => 1,
+  placing: null,      // {what: "poses" | "points" | a pivot's field, count, left, form}
+  grabbed: null,      // {key, aim: [x, y] (a pose's angle being dragged), offset, form}
+  taken: false,       // the drawing's pointer drag is ours, from its press to its release
+  active() { return this.placing !== null; },
+  // `what`: "poses" or "points" (that many, in place of those of the form, in the drawing's
+  // units), or a point field's key.
+  start(what, count = 1) {
+    const u = this.units(), root = this.root;
     if (!u) return;
-    this.root = root; this.kind = kind; this.left = kind.count;
-    for (const [id, v] of [["#synth-length", u.length], ["#synth-angle", u.angle]]) {
-      root.querySelector(id).value = v;
-      root.querySelector(id).dispatchEvent(new Event("change"));
+    this.stop();
+    this.placing = {what, count, left: count, form: this.form()};
+    if (what === "poses" || what === "points") {
+      for (const [id, v] of [["#synth-length", u.length], ["#synth-angle", u.angle]]) {
+        root.querySelector(id).value = v;
+        root.querySelector(id).dispatchEvent(new Event("change"));
+      }
+      root.querySelector("#synth-poses").value = "";
     }
-    root.querySelector("#synth-poses").value = "";
     this.hint();
     this.redraw();
   },
   hint() {
-    const h = this.root && this.root.querySelector("#synth-place-hint");
-    if (h) h.textContent = this.left ? `pose ${this.kind.count - this.left + 1} of ${this.kind.count}: ` +
-      "click its point on the drawing, drag towards its angle" : "";
+    const p = this.placing, root = this.root;
+    if (!root) return;
+    for (const h of root.querySelectorAll(".place-hint")) h.textContent = "";
+    if (!p) return;
+    const done = p.count - p.left + 1;
+    const [where, text] = p.what === "poses"
+      ? ["#synth-place-hint", `pose ${done} of ${p.count}: click its point on the drawing, drag towards its angle (Esc cancels)`]
+      : p.what === "points" ? ["#synth-place-hint", `point ${done} of ${p.count}: click it on the drawing (Esc cancels)`]
+      : [`[data-hint='${p.what}']`, "click its place on the drawing (Esc cancels)"];
+    const h = root.querySelector(where);
+    if (h) h.textContent = text;
   },
-  // A pose from a press at `at` and a release at `to` (drawing units): its angle is the drag's.
-  add(at, to) {
-    if (!this.left) return;
-    const angle = Math.hypot(to[0] - at[0], to[1] - at[1]) > 0 ? Math.atan2(to[1] - at[1], to[0] - at[0]) : 0;
-    const a = this.root.querySelector("#synth-angle").value === "deg" ? angle * 180 / Math.PI : angle;
-    const area = this.root.querySelector("#synth-poses");
-    const line = [at[0], at[1], a].map((v) => Number(v.toPrecision(6))).join(" ");
-    area.value = (area.value.trim() ? area.value.trim() + "\n" : "") + line;
-    this.left -= 1;
-    this.hint();
+  stop() { this.placing = null; this.hint(); },
+  // Esc: the form as before the placing or the drag.
+  cancel() {
+    const was = (this.grabbed && this.grabbed.form) || (this.placing && this.placing.form);
+    if (!was) return false;
+    this.grabbed = null;
+    this.stop();
+    this.restore(was);
     this.redraw();
+    return true;
   },
-  stop() { this.left = 0; this.hint(); },
+  form() {
+    const r = this.root;
+    return {poses: r.querySelector("#synth-poses")?.value, length: r.querySelector("#synth-length").value,
+            angle: r.querySelector("#synth-angle").value,
+            fields: [...r.querySelectorAll("[data-field]")].map((e) => [e.dataset.field, e.value])};
+  },
+  restore(was) {
+    const r = this.root;
+    const area = r.querySelector("#synth-poses");
+    if (area && was.poses !== undefined) area.value = was.poses;
+    for (const [key, v] of was.fields) { const e = r.querySelector(`[data-field='${key}']`); if (e) e.value = v; }
+    for (const [id, v] of [["#synth-length", was.length], ["#synth-angle", was.angle]]) {
+      r.querySelector(id).value = v;
+      r.querySelector(id).dispatchEvent(new Event("change"));
+    }
+  },
+
+  // The drawing's pointer (places in the drawing's units): a press is taken (the answer true)
+  // while placing, or on a target drawn (`target` the element pressed).
+  down(xy, target) {
+    const key = target && target.dataset ? target.dataset.target : undefined;
+    if (!this.placing && !key) return false;
+    this.taken = true;
+    const p = this.placing;
+    if (p) {
+      let at = p.what;
+      if (p.what === "poses" || p.what === "points") {
+        const area = this.root.querySelector("#synth-poses");
+        area.value = (area.value.trim() ? area.value.trim() + "\n" : "") + (p.what === "poses" ? "0 0 0" : "0 0");
+        at = `${p.what === "poses" ? "pose" : "point"} ${rows(area.value).length}`;
+      }
+      this.grabbed = {key: at, aim: p.what === "poses" ? xy : null, offset: [0, 0]};
+      this.put(at, xy);
+    } else {
+      const was = targetsOf(this.root, this.units()).find((t) => t.key === key);
+      if (!was) { this.taken = false; return false; }
+      this.grabbed = {key, aim: null, offset: [was.xy[0] - xy[0], was.xy[1] - xy[1]], form: this.form()};
+    }
+    this.redraw();
+    return true;
+  },
+  move(xy) {
+    if (!this.taken) return false;
+    const g = this.grabbed;
+    if (g && g.aim) this.aim(g.key, g.aim, xy);
+    else if (g) this.put(g.key, [xy[0] + g.offset[0], xy[1] + g.offset[1]]);
+    if (g) this.redraw();
+    return true;
+  },
+  up(xy) {
+    if (!this.taken) return false;
+    this.move(xy);
+    this.taken = false;
+    if (!this.grabbed) return true;             // cancelled on the way
+    this.grabbed = null;
+    const p = this.placing;
+    if (p) { p.left -= 1; if (!p.left) this.placing = null; this.hint(); }
+    this.redraw();
+    return true;
+  },
+
+  // Target `key` put at xy (drawing units), written in the task's units to a tenth of the
+  // drawing's pixel; a pose keeps its angle.
+  put(key, xy) {
+    const digits = Math.max(0, Math.min(12, -Math.floor(Math.log10(this.pixel() * this.scale() / 10))));
+    const [x, y] = xy.map((v) => Number((v * this.scale()).toFixed(digits)) + 0);
+    const [kind, n] = key.split(" ");
+    if (kind === "pose" || kind === "point")
+      this.line(Number(n), (old) => [x, y, ...old.slice(2)].join(" "));
+    else this.root.querySelector(`[data-field='${key}']`).value = `${x}, ${y}`;
+  },
+  // Pose `key`'s angle, that of the drag from `at` to `to`.
+  aim(key, at, to) {
+    const angle = Math.hypot(to[0] - at[0], to[1] - at[1]) > 0 ? Math.atan2(to[1] - at[1], to[0] - at[0]) : 0;
+    const a = short(this.root.querySelector("#synth-angle").value === "deg" ? angle * 180 / Math.PI : angle);
+    this.line(Number(key.split(" ")[1]), (old) => [...old.slice(0, 2), a].join(" "));
+  },
+  // The n-th line of the poses or points (counted as `rows` counts them) made anew from its numbers.
+  line(n, change) {
+    const area = this.root.querySelector("#synth-poses");
+    let k = 0;
+    area.value = area.value.split("\n").map((l) => {
+      const t = l.trim();
+      if (!t || t.startsWith("#")) return l;
+      k += 1;
+      return k === n ? change(t.split(/[\s,;]+/)) : l;
+    }).join("\n");
+  },
+  // Task units per drawing unit.
+  scale() { return METRES[this.units().length] / METRES[this.root.querySelector("#synth-length").value]; },
 };
 
-// The poses of the form, in the drawing's units ({xy, angle in rad}), to draw as arrows.
-export function posesOnDrawing(root, units) {
+// Where a point field's text is two numbers: [x, y], else null.
+const pointOf = (text) => { const v = numbers(text); return v.length === 2 && v.every(Number.isFinite) ? v : null; };
+
+// The targets of the form, in the drawing's units: poses ({key, xy, angle in rad}), and the
+// path's points and the pivots ({key, xy, mark: "point" | "fixed" | "moving", label}).
+function targetsOf(root, units) {
   const kind = KINDS[root.querySelector("#synth-kind").value];
   const area = root.querySelector("#synth-poses");
-  if (!kind || !kind.poses || !area || !units) return [];
+  if (!kind || !units) return [];
   const scale = METRES[root.querySelector("#synth-length").value] / METRES[units.length];
   const deg = root.querySelector("#synth-angle").value === "deg";
-  return rows(area.value).filter((r) => r.length === 3 && r.every(Number.isFinite))
-    .map(([x, y, a]) => ({xy: [x * scale, y * scale], angle: deg ? a * Math.PI / 180 : a}));
+  const at = (x, y) => [x * scale, y * scale];
+  const out = [];
+  if (area) rows(area.value).forEach((r, i) => {
+    if (kind.poses && r.length === 3 && r.every(Number.isFinite))
+      out.push({key: `pose ${i + 1}`, xy: at(r[0], r[1]), angle: deg ? r[2] * Math.PI / 180 : r[2]});
+    else if (kind.points && r.length === 2 && r.every(Number.isFinite))
+      out.push({key: `point ${i + 1}`, xy: at(r[0], r[1]), mark: "point", label: String(i + 1)});
+  });
+  for (const [key, , type] of kind.fields) {
+    const xy = type === "point" && pointOf(root.querySelector(`[data-field='${key}']`).value);
+    if (xy) out.push({key, xy: at(...xy), mark: key.endsWith("0") ? "fixed" : "moving", label: key.split(".")[1]});
+  }
+  return out;
 }
+
+// What the drawing shows of the task (the canvas's poses).
+export {targetsOf as posesOnDrawing};
 
 function put(task, key, v) {
   const [section, name] = key.split(".");
@@ -143,7 +270,7 @@ function form(root, kindName, units) {
   const [lu, au] = kind.units;
   root.querySelector("#synth-length").value = lu;
   root.querySelector("#synth-angle").value = au;
-  const unit = (type) => type === "length" ? () => root.querySelector("#synth-length").value
+  const unit = (type) => type === "length" || type === "point" ? () => root.querySelector("#synth-length").value
     : type === "angle" ? () => root.querySelector("#synth-angle").value : () => "";
   if (kind.poses || kind.points) {
     const label = make("label", {}, kind.poses ? "poses: x y angle, one per line" : "points: x y, one per line");
@@ -153,12 +280,25 @@ function form(root, kindName, units) {
     label.append(make("br"), area);
     box.append(label);
   }
-  if (kind.poses) {
+  if (kind.poses || kind.points) {
     const row = make("div", {class: "row"});
-    const place = make("button", {id: "synth-place", title: "Click on the drawing for each pose's point, drag for its angle"},
-                       `place ${kind.count} poses on the drawing`);
-    place.onclick = () => placed.start(root, kind);
-    row.append(place, make("span", {id: "synth-place-hint", class: "hint"}));
+    const hint = make("span", {id: "synth-place-hint", class: "hint place-hint"});
+    if (kind.poses) {
+      const place = make("button", {id: "synth-place", title: "Click on the drawing for each pose's point, drag for its angle"},
+                         `place ${kind.count} poses on the drawing`);
+      place.onclick = () => placed.start("poses", kind.count);
+      row.append(place, hint);
+    } else {
+      const count = make("input", {id: "synth-place-count", type: "number", min: 2, max: 100, step: 1,
+                                   value: rows(kind.points).length, title: "How many points to place"});
+      const place = make("button", {id: "synth-place", title: "Click on the drawing for each point of the path, in order"}, "place");
+      place.onclick = () => {
+        const n = Number(count.value);
+        if (Number.isInteger(n) && n >= 2 && n <= 100) placed.start("points", n);
+        else hint.textContent = `the points to place: a whole number from 2 to 100, not '${count.value}'`;
+      };
+      row.append(place, count, make("span", {}, "points on the drawing"), hint);
+    }
     box.append(row);
   }
   const t = make("table");
@@ -178,6 +318,15 @@ function form(root, kindName, units) {
     u.textContent = show();
     u.dataset.unit = type;
     tr.append(make("td", {}, label), td, u);
+    if (type === "point") {               // x, y: drawn, and placed on the drawing
+      input.oninput = () => placed.redraw();
+      const place = make("button", {class: "place-point", "data-place": key,
+                                    title: "Click on the drawing where it goes (drag it there afterwards to move it)"}, "place");
+      place.onclick = () => placed.start(key);
+      const cell = make("td");
+      cell.append(place, make("span", {class: "hint place-hint", "data-hint": key}));
+      tr.append(cell);
+    }
     t.append(tr);
   }
   box.append(t);
@@ -228,11 +377,14 @@ function results(root, answer, open) {
 }
 
 // The panel in `root`; `open(model, source)` makes a linkage the model; `status` reports.
-// `units()` gives the drawing's units; `redraw()` redraws it with the poses.  The answer is
-// the placing of poses: {active(), add(at, to)} for the drawing's pointer.
-export function synthesisPanel(root, {open, status, units, redraw}) {
-  placed.units = units;
-  placed.redraw = redraw;
+// `units()` gives the drawing's units, `pixel()` its pixel's size in them; `redraw()` redraws
+// it with the task.  The answer is the task's targets on the drawing: {active(), down(xy,
+// element), move(xy), up(xy)} for the drawing's pointer, each true when the drag is theirs.
+export function synthesisPanel(root, {open, status, units, redraw, pixel}) {
+  Object.assign(placed, {root, units, redraw, pixel});
+  document.addEventListener("keydown", (e) => { if (e.key === "Escape") placed.cancel(); });
+  for (const b of document.querySelectorAll("#tabs button"))      // another tab: no more placing
+    b.addEventListener("click", () => { if (b.dataset.tab !== "synthesis") placed.stop(); });
   root.innerHTML = `<div class="row"><label>task <select id="synth-kind"></select></label>
     <label>length <select id="synth-length"></select></label>
     <label>angle <select id="synth-angle"></select></label></div>
