@@ -29,9 +29,9 @@ from kinelab.kinematics._columns import INPUT_SI_UNITS, column_name
 from kinelab.model import is_real
 from kinelab.web import _limits
 
-__all__ = ["MAX_SAMPLES", "DEFAULT_SAMPLES", "read_model", "analyze", "study", "configuration",
-           "drag", "flip", "catalogue", "example", "load", "save", "derivation", "synthesize",
-           "is_search", "MAX_SEARCH_EFFORT", "DERIVE_SECONDS"]
+__all__ = ["MAX_SAMPLES", "DEFAULT_SAMPLES", "read_model", "with_page_ranges", "analyze", "study",
+           "configuration", "drag", "flip", "catalogue", "example", "load", "save", "derivation",
+           "synthesize", "is_search", "MAX_SEARCH_EFFORT", "DERIVE_SECONDS"]
 
 MAX_SAMPLES = 20_000
 """The longest sweep the page may ask for: past it a drawing or a plot shows nothing more,
@@ -171,7 +171,7 @@ def prepare(body: dict, answer: str = "none") -> _Prepared:
     if ready is not None:         # read and checked when it was kept: the same model, samples
         _limits.check_sweep(ready.mf, body.get("samples"), answer, "the answer")
         return ready
-    mf = read_model(body)
+    mf = with_page_ranges(read_model(body))
     samples = samples_of(body, mf)
     _limits.check_sweep(mf, samples, answer, "the answer" if answer != "none" else "the sweep")
     sol = _sweep(mf, samples)
@@ -180,6 +180,31 @@ def prepare(body: dict, answer: str = "none") -> _Prepared:
     ready = _Prepared(mf, sol, tracker, threading.Lock())
     _PREPARED.put(key, ready, _limits.nbytes(sol) + _limits.nbytes(tracker))
     return ready
+
+
+def with_page_ranges(mf: ModelFile) -> ModelFile:
+    """The model with a range for each of its inputs that has none, when it has several
+    (a sweep of several inputs needs every range; the page's drawn inputs come without):
+    from the sketch's value, a full turn for an angle, half the sketch's size for a slide.
+    A model of one input, or whose inputs all have ranges, comes back as it is."""
+    m = mf.mechanism
+    if len(m.inputs) < 2 or all(i.range is not None for i in m.inputs):
+        return mf
+    with errors_from(mf, "inputs"):
+        p = kinematics.plan(m)
+    xy = np.array([pt.xy for pt in m.points], float)
+    size = float(np.max(np.ptp(xy, axis=0))) if len(xy) else 0.0
+    data = mf.to_dict()
+    u = mf.units
+    for k, (inp, kind) in enumerate(zip(m.inputs, p.input_kinds)):
+        if inp.range is not None:
+            continue
+        q0 = float(p.q_sketch[k])
+        span = 2 * math.pi if kind == "angle" else 0.5 * size or 1.0
+        unit = INPUT_SI_UNITS[kind]
+        data["inputs"][k]["range"] = [float(f"{u.convert(v, unit):.12g}") for v in (q0, q0 + span)]
+    # the sketch's own assembly (what moved) is still the one to report
+    return dataclasses.replace(ModelFile.from_dict(data, source=mf.source), assembly=mf.assembly)
 
 
 def _sweep(mf: ModelFile, samples: int | None) -> KinematicSolution:
