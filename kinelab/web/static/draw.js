@@ -1,4 +1,6 @@
 // Drawing a linkage point by point: each tool turns a click into a new model (JSON form).
+import {addInput} from "./inputs.js";
+
 const round = (v) => Number(v.toPrecision(8));
 let linkStart = null;          // the first point of a link being drawn
 
@@ -6,9 +8,6 @@ let linkStart = null;          // the first point of a link being drawn
 export const pending = () => linkStart;
 export function cancel() { const was = linkStart; linkStart = null; return was !== null; }
 
-// An input drawn turns once a second: its velocities and accelerations are not zero, and
-// the table shows the speed to change.
-export const defaultSpeed = (units) => (units && units.angle === "rad" ? 2 * Math.PI : 360);
 
 export function empty() {
   return {schema: 1, name: "sketch", units: {length: "mm", angle: "deg"}, points: {},
@@ -80,14 +79,7 @@ export function apply(tool, model, name, xy) {
     for (const l of m.links) if (!l.ground && l.points.includes(name)) pin(m, l.name, name);
     return m;
   }
-  if (tool === "input") {
-    const ground = m.links.find((l) => l.ground);
-    const j = m.joints.find((k) => k.point === name && k.type === "R" && ground && k.links.includes(ground.name));
-    if (!j) return null;
-    const speed = m.inputs && m.inputs.length ? m.inputs[0].speed : undefined;
-    m.inputs = [{joint: j.name, speed: speed ?? defaultSpeed(m.units)}];
-    return m;
-  }
+  if (tool === "input") return addInput(m, name);
   return null;
 }
 

@@ -12,6 +12,7 @@ import {follower} from "./follow.js";
 import {chosen, shownUnits, shownColumn, toShown, fromShown} from "./units.js";
 import {withLength, num} from "./table.js";
 import {forcesPanel} from "./dynamics.js";
+import {inputSliders} from "./inputs.js";
 
 const $ = (id) => document.getElementById(id);
 const state = {model: null, source: null, study: null, index: 0, config: null,
@@ -67,6 +68,7 @@ async function setModel(model, source, {record = true, refit = true, keepDraft =
     if (keepDraft) {           // a drawing on its way: kept as it is, the reason shown
       if (record && before) { state.history.push({model: before, source: state.source}); state.future = []; }
       state.model = model; state.source = source; state.study = null; state.draft = true;
+      showTable();
       redraw();
     } else if (state.model) {  // refused: the model stays, and the table shows it again
       showTable();
@@ -108,7 +110,8 @@ function editModel(model) { return setModel(model, state.source); }
 
 // The table drawn again from the model: a value refused (here or by the server) is
 // replaced by the model's own, and the reason shown.
-function showTable() { renderTable($("tab-table"), state, {edit: editModel, flip, setIndex, refuse}); }
+function showTable() { renderTable($("tab-table"), state, {edit: editModel, flip, setIndex, refuse, draft: editDraft}); }
+function editDraft(model) { return setModel(model, state.source, {keepDraft: true, refit: false}); }
 function refuse(message) { status(message, true); showTable(); }
 
 // An empty page to draw on: no model, no sweep, no plot; undo brings the last model back.
@@ -252,10 +255,12 @@ function redraw() {
   canvas.unitScale = shownUnits(state.model.units).L;
   canvas.draw(scene());
   forces.draw();
+  sliders.show();
   if (state.study) {
     $("scrub").value = state.index;
-    const q = state.study.inputs.map((n) => {
-      const c = shownColumn(n, [column(n)[state.index]], state.study.units);
+    const q = state.study.inputs.map((n, k) => {      // where the inputs' sliders left it, else the sample's
+      const v = Array.isArray(state.dragQ) ? state.dragQ[k] : column(n)[state.index];
+      const c = shownColumn(n, [v], state.study.units);
       return `${c.name} = ${fmt(c.values[0])}`;
     });
     $("input-value").textContent = q.join(", ");
@@ -549,6 +554,7 @@ const canvas = new Canvas($("canvas"), {
 
 const plot = new Plot($("plot"), (i) => { pause(); setIndex(i); });
 const forces = forcesPanel($("tab-forces"), {state, edit: editModel, status, canvas});
+const sliders = inputSliders($("player"), state);
 
 // -- animation -------------------------------------------------------------------------------
 let last = null, phase = 0;
@@ -737,6 +743,7 @@ state.setIndex = setIndex;
 state.canvas = canvas;
 state.play = play;
 state.pause = pause;
+state.configurationSoon = configurationSoon;
 
 (async () => {
   try {

@@ -1,9 +1,10 @@
-// The table beside the drawing: exact coordinates, lengths, joints, the input and the
+// The table beside the drawing: exact coordinates, lengths, joints, the inputs and the
 // branches; typing a value changes the model, the server re-assembles it (a refused value
 // leaves the model, and the table, as they were).
 import {movePoint, movePivot, groundLength, offsetOf, dist, sideOf, sideRefs,
         measuredSides} from "./geometry.js";
 import {shownUnits, toShown, fromShown} from "./units.js";
+import {typedRange, withoutInput} from "./inputs.js";
 
 function cell(row, content) {
   const td = document.createElement("td");
@@ -41,7 +42,8 @@ export function num(text, what = "value") {
 
 // `refuse(message)`: a value refused here (not a number, not a pair of points) is shown
 // with the reason, and the table drawn again from the model.
-export function renderTable(root, state, {edit, flip, refuse}) {
+// `draft(model)`: a model that may not assemble yet (an input removed), kept as a drawing.
+export function renderTable(root, state, {edit, flip, refuse, draft = edit}) {
   root.replaceChildren();
   const m = state.model, u = shownUnits(m.units), L = u.L;
   const len = (v) => toShown(v, L), typed = (v, what) => fromShown(num(v, what), L);
@@ -126,22 +128,31 @@ export function renderTable(root, state, {edit, flip, refuse}) {
   root.append(jt);
 
   if (m.inputs && m.inputs.length) {
-    h(`input (${u.angle} or ${u.length})`);
-    const it = table(["input", "joint", "range", `speed (${u.angle}/s or ${u.length}/s)`]);
+    h(`inputs (${u.angle} or ${u.length})`);
+    const it = table(["input", "joint", "kind", "range (start, stop)", `speed (${u.angle}/s or ${u.length}/s)`, ""]);
     for (const [k, i] of m.inputs.entries()) {
       const tr = document.createElement("tr");
       cell(tr, i.name || i.joint); cell(tr, i.joint || (i.links || []).join("-"));
       const ij = (m.joints || []).find((j) => j.name === i.joint);
-      const f = ij && ij.type === "P" ? L : u.A;          // a slide's input is a length
+      const slide = ij && ij.type === "P", f = slide ? L : u.A;      // a slide's input is a length
+      cell(tr, slide ? "P (slide)" : "R (angle)").dataset.field = "kind";
+      const what = `${i.name || i.joint}.range`;
       cell(tr, input((i.range || []).map((v) => toShown(v, f)).join(", "), guarded((v) => {
         const next = structuredClone(m);
-        const r = v.split(",").map((s) => s.trim()).filter(Boolean).map((t) => fromShown(num(t, "range"), f));
-        if (r.length) next.inputs[k].range = r; else delete next.inputs[k].range;
+        const r = typedRange(v, (t, w) => fromShown(num(t, w), f), what);
+        if (r) next.inputs[k].range = r; else delete next.inputs[k].range;
         edit(next);
-      })));
+      }))).dataset.field = "range";
       cell(tr, input(toShown(i.speed ?? 0, f), guarded((v) => {
-        const next = structuredClone(m); next.inputs[k].speed = fromShown(num(v, "speed"), f); edit(next);
+        const next = structuredClone(m);
+        next.inputs[k].speed = fromShown(num(v, `${i.name || i.joint}.speed`), f);
+        edit(next);
       }))).dataset.field = "speed";
+      const remove = document.createElement("button");
+      remove.textContent = "remove";
+      remove.title = "No longer an input (the linkage then needs another, or one joint more)";
+      remove.onclick = () => draft(withoutInput(m, i.name || i.joint));
+      cell(tr, remove).dataset.field = "remove";
       tr.dataset.input = i.name || i.joint;
       it.append(tr);
     }
