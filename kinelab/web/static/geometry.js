@@ -95,13 +95,15 @@ export function groundLength(model, length) {
 }
 
 // A prismatic joint's offset: its declared one, else the distance of its point from the
-// line through its origin along its axis (to the left), as the sketch draws it.
+// line through its origin along its axis (to the left), as the sketch draws it; null while
+// the drawing has no origin for it yet.
 export function offsetOf(model, joint, angleScale) {
   if (joint.offset !== undefined) return joint.offset;
   const axis = Array.isArray(joint.axis) ? joint.axis
     : [Math.cos(joint.axis / angleScale), Math.sin(joint.axis / angleScale)];
   const n = Math.hypot(axis[0], axis[1]);
   const guide = model.links.find((l) => l.name === joint.links[0]);
-  const o = model.points[joint.origin || guide.points[0]], p = model.points[joint.point];
+  const o = model.points[joint.origin || (guide && guide.points[0])], p = model.points[joint.point];
+  if (!o || !p) return null;            // a drawing on its way: a guide without points yet
   return round((axis[0] * (p[1] - o[1]) - axis[1] * (p[0] - o[0])) / n);
 }

@@ -117,7 +117,8 @@ export function renderTable(root, state, {edit, flip, refuse, draft = edit}) {
       next.joints[k].axis = fromShown(num(v, `${j.name}.axis`), u.A);
       edit(next);
     })) : "").dataset.field = "axis";
-    cell(tr, j.type === "P" && j.axis !== undefined ? input(len(offsetOf(m, j, toAngle)), guarded((v) => {
+    const offset = j.type === "P" && j.axis !== undefined ? offsetOf(m, j, toAngle) : null;
+    cell(tr, offset !== null ? input(len(offset), guarded((v) => {
       const next = structuredClone(m); delete next.catalogue;
       next.joints[k].offset = typed(v, `${j.name}.offset`);
       edit(next);
