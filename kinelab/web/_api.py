@@ -225,7 +225,8 @@ def _finite(values) -> list:
 def study(body: dict) -> dict:
     """Everything the page draws and plots of a model's sweep, in the model's units.
 
-    ``model`` is the model as assembled (its JSON form); ``columns`` every column of
+    ``model`` is the model as assembled (its JSON form; each of several inputs with a range,
+    see :func:`with_page_ranges`); ``columns`` every column of
     ``kinelab analyze`` (``body["columns"]``, a list, narrows them; the points' x and y are
     always there, or those of the points ``body["points"]`` lists), and the transmission
     angles; ``singular`` and ``change_points`` the sample indices where they are;
