@@ -67,3 +67,31 @@ def test_labels_of_points_and_instant_centres_do_not_overlap(page, example):
         assert len(boxes) > 4
         assert not overlaps(boxes), overlaps(boxes)
     page.shot(f"labels {example}")
+
+
+@pytest.mark.parametrize("size", ["phone", "laptop"])
+@pytest.mark.parametrize("example", ["crank_rocker", "stephenson6", "whitworth", "slotted_link",
+                                     "fivebar", "engine", "jansen"])
+def test_labels_of_points_keep_off_the_dimensions(page, example, size):
+    """The dimensions on the drawing (each link's length, the input's angle) are placed
+    first; no point's name is drawn over one (their boxes on the screen, turned as drawn)."""
+    width, height = SIZES[size]
+    page.set_viewport_size({"width": width, "height": height})
+    open_example(page, example)
+    assert page.locator("#dims").is_checked()
+    page.wait_for_function("() => document.querySelectorAll('#canvas text.dim').length > 2",
+                           timeout=120_000)
+    for index in (0, "half"):
+        if index == "half":
+            page.evaluate("() => window.kinelab.setIndex(Math.floor(window.kinelab.study.samples / 2))")
+            page.wait_for_timeout(500)
+        labels, dims = ([b + [f"{kind} {t}"] for *b, t in page.evaluate(f"""() => [...document
+            .querySelectorAll('#canvas text.{kind}')].map((t) => {{
+                const b = t.getBoundingClientRect();
+                return [b.x, b.y, b.width, b.height, t.textContent]; }})""")]
+                        for kind in ("label", "dim"))
+        assert len(dims) > 2 and len(labels) > 3
+        crossing = [(a, b) for a, b in overlaps(labels + dims)
+                    if a.startswith("label") != b.startswith("label")]
+        page.shot(f"dimensions {example} {size} {index}")
+        assert not crossing, crossing

@@ -209,6 +209,32 @@ export class Canvas {
     }
     patch(L.joints, joints);
     const place = labelPlacer(Object.values(P).filter(known).map(S));
+    // dimensions: along a link (a -> b), upright, a little to its side; an input's at its pivot
+    const dims = [];
+    for (const dm of scene.dims || []) {
+      if (!known(dm.a) || (dm.b && !known(dm.b))) continue;
+      const [X0, Y0] = S(dm.a);
+      let attrs;
+      if (dm.b) {
+        const [X1, Y1] = S(dm.b);
+        let ang = Math.atan2(Y1 - Y0, X1 - X0) * 180 / Math.PI;
+        if (ang > 90) ang -= 180; else if (ang <= -90) ang += 180;
+        // on the side of the link where it covers less of what is placed (its left first)
+        const n = Math.hypot(X1 - X0, Y1 - Y0) || 1;
+        let least = Infinity;
+        for (const off of [10, -16]) {
+          const X = (X0 + X1) / 2 + off * (Y1 - Y0) / n, Y = (Y0 + Y1) / 2 - off * (X1 - X0) / n;
+          const at = {x: X, y: Y, "text-anchor": "middle", transform: `rotate(${ang} ${X} ${Y})`};
+          const c = place.cost(textBox(at, dm.text, DIM_SIZE));
+          if (c < least) { attrs = at; least = c; }
+        }
+      } else {
+        attrs = {x: X0 - 12, y: Y0 + 26, "text-anchor": "end"};
+      }
+      dims.push([`d ${dm.name}`, "text", {class: "dim", "data-dim": dm.name, ...attrs}, dm.text]);
+      place.reserve(textBox(attrs, dm.text, DIM_SIZE));       // the points' labels keep off it
+    }
+    patch(L.dims, dims);
     const inputPoints = new Set((d.inputs || []).map((i) => {
       const j = d.joints.find((k) => k.name === i.joint); return j ? j.point : null; }));
     const jointed = new Set(d.joints.map((j) => j.point));
@@ -233,25 +259,6 @@ export class Canvas {
       points.push([`t ${name}`, "text", {class: "label", x, y}, name]);
     }
     patch(L.points, points);
-    // dimensions: along a link (a -> b), upright, a little to its side; an input's at its pivot
-    const dims = [];
-    for (const dm of scene.dims || []) {
-      if (!known(dm.a) || (dm.b && !known(dm.b))) continue;
-      const [X0, Y0] = S(dm.a);
-      let attrs;
-      if (dm.b) {
-        const [X1, Y1] = S(dm.b);
-        let ang = Math.atan2(Y1 - Y0, X1 - X0) * 180 / Math.PI;
-        if (ang > 90) ang -= 180; else if (ang <= -90) ang += 180;
-        const n = Math.hypot(X1 - X0, Y1 - Y0) || 1, off = 10;
-        const X = (X0 + X1) / 2 + off * (Y1 - Y0) / n, Y = (Y0 + Y1) / 2 - off * (X1 - X0) / n;
-        attrs = {x: X, y: Y, "text-anchor": "middle", transform: `rotate(${ang} ${X} ${Y})`};
-      } else {
-        attrs = {x: X0 - 12, y: Y0 + 26, "text-anchor": "end"};
-      }
-      dims.push([`d ${dm.name}`, "text", {class: "dim", "data-dim": dm.name, ...attrs}, dm.text]);
-    }
-    patch(L.dims, dims);
     L.poses.g.replaceChildren();
     const path = scene.poses.filter((t) => t.mark === "point").map((t) => S(t.xy));
     if (path.length > 1) el("polyline", {class: "target-path", points: path.join(" ")}, L.poses.g);
@@ -297,8 +304,11 @@ export class Canvas {
 
 // Labels placed so that they cover no label placed before them and no point: each at the
 // first of a few places around its anchor that is free, else at the least covered one.  A
-// label's box is estimated (a character about 0.6 of the font's size wide), which is
+// label's box is estimated (a character about CHAR of the font's size wide), which is
 // cheap enough for every frame of a drag.
+const DIM_SIZE = 11;          // px, as app.css sets .dim
+const CHAR = 0.62;            // a character's width, about, in sizes of its font
+const PAD = 1.5;              // px kept free around each text
 const SPOTS = [[8, -8, 0], [8, 17, 0], [-8, -8, 1], [-8, 17, 1], [0, -12, 0.5], [0, 22, 0.5],
                [16, -16, 0], [16, 26, 0], [-16, -16, 1], [-16, 26, 1], [0, -24, 0.5], [0, 34, 0.5]];
 
@@ -308,18 +318,34 @@ function labelPlacer(points) {
     s + Math.max(0, Math.min(b[2], t[2]) - Math.max(b[0], t[0])) *
         Math.max(0, Math.min(b[3], t[3]) - Math.max(b[1], t[1])), 0);
   // where the baseline of a label of `text` in a font of `size` px starts, about (X, Y)
-  return (X, Y, text, size) => {
-    const w = 0.6 * size * text.length;
+  const place = (X, Y, text, size) => {
+    const w = CHAR * size * text.length;
     let best = null, least = Infinity;
     for (const [dx, dy, align] of SPOTS) {
       const x = X + dx - align * w, y = Y + dy;
-      const b = [x, y - 0.8 * size, x + w, y + 0.2 * size];
+      const b = [x - PAD, y - 0.8 * size - PAD, x + w + PAD, y + 0.2 * size + PAD];
       const c = covered(b);
       if (c < least) { best = [x, y, b]; least = c; if (c === 0) break; }
     }
     taken.push(best[2]);
     return best;
   };
+  place.reserve = (box) => taken.push(box);     // a text placed otherwise: keep off it
+  place.cost = covered;                         // how much of what is placed a box covers
+  return place;
+}
+
+// The box on the screen, [left, top, right, bottom], of a text drawn with `attrs` (x, y,
+// text-anchor, a rotation about (x, y)) in a font of `size` px, estimated as labelPlacer's.
+function textBox(attrs, text, size) {
+  const w = CHAR * size * text.length, h = size;
+  const left = {middle: -w / 2, end: -w}[attrs["text-anchor"]] ?? 0;
+  // the unrotated box about (x, y), then its corners turned
+  const corners = [[left, -0.8 * h], [left + w, -0.8 * h], [left, 0.2 * h], [left + w, 0.2 * h]];
+  const turn = /rotate\(([-\d.e]+)/.exec(attrs.transform || "");
+  const a = turn ? Number(turn[1]) * Math.PI / 180 : 0, c = Math.cos(a), s = Math.sin(a);
+  const xs = corners.map(([u, v]) => attrs.x + u * c - v * s), ys = corners.map(([u, v]) => attrs.y + u * s + v * c);
+  return [Math.min(...xs) - PAD, Math.min(...ys) - PAD, Math.max(...xs) + PAD, Math.max(...ys) + PAD];
 }
 
 // A layer's elements made as `items` say ([key, tag, attributes, text]), in that order:
