@@ -8,7 +8,7 @@ CONSTRAINTS := constraints.txt
 # the newest versions pip resolves today, in a virtual environment of their own
 LATEST := .venv-latest
 
-.PHONY: demo test test-latest lock bench clean
+.PHONY: demo test test-latest lock bench docs clean
 
 $(STAMP): pyproject.toml $(CONSTRAINTS)
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -52,8 +52,20 @@ lock: test-latest
 	{ sed -n '/^#/p' $(CONSTRAINTS); cat $(LATEST)/versions.txt; } > $(CONSTRAINTS).new
 	mv $(CONSTRAINTS).new $(CONSTRAINTS)
 
+# The documentation site, in English and Portuguese (docs/site/, one configuration for both):
+# warnings are errors, and the figures and examples run as the pages are built.  Not nitpicky
+# (-n): the docstrings name numpy's and the standard library's types, which an offline build
+# cannot resolve.
+DOCS := docs/_build/html
+SPHINX := $(BIN)/sphinx-build -W --keep-going -q -c docs/site
+
+docs: $(STAMP)
+	$(SPHINX) -D language=en docs/site/en $(DOCS)/en
+	$(SPHINX) -D language=pt docs/site/pt $(DOCS)/pt
+	cp docs/site/index.html $(DOCS)/index.html
+
 bench: $(STAMP)
 	for f in benchmarks/*.py; do $(BIN)/python $$f || exit 1; done
 
 clean:
-	rm -rf $(VENV) $(LATEST) out .pytest_cache .hypothesis
+	rm -rf $(VENV) $(LATEST) out .pytest_cache .hypothesis docs/_build
