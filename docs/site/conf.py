@@ -11,6 +11,8 @@ one configuration; the language is chosen on the command line::
 import os
 import re
 
+from docutils import nodes
+
 # the pure-numpy engine: the same numbers as the compiled kernel, without waiting for it
 os.environ.setdefault("KINELAB_KERNEL", "numpy")
 os.environ.setdefault("MPLBACKEND", "Agg")
@@ -23,18 +25,15 @@ language = "en"
 extensions = [
     "myst_parser",
     "sphinx.ext.autodoc",
-    "sphinx.ext.autosummary",
     "sphinx.ext.napoleon",
-    "sphinx.ext.mathjax",
     "matplotlib.sphinxext.plot_directive",
 ]
 
-source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
+source_suffix = {".md": "markdown"}
 exclude_patterns = ["_build"]
 root_doc = "index"
 
 # MyST: the guides link to each other's sections by their titles ("#files-kinelab-reads")
-myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence", "deflist"]
 myst_heading_anchors = 4
 # a type named in a docstring ("q", "N", "Mechanism") may be an attribute of several classes:
 # Sphinx links the first and says so; that is no broken link
@@ -47,7 +46,6 @@ autodoc_default_options = {"members": True, "show-inheritance": False}
 napoleon_google_docstring = False
 napoleon_numpy_docstring = True
 napoleon_use_ivar = True
-autosummary_generate = False
 
 # figures: run at build time, small, no source links (the code is on the page)
 plot_include_source = True
@@ -90,7 +88,19 @@ def _absolute_bars(app, what, name, obj, options, lines):
                            for part in _LITERAL.split(line))
 
 
+def _errata_across_languages(app, doctree, docname):
+    """The Portuguese errata (docs/errata.pt.md) point to the English ones as errata.md, which
+    on the Portuguese site is the page itself: send that link to the English site."""
+    if app.config.language != "pt" or docname != "errata":
+        return
+    for ref in doctree.findall(nodes.reference):
+        if ref.get("refuri") in ("", "#") and ref.astext() == "errata.md":
+            ref["refuri"] = "../en/errata.html"
+            ref["internal"] = False
+
+
 def setup(app):
+    app.connect("doctree-resolved", _errata_across_languages)
     app.connect("config-inited", _language_titles)
     app.connect("autodoc-process-docstring", _absolute_bars)
     return {"parallel_read_safe": True}
