@@ -805,12 +805,14 @@ def _smallest_singular_value(G, A: np.ndarray, scale: float) -> float:
     v = 1.0 + np.arange(n) / n
     v = v / math.sqrt(float(v @ v))
     sigma = 0.0
-    for _ in range(k.SINGULAR_STEPS):
+    for step in range(k.SINGULAR_STEPS):
         w = lu_solve(factors, v * cn, trans=1, check_finite=False) * rn
         size = math.sqrt(float(w @ w))
         if not math.isfinite(size) or size == 0.0:
             return 0.0
         sigma = 1.0 / size
+        if step == k.SINGULAR_STEPS - 1:    # (the next v would serve no further step)
+            break
         v = lu_solve(factors, w * rn, check_finite=False) * cn
         size = math.sqrt(float(v @ v))
         if not math.isfinite(size) or size == 0.0:

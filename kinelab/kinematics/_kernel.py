@@ -970,6 +970,8 @@ def _smallest_singular_value(A, piv, n, cn, rn, v, w):
         if not math.isfinite(s) or s == 0.0:
             return 0.0
         sigma = 1.0 / s                     # |B^-T v| = 1 / sigma_min for v the singular vector
+        if it == SINGULAR_STEPS - 1:        # (the next v would serve no further step)
+            break
         for i in range(n):                  # v = B^-1 w = C^-1 A^-1 R^-1 w, normalised
             v[i] = w[i] * rn[i]
         _lu_solve(A, piv, v, n)
