@@ -297,16 +297,19 @@ class _SketchedDesigns(Designs):
 
     def _catalogue(self, D):
         fam = self.fam
+        good = self._good()
         values = {p: self.rows[p] if p in self.rows else np.full(D, fam.defaults.get(p, math.nan))
                   for p in fam.parameters}
+        # a placeholder in the rows already reported: their values may overflow the sketch
+        values = {p: np.where(good, v, 1.0) for p, v in values.items()}
         point = fam.make is mechanisms.fourbar and fam.has_point(self.rows)
         if fam.make is mechanisms.fourbar:
             for c in _POINT_COLUMNS:       # no coupler point, or one where a row leaves it out
                 values[c] = np.nan_to_num(values[c]) if point else None
             values = {k: a for k, a in values.items() if a is not None}
         xy, axes, ok = mechanisms.sketches(fam.name, values, fam.options)
-        ok &= self._good()
-        for d in np.flatnonzero(~ok & self._good()):     # the constructor says why
+        ok &= good
+        for d in np.flatnonzero(~ok & good):     # the constructor says why
             mech = self._build(d)
             if mech is not None:
                 ok[d] = True

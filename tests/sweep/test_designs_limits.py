@@ -27,3 +27,12 @@ def test_lengths_beyond_the_models_limits_are_reported_per_row():
     assert table["assembles"].tolist() == [True, False, False]
     problems = table.attrs["problems"]
     assert "1e+09 m" in problems[1] and "1e+09 m" in problems[2]
+
+
+def test_lengths_beyond_the_models_limits_never_reach_the_sketches():
+    designs = {"crank": [1.0, 1e308, 1.0], "rod": [3.0, 1.0, 3.0], "offset": [0.0, 0.0, -1e308]}
+    with np.errstate(all="raise"):          # the reported rows are not sketched
+        table = kl.sweep.run("slider_crank", designs)
+    assert table["assembles"].tolist() == [True, False, False]
+    problems = table.attrs["problems"]
+    assert "1e+09 m" in problems[1] and "offset" in problems[2]
