@@ -265,13 +265,13 @@ def _dead_centres(fam: Family, designs: Designs, batch: Batch, assembled: np.nda
         j = np.sort(np.argsort(~flips[two], axis=1, kind="stable")[:, :2], axis=1)   # (n, 2)
         step = 2 * math.pi / S
         qa = batch.q[two, 0][:, None] + j * step
-        roots, values = _roots(fam, designs, two, qa, qa + step, K[two[:, None], j],
-                               K[two[:, None], (j + 1) % S])
+        roots, values, undefined = _roots(fam, designs, two, qa, qa + step, K[two[:, None], j],
+                                          K[two[:, None], (j + 1) % S])
         first = np.mod(roots[:, 1] - roots[:, 0], 2 * math.pi)
         slow, fast = np.maximum(first, 2 * math.pi - first), np.minimum(first, 2 * math.pi - first)
-        ratio[two] = slow / fast
+        ratio[two] = np.where(undefined, np.nan, slow / fast)
         diff = values[:, 1] - values[:, 0]
-        swing[two] = np.abs(wrap_angle(diff) if angle else diff)
+        swing[two] = np.where(undefined, np.nan, np.abs(wrap_angle(diff) if angle else diff))
     return {"time_ratio": ratio, "swing": swing}
 
 
@@ -288,10 +288,13 @@ def _fourbar_dead_centres(designs, assembled):
 
 def _roots(fam, designs, rows, a, b, fa, fb):
     """Zeros of the output's K between a and b (n, 2), where K has the signs fa and fb, by
-    the Illinois variant of regula falsi; and the output's value there."""
+    the Illinois variant of regula falsi; the output's value there; and whether K was not
+    defined at some step (n,): a sign change of K through a pole, a singular configuration,
+    where there is no time ratio."""
     x = 0.5 * (a + b)
     value = np.full(a.shape, np.nan)
     side = np.zeros(a.shape)           # +1: the last step moved a, -1: it moved b
+    undefined = np.zeros(len(rows), bool)
     some = designs.take(rows)
     for _ in range(_ROOT_STEPS):
         denom = fb - fa
@@ -299,6 +302,10 @@ def _roots(fam, designs, rows, a, b, fa, fb):
         sub = some.batch(x_new)
         fx = sub.K(fam.output)
         value = sub.value(fam.output)
+        # no zero of K there: the steps go on with a finite stand-in
+        lost = ~np.isfinite(fx) | sub.singular
+        undefined |= lost.any(axis=1)
+        fx = np.where(lost, fa, fx)
         done = np.all(np.abs(x_new - x) <= 1e-14 * (1 + np.abs(x)))
         x = x_new
         if done:
@@ -309,7 +316,7 @@ def _roots(fam, designs, rows, a, b, fa, fb):
         a, fa = np.where(move_a, x, a), np.where(move_a, fx, fa)
         b, fb = np.where(move_a, b, x), np.where(move_a, fb, fx)
         side = np.where(move_a, 1.0, -1.0)
-    return x, value
+    return x, value, undefined
 
 
 def descriptors(points: np.ndarray, harmonics: int = DEFAULT_HARMONICS) -> np.ndarray:

@@ -1,5 +1,6 @@
 """Each metric of a four-bar study against an independent computation: Grashof's
 inequality, the law of cosines, the engine's limit positions and reachable ranges."""
+import dataclasses
 import math
 
 import numpy as np
@@ -228,6 +229,26 @@ def change_point_designs(n=40, seed=8):
         g, b = rng.uniform(a + 0.5, 5.0, 2)
         rows.append((g, a, b, a + b - g) if a + b - g > a else (g, a, b, g + 0.3))
     return {k: [r[i] for r in rows] for i, k in enumerate(LINKS)}
+
+
+@pytest.mark.parametrize("samples", [72, 73])
+def test_change_points_of_a_model_files_four_bars_against_the_engine(samples):
+    """The same change-point four-bars as a model's family (its points as columns, through
+    the kernel's path): no time ratio or swing where the engine's time_ratio has none, at an
+    even number of samples (the change points at samples) and an odd one (between them)."""
+    d = change_point_designs()
+    mechs = [kl.mechanisms.fourbar(*(d[k][i] for k in LINKS)) for i in range(len(d["ground"]))]
+    base = dataclasses.replace(mechs[0], parameters={})
+    cols = {f"{p}.{c}": [getattr(m.point(p), c) for m in mechs] for p in ("A", "B", "O4") for c in "xy"}
+    df = kl.sweep.run(kl.sweep.family(base, output="rocker"), cols, samples=samples,
+                      metrics=("time_ratio", "swing"), progress=False)
+    for i, fb in enumerate(mechs):
+        ratio, swing = _engine_time_ratio(fb)
+        if math.isnan(ratio):
+            assert math.isnan(df["time_ratio"][i]) and math.isnan(df["swing"][i]), i
+        else:
+            assert df["time_ratio"][i] == pytest.approx(ratio, rel=1e-9), i
+            assert df["swing"][i] == pytest.approx(swing, abs=1e-9), i
 
 
 def test_change_points_against_the_engine():
