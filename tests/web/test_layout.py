@@ -48,6 +48,14 @@ def overlaps(boxes):
     return found
 
 
+def at_the_sketch_and_half_a_turn_on(pg):
+    """The page shown at its first sample, then half its samples on: each yielded in turn."""
+    yield "sketch"
+    pg.evaluate("() => window.kinelab.setIndex(Math.floor(window.kinelab.study.samples / 2))")
+    pg.wait_for_timeout(500)
+    yield "half a turn on"
+
+
 @pytest.mark.parametrize("example", ["crank_rocker", "stephenson6", "whitworth"])
 def test_labels_of_points_and_instant_centres_do_not_overlap(page, example):
     """Every point's name and every instant centre's label drawn where no other label is
@@ -57,10 +65,7 @@ def test_labels_of_points_and_instant_centres_do_not_overlap(page, example):
         page.check("#show-centres")
     page.wait_for_function("() => document.querySelectorAll('#canvas text.centre-label').length > 0",
                            timeout=120_000)
-    for index in (0, "half"):
-        if index == "half":
-            page.evaluate("() => window.kinelab.setIndex(Math.floor(window.kinelab.study.samples / 2))")
-            page.wait_for_timeout(500)
+    for _ in at_the_sketch_and_half_a_turn_on(page):
         boxes = page.evaluate("""() => [...document.querySelectorAll(
             '#canvas text.label, #canvas text.centre-label')].map((t) => {
                 const b = t.getBBox(); return [b.x, b.y, b.width, b.height, t.textContent]; })""")
@@ -81,10 +86,7 @@ def test_labels_of_points_keep_off_the_dimensions(page, example, size):
     assert page.locator("#dims").is_checked()
     page.wait_for_function("() => document.querySelectorAll('#canvas text.dim').length > 2",
                            timeout=120_000)
-    for index in (0, "half"):
-        if index == "half":
-            page.evaluate("() => window.kinelab.setIndex(Math.floor(window.kinelab.study.samples / 2))")
-            page.wait_for_timeout(500)
+    for index in at_the_sketch_and_half_a_turn_on(page):
         labels, dims = ([b + [f"{kind} {t}"] for *b, t in page.evaluate(f"""() => [...document
             .querySelectorAll('#canvas text.{kind}')].map((t) => {{
                 const b = t.getBoundingClientRect();
