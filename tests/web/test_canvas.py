@@ -46,6 +46,36 @@ def test_the_wheel_zooms_about_the_pointer_and_the_model_stays(page):
     assert state(page, "window.kinelab.model") == model
 
 
+def test_two_fingers_pinch_zoom_about_their_middle_and_the_model_stays(page):
+    """Two touch pointers drawn apart to twice their distance, away from the linkage: the
+    drawing grows twice about their middle, which stays put; the model is the same."""
+    open_example(page, "crank_rocker")
+    model = state(page, "window.kinelab.model")
+    o2, b = point_on_screen(page, "O2"), point_on_screen(page, "B")
+    box = page.locator("#canvas").bounding_box()
+    mid = (box["x"] + 60, box["y"] + box["height"] - 60)
+    page.evaluate("""([mx, my]) => {
+      const svg = document.getElementById("canvas");
+      const send = (kind, id, x, y) => svg.dispatchEvent(new PointerEvent(kind, {
+        pointerId: id, pointerType: "touch", isPrimary: id === 1, clientX: x, clientY: y,
+        bubbles: true, cancelable: true}));
+      send("pointerdown", 1, mx - 20, my);
+      send("pointerdown", 2, mx + 20, my);
+      for (let k = 1; k <= 10; k++) {            // each finger 20 px further out, in steps
+        send("pointermove", 1, mx - 20 - 2 * k, my);
+        send("pointermove", 2, mx + 20 + 2 * k, my);
+      }
+      send("pointerup", 1, mx - 40, my);
+      send("pointerup", 2, mx + 40, my);
+    }""", list(mid))
+    # each step about the fingers' middle, which stays at mid: the zoom is 2 about mid
+    expect = lambda p: (mid[0] + 2 * (p[0] - mid[0]), mid[1] + 2 * (p[1] - mid[1]))  # noqa: E731
+    wait_at(page, "O2", expect(o2))
+    wait_at(page, "B", expect(b))
+    page.shot("pinched")
+    assert state(page, "window.kinelab.model") == model
+
+
 @pytest.mark.parametrize("how", ["pan tool", "middle button"])
 def test_a_drag_pans_and_fit_brings_the_linkage_back(page, how):
     open_example(page, "crank_rocker")
