@@ -9,7 +9,8 @@ The graphical methods (Flores & Claro, *Cinemática de Mecanismos — 4. Anális
 Velocidades*, §4.6; Badan (IFG), *Análise de aceleração*) as data:
 :func:`acceleration_difference`, :func:`relative_acceleration`, :func:`velocity_polygon`,
 :func:`acceleration_polygon`, :func:`kennedy_construction`, :func:`centrodes`,
-:func:`velocity_ratio`, and :func:`differentiate` for measured curves.
+:func:`velocity_ratio`, and :func:`differentiate` for measured curves; the constructions
+step by step: :func:`tangent_construction`, :func:`velocity_image`, :func:`kennedy_steps`.
 """
 from kinelab._lazy import exports
 
@@ -21,6 +22,9 @@ __getattr__, __dir__ = exports(__name__, {
     "kinelab.kinematics._assemble": ("Assembly", "SketchNotAssembled", "assemble", "pose",
                                      "reassemble"),
     "kinelab.kinematics._branches": ("ChangePoint",),
+    "kinelab.kinematics._constructions": ("KennedyDrawingStep", "KennedyLine", "KennedySteps",
+                                          "TangentConstruction", "VelocityImage", "kennedy_steps",
+                                          "tangent_construction", "velocity_image"),
     "kinelab.kinematics._dead_centres": ("DeadCentres", "Toggle", "dead_centres", "toggles",
                                          "input_span"),
     "kinelab.kinematics._centrodes": ("Centrodes", "KennedyConstruction", "KennedyStep",
@@ -52,4 +56,5 @@ __all__ = ["analyze", "analyze_designs", "DesignSolution", "plan", "reachable_ra
            "AccelerationPolygon", "Side", "LinkImage", "kennedy_construction",
            "KennedyConstruction", "KennedyStep", "centrodes", "Centrodes", "velocity_ratio",
            "differentiate", "Derivatives", "dead_centres", "DeadCentres", "toggles", "Toggle",
-           "input_span"]
+           "input_span", "tangent_construction", "TangentConstruction", "velocity_image",
+           "VelocityImage", "kennedy_steps", "KennedySteps", "KennedyDrawingStep", "KennedyLine"]
