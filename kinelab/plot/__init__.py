@@ -6,7 +6,10 @@ sample), :func:`animate` (GIF or MP4) and :func:`save` (a figure, atomically).
 
 Graphical methods: :func:`velocity_polygon` and :func:`acceleration_polygon` (to scale, beside
 the mechanism), :func:`instant_centers` (with Kennedy's circle diagram), :func:`centrodes`,
-:func:`derivatives` (of a measured curve, with error bands).
+:func:`derivatives` (of a measured curve, with error bands); the constructions step by step,
+in English or Portuguese: :func:`tangent_construction` (graphical differentiation),
+:func:`velocity_image` (by similar triangles), :func:`kennedy_steps` (with the circle
+diagram).
 
 Dynamics: :func:`effort_curves`, :func:`reaction_curves`, :func:`shaking_curves`,
 :func:`energy_curves`.
@@ -20,6 +23,7 @@ centres).
 Sweeps: :func:`tolerance_band` and :func:`error_histogram` (a tolerance study).
 """
 from kinelab.plot._animate import animate, can_write_mp4
+from kinelab.plot._constructions import kennedy_steps, tangent_construction, velocity_image
 from kinelab.plot._dynamics import effort_curves, energy_curves, reaction_curves, shaking_curves
 from kinelab.plot._figures import (coefficients, coupler_curve, curves, input_axis, mechanism, save,
                                    transmission)
@@ -36,4 +40,5 @@ __all__ = ["curves", "coefficients", "coupler_curve", "transmission", "mechanism
            "five_positions", "effort_curves",
            "reaction_curves", "shaking_curves", "energy_curves", "velocity_polygon",
            "acceleration_polygon", "instant_centers", "centrodes", "derivatives", "drawing_scale",
-           "PANEL_CM", "tolerance_band", "error_histogram"]
+           "PANEL_CM", "tolerance_band", "error_histogram", "tangent_construction",
+           "velocity_image", "kennedy_steps"]
