@@ -11,6 +11,7 @@ import numpy as np
 
 from kinelab import io, kinematics, solvers
 from kinelab.cli._analyze import MODEL, SAMPLES, configuration, with_speeds
+from kinelab.cli import _constructions as steps_
 from kinelab.cli._draw import FIGURE_FORMATS, _agg
 from kinelab.cli._format import _num
 from kinelab._files import Outputs, outputs, safe_name, write_csv
@@ -75,8 +76,10 @@ def _save(fig, files: Outputs, name: str, formats) -> list[Path]:
 @DEGREES
 @CHANGE_POINTS
 @VERIFY
+@steps_.IMAGE
+@steps_.LANG
 def polygons(model, at, speed, out, formats, velocity_scale, acceleration_scale, si, degrees,
-             change_points, verify_):
+             change_points, verify_, construction, lang):
     """Velocity and acceleration polygons of MODEL at one input: every point's velocity and
     acceleration from the pole, every side with its parts (normal, tangential, Coriolis,
     sliding), printed and drawn to scale beside the mechanism.  With --verify, every vertex,
@@ -89,6 +92,7 @@ def polygons(model, at, speed, out, formats, velocity_scale, acceleration_scale,
     if speed is not None:
         mf = with_speeds(mf, parse_inputs(speed, mf, "--speed", rate=True))
     units = output_units(mf.units, si, degrees)
+    images = steps_.check_images(mf) if construction else []
     sol = configuration(mf, at, change_points)
     with errors_from(mf, "--at"):
         vp = kinematics.velocity_polygon(sol)
@@ -131,6 +135,7 @@ def polygons(model, at, speed, out, formats, velocity_scale, acceleration_scale,
                         f"{base}_velocity_polygon", formats)
         written += _save(kplot.acceleration_polygon(sol, units=units, scale=acceleration_scale),
                          files, f"{base}_acceleration_polygon", formats)
+        written += steps_.write_images(mf, sol, images, files, base, formats, units, lang)
         if certificate is not None:
             written.append(files.write(f"{base}_polygons_certificate.json", certificate.to_json))
     said_written(written)
@@ -149,7 +154,9 @@ def polygons(model, at, speed, out, formats, velocity_scale, acceleration_scale,
 @SAMPLES
 @SI
 @CHANGE_POINTS
-def centres(model, at, out, formats, with_centrodes, samples, si, change_points):
+@steps_.STEPS
+@steps_.LANG
+def centres(model, at, out, formats, with_centrodes, samples, si, change_points, steps, lang):
     """Every instant centre of MODEL at one input, found as the notes find them: primary
     centres from the joints, the others by Kennedy's theorem in the order of the circle
     diagram; printed and drawn on the mechanism beside the circle diagram."""
@@ -182,6 +189,8 @@ def centres(model, at, out, formats, with_centrodes, samples, si, change_points)
     with outputs(out) as files:
         written = _save(kplot.instant_centers(sol, units=units), files, f"{base}_centres",
                         formats)
+        if steps:
+            written += steps_.write_steps(mf, sol, files, base, formats, units, lang)
         if with_centrodes:
             written += _centrodes(mf, sol, files, base, formats, samples, units, change_points)
     said_written(written)
@@ -229,18 +238,26 @@ PLOTTED = 20_000     # samples a figure of derivatives draws at most (every k-th
 @click.option("--out", "-o", "out", default=".", show_default=True, metavar="DIR",
               help="Directory for the table and the figure.")
 @FORMATS
-def differentiate_command(data, x_column, y_column, window, out, formats):
+@steps_.TANGENTS
+@steps_.POINTS
+@steps_.POLAR
+@steps_.TANGENT
+@steps_.LANG
+def differentiate_command(data, x_column, y_column, window, out, formats, construction, points,
+                          polar_distance, tangent, lang):
     """Velocity and acceleration of a measured curve: DATA is a CSV file with a header row
     (e.g. 't [s], x [mm]'), an abscissa (time or an input angle) and a displacement, evenly
     sampled or not, with noise.  Writes the derivatives with their error bands (a table and a
     figure) and prints how the smoothing was chosen."""
     from kinelab import plot as kplot
     _agg()
+    steps_.check_tangents(construction, points, polar_distance, tangent)
     curve = io.read_curve(data, x=x_column, y=y_column)
     try:
         d = solvers.differentiate(curve.x, curve.y, window=window)
     except ModelError as exc:           # name the file in the message
         raise ModelError(exc.problems, source=curve.source) from None
+    tc = steps_.tangents(curve, points, polar_distance, tangent) if construction else None
     xn, yn = curve.x_name or "x", curve.y_name or "y"
     xu, yu = curve.x_unit, curve.y_unit
 
@@ -263,6 +280,8 @@ def differentiate_command(data, x_column, y_column, window, out, formats):
         fig = kplot.derivatives(drawn, x_label=f"{xn}{unit(xu)}", y_label=yn, y_unit=yu or "1",
                                 x_unit=xu or "1")
         written += _save(fig, files, f"{base}_derivatives", formats)
+        if tc is not None:
+            written += steps_.write_tangents(tc, d, files, base, formats, (xn, yn, xu, yu), lang)
     how = ("as --window says" if window is not None else
            f"0.7 of the {d.window_gcv} generalised cross-validation chose")
     click.echo(f"{shown_path(Path(data).name)}: {len(d.x)} samples of {yn} against {xn}; noise about "
