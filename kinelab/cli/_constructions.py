@@ -92,7 +92,7 @@ def tangents(curve, points, polar_distance, tangent):
     from kinelab import kinematics
     from kinelab.errors import ModelError
     try:
-        return kinematics.tangent_construction(curve.x, curve.y, points=12 if points is None else points,
+        return kinematics.tangent_construction(curve.x, curve.y, points=points,
                                                polar_distance=polar_distance,
                                                method=tangent or "chord")
     except ModelError as exc:

@@ -106,7 +106,7 @@ class TangentConstruction:
                 f"{self.method})")
 
 
-def tangent_construction(x: ArrayLike, y: ArrayLike, *, points: int = 12,
+def tangent_construction(x: ArrayLike, y: ArrayLike, *, points: int | None = None,
                          polar_distance: float | None = None,
                          method: Literal["chord", "fitted"] = "chord") -> TangentConstruction:
     """Differentiate a sampled curve by the notes' construction (Flores & Claro, §4.6.4,
@@ -117,8 +117,9 @@ def tangent_construction(x: ArrayLike, y: ArrayLike, *, points: int = 12,
     ----------
     x, y : array_like, shape (N,)
         The curve: abscissae (time or an input angle) that increase, and values.
-    points : int
-        How many points to draw tangents at (at least 1): every k-th sample, with
+    points : int, optional
+        How many points to draw tangents at (at least 1; default 12, or as many as the
+        samples allow, N - 2, when fewer): every k-th sample, with
         k = (N - 1) // (points + 1), so that each has a neighbour k samples away on either side.
     polar_distance : float, optional
         H, in x's unit.  Default: the notes' choice, twice the interval between the chosen
@@ -163,10 +164,15 @@ def tangent_construction(x: ArrayLike, y: ArrayLike, *, points: int = 12,
     if method not in ("chord", "fitted"):
         raise ModelError(f"method: expected 'chord' or 'fitted', got {describe(method)}"
                          f"{suggest(str(method), ['chord', 'fitted'])}")
+    n = len(x)
+    if n < 3:
+        raise ModelError(f"x: expected at least 3 samples (a point and a neighbour on either "
+                         f"side), got {n}")
+    if points is None:
+        points = min(12, n - 2)
     if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or points < MIN_POINTS:
         raise ModelError(f"points: expected a whole number of points, at least {MIN_POINTS}, "
                          f"got {describe(points)}")
-    n = len(x)
     if n < int(points) + 2:
         raise ModelError(f"points: expected at most {max(n - 2, 0)} points for {n} samples (each "
                          f"needs a sample on either side), got {int(points)}; ask for fewer points")

@@ -143,7 +143,8 @@ def tangent_construction(tc, *, numerical=None, x_label: str = "t", y_label: str
     >>> t = np.linspace(0.0, 1.0, 61)
     >>> tc = kl.kinematics.tangent_construction(t, np.sin(3 * t), points=8)
     >>> fig = kl.plot.tangent_construction(tc, lang="pt")
-    >>> [t.get_text() for t in fig.texts][1]
+    >>> steps = [t.get_text() for t in fig.texts if (t.get_gid() or "").startswith("steps")]
+    >>> steps[1]
     '2: polo P à distância polar H à esquerda de O'
     """
     import matplotlib.pyplot as plt
@@ -281,7 +282,7 @@ def velocity_image(sol: KinematicSolution, link: str, *, known: tuple[str, str] 
     --------
     >>> fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
     >>> fig = kl.plot.velocity_image(kl.analyze(fb, q=np.radians(60.0), qd=10.0), "coupler")
-    >>> [t.get_text() for t in fig.texts][3:]
+    >>> [t.get_text() for t in fig.texts if (t.get_gid() or "").startswith("steps")][3:]
     ['4: triangle abp similar to ABP', '5: op = V_P']
     """
     import matplotlib.pyplot as plt
@@ -397,7 +398,7 @@ def kennedy_steps(sol: KinematicSolution, sample: int = 0, *,
     --------
     >>> fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5)
     >>> fig = kl.plot.kennedy_steps(kl.analyze(fb, q=np.radians(60.0)))
-    >>> [t.get_text() for t in fig.texts][1:]
+    >>> [t.get_text() for t in fig.texts if (t.get_gid() or "").startswith("steps")]
     ['0: primary centres (the joints)', '1: O13 = (1a) O12-O23 × (1b) O14-O34', '2: O24 = (2a) O12-O14 × (2b) O23-O34']
     """
     import matplotlib.pyplot as plt
