@@ -1,0 +1,29 @@
+"""Disk cams from a motion program (Norton, *Design of Machinery*, ch. 8).
+
+- motion laws (:data:`LAW_NAMES`: simple harmonic, cycloidal, 3-4-5 and 4-5-6-7 polynomials,
+  modified trapezoid, modified sine, a polynomial through boundary conditions) and
+  :class:`Segment`\\ s of rise, dwell and return making a :class:`MotionProgram` over one turn,
+  its :class:`SVAJ` in closed form and its :class:`Discontinuity`\\ s at the joints;
+- profiles: :class:`Follower` (knife-edge, roller, flat-faced; translating or oscillating),
+  :func:`profile` (pitch curve, profile, pressure angle, radius of curvature, undercutting) in
+  a :class:`CamProfile`, :func:`smallest_base_circle`;
+- export: :func:`profile_svg` and :func:`write_dxf`;
+- tasks: :func:`read_cam_task` (a task file's content, as ``kinelab cam`` reads it) and
+  :func:`solve_cam_task`.
+"""
+from kinelab._lazy import exports
+
+__getattr__, __dir__ = exports(__name__, {
+    "kinelab.cams._laws": ("LAWS", "law_values", "polynomial_coefficients"),
+    "kinelab.cams._program": ("Segment", "MotionProgram", "SVAJ", "Discontinuity", "KINDS",
+                              "LAW_NAMES"),
+    "kinelab.cams._profile": ("Follower", "CamProfile", "profile", "smallest_base_circle",
+                              "FOLLOWER_TYPES", "FOLLOWER_MOTIONS"),
+    "kinelab.cams._export": ("profile_svg", "write_dxf"),
+    "kinelab.cams._task": ("CamTask", "read_cam_task", "solve_cam_task"),
+})
+
+__all__ = ["LAWS", "LAW_NAMES", "KINDS", "law_values", "polynomial_coefficients", "Segment",
+           "MotionProgram", "SVAJ", "Discontinuity", "Follower", "CamProfile", "profile",
+           "smallest_base_circle", "FOLLOWER_TYPES", "FOLLOWER_MOTIONS", "profile_svg",
+           "write_dxf", "CamTask", "read_cam_task", "solve_cam_task"]

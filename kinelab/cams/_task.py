@@ -1,0 +1,1 @@
+CamTask = read_cam_task = solve_cam_task = None
