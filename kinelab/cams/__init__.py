@@ -20,10 +20,10 @@ __getattr__, __dir__ = exports(__name__, {
     "kinelab.cams._profile": ("Follower", "CamProfile", "profile", "smallest_base_circle",
                               "FOLLOWER_TYPES", "FOLLOWER_MOTIONS"),
     "kinelab.cams._export": ("profile_svg", "write_dxf"),
-    "kinelab.cams._task": ("CamTask", "read_cam_task", "solve_cam_task"),
+    "kinelab.cams._task": ("CamTask", "CamSolution", "read_cam_task", "solve_cam_task"),
 })
 
 __all__ = ["LAWS", "LAW_NAMES", "KINDS", "law_values", "polynomial_coefficients", "Segment",
            "MotionProgram", "SVAJ", "Discontinuity", "Follower", "CamProfile", "profile",
            "smallest_base_circle", "FOLLOWER_TYPES", "FOLLOWER_MOTIONS", "profile_svg",
-           "write_dxf", "CamTask", "read_cam_task", "solve_cam_task"]
+           "write_dxf", "CamTask", "CamSolution", "read_cam_task", "solve_cam_task"]

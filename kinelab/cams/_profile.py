@@ -265,12 +265,12 @@ def profile(program: MotionProgram, follower: Follower, base_radius: float, *,
     >>> p = MotionProgram([Segment("rise", 0, d(180), 0.02, "cycloidal"),
     ...                    Segment("return", d(180), d(360), 0.02, "cycloidal")])
     >>> cam = profile(p, Follower("roller", roller_radius=0.01), 0.04, samples=5)
-    >>> cam.pitch.round(4)          # (0, Rp + S) turned back by theta
-    array([[ 0.    ,  0.05  ],
-           [ 0.06  ,  0.    ],
-           [ 0.    , -0.07  ],
-           [-0.06  , -0.    ],
-           [ 0.    ,  0.05  ]])
+    >>> cam.pitch.round(4) + 0.0    # (0, Rp + S) turned back by theta
+    array([[ 0.  ,  0.05],
+           [ 0.06,  0.  ],
+           [ 0.  , -0.07],
+           [-0.06,  0.  ],
+           [ 0.  ,  0.05]])
     """
     if not isinstance(base_radius, (int, float)) or not math.isfinite(base_radius) \
             or not base_radius > 0:

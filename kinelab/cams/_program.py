@@ -155,8 +155,10 @@ class MotionProgram:
     ...                    Segment("dwell", d(90), d(180)),
     ...                    Segment("return", d(180), d(270), 0.025, "harmonic"),
     ...                    Segment("dwell", d(270), d(360))])
-    >>> [str(j) for j in p.discontinuities][0][:30]
-    'A jumps by 0.0200 at 180 deg, b'
+    >>> for j in p.discontinuities:      # harmonic: A = -h pi**2 / (2 beta**2) at its ends
+    ...     print(j.quantity, round(j.jump, 9), round(np.degrees(j.angle)), j.error)
+    A -0.05 180 False
+    A -0.05 270 False
     >>> p.svaj(d([45, 135])).S
     array([0.0125, 0.025 ])
     """

@@ -42,6 +42,9 @@ main.add_lazy_command("synth", "kinelab.cli._synthesis:synth",
                       'Dimensional synthesis from the TOML task file TASK: a four-bar through '
                       'positions, a function or path generator, a crank-rocker for a swing and '
                       'a time ratio, a quick return.')
+main.add_lazy_command("cam", "kinelab.cli._cam:cam_command",
+                      "Design a disk cam from the TOML task file TASK: a motion program of rise, "
+                      "dwell and return segments and a follower.")
 main.add_lazy_command("dynamics", "kinelab.cli._dynamics:dynamics_command",
                       "Actuator efforts, joint reactions and shaking force of MODEL over its "
                       "inputs' sweep.")

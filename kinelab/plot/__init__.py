@@ -21,8 +21,12 @@ centre-point curves and Burmester's points), :func:`structural_error`,
 centres).
 
 Sweeps: :func:`tolerance_band` and :func:`error_histogram` (a tolerance study).
+
+Cams: :func:`cam_svaj` (the SVAJ diagram), :func:`cam_profile`, :func:`cam_pressure` (the
+pressure angle over the cycle), :func:`cam_curvature` (radius of curvature).
 """
 from kinelab.plot._animate import animate, can_write_mp4
+from kinelab.plot._cams import cam_curvature, cam_pressure, cam_profile, cam_svaj
 from kinelab.plot._constructions import kennedy_steps, tangent_construction, velocity_image
 from kinelab.plot._dynamics import effort_curves, energy_curves, reaction_curves, shaking_curves
 from kinelab.plot._figures import (coefficients, coupler_curve, curves, input_axis, mechanism, save,
@@ -41,4 +45,5 @@ __all__ = ["curves", "coefficients", "coupler_curve", "transmission", "mechanism
            "reaction_curves", "shaking_curves", "energy_curves", "velocity_polygon",
            "acceleration_polygon", "instant_centers", "centrodes", "derivatives", "drawing_scale",
            "PANEL_CM", "tolerance_band", "error_histogram", "tangent_construction",
-           "velocity_image", "kennedy_steps"]
+           "velocity_image", "kennedy_steps", "cam_svaj", "cam_profile", "cam_pressure",
+           "cam_curvature"]

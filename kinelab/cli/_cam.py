@@ -1,0 +1,119 @@
+"""``kinelab cam TASK``: a disk cam from a motion program.
+
+A click command of the main ``kinelab`` group.  It reads a TOML task file (its format is in
+``docs/cams.md``), solves it with :func:`kinelab.cams.read_cam_task` and
+:func:`~kinelab.cams.solve_cam_task`, writes the figures, the profile (DXF, SVG) and the SVAJ
+table as one set (:func:`kinelab._files.outputs`: all of them, or none), and prints a summary
+in the task's units; the group turns kinelab errors into one-line messages with exit status 2.
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import click
+
+__all__ = ["cam_command"]
+
+
+def _columns(sol) -> dict:
+    """The SVAJ table in the task's units: per cam angle and per second."""
+    import numpy as np
+    cam, u = sol.cam, sol.task.units
+    osc = cam.follower.motion == "oscillating"
+    k, lu = (u.scale("rad"), u.angle) if osc else (u.scale("m"), u.length)
+    a, m = u.scale("rad"), u.scale("m")
+    sv = cam.svaj
+    s, v, acc, j = sv.in_time(sol.task.speed)
+    with np.errstate(divide="ignore"):
+        kappa = 1.0 / cam.profile_radius
+    return {
+        f"theta [{u.angle}]": sv.theta / a,
+        f"S [{lu}]": sv.S / k, f"V [{lu}/{u.angle}]": sv.V / k * a,
+        f"A [{lu}/{u.angle}^2]": sv.A / k * a ** 2, f"J [{lu}/{u.angle}^3]": sv.J / k * a ** 3,
+        f"v [{lu}/s]": v / k, f"a [{lu}/s^2]": acc / k, f"j [{lu}/s^3]": j / k,
+        f"pressure_angle [{u.angle}]": cam.pressure_angle / a,
+        f"pitch_curvature [1/{u.length}]": cam.pitch_curvature * m,
+        f"profile_curvature [1/{u.length}]": kappa * m,
+        f"pitch.x [{u.length}]": cam.pitch[:, 0] / m, f"pitch.y [{u.length}]": cam.pitch[:, 1] / m,
+        f"profile.x [{u.length}]": cam.profile[:, 0] / m,
+        f"profile.y [{u.length}]": cam.profile[:, 1] / m,
+    }
+
+
+def _summary(sol, name: str) -> list[str]:
+    cam, task, u = sol.cam, sol.task, sol.task.units
+    m, a = u.scale("m"), u.scale("rad")
+    f = cam.follower
+    head = f"{name}: disk cam, {f.motion} {f.type} follower, base circle {cam.base_radius / m:.6g} {u.length}"
+    if sol.smallest:
+        head += (f" (the smallest for a pressure angle of {task.pressure_angle / a:.4g} {u.angle})"
+                 if not f.flat else
+                 f" (the smallest with a radius of curvature of at least {task.min_radius / m:.4g} "
+                 f"{u.length})")
+    lines = [head]
+    phi, at = cam.largest_pressure_angle
+    lines.append(f"  largest pressure angle {phi / a:.4g} {u.angle} at {at / a:.4g} {u.angle}")
+    r, at = cam.smallest_radius
+    if math.isfinite(r):
+        lines.append(f"  smallest radius of curvature {r / m:.4g} {u.length} (profile, convex) at "
+                     f"{at / a:.4g} {u.angle}")
+    if f.flat:
+        lines.append(f"  face width {cam.face_width / m:.4g} {u.length} (contact from "
+                     f"{cam.face[0] / m:.4g} to {cam.face[1] / m:.4g} {u.length}; add a clearance)")
+    lines.append("  undercut: " + ("yes" if cam.undercut.any() else "no"))
+    jumps = task.program.discontinuities
+    if jumps:
+        for d in jumps:
+            lines.append(f"  continuity: {d}")
+    else:
+        lines.append("  continuity: S, V and A continuous at every joint")
+    return lines
+
+
+@click.command("cam")
+@click.argument("task_file", metavar="TASK", type=click.Path(dir_okay=False))
+@click.option("--out", "-o", "out", default=".", show_default=True, metavar="DIR",
+              help="Directory for the figures, the profile and the table.")
+def cam_command(task_file: str, out: str) -> None:
+    """Design a disk cam from the TOML task file TASK: a motion program of rise, dwell and
+    return segments and a follower.
+
+    Writes <name>_svaj.png, <name>_profile.png, <name>_pressure.png, <name>_curvature.png,
+    the profile as <name>_profile.dxf and <name>_profile.svg, and the SVAJ table as
+    <name>_svaj.csv, in the task's units, into --out; prints the largest pressure angle, the
+    smallest radius of curvature, whether the profile is undercut and the continuity of the
+    program at its joints.
+    """
+    from kinelab import cams
+    from kinelab import plot as kplot
+    from kinelab._files import outputs, write_csv
+    from kinelab.cli._draw import _agg
+    from kinelab.cli._main import said_written, stem
+    from kinelab.io._text import loads, read_text
+
+    path = Path(task_file)
+    data = loads(read_text(path), "TOML", source=str(path))
+    task = cams.read_cam_task(data, source=str(path), name=path.stem)
+    sol = cams.solve_cam_task(task, source=str(path))
+    plt = _agg()
+    u = task.units
+    base = stem(task_file)
+    cam = sol.cam
+    figures = {"svaj": kplot.cam_svaj(cam, units=u), "profile": kplot.cam_profile(cam, units=u),
+               "pressure": kplot.cam_pressure(cam, limit=task.pressure_angle, units=u),
+               "curvature": kplot.cam_curvature(cam, units=u)}
+    columns = _columns(sol)
+    svg = cam.to_svg(u.length)
+    try:
+        with outputs(out) as files:
+            written = [files.write(f"{base}_{k}.png", lambda p, f=f: kplot.save(f, p))
+                       for k, f in figures.items()]
+            written.append(files.write(f"{base}_profile.dxf", lambda p: cam.to_dxf(p, u.length)))
+            written.append(files.write(f"{base}_profile.svg", lambda p: p.write_text(svg)))
+            written.append(files.write(f"{base}_svaj.csv", lambda p: write_csv(columns, p)))
+    finally:
+        for f in figures.values():
+            plt.close(f)
+    click.echo("\n".join(_summary(sol, task.name)))
+    said_written(written)

@@ -1,0 +1,131 @@
+"""Figures of a disk cam: its SVAJ diagram, its profile, its pressure angle and radius of
+curvature over the cycle.  matplotlib is imported inside each function; each returns the
+Figure, drawn in ``units`` (default SI) with the cam angle in ``units.angle``."""
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+
+from kinelab.cams import CamProfile
+from kinelab.errors import ModelError, describe
+from kinelab.model import Units
+
+__all__ = ["cam_svaj", "cam_profile", "cam_pressure", "cam_curvature"]
+
+
+def _check(cam) -> None:
+    if not isinstance(cam, CamProfile):
+        raise ModelError(f"cam: expected a CamProfile (kinelab.cams.profile), got {describe(cam)}")
+
+
+def _lift_unit(cam: CamProfile, u: Units) -> tuple[float, str]:
+    """Scale and unit of S: a length, or an angle for an oscillating follower."""
+    if cam.follower.motion == "oscillating":
+        return u.scale("rad"), u.angle
+    return u.scale("m"), u.length
+
+
+def cam_svaj(cam: CamProfile, *, omega: float | None = None,
+             units: Units | Mapping[str, str] | None = None):
+    """S, V, A, J against the cam angle, one panel each: per cam angle, or per second at the
+    cam speed ``omega`` (rad/s) when given.  Discontinuities show as vertical jumps."""
+    import matplotlib.pyplot as plt
+    _check(cam)
+    u = Units.resolve(units)
+    k, lu = _lift_unit(cam, u)
+    a = u.scale("rad")
+    sv = cam.svaj
+    x = sv.theta / a
+    fig, axes = plt.subplots(4, 1, sharex=True, figsize=(7, 8), constrained_layout=True)
+    if omega is None:
+        rows = [(sv.S / k, f"S [{lu}]"), (sv.V / k * a, f"V [{lu}/{u.angle}]"),
+                (sv.A / k * a ** 2, f"A [{lu}/{u.angle}^2]"),
+                (sv.J / k * a ** 3, f"J [{lu}/{u.angle}^3]")]
+    else:
+        s, v, acc, j = sv.in_time(omega)
+        rows = [(s / k, f"s [{lu}]"), (v / k, f"v [{lu}/s]"), (acc / k, f"a [{lu}/s^2]"),
+                (j / k, f"j [{lu}/s^3]")]
+    for ax, (y, label) in zip(axes, rows):
+        ax.plot(x, y, lw=1.2)
+        ax.axhline(0.0, color="0.6", lw=0.6)
+        ax.set_ylabel(label)
+        ax.grid(True, lw=0.3)
+    axes[-1].set_xlabel(f"cam angle [{u.angle}]")
+    axes[0].set_title("SVAJ diagram")
+    return fig
+
+
+def cam_profile(cam: CamProfile, *, units: Units | Mapping[str, str] | None = None):
+    """The cam's profile, its pitch curve (dashed), base and prime circles, to scale."""
+    import matplotlib.pyplot as plt
+    _check(cam)
+    u = Units.resolve(units)
+    k = u.scale("m")
+    fig, ax = plt.subplots(figsize=(6.5, 6.5), constrained_layout=True)
+    t = np.linspace(0.0, 2 * np.pi, 361)
+    ax.plot(*(cam.profile / k).T, color="k", lw=1.5, label="profile")
+    if not cam.follower.flat:
+        ax.plot(*(cam.pitch / k).T, "--", color="C0", lw=1.0, label="pitch curve")
+    ax.plot(cam.base_radius / k * np.cos(t), cam.base_radius / k * np.sin(t), ":", color="0.5",
+            lw=0.8, label="base circle")
+    if cam.undercut.any():
+        ax.plot(*(cam.profile[cam.undercut] / k).T, "x", color="C3", ms=4, label="undercut")
+    ax.plot([0], [0], "+", color="k")
+    ax.set_aspect("equal")
+    ax.set_xlabel(f"x [{u.length}]")
+    ax.set_ylabel(f"y [{u.length}]")
+    ax.set_title(f"disk cam, {cam.follower.motion} {cam.follower.type} follower "
+                 f"(turning counterclockwise)")
+    ax.legend(loc="upper right", fontsize=8)
+    ax.grid(True, lw=0.3)
+    return fig
+
+
+def cam_pressure(cam: CamProfile, *, limit: float | None = None,
+                 units: Units | Mapping[str, str] | None = None):
+    """The pressure angle over the cycle, with the limit (rad) when given."""
+    import matplotlib.pyplot as plt
+    _check(cam)
+    u = Units.resolve(units)
+    a = u.scale("rad")
+    fig, ax = plt.subplots(figsize=(7, 4), constrained_layout=True)
+    ax.plot(cam.theta / a, cam.pressure_angle / a, lw=1.2, label="pressure angle")
+    if limit is not None:
+        for s in (1, -1):
+            ax.axhline(s * limit / a, color="C3", lw=0.8, ls="--",
+                       label="limit" if s == 1 else None)
+    phi, at = cam.largest_pressure_angle
+    ax.plot([at / a], [phi / a], "o", color="C1", label=f"largest {abs(phi) / a:.4g} {u.angle}")
+    ax.set_xlabel(f"cam angle [{u.angle}]")
+    ax.set_ylabel(f"pressure angle [{u.angle}]")
+    ax.legend(fontsize=8)
+    ax.grid(True, lw=0.3)
+    return fig
+
+
+def cam_curvature(cam: CamProfile, *, units: Units | Mapping[str, str] | None = None):
+    """The radius of curvature of the profile (and of the pitch curve for a roller) over the
+    cycle, convex positive; straight and nearly straight parts, whose radius runs off to
+    infinity, are left out beyond 5 prime radii (gaps in the curves)."""
+    import matplotlib.pyplot as plt
+    _check(cam)
+    u = Units.resolve(units)
+    a, k = u.scale("rad"), u.scale("m")
+    cap = 5 * cam.prime_radius
+    fig, ax = plt.subplots(figsize=(7, 4), constrained_layout=True)
+    x = cam.theta / a
+    if cam.follower.type == "roller":
+        r = cam.pitch_radius
+        ax.plot(x, np.ma.masked_where(np.abs(r) > cap, r) / k, "--", lw=1.0, label="pitch curve")
+    r = cam.profile_radius
+    ax.plot(x, np.ma.masked_where(np.abs(r) > cap, r) / k, lw=1.2, label="profile")
+    if cam.follower.type == "roller":
+        ax.axhline(cam.follower.roller_radius / k, color="C3", lw=0.8, ls=":",
+                   label="roller radius")
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.set_xlabel(f"cam angle [{u.angle}]")
+    ax.set_ylabel(f"radius of curvature [{u.length}]")
+    ax.legend(fontsize=8)
+    ax.grid(True, lw=0.3)
+    return fig
