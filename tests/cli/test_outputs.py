@@ -14,6 +14,7 @@ from click.testing import CliRunner
 from kinelab._files import NAME_BYTES, Outputs, safe_name
 from kinelab.cli import main
 from kinelab.model import MAX_NAME
+from tests.cams.test_command import CAM_TASK
 from tests.synthesis.test_cli import NOTES_6_5
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -124,6 +125,9 @@ def commands(work: Path, out: Path, names: list[str]) -> list[tuple[list, set | 
         stems[s] = src / f"{s}.json"
         stems[s].write_text(m[f"points{i}"].read_text())
     odd = {s: safe_name(s) for s in [*HOSTILE_STEMS, "m\x1bx", *names]}
+    cam = src / "c\x1bam.toml"         # a file's own name, odd, names the cam's outputs
+    cam.write_text(CAM_TASK)
+    cam_stem = safe_name("c\x1bam")
     data = curve(src / "m\x1bx.csv")
     (src / "task.toml").write_text(task("t\\\\x"))
     pyslvs = src / "..pyslvs"
@@ -156,6 +160,9 @@ def commands(work: Path, out: Path, names: list[str]) -> list[tuple[list, set | 
                f"{odd[name]}_{f}.png" for f in ("efforts", "reactions", "shaking")}))
           for i, name in enumerate(names)],
         (["synth", src / "task.toml", "--out", out], SYNTH),
+        (["cam", cam, "--out", out], {f"{cam_stem}_{k}" for k in (
+            "svaj.png", "profile.png", "pressure.png", "curvature.png", "profile.dxf",
+            "profile.svg", "svaj.csv")}),
         (["sweep", m["engine1"], "--sobol", "2", "--range", "O2.x=0:0", "--samples", "8",
           "--out", out / "study.csv"], {"study.csv"}),
         (["atlas", "build", "--grid", "--range", "ground=3:3:1", "--range", "crank=1:1:1",
@@ -167,7 +174,7 @@ def commands(work: Path, out: Path, names: list[str]) -> list[tuple[list, set | 
 
 
 WRITERS = {"analyze", "plot", "animate", "export", "import", "derive", "polygons", "centres",
-           "differentiate", "dynamics", "synth", "sweep", "atlas", "gallery"}
+           "differentiate", "dynamics", "synth", "sweep", "atlas", "gallery", "cam"}
 READERS = {"check", "mobility", "types", "serve"}     # write no file (serve: see tests/web)
 
 
@@ -242,6 +249,11 @@ def test_readable_names_are_kept_and_unsafe_ones_never_meet():
 
 
 # -- all or nothing ------------------------------------------------------------------------
+def cam_task(src: Path) -> Path:
+    (src / "cam.toml").write_text(CAM_TASK)
+    return src / "cam.toml"
+
+
 def multi_output_commands(src: Path) -> dict[str, list]:
     (src / "task.toml").write_text(task("task"))
     data = curve(src / "stroke.csv")
@@ -254,6 +266,7 @@ def multi_output_commands(src: Path) -> dict[str, list]:
                     "--samples", "9"],
         "differentiate": ["differentiate", data],
         "synth": ["synth", src / "task.toml"],
+        "cam": ["cam", cam_task(src)],
     }
 
 
@@ -283,7 +296,7 @@ def existing_outputs(out: Path, first: str) -> dict:
 
 
 @pytest.mark.parametrize("command", ["analyze", "dynamics", "plot", "polygons", "centres",
-                                     "differentiate", "synth"])
+                                     "differentiate", "synth", "cam"])
 def test_a_command_whose_last_output_fails_leaves_its_directory_as_it_was(command, tmp_path,
                                                                          monkeypatch):
     """A directory where the last file goes, or a disk full as it is written: exit status
