@@ -1,9 +1,9 @@
 """Disk cams from a motion program (Norton, *Design of Machinery*, ch. 8).
 
 - motion laws (:data:`LAW_NAMES`: simple harmonic, cycloidal, 3-4-5 and 4-5-6-7 polynomials,
-  modified trapezoid, modified sine, a polynomial through boundary conditions) and
-  :class:`Segment`\\ s of rise, dwell and return making a :class:`MotionProgram` over one turn,
-  its :class:`SVAJ` in closed form and its :class:`Discontinuity`\\ s at the joints;
+  modified trapezoid, modified sine, a polynomial through boundary conditions); segments of
+  rise, dwell and return (:class:`Segment`) making a :class:`MotionProgram` over one turn, its
+  :class:`SVAJ` in closed form and its jumps at the joints (:class:`Discontinuity`);
 - profiles: :class:`Follower` (knife-edge, roller, flat-faced; translating or oscillating),
   :func:`profile` (pitch curve, profile, pressure angle, radius of curvature, undercutting) in
   a :class:`CamProfile`, :func:`smallest_base_circle`;

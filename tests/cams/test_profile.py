@@ -208,3 +208,20 @@ def test_bad_geometry_is_refused():
         Follower("rollr")
     with pytest.raises(ModelError, match="expected a radius above 0"):
         profile(p, Follower("knife-edge"), -1.0)
+
+
+@pytest.mark.parametrize("k", [1e-4, 1e4])
+def test_a_cam_scaled_has_the_same_angles_and_flags(k):
+    """Scale-free: every length times k gives the same pressure angles and undercuts, and
+    lengths (radii, the smallest base circle) times k."""
+    def cam_of(s):
+        p = MotionProgram([Segment("rise", 0, d(40), 0.03 * s, "cycloidal"),
+                           Segment("return", d(40), d(360), 0.03 * s, "modified-trapezoid")])
+        f = Follower("roller", offset=0.004 * s, roller_radius=0.015 * s)
+        return p, f, profile(p, f, 0.03 * s, samples=1441)
+    (p1, f1, a), (pk, fk, b) = cam_of(1.0), cam_of(k)
+    assert b.pressure_angle == pytest.approx(a.pressure_angle, abs=1e-12)
+    assert (b.undercut == a.undercut).all() and a.undercut.any()
+    assert b.pitch_radius == pytest.approx(a.pitch_radius * k, rel=1e-9)
+    assert smallest_base_circle(pk, fk, d(35)) == pytest.approx(
+        smallest_base_circle(p1, f1, d(35)) * k, rel=1e-9)
