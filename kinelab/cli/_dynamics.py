@@ -12,12 +12,13 @@ import click
 import numpy as np
 
 from kinelab._files import outputs, safe_name
-from kinelab.cli._main import (DEGREES, SI, VERIFY, certificate_path, errors_from, output_units,
-                               read_model, report, said_written)
+from kinelab.cli._main import (DEGREES, LANG, SI, VERIFY, certificate_path, errors_from,
+                               output_units, read_model, report, said_written, stem)
 from kinelab.io import ModelFile
 from kinelab.io._modelfile import MAX_SAMPLES, sweep_times
 from kinelab.model import Units
 from kinelab.errors import ModelError, describe, shown_path
+from kinelab.plot._words import number
 
 __all__ = ["dynamics_command", "run", "times", "MAX_VALUES"]
 
@@ -34,12 +35,14 @@ times = sweep_times
 
 def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
         units: Units | None = None, gravity: tuple[float, float] | None = None,
-        plots: bool = True, verify: bool = False):
+        plots: bool = True, verify: bool = False, name: str | None = None, lang: str = "en"):
     """Sweep, solve and write ``<name>_dynamics.csv`` and the figures (the inputs in
-    ``units``, default the file's; forces and energies in SI) into ``out``, all or none of
-    them, ``<name>`` being the model's name made safe (:func:`safe_name`); with ``verify``,
-    the result's certificate too, as ``<name>_dynamics_certificate.json``.  Returns the
-    result, the paths written (the certificate's last) and the certificate."""
+    ``units``, default the file's; forces and energies in SI; the figures' text in
+    ``lang``) into ``out``, all or none of them, ``<name>`` being ``name`` (the command
+    gives the model file's stem), by default the model's name made safe
+    (:func:`safe_name`); with ``verify``, the result's certificate too, as
+    ``<name>_dynamics_certificate.json``.  Returns the result, the paths written (the
+    certificate's last) and the certificate."""
     from kinelab.dynamics._inverse import table_width   # not needed by times (kinelab check)
 
     units = mf.units if units is None else units
@@ -57,7 +60,7 @@ def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
         from kinelab.verify import certify
         loads, masses = mf.dynamics_setup(gravity)
         certificate = certify(res, loads=loads, masses=masses)
-    name = safe_name(m.name)
+    name = safe_name(m.name) if name is None else name
     with outputs(out) as files:
         written = [files.write(f"{name}_dynamics.csv", lambda p: res.to_csv(p, units=units))]
         if plots:
@@ -68,7 +71,7 @@ def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
             for suffix, draw in (("efforts", figs.effort_curves),
                                  ("reactions", figs.reaction_curves),
                                  ("shaking", figs.shaking_curves)):
-                fig = draw(res, units=units)
+                fig = draw(res, units=units, lang=lang)
                 try:
                     written.append(files.write(f"{name}_{suffix}.png", lambda p: save(fig, p)))
                 finally:
@@ -101,13 +104,14 @@ def _gravity(text: str | None):
 @click.option("--gravity", default=None, metavar="GX,GY",
               help="Gravity in m/s^2, instead of the file's (e.g. 0,-9.81).")
 @click.option("--no-plots", is_flag=True, help="Write the table only.")
+@LANG
 @VERIFY
-def dynamics_command(model, out, samples, si, degrees, gravity, no_plots, verify_):
+def dynamics_command(model, out, samples, si, degrees, gravity, no_plots, lang, verify_):
     """Actuator efforts, joint reactions and shaking force of MODEL over its inputs' sweep.
 
     Writes <name>_dynamics.csv (efforts, energies, reactions, shaking force and moment)
     and, unless --no-plots, <name>_efforts.png, <name>_reactions.png, <name>_shaking.png,
-    all of them or none; <name> is the model's name, made safe for a file's name.
+    all of them or none; <name> is the model file's name without its suffix.
     The links need mass data; loads come from the file's [dynamics] section.  The inputs'
     positions and rates are in the file's units (--si for m and rad); forces are in N,
     torques in N m, energies in J and powers in W.  With --verify, the efforts, energies,
@@ -120,21 +124,44 @@ def dynamics_command(model, out, samples, si, degrees, gravity, no_plots, verify
     units = output_units(mf.units, si, degrees)
     with errors_from(mf):
         res, written, certificate = run(mf, out, samples=samples, units=units, gravity=g,
-                                        plots=not no_plots, verify=verify_)
+                                        plots=not no_plots, verify=verify_, name=stem(model),
+                                        lang=lang)
+    said = _SAID[lang]
+
+    def num(v):
+        return number(v, ".6g", lang)
     for name, kind, col in zip(res.input_names, res.input_kinds, res.input_forces.T):
         unit = "N m" if kind == "angle" else "N"
         ok = np.isfinite(col)
         if not ok.any():
-            click.echo(f"{name}: no effort defined (every sample singular or unassembled)")
+            click.echo(said["undefined"].format(name=name))
             continue
         peak = np.max(np.abs(col[ok]))
         rms = peak * np.sqrt(np.mean((col[ok] / peak) ** 2)) if peak > 0 else 0.0  # no overflow
-        click.echo(f"{name}: peak |effort| {peak:.6g} {unit}, rms {rms:.6g} {unit}")
+        click.echo(said["effort"].format(name=name, peak=num(peak), rms=num(rms), unit=unit))
     F = np.hypot(*res.shaking_force.T)
-    click.echo(f"shaking force: peak {np.nanmax(F):.6g} N; shaking moment: peak "
-               f"{np.nanmax(np.abs(res.shaking_moment)):.6g} N m")
+    click.echo(said["shaking"].format(force=num(np.nanmax(F)),
+                                      moment=num(np.nanmax(np.abs(res.shaking_moment)))))
     if res.singular.any():
-        click.echo(f"{int(res.singular.sum())} singular sample(s): forces undefined there (NaN)")
+        click.echo(said["singular"].format(count=int(res.singular.sum())))
     said_written(written)
     if certificate is not None:
         report(certificate)
+
+
+# The summary the command prints, one table per language (figures: kinelab.plot._words).
+_SAID = {
+    "en": {
+        "undefined": "{name}: no effort defined (every sample singular or unassembled)",
+        "effort": "{name}: peak |effort| {peak} {unit}, rms {rms} {unit}",
+        "shaking": "shaking force: peak {force} N; shaking moment: peak {moment} N m",
+        "singular": "{count} singular sample(s): forces undefined there (NaN)",
+    },
+    "pt": {
+        "undefined": "{name}: esforço indefinido (todas as amostras singulares ou não montadas)",
+        "effort": "{name}: |esforço| máximo {peak} {unit}, rms {rms} {unit}",
+        "shaking": ("força de vibração: máxima {force} N; momento de vibração: máximo "
+                    "{moment} N m"),
+        "singular": "{count} amostra(s) singular(es): forças indefinidas nelas (NaN)",
+    },
+}

@@ -24,7 +24,7 @@ from kinelab.model import ANGLE_UNITS, LENGTH_UNITS, Units, range_problem, rate_
 
 __all__ = ["main", "read_model", "errors_from", "sweep", "output_path", "parse_inputs", "stem",
            "SI", "DEGREES", "VERIFY", "report", "said_written", "certificate_path", "output_units",
-           "Number", "about", "light_work"]
+           "Number", "about", "light_work", "LANG"]
 
 
 def read_model(path: str) -> ModelFile:
@@ -50,6 +50,12 @@ SI = click.option("--si", is_flag=True,
 DEGREES = click.option("--degrees", is_flag=True,
                        help="Angles in degrees, whatever the file's unit (with --si: metres "
                             "and degrees).")
+
+
+LANG = click.option(
+    "--lang", type=click.Choice(("en", "pt")), default="en", show_default=True,
+    help="Language of the figures' titles, axes and legends and of the printed summary: en, "
+         "or pt (Portuguese, with decimal commas; tables keep the decimal point).")
 
 
 VERIFY = click.option(

@@ -18,7 +18,7 @@ from typing import Any
 import click
 import numpy as np
 
-from kinelab.cli._main import DEGREES, SI, VERIFY, output_units, report
+from kinelab.cli._main import DEGREES, LANG, SI, VERIFY, output_units, report
 from kinelab.errors import shown_path
 from kinelab.io import Task, load_task, solve_task, task_summary
 from kinelab.model import Units
@@ -26,7 +26,8 @@ from kinelab.model import Units
 __all__ = ["synth"]
 
 
-def _figures(task: Task, sols: list, extra: dict, u: Units) -> dict[str, bytes]:
+def _figures(task: Task, sols: list, extra: dict, u: Units, lang: str = "en") -> dict[str, bytes]:
+    """The figures of a solved task, PNG bytes by file name, in ``u`` and ``lang``."""
     from kinelab import plot
     from kinelab.cli._draw import _agg
     plt = _agg()
@@ -35,28 +36,28 @@ def _figures(task: Task, sols: list, extra: dict, u: Units) -> dict[str, bytes]:
 
     def grab(name, ax):
         buf = io.BytesIO()
-        ax.figure.savefig(buf, format="png", dpi=120)
+        ax.figure.savefig(buf, format="png", dpi=120, bbox_inches="tight")
         plt.close(ax.figure)
         out[name] = buf.getvalue()
 
     if task.kind in ("crank-rocker", "quick-return"):
         for i, s in enumerate(sols, 1):
-            grab(f"solution_{i}.png", plot.limit_positions(s, units=u))
+            grab(f"solution_{i}.png", plot.limit_positions(s, units=u, lang=lang))
         return out
     if task.positions is not None:
-        grab("positions.png", plot.prescribed_positions(task.positions, units=u))
+        grab("positions.png", plot.prescribed_positions(task.positions, units=u, lang=lang))
     if extra.get("five"):
-        grab("curves.png", plot.five_positions(task.positions, sols, units=u))
+        grab("curves.png", plot.five_positions(task.positions, sols, units=u, lang=lang))
     if "curves" in extra:
         grab("curves.png", plot.burmester_curves(extra["curves"], positions=task.positions,
-                                                 solutions=sols, units=u))
+                                                 solutions=sols, units=u, lang=lang))
     for i, s in enumerate(sols, 1):
         if task.kind == "function":
-            grab(f"solution_{i}.png", plot.structural_error(s))
+            grab(f"solution_{i}.png", plot.structural_error(s, lang=lang))
         elif task.kind == "path":
-            grab(f"solution_{i}.png", plot.path_solution(s, units=u))
+            grab(f"solution_{i}.png", plot.path_solution(s, units=u, lang=lang))
         else:
-            grab(f"solution_{i}.png", plot.motion_solution(s, units=u))
+            grab(f"solution_{i}.png", plot.motion_solution(s, units=u, lang=lang))
     return out
 
 
@@ -74,9 +75,10 @@ def _fmt_xy(v, u: Units):
 @click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
 @SI
 @DEGREES
+@LANG
 @VERIFY
 def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si: bool,
-          degrees: bool, verify_: bool) -> None:
+          degrees: bool, lang: str, verify_: bool) -> None:
     """Dimensional synthesis from the TOML task file TASK: a four-bar through positions,
     a function or path generator, a crank-rocker for a swing and a time ratio, a quick
     return.
@@ -105,7 +107,7 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si:
     # the summary holds no inf or NaN (task_summary writes null): allow_nan=False keeps it so
     files["summary.json"] = json.dumps(summary, indent=2, allow_nan=False)
     if figures and sols:
-        files.update(_figures(task, sols, extra, u))
+        files.update(_figures(task, sols, extra, u, lang))
     out = Path(out_dir) if out_dir else Path(task_file).with_name(
         safe_name(Path(task_file).stem) + "_solutions")
     with outputs(out) as written:        # every file, or none

@@ -24,14 +24,15 @@ from kinelab.kinematics import KinematicSolution
 from kinelab.kinematics._solution import takes_solution
 from kinelab.kinematics._columns import INPUT_SI_UNITS
 from kinelab.model import Units
+from kinelab.plot._words import decimal_commas, words
 
 __all__ = ["curves", "coefficients", "coupler_curve", "transmission", "mechanism", "save",
            "input_axis"]
 
-_QUANTITIES = {     # (accessor, label, SI unit) of each row
+_QUANTITIES = {     # (accessor, word, SI unit) of each row (words: kinelab.plot._words)
     "link": (("angle", "angle", "rad"), ("omega", "angular velocity", "rad/s"),
              ("alpha", "angular acceleration", "rad/s^2")),
-    "slide": (("slide", "", "m"), ("slide_velocity", "velocity", "m/s"),
+    "slide": (("slide", "slide", "m"), ("slide_velocity", "velocity", "m/s"),
               ("slide_acceleration", "acceleration", "m/s^2")),
 }
 SINGULAR_LABEL = "singular (det J = 0)"
@@ -99,19 +100,20 @@ def input_axis(sol: KinematicSolution, degrees: bool = False, *,
     return x, label
 
 
-def _input(sol: KinematicSolution, u: Units) -> tuple[np.ndarray, str, str]:
-    """:func:`input_axis` and the unit of its values ('' for the sample number)."""
+def _input(sol: KinematicSolution, u: Units, lang: str = "en") -> tuple[np.ndarray, str, str]:
+    """:func:`input_axis` (the sample number's label in ``lang``) and the unit of its values
+    ('' for the sample number)."""
     for k, kind in enumerate(sol.plan.input_kinds):
         q = sol.q[:, k]
         if np.ptp(q) > 0:
             unit = u.unit(INPUT_SI_UNITS[kind])
             return u.convert(q, INPUT_SI_UNITS[kind]), f"{sol.input_names[k]} [{unit}]", unit
-    return np.arange(sol.N), "sample", ""
+    return np.arange(sol.N), words(lang)["sample"], ""
 
 
-def _x_axis(ax, sol: KinematicSolution, u: Units) -> np.ndarray:
+def _x_axis(ax, sol: KinematicSolution, u: Units, lang: str = "en") -> np.ndarray:
     """Label ``ax``'s x axis with the input, mark the singular positions; the x values."""
-    x, label, unit = _input(sol, u)
+    x, label, unit = _input(sol, u, lang)
     ax.set_xlabel(plain(label))
     if np.ptp(x) > 0:
         ax.set_xlim(np.min(x), np.max(x))      # the sweep, edge to edge
@@ -196,7 +198,7 @@ def _legend(ax, always: bool = True, **kwargs) -> None:
 
 @takes_sweep
 def curves(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
-           units: Units | Mapping[str, str] | None = None, figure=None):
+           units: Units | Mapping[str, str] | None = None, figure=None, lang: str = "en"):
     """Position, velocity and acceleration of chosen outputs against the input.
 
     One column per kind of output (link angles, slides), three rows: position, velocity,
@@ -212,6 +214,9 @@ def curves(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
         Angles in degrees: shorthand for ``units={"angle": "deg"}``.
     units : Units or mapping, optional
         ``{"length": "mm", "angle": "deg"}``; default SI.
+    lang : str
+        Language of the titles, axes and legends: ``"en"`` or ``"pt"`` (with decimal
+        commas in the tick labels).
 
     Returns
     -------
@@ -233,6 +238,7 @@ def curves(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
     [0.0, 90.0, 180.0, 270.0, 360.0]
     """
     plt = _pyplot()
+    w = words(lang)
     u = Units.resolve(units, degrees=degrees)
     links, slides, _ = _split(sol, _outputs(sol, outputs))
     groups = [(g, kind) for g, kind in ((links, "link"), (slides, "slide")) if g]
@@ -243,27 +249,29 @@ def curves(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
     for col, (names, kind) in enumerate(groups):
         for row, (attr, label, si) in enumerate(_QUANTITIES[kind]):
             ax = axes[row, col]
-            x = _x_axis(ax, sol, u)
+            x = _x_axis(ax, sol, u, lang)
             for name in names:
                 y = _series(sol, name, attr, si, u)
                 ax.plot(x, y, label=plain(name))
                 if row == 0:
                     _turn_ticks(ax.yaxis, y, u.unit(si))
-            what = f"{names[0]} {label}".strip() if len(names) == 1 else (
-                label or "slide") if kind == "link" else f"slide {label}".strip()
+            what = (w[f"named {label}"].format(name=names[0]) if len(names) == 1 else
+                    w[label] if kind == "link" else w[f"slide {label}" if row else "slide"])
             ax.set_ylabel(plain(f"{what} [{_label(u, si)}]"))
             ax.grid(True, alpha=0.3)
             if row == 0:            # names the curves and the singular positions for the column
                 _legend(ax, always=len(names) > 1)
         for ax in axes[:-1, col]:
             ax.set_xlabel("")       # shared: the bottom row names it
-    fig.suptitle(plain(f"{sol.mechanism.name}: position, velocity and acceleration"))
+    fig.suptitle(plain(w["motion title"].format(name=sol.mechanism.name)))
+    decimal_commas(fig, lang)
     return fig
 
 
 @takes_sweep
 def coefficients(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
-                 units: Units | Mapping[str, str] | None = None, figure=None):
+                 units: Units | Mapping[str, str] | None = None, figure=None,
+                 lang: str = "en"):
     """Velocity and acceleration coefficients K = dS/dq and L = dK/dq of chosen outputs
     against the input (one input: for several inputs, those of the first), in ``units``
     (default SI): K in output unit per input unit, L per input unit squared.
@@ -278,6 +286,7 @@ def coefficients(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
     ['K = dS/dq [mm/deg]', 'L = dK/dq [mm/deg²]']
     """
     plt = _pyplot()
+    w = words(lang)
     u = Units.resolve(units, degrees=degrees)
     links, slides, _ = _split(sol, _outputs(sol, outputs))
     names = links + slides
@@ -288,7 +297,7 @@ def coefficients(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
     qu = INPUT_SI_UNITS[sol.plan.input_kinds[0]]
     k_units, l_units = [], []
     for ax in (ax_k, ax_l):
-        x = _x_axis(ax, sol, u)
+        x = _x_axis(ax, sol, u, lang)
     for name in names:
         K, L = sol.K(name), sol.L(name)
         if sol.M > 1:
@@ -298,20 +307,21 @@ def coefficients(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
         l_units.append(f"{su}/{qu}^2")
         ax_k.plot(x, u.convert(_regular(sol, K), k_units[-1]), label=plain(name))
         ax_l.plot(x, u.convert(_regular(sol, L), l_units[-1]), label=plain(name))
-    ax_k.set_ylabel(f"K = dS/dq [{' | '.join(sorted({_label(u, k) for k in k_units}))}]")
-    ax_l.set_ylabel(f"L = dK/dq [{' | '.join(sorted({_label(u, k) for k in l_units}))}]")
+    ax_k.set_ylabel(f"{w['K label']} [{' | '.join(sorted({_label(u, k) for k in k_units}))}]")
+    ax_l.set_ylabel(f"{w['L label']} [{' | '.join(sorted({_label(u, k) for k in l_units}))}]")
     for ax in (ax_k, ax_l):
         ax.grid(True, alpha=0.3)
         ax.axhline(0.0, color="0.5", lw=0.6)
     _legend(ax_k)
     ax_k.set_xlabel("")
-    fig.suptitle(plain(f"{sol.mechanism.name}: velocity and acceleration coefficients"))
+    fig.suptitle(plain(w["coefficients title"].format(name=sol.mechanism.name)))
+    decimal_commas(fig, lang)
     return fig
 
 
 @takes_sweep
 def coupler_curve(sol: KinematicSolution, point: str = "P", *, ax=None, sample: int | None = 0,
-                  units: Units | Mapping[str, str] | None = None):
+                  units: Units | Mapping[str, str] | None = None, lang: str = "en"):
     """The path of a point over the sweep, with the mechanism drawn at ``sample``, lengths
     in ``units`` (default SI).  The path leaves out the singular samples, which are marked.
 
@@ -328,12 +338,13 @@ def coupler_curve(sol: KinematicSolution, point: str = "P", *, ax=None, sample: 
     ('x [m]', 'y [m]')
     """
     plt = _pyplot()
+    w = words(lang)
     u = Units.resolve(units)
     ax = ax or plt.figure(figsize=(6, 6), layout="constrained").add_subplot()
     if sample is not None:
         mechanism(sol, sample_of(sol, sample, "sample"), ax=ax, units=u)
     xy = u.convert(sol.position(point), "m")
-    ax.plot(*_regular(sol, xy).T, lw=1.3, color="black", label=plain(f"path of {point}"))
+    ax.plot(*_regular(sol, xy).T, lw=1.3, color="black", label=plain(w["path of"].format(point=point)))
     singular = _singular_samples(sol)
     if singular:
         ax.plot(*xy[singular].T, "x", color="tab:red", ms=8, mew=1.5, label=SINGULAR_LABEL)
@@ -342,13 +353,14 @@ def coupler_curve(sol: KinematicSolution, point: str = "P", *, ax=None, sample: 
     ax.set_ylabel(f"y [{u.length}]")
     ax.grid(True, alpha=0.3)
     _legend(ax, loc="best")
-    ax.set_title(plain(f"{sol.mechanism.name}: path of {point}"))
+    ax.set_title(plain(w["path title"].format(name=sol.mechanism.name, point=point)))
+    decimal_commas(ax.figure, lang)
     return ax
 
 
 @takes_sweep
 def transmission(sol: KinematicSolution, pairs=None, *, degrees: bool | None = None,
-                 units: Units | Mapping[str, str] | None = None, ax=None):
+                 units: Units | Mapping[str, str] | None = None, ax=None, lang: str = "en"):
     """Transmission angle of link pairs against the input, folded to [0, 90] deg.
 
     ``pairs`` defaults to the pin-jointed dyads (and slider dyads, measured from the slide's
@@ -365,21 +377,23 @@ def transmission(sol: KinematicSolution, pairs=None, *, degrees: bool | None = N
     """
     from kinelab.io._summary import _default_pairs, _transmission_values
     plt = _pyplot()
+    w = words(lang)
     u = Units.resolve(units, degrees=units is None if degrees is None else degrees)
     pairs = list(pairs) if pairs else _default_pairs(sol.mechanism)
     if not pairs:
         raise ModelError("transmission: the mechanism has no pin-jointed dyad; name the links "
                          "with pairs=[('coupler', 'rocker')]")
     ax = ax or plt.figure(figsize=(7, 4), layout="constrained").add_subplot()
-    x = _x_axis(ax, sol, u)
+    x = _x_axis(ax, sol, u, lang)
     for a, b in pairs:
         mu = _regular(sol, _transmission_values(sol, (a, b)))
         ax.plot(x, u.convert(mu, "rad"), label=plain(f"{a}-{b}"))
     ax.set_ylim(0, u.convert(math.pi / 2, "rad"))
-    ax.set_ylabel(f"transmission angle [{u.angle}]")
+    ax.set_ylabel(f"{w['transmission angle']} [{u.angle}]")
     ax.grid(True, alpha=0.3)
     _legend(ax)
-    ax.set_title(plain(f"{sol.mechanism.name}: transmission angle"))
+    ax.set_title(plain(w["transmission title"].format(name=sol.mechanism.name)))
+    decimal_commas(ax.figure, lang)
     return ax
 
 

@@ -18,6 +18,7 @@ from kinelab.errors import ModelError, describe
 from kinelab.kinematics import analyze
 from kinelab.solvers._arguments import whole
 from kinelab.model import Units
+from kinelab.plot._words import decimal_commas, number, words
 from kinelab.synthesis import (BurmesterCurves, CrankRocker, FunctionSolution, MotionSolution,
                                PathSolution, Positions, QuickReturn, SolutionList, poles)
 from kinelab.synthesis import burmester_curves as synthesis_curves
@@ -36,17 +37,36 @@ def _axes(ax):
     if ax is not None:
         return ax
     import matplotlib.pyplot as plt
-    _, ax = plt.subplots(figsize=(7, 6))
+    _, ax = plt.subplots(figsize=(7, 6), layout="constrained")
     return ax
 
 
-def _finish(ax, title, u: Units):
+def _finish(ax, title, u: Units, lang: str = "en"):
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel(f"x [{u.length}]")
     ax.set_ylabel(f"y [{u.length}]")
     ax.set_title(title)
     ax.grid(True, alpha=0.3)
+    decimal_commas(ax.figure, lang)
     return ax
+
+
+# the words of a linkage's kind and state (kinelab.mechanisms.grashof, MotionSolution.state)
+_KINDS_PT = {"crank-rocker": "manivela-balancim", "rocker-crank": "balancim-manivela",
+             "double-crank": "dupla manivela", "double-rocker": "duplo balancim",
+             "triple-rocker": "triplo balancim", "change-point": "ponto de mudança",
+             "valid": "válido", "branch defect": "defeito de ramo",
+             "circuit defect": "defeito de circuito", "order defect": "defeito de ordem",
+             "transmission angle defect": "defeito de ângulo de transmissão",
+             "offset slider-crank": "biela-manivela excêntrico",
+             "slotted lever": "alavanca com corrediça", "whitworth": "Whitworth"}
+
+
+def _kind(text: str, lang: str) -> str:
+    """A kind or a state (``"branch defect; circuit defect"``) in ``lang``."""
+    if lang != "pt":
+        return text
+    return "; ".join(_KINDS_PT.get(part, part) for part in text.split("; "))
 
 
 def _given(name: str, value, kinds: type | tuple[type, ...], what: str):
@@ -70,7 +90,8 @@ def _colour(j):
 
 
 def prescribed_positions(points, angles=None, *, ax=None, show_poles: bool = True,
-                         degrees: bool = False, units: Units | Mapping[str, str] | None = None):
+                         degrees: bool = False, units: Units | Mapping[str, str] | None = None,
+                         lang: str = "en"):
     """The positions of the moving plane (a point and a direction each) and their poles.
 
     Parameters
@@ -85,11 +106,14 @@ def prescribed_positions(points, angles=None, *, ax=None, show_poles: bool = Tru
         The given angles are in degrees.
     units : Units or mapping, optional
         ``{"length": "mm"}``: the unit of the axes (default SI).
+    lang : str
+        Language of the title and legends, ``"en"`` or ``"pt"``.
 
     Returns
     -------
     matplotlib Axes
     """
+    w = words(lang)
     pos = points if isinstance(points, Positions) else Positions(points, angles, degrees=degrees)
     u = Units.resolve(units)
     ax = _axes(ax)
@@ -102,8 +126,8 @@ def prescribed_positions(points, angles=None, *, ax=None, show_poles: bool = Tru
         ax.annotate(f"{j + 1}", P, textcoords="offset points", xytext=(-10, -12), color=c)
     if show_poles:
         _poles(ax, pos, u)
-    return _finish(ax, f"{pos.n} prescribed positions" + (" and their poles" if show_poles else ""),
-                   u)
+    return _finish(ax, w["prescribed positions and poles" if show_poles else
+                         "prescribed positions"].format(n=pos.n), u, lang)
 
 
 def _poles(ax, pos: Positions, u: Units) -> np.ndarray:
@@ -152,14 +176,15 @@ def _coupler_path(sol, q, u: Units) -> np.ndarray:
     return u.convert(np.where(ok[:, None], s.position("P"), np.nan), "m")
 
 
-def _travel_curve(ax, sol, q_from, q_to, direction, u: Units):
+def _travel_curve(ax, sol, q_from, q_to, direction, u: Units, lang: str = "en"):
     span = np.mod(direction * (q_to - q_from), 2 * np.pi) if direction else 2 * np.pi
     d = direction or 1
     q = q_from + d * np.linspace(0.0, span, 361)
-    ax.plot(*_coupler_path(sol, q, u).T, "k--", lw=0.8, label="coupler curve on the way")
+    ax.plot(*_coupler_path(sol, q, u).T, "k--", lw=0.8, label=words(lang)["coupler curve on the way"])
 
 
-def motion_solution(sol: MotionSolution, *, ax=None, units: Units | Mapping[str, str] | None = None):
+def motion_solution(sol: MotionSolution, *, ax=None, units: Units | Mapping[str, str] | None = None,
+                    lang: str = "en"):
     """A motion-generation four-bar drawn by the engine in each prescribed position, with
     the prescribed points and the coupler curve between the first and the last, lengths in
     ``units`` (default SI).
@@ -177,12 +202,13 @@ def motion_solution(sol: MotionSolution, *, ax=None, units: Units | Mapping[str,
     for j, P in enumerate(u.convert(sol.points, "m")):
         ax.plot(*P, "s", mfc="none", color=_colour(j), ms=9)
         ax.annotate(f"P{j + 1}", P, textcoords="offset points", xytext=(6, 4), color=_colour(j))
-    _travel_curve(ax, sol, sol.q[0], sol.q[-1], sol.direction, u)
-    return _finish(ax, f"four-bar through {n} positions ({sol.grashof.kind}, {sol.state})", u)
+    _travel_curve(ax, sol, sol.q[0], sol.q[-1], sol.direction, u, lang)
+    return _finish(ax, words(lang)["four-bar through positions"].format(
+        n=n, kind=_kind(sol.grashof.kind, lang), state=_kind(sol.state, lang)), u, lang)
 
 
 def burmester_curves(curves: BurmesterCurves, *, ax=None, positions=None, solutions=(),
-                     units: Units | Mapping[str, str] | None = None):
+                     units: Units | Mapping[str, str] | None = None, lang: str = "en"):
     """Burmester's centre-point curve (fixed pivots) and circle-point curve (moving pivots
     in position 1), with the poles and chosen solutions when given.
 
@@ -208,14 +234,15 @@ def burmester_curves(curves: BurmesterCurves, *, ax=None, positions=None, soluti
     if not np.asarray(curves.valid).any():
         raise ModelError("curves: no point of the centre-point curve is valid (the positions "
                          "may not be four distinct ones); nothing to draw")
+    w = words(lang)
     u = Units.resolve(units)
     ax = _axes(ax)
     center, circle = u.convert(curves.center, "m"), u.convert(curves.circle, "m")
     for k in range(2):
         c = np.where(curves.valid[k][:, None], center[k], np.nan)
         m = np.where(curves.valid[k][:, None], circle[k], np.nan)
-        ax.plot(*c.T, "-", color="tab:blue", lw=1.2, label="centre points (A0)" if k == 0 else None)
-        ax.plot(*m.T, "-", color="tab:red", lw=1.2, label="circle points (A1)" if k == 0 else None)
+        ax.plot(*c.T, "-", color="tab:blue", lw=1.2, label=w["centre points"] if k == 0 else None)
+        ax.plot(*m.T, "-", color="tab:red", lw=1.2, label=w["circle points"] if k == 0 else None)
     # the curves run off to infinity: frame the poles, the points and the pivots shown
     # (or, without them, the middle of the curves)
     keep = [u.convert(np.array([x for s in solutions for x in (s.A0, s.B0, s.A1, s.B1)]), "m")
@@ -223,7 +250,7 @@ def burmester_curves(curves: BurmesterCurves, *, ax=None, positions=None, soluti
     if positions is not None:
         points = u.convert(positions.points, "m")
         keep += [points, _poles(ax, positions, u)]
-        ax.plot(*points.T, "ks", mfc="none", label="prescribed P")
+        ax.plot(*points.T, "ks", mfc="none", label=w["prescribed P"])
     for s in solutions:
         ax.plot(*u.convert(np.array([s.A0, s.B0]), "m").T, "^", color="tab:blue", ms=8)
         ax.plot(*u.convert(np.array([s.A1, s.B1]), "m").T, "o", color="tab:red", ms=6)
@@ -236,10 +263,10 @@ def burmester_curves(curves: BurmesterCurves, *, ax=None, positions=None, soluti
     ax.set_xlim(lo[0] - pad, hi[0] + pad)
     ax.set_ylim(lo[1] - pad, hi[1] + pad)
     ax.legend(loc="best", fontsize=8)
-    return _finish(ax, "centre-point and circle-point curves", u)
+    return _finish(ax, w["burmester title"], u, lang)
 
 
-def structural_error(sol: FunctionSolution, *, ax=None):
+def structural_error(sol: FunctionSolution, *, ax=None, lang: str = "en"):
     """The structural error of a function generator over [x0, xf], with its precision points.
 
     Returns
@@ -248,20 +275,23 @@ def structural_error(sol: FunctionSolution, *, ax=None):
     """
     _given("sol", sol, FunctionSolution, "a FunctionSolution (from "
            "kinelab.synthesis.function_generation)")
+    w = words(lang)
     ax = _axes(ax)
     e = np.where(np.isfinite(sol.structural_error), sol.structural_error, np.nan)
     ax.plot(sol.x_samples, e, "-", color="tab:blue")
     ax.axhline(0.0, color="k", lw=0.8)
-    ax.plot(sol.x, np.zeros_like(sol.x), "o", color="tab:red", label="precision points")
+    ax.plot(sol.x, np.zeros_like(sol.x), "o", color="tab:red", label=w["precision points"])
     ax.set_xlabel("x")
-    ax.set_ylabel("generated y - f(x)")
-    ax.set_title(f"structural error (max {sol.max_structural_error:.3g})")
+    ax.set_ylabel(w["generated error"])
+    ax.set_title(w["structural error"].format(error=number(sol.max_structural_error, ".3g", lang)))
     ax.grid(True, alpha=0.3)
     ax.legend(loc="best", fontsize=8)
+    decimal_commas(ax.figure, lang)
     return ax
 
 
-def path_solution(sol: PathSolution, *, ax=None, units: Units | Mapping[str, str] | None = None):
+def path_solution(sol: PathSolution, *, ax=None, units: Units | Mapping[str, str] | None = None,
+                  lang: str = "en"):
     """A path generator: its coupler curve, the targets, and the linkage at the first one,
     lengths in ``units`` (default SI).
 
@@ -270,28 +300,31 @@ def path_solution(sol: PathSolution, *, ax=None, units: Units | Mapping[str, str
     matplotlib Axes
     """
     _given("sol", sol, PathSolution, "a PathSolution (from kinelab.synthesis.path_generation)")
+    w = words(lang)
     u = Units.resolve(units)
     ax = _axes(ax)
     n = len(sol.q)
     _linkage(ax, sol, sol.q[:1], [_colour(0)], u)
     q = sol.q[0] + np.linspace(0.0, 2 * np.pi, 721)
     ax.plot(*_coupler_path(sol, q, u).T, "-", color="tab:gray", lw=1.0,
-            label="coupler curve (this branch)")
-    _travel_curve(ax, sol, sol.q[0], sol.q[-1], sol.direction, u)
+            label=w["coupler curve branch"])
+    _travel_curve(ax, sol, sol.q[0], sol.q[-1], sol.direction, u, lang)
     targets = u.convert(sol.points, "m")
-    ax.plot(*targets.T, "s", mfc="none", color="tab:red", ms=8, label="targets")
+    ax.plot(*targets.T, "s", mfc="none", color="tab:red", ms=8, label=w["targets"])
     for j, T in enumerate(targets):
         ax.annotate(f"{j + 1}", T, textcoords="offset points", xytext=(6, 4), color="tab:red")
     ax.legend(loc="best", fontsize=8)
-    return _finish(ax, f"path generator through {n} points (rms error "
-                       f"{u.convert(sol.rms_error, 'm'):.3g} {u.length})", u)
+    return _finish(ax, w["path generator"].format(
+        n=n, error=number(u.convert(sol.rms_error, "m"), ".3g", lang), unit=u.length), u, lang)
 
 
 def limit_positions(design: CrankRocker | QuickReturn, *, ax=None,
-                    units: Units | Mapping[str, str] | None = None):
+                    units: Units | Mapping[str, str] | None = None, lang: str = "en"):
     """A crank-rocker or quick return drawn by the engine at its two limit positions (dead
-    centres), with the crank circle and the output's travel over a turn, lengths in
-    ``units`` (default SI).
+    centres), with the crank circle and the output's travel over a turn, lengths and angles
+    in ``units`` (default SI, whatever the unit of the design's own angles), the title
+    naming the swing or stroke, the coefficient of velocity K (the time ratio) and the
+    smallest transmission angle.
 
     Parameters
     ----------
@@ -302,6 +335,16 @@ def limit_positions(design: CrankRocker | QuickReturn, *, ax=None,
     Returns
     -------
     matplotlib Axes
+
+    Examples
+    --------
+    >>> cr = kl.synthesis.crank_rocker(1.0, 60.0, 1.2, degrees=True)
+    >>> ax = kl.plot.limit_positions(cr, units={"angle": "deg"})
+    >>> "swing 60 deg" in ax.get_title()
+    True
+    >>> ax = kl.plot.limit_positions(cr)        # SI: radians
+    >>> "swing 1.047 rad" in ax.get_title()
+    True
     """
     _given("design", design, (CrankRocker, QuickReturn), "a CrankRocker or QuickReturn (from "
            "kinelab.synthesis.crank_rocker, offset_slider_crank, slotted_lever or whitworth)")
@@ -312,7 +355,8 @@ def limit_positions(design: CrankRocker | QuickReturn, *, ax=None,
     s = analyze(m, q=dc)
     turn = analyze(m, q=np.linspace(0.0, 2 * np.pi, 721), unreachable="mask", at_singular="flag")
     xy = {p: u.convert(s.position(p), "m") for p in s.point_names}
-    labels = ("limit position 1", "limit position 2")
+    w = words(lang)
+    labels = tuple(w["limit position"].format(k=k) for k in (1, 2))
     for k, colour in enumerate(("tab:blue", "tab:orange")):
         for link in m.links:
             if link.ground or len(link.points) < 2:
@@ -325,19 +369,26 @@ def limit_positions(design: CrankRocker | QuickReturn, *, ax=None,
         ax.plot(*X, "k^", ms=9)
         ax.annotate(p, X, textcoords="offset points", xytext=(5, -12))
     # the crank pin's circle and the path of the output's pin over a whole turn
-    for p, style, label in (("A", ":", "crank circle"), (_output_pin(m), "--", "output travel")):
+    for p, style, label in (("A", ":", w["crank circle"]),
+                            (_output_pin(m), "--", w["output travel"])):
         path = np.where(turn.assembled[:, None], turn.position(p), np.nan)
         ax.plot(*u.convert(path, "m").T, style, color="0.4", lw=1.0, label=label)
-    unit = "deg" if design.degrees else "rad"
+    def angle(value, spec):         # the design's angle (in its call's unit) in u's
+        si = np.radians(value) if design.degrees else value
+        return number(float(u.convert(si, "rad")), spec, lang)
+    ratio = number(design.time_ratio, ".4g", lang)
     if isinstance(design, CrankRocker):
-        what = (f"crank-rocker: swing {design.swing:.4g} {unit}, time ratio "
-                f"{design.time_ratio:.4g}, min transmission {design.transmission_min:.3g} {unit}")
+        what = w["crank-rocker"].format(swing=angle(design.swing, ".4g"), angle=u.angle,
+                                        ratio=ratio,
+                                        transmission=angle(design.transmission_min, ".3g"))
     else:
-        travel = (f"stroke {u.convert(design.stroke, 'm'):.4g} {u.length}" if design.stroke is not None
-                  else f"swing {design.swing:.4g} {unit}")
-        what = f"{design.kind}: {travel}, time ratio {design.time_ratio:.4g}"
+        travel = (w["quick return stroke"].format(
+                      stroke=number(float(u.convert(design.stroke, "m")), ".4g", lang),
+                      length=u.length) if design.stroke is not None else
+                  w["quick return swing"].format(swing=angle(design.swing, ".4g"), angle=u.angle))
+        what = w["quick return"].format(kind=_kind(design.kind, lang), travel=travel, ratio=ratio)
     ax.legend(loc="best", fontsize=8)
-    return _finish(ax, what, u)
+    return _finish(ax, what, u, lang)
 
 
 def _output_pin(model) -> str:
@@ -350,7 +401,7 @@ def _output_pin(model) -> str:
 
 
 def five_positions(positions: Positions, solutions=(), *, ax=None, samples: int = 1441,
-                   units: Units | Mapping[str, str] | None = None):
+                   units: Units | Mapping[str, str] | None = None, lang: str = "en"):
     """Five positions with their centre-point curves (of positions 1-4 and 1, 2, 3, 5),
     which meet in Burmester's points (the fixed pivots of the dyads through all five),
     and the pivots of the given linkages.
@@ -379,7 +430,8 @@ def five_positions(positions: Positions, solutions=(), *, ax=None, samples: int 
                    "ask for fewer samples")
     u = Units.resolve(units)
     ax = _axes(ax)
-    prescribed_positions(positions, ax=ax, show_poles=False, units=u)
+    w = words(lang)
+    prescribed_positions(positions, ax=ax, show_poles=False, units=u, lang=lang)
     sets = {"1-4": [0, 1, 2, 3], "1, 2, 3, 5": [0, 1, 2, 4]}
     for (name, idx), colour in zip(sets.items(), ("tab:blue", "tab:green")):
         sub = Positions(positions.points[idx], positions.alpha[idx])
@@ -387,7 +439,7 @@ def five_positions(positions: Positions, solutions=(), *, ax=None, samples: int 
         for k in range(2):
             c = u.convert(np.where(cur.valid[k][:, None], cur.center[k], np.nan), "m")
             ax.plot(*c.T, "-", color=colour, lw=1.0,
-                    label=f"centre points of positions {name}" if k == 0 else None)
+                    label=w["centre points of"].format(which=name) if k == 0 else None)
     keep = [u.convert(positions.points, "m")]
     for s in solutions:
         piv = u.convert(np.array([s.A0, s.B0]), "m")
@@ -398,7 +450,7 @@ def five_positions(positions: Positions, solutions=(), *, ax=None, samples: int 
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     pad = 0.3 * max((hi - lo).max(), 1e-300)
     ax.legend(loc="best", fontsize=8)
-    _finish(ax, "five positions, centre-point curves and Burmester points", u)
+    _finish(ax, w["five positions"], u, lang)
     # the curves run off to infinity: frame the positions and the pivots, at equal scales
     ax.set_aspect("equal", adjustable="box")
     ax.set_xlim(lo[0] - pad, hi[0] + pad)
