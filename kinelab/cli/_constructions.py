@@ -11,12 +11,9 @@ import click
 from kinelab._files import Outputs, safe_name, write_csv
 from kinelab.cli._main import Number, errors_from
 
-__all__ = ["LANG", "IMAGE", "STEPS", "TANGENTS", "POINTS", "POLAR", "TANGENT",
+__all__ = ["IMAGE", "STEPS", "TANGENTS", "POINTS", "POLAR", "TANGENT",
            "check_images", "write_images", "write_steps", "check_tangents", "write_tangents"]
 
-LANG = click.option("--lang", "lang", type=click.Choice(("en", "pt")), default="en",
-                    show_default=True,
-                    help="Language of the constructions' figures (pt: the notes' Portuguese).")
 IMAGE = click.option("--construction", "construction", is_flag=True,
                      help="Also draw the velocity image of each moving link with three or more "
                           "points by similar triangles, step by step: oa, ob, ab, the triangle "

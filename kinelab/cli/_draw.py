@@ -6,7 +6,7 @@ import click
 from kinelab import io
 from kinelab._files import output, outputs, safe_name
 from kinelab.cli._analyze import MODEL, SAMPLES
-from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, errors_from, light_work, output_path,
+from kinelab.cli._main import (CHANGE_POINTS, DEGREES, LANG, SI, errors_from, light_work, output_path,
                                output_units, read_model, said_written, stem, sweep)
 from kinelab.errors import ModelError, quoted, shown, suggest
 
@@ -49,7 +49,8 @@ def _check_names(option: str, names: list[str] | None, known, what: str) -> None
 @SI
 @DEGREES
 @CHANGE_POINTS
-def plot(model, out, formats, names, samples, si, degrees, change_points):
+@LANG
+def plot(model, out, formats, names, samples, si, degrees, change_points, lang):
     """Write MODEL's figures: outputs' position, velocity and acceleration against the input;
     K and L; coupler curves; transmission angle.  Axes are in the file's units (--si for m
     and rad); singular positions are marked and left out of the curves."""
@@ -70,13 +71,16 @@ def plot(model, out, formats, names, samples, si, degrees, change_points):
     with errors_from(mf, "outputs"):
         curve_names = [n for n in chosen if n in sol.link_item or n in sol.slide_item]
         if curve_names:
-            figures.append(("motion", kplot.curves(sol, curve_names, units=units)))
-            figures.append(("coefficients", kplot.coefficients(sol, curve_names, units=units)))
+            figures.append(("motion", kplot.curves(sol, curve_names, units=units, lang=lang)))
+            figures.append(("coefficients", kplot.coefficients(sol, curve_names, units=units,
+                                                               lang=lang)))
         for p in (n for n in chosen if n in sol.point_item):
-            figures.append((f"path_{safe_name(p)}", kplot.coupler_curve(sol, p, units=units).figure))
+            figures.append((f"path_{safe_name(p)}",
+                            kplot.coupler_curve(sol, p, units=units, lang=lang).figure))
         pairs = list(mf.outputs.transmission) or _default_pairs(m)
         if pairs:
-            figures.append(("transmission", kplot.transmission(sol, pairs, units=units).figure))
+            figures.append(("transmission",
+                            kplot.transmission(sol, pairs, units=units, lang=lang).figure))
     if not figures:
         raise click.UsageError("nothing to plot: name links, slides or points with --outputs")
     written = []
@@ -110,7 +114,9 @@ def plot(model, out, formats, names, samples, si, degrees, change_points):
 @SAMPLES
 @SI
 @CHANGE_POINTS
-def animate(model, out, fmt, trace, frames, fps, centers, velocities, samples, si, change_points):
+@LANG
+def animate(model, out, fmt, trace, frames, fps, centers, velocities, samples, si, change_points,
+            lang):
     """Write an animation of MODEL moving through its sweep, with its coupler curves traced
     (and, on request, its instant centres and velocities); axes in the file's length unit
     (--si for m)."""
@@ -128,5 +134,5 @@ def animate(model, out, fmt, trace, frames, fps, centers, velocities, samples, s
     def write(path):
         with errors_from(mf, "--trace" if trace else ""):
             kplot.animate(sol, path, trace=_names(trace), frames=frames, fps=fps, units=units,
-                          centers=centers, velocities=velocities)
+                          centers=centers, velocities=velocities, lang=lang)
     said_written([output(output_path(out, stem(model), fmt), write)])

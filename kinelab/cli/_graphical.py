@@ -15,7 +15,7 @@ from kinelab.cli import _constructions as steps_
 from kinelab.cli._draw import FIGURE_FORMATS, _agg
 from kinelab.cli._format import _num
 from kinelab._files import Outputs, outputs, safe_name, write_csv
-from kinelab.cli._main import (CHANGE_POINTS, DEGREES, SI, VERIFY, Number, errors_from,
+from kinelab.cli._main import (CHANGE_POINTS, DEGREES, LANG, SI, VERIFY, Number, errors_from,
                                output_units, parse_inputs, read_model, report, said_written,
                                stem, sweep)
 from kinelab.errors import ModelError, shown_path
@@ -75,11 +75,11 @@ def _save(fig, files: Outputs, name: str, formats) -> list[Path]:
 @SI
 @DEGREES
 @CHANGE_POINTS
+@LANG
 @VERIFY
 @steps_.IMAGE
-@steps_.LANG
 def polygons(model, at, speed, out, formats, velocity_scale, acceleration_scale, si, degrees,
-             change_points, verify_, construction, lang):
+             change_points, lang, verify_, construction):
     """Velocity and acceleration polygons of MODEL at one input: every point's velocity and
     acceleration from the pole, every side with its parts (normal, tangential, Coriolis,
     sliding), printed and drawn to scale beside the mechanism.  With --verify, every vertex,
@@ -131,9 +131,11 @@ def polygons(model, at, speed, out, formats, velocity_scale, acceleration_scale,
     click.echo("\n".join(lines))
     base = stem(model)
     with outputs(out) as files:
-        written = _save(kplot.velocity_polygon(sol, units=units, scale=velocity_scale), files,
-                        f"{base}_velocity_polygon", formats)
-        written += _save(kplot.acceleration_polygon(sol, units=units, scale=acceleration_scale),
+        written = _save(kplot.velocity_polygon(sol, units=units, scale=velocity_scale,
+                                               lang=lang),
+                        files, f"{base}_velocity_polygon", formats)
+        written += _save(kplot.acceleration_polygon(sol, units=units, scale=acceleration_scale,
+                                                    lang=lang),
                          files, f"{base}_acceleration_polygon", formats)
         written += steps_.write_images(mf, sol, images, files, base, formats, units, lang)
         if certificate is not None:
@@ -155,7 +157,7 @@ def polygons(model, at, speed, out, formats, velocity_scale, acceleration_scale,
 @SI
 @CHANGE_POINTS
 @steps_.STEPS
-@steps_.LANG
+@LANG
 def centres(model, at, out, formats, with_centrodes, samples, si, change_points, steps, lang):
     """Every instant centre of MODEL at one input, found as the notes find them: primary
     centres from the joints, the others by Kennedy's theorem in the order of the circle
@@ -187,17 +189,18 @@ def centres(model, at, out, formats, with_centrodes, samples, si, change_points,
     click.echo("\n".join(lines))
     base = stem(model)
     with outputs(out) as files:
-        written = _save(kplot.instant_centers(sol, units=units), files, f"{base}_centres",
-                        formats)
+        written = _save(kplot.instant_centers(sol, units=units, lang=lang), files,
+                        f"{base}_centres", formats)
         if steps:
             written += steps_.write_steps(mf, sol, files, base, formats, units, lang)
         if with_centrodes:
-            written += _centrodes(mf, sol, files, base, formats, samples, units, change_points)
+            written += _centrodes(mf, sol, files, base, formats, samples, units, change_points,
+                                  lang)
     said_written(written)
 
 
 def _centrodes(mf, sol, files: Outputs, base: str, formats, samples, units,
-               change_points) -> list[Path]:
+               change_points, lang: str = "en") -> list[Path]:
     """The centrodes of each link of ``mf`` not pinned to the ground, over the file's sweep,
     at the sample nearest ``sol``'s input: one figure each, ``<base>_centrodes_<link>``."""
     from kinelab import plot as kplot
@@ -216,7 +219,7 @@ def _centrodes(mf, sol, files: Outputs, base: str, formats, samples, units,
     written = []
     for lk in links:
         with errors_from(mf, "--centrodes"):
-            ax = kplot.centrodes(swept, lk, near, units=units)
+            ax = kplot.centrodes(swept, lk, near, units=units, lang=lang)
         written += _save(ax.figure, files, f"{base}_centrodes_{safe_name(lk)}", formats)
     return written
 
@@ -242,7 +245,7 @@ PLOTTED = 20_000     # samples a figure of derivatives draws at most (every k-th
 @steps_.POINTS
 @steps_.POLAR
 @steps_.TANGENT
-@steps_.LANG
+@LANG
 def differentiate_command(data, x_column, y_column, window, out, formats, construction, points,
                           polar_distance, tangent, lang):
     """Velocity and acceleration of a measured curve: DATA is a CSV file with a header row
@@ -278,7 +281,7 @@ def differentiate_command(data, x_column, y_column, window, out, formats, constr
     with outputs(out) as files:
         written = [files.write(f"{base}_derivatives.csv", lambda p: write_csv(columns, p))]
         fig = kplot.derivatives(drawn, x_label=f"{xn}{unit(xu)}", y_label=yn, y_unit=yu or "1",
-                                x_unit=xu or "1")
+                                x_unit=xu or "1", lang=lang)
         written += _save(fig, files, f"{base}_derivatives", formats)
         if tc is not None:
             written += steps_.write_tangents(tc, d, files, base, formats, (xn, yn, xu, yu), lang)

@@ -15,6 +15,7 @@ from kinelab.kinematics._solution import takes_solution
 from kinelab.solvers._arguments import flag, whole
 from kinelab.model import Units
 from kinelab.plot._figures import SINGULAR_LABEL, _regular, _singular_samples, mechanism, plain
+from kinelab.plot._words import checked_language, decimal_commas, number, words
 
 __all__ = ["animate", "can_write_mp4"]
 
@@ -30,7 +31,7 @@ def can_write_mp4() -> bool:
 @takes_solution
 def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, frames: int = 120,
             fps: int = 30, units: Units | Mapping[str, str] | None = None,
-            centers: bool = False, velocities: bool = False) -> Path:
+            centers: bool = False, velocities: bool = False, lang: str = "en") -> Path:
     """Write an animation of the mechanism moving through the sweep, the paths of the
     ``trace`` points drawn as they go.
 
@@ -53,6 +54,9 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
     velocities : bool
         Overlay each moving point's velocity as an arrow, at one scale for the whole
         animation (stated in the legend).
+    lang : str
+        Language of the legend, ``"en"`` or ``"pt"`` (decimal commas).  The legend is
+        below the drawing, where it covers nothing.
 
     Returns
     -------
@@ -84,6 +88,7 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
         raise ModelError("sol: an animation needs a sweep of at least two samples")
     frames, fps = whole("frames", frames, 1, MAX_FRAMES), whole("fps", fps, 1, 1000)
     centers, velocities = flag("centers", centers), flag("velocities", velocities)
+    w = words(checked_language(lang))
     if isinstance(trace, str):
         trace = [trace]         # one point
     if trace is not None:
@@ -123,7 +128,7 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
     paths = {p: _regular(sol, position(p)) for p in trace}
     for p, xy in paths.items():
         ax.plot(xy[:, 0], xy[:, 1], lw=0.8, color="0.75", zorder=1)
-    traced = {p: ax.plot([], [], lw=1.6, color="black", zorder=1, label=plain(f"path of {p}"))[0]
+    traced = {p: ax.plot([], [], lw=1.6, color="black", zorder=1, label=plain(w["path of"].format(point=p)))[0]
               for p in paths}
     singular = _singular_samples(sol)
     for k, p in enumerate(trace if singular else ()):
@@ -135,11 +140,12 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
     if centers:
         overlays.append(_centre_overlay(ax, sol, u, (lo - pad, hi + pad)))
     if velocities:
-        overlays.append(_velocity_overlay(ax, sol, u, float(max(hi - lo))))
+        overlays.append(_velocity_overlay(ax, sol, u, float(max(hi - lo)), lang))
     for overlay in overlays:
         overlay(int(idx[0]))
     if traced or singular or velocities:
-        ax.legend(fontsize="small", loc="upper right")
+        _legend_below(fig, ax)
+    decimal_commas(fig, lang)
     ax.set_aspect("equal", adjustable="box")
     ax.set_xlim(lo[0] - pad, hi[0] + pad)
     ax.set_ylim(lo[1] - pad, hi[1] + pad)
@@ -166,6 +172,20 @@ def animate(sol: KinematicSolution, path: str | os.PathLike, *, trace=None, fram
     finally:
         plt.close(fig)
     return path
+
+
+def _legend_below(fig, ax) -> None:
+    """The legend below the drawing, where it covers nothing: the figure grows by the
+    legend's rows, the drawing keeps its size (5 inches square, with its axes' labels)."""
+    entries = len(ax.get_legend_handles_labels()[1])
+    columns = 2 if entries <= 8 else 3
+    rows = -(-entries // columns)
+    below = 0.2 * rows + 0.25              # inches
+    height = 5.0 + below
+    fig.set_size_inches(5.0, height)
+    ax.set_position((0.17, (below + 0.5) / height, 0.8, 4.1 / height))
+    ax.legend(fontsize="small", loc="upper center", ncols=columns,
+              bbox_to_anchor=(0.5, (below + 0.05) / height), bbox_transform=fig.transFigure)
 
 
 def _reported(frames, n: int):
@@ -377,7 +397,7 @@ def _centre_overlay(ax, sol: KinematicSolution, u: Units, view):
     return place
 
 
-def _velocity_overlay(ax, sol: KinematicSolution, u: Units, span: float):
+def _velocity_overlay(ax, sol: KinematicSolution, u: Units, span: float, lang: str = "en"):
     """A function of the sample that sets a velocity arrow on each moving point, at one
     scale: the fastest point's arrow is a quarter of the view."""
     ground = set(sol.mechanism.ground.points)
@@ -389,8 +409,9 @@ def _velocity_overlay(ax, sol: KinematicSolution, u: Units, span: float):
     seconds = 0.25 * span / fastest          # an arrow's length is the velocity times this
     arrows = ax.quiver(xy[0, :, 0], xy[0, :, 1], v[0, :, 0], v[0, :, 1], angles="xy",
                        scale_units="xy", scale=1.0 / seconds, color="tab:blue", width=0.006,
-                       zorder=5, label=f"velocities: 1 {u.length} = {1 / seconds:.3g} "
-                                       f"{u.unit('m/s')}")
+                       zorder=5, label=words(lang)["velocities legend"].format(
+                           length=u.length, scale=number(1 / seconds, ".3g", lang),
+                           unit=u.unit("m/s")))
 
     def place(i):
         arrows.set_offsets(np.where(np.isfinite(xy[i]), xy[i], 0.0))

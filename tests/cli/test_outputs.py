@@ -156,8 +156,8 @@ def commands(work: Path, out: Path, names: list[str]) -> list[tuple[list, set | 
          {odd["m\x1bx"] + "_derivatives.csv", odd["m\x1bx"] + "_derivatives.png"}),
         *[(["dynamics", m[f"engine{i}"], "--samples", "5", "--out", out]
            + ([] if i == k else ["--no-plots"]),
-           {f"{odd[name]}_dynamics.csv"} | (set() if i != k else {
-               f"{odd[name]}_{f}.png" for f in ("efforts", "reactions", "shaking")}))
+           {f"engine{i}_dynamics.csv"} | (set() if i != k else {     # the model file's name
+               f"engine{i}_{f}.png" for f in ("efforts", "reactions", "shaking")}))
           for i, name in enumerate(names)],
         (["synth", src / "task.toml", "--out", out], SYNTH),
         (["cam", cam, "--out", out], {f"{cam_stem}_{k}" for k in (
