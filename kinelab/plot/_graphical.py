@@ -127,43 +127,71 @@ class _Label:
 def _place_labels(ax, labels: list) -> None:
     """Write ``labels`` on ``ax`` where none covers another: each tries its places nearest
     first (the arrow's side, then the other side, farther out, and shifted along the
-    arrow; around a point, the eight directions at growing distances) and takes the first
-    free one; a label with no free place joins the label it meets first ("a, b") rather
-    than cover it.  The axes' limits must be set (the panel drawn to scale) before."""
+    arrow; around a point, the eight directions at growing distances, with a thin leader
+    line to the point when it is far) and takes the first free one; a label with no free
+    place joins the label it meets first ("a, b"), which then takes a free place of its own
+    if it has come to cover another.  The axes' limits must be set (the panel drawn to scale)
+    before."""
     if not labels:
         return
-    fig = ax.figure
-    renderer = fig.canvas.get_renderer()
-    to_points = 72.0 / fig.dpi
-    placed: list = []           # (annotation, box)
+    renderer = ax.figure.canvas.get_renderer()
+    placed: list = []           # [label, annotation, box]
+
+    def free_place(label, art, others) -> bool:
+        for offset in _offsets(label, _half_size(art, renderer), ax):
+            _move(art, label, offset)
+            box = art.get_window_extent(renderer)
+            if not any(box.overlaps(b) for _, _, b in others):
+                return True
+        return False
     for label in labels:
         art = ax.annotate(label.text, label.xy, xytext=(0, 0), textcoords="offset points",
                           ha="center", va="center", annotation_clip=False, **label.style)
-        box = art.get_window_extent(renderer)
-        half = 0.5 * np.array([box.width, box.height]) * to_points
-        free = None
-        for offset in _offsets(label, half, ax, to_points):
-            art.xyann = tuple(offset)
-            box = art.get_window_extent(renderer)
-            if not any(box.overlaps(b) for _, b in placed):
-                free = box
-                break
-        if free is not None:
-            placed.append((art, free))
+        if free_place(label, art, placed):
+            placed.append([label, art, art.get_window_extent(renderer)])
             continue
-        art.xyann = tuple(next(iter(_offsets(label, half, ax, to_points))))
+        _move(art, label, next(iter(_offsets(label, _half_size(art, renderer), ax))))
         box = art.get_window_extent(renderer)
-        host = next(k for k, (_, b) in enumerate(placed) if box.overlaps(b))
+        host = next(k for k, (_, _, b) in enumerate(placed) if box.overlaps(b))
         art.remove()
-        other = placed[host][0]
-        other.set_text(f"{other.get_text()}, {label.text}")
-        placed[host] = (other, other.get_window_extent(renderer))
+        host_label, host_art, _ = placed[host]
+        host_art.set_text(f"{host_art.get_text()}, {label.text}")
+        others = placed[:host] + placed[host + 1:]
+        box = host_art.get_window_extent(renderer)
+        if any(box.overlaps(b) for _, _, b in others):
+            free_place(host_label, host_art, others)
+        placed[host][2] = host_art.get_window_extent(renderer)
+    _leaders(ax, placed)
 
 
-def _offsets(label: _Label, half: np.ndarray, ax, to_points: float):
+def _half_size(art, renderer) -> np.ndarray:
+    """Half the width and height of a text, in points."""
+    box = art.get_window_extent(renderer)
+    return 0.5 * np.array([box.width, box.height]) * 72.0 / art.figure.dpi
+
+
+def _move(art, label: _Label, offset) -> None:
+    """Put a label's centre at ``offset`` points from its anchor."""
+    art.xyann = tuple(offset)
+
+
+def _leaders(ax, placed) -> None:
+    """A thin line from each point to its label when the label had to go far from it."""
+    dpi = ax.figure.dpi
+    for label, art, _ in placed:
+        offset = np.asarray(art.xyann, float)
+        if label.normal is None and float(np.hypot(*offset)) > 24.0:
+            end = ax.transData.inverted().transform(
+                ax.transData.transform(label.xy) + offset * dpi / 72.0)
+            ax.plot(*np.array([label.xy, end]).T, lw=0.4, color=label.style.get("color", "0.3"),
+                    zorder=1)
+
+
+def _offsets(label: _Label, half: np.ndarray, ax):
     """The offsets (points) of a label's centre to try, nearest first."""
+    to_points = 72.0 / ax.figure.dpi
     if label.normal is None:
-        for distance in (3.0, 9.0, 16.0, 26.0):
+        for distance in (3.0, 9.0, 16.0, 26.0, 40.0, 56.0, 76.0):
             for dx, dy in ((1, 1), (1, -1), (-1, 1), (-1, -1), (1, 0), (-1, 0), (0, 1), (0, -1)):
                 yield np.array([dx * (half[0] + distance), dy * (half[1] + distance)])
         return
@@ -512,7 +540,7 @@ def _circle_diagram(ax, kc, order, lang: str = "en") -> None:
     ax.set_xlim(-1.6, 1.6)
     ax.set_ylim(-1.6, 1.6)
     ax.set_axis_off()
-    ax.set_title(words(lang)["circle diagram"], fontsize=9, wrap=True)
+    ax.set_title(words(lang)["circle diagram"], fontsize=9)
 
 
 def centrodes(sol: KinematicSolution, link: str, sample: int = 0, *, ax=None,

@@ -54,7 +54,7 @@ WORDS: dict[str, dict[str, str]] = {
         "normal": "normal", "tangential": "tangential", "coriolis": "Coriolis",
         "sliding": "sliding",
         "off the figure": "{label} (off the figure)",
-        "circle diagram": ("circle diagram: primary (solid), by Kennedy's theorem "
+        "circle diagram": ("circle diagram: primary (solid),\nby Kennedy's theorem "
                            "(dashed, in order)"),
         "centres title": "{name}: instant centres",
         "fixed centrode": "fixed centrode", "moving centrode": "moving centrode",
@@ -122,7 +122,7 @@ WORDS: dict[str, dict[str, str]] = {
         "normal": "normal", "tangential": "tangencial", "coriolis": "Coriolis",
         "sliding": "deslizamento",
         "off the figure": "{label} (fora da figura)",
-        "circle diagram": ("diagrama circular: primários (cheio), pelo teorema de Kennedy "
+        "circle diagram": ("diagrama circular: primários (cheio),\npelo teorema de Kennedy "
                            "(tracejado, em ordem)"),
         "centres title": "{name}: centros instantâneos de rotação",
         "fixed centrode": "centroide fixa", "moving centrode": "centroide móvel",
