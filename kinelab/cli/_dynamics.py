@@ -18,7 +18,7 @@ from kinelab.io import ModelFile
 from kinelab.io._modelfile import MAX_SAMPLES, sweep_times
 from kinelab.model import Units
 from kinelab.errors import ModelError, describe, shown_path
-from kinelab.plot._words import number
+from kinelab.cli._words import SAID, number
 
 __all__ = ["dynamics_command", "run", "times", "MAX_VALUES"]
 
@@ -126,10 +126,10 @@ def dynamics_command(model, out, samples, si, degrees, gravity, no_plots, lang, 
         res, written, certificate = run(mf, out, samples=samples, units=units, gravity=g,
                                         plots=not no_plots, verify=verify_, name=stem(model),
                                         lang=lang)
-    said = _SAID[lang]
+    said = SAID[lang]
 
     def num(v):
-        return number(v, ".6g", lang)
+        return number(v, 6, lang)
     for name, kind, col in zip(res.input_names, res.input_kinds, res.input_forces.T):
         unit = "N m" if kind == "angle" else "N"
         ok = np.isfinite(col)
@@ -148,20 +148,3 @@ def dynamics_command(model, out, samples, si, degrees, gravity, no_plots, lang, 
     if certificate is not None:
         report(certificate)
 
-
-# The summary the command prints, one table per language (figures: kinelab.plot._words).
-_SAID = {
-    "en": {
-        "undefined": "{name}: no effort defined (every sample singular or unassembled)",
-        "effort": "{name}: peak |effort| {peak} {unit}, rms {rms} {unit}",
-        "shaking": "shaking force: peak {force} N; shaking moment: peak {moment} N m",
-        "singular": "{count} singular sample(s): forces undefined there (NaN)",
-    },
-    "pt": {
-        "undefined": "{name}: esforço indefinido (todas as amostras singulares ou não montadas)",
-        "effort": "{name}: |esforço| máximo {peak} {unit}, rms {rms} {unit}",
-        "shaking": ("força de vibração: máxima {force} N; momento de vibração: máximo "
-                    "{moment} N m"),
-        "singular": "{count} amostra(s) singular(es): forças indefinidas nelas (NaN)",
-    },
-}

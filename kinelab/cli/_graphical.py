@@ -13,7 +13,7 @@ from kinelab import io, kinematics, solvers
 from kinelab.cli._analyze import MODEL, SAMPLES, configuration, with_speeds
 from kinelab.cli import _constructions as steps_
 from kinelab.cli._draw import FIGURE_FORMATS, _agg
-from kinelab.cli._format import _num
+from kinelab.cli._words import SAID, number
 from kinelab._files import Outputs, outputs, safe_name, write_csv
 from kinelab.cli._main import (CHANGE_POINTS, DEGREES, LANG, SI, VERIFY, Number, errors_from,
                                output_units, parse_inputs, read_model, report, said_written,
@@ -42,9 +42,9 @@ def _table(rows: list[tuple[str, ...]]) -> list[str]:
                              for k, (c, w) in enumerate(zip(r, widths))).rstrip() for r in rows]
 
 
-def _vector_row(name: str, v, u: Units, si: str) -> tuple[str, ...]:
+def _vector_row(name: str, v, u: Units, si: str, lang: str = "en") -> tuple[str, ...]:
     x, y = (float(c) for c in u.convert(np.asarray(v, float), si))
-    return (name, _num(x), _num(y), _num(float(np.hypot(x, y))))
+    return (name, number(x, 6, lang), number(y, 6, lang), number(float(np.hypot(x, y)), 6, lang))
 
 
 def _save(fig, files: Outputs, name: str, formats) -> list[Path]:
@@ -109,25 +109,27 @@ def polygons(model, at, speed, out, formats, velocity_scale, acceleration_scale,
 
     def name(p):        # a guide's point under a slider's point A: A'
         return p.split("@")[0] + "'" if "@" in p else p
-    lines = [f"{mf.mechanism.name}: velocity polygon [{v_unit}], from the pole O_V"]
+    said = SAID[lang]
+    lines = [said["velocity polygon"].format(name=mf.mechanism.name, unit=v_unit)]
     rows = [("", "vx", "vy", "|v|")]
-    rows += [_vector_row(f"V_{p}", v, units, "m/s") for p, v in vp.vertices.items()]
-    rows += [_vector_row(f"V_{name(p)}{name(r)}", s.vector, units, "m/s")
+    rows += [_vector_row(f"V_{p}", v, units, "m/s", lang) for p, v in vp.vertices.items()]
+    rows += [_vector_row(f"V_{name(p)}{name(r)}", s.vector, units, "m/s", lang)
              for (p, r), s in vp.sides.items()]
     lines += _table(rows)
     lines.append("")
-    lines.append(f"acceleration polygon [{a_unit}], from the pole O_A")
+    lines.append(said["acceleration polygon"].format(unit=a_unit))
     rows = [("", "ax", "ay", "|a|")]
-    rows += [_vector_row(f"A_{p}", a, units, "m/s^2") for p, a in ap.vertices.items()]
+    rows += [_vector_row(f"A_{p}", a, units, "m/s^2", lang) for p, a in ap.vertices.items()]
     mark = {"normal": "n", "tangential": "t", "coriolis": "c", "sliding": "s"}
     for (p, r), side in ap.sides.items():
         sub = f"{name(p)}{name(r)}"
-        rows.append(_vector_row(f"A_{sub}", side.vector, units, "m/s^2"))
-        rows += [_vector_row(f"  A^{mark[k]}_{sub}", v, units, "m/s^2") for k, v in side.parts.items()]
+        rows.append(_vector_row(f"A_{sub}", side.vector, units, "m/s^2", lang))
+        rows += [_vector_row(f"  A^{mark[k]}_{sub}", v, units, "m/s^2", lang)
+                 for k, v in side.parts.items()]
     lines += _table(rows)
     for c in vp.coincident:
         point, guide = c.split("@")
-        lines.append(f"{point}' is the point of {guide} under {point}")
+        lines.append(said["under"].format(point=point, guide=guide))
     click.echo("\n".join(lines))
     base = stem(model)
     with outputs(out) as files:
@@ -173,17 +175,20 @@ def centres(model, at, out, formats, with_centrodes, samples, si, change_points,
         kc = kinematics.kennedy_construction(sol)
     order = {s.pair: k + 1 for k, s in enumerate(kc.steps)}
     numbers = ", ".join(f"{n} {lk}" for lk, n in kc.numbers.items())
-    lines = [f"{mf.mechanism.name}: instant centres [{units.length}]; links {numbers}"]
-    rows = [("", "links", "found", "x", "y")]
+    said = SAID[lang]
+    lines = [said["centres"].format(name=mf.mechanism.name, unit=units.length, numbers=numbers)]
+    rows = [("", said["links"], said["found"], "x", "y")]
     for pair, c in kc.centers.items():
-        how = (f"joint {kc.primary[pair]}" if pair in kc.primary else
-               f"Kennedy ({order[pair]})" if pair in order else "velocities")
+        how = (said["joint"].format(joint=kc.primary[pair]) if pair in kc.primary else
+               f"Kennedy ({order[pair]})" if pair in order else said["velocities"])
         if bool(c.at_infinity):
             d = c.direction
-            where = ("at infinity", f"direction ({_num(float(d[0]), 4)}, {_num(float(d[1]), 4)})")
+            between = "; " if lang == "pt" else ", "      # a decimal comma's list: with ;
+            where = (said["at infinity"], f"{said['direction']} ({number(float(d[0]), 4, lang)}"
+                                          f"{between}{number(float(d[1]), 4, lang)})")
         else:
             x, y = (float(v) for v in units.convert(c.position, "m"))
-            where = (_num(x), _num(y))
+            where = (number(x, 6, lang), number(y, 6, lang))
         rows.append((kc.label(pair), "-".join(pair), how, *where))
     lines += _table(rows)
     click.echo("\n".join(lines))
@@ -285,10 +290,11 @@ def differentiate_command(data, x_column, y_column, window, out, formats, constr
         written += _save(fig, files, f"{base}_derivatives", formats)
         if tc is not None:
             written += steps_.write_tangents(tc, d, files, base, formats, (xn, yn, xu, yu), lang)
-    how = ("as --window says" if window is not None else
-           f"0.7 of the {d.window_gcv} generalised cross-validation chose")
-    click.echo(f"{shown_path(Path(data).name)}: {len(d.x)} samples of {yn} against {xn}; noise about "
-               f"{_num(d.noise, 3)} {yu}; local fits of degree 5 over {d.window} samples "
-               f"({how}); median error band on the velocity "
-               f"{_num(float(np.median(d.velocity_error)), 3)} {rate}".replace(" ;", ";"))
+    said = SAID[lang]
+    how = (said["window given"] if window is not None else
+           said["window chosen"].format(share=number(0.7, 6, lang), gcv=d.window_gcv))
+    click.echo(said["derivatives"].format(
+        data=shown_path(Path(data).name), n=len(d.x), y=yn, x=xn, noise=number(d.noise, 3, lang),
+        unit=yu, window=d.window, how=how,
+        band=number(float(np.median(d.velocity_error)), 3, lang), rate=rate).replace(" ;", ";"))
     said_written(written)

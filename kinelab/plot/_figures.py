@@ -78,6 +78,20 @@ def plain(text: str) -> str:
     return text.replace("$", r"\$")
 
 
+def _fitted(label: str, width: int = 34) -> str:
+    """An axis label longer than ``width`` characters with its unit on a line of its own,
+    so that it fits beside the axes of a figure of several rows.
+
+    Examples
+    --------
+    >>> print(_fitted("aceleração angular de lever [deg/s²]"))
+    aceleração angular de lever
+    [deg/s²]
+    """
+    head, bracket, unit = label.rpartition(" [")
+    return f"{head}\n[{unit}" if len(label) > width and bracket else label
+
+
 def _label(units: Units, si_unit: str) -> str:
     """An axis label's unit: ``deg/s²``."""
     return units.unit(si_unit).replace("^2", "²")
@@ -257,7 +271,7 @@ def curves(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
                     _turn_ticks(ax.yaxis, y, u.unit(si))
             what = (w[f"named {label}"].format(name=names[0]) if len(names) == 1 else
                     w[label] if kind == "link" else w[f"slide {label}" if row else "slide"])
-            ax.set_ylabel(plain(f"{what} [{_label(u, si)}]"))
+            ax.set_ylabel(_fitted(plain(f"{what} [{_label(u, si)}]")))
             ax.grid(True, alpha=0.3)
             if row == 0:            # names the curves and the singular positions for the column
                 _legend(ax, always=len(names) > 1)
@@ -307,8 +321,8 @@ def coefficients(sol: KinematicSolution, outputs=None, *, degrees: bool = False,
         l_units.append(f"{su}/{qu}^2")
         ax_k.plot(x, u.convert(_regular(sol, K), k_units[-1]), label=plain(name))
         ax_l.plot(x, u.convert(_regular(sol, L), l_units[-1]), label=plain(name))
-    ax_k.set_ylabel(f"{w['K label']} [{' | '.join(sorted({_label(u, k) for k in k_units}))}]")
-    ax_l.set_ylabel(f"{w['L label']} [{' | '.join(sorted({_label(u, k) for k in l_units}))}]")
+    ax_k.set_ylabel(_fitted(f"{w['K label']} [{' | '.join(sorted({_label(u, k) for k in k_units}))}]"))
+    ax_l.set_ylabel(_fitted(f"{w['L label']} [{' | '.join(sorted({_label(u, k) for k in l_units}))}]"))
     for ax in (ax_k, ax_l):
         ax.grid(True, alpha=0.3)
         ax.axhline(0.0, color="0.5", lw=0.6)

@@ -400,3 +400,34 @@ def test_lang_option_refuses_other_languages(tmp_path):
     result = CliRunner().invoke(main, ["plot", str(EX / "crank_rocker.toml"), "--lang", "fr",
                                        "--out", str(tmp_path)])
     assert result.exit_code == 2 and "--lang" in result.output
+
+
+# -- the summaries the drawing commands print ------------------------------------------------
+
+def test_polygons_and_centres_print_in_portuguese_with_decimal_commas(tmp_path):
+    path = EX / "slotted_link.toml"
+    polygons = run("polygons", path, "--at", "60", "--lang", "pt", "--out", tmp_path)
+    assert polygons.startswith("slotted link (Erthal): polígono de velocidades [mm/s]")
+    assert "polígono de acelerações [mm/s^2]" in polygons
+    assert "  V_A      -272,07    157,08  314,159" in polygons
+    centres = run("centres", path, "--at", "60", "--lang", "pt", "--out", tmp_path)
+    assert "centros instantâneos de rotação [mm]" in centres
+    assert "no infinito  direção (-0,3273; 0,9449)" in centres
+    for out in (polygons, centres):
+        table = out.split("wrote")[0]
+        assert not re.search(r"\d\.\d", table)
+        assert not english_words(without(table, names_of(path) + ["Kennedy"]))
+    english = run("centres", path, "--at", "60", "--out", tmp_path)
+    assert "at infinity  direction (-0.3273, 0.9449)" in english
+
+
+def test_differentiate_prints_in_portuguese(tmp_path):
+    t = np.linspace(0.0, 1.0, 41)
+    data = tmp_path / "cam.csv"
+    data.write_text("t [s],s [mm]\n" + "\n".join(f"{a:.6f},{np.sin(3 * a):.6f}" for a in t))
+    out = run("differentiate", data, "--lang", "pt", "--out", tmp_path)
+    assert out.startswith("cam.csv: 41 amostras de s em função de t; ruído cerca de ")
+    assert "validação cruzada generalizada" in out and "0,7 das " in out
+    assert not re.search(r"\d\.\d", out.split("wrote")[0].replace("cam.csv", ""))
+    table = (tmp_path / "cam_derivatives.csv").read_text().splitlines()
+    assert [float(v) for v in table[1].split(",")]      # the table keeps the decimal point

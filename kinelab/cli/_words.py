@@ -1,0 +1,65 @@
+"""The words of the summaries the drawing commands print: one table per language, one key
+per sentence, the notes' terms in Portuguese (the figures' own words are in
+``kinelab.plot._words``).  Numbers go through :func:`number`, with a decimal comma in
+Portuguese; the tables the commands write (CSV) keep the decimal point."""
+from __future__ import annotations
+
+import math
+
+__all__ = ["SAID", "number"]
+
+SAID: dict[str, dict[str, str]] = {
+    "en": {
+        # dynamics
+        "undefined": "{name}: no effort defined (every sample singular or unassembled)",
+        "effort": "{name}: peak |effort| {peak} {unit}, rms {rms} {unit}",
+        "shaking": "shaking force: peak {force} N; shaking moment: peak {moment} N m",
+        "singular": "{count} singular sample(s): forces undefined there (NaN)",
+        # polygons
+        "velocity polygon": "{name}: velocity polygon [{unit}], from the pole O_V",
+        "acceleration polygon": "acceleration polygon [{unit}], from the pole O_A",
+        "under": "{point}' is the point of {guide} under {point}",
+        # centres
+        "centres": "{name}: instant centres [{unit}]; links {numbers}",
+        "links": "links", "found": "found", "joint": "joint {joint}",
+        "velocities": "velocities", "at infinity": "at infinity", "direction": "direction",
+        # differentiate
+        "derivatives": ("{data}: {n} samples of {y} against {x}; noise about {noise} {unit}; "
+                        "local fits of degree 5 over {window} samples ({how}); median error "
+                        "band on the velocity {band} {rate}"),
+        "window given": "as --window says",
+        "window chosen": "{share} of the {gcv} generalised cross-validation chose",
+    },
+    "pt": {
+        "undefined": "{name}: esforço indefinido (todas as amostras singulares ou não montadas)",
+        "effort": "{name}: |esforço| máximo {peak} {unit}, rms {rms} {unit}",
+        "shaking": ("força de vibração: máxima {force} N; momento de vibração: máximo "
+                    "{moment} N m"),
+        "singular": "{count} amostra(s) singular(es): forças indefinidas nelas (NaN)",
+        "velocity polygon": "{name}: polígono de velocidades [{unit}], a partir do polo O_V",
+        "acceleration polygon": "polígono de acelerações [{unit}], a partir do polo O_A",
+        "under": "{point}' é o ponto de {guide} sob {point}",
+        "centres": "{name}: centros instantâneos de rotação [{unit}]; membros {numbers}",
+        "links": "membros", "found": "obtido", "joint": "junta {joint}",
+        "velocities": "velocidades", "at infinity": "no infinito", "direction": "direção",
+        "derivatives": ("{data}: {n} amostras de {y} em função de {x}; ruído cerca de {noise} "
+                        "{unit}; ajustes locais de grau 5 sobre {window} amostras ({how}); "
+                        "faixa de erro mediana da velocidade {band} {rate}"),
+        "window given": "como diz --window",
+        "window chosen": ("{share} das {gcv} que a validação cruzada generalizada "
+                          "escolheu"),
+    },
+}
+
+
+def number(v: float, digits: int = 6, lang: str = "en") -> str:
+    """A printed number to ``digits`` significant figures ('-' when not finite, '0' for
+    zero), with a decimal comma in Portuguese.
+
+    Examples
+    --------
+    >>> number(1.25, lang="pt"), number(1.25)
+    ('1,25', '1.25')
+    """
+    text = "-" if not math.isfinite(v) else f"{v:.{digits}g}" if v != 0 else "0"
+    return text.replace(".", ",") if lang == "pt" else text
