@@ -19,6 +19,8 @@ import click
 import numpy as np
 
 from kinelab.cli._main import DEGREES, LANG, SI, VERIFY, output_units, report
+from kinelab.cli._words import SAID, formatted
+from kinelab.plot._words import kind_words
 from kinelab.errors import shown_path
 from kinelab.io import Task, load_task, solve_task, task_summary
 from kinelab.model import Units
@@ -61,8 +63,11 @@ def _figures(task: Task, sols: list, extra: dict, u: Units, lang: str = "en") ->
     return out
 
 
-def _fmt_xy(v, u: Units):
-    return "(" + ", ".join(f"{c:.4f}" for c in u.convert(np.asarray(v), "m")) + ")"
+def _fmt_xy(v, u: Units, lang: str = "en"):
+    """A point in ``u``, ``(1.0000, 2.0000)``; in Portuguese ``(1,0000; 2,0000)``."""
+    between = "; " if lang == "pt" else ", "     # a decimal comma's list: with ;
+    return "(" + between.join(formatted(c, ".4f", lang)
+                              for c in u.convert(np.asarray(v), "m")) + ")"
 
 
 @click.command("synth")
@@ -120,62 +125,73 @@ def synth(task_file: str, out_dir: str | None, figures: bool, as_json: bool, si:
         if certificate is not None and not certificate.passed:
             click.get_current_context().exit(1)
         return
+    said = SAID[lang]
+
+    def f(v, spec):
+        return formatted(v, spec, lang)
     what = task.kind if task.kind in ("crank-rocker", "quick-return") else f"{task.kind} generation"
-    click.echo(f"{task.name}: {what}, {len(sols)} linkage(s)"
+    click.echo(said["solved"].format(name=task.name, what=kind_words(what, lang), n=len(sols))
                + (f" ({summary['reason']})" if summary["reason"] else ""))
     for s, row in zip(sols, rows):
         head = f"  {row['solution']}: "
         if "mechanism" in row:
-            click.echo(head + _design_line(row, u))
+            click.echo(head + _design_line(row, u, lang))
             continue
         if hasattr(s, "A0"):
-            head += (f"A0 {_fmt_xy(s.A0, u)} B0 {_fmt_xy(s.B0, u)} A1 {_fmt_xy(s.A1, u)} "
-                     f"B1 {_fmt_xy(s.B1, u)} {u.length}, ")
+            head += (f"A0 {_fmt_xy(s.A0, u, lang)} B0 {_fmt_xy(s.B0, u, lang)} "
+                     f"A1 {_fmt_xy(s.A1, u, lang)} B1 {_fmt_xy(s.B1, u, lang)} {u.length}, ")
         else:
-            head += ", ".join(f"{k} {v:.4f}" for k, v in row["lengths"].items()) + \
+            head += ", ".join(f"{k} {f(v, '.4f')}" for k, v in row["lengths"].items()) + \
                 f" {u.length}, "
         if "transmission_limit" in row:
-            head += _transmission(row, u) + ", "
+            head += _transmission(row, u, lang) + ", "
         if "rms_error" in row:
-            head += f"rms error {_error(row['rms_error'], u.length)}, "
+            head += f"{said['rms error']} {_error(row['rms_error'], u.length, lang)}, "
         if "max_structural_error" in row:
-            head += f"max structural error {_error(row['max_structural_error'])}, "
-        head += f"{s.grashof.kind}, {s.state}"
+            head += f"{said['max structural error']} {_error(row['max_structural_error'], '', lang)}, "
+        head += f"{kind_words(s.grashof.kind, lang)}, {kind_words(s.state, lang)}"
         click.echo(head)
-    click.echo(f"wrote {len(files)} file(s) to {shown_path(out)}")
+    click.echo(said["wrote files"].format(n=len(files), path=shown_path(out)))
     if certificate is not None:
         report(certificate)
 
 
-def _transmission(row: dict[str, Any], u: Units) -> str:
+def _transmission(row: dict[str, Any], u: Units, lang: str = "en") -> str:
     """The smallest transmission angle of a linkage over its travel, and whether it meets the
-    task's limit, in ``u``."""
-    limit = f"{row['transmission_limit']:.3g} {u.angle} limit"
+    task's limit, in ``u`` and ``lang``."""
+    said = SAID[lang]
+    limit = said["limit"].format(limit=formatted(row["transmission_limit"], ".3g", lang),
+                                 unit=u.angle)
     if "min_transmission_angle" not in row:
-        return f"min transmission not measured ({limit} not met)"
-    verdict = "meets the" if row["meets_transmission_limit"] else "below the"
-    return f"min transmission {row['min_transmission_angle']:.3g} {u.angle} ({verdict} {limit})"
+        return said["not measured"].format(limit=limit)
+    verdict = "meets" if row["meets_transmission_limit"] else "below"
+    return said[verdict].format(mu=formatted(row["min_transmission_angle"], ".3g", lang),
+                                unit=u.angle, limit=limit)
 
 
-def _error(value: float | None, unit: str = "") -> str:
+def _error(value: float | None, unit: str = "", lang: str = "en") -> str:
     """An error for the table; None (null in the summary) where the linkage cannot close at
     some sample, so that the error there has no bound."""
     if value is None:
-        return "unbounded (the linkage does not close everywhere)"
-    return f"{value:.3g}" + (f" {unit}" if unit else "")
+        return SAID[lang]["unbounded"]
+    return formatted(value, ".3g", lang) + (f" {unit}" if unit else "")
 
 
-def _design_line(row: dict[str, Any], u: Units) -> str:
-    """One printed line of a crank-rocker or quick return, in ``u``."""
-    parts = [row["mechanism"], ", ".join(f"{k} {v:.4f}" for k, v in row["lengths"].items())
-             + f" {u.length}"]
+def _design_line(row: dict[str, Any], u: Units, lang: str = "en") -> str:
+    """One printed line of a crank-rocker or quick return, in ``u`` and ``lang``."""
+    said = SAID[lang]
+
+    def f(v, spec):
+        return formatted(v, spec, lang)
+    parts = [kind_words(row["mechanism"], lang),
+             ", ".join(f"{k} {f(v, '.4f')}" for k, v in row["lengths"].items()) + f" {u.length}"]
     if "swing" in row:
-        parts.append(f"swing {row['swing']:.6g} {u.angle}")
+        parts.append(f"{said['swing']} {f(row['swing'], '.6g')} {u.angle}")
     if "stroke" in row:
-        parts.append(f"stroke {row['stroke']:.6g} {u.length}")
-    parts.append(f"time ratio {row['time_ratio']:.6g}")
+        parts.append(f"{said['stroke']} {f(row['stroke'], '.6g')} {u.length}")
+    parts.append(f"{said['time ratio']} {f(row['time_ratio'], '.6g')}")
     if "transmission_min" in row:
-        parts.append(f"min transmission {row['transmission_min']:.3g} {u.angle}")
+        parts.append(f"{said['min transmission']} {f(row['transmission_min'], '.3g')} {u.angle}")
     if "pivot_angle" in row:
-        parts.append(f"pivot angle {row['pivot_angle']:.4g} {u.angle}")
+        parts.append(f"{said['pivot angle']} {f(row['pivot_angle'], '.4g')} {u.angle}")
     return ", ".join(parts)

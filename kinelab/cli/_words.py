@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["SAID", "number"]
+__all__ = ["SAID", "number", "formatted"]
 
 SAID: dict[str, dict[str, str]] = {
     "en": {
@@ -29,6 +29,17 @@ SAID: dict[str, dict[str, str]] = {
                         "band on the velocity {band} {rate}"),
         "window given": "as --window says",
         "window chosen": "{share} of the {gcv} generalised cross-validation chose",
+        # synth
+        "solved": "{name}: {what}, {n} linkage(s)",
+        "swing": "swing", "stroke": "stroke", "time ratio": "time ratio",
+        "min transmission": "min transmission", "pivot angle": "pivot angle",
+        "rms error": "rms error", "max structural error": "max structural error",
+        "unbounded": "unbounded (the linkage does not close everywhere)",
+        "limit": "{limit} {unit} limit",
+        "not measured": "min transmission not measured ({limit} not met)",
+        "meets": "min transmission {mu} {unit} (meets the {limit})",
+        "below": "min transmission {mu} {unit} (below the {limit})",
+        "wrote files": "wrote {n} file(s) to {path}",
     },
     "pt": {
         "undefined": "{name}: esforço indefinido (todas as amostras singulares ou não montadas)",
@@ -48,8 +59,24 @@ SAID: dict[str, dict[str, str]] = {
         "window given": "como diz --window",
         "window chosen": ("{share} das {gcv} que a validação cruzada generalizada "
                           "escolheu"),
+        "solved": "{name}: {what}, {n} mecanismo(s)",
+        "swing": "oscilação", "stroke": "curso", "time ratio": "coeficiente de velocidade K",
+        "min transmission": "ângulo de transmissão mín.", "pivot angle": "ângulo do pivô",
+        "rms error": "erro rms", "max structural error": "erro estrutural máx.",
+        "unbounded": "ilimitado (o mecanismo não fecha em toda parte)",
+        "limit": "limite de {limit} {unit}",
+        "not measured": "ângulo de transmissão mín. não medido ({limit} não atendido)",
+        "meets": "ângulo de transmissão mín. {mu} {unit} (atende ao {limit})",
+        "below": "ângulo de transmissão mín. {mu} {unit} (abaixo do {limit})",
+        "wrote files": "escreveu {n} arquivo(s) em {path}",
     },
 }
+
+
+def formatted(v: float, spec: str, lang: str = "en") -> str:
+    """``v`` formatted by ``spec`` (``".4f"``), with a decimal comma in Portuguese."""
+    text = format(v, spec)
+    return text.replace(".", ",") if lang == "pt" else text
 
 
 def number(v: float, digits: int = 6, lang: str = "en") -> str:

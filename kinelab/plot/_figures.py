@@ -121,7 +121,10 @@ def _input(sol: KinematicSolution, u: Units, lang: str = "en") -> tuple[np.ndarr
         q = sol.q[:, k]
         if np.ptp(q) > 0:
             unit = u.unit(INPUT_SI_UNITS[kind])
-            return u.convert(q, INPUT_SI_UNITS[kind]), f"{sol.input_names[k]} [{unit}]", unit
+            role = ("input slide" if kind != "angle" else
+                    "input crank" if np.ptp(q) >= 2 * math.pi - 1e-9 else "input angle")
+            name = words(lang)[role].format(name=sol.input_names[k])
+            return u.convert(q, INPUT_SI_UNITS[kind]), f"{name} [{unit}]", unit
     return np.arange(sol.N), words(lang)["sample"], ""
 
 

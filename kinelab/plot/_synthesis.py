@@ -18,7 +18,7 @@ from kinelab.errors import ModelError, describe
 from kinelab.kinematics import analyze
 from kinelab.solvers._arguments import whole
 from kinelab.model import Units
-from kinelab.plot._words import decimal_commas, number, words
+from kinelab.plot._words import decimal_commas, kind_words, number, words
 from kinelab.synthesis import (BurmesterCurves, CrankRocker, FunctionSolution, MotionSolution,
                                PathSolution, Positions, QuickReturn, SolutionList, poles)
 from kinelab.synthesis import burmester_curves as synthesis_curves
@@ -49,24 +49,6 @@ def _finish(ax, title, u: Units, lang: str = "en"):
     ax.grid(True, alpha=0.3)
     decimal_commas(ax.figure, lang)
     return ax
-
-
-# the words of a linkage's kind and state (kinelab.mechanisms.grashof, MotionSolution.state)
-_KINDS_PT = {"crank-rocker": "manivela-balancim", "rocker-crank": "balancim-manivela",
-             "double-crank": "dupla manivela", "double-rocker": "duplo balancim",
-             "triple-rocker": "triplo balancim", "change-point": "ponto de mudança",
-             "valid": "válido", "branch defect": "defeito de ramo",
-             "circuit defect": "defeito de circuito", "order defect": "defeito de ordem",
-             "transmission angle defect": "defeito de ângulo de transmissão",
-             "offset slider-crank": "biela-manivela excêntrico",
-             "slotted lever": "alavanca com corrediça", "whitworth": "Whitworth"}
-
-
-def _kind(text: str, lang: str) -> str:
-    """A kind or a state (``"branch defect; circuit defect"``) in ``lang``."""
-    if lang != "pt":
-        return text
-    return "; ".join(_KINDS_PT.get(part, part) for part in text.split("; "))
 
 
 def _given(name: str, value, kinds: type | tuple[type, ...], what: str):
@@ -204,7 +186,7 @@ def motion_solution(sol: MotionSolution, *, ax=None, units: Units | Mapping[str,
         ax.annotate(f"P{j + 1}", P, textcoords="offset points", xytext=(6, 4), color=_colour(j))
     _travel_curve(ax, sol, sol.q[0], sol.q[-1], sol.direction, u, lang)
     return _finish(ax, words(lang)["four-bar through positions"].format(
-        n=n, kind=_kind(sol.grashof.kind, lang), state=_kind(sol.state, lang)), u, lang)
+        n=n, kind=kind_words(sol.grashof.kind, lang), state=kind_words(sol.state, lang)), u, lang)
 
 
 def burmester_curves(curves: BurmesterCurves, *, ax=None, positions=None, solutions=(),
@@ -386,7 +368,7 @@ def limit_positions(design: CrankRocker | QuickReturn, *, ax=None,
                       stroke=number(float(u.convert(design.stroke, "m")), ".4g", lang),
                       length=u.length) if design.stroke is not None else
                   w["quick return swing"].format(swing=angle(design.swing, ".4g"), angle=u.angle))
-        what = w["quick return"].format(kind=_kind(design.kind, lang), travel=travel, ratio=ratio)
+        what = w["quick return"].format(kind=kind_words(design.kind, lang), travel=travel, ratio=ratio)
     ax.legend(loc="best", fontsize=8)
     return _finish(ax, what, u, lang)
 

@@ -11,7 +11,8 @@ from __future__ import annotations
 
 from kinelab.errors import ModelError, describe
 
-__all__ = ["LANGUAGES", "WORDS", "words", "number", "decimal_commas", "checked_language"]
+__all__ = ["LANGUAGES", "WORDS", "KINDS_PT", "words", "kind_words", "number", "decimal_commas",
+           "checked_language"]
 
 LANGUAGES = ("en", "pt")
 
@@ -27,6 +28,8 @@ WORDS: dict[str, dict[str, str]] = {
         "named slide": "{name}", "named velocity": "{name} velocity",
         "named acceleration": "{name} acceleration",
         "motion title": "{name}: position, velocity and acceleration",
+        # the input on the x axis: the file's name of it (in Portuguese, with what it is)
+        "input crank": "{name}", "input angle": "{name}", "input slide": "{name}",
         "sample": "sample",
         "singular": "singular (det J = 0)",
         "K label": "K = dS/dq", "L label": "L = dK/dq",
@@ -97,6 +100,8 @@ WORDS: dict[str, dict[str, str]] = {
         "named slide": "deslocamento de {name}", "named velocity": "velocidade de {name}",
         "named acceleration": "aceleração de {name}",
         "motion title": "{name}: posição, velocidade e aceleração",
+        "input crank": "ângulo da manivela ({name})", "input angle": "ângulo de entrada ({name})",
+        "input slide": "deslocamento de entrada ({name})",
         "sample": "amostra",
         "singular": "singular (det J = 0)",
         "K label": "coeficiente de velocidade K = dS/dq",
@@ -156,6 +161,28 @@ WORDS: dict[str, dict[str, str]] = {
         "five positions": "cinco posições, curvas de pontos centrais e pontos de Burmester",
     },
 }
+
+
+# the words of a linkage's kind and state (kinelab.mechanisms.grashof, MotionSolution.state,
+# QuickReturn.kind), which are English data, in Portuguese
+KINDS_PT = {"crank-rocker": "manivela-balancim", "rocker-crank": "balancim-manivela",
+            "double-crank": "dupla manivela", "double-rocker": "duplo balancim",
+            "triple-rocker": "triplo balancim", "change-point": "ponto de mudança",
+            "valid": "válido", "branch defect": "defeito de ramo",
+            "circuit defect": "defeito de circuito", "order defect": "defeito de ordem",
+            "transmission angle defect": "defeito de ângulo de transmissão",
+            "offset slider-crank": "biela-manivela excêntrico",
+            "slotted lever": "alavanca com corrediça", "whitworth": "Whitworth",
+            "quick-return": "retorno rápido", "motion generation": "geração de movimento",
+            "function generation": "geração de funções",
+            "path generation": "geração de trajetória"}
+
+
+def kind_words(text: str, lang: str) -> str:
+    """A kind or a state (``"branch defect; circuit defect"``) in ``lang``."""
+    if lang != "pt":
+        return text
+    return "; ".join(KINDS_PT.get(part, part) for part in text.split("; "))
 
 
 def checked_language(lang: object) -> str:

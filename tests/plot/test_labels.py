@@ -229,7 +229,8 @@ def test_dynamics_figures(lang, drawn, tmp_path):
     efforts, reactions, shaking = drawn
     torque = "input torque" if lang == "en" else "torque na entrada"
     assert efforts.axes[0]["ylabel"] == f"{torque} [N m]"
-    assert efforts.axes[0]["xlabel"] == "crank angle [deg]"          # the input, its unit
+    crank = "crank angle" if lang == "en" else "ângulo da manivela (crank angle)"
+    assert efforts.axes[0]["xlabel"] == f"{crank} [deg]"          # the input, its unit
     for fig in drawn:        # nothing cut at the figure's edges
         for ax in fig.axes:
             box = ax["xlabel_box"]
@@ -431,3 +432,33 @@ def test_differentiate_prints_in_portuguese(tmp_path):
     assert not re.search(r"\d\.\d", out.split("wrote")[0].replace("cam.csv", ""))
     table = (tmp_path / "cam_derivatives.csv").read_text().splitlines()
     assert [float(v) for v in table[1].split(",")]      # the table keeps the decimal point
+
+
+def test_synth_prints_in_portuguese_with_decimal_commas(tmp_path):
+    path = tmp_path / "task.toml"
+    path.write_text(NOTES_6_5)
+    out = run("synth", path, "--lang", "pt", "--out", tmp_path / "pt")
+    assert out.startswith("task: geração de movimento, 1 mecanismo(s)")
+    assert "A1 (3,5477; -1,6546) B1 (0,9941; 3,2382) m" in out
+    assert "ângulo de transmissão mín. 0,779 rad (atende ao limite de 0,524 rad)" in out
+    assert out.rstrip().endswith("manivela-balancim, válido\nescreveu 4 arquivo(s) em "
+                                 f"{tmp_path / 'pt'}")
+    assert not re.search(r"\d\.\d", out)
+    english = run("synth", path, "--out", tmp_path / "en")
+    assert "A1 (3.5477, -1.6546) B1 (0.9941, 3.2382) m, min transmission 0.779 rad (meets the " \
+           "0.524 rad limit), crank-rocker, valid" in english
+    # the files are the same in both languages but for the figures' words
+    assert (tmp_path / "pt" / "summary.json").read_text() == \
+        (tmp_path / "en" / "summary.json").read_text()
+
+
+def test_the_crank_is_named_in_portuguese_on_the_x_axis(drawn, tmp_path):
+    run("plot", EX / "crank_rocker.toml", "--samples", "37", "--format", "png", "--lang", "pt",
+        "--out", tmp_path)
+    motion = drawn[0]
+    assert motion.axes[-1]["xlabel"] == "ângulo da manivela (crank angle) [deg]"
+    assert motion.axes[0]["ylabel"] == "ângulo [deg]"      # of several links, named in the legend
+    sol = kl.analyze(kl.mechanisms.slider_crank(1.0, 3.0), q=np.linspace(0, np.pi, 7))
+    fig = kl.plot.curves(sol, ["slide"], lang="pt", degrees=True)
+    assert fig.axes[-1].get_xlabel() == "ângulo de entrada (jO2) [deg]"
+    plt.close(fig)
