@@ -78,45 +78,238 @@ def _over(accent: str, tex: str) -> str:
     return f"\\{accent}{{{tex}}}"
 
 
-_WIDTH = 90          # characters of LaTeX on a line of a displayed equation, about a page's width
+# -- lines that fit the page -------------------------------------------------------------------
+_WIDTH = 76          # the width of a displayed line, in characters of maths (about 0.5 em each)
+_SMALL = 0.7         # a subscript's or superscript's size
+_COMMAND_WIDTH = {"sin": 2.6, "cos": 2.6, "tan": 2.6, "det": 2.6, "quad": 2.0, "qquad": 4.0,
+                  ",": 0.3, ";": 0.5, "!": 0.0, " ": 0.5, "cdot": 1.2, "to": 2.0,
+                  "partial": 1.0, "infty": 1.4, "circ": 0.6}
+_ACCENTS = {"dot", "ddot", "hat", "bar", "tilde", "vec", "mathrm", "mathbf", "mathit",
+            "operatorname", "text", "texttt", "emph", "sqrt", "displaystyle"}
+_TOKEN = re.compile(r"\\[A-Za-z]+|\\.|\s+|.", re.S)
 
 
-def _broken(e, tex, width: int = _WIDTH) -> list[str]:
+def _width(tex: str) -> float:
+    """About how wide a line of LaTeX maths is set, in characters (about 0.5 em each): a
+    fraction as wide as its wider part, a matrix as its columns, scripts smaller, markup
+    nothing.  What decides where a long expression is broken: near enough to keep every
+    line of a document inside the page."""
+    tokens = [t for t in _TOKEN.findall(tex) if not t.isspace()]
+    width, _ = _width_of(tokens, 0, ())
+    return width
+
+
+def _width_of(tokens: list[str], i: int, stop: tuple) -> tuple[float, int]:
+    """The width of ``tokens`` from ``i`` up to one of ``stop`` (not taken), and where it
+    stopped."""
+    total = 0.0
+    while i < len(tokens) and tokens[i] not in stop:
+        w, i = _width_of_item(tokens, i)
+        total += w
+    return total, i
+
+
+def _width_of_item(tokens: list[str], i: int) -> tuple[float, int]:
+    """The width of one item at ``i`` (a group, a command with its arguments, a character)
+    and the index after it."""
+    t = tokens[i]
+    if t == "{":
+        w, i = _width_of(tokens, i + 1, ("}",))
+        return w, i + 1
+    if t in ("^", "_"):
+        if i + 1 >= len(tokens):
+            return 0.0, i + 1
+        w, i = _width_of_item(tokens, i + 1)
+        return _SMALL * w, i
+    if t.startswith("\\") and len(t) > 1:
+        name = t[1:]
+        if name == "frac":
+            a, i = _width_of_item(tokens, i + 1)
+            b, i = _width_of_item(tokens, i)
+            return max(a, b) + 0.6, i
+        if name in ("left", "right"):
+            return (0.0 if i + 1 < len(tokens) and tokens[i + 1] == "." else 0.7), i + 2
+        if name == "begin":
+            return _width_of_matrix(tokens, i)
+        if name in _ACCENTS:
+            return _width_of_item(tokens, i + 1) if i + 1 < len(tokens) else (0.0, i + 1)
+        return _COMMAND_WIDTH.get(name, 1.0), i + 1
+    if t in "+-=<>":
+        return 2.0, i + 1
+    if t in "()[]|,.;:'":
+        return 0.6, i + 1
+    return 1.0, i + 1
+
+
+def _width_of_matrix(tokens: list[str], i: int) -> tuple[float, int]:
+    """A ``\\begin{...} ... \\end{...}``: its columns' widths and the space between them."""
+    j = tokens.index("}", i) + 1 if "}" in tokens[i:] else len(tokens)   # past \begin{matrix}
+    columns: list[float] = []
+    col, cell = 0, 0.0
+    while j < len(tokens):
+        t = tokens[j]
+        if t == "\\end":
+            j = tokens.index("}", j) + 1 if "}" in tokens[j:] else len(tokens)
+            break
+        if t in ("&", "\\\\"):
+            while len(columns) <= col:
+                columns.append(0.0)
+            columns[col] = max(columns[col], cell)
+            col, cell = (col + 1 if t == "&" else 0), 0.0
+            j += 1
+            continue
+        w, j = _width_of_item(tokens, j)
+        cell += w
+    while len(columns) <= col:
+        columns.append(0.0)
+    columns[col] = max(columns[col], cell)
+    return sum(columns) + 2.0 * (len(columns) - 1) + 1.4, j
+
+
+def _broken(e, tex, width: float = _WIDTH) -> list[str]:
     """The LaTeX of a sum as pieces to set on lines one after the other: its terms, gathered
-    up to ``width`` characters a line, each line but the first starting with its sign; a
-    term longer than a line that is a factor times a sum, ``c (a + b + ...)``, is broken
-    inside its brackets (``\\left( ... \\right.`` on one line, ``\\left. ... \\right)`` on
-    the last)."""
+    up to ``width`` (see :func:`_width`) a line, each line but the first starting with its
+    sign; a term longer than a line that is a factor times a sum, ``c (a + b + ...)``, is
+    broken inside its brackets (``\\left( ... \\right.`` on one line, ``\\left. ... \\right)``
+    on the last), after the factor alone when the factor is itself long; a longer product
+    of factors goes on over lines that start with ``\\cdot``."""
     import sympy as sp
 
     pieces: list[str] = []
     for term in (e.as_ordered_terms() if isinstance(e, sp.Add) else [e]):
         text = tex(term)
         sums = [f for f in sp.Mul.make_args(term) if isinstance(f, sp.Add)]
-        if len(text) > width and isinstance(term, sp.Mul) and len(sums) == 1:
+        if _width(text) > width and isinstance(term, sp.Mul) and len(sums) == 1:
             factor = tex(sp.Mul(*(f for f in sp.Mul.make_args(term) if f is not sums[0])))
-            inner = _broken(sums[0], tex, width)
-            if len(inner) > 1:
+            alone = _width(factor) > width / 3
+            inner = _broken(sums[0], tex, width - (4 if alone else _width(factor) + 4))
+            if (len(inner) > 1 or alone) and _width(factor) < width - 4:
+                if alone:
+                    pieces.append(factor + r" \left( \right.")
                 last = len(inner) - 1
-                pieces += [("" if k else factor + " ") + (r"\left(" if k == 0 else r"\left.")
+                pieces += [("" if k or alone else factor + " ")
+                           + (r"\left(" if k == 0 and not alone else r"\left.")
                            + " " + line + " " + (r"\right)" if k == last else r"\right.")
                            for k, line in enumerate(inner)]
                 continue
+        if _width(text) > width and isinstance(term, sp.Mul):
+            pieces += _fraction(term, tex, width) or _product(term, tex, width) or [text]
+            continue
         pieces.append(text)
     lines: list[str] = []
     for piece in pieces:
-        signed = piece if not lines else (piece if piece.startswith(("- ", r"\left.")) else "+ " + piece)
-        if lines and not piece.startswith(r"\left.") and len(lines[-1]) + len(signed) < width:
+        goes_on = piece.startswith((r"\left.", r"\cdot"))
+        signed = piece if not lines else (piece if piece.startswith("- ") or goes_on
+                                          else "+ " + piece)
+        if lines and not goes_on and not lines[-1].endswith(r"\left( \right.") \
+                and _width(lines[-1]) + _width(signed) < width:
             lines[-1] += " " + signed
         else:
             lines.append(signed)
     return lines
 
 
-def _equation(lhs: str, e, tex) -> list[str]:
-    """The lines of ``lhs = e`` in an alignment, broken where the right side is long."""
-    lines = _broken(e, tex)
-    return [lhs + " &= " + lines[0]] + [r"&\quad " + line for line in lines[1:]]
+def _fraction(term, tex, width: float) -> list[str]:
+    """A fraction too long for a line with its numerator and denominator each broken over
+    lines (a ``gathered`` block over another); empty where it is not a fraction."""
+    import sympy as sp
+    sign = ""
+    if term.could_extract_minus_sign():
+        sign, term = "- ", -term
+    top, bottom = sp.fraction(term)
+    if bottom == 1:
+        return []
+
+    def block(e) -> str:
+        lines = _broken(e, tex, width - 3)
+        return lines[0] if len(lines) == 1 else (
+            r"\begin{gathered}" + r" \\ ".join(lines) + r"\end{gathered}")
+    return [sign + r"\frac{" + block(top) + "}{" + block(bottom) + "}"]
+
+
+def _product(term, tex, width: float) -> list[str]:
+    """A product too long for a line as lines of its factors, each but the first starting
+    with ``\\cdot``; empty where the product has a denominator (it is set as a fraction)."""
+    import sympy as sp
+    factors = term.as_ordered_factors()
+    if any(f.is_Pow and f.exp.is_negative for f in factors) or any(
+            f.is_Rational and not f.is_Integer for f in factors):
+        return []
+    groups: list[list] = [[]]
+    for f in factors:
+        if groups[-1] and _width(tex(sp.Mul(*groups[-1], f))) > width - 2:
+            groups.append([])
+        groups[-1].append(f)
+    if len(groups) < 2:
+        return []
+    return [("" if k == 0 else r"\cdot ") + tex(sp.Mul(*g)) for k, g in enumerate(groups)]
+
+
+def _equation(lhs: str, e, tex, rhs: bool = True) -> list[str]:
+    """The lines of ``lhs = e`` in an alignment, broken where the right side is long (with
+    ``rhs`` False, of ``e = lhs``: set from the left margin, broken where long, ``= lhs`` on
+    its last line)."""
+    if rhs:
+        lines = _broken(e, tex, _WIDTH - max(_width(lhs), 10.0) - 4)
+        return [lhs + " &= " + lines[0]] + [r"&\quad " + line for line in lines[1:]]
+    text = tex(e)
+    if _width(text) + _width(lhs) + 2 <= _WIDTH:
+        return ["& " + text + " = " + lhs]
+    lines = _broken(e, tex, _WIDTH - 6)
+    return (["& " + lines[0]] + [r"&\quad " + line for line in lines[1:-1]]
+            + [r"&\quad " + lines[-1] + " = " + lhs])
+
+
+def _equation_of_sums(left, right, tex) -> list[str]:
+    """The lines of ``left = right``, two sums, set from the left margin: the left side,
+    broken where long, then ``= right``, broken where long."""
+    lhs, rhs = tex(left), tex(right)
+    if _width(lhs) + _width(rhs) + 2 <= _WIDTH:
+        return ["& " + lhs + " = " + rhs]
+    lines = _broken(left, tex, _WIDTH - 6)
+    rhs = _broken(right, tex, _WIDTH - 6)
+    return (["& " + lines[0]] + [r"&\quad " + line for line in lines[1:]]
+            + ["&= " + rhs[0]] + [r"&\quad " + line for line in rhs[1:]])
+
+
+def _numbers_lines(name: str, a: np.ndarray) -> tuple[list[str], bool]:
+    """``name = a``, a matrix of numbers, as display lines: whole where it fits the page,
+    else row by row its entries that are not 0 (``name_{ij} = ...``); and whether it was
+    written by entries."""
+    whole = name + " &= " + _matrix(a)
+    if _width(whole) <= _WIDTH:
+        return [whole], False
+    a = _rounded(a)
+    lines = []
+    for i, row in enumerate(a):
+        line = ""
+        for j, x in enumerate(row):
+            if x == 0:
+                continue
+            entry = f"{name}_{{{i + 1}{j + 1}}} = {_fmt(x)}"
+            if line and _width(line + entry) + 3 > _WIDTH:
+                lines.append("& " + line)
+                line = ""
+            line += (r",\quad " if line else "") + entry
+        if line:
+            lines.append("& " + line)
+    return lines, True
+
+
+def _matrix_lines(name: str, A, tex) -> tuple[list[str], bool]:
+    """``name = A`` as display lines: the matrix whole where it fits the page, else its
+    entries one by one (``name_{ij} = ...``, broken where long, the zeros left out); and
+    whether it was written by entries."""
+    whole = f"{name} &= {tex(A)}"
+    if _width(whole) <= _WIDTH:
+        return [whole], False
+    lines = []
+    for i in range(A.rows):
+        for j in range(A.cols):
+            if A[i, j] != 0:
+                lines += _equation(f"{name}_{{{i + 1}{j + 1}}}" if A.rows < 10 and A.cols < 10
+                                   else f"{name}_{{{i + 1},{j + 1}}}", A[i, j], tex)
+    return lines, True
 
 
 def symbol_latex(d) -> dict:
@@ -240,6 +433,7 @@ class _Latex:
         head = ["\\documentclass[11pt]{article}", "\\usepackage[T1]{fontenc}",
                 "\\usepackage[utf8]{inputenc}", "\\usepackage{amsmath,amssymb}",
                 "\\usepackage[margin=2cm]{geometry}", "\\allowdisplaybreaks",
+                "\\setlength{\\emergencystretch}{3em}",
                 "\\begin{document}", "\\section*{" + title + "}"]
         return "\n".join(head) + "\n\n" + "\n\n".join(self.out) + "\n\n\\end{document}\n"
 
@@ -286,7 +480,8 @@ def document(d, fmt: str, *, at=None, lang: str = "en") -> str:
             w.para(T("loop", k=k, path=path))
             lines = []
             for _ in range(2):
-                lines.append(tex(eq.rows[row]) + " &= 0 && (" + str(row + 1) + ")")
+                lines += _equation("0", eq.rows[row], tex, rhs=False)
+                lines[-1] += " && (" + str(row + 1) + ")"
                 row += 1
             w.display(lines)
         if d.redundant:
@@ -378,17 +573,24 @@ def _velocity(d, w, T, N, tex) -> None:
     w.heading(T("velocity"))
     w.para(T("velocity_intro"))
     v = d.velocity_equations().applyfunc(sp.expand)
-    w.display([tex(e) + " &= 0" for e in v])
+    w.display([line for e in v for line in _equation("0", e, tex, rhs=False)])
     w.para(T("matrix_form"))
     Sd = sp.Matrix([d.dot(s) for s in eq.S])
     qd = sp.Matrix([d.dot(s) for s in eq.q])
-    w.display([tex(d.J) + tex(Sd) + " + " + tex(d.Q) + tex(qd if len(eq.q) > 1 else qd[0])
-               + " = " + tex(sp.zeros(len(eq.S), 1))])
+    whole = (tex(d.J) + tex(Sd) + " + " + tex(d.Q) + tex(qd if len(eq.q) > 1 else qd[0])
+             + " = " + tex(sp.zeros(len(eq.S), 1)))
+    if _width(whole) <= _WIDTH:
+        w.display([whole])
+    else:                      # J and Q one after the other, each whole or entry by entry
+        (J, J_entries), (Q, Q_entries) = _matrix_lines("J", d.J, tex), _matrix_lines("Q", d.Q, tex)
+        w.display(J + Q)
+        if J_entries or Q_entries:
+            w.para(T("zeros_left_out"))
     w.para(T("matrix_names"))
     w.heading(T("jacobian"))
     w.para(T("det"))
     if d.readable["det_J"]:
-        w.display([r"\det J = " + tex(d.det_J)])
+        w.display(_equation(r"\det J", d.det_J, tex))
     else:
         w.para(T("det_large", ops=size(d.det_J)))
     if not d.singularities:
@@ -537,8 +739,14 @@ def _accelerations(d, w, T, tex) -> None:
     Sdd = sp.Matrix([d.ddot(s) for s in eq.S])
     rhs = (-(acc - d.J * Sdd)).applyfunc(sp.expand)
     if max(size(e) for e in rhs) <= READABLE_OPS:
-        w.para(T("acceleration_intro"))
-        w.display([tex(d.J) + tex(Sdd) + " = " + tex(rhs)])
+        whole = tex(d.J) + tex(Sdd) + " = " + tex(rhs)
+        if _width(whole) <= _WIDTH:
+            w.para(T("acceleration_intro"))
+            w.display([whole])
+        else:
+            w.para(T("acceleration_rows"))
+            w.display([line for i in range(len(eq.S))
+                       for line in _equation_of_sums(sp.expand((d.J * Sdd)[i]), rhs[i], tex)])
     else:
         w.para(T("acceleration_large", ops=size(rhs)))
     w.para(T("L_intro" if M == 1 else "L_intro_many"))
@@ -596,10 +804,16 @@ def _dynamics(d, w, T, N, tex) -> None:
     Ks = sp.Matrix(len(d.S), len(d.q), d.K_symbols) if d.S else sp.zeros(0, len(d.q))
     C = sp.eye(len(d.q)).col_join(Ks) if d.S else sp.eye(len(d.q))
     w.para(T("C_intro"))
-    w.display(["C = " + tex(C)])
+    C_lines, C_entries = _matrix_lines("C", C, tex)
+    w.display(C_lines)
+    if C_entries:
+        w.para(T("zeros_left_out"))
     w.para(T("D_intro"))
     if max((size(e) for e in kd.D), default=0) <= READABLE_OPS and kd.D.cols <= 12:
-        w.display(["D = " + tex(kd.D)])
+        D_lines, D_entries = _matrix_lines("D", kd.D, tex)
+        w.display(D_lines)
+        if D_entries:
+            w.para(T("zeros_left_out"))
     else:
         w.para(T("matrix_large", what="$D$", ops=size(kd.D)))
     w.para(T("f_intro"))
@@ -648,7 +862,14 @@ def _numbers(d, w, T, N, tex, at) -> None:
                 [["$" + tex(s) + "$", _fmt(v.S[0, i])] for i, s in enumerate(eq.S)])
         w.para(T("residual", r=_fmt(np.abs(v.Phi[0]).max())))
         w.para(T("J_value"))
-        w.display(["J = " + _matrix(v.J[0]) + ",\\quad Q = " + _matrix(v.Q[0])])
+        J, Q = "J = " + _matrix(v.J[0]), "Q = " + _matrix(v.Q[0])
+        if _width(J + Q) + 3 <= _WIDTH:
+            w.display([J + ",\\quad " + Q])
+        else:
+            (J, J_entries), (Q, Q_entries) = _numbers_lines("J", v.J[0]), _numbers_lines("Q", v.Q[0])
+            w.display(J + Q)
+            if J_entries or Q_entries:
+                w.para(T("zeros_left_out"))
         w.para(T("det_value", det=_fmt(v.det_J[0]), engine=_fmt(v.engine_det_J[0])))
         if not np.all(np.isfinite(v.K_engine[0])):
             w.para(T("singular_here"))
@@ -683,8 +904,18 @@ def _numbers(d, w, T, N, tex, at) -> None:
         w.para(T("efforts_note"))
 
 
+def _rounded(a: np.ndarray) -> np.ndarray:
+    """A matrix of numbers, 2-D, with 0 for an entry within rounding of 0 against the largest
+    (the cosine of a right angle, 6e-17)."""
+    a = np.atleast_2d(np.asarray(a, float))
+    finite = np.abs(a[np.isfinite(a)])
+    big = finite.max() if finite.size else 0.0
+    return np.where(np.abs(a) <= 1e-13 * big, 0.0, a)
+
+
 def _matrix(a: np.ndarray) -> str:
-    rows = [" & ".join(_fmt(x) for x in row) for row in np.atleast_2d(a)]
+    """A matrix of numbers in LaTeX (see :func:`_rounded`)."""
+    rows = [" & ".join(_fmt(x) for x in row) for row in _rounded(a)]
     return r"\left[\begin{matrix}" + r" \\ ".join(rows) + r"\end{matrix}\right]"
 
 

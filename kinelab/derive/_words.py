@@ -106,6 +106,9 @@ WORDS: dict[str, dict[str, str]] = {
         "acceleration": "Acceleration equations",
         "acceleration_intro": ("Differentiating the velocity equations with respect to time and "
                                "grouping the terms, in matrix form:"),
+        "acceleration_rows": ("Differentiating the velocity equations with respect to time and "
+                              "grouping the terms, one row of $J \\ddot S$ at a time:"),
+        "zeros_left_out": "The entries not written are 0.",
         "acceleration_large": ("The differentiated velocity equations are too large to read "
                                "here ({ops} operations)."),
         "L_intro": ("With $\\dot S = K \\dot q$ the secondary accelerations are "
@@ -249,6 +252,9 @@ WORDS: dict[str, dict[str, str]] = {
         "acceleration": "Equações das acelerações",
         "acceleration_intro": ("Derivando as equações de velocidade em relação ao tempo e "
                                "agrupando as parcelas, na forma matricial:"),
+        "acceleration_rows": ("Derivando as equações de velocidade em relação ao tempo e "
+                              "agrupando as parcelas, uma linha de $J \\ddot S$ por vez:"),
+        "zeros_left_out": "As entradas não escritas são nulas.",
         "acceleration_large": ("As equações de velocidade derivadas são grandes demais para ler "
                                "aqui ({ops} operações)."),
         "L_intro": ("Substituindo $\\dot S = K \\dot q$, as acelerações secundárias são "
