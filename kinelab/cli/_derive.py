@@ -15,6 +15,7 @@ from kinelab.cli._main import (errors_from, output_path, parse_inputs, read_mode
 from kinelab.derive import LANGUAGES, TIME_LIMIT, derive
 from kinelab.derive._derivation import time_limit_message
 from kinelab.derive._document import write_pdf
+from kinelab.derive._notation import NOTATIONS
 
 __all__ = ["derive_command"]
 
@@ -30,13 +31,18 @@ __all__ = ["derive_command"]
               show_default=True,
               help="Markdown with LaTeX maths, a standalone LaTeX file, or a PDF (needs a TeX "
                    "engine: lualatex, xelatex, pdflatex or tectonic).")
+@click.option("--notation", default="notes", show_default=True, metavar="notes|names|NAME=SYMBOL,...",
+              help="The symbols: 'notes', the notes' letters (a catalogue mechanism's, and the "
+                   "model file's [notation] table); 'names', the model's own names "
+                   "(theta_lever, s_slot, L_crank); or symbols to write instead of the names, "
+                   "theta_lever=A,s_slot=B, over the notes' ones.")
 @click.option("--out", "-o", default=".", metavar="DIR", show_default=True,
               help="Directory (or file) to write <name>_derivation.<format> to.")
 @click.option("--time-limit", type=click.FloatRange(0, min_open=True), default=TIME_LIMIT,
               show_default=True, metavar="SECONDS",
               help="The most the derivation and its document may take; past it the command "
                    "stops and says so.")
-def derive_command(model, at, lang, fmt, out, time_limit):
+def derive_command(model, at, lang, fmt, notation, out, time_limit):
     """Write the derivation of MODEL in the notes' notation: position equations (one vector
     loop per independent circuit), their time derivative, J, Q, det J and the singular
     configurations, K and L, and for a model with masses the Gibbs-Appell / Kane terms,
@@ -44,12 +50,13 @@ def derive_command(model, at, lang, fmt, out, time_limit):
     course notes "Mecanismos".  The last section gives the numbers at one input beside
     kinelab's analysis (SI units)."""
     mf = read_model(model)
+    symbols = notation_option(notation)
     q = None
     if at is not None:
         q = parse_inputs(at, mf)
 
     def document():
-        d = derive(mf.mechanism, lang, time_limit=None)
+        d = derive(mf.mechanism, lang, notation=symbols, time_limit=None)
         return d.to_markdown(at=q, time_limit=None) if fmt == "md" else d.to_latex(
             at=q, time_limit=None)
     with errors_from(mf):
@@ -58,3 +65,16 @@ def derive_command(model, at, lang, fmt, out, time_limit):
     path = output_path(out, f"{stem(model)}_derivation", fmt)
     said_written([output(path, lambda p: write_pdf(text, p) if fmt == "pdf" else
                          atomic_write(p, lambda f: f.write(text)))])
+
+
+def notation_option(text: str):
+    """``--notation``: "notes", "names", or ``NAME=SYMBOL,...`` as a mapping."""
+    text = text.strip()
+    if text in NOTATIONS:
+        return text
+    pairs = [p.partition("=") for p in text.split(",") if p.strip()]
+    bad = [a + b + c for a, b, c in pairs if not b or not a.strip() or not c.strip()]
+    if bad or not pairs:
+        raise click.BadParameter(f"expected notes, names or NAME=SYMBOL,... (theta_lever=A,"
+                                 f"s_slot=B), got {text!r}", param_hint="'--notation'")
+    return {a.strip(): c.strip() for a, _, c in pairs}

@@ -313,7 +313,8 @@ def time_limit_message(model: Mechanism, unknowns: int | None, seconds: float | 
 
 
 def derive(model: Mechanism, lang: Literal["en", "pt"] = "en", *, dynamics: bool = True,
-           loads=None, masses=None, time_limit: float | None = TIME_LIMIT) -> Derivation:
+           loads=None, masses=None, notation="notes",
+           time_limit: float | None = TIME_LIMIT) -> Derivation:
     """The notes' derivation of a planar model, in symbols: position equations, J, Q,
     det J and its singular configurations, K and L (and, for a model with masses, the
     Gibbs-Appell / Kane terms).
@@ -339,6 +340,11 @@ def derive(model: Mechanism, lang: Literal["en", "pt"] = "en", *, dynamics: bool
         Default: the model file's ``[dynamics]`` section, else none.
     masses : kinelab.dynamics.MassProperties, optional
         Default: the links' mass data (a lumped model: ``MassProperties.lumped``).
+    notation : {"notes", "names"} or mapping
+        The symbols: ``"notes"``, the notes' letters of a catalogue mechanism and the
+        model file's ``[notation]`` table; ``"names"``, the model's own names throughout;
+        or a mapping of the names kinelab would write to the symbols to write instead
+        (``{"theta_lever": "A", "s_slot": "B"}``), over the notes' ones.
     time_limit : float or None
         Seconds the derivation may take (default :data:`TIME_LIMIT`), in whichever thread
         it runs; None: no limit.
@@ -351,7 +357,7 @@ def derive(model: Mechanism, lang: Literal["en", "pt"] = "en", *, dynamics: bool
     ------
     ModelError
         The model is not one :func:`kinelab.analyze` can solve (the same error), or an
-        argument is wrong.
+        argument is wrong (a ``notation`` naming a symbol the equations do not have).
     TimeLimitError
         The derivation took more than ``time_limit`` seconds.
 
@@ -370,18 +376,20 @@ def derive(model: Mechanism, lang: Literal["en", "pt"] = "en", *, dynamics: bool
         raise ModelError(f"model: expected a kinelab Mechanism, got {type(model).__name__}; "
                          "build one with kinelab.mechanisms or kinelab.load")
     import sympy  # noqa: F401 -- imported before the clock starts: the limit is the derivation's
-    return within(seconds, _derive, model, lang, dynamics, loads, masses,
+    symbols = notation_of(model, notation)
+    return within(seconds, _derive, model, lang, dynamics, loads, masses, symbols,
                   message=time_limit_message(model, None, seconds, "it"))
 
 
-def _derive(model: Mechanism, lang: str, dynamics: bool, loads, masses) -> Derivation:
+def _derive(model: Mechanism, lang: str, dynamics: bool, loads, masses,
+            symbols: dict) -> Derivation:
     import sympy as sp
     bodies = None
     progress.report("loop equations", 0.0)
     if dynamics:
         from kinelab.derive._dynamics import bodies_of
         bodies = bodies_of(model, loads, masses)
-    eq = loop_equations(model, notation_of(model), points=bodies.points if bodies else ())
+    eq = loop_equations(model, symbols, points=bodies.points if bodies else ())
     S, q = sp.Matrix(eq.S), sp.Matrix(eq.q)
     n, M = len(eq.S), len(eq.q)
     if n > MAX_UNKNOWNS:

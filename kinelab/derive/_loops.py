@@ -110,17 +110,25 @@ def loop_equations(model: Mechanism, notation: dict | None = None,
     positions of ``points`` (placed along the spanning tree, for the dynamics).
 
     ``notation`` maps keys such as ``("angle", "lever")``, ``("slide", "slot")``,
-    ``("length", "crank")``, ``("x", "O2")``, ``("input", 0)`` to symbol names (the notes'
-    letters for the catalogue); everything else is named after the model's own names.
+    ``("length", "crank")``, ``("x", "O2")``, ``("input", 0)``, or the names kinelab would
+    write (``"theta_lever"``, ``"s_slot"``, ``"L_crank"``, ``"x_O2"``, ``"q"``), to symbol
+    names (the notes' letters for the catalogue); everything else is named after the
+    model's own names.
 
     Raises
     ------
     ModelError
         What :func:`kinelab.analyze` raises for a model it cannot analyse; a ``notation``
-        that is not a mapping of keys to names, or ``points`` the model does not have.
+        that is not a mapping of keys to names, or names a symbol the equations do not have;
+        ``points`` the model does not have.
     """
     builder = _Builder(model, _notation(notation))
-    return builder.build(_points(model, points))
+    out = builder.build(_points(model, points))
+    unknown = sorted(k for k in builder.notation if isinstance(k, str) and k not in builder.seen)
+    if unknown:
+        raise ModelError([f"notation: {k}: not a symbol of the equations of '{model.name}'; "
+                          f"its symbols are {', '.join(sorted(builder.seen))}" for k in unknown])
+    return out
 
 
 def _notation(notation) -> dict:
@@ -159,6 +167,7 @@ class _Builder:
         self.plan = engine_plan(m)     # the engine's checks: the same ModelError as analyze
         self.m = m
         self.notation = notation
+        self.seen: set[str] = set()           # the names kinelab gives, renamed or not
         self.names = _Names()
         self.ground = m.ground.name
         self.xy = {p.name: np.array(p.xy, float) for p in m.points}
@@ -171,7 +180,10 @@ class _Builder:
 
     # -- symbols -----------------------------------------------------------------------------
     def name(self, key: tuple, default: str) -> str:
-        return self.notation.get(key, default)
+        """The symbol of ``key``: the notation's, by the name kinelab would give it or by
+        key, else that name."""
+        self.seen.add(default)
+        return self.notation.get(default, self.notation.get(key, default))
 
     def param(self, key: tuple, default: str, value: float, meaning: tuple):
         if key not in self._params:

@@ -53,7 +53,7 @@ CATALOGUE_KINDS = ("fourbar", "slider_crank", "inverted_slider_crank", "slotted_
                    "whitworth", "fivebar", "watt6", "stephenson6", "triad6")
 
 _TOP = ("schema", "name", "description", "space", "units", "points", "links", "joints",
-        "inputs", "sweep", "catalogue", "outputs", "dynamics")
+        "inputs", "sweep", "catalogue", "outputs", "dynamics", "notation")
 _RESERVED = {key: "loads belong in the [dynamics] section (see docs/dynamics.md); move it there"
              for key in ("forces", "gravity", "loads")}
 _LINK = ("name", "points", "ground", "length", "local", "sides", "mass", "center_of_mass",
@@ -416,6 +416,8 @@ class _Parser:
             self.fail()
         if "dynamics" in top:
             mech = self.dynamics(top["dynamics"], mech)
+        if "notation" in top:
+            mech = self.notation(top["notation"], mech)
         outputs = self.outputs(top.get("outputs"), mech) if "outputs" in top else Outputs()
         if samples and sweep == "together" and len(set(samples)) > 1:
             r.fail("inputs", f"samples: expected the same number for every input when sweep = "
@@ -441,6 +443,25 @@ class _Parser:
                 self.r.fail(field, what)
             return mech
         return dataclasses.replace(mech, parameters={**mech.parameters, "dynamics": setup.to_dict()})
+
+    def notation(self, value, mech: Mechanism) -> Mechanism:
+        """The [notation] table: for ``kinelab derive``, the symbol to write instead of each
+        one named (``theta_lever = "A"``), kept in ``mechanism.parameters["notation"]``;
+        whether each names a symbol of the model's equations is checked by the derivation."""
+        if not isinstance(value, Mapping):
+            self.r.fail("notation", f"expected a table of symbol = \"symbol to write\", such as "
+                        f"theta_lever = \"A\", got {describe(value)}")
+            return mech
+        table = {}
+        for key, symbol in value.items():
+            problem = name_problem(symbol)
+            if problem:
+                self.r.fail(f"notation.{key}", f"{problem} for the symbol, got {describe(symbol)}")
+            else:
+                table[str(key)] = symbol
+        if not table:
+            return mech
+        return dataclasses.replace(mech, parameters={**mech.parameters, "notation": table})
 
     def units(self, value) -> Units:
         if value is None:
@@ -990,6 +1011,7 @@ def _dump(mf: ModelFile) -> dict[str, Any]:
         out["inputs"] = data["inputs"]
     params = dict(m.parameters)
     dynamics = params.pop("dynamics", None)
+    notation = params.pop("notation", None)
     if params.get("kind") in CATALOGUE_KINDS:
         def file_value(v):
             """A catalogue parameter in the file's units: lengths scaled, names kept."""
@@ -1017,6 +1039,8 @@ def _dump(mf: ModelFile) -> dict[str, Any]:
         out["outputs"] = o
     if dynamics:
         out["dynamics"] = dynamics
+    if notation:
+        out["notation"] = dict(notation)
     return out
 
 
