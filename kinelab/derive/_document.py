@@ -22,7 +22,7 @@ from kinelab.derive._simplify import READABLE_OPS, size
 from kinelab.derive._words import WORDS
 from kinelab.errors import ModelError, check_choice
 
-__all__ = ["document", "symbol_latex", "write_pdf", "TEX_ENGINES"]
+__all__ = ["document", "symbol_latex", "write_pdf", "compile_latex", "tex_engine", "TEX_ENGINES"]
 
 TEX_ENGINES = ("lualatex", "xelatex", "pdflatex", "tectonic")
 _GREEK = {"alpha", "beta", "gamma", "delta", "theta", "phi", "psi", "omega", "tau", "rho", "sigma",
@@ -938,16 +938,22 @@ def write_pdf(tex: str, path: str | Path) -> Path:
     if engine is None:
         raise ModelError(f"format: PDF needs a TeX engine ({', '.join(TEX_ENGINES)}), and none is "
                          "installed; write --format tex (or md) and compile it elsewhere")
-    path = Path(path)
+    data, _ = compile_latex(tex, engine)
+    return atomic_write(Path(path), lambda f: f.write(data), binary=True)
+
+
+def compile_latex(tex: str, engine: str) -> tuple[bytes, str]:
+    """A LaTeX document compiled by ``engine``: the PDF and the engine's log (its warnings,
+    such as an overfull line)."""
     with tempfile.TemporaryDirectory() as tmp:
         src = Path(tmp) / "derivation.tex"
         src.write_text(tex, encoding="utf-8")
-        cmd = ([engine, "derivation.tex"] if engine == "tectonic"
+        cmd = ([engine, "--keep-logs", "derivation.tex"] if engine == "tectonic"
                else [engine, "-interaction=nonstopmode", "-halt-on-error", "derivation.tex"])
         run = subprocess.run(cmd, cwd=tmp, capture_output=True, text=True, timeout=300)
         pdf = Path(tmp) / "derivation.pdf"
         if run.returncode != 0 or not pdf.exists():
             tail = " / ".join((run.stdout + run.stderr).strip().splitlines()[-3:])
             raise ModelError(f"format: {engine} could not compile the document: {tail}")
-        data = pdf.read_bytes()
-    return atomic_write(path, lambda f: f.write(data), binary=True)
+        log = Path(tmp) / "derivation.log"
+        return pdf.read_bytes(), (log.read_text(errors="replace") if log.exists() else run.stdout)
