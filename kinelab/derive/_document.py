@@ -926,20 +926,28 @@ def tex_engine() -> str | None:
 
 
 def write_pdf(tex: str, path: str | Path) -> Path:
-    """Compile a LaTeX document to ``path`` with the first TeX engine found.
+    """Compile a LaTeX document to ``path`` with the first TeX engine found that compiles it
+    (an engine may be on the PATH without its packages: lualatex without texlive-luatex).
 
     Raises
     ------
     ModelError
         No TeX engine is installed (a clear message, no traceback at the command line), or
-        the engine fails (its last lines of log).
+        every engine found fails (the first one's last lines of log).
     """
-    engine = tex_engine()
-    if engine is None:
+    engines = [e for e in TEX_ENGINES if shutil.which(e)]
+    if not engines:
         raise ModelError(f"format: PDF needs a TeX engine ({', '.join(TEX_ENGINES)}), and none is "
                          "installed; write --format tex (or md) and compile it elsewhere")
-    data, _ = compile_latex(tex, engine)
-    return atomic_write(Path(path), lambda f: f.write(data), binary=True)
+    failures = []
+    for engine in engines:
+        try:
+            data, _ = compile_latex(tex, engine)
+        except ModelError as exc:
+            failures.append(exc)
+            continue
+        return atomic_write(Path(path), lambda f: f.write(data), binary=True)
+    raise failures[0]
 
 
 def compile_latex(tex: str, engine: str) -> tuple[bytes, str]:

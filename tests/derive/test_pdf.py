@@ -135,3 +135,24 @@ def test_the_notation_option(tmp_path):
     assert "its symbols are L_crank, q, s_slot, theta_lever, x_O2" in res.output
     res = run(str(SLOTTED), "--notation", "A")
     assert res.exit_code == 2 and "expected notes, names or NAME=SYMBOL" in res.output
+
+
+def test_an_engine_that_cannot_run_gives_way_to_the_next(tmp_path, monkeypatch):
+    import shutil
+    from kinelab.derive._document import write_pdf
+    if not shutil.which("pdflatex"):
+        pytest.skip("needs pdflatex")
+    # lualatex on the PATH without its packages (texlive-luatex) fails: pdflatex compiles
+    broken = tmp_path / "bin"
+    broken.mkdir()
+    (broken / "lualatex").write_text("#!/bin/sh\necho 'luaotfload.sty not found'\nexit 1\n")
+    (broken / "lualatex").chmod(0o755)
+    monkeypatch.setenv("PATH", f"{broken}{os.pathsep}{os.environ['PATH']}")
+    out = write_pdf(derivation("slotted_link").to_latex(), tmp_path / "slotted.pdf")
+    assert out.read_bytes().startswith(b"%PDF")
+    # a document no engine compiles: the first engine's error
+    with pytest.raises(kl.errors.ModelError, match=r"lualatex could not compile the document: "
+                                                   r"luaotfload.sty not found"):
+        write_pdf("\\documentclass{article}\\begin{document}\\undefined\\end{document}",
+                  tmp_path / "bad.pdf")
+    assert not (tmp_path / "bad.pdf").exists()
