@@ -84,7 +84,7 @@ _SMALL = 0.7         # a subscript's or superscript's size
 _COMMAND_WIDTH = {"sin": 2.6, "cos": 2.6, "tan": 2.6, "det": 2.6, "quad": 2.0, "qquad": 4.0,
                   ",": 0.3, ";": 0.5, "!": 0.0, " ": 0.5, "cdot": 1.2, "to": 2.0,
                   "partial": 1.0, "infty": 1.4, "circ": 0.6}
-_ACCENTS = {"dot", "ddot", "hat", "bar", "tilde", "vec", "mathrm", "mathbf", "mathit",
+_AS_WIDE_AS_ARGUMENT = {"dot", "ddot", "hat", "bar", "tilde", "vec", "mathrm", "mathbf", "mathit",
             "operatorname", "text", "texttt", "emph", "sqrt", "displaystyle"}
 _TOKEN = re.compile(r"\\[A-Za-z]+|\\.|\s+|.", re.S)
 
@@ -131,7 +131,7 @@ def _width_of_item(tokens: list[str], i: int) -> tuple[float, int]:
             return (0.0 if i + 1 < len(tokens) and tokens[i + 1] == "." else 0.7), i + 2
         if name == "begin":
             return _width_of_matrix(tokens, i)
-        if name in _ACCENTS:
+        if name in _AS_WIDE_AS_ARGUMENT:
             return _width_of_item(tokens, i + 1) if i + 1 < len(tokens) else (0.0, i + 1)
         return _COMMAND_WIDTH.get(name, 1.0), i + 1
     if t in "+-=<>":

@@ -156,3 +156,18 @@ def test_an_engine_that_cannot_run_gives_way_to_the_next(tmp_path, monkeypatch):
         write_pdf("\\documentclass{article}\\begin{document}\\undefined\\end{document}",
                   tmp_path / "bad.pdf")
     assert not (tmp_path / "bad.pdf").exists()
+
+
+@pytest.mark.parametrize("name", ["engine.toml", "triad6"])
+def test_the_markdown_compiles_with_pandoc(name, engine, tmp_path):
+    import shutil
+    import subprocess
+    if not shutil.which("pandoc"):
+        pytest.skip("pandoc is not installed")
+    for lang in ("en", "pt"):
+        md = tmp_path / f"{lang}.md"
+        md.write_text(derivation(name).to_markdown(lang=lang), encoding="utf-8")
+        run = subprocess.run(["pandoc", md.name, "-o", f"{lang}.pdf", f"--pdf-engine={engine}",
+                              "-V", "geometry:margin=2cm"], cwd=tmp_path, capture_output=True,
+                             text=True, timeout=300)
+        assert run.returncode == 0, run.stderr[-2000:]
