@@ -30,3 +30,13 @@ def _memory_budget_restored():
     old = kl.memory_budget()
     yield
     kl.memory_budget(old)
+
+
+@pytest.fixture(autouse=True)
+def _figures_closed():
+    """The figures a test leaves open (a doctest's, say) are closed when it ends: pyplot
+    keeps them for the process, and past 20 it warns in whichever test comes next."""
+    yield
+    import sys
+    if "matplotlib.pyplot" in sys.modules:
+        sys.modules["matplotlib.pyplot"].close("all")
