@@ -156,6 +156,36 @@ def test_snap_puts_new_points_on_the_grid_and_on_other_points(page):
     assert all(on_grid(v, step) for v in m["points"]["P2"])
 
 
+def test_snap_puts_a_new_point_on_a_links_line(page):
+    """With *snap*, a point placed a few pixels off a link's line (away from its ends and
+    from the grid's crossings) lands on the line."""
+    page.click("#new")
+    page.check("#snap")
+    tool(page, "point")
+    box = page.locator("#canvas").bounding_box()
+    page.mouse.click(box["x"] + 120.3, box["y"] + 300.7)
+    page.wait_for_function("() => Object.keys(window.kinelab.model.points).length === 1")
+    tool(page, "link")                                  # from P1 to a new point P2
+    page.mouse.click(*point_on_screen(page, "P1"))
+    page.mouse.click(box["x"] + 420.4, box["y"] + 141.1)
+    page.wait_for_function("() => window.kinelab.model.links.some((l) => l.points.length === 2)")
+    tool(page, "point")
+    (ax, ay), (bx, by) = point_on_screen(page, "P1"), point_on_screen(page, "P2")
+    n = math.hypot(bx - ax, by - ay)
+    # 0.37 of the way along P1 P2, 4 px to its side
+    page.mouse.click(ax + 0.37 * (bx - ax) - 4 * (by - ay) / n, ay + 0.37 * (by - ay) + 4 * (bx - ax) / n)
+    page.wait_for_function("() => Object.keys(window.kinelab.model.points).length === 3")
+    page.shot("snapped to a line")
+    m = state(page, "window.kinelab.model")
+    (new,) = set(m["points"]) - {"P1", "P2"}
+    p, a, b = (m["points"][k] for k in (new, "P1", "P2"))
+    cross = (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])
+    ab = math.dist(a, b)
+    assert abs(cross) / ab < 1e-6 * ab, (p, a, b)      # on the line P1 P2 (as the page rounds)
+    along = ((p[0] - a[0]) * (b[0] - a[0]) + (p[1] - a[1]) * (b[1] - a[1])) / ab ** 2
+    assert along == pytest.approx(0.37, abs=0.02)
+
+
 def test_an_edit_drag_with_snap_leaves_the_point_on_the_grid(page):
     open_example(page, "crank_rocker")
     page.check("#snap")

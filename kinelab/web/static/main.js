@@ -442,8 +442,29 @@ function snapTo(xy, except = null) {
     if (d <= bd) { best = p; bd = d; }
   }
   if (best) return {xy: [...state.model.points[best]], point: best};
+  const on = onLine(xy, near, except);
+  if (on) return {xy: on};
   const step = canvas.gridStep();
   return {xy: xy.map((v) => Number((Math.round(v / step) * step).toPrecision(12)))};
+}
+
+// The nearest place within `near` on a line between two points of a link (the links as
+// drawn), or null: snapping puts a point on a link's line before the grid.
+function onLine(xy, near, except) {
+  const P = state.model.points;
+  let best = null, bd = near;
+  for (const link of state.model.links || []) {
+    const names = link.points.filter((n) => n !== except && P[n] && P[n][0] !== null);
+    for (let i = 0; i < names.length; i++) for (let j = i + 1; j < names.length; j++) {
+      const [a, b] = [P[names[i]], P[names[j]]];
+      const dx = b[0] - a[0], dy = b[1] - a[1], l2 = dx * dx + dy * dy;
+      if (!(l2 > 0)) continue;
+      const t = Math.min(1, Math.max(0, ((xy[0] - a[0]) * dx + (xy[1] - a[1]) * dy) / l2));
+      const q = [a[0] + t * dx, a[1] + t * dy], d = Math.hypot(q[0] - xy[0], q[1] - xy[1]);
+      if (d <= bd) { best = q; bd = d; }
+    }
+  }
+  return best;
 }
 
 // What a click with *select* picks: a link, a slider block, or a point; a point clicked
