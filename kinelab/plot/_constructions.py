@@ -17,10 +17,10 @@ from kinelab.errors import ModelError, describe
 from kinelab.kinematics import KinematicSolution
 from kinelab.model import Units
 from kinelab.plot._figures import plain
+from kinelab.plot._words import LANGUAGES
 
 __all__ = ["tangent_construction", "velocity_image", "kennedy_steps", "LANGUAGES"]
 
-LANGUAGES = ("en", "pt")
 
 _TEXT = {
     "en": {
