@@ -10,7 +10,17 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from kinelab import _compiled
 from tests.fuzzing import grammar
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _kernel_ready():
+    """Every entry point of the compiled kernel loaded (or compiled, on a cold cache) before
+    the first case: the suite runs in "compiled" mode, where the first call of an entry point
+    compiles it in the calling thread, and the cases' time limits are for the work, not for
+    numba (a server in the default mode never compiles in a request; see ``_compiled``)."""
+    _compiled.wait()
 
 
 @settings(max_examples=150, suppress_health_check=[HealthCheck.too_slow,
