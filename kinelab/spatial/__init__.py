@@ -1,6 +1,6 @@
 """Spatial kinematics: 3-D transforms, spatial mechanisms and serial/parallel robots.
 
-*Mecanismos*, §4.2, §4.8 and §7.  Everything takes one configuration or a batch of N along
+*Mecanismos*, §4.2, §4.8 and §7, and the spherical four-bar.  Everything takes one configuration or a batch of N along
 axis 0, in SI units and radians.
 """
 from kinelab.spatial._transforms import (
@@ -17,6 +17,9 @@ from kinelab.spatial._cardan import (
     double_cardan,
 )
 from kinelab.spatial._rssr import RSSR, RSSRPositions, RSSRSolution
+from kinelab.spatial._spherical import (
+    SphericalFourBar, SphericalFourBarPositions, SphericalFourBarSolution, SphericalGrashof,
+)
 from kinelab.spatial._stewart import (
     StewartPose, stewart_forward, stewart_inverse_jacobian, stewart_leg_lengths,
 )
@@ -25,6 +28,8 @@ __all__ = [
     "CardanMotion", "DoubleCardanMotion", "cardan_motion", "cardan_output",
     "cardan_velocity_ratio", "double_cardan",
     "RSSR", "RSSRPositions", "RSSRSolution",
+    "SphericalFourBar", "SphericalFourBarPositions", "SphericalFourBarSolution",
+    "SphericalGrashof",
     "StewartPose", "stewart_forward", "stewart_inverse_jacobian", "stewart_leg_lengths",
     "JointRates", "RobotJoint", "SerialRobot", "ToolMotion", "pr", "prr", "rp", "rr", "rrr",
     "AngularMotion", "AxisAngle", "PointMotion", "TransformRates", "axis_angle", "compose",
