@@ -421,6 +421,19 @@ class SphericalFourBar:
         with np.errstate(divide="ignore", invalid="ignore"):
             K4 = -phi_2 / phi_4
             L4 = -(phi_22 + 2.0 * phi_24 * K4 + phi_44 * K4 * K4) / phi_4
+        with np.errstate(invalid="ignore"):        # NaN where the loop does not close
+            theta3, K3, L3, u_O2, u_A, u_B, u_O4, coupler = self._coupler(theta2, theta4, K4)
+        blank = singular | ~assembled
+        K3, K4, L3, L4 = (np.where(blank, np.nan, x) for x in (K3, K4, L3, L4))
+        return SphericalFourBarSolution(
+            theta2=theta2, theta2_dot=w, theta2_ddot=a, theta3=theta3, theta4=theta4,
+            K3=K3, K4=K4, L3=L3, L4=L4, omega3=K3 * w, omega4=K4 * w,
+            alpha3=K3 * a + L3 * w**2, alpha4=K4 * a + L4 * w**2,
+            u_O2=u_O2, u_A=u_A, u_B=u_B, u_O4=u_O4, coupler=coupler, branch=branch,
+            assembled=assembled, singular=singular)
+
+    def _coupler(self, theta2, theta4, K4):
+        """θ3, K3, L3, the axes and the coupler's orientation."""
         u_O2, u_A, u_B, u_O4 = self._axes(theta2, theta4)
         # the coupler: angle at A from the crank's arc to the coupler's
         ct, st = np.cos(theta2), np.sin(theta2)
@@ -432,7 +445,7 @@ class SphericalFourBar:
         cg, sg = np.cos(gamma)[..., None], np.sin(gamma)[..., None]
         x3 = cg * e1 + sg * e2
         coupler = np.stack([x3, np.cross(u_A, x3), u_A], axis=-1)
-        theta3 = np.where(assembled, wrap_angle(theta2 + np.nan_to_num(gamma)), np.nan)
+        theta3 = np.where(np.isnan(gamma), np.nan, wrap_angle(theta2 + np.nan_to_num(gamma)))
         P = _det(u_O2, u_B, u_O4)
         Q = _det(u_A, u_B, u_O4)
         dA = np.cross(u_O2, u_A)
@@ -442,14 +455,7 @@ class SphericalFourBar:
         with np.errstate(divide="ignore", invalid="ignore"):
             K3 = 1.0 - P / Q
             L3 = -(dP * Q - P * dQ) / (Q * Q)
-        blank = singular | ~assembled
-        K3, K4, L3, L4 = (np.where(blank, np.nan, x) for x in (K3, K4, L3, L4))
-        return SphericalFourBarSolution(
-            theta2=theta2, theta2_dot=w, theta2_ddot=a, theta3=theta3, theta4=theta4,
-            K3=K3, K4=K4, L3=L3, L4=L4, omega3=K3 * w, omega4=K4 * w,
-            alpha3=K3 * a + L3 * w**2, alpha4=K4 * a + L4 * w**2,
-            u_O2=u_O2, u_A=u_A, u_B=u_B, u_O4=u_O4, coupler=coupler, branch=branch,
-            assembled=assembled, singular=singular)
+        return theta3, K3, L3, u_O2, u_A, u_B, u_O4, coupler
 
     # -- mobility -------------------------------------------------------------------------
     def _span(self) -> tuple[float, float]:
@@ -583,12 +589,12 @@ class SphericalFourBar:
         if isinstance(rtol, bool) or not isinstance(rtol, numbers.Real) or not 0.0 <= rtol <= 1e-2:
             raise ModelError(f"rtol: expected a number from 0 to 0.01, got {describe(rtol)}")
         arcs = self.arcs
-        names = ("O2", "A", "B", "O4")     # axis k joins link k-1 and link k (ground = 0)
+        names = ("O2", "A", "B", "O4")     # axis k joins link k and link k + 1 (ground = 0)
         candidates = []
         for flips in itertools.product((0, 1), repeat=3):
             flip = (0,) + flips                        # O2 kept: reversing all four is idle
-            # link k (ground, crank, coupler, rocker) runs from axis k to axis k + 1
-            reduced = tuple(math.pi - arcs[k] if flip[k] ^ flip[(k + 1) % 4] else arcs[k]
+            # link k (ground, crank, coupler, rocker) runs from axis k - 1 to axis k
+            reduced = tuple(math.pi - arcs[k] if flip[k - 1] ^ flip[k] else arcs[k]
                             for k in range(4))
             long = sum(x > math.pi / 2 for x in reduced)
             s = sorted(reduced)
