@@ -581,25 +581,38 @@ class SphericalFourBar:
 
         Examples
         --------
-        >>> kl.spatial.SphericalFourBar(alpha1=0.5, alpha2=0.2, alpha3=0.5, alpha4=0.4).grashof().kind
+        >>> arcs = dict(alpha1=0.5, alpha2=0.2, alpha3=0.5, alpha4=0.4)
+        >>> kl.spatial.SphericalFourBar(**arcs).grashof().kind
         'crank-rocker'
-        >>> kl.spatial.SphericalFourBar(alpha1=0.5, alpha2=0.7, alpha3=0.4, alpha4=0.5).grashof().kind
+
+        The same linkage with the axis O2 reversed (ground and crank supplemented):
+
+        >>> g = kl.spatial.SphericalFourBar(**{**arcs, "alpha1": np.pi - 0.5,
+        ...                                    "alpha2": np.pi - 0.2}).grashof()
+        >>> g.kind, g.reversed_axes
+        ('crank-rocker', ('O2',))
+        >>> kl.spatial.SphericalFourBar(alpha1=0.5, alpha2=0.7, alpha3=0.4,
+        ...                             alpha4=0.5).grashof().kind
         'triple-rocker'
         """
-        if isinstance(rtol, bool) or not isinstance(rtol, numbers.Real) or not 0.0 <= rtol <= 1e-2:
+        if (isinstance(rtol, bool) or not isinstance(rtol, numbers.Real)
+                or not 0.0 <= rtol <= 1e-2):
             raise ModelError(f"rtol: expected a number from 0 to 0.01, got {describe(rtol)}")
         arcs = self.arcs
         names = ("O2", "A", "B", "O4")     # axis k joins link k and link k + 1 (ground = 0)
         candidates = []
         for flips in itertools.product((0, 1), repeat=3):
-            flip = (0,) + flips                        # O2 kept: reversing all four is idle
+            flip = (0,) + flips                     # reversing all four axes changes nothing
             # link k (ground, crank, coupler, rocker) runs from axis k - 1 to axis k
             reduced = tuple(math.pi - arcs[k] if flip[k - 1] ^ flip[k] else arcs[k]
                             for k in range(4))
             long = sum(x > math.pi / 2 for x in reduced)
             s = sorted(reduced)
-            candidates.append((long, -((s[1] + s[2]) - (s[0] + s[3])), reduced,
-                               tuple(n for n, f in zip(names, flip) if f)))
+            # reversing a set of axes or the other ones is the same: name the fewer
+            named = [n for n, f in zip(names, flip) if f]
+            if len(named) > 2:
+                named = [n for n in names if n not in named]
+            candidates.append((long, -((s[1] + s[2]) - (s[0] + s[3])), reduced, tuple(named)))
         fewest = min(c[0] for c in candidates)
         best = min(c for c in candidates if c[0] == fewest)
         margin, reduced, reversed_axes = -best[1], best[2], best[3]

@@ -159,7 +159,7 @@ def test_grashof_known_cases(arcs, kind):
 
 def test_grashof_reduction_names_reversed_axes():
     g = fourbar((np.pi - 0.5, np.pi - 0.2, 0.5, 0.4)).grashof()
-    assert g.reversed_axes in (("O2",), ("A", "B", "O4"))
+    assert g.reversed_axes == ("O2",)
     assert np.allclose(sorted(g.reduced), sorted((0.5, 0.2, 0.5, 0.4)), rtol=0, atol=1e-15)
 
 

@@ -1,0 +1,88 @@
+"""3-D figures of spatial mechanisms (matplotlib's mplot3d, imported inside the functions)."""
+from __future__ import annotations
+
+import numpy as np
+
+from kinelab.errors import AssemblyError, ModelError, describe
+from kinelab.spatial import SphericalFourBar
+
+__all__ = ["spherical_fourbar"]
+
+_LINKS = (("ground", "O2", "O4"), ("crank", "O2", "A"), ("coupler", "A", "B"),
+          ("rocker", "B", "O4"))
+
+
+def great_arc(u: np.ndarray, v: np.ndarray, n: int = 41) -> np.ndarray:
+    """Points (n, 3) on the shorter great-circle arc from unit vector u to unit vector v."""
+    angle = np.arctan2(np.linalg.norm(np.cross(u, v)), u @ v)
+    t = np.linspace(0.0, 1.0, n)[:, None]
+    if angle < 1e-12:
+        return np.repeat(u[None, :], n, axis=0)
+    return (np.sin((1.0 - t) * angle) * u + np.sin(t * angle) * v) / np.sin(angle)
+
+
+def spherical_fourbar(fourbar: SphericalFourBar, theta2: float, *,
+                      branch: str | None = None, ax=None, wireframe: bool = True):
+    """Draw a spherical four-bar at one input angle: the unit sphere as a wireframe, the four
+    joint axes from its centre, and each link as the great-circle arc between its two axes.
+
+    Parameters
+    ----------
+    fourbar : kinelab.spatial.SphericalFourBar
+    theta2 : float
+        Input angle, rad.
+    branch : {"open", "crossed"}, optional
+        Default, the four-bar's own.
+    ax : mpl_toolkits.mplot3d.Axes3D, optional
+        Drawn into a new figure without it.
+    wireframe : bool
+        Draw the sphere's meridians and parallels.
+
+    Returns
+    -------
+    mpl_toolkits.mplot3d.Axes3D
+        Its lines are labelled: the links by name (``"crank"`` ...), the axes ``"axis O2"`` ...
+
+    Raises
+    ------
+    ModelError
+        Anything but a SphericalFourBar, or a bad angle or branch.
+    AssemblyError
+        Where the loop cannot close at ``theta2``.
+    """
+    import matplotlib.pyplot as plt     # lazy: `import kinelab` must not need matplotlib
+    if not isinstance(fourbar, SphericalFourBar):
+        raise ModelError(f"fourbar: expected a kinelab.spatial.SphericalFourBar, got "
+                         f"{describe(fourbar)}")
+    if np.ndim(theta2) != 0:
+        raise ModelError(f"theta2: expected one angle (rad), got shape {np.shape(theta2)}")
+    sol = fourbar.analyze(theta2, branch=branch)
+    if not sol.assembled:                  # pragma: no cover - analyze raises first
+        raise AssemblyError("theta2: the loop cannot close")
+    if ax is None:
+        ax = plt.figure(figsize=(6, 6), layout="constrained").add_subplot(projection="3d")
+    if wireframe:
+        lon, lat = np.meshgrid(np.linspace(0, 2 * np.pi, 25), np.linspace(0, np.pi, 13))
+        ax.plot_wireframe(np.cos(lon) * np.sin(lat), np.sin(lon) * np.sin(lat), np.cos(lat),
+                          color="0.8", lw=0.5)
+    u = {"O2": sol.u_O2, "A": sol.u_A, "B": sol.u_B, "O4": sol.u_O4}
+    for name, axis in u.items():
+        line = np.stack([-0.15 * axis, 1.25 * axis])
+        fixed = name in ("O2", "O4")
+        ax.plot(*line.T, color="0.3" if fixed else "0.55", ls="-" if fixed else "--", lw=1.2,
+                label=f"axis {name}")
+        ax.text(*(1.32 * axis), name)
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for k, (link, a, b) in enumerate(_LINKS):
+        arc = great_arc(u[a], u[b])
+        ax.plot(*arc.T, lw=4 if link != "ground" else 2.5, label=link,
+                color="0.35" if link == "ground" else colors[k % len(colors)])
+    ax.scatter(*np.stack(list(u.values())).T, color="k", s=18, depthshade=False)
+    ax.set_box_aspect((1, 1, 1))
+    for set_lim in (ax.set_xlim, ax.set_ylim, ax.set_zlim):
+        set_lim(-1.3, 1.3)
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+    ax.set_zlabel("z")
+    ax.set_title(f"θ2 = {np.degrees(float(theta2)):.1f}°, {sol.branch}")
+    return ax
