@@ -411,3 +411,19 @@ def test_arcs_within_range_all_combinations():
             m.grashof()
             sol = m.analyze(np.linspace(-3, 3, 7), unreachable="mask")
             assert sol.assembled.dtype == bool
+
+
+@given(arc, arc, arc, arc, st.floats(-np.pi, np.pi), st.sampled_from(BRANCHES))
+def test_loop_closure_random_geometries(a1, a2, a3, a4, theta2, branch):
+    m = fourbar((a1, a2, a3, a4))
+    sol = m.analyze(theta2, branch=branch, unreachable="mask")
+    if not sol.assembled:
+        assert np.isnan(sol.theta4) and np.isnan(sol.K4)
+        return
+    assert abs(sol.u_A @ sol.u_B - math.cos(a3)) < 1e-12
+    assert abs(sol.u_B @ sol.u_O4 - math.cos(a4)) < 1e-15
+    if not sol.singular:
+        # K4 from the triple products (the angular velocities) against -Φ_θ2 / Φ_θ4
+        K4 = (np.linalg.det(np.stack([sol.u_O2, sol.u_A, sol.u_B]))
+              / np.linalg.det(np.stack([sol.u_O4, sol.u_A, sol.u_B])))
+        assert abs(K4 - sol.K4) <= 1e-9 * max(1.0, abs(K4))
