@@ -672,6 +672,10 @@ class SphericalFourBar:
             elif j.axis is None or j.point is None:
                 problems.append(f"joints[{i}]: a spherical four-bar's R joint needs its point "
                                 f"and its axis (three numbers)")
+            elif (len(j.axis) != 3 or not all(math.isfinite(c) for c in j.axis)
+                  or not any(j.axis)):
+                problems.append(f"joints[{i}].axis: expected three finite numbers, not all "
+                                f"zero, got {describe(j.axis)}")
         grounds = [lk.name for lk in m.links if lk.ground]
         if len(grounds) != 1:
             problems.append(f"links: expected one ground link, got {len(grounds)}")

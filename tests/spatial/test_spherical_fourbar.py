@@ -361,12 +361,14 @@ def test_from_mechanism(branch):
     assert kl.structure.mobility(model(arcs, 0.7, branch)).kutzbach_gruebler == 1
 
 
-def test_from_model_file(tmp_path):
+@pytest.mark.parametrize("length, scale", [("m", 1.0), ("mm", 1000.0)])
+def test_from_model_file(tmp_path, length, scale):
     arcs = (1.2, 0.4, 1.1, 0.9)
-    mech = model(arcs, 0.7, "crossed")
+    mech = model(arcs, 0.7, "crossed", centre=(0.2, 0.1, -0.3), radius=0.05)
     lines = ["schema = 1", 'name = "spherical four-bar"', 'space = "spherical"', "",
-             "[units]", 'length = "m"', 'angle = "rad"', "", "[points]"]
-    lines += [f"{p.name} = [{p.x!r}, {p.y!r}, {p.z!r}]" for p in mech.points]
+             "[units]", f'length = "{length}"', 'angle = "rad"', "", "[points]"]
+    lines += [f"{p.name} = [{p.x * scale!r}, {p.y * scale!r}, {p.z * scale!r}]"
+              for p in mech.points]
     for lk in mech.links:
         lines += ["", "[[links]]", f'name = "{lk.name}"',
                   "points = [" + ", ".join(f'"{p}"' for p in lk.points) + "]"]
@@ -391,6 +393,16 @@ def test_from_mechanism_refuses():
         sp.SphericalFourBar.from_mechanism(planar)
     with pytest.raises(ModelError, match=r"mechanism: expected a kinelab Mechanism"):
         sp.SphericalFourBar.from_mechanism("four-bar.toml")
+    import dataclasses
+    good = model((1.2, 0.4, 1.1, 0.9), 0.7, "open")
+    joints = list(good.joints)
+    joints[1] = dataclasses.replace(joints[1], axis=None)
+    with pytest.raises(ModelError, match=r"joints\[1\]: a spherical four-bar's R joint needs "
+                                         r"its point and its axis"):
+        sp.SphericalFourBar.from_mechanism(dataclasses.replace(good, joints=tuple(joints)))
+    joints[1] = dataclasses.replace(joints[1], axis=(1.0, 0.0))
+    with pytest.raises(ModelError, match=r"joints\[1\].axis: expected three finite numbers"):
+        sp.SphericalFourBar.from_mechanism(dataclasses.replace(good, joints=tuple(joints)))
 
 
 def test_output_limits_all_assemblies_seen():
