@@ -225,6 +225,23 @@ def test_jansen_uses_the_holy_numbers():
         assert dist(a, b) == pytest.approx(length, abs=1e-9), (a, b)
 
 
+def test_klann_foot_strides_flat_and_returns_raised():
+    # the stance: about half a turn of the crank (20 to 200 deg) with the foot within 4 % of
+    # its stride of a straight line, the stride over 4 cranks; the return lifts the foot
+    # more than half a stride off that line, on the body's side of it
+    mf, sol = sweep("klann", 721)
+    q, F = np.degrees(sol.q[:, 0]), sol.position("F")
+    stance = (q >= 20) & (q <= 200)
+    stride, off = line_fit(F[stance])
+    crank = np.linalg.norm(sol.position("A")[0] - sol.position("O")[0])
+    assert stride > 4 * crank and off <= 0.04 * stride
+    centre = F[stance].mean(axis=0)
+    normal = np.linalg.svd(F[stance] - centre)[2][1]
+    normal *= np.sign(normal @ (sol.position("O")[0] - centre))        # towards the body
+    assert ((F - centre) @ normal).max() > 0.5 * stride
+    assert ((F[~stance] - centre) @ normal).min() > -off - 1e-12
+
+
 def test_load_reads_what_the_model_file_reads():
     e = kl.gallery.entry("watt_linkage")
     assert kl.gallery.load("watt_linkage") == ModelFile.read(e.path)
