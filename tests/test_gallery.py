@@ -367,14 +367,28 @@ def angle_between(u, v):
     return float(np.arccos(np.clip(u @ v / np.linalg.norm(u) / np.linalg.norm(v), -1, 1)))
 
 
-@pytest.mark.parametrize("name, counted, exact", [
+MOBILITY = [
     ("sarrus", "M = 6(6 − 1) − 5·6 = 0.", "M = 1, not 0 as counted: 1 constraint equation"),
     ("bennett", "M = 6(4 − 1) − 5·4 = -2.", "M = 1, not -2 as counted: a negative count"),
     ("cardan", "(spherical, λ = 3): M = 3(4 − 1) − 2·4 = 1.", "M = 1, as counted"),
     ("double_cardan", "M = 6(6 − 1) − 5·6 = 0.", "M = 1, not 0 as counted: 1 constraint"),
     ("stewart_platform", "M = 6(14 − 1) − 5·6 − 3·12 = 12.",
      "M = 6, not 12 as counted: 6 freedoms are passive"),
-])
+]
+# each spatial entry's analysis by kinelab.spatial, tested below
+ANALYSED = {"sarrus": "test_sarrus_plate_rises_straight_by_the_closure_of_both_legs",
+            "bennett": "test_bennett_closes_over_a_turn_from_the_file_geometry",
+            "cardan": "test_cardan_output_and_speed_ratio_over_a_turn",
+            "double_cardan": "test_double_cardan_output_equals_its_input",
+            "stewart_platform": "test_stewart_platform_legs_by_inverse_kinematics"}
+
+
+def test_every_spatial_entry_is_checked_and_analysed():
+    assert {name for name, *_ in MOBILITY} == set(ANALYSED) == set(SPATIAL)
+    assert all(callable(globals()[test]) for test in ANALYSED.values())
+
+
+@pytest.mark.parametrize("name, counted, exact", MOBILITY)
 def test_spatial_entry_check_counts_and_explains_its_mobility(name, counted, exact):
     result = run("check", kl.gallery.entry(name).path)
     assert result.exit_code == 0, result.output
