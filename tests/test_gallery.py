@@ -463,8 +463,7 @@ def test_bennett_closes_over_a_turn_from_the_file_geometry():
     points, axes = p.joints()
     for k, (length, twist) in enumerate(zip((a, b, a, b), (alpha, beta, alpha, beta))):
         nxt = (k + 1) % 4
-        np.testing.assert_allclose(np.linalg.norm(points[:, nxt] - points[:, k], axis=1)
-                                   if k < 3 else np.linalg.norm(points[:, 0] - points[:, 3], axis=1),
+        np.testing.assert_allclose(np.linalg.norm(points[:, nxt] - points[:, k], axis=1),
                                    length, rtol=1e-12)
         np.testing.assert_allclose(np.einsum("ni,ni->n", axes[:, k], axes[:, nxt]), np.cos(twist),
                                    rtol=0, atol=1e-12)
@@ -489,7 +488,8 @@ def test_cardan_output_and_speed_ratio_over_a_turn():
     np.testing.assert_allclose(motion.ratio, ratio, rtol=1e-12)
     np.testing.assert_allclose(motion.phi2_dot, 10.0 * ratio, rtol=1e-12)
     h = 1e-5
-    fd = (kl.spatial.cardan_output(phi1 + h, beta) - kl.spatial.cardan_output(phi1 - h, beta)) / (2 * h)
+    output = kl.spatial.cardan_output
+    fd = (output(phi1 + h, beta) - output(phi1 - h, beta)) / (2 * h)
     np.testing.assert_allclose(fd, ratio, rtol=0, atol=1e-8)
     assert motion.ratio.min() == pytest.approx(np.cos(beta), rel=1e-12)
     assert motion.ratio.max() == pytest.approx(1 / np.cos(beta), rel=1e-9)
@@ -521,8 +521,10 @@ def test_double_cardan_output_equals_its_input():
     assert np.ptp(np.gradient(motion.phi2, phi1)) > 0.2
     # the file's own joints: each cross keeps its two pins at right angles
     turn = lambda shaft, angle, pin: about(shaft, angle)[:, :3, :3] @ pin
-    pins = [turn(shaft_in, phi1, at["Y1"] - at["OA"]), turn(middle, motion.phi2, at["Y2"] - at["OA"]),
-            turn(middle, motion.phi2, at["Y3"] - at["OB"]), turn(shaft_out, motion.phi3, at["Y4"] - at["OB"])]
+    pins = [turn(shaft_in, phi1, at["Y1"] - at["OA"]),
+            turn(middle, motion.phi2, at["Y2"] - at["OA"]),
+            turn(middle, motion.phi2, at["Y3"] - at["OB"]),
+            turn(shaft_out, motion.phi3, at["Y4"] - at["OB"])]
     for u, v in (pins[:2], pins[2:]):
         assert np.abs(np.einsum("ni,ni->n", u, v)).max() < 1e-12 * 0.025**2
 
@@ -544,7 +546,8 @@ def test_stewart_platform_legs_by_inverse_kinematics():
     # over a cycle of heave, surge, roll, pitch and yaw
     t = np.linspace(0, 2 * np.pi, 181)
     position = centre + np.c_[0.05 * np.sin(t), np.zeros_like(t), 0.08 * np.sin(2 * t)]
-    rotation = Rotation.from_euler("xyz", np.c_[0.1 * np.sin(t), 0.08 * np.cos(t), 0.15 * np.sin(t)])
+    rotation = Rotation.from_euler("xyz", np.c_[0.1 * np.sin(t), 0.08 * np.cos(t),
+                                                0.15 * np.sin(t)])
     lengths = kl.spatial.stewart_leg_lengths(base, platform, position, rotation)
     assert lengths.shape == (181, 6)
     # the legs' geometry, by the homogeneous transforms: |T p - a| with the platform's

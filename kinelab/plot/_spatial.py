@@ -44,9 +44,9 @@ def spatial_mechanism(model: Mechanism, positions: Mapping[str, ArrayLike] | Non
     import matplotlib.pyplot as plt   # lazy: `import kinelab` must not need matplotlib
 
     if not isinstance(model, Mechanism) or model.space == "planar":
-        raise ModelError(f"model: expected a spherical or spatial Mechanism, got "
-                         f"{'a planar one' if isinstance(model, Mechanism) else type(model).__name__}"
-                         f"; draw planar models with kinelab.plot.mechanism")
+        got = "a planar one" if isinstance(model, Mechanism) else type(model).__name__
+        raise ModelError(f"model: expected a spherical or spatial Mechanism, got {got}; draw "
+                         f"planar models with kinelab.plot.mechanism")
     u = Units.resolve(units)
     at = {p.name: np.array([p.x, p.y, p.z]) for p in model.points}
     for name, xyz in (positions or {}).items():
