@@ -20,7 +20,8 @@ centre-point curves and Burmester's points), :func:`structural_error`,
 :func:`path_solution`, :func:`limit_positions` (a crank-rocker or quick return at its dead
 centres).
 
-Spatial: :func:`spherical_fourbar` (the sphere, the joint axes and the links' arcs, in 3-D).
+Spatial: :func:`spherical_fourbar` (the sphere, the joint axes and the links' arcs, in 3-D),
+:func:`spatial_mechanism` (a spherical or spatial model in 3-D).
 
 Sweeps: :func:`tolerance_band` and :func:`error_histogram` (a tolerance study).
 
@@ -35,7 +36,7 @@ from kinelab.plot._figures import (coefficients, coupler_curve, curves, input_ax
                                    transmission)
 from kinelab.plot._graphical import (PANEL_CM, acceleration_polygon, centrodes, derivatives,
                                      drawing_scale, instant_centers, velocity_polygon)
-from kinelab.plot._spatial import spherical_fourbar
+from kinelab.plot._spatial import spatial_mechanism, spherical_fourbar
 from kinelab.plot._sweep import error_histogram, tolerance_band
 from kinelab.plot._synthesis import (burmester_curves, five_positions, limit_positions,
                                      motion_solution, path_solution, prescribed_positions,
@@ -49,4 +50,5 @@ __all__ = ["curves", "coefficients", "coupler_curve", "transmission", "mechanism
            "acceleration_polygon", "instant_centers", "centrodes", "derivatives", "drawing_scale",
            "PANEL_CM", "tolerance_band", "error_histogram", "tangent_construction",
            "velocity_image", "kennedy_steps", "cam_svaj", "cam_profile", "cam_pressure",
-           "cam_curvature", "spherical_fourbar"]
+           "cam_curvature", "spherical_fourbar",
+           "spatial_mechanism"]
