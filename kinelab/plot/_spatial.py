@@ -91,7 +91,7 @@ def spherical_fourbar(fourbar: SphericalFourBar, theta2: float, *,
     ax.set_ylabel("y")
     ax.set_zlabel("z")
     ax.set_title(f"θ2 = {np.degrees(float(theta2)):.1f}°, {sol.branch}")
-
+    return ax
 
 
 def spatial_mechanism(model: Mechanism, positions: Mapping[str, ArrayLike] | None = None, *,
@@ -155,3 +155,4 @@ def spatial_mechanism(model: Mechanism, positions: Mapping[str, ArrayLike] | Non
     ax.set_xlabel(f"x [{u.length}]")
     ax.set_ylabel(f"y [{u.length}]")
     ax.set_zlabel(f"z [{u.length}]")
+    return ax
