@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from kinelab._files import atomic_write
+from kinelab.derive._errata import marks
 from kinelab.derive._simplify import READABLE_OPS, size
 from kinelab.derive._words import WORDS
 from kinelab.errors import ModelError, check_choice
@@ -461,6 +462,12 @@ def document(d, fmt: str, *, at=None, lang: str = "en") -> str:
 
     def M_(e) -> str:
         return "$" + tex(e) + "$"
+
+    def notes_differ(section: str) -> None:
+        for entry, sentence in marks(d, section, lang):
+            text = T("notes_differ", entry=entry) + " " + w.text(sentence)
+            # ragged right: the inline maths of a mark leaves TeX few places to break a line
+            w.para(text if w.fmt == "md" else "{\\raggedright " + text + "\\par}")
     Mn, n = len(eq.q), len(eq.S)
     title = w.text(words["title"], name=N(m.name))
     w.para(T("intro"))
@@ -487,13 +494,17 @@ def document(d, fmt: str, *, at=None, lang: str = "en") -> str:
         if d.redundant:
             w.para(T("redundant_one" if len(d.redundant) == 1 else "redundant",
                      rows=", ".join(f"({i + 1})" for i in d.redundant)))
+        notes_differ("position")
     if n:
         _velocity(d, w, T, N, tex)
+        notes_differ("jacobian")
         _singular_positions(d, w, T, tex)
         _coefficients(d, w, T, tex)
+        notes_differ("coefficients")
         _accelerations(d, w, T, tex)
     if d.dynamics is not None:
         _dynamics(d, w, T, N, tex)
+        notes_differ("dynamics")
     _numbers(d, w, T, N, tex, at)
     return w.finish(title)
 

@@ -44,6 +44,7 @@ WORDS: dict[str, dict[str, str]] = {
         "x": "$x$ of the fixed point {point}",
         "y": "$y$ of the fixed point {point}",
         "position": "Position equations",
+        "notes_differ": "*Where the notes print it otherwise* (errata, {entry}):",
         "loops_count": ("The link graph has {links} links and {joints} joints, so "
                         "{loops} independent loops ({joints} $-$ {links} $+$ 1).  Each loop "
                         "is a closed vector polygon; its projections on $x$ and $y$ are two "
@@ -191,6 +192,7 @@ WORDS: dict[str, dict[str, str]] = {
         "x": "$x$ do ponto fixo {point}",
         "y": "$y$ do ponto fixo {point}",
         "position": "Equações de posição",
+        "notes_differ": "*As notas imprimem-no de outro modo* (errata, {entry}):",
         "loops_count": ("O grafo das peças tem {links} peças e {joints} juntas, logo "
                         "{loops} malhas independentes ({joints} $-$ {links} $+$ 1).  Cada "
                         "malha é um polígono vetorial fechado; suas projeções em $x$ e $y$ são "
