@@ -127,10 +127,12 @@ def test_escape_cancels_a_pair_half_placed(page):
     np.testing.assert_allclose(X, to_screen(*O4)[0], atol=0.5)
     typed = page.input_value("#synth-poses")
     page.click("#synth-place")
-    page.mouse.click(*on_screen_towards(to_screen, pixel, O2, 60))
+    page.mouse.click(*on_screen_towards(to_screen, pixel, O2, 170))
     page.mouse.click(*on_screen_towards(to_screen, pixel, O4, 100))
-    page.mouse.click(*on_screen_towards(to_screen, pixel, O2, 80))          # pair 2: its input only
+    page.mouse.click(*on_screen_towards(to_screen, pixel, O2, -170))        # pair 2: its input only
     assert len(lines(page)) == 2 and len(lines(page)[1]) == 1
+    # past 180 deg the input goes on turning the same way: 190, not -170
+    assert lines(page)[0][0] == pytest.approx(170, abs=0.5) and lines(page)[1][0] == pytest.approx(190, abs=0.5)
     assert rays(page, "in") == 2 and rays(page, "out") == 1
     assert "pair 2 of 3: click towards its output angle" in page.inner_text("#synth-place-hint")
     page.shot("pair_half_placed")
@@ -150,6 +152,10 @@ def test_escape_cancels_a_pair_half_placed(page):
     page.mouse.up()
     assert page.input_value("#synth-poses") == typed
     assert state(page, "window.kinelab.canvas.dragging") is None
+    # a pair deleted from the form leaves the drawing, its rays both
+    page.fill("#synth-poses", "\n".join(typed.strip().splitlines()[:2]))
+    assert rays(page, "in") == 2 and rays(page, "out") == 2
+    assert page.locator("#canvas [data-target='pair 3 out']").count() == 0
 
 
 @pytest.mark.parametrize("pairs, message", [

@@ -159,7 +159,9 @@ const placed = {
     const p = this.placing;
     if (p && p.what === "pairs") {
       const area = this.root.querySelector("#synth-poses");
-      if (p.side === "in") area.value = (area.value.trim() ? area.value.trim() + "\n" : "") + "0";
+      // a new pair's input starts as the previous pair's, whose turn it is taken nearest
+      const last = rows(area.value).at(-1), from = last && Number.isFinite(last[0]) ? last[0] : 0;
+      if (p.side === "in") area.value = (area.value.trim() ? area.value.trim() + "\n" : "") + from;
       const at = `pair ${rows(area.value).length} ${p.side}`;
       this.grabbed = {key: at, ray: true};
       this.turn(at, xy);
