@@ -240,3 +240,18 @@ def test_a_pairs_task_typed_wrong_names_its_field(function, message):
         task = kl.io.read_task({"task": "function", "units": {"angle": "deg"}, "function": function})
         kl.io.solve_task(task)
 
+
+
+@pytest.mark.parametrize("scale", [1e-4, 1.0, 1e4])
+def test_pairs_are_scale_free(scale):
+    """The same pairs on pivots 1e-4 to 1e4 times as far apart: the same linkage to scale,
+    the same defects and the same crank angles (1e-9: rounding through the engine)."""
+    pairs = ([49, 79, 109], [97, 101, 112])
+    O2, O4 = np.array([0.03, -0.04]), np.array([0.33, 0.01])
+    one = kl.synthesis.function_pairs(*pairs, O2, O4, degrees=True)
+    sol = kl.synthesis.function_pairs(*pairs, O2 * scale, O4 * scale, degrees=True)
+    for k, v in one.lengths.items():
+        assert sol.lengths[k] == pytest.approx(v * scale, rel=1e-9)
+    assert sol.defects == one.defects
+    np.testing.assert_allclose(sol.q, one.q, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(sol.structural_error, one.structural_error, rtol=0, atol=1e-9)
