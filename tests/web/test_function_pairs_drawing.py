@@ -55,7 +55,8 @@ def test_the_pivots_and_pairs_placed_by_mouse_give_a_linkage_through_them(page):
     phi = math.degrees(math.atan2(*(O4 - O2)[::-1]))
     fb = kl.mechanisms.fourbar(ground=d, crank=d / 3, coupler=d, rocker=d * 2.5 / 3)
     inputs = [round(phi) + a for a in (40, 70, 100)]
-    outputs = [round(v) for v in np.degrees(kl.analyze(fb, q=np.radians(np.subtract(inputs, phi))).angle("rocker")) + phi]
+    rocker = kl.analyze(fb, q=np.radians(np.subtract(inputs, phi))).angle("rocker")
+    outputs = [round(v) for v in np.degrees(rocker) + phi]
     page.check("#snap")
     page.click("#synth-place")
     assert page.input_value("#synth-poses") == ""
@@ -74,7 +75,8 @@ def test_the_pivots_and_pairs_placed_by_mouse_give_a_linkage_through_them(page):
         for side, pivot, angle in (("in", O2, a), ("out", O4, b)):
             X, Y = centre(page, f"#canvas [data-target='pair {k} {side}'] circle.handle")
             x, y = np.subtract(to_model(X, Y), pivot)
-            assert math.degrees(math.atan2(y, x)) == pytest.approx(wrapped(math.radians(angle)) * 180 / math.pi, abs=1.0)
+            drawn = math.degrees(math.atan2(y, x))
+            assert drawn == pytest.approx(math.degrees(wrapped(math.radians(angle))), abs=1.0)
             assert math.hypot(x, y) / pixel == pytest.approx(64, abs=1.5)
     # a fourth click places nothing: the three are placed
     page.mouse.click(*on_screen_towards(to_screen, pixel, O2, 0))
@@ -98,7 +100,7 @@ def test_the_pivots_and_pairs_placed_by_mouse_give_a_linkage_through_them(page):
     page.fill("#synth-poses", "\n".join(f"{a} {b}" for a, b in zip(inputs, outputs)))
     X, Y = centre(page, "#canvas [data-target='pair 2 in'] circle.handle")
     x, y = np.subtract(to_model(X, Y), O2)
-    assert math.degrees(math.atan2(y, x)) == pytest.approx(wrapped(math.radians(inputs[1])) * 180 / math.pi, abs=1.0)
+    assert math.degrees(math.atan2(y, x)) == pytest.approx(math.degrees(wrapped(math.radians(inputs[1]))), abs=1.0)
     # solved and opened: the linkage's rocker at each placed output angle, its crank at the input
     page.click("#synth-solve")
     page.wait_for_selector("#synth-results tr[data-solution='1']", timeout=60_000)
@@ -175,3 +177,21 @@ def test_pairs_typed_wrong_get_a_message_and_the_page_goes_on(page, pairs, messa
     assert rays(page, "in") >= 2
     page.click("#synth-place")
     assert "pair 1 of 3" in page.inner_text("#synth-place-hint")
+
+
+def test_a_pivot_typed_wrong_gets_a_message_and_no_placing(page):
+    synthesis(page, "function-pairs")
+    page.fill("[data-field='function.O4']", "1, y")
+    assert page.locator("#canvas g.target.fixed").count() == 1 and rays(page, "out") == 0
+    page.click("#synth-place")
+    assert "O2 and O4 first" in page.inner_text("#synth-place-hint")
+    for typed, message in (("1, y", "function.O4: expected finite numbers of shape (2), got [1, 'y']"),
+                           ("0, 0", "function.O4: expected a fixed pivot apart from O2")):
+        page.fill("[data-field='function.O4']", typed)
+        page.click("#synth-solve")
+        page.wait_for_function("(m) => document.getElementById('status').textContent.includes(m)",
+                               arg=message, timeout=60_000)
+        assert page.inner_text("#synth-results") == ""
+    page.fill("[data-field='function.O4']", "1, 0")
+    page.click("#synth-solve")
+    page.wait_for_selector("#synth-results tr[data-solution='1']", timeout=60_000)
