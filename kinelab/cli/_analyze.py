@@ -272,6 +272,10 @@ def _singular_positions_of_several(mf: io.ModelFile, units, words: dict) -> list
     m = mf.mechanism
     with errors_from(mf):
         p = kinematics.plan(m)
+    if p.groups is not None:          # continuation: no sample is solved on its own
+        return [words["toggles"] + words["newton_box"],
+                words["dead_many"].format(count=len(m.inputs))]
+    with errors_from(mf):
         locus = kinematics.toggles(m)
     si_units = [INPUT_SI_UNITS[k] for k in p.input_kinds]
 
@@ -341,6 +345,8 @@ SINGULAR_WORDS = {
         "not_reached_box": ("not reached in {box} (a {grid} grid; closest at {names} = {at}, "
                             "where the sine of the transmission angle is {nearest})"),
         "no_assembly_box": "not searched: the loops close nowhere on a {grid} grid of {box}",
+        "newton_box": ("not searched: with several inputs they are searched for mechanisms "
+                       "solved in closed form (dyads), and this one has a Newton-Raphson group"),
         "many limit position": ("limit positions (the loops stop closing; bisected along the "
                                 "grid lines)"),
         "many change point": "change points (det J changes sign; bisected along the grid lines)",
@@ -370,6 +376,9 @@ SINGULAR_WORDS = {
                             "{names} = {at}, onde o seno do ângulo de transmissão é {nearest})"),
         "no_assembly_box": ("não procuradas: as malhas não fecham em nenhum ponto de uma grade "
                             "de {grid} de {box}"),
+        "newton_box": ("não procuradas: com várias entradas, são procuradas em mecanismos "
+                       "resolvidos em forma fechada (díades), e este tem um grupo resolvido "
+                       "por Newton-Raphson"),
         "many limit position": ("posições limite (as malhas deixam de fechar; refinadas por "
                                 "bisseção ao longo das linhas da grade)"),
         "many change point": ("pontos de mudança de ramo (det J muda de sinal; refinados por "

@@ -210,3 +210,18 @@ def test_two_inputs_not_reached_says_how_close_the_grid_came(tmp_path):
     assert sine == pytest.approx(math.sin(2 * math.asin(d / 240.0)), rel=1e-3)
     pt = line(run("check", near, "--lang", "pt").stdout, "posições de travamento")
     assert "não atingidas em jO2 em [70, 110] deg x jO4 em [70, 110] deg" in pt
+
+
+def test_two_inputs_solved_by_newton_say_toggles_are_not_searched(monkeypatch):
+    """A plan with Newton-Raphson groups is continued from sample to sample, so its grid
+    samples cannot be solved each on its own: check says so and goes on."""
+    from kinelab import kinematics
+    planned = kinematics.plan
+    monkeypatch.setattr(kinematics, "plan", lambda m, method="auto": planned(m, method="newton"))
+    result = run("check", HERE / "fivebar_reach.toml")
+    assert result.exit_code == 0, result.output
+    assert line(result.stdout, "toggles (det J = 0") == (
+        "toggles (det J = 0, dead centres of the chain): not searched: with several inputs "
+        "they are searched for mechanisms solved in closed form (dyads), and this one has a "
+        "Newton-Raphson group")
+    assert result.stdout.rstrip().endswith("\nok")
