@@ -162,8 +162,15 @@ def check(model, si, degrees, lang):
     input range and its singular positions over the input range: the toggles (det J = 0)
     and the dead centres of each reported output (K = 0); with several inputs, whether
     det J = 0 is reached over the box of their ranges and a few of the points found; in the
-    file's units, or SI with --si.  Exit status 2 when something is wrong."""
+    file's units, or SI with --si.  Exit status 2 when something is wrong.
+
+    A spherical or spatial model is checked for what it describes: its mobility, counted
+    and exact (with the reason they differ, as for the overconstrained linkages of Sarrus
+    and Bennett), one input per degree of freedom; kinelab.spatial analyses its motion."""
     mf = read_model(model)
+    if mf.mechanism.space != "planar":
+        _check_spatial(mf, model)
+        return
     light_work(mf)
     m = mf.mechanism
     units = output_units(mf.units, si, degrees)
@@ -422,6 +429,31 @@ def _check_range(mf, ranges, full, si_unit):
         raise ModelError(f"{mf.source}: inputs[0].range: [{num(inp.range[0])}, "
                          f"{num(inp.range[1])}] {u.unit(si_unit)} goes where the mechanism does "
                          f"not assemble; it reaches {spans} {u.unit(si_unit)}; narrow the range")
+
+
+def _check_spatial(mf: io.ModelFile, model: str) -> None:
+    """``check`` of a spherical or spatial model: what the planar engine cannot sweep is
+    counted, and its exact mobility must match its inputs."""
+    from kinelab import structure
+
+    m = mf.mechanism
+    click.echo(f"{shown_path(model)}: {m.name}: {m.space}, {len(m.points)} points, "
+               f"{len(m.links)} links, {len(m.joints)} joints, {len(m.inputs)} input(s); "
+               f"units {mf.units.length}, {mf.units.angle}")
+    with errors_from(mf):
+        result = structure.mobility(m)
+    for line in result.explanation.splitlines():
+        click.echo(f"mobility: {line}")
+    if result.exact != len(m.inputs):
+        with errors_from(mf, "inputs"):
+            raise ModelError(f"expected {result.exact} input(s), one per degree of freedom "
+                             f"(the exact mobility at the sketch), got {len(m.inputs)}; "
+                             f"{'add' if result.exact > len(m.inputs) else 'remove'} "
+                             f"[[inputs]] tables")
+    click.echo(f"inputs: {', '.join(m.input_names)}, one per degree of freedom")
+    click.echo(f"motion: the kinematics engine sweeps planar models; analyse this {m.space} "
+               f"one with kinelab.spatial")
+    click.echo("ok")
 
 
 def _mobility(m) -> str:

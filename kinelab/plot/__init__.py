@@ -22,6 +22,8 @@ centres).
 
 Sweeps: :func:`tolerance_band` and :func:`error_histogram` (a tolerance study).
 
+Spatial models: :func:`spatial_mechanism` (a spherical or spatial model in 3-D).
+
 Cams: :func:`cam_svaj` (the SVAJ diagram), :func:`cam_profile`, :func:`cam_pressure` (the
 pressure angle over the cycle), :func:`cam_curvature` (radius of curvature).
 """
@@ -33,6 +35,7 @@ from kinelab.plot._figures import (coefficients, coupler_curve, curves, input_ax
                                    transmission)
 from kinelab.plot._graphical import (PANEL_CM, acceleration_polygon, centrodes, derivatives,
                                      drawing_scale, instant_centers, velocity_polygon)
+from kinelab.plot._spatial import spatial_mechanism
 from kinelab.plot._sweep import error_histogram, tolerance_band
 from kinelab.plot._synthesis import (burmester_curves, five_positions, limit_positions,
                                      motion_solution, path_solution, prescribed_positions,
@@ -46,4 +49,4 @@ __all__ = ["curves", "coefficients", "coupler_curve", "transmission", "mechanism
            "acceleration_polygon", "instant_centers", "centrodes", "derivatives", "drawing_scale",
            "PANEL_CM", "tolerance_band", "error_histogram", "tangent_construction",
            "velocity_image", "kennedy_steps", "cam_svaj", "cam_profile", "cam_pressure",
-           "cam_curvature"]
+           "cam_curvature", "spatial_mechanism"]

@@ -1,4 +1,5 @@
-"""Spatial kinematics: 3-D transforms, spatial mechanisms and serial/parallel robots.
+"""Spatial kinematics: 3-D transforms, spatial mechanisms (Cardan joints, RSSR, Bennett's and
+Sarrus's linkages) and serial/parallel robots.
 
 *Mecanismos*, §4.2, §4.8 and §7.  Everything takes one configuration or a batch of N along
 axis 0, in SI units and radians.
@@ -17,6 +18,8 @@ from kinelab.spatial._cardan import (
     double_cardan,
 )
 from kinelab.spatial._rssr import RSSR, RSSRPositions, RSSRSolution
+from kinelab.spatial._bennett import BennettPositions, bennett
+from kinelab.spatial._sarrus import SarrusPositions, sarrus
 from kinelab.spatial._stewart import (
     StewartPose, stewart_forward, stewart_inverse_jacobian, stewart_leg_lengths,
 )
@@ -25,6 +28,7 @@ __all__ = [
     "CardanMotion", "DoubleCardanMotion", "cardan_motion", "cardan_output",
     "cardan_velocity_ratio", "double_cardan",
     "RSSR", "RSSRPositions", "RSSRSolution",
+    "BennettPositions", "bennett", "SarrusPositions", "sarrus",
     "StewartPose", "stewart_forward", "stewart_inverse_jacobian", "stewart_leg_lengths",
     "JointRates", "RobotJoint", "SerialRobot", "ToolMotion", "pr", "prr", "rp", "rr", "rrr",
     "AngularMotion", "AxisAngle", "PointMotion", "TransformRates", "axis_angle", "compose",

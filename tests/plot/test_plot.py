@@ -258,3 +258,21 @@ def test_names_that_mathtext_would_read_are_drawn_as_they_are():
     assert "$x$" in legend and "path of a$b" in legend
     assert _shown(figures[0].axes[-1].get_xlabel()) == "$\\alpha{$ [rad]"
     assert "\\frac{" in [_shown(t.get_text()) for t in figures[4].axes[0].texts]
+
+
+def test_spatial_mechanism_draws_each_moving_link_at_the_given_places():
+    m = kl.gallery.load("sarrus").mechanism
+    ax = kl.plot.spatial_mechanism(m, {"T": [0.0, 0.0, 0.07]}, units={"length": "mm", "angle": "deg"})
+    lines = {line.get_label(): line for line in ax.get_lines()}
+    assert {link.name for link in m.links if not link.ground} <= set(lines)
+    x, y, z = lines["plate"].get_data_3d()
+    assert len(z) == 4 and 70.0 in np.round(z, 9)          # A3, B3, T (moved) and back, mm
+    assert ax.get_zlabel() == "z [mm]"
+
+
+def test_spatial_mechanism_refuses_a_planar_model_and_unknown_points():
+    with pytest.raises(ModelError, match=r"expected a spherical or spatial Mechanism, got a "
+                                         r"planar one; draw planar models with"):
+        kl.plot.spatial_mechanism(kl.gallery.load("hoeken").mechanism)
+    with pytest.raises(ModelError, match=r"positions: expected a point of the model, got 'Z'"):
+        kl.plot.spatial_mechanism(kl.gallery.load("sarrus").mechanism, {"Z": [0, 0, 0]})
