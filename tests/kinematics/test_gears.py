@@ -350,3 +350,32 @@ def test_round_trip_through_a_model_file():
         back = kl.io.from_toml(kl.io.to_toml(m, units={"length": "mm", "angle": "deg"}))
         assert back.joints == m.joints
         assert Mechanism.from_dict(m.to_dict()).joints == m.joints
+
+
+def two_idlers(r4=1.5):
+    """Gear 1 drives gear 3 through two idlers at once (2 and 4): the second path repeats the
+    first (each gives e = +r1/r3), so its last mesh is a redundant constraint, checked on
+    every sample (idler 4 has pitch radius 1.5 in both its meshes)."""
+    pts = (Point("O1", 0.0, 0.0), Point("M1", 1.0, 0.0), Point("O2", 2.0, 0.0), Point("M2", 2.0, 1.0),
+           Point("O3", 4.0, 0.0), Point("M3", 5.0, 0.0), Point("O4", 2.0, -1.5), Point("M4", 2.0, -3.0))
+    links = (Link("ground", ("O1", "O2", "O3", "O4"), ground=True), Link("g1", ("O1", "M1")),
+             Link("g2", ("O2", "M2")), Link("g3", ("O3", "M3")), Link("g4", ("O4", "M4")))
+    joints = tuple(Joint(f"p{i}", "R", ("ground", f"g{i}"), point=f"O{i}") for i in (1, 2, 3, 4))
+    joints += (Joint("m12", "G", ("g1", "g2"), radii=(1.0, 1.0)),
+               Joint("m23", "G", ("g2", "g3"), radii=(1.0, 1.0)),
+               Joint("m14", "G", ("g1", "g4"), radii=(1.0, 1.5)),
+               Joint("m43", "G", ("g4", "g3"), radii=(r4, 1.0)))
+    return Mechanism("two idlers", pts, links, joints, (Input(joint="p1"),))
+
+
+def test_a_redundant_gear_path_is_checked():
+    m = two_idlers()
+    mob = kl.structure.mobility(m)
+    assert (mob.kutzbach_gruebler, mob.exact) == (0, 1)
+    p = kl.kinematics.plan(m)
+    assert p.redundant == ("m43",)
+    sol = kl.analyze(m, q=TURN)
+    np.testing.assert_allclose(sol.K("g3"), 1.0, rtol=1e-15)
+    # a second path of another value jams the train: refused
+    with pytest.raises(ModelError, match=r"0 degree\(s\) of freedom"):
+        kl.analyze(two_idlers(r4=1.0), q=TURN)
