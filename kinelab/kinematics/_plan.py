@@ -697,7 +697,43 @@ class _Builder:
             self.steps.append(Step("gear", (out,), (g.joint,),
                                    f"'{out}' geared to '{x}' and '{y}' (gear '{g.joint}')"))
             progress = True
-        return progress
+        return progress or self._gear_carrier()
+
+    def _gear_carrier(self) -> bool:
+        """Two spur pairs on one carrier through a middle gear (sun-planet-ring), both outer
+        gears known and the middle gear and the carrier not: the two meshes make one relation
+        of the outer gears, ``theta_2 = K theta_1 + (1 - K) theta_c + const`` with ``K`` the
+        product of theirs (Willis' formula), which gives the carrier; the middle gear follows."""
+        def toward(g, gear):
+            """k of the mesh read from its other gear to ``gear``."""
+            return g.k if gear == g.b else 1.0 / g.k
+        spur = [g for g in self.gears if g.mesh != "rack" and g.joint not in self.used]
+        for g1, g2 in itertools.permutations(spur, 2):
+            if g1.carrier != g2.carrier or g1.carrier in self.angle_known:
+                continue
+            middle = ({g1.a, g1.b} & {g2.a, g2.b}) - self.angle_known
+            if len(middle) != 1:
+                continue
+            mid = middle.pop()
+            o1 = g1.a if g1.b == mid else g1.b
+            o2 = g2.a if g2.b == mid else g2.b
+            if o1 == o2 or not {o1, o2} <= self.angle_known:
+                continue
+            K = toward(g1, mid) * toward(g2, o2)
+            if abs(1.0 - K) <= 1e-12:
+                continue                 # the outer gears turn together: no carrier from them
+            c = g1.carrier
+            cx, cy = -K / (1.0 - K), 1.0 / (1.0 - K)
+            self._emit([k.OP_GEAR, self.L[c], self.L[o1], self.L[o2]],
+                       lambda G, c=c, o1=o1, o2=o2, cx=cx, cy=cy: [
+                           self._frame_theta(G, c) - cx * self._frame_theta(G, o1)
+                           - cy * self._frame_theta(G, o2), cx, cy])
+            self.angle_known.add(c)
+            self.steps.append(Step("gear", (c,), (g1.joint, g2.joint),
+                                   f"carrier '{c}' from '{o1}' and '{o2}' (gears '{g1.joint}' and "
+                                   f"'{g2.joint}', Willis)"))
+            return True
+        return False
 
     def _place_rack(self, link: str) -> bool:
         """A rack whose pinion's angle is known, sliding on a placed carrier: its point on the
@@ -1005,6 +1041,14 @@ class _Builder:
         if count == 3 * len(free) and self._full_rank(free, cons):
             return self._emit_group(free, cons)
         unknowns = 3 * len(free)
+        geared = [g.joint for g in self.gears
+                  if g.joint not in self.used and {g.a, g.b, g.carrier} & set(free)]
+        if geared:
+            raise ModelError(
+                f"gear joints {', '.join(repr(n) for n in geared)}: a gear pair is solved once two "
+                "of the angles of its gears and its carrier are known, and the inputs leave links "
+                f"{', '.join(repr(n) for n in free)} with fewer; drive the carrier or one gear of "
+                "each pair (an epicyclic train: two of sun, arm and ring, or the arm and the planet)")
         if count < unknowns:
             raise ModelError(
                 f"links {', '.join(repr(n) for n in free)} are not determined by the joints and "

@@ -119,7 +119,7 @@ def willis_samples(n=50, seed=7):
 
 
 @pytest.mark.parametrize("inputs", [("sun_shaft", "arm_shaft"), ("ring_shaft", "arm_shaft"),
-                                    ("arm_shaft", "planet_pin")])
+                                    ("arm_shaft", "planet_pin"), ("sun_shaft", "ring_shaft")])
 def test_planetary_train_follows_willis(inputs):
     m = planetary(inputs)
     q, qd, qdd = willis_samples()
@@ -234,7 +234,8 @@ def test_geared_fivebar_K_and_L_against_differences_of_positions(name):
     assert np.max(np.abs(dL2 - L)) < 1e-6 * size * (1 + np.max(np.abs(L)))   # h**2 and eps/h**2
 
 
-@pytest.mark.parametrize("inputs", [("sun_shaft", "arm_shaft"), ("ring_shaft", "arm_shaft")])
+@pytest.mark.parametrize("inputs", [("sun_shaft", "arm_shaft"), ("ring_shaft", "arm_shaft"),
+                                    ("sun_shaft", "ring_shaft")])
 def test_planetary_K_against_differences_of_positions(inputs):
     m = planetary(inputs)
     q, _, _ = willis_samples(12)
@@ -259,6 +260,7 @@ def test_planetary_K_against_differences_of_positions(inputs):
     (planetary, willis_samples()[0]),
     (lambda: planetary(("ring_shaft", "arm_shaft")), willis_samples()[0]),
     (lambda: planetary(("arm_shaft", "planet_pin")), willis_samples()[0]),
+    (lambda: planetary(("sun_shaft", "ring_shaft")), willis_samples()[0]),
 ])
 def test_numpy_form_and_compiled_kernel_agree(make, q):
     check(make(), q)
@@ -379,3 +381,12 @@ def test_a_redundant_gear_path_is_checked():
     # a second path of another value jams the train: refused
     with pytest.raises(ModelError, match=r"0 degree\(s\) of freedom"):
         kl.analyze(two_idlers(r4=1.0), q=TURN)
+
+
+def test_inputs_that_leave_no_gear_pair_solvable_are_refused():
+    """The ring driven, and the planet relative to the arm: each mesh then has two unknown
+    angles (planet and arm; sun and arm) and the arm is driven only relative to the planet."""
+    with pytest.raises(ModelError, match=r"gear joints 'sun_planet', 'planet_ring': a gear pair is "
+                                         r"solved once two of the angles of its gears and its "
+                                         r"carrier are known"):
+        kl.kinematics.plan(planetary(("ring_shaft", "planet_pin")))
