@@ -390,3 +390,23 @@ def test_inputs_that_leave_no_gear_pair_solvable_are_refused():
                                          r"solved once two of the angles of its gears and its "
                                          r"carrier are known"):
         kl.kinematics.plan(planetary(("ring_shaft", "planet_pin")))
+
+
+@pytest.mark.parametrize("make, q", [(lambda: load("geared_fivebar"), np.radians([100.0, 200.0, 300.0])),
+                                     (lambda: load("gear_train"), np.radians([10.0, 100.0])),
+                                     (rack, np.radians([10.0, 100.0])),
+                                     (planetary, willis_samples(3)[0])])
+def test_kennedy_construction_from_pitch_points_meets_the_velocities(make, q):
+    """A gear pair's primary centre is its pitch point; Kennedy's construction from there
+    agrees with the centres solved from the velocities (the planetary train: sun at 1 rad/s, arm
+    at 0.2 rad/s; at 0.3 rad/s the ring would stand still and its centre be undefined)."""
+    sol = kl.analyze(make(), q=q, qd=np.linspace(1.0, 0.2, len(make().inputs)))
+    kc = kl.kinematics.kennedy_construction(sol)
+    ic = kl.kinematics.instant_centers(sol)
+    assert {j for j in kc.primary.values()} >= {j.name for j in sol.mechanism.joints if j.type == "G"}
+    for pair in ic:
+        a, b = kc.centers[pair], ic[pair]
+        np.testing.assert_array_equal(a.at_infinity, b.at_infinity)
+        finite = ~np.asarray(b.at_infinity)
+        np.testing.assert_allclose(np.asarray(a.position)[finite], np.asarray(b.position)[finite],
+                                   rtol=1e-9, atol=1e-12)
