@@ -729,6 +729,7 @@ class _Builder:
                            self._frame_theta(G, c) - cx * self._frame_theta(G, o1)
                            - cy * self._frame_theta(G, o2), cx, cy])
             self.angle_known.add(c)
+            self.used.add(g2.joint)      # its equation is in this step; g1's gives the middle
             self.steps.append(Step("gear", (c,), (g1.joint, g2.joint),
                                    f"carrier '{c}' from '{o1}' and '{o2}' (gears '{g1.joint}' and "
                                    f"'{g2.joint}', Willis)"))

@@ -290,6 +290,9 @@ def test_the_plan_solves_gears_in_closed_form():
     p = kl.kinematics.plan(load("planetary"))
     assert [s.kind for s in p.steps if s.kind == "gear"] == ["gear", "gear"]
     assert p.groups is None and p.redundant == ()
+    p = kl.kinematics.plan(planetary(("sun_shaft", "ring_shaft")))   # the arm from both meshes
+    assert [s.links for s in p.steps if s.kind == "gear"] == [("arm",), ("planet",)]
+    assert p.groups is None and p.redundant == ()
     with pytest.raises(ModelError, match=r"method: 'newton' puts every link in Newton groups, "
                                          r"which do not take gear joints \('sun_planet', "
                                          r"'planet_ring'\); use method='auto'"):
