@@ -392,9 +392,9 @@ class _Builder:
                              f"got {shown(m.space)}; see kinelab.spatial for spatial ones")
         for j in m.joints:
             if j.type not in ("R", "P", "G"):
-                raise ModelError(f"joint '{j.name}': the planar kinematics engine handles R, P and "
-                                 f"G (gear) joints, got {shown(j.type)}; kinelab.structure counts "
-                                 "its mobility")
+                raise ModelError(f"joint '{j.name}': the planar kinematics engine handles R and P "
+                                 f"joints, and G (gear pairs), got {shown(j.type)}; "
+                                 "kinelab.structure counts its mobility")
         if not m.inputs:
             raise ModelError("inputs: the mechanism has no input; add one (an R joint angle, "
                              "a P joint slide or the angle between two links)")
