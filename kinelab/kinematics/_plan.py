@@ -393,7 +393,7 @@ class _Builder:
         for j in m.joints:
             if j.type not in ("R", "P", "G"):
                 raise ModelError(f"joint '{j.name}': the planar kinematics engine handles R and P "
-                                 f"joints, and G (gear pairs), got {shown(j.type)}; "
+                                 f"joints, got {shown(j.type)} (and G joints, gear pairs); "
                                  "kinelab.structure counts its mobility")
         if not m.inputs:
             raise ModelError("inputs: the mechanism has no input; add one (an R joint angle, "
