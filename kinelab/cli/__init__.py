@@ -16,7 +16,9 @@ main.add_lazy_command("check", "kinelab.cli._analyze:check",
                       "Validate MODEL, assemble it at its sketch, and report its mobility, the "
                       "reachable input range and its singular positions over the input range: "
                       "the toggles (det J = 0) and the dead centres of each reported output "
-                      "(K = 0), in the file's units, or SI with --si.")
+                      "(K = 0); with several inputs, whether det J = 0 is reached over the box "
+                      "of their ranges and a few of the points found; in the file's units, or "
+                      "SI with --si.")
 main.add_lazy_command("plot", "kinelab.cli._draw:plot",
                       "Write MODEL's figures: outputs' position, velocity and acceleration "
                       "against the input; K and L; coupler curves; transmission angle.")

@@ -160,8 +160,9 @@ def with_speeds(mf, qd) -> io.ModelFile:
 def check(model, si, degrees, lang):
     """Validate MODEL, assemble it at its sketch, and report its mobility, the reachable
     input range and its singular positions over the input range: the toggles (det J = 0)
-    and the dead centres of each reported output (K = 0), in the file's units, or SI with
-    --si.  Exit status 2 when something is wrong.
+    and the dead centres of each reported output (K = 0); with several inputs, whether
+    det J = 0 is reached over the box of their ranges and a few of the points found; in the
+    file's units, or SI with --si.  Exit status 2 when something is wrong.
 
     A spherical or spatial model is checked for what it describes: its mobility, counted
     and exact (with the reason they differ, as for the overconstrained linkages of Sarrus
@@ -215,9 +216,8 @@ def check(model, si, degrees, lang):
     n_sing = int(status.singular.sum())
     click.echo(f"sweep: {len(q)} samples assemble" + (f", {n_sing} singular" if n_sing else
                                                       ", none singular"))
-    if len(m.inputs) == 1:
-        for line in singular_positions(mf, units, lang):
-            click.echo(line)
+    for line in singular_positions(mf, units, lang):
+        click.echo(line)
     click.echo("ok")
 
 
@@ -225,9 +225,12 @@ def singular_positions(mf: io.ModelFile, units, lang: str = "en") -> list[str]:
     """The lines of ``check`` on the singular positions over the input range of a one-input
     model: where det J = 0 is reached (toggles) and the dead centres (K = 0) of each output
     the file reports (else of every moving link and slide), input and output values in
-    ``units``, in the language ``lang``."""
+    ``units``, in the language ``lang``.  With several inputs, over the box of their ranges:
+    whether det J = 0 is reached there, and a few of the points found."""
     m = mf.mechanism
     words = SINGULAR_WORDS[lang]
+    if len(m.inputs) > 1:
+        return _singular_positions_of_several(mf, units, words)
     with errors_from(mf):
         p = kinematics.plan(m)
         lo, hi = kinematics.input_span(m)
@@ -271,6 +274,56 @@ def singular_positions(mf: io.ModelFile, units, lang: str = "en") -> list[str]:
     return lines
 
 
+def _singular_positions_of_several(mf: io.ModelFile, units, words: dict) -> list[str]:
+    """:func:`singular_positions` of a model of several inputs."""
+    m = mf.mechanism
+    with errors_from(mf):
+        p = kinematics.plan(m)
+    if p.groups is not None:          # continuation: no sample is solved on its own
+        return [words["toggles"] + words["newton_box"],
+                words["dead_many"].format(count=len(m.inputs))]
+    with errors_from(mf):
+        locus = kinematics.toggles(m)
+    si_units = [INPUT_SI_UNITS[k] for k in p.input_kinds]
+
+    def value(v, u):
+        return f"{_short(units.convert(v, u))} {units.unit(u)}"
+
+    def point(q):
+        return "(" + ", ".join(value(v, u) for v, u in zip(q, si_units)) + ")"
+    box = " x ".join(f"{n} {words['in']} [{_short(units.convert(a, u))}, "
+                     f"{_short(units.convert(b, u))}] "
+                     f"{units.unit(u)}" for n, a, b, u in zip(m.input_names, locus.lo, locus.hi,
+                                                             si_units))
+    names = "(" + ", ".join(m.input_names) + ")"
+    grid = " x ".join(str(n) for n in locus.samples)
+    lines = []
+    if locus.reached:
+        kinds = {tuple(step.links): step.kind for step in p.steps}
+        counts = []
+        for kind in ("limit position", "change point", "touch"):
+            rows = np.flatnonzero(locus.kind == kind)
+            if not len(rows):
+                continue
+            text = f"{len(rows)} {words['many ' + kind]}"
+            folds = sorted({locus.links[i] for i in rows if locus.links[i]})
+            said = [words[kinds[f]].format(a=f[0], b=f[1]) for f in folds
+                    if kinds.get(f) in ("RRR", "RRP") and len(f) == 2]
+            counts.append(text + (": " + "; ".join(said) if said else ""))
+        shown = np.unique(np.round(np.linspace(0, len(locus) - 1, min(len(locus), 4))).astype(int))
+        lines.append(words["toggles"] + words["reached_box"].format(
+            box=box, count=len(locus), grid=grid, kinds=", ".join(counts), names=names,
+            points=", ".join(point(locus.q[i]) for i in shown)))
+    elif np.isfinite(locus.nearest):
+        lines.append(words["toggles"] + words["not_reached_box"].format(
+            box=box, grid=grid, names=names, nearest=f"{locus.nearest:.3g}",
+            at=point(locus.nearest_q)))
+    else:
+        lines.append(words["toggles"] + words["no_assembly_box"].format(box=box, grid=grid))
+    lines.append(words["dead_many"].format(count=len(m.inputs)))
+    return lines
+
+
 def _short(x: float) -> str:
     """A refined value to nine figures, rounding noise at zero shown as 0."""
     x = float(f"{x:.9g}")
@@ -293,6 +346,20 @@ SINGULAR_WORDS = {
         "none": "none for {name} in {span}",
         "value_slide": "slide",
         "value_link": "angle",
+        "in": "in",
+        "reached_box": "reached in {box}: {count} points found on a {grid} grid, {kinds}; "
+                       "e.g. {names} = {points}",
+        "not_reached_box": ("not reached in {box} (a {grid} grid; closest at {names} = {at}, "
+                            "where the sine of the transmission angle is {nearest})"),
+        "no_assembly_box": "not searched: the loops close nowhere on a {grid} grid of {box}",
+        "newton_box": ("not searched: with several inputs they are searched for mechanisms "
+                       "solved in closed form (dyads), and this one has a Newton-Raphson group"),
+        "many limit position": ("limit positions (the loops stop closing; bisected along the "
+                                "grid lines)"),
+        "many change point": "change points (det J changes sign; bisected along the grid lines)",
+        "many touch": "isolated points on the grid",
+        "dead_many": ("dead centres (K = 0): found for mechanisms of one input; not searched "
+                      "for {count} inputs"),
     },
     "pt": {
         "toggles": "posições de travamento (det J = 0, cadeia alinhada): ",
@@ -309,6 +376,23 @@ SINGULAR_WORDS = {
         "none": "nenhum para {name} em {span}",
         "value_slide": "deslocamento",
         "value_link": "ângulo",
+        "in": "em",
+        "reached_box": ("atingidas em {box}: {count} pontos encontrados numa grade de {grid}, "
+                        "{kinds}; p. ex. {names} = {points}"),
+        "not_reached_box": ("não atingidas em {box} (uma grade de {grid}; o mais próximo em "
+                            "{names} = {at}, onde o seno do ângulo de transmissão é {nearest})"),
+        "no_assembly_box": ("não procuradas: as malhas não fecham em nenhum ponto de uma grade "
+                            "de {grid} de {box}"),
+        "newton_box": ("não procuradas: com várias entradas, são procuradas em mecanismos "
+                       "resolvidos em forma fechada (díades), e este tem um grupo resolvido "
+                       "por Newton-Raphson"),
+        "many limit position": ("posições limite (as malhas deixam de fechar; refinadas por "
+                                "bisseção ao longo das linhas da grade)"),
+        "many change point": ("pontos de mudança de ramo (det J muda de sinal; refinados por "
+                              "bisseção ao longo das linhas da grade)"),
+        "many touch": "pontos isolados na grade",
+        "dead_many": ("pontos mortos (K = 0): procurados em mecanismos de uma entrada; não "
+                      "procurados para {count} entradas"),
     },
 }
 

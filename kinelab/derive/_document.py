@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from kinelab._files import atomic_write
+from kinelab.derive._errata import marks
 from kinelab.derive._simplify import READABLE_OPS, size
 from kinelab.derive._words import WORDS
 from kinelab.errors import ModelError, check_choice
@@ -461,6 +462,12 @@ def document(d, fmt: str, *, at=None, lang: str = "en") -> str:
 
     def M_(e) -> str:
         return "$" + tex(e) + "$"
+
+    def notes_differ(section: str) -> None:
+        for entry, sentence in marks(d, section, lang):
+            text = T("notes_differ", entry=entry) + " " + w.text(sentence)
+            # ragged right: the inline maths of a mark leaves TeX few places to break a line
+            w.para(text if w.fmt == "md" else "{\\raggedright " + text + "\\par}")
     Mn, n = len(eq.q), len(eq.S)
     title = w.text(words["title"], name=N(m.name))
     w.para(T("intro"))
@@ -487,13 +494,17 @@ def document(d, fmt: str, *, at=None, lang: str = "en") -> str:
         if d.redundant:
             w.para(T("redundant_one" if len(d.redundant) == 1 else "redundant",
                      rows=", ".join(f"({i + 1})" for i in d.redundant)))
+        notes_differ("position")
     if n:
         _velocity(d, w, T, N, tex)
+        notes_differ("jacobian")
         _singular_positions(d, w, T, tex)
         _coefficients(d, w, T, tex)
+        notes_differ("coefficients")
         _accelerations(d, w, T, tex)
     if d.dynamics is not None:
         _dynamics(d, w, T, N, tex)
+        notes_differ("dynamics")
     _numbers(d, w, T, N, tex, at)
     return w.finish(title)
 
@@ -630,7 +641,7 @@ def _singular_positions(d, w, T, tex) -> None:
     eq, m = d.equations, d.model
     w.heading(T("reach"), level=3)
     if len(eq.q) != 1:
-        w.para(T("reach_many"))
+        _singular_positions_of_several(d, w, T, tex)
         return
     q_sym = eq.q[0]
     slide_input = m.inputs[0].joint is not None and m.joint(m.inputs[0].joint).type == "P"
@@ -683,6 +694,85 @@ def _singular_positions(d, w, T, tex) -> None:
         else:
             rows.append(T("dead_none", symbol=f"${tex(s)}$"))
     w.items(rows)
+
+
+def _singular_positions_of_several(d, w, T, tex) -> None:
+    """:func:`_singular_positions` of a model of several inputs: over the box of the inputs'
+    ranges, which conditions det J = 0 are reached, at how many of the points
+    :func:`kinelab.kinematics.toggles` finds, and a few of them."""
+    from kinelab import kinematics
+    from kinelab.errors import KinelabError
+    eq, m = d.equations, d.model
+    p = kinematics.plan(m)
+    angle = [kind == "angle" for kind in p.input_kinds]
+
+    def value(k: int, v: float) -> str:
+        shown = f"${tex(eq.q[k])} = {_fmt(v)}$"
+        return shown + (f" ({_fmt(round(math.degrees(v), 7))}{w.degree})" if angle[k] else " m")
+
+    def at(q) -> str:
+        return ", ".join(value(k, v) for k, v in enumerate(q))
+    try:
+        locus = kinematics.toggles(m)
+        reached = _factors_reached_in_box(d, locus) if d.singularities else []
+    except KinelabError as exc:
+        w.para(T("reach_failed", why=_tex_or_md(w, str(exc))))
+        return
+    span = ", ".join(
+        f"${tex(q)} \\in [{_fmt(a)}, {_fmt(b)}]$" + (
+            f" ([{_fmt(round(math.degrees(a), 7))}, {_fmt(round(math.degrees(b), 7))}]"
+            f"{w.degree})" if is_angle else " m")
+        for q, a, b, is_angle in zip(eq.q, locus.lo, locus.hi, angle))
+    w.para(T("reach_intro_many", span=span, count=len(eq.q),
+             grid=" \\times ".join(str(n) for n in locus.samples)))
+    rows = []
+    for s, hits in zip(d.singularities, reached):
+        f = "$" + tex(s.factor) + " = 0$"
+        if len(hits):
+            shown = hits[np.unique(np.round(np.linspace(0, len(hits) - 1,
+                                                        min(len(hits), 3))).astype(int))]
+            where = "; ".join(f"{at(locus.q[i])}, {T('many ' + locus.kind[i])}" for i in shown)
+            rows.append(T("toggle_reached_many", factor=f, count=len(hits), where=where))
+        else:
+            rows.append(T("toggle_not_reached_box", factor=f))
+    if rows:
+        w.para(T("toggle_intro"))
+        w.items(rows)
+    elif not locus.reached:
+        w.para(T("toggle_none_box"))
+    w.para(T("dead_many"))
+
+
+def _factors_reached_in_box(d, locus) -> list[np.ndarray]:
+    """For each factor of det J the derivation lists, the indices of the points of
+    ``locus`` (a :class:`~kinelab.kinematics.ToggleLocus`) at which it is zero: its value
+    there, against its largest over a coarse grid of the box, below 1e-4 (as
+    :func:`_factors_reached`)."""
+    import sympy as sp
+    from kinelab.kinematics import analyze
+    eq, m = d.equations, d.model
+    M = len(eq.q)
+    f = sp.lambdify(list(eq.q) + list(eq.S) + list(d.parameters),
+                    [s.factor for s in d.singularities], modules="numpy")
+    constants = list(d.parameters.values())
+
+    def values(q: np.ndarray) -> np.ndarray:
+        sol = analyze(m, q, unreachable="mask", at_singular="flag")
+        S = [sol.angle(name) if kind == "angle" else sol.slide(name)
+             for kind, name in (eq.unknowns[s] for s in eq.S)]
+        with np.errstate(invalid="ignore"):
+            out = [np.broadcast_to(np.asarray(v, float), q.shape[:1])
+                   for v in f(*q.T, *S, *constants)]
+        return np.abs(np.array(out))              # (factors, N)
+    side = max(3, int(round(4096 ** (1.0 / M))))
+    axes = [np.linspace(a, b, side) for a, b in zip(locus.lo, locus.hi)]
+    grid = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, M)
+    with np.errstate(invalid="ignore"):
+        scale = np.nanmax(np.where(np.isnan(values(grid)), -np.inf, values(grid)), axis=1)
+    if not len(locus):
+        return [np.empty(0, int) for _ in d.singularities]
+    there = values(locus.q)
+    return [np.flatnonzero(row <= 1e-4 * big) for row, big in zip(there, scale)]
 
 
 def _factors_reached(d, found, lo: float, hi: float) -> list[list]:

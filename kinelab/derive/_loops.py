@@ -122,6 +122,11 @@ def loop_equations(model: Mechanism, notation: dict | None = None,
         that is not a mapping of keys to names, or names a symbol the equations do not have;
         ``points`` the model does not have.
     """
+    gears = [j.name for j in model.joints if j.type == "G"]
+    if gears:
+        raise ModelError(f"joints {', '.join(repr(n) for n in gears)}: the derivation writes the loop "
+                         "equations of R and P joints; gear joints (G) are not derived (kinelab.analyze "
+                         "solves them: a gear pair's relation is linear in the angles)")
     builder = _Builder(model, _notation(notation))
     out = builder.build(_points(model, points))
     unknown = sorted(k for k in builder.notation if isinstance(k, str) and k not in builder.seen)

@@ -44,6 +44,7 @@ WORDS: dict[str, dict[str, str]] = {
         "x": "$x$ of the fixed point {point}",
         "y": "$y$ of the fixed point {point}",
         "position": "Position equations",
+        "notes_differ": "*Where the notes print it otherwise* (errata, {entry}):",
         "loops_count": ("The link graph has {links} links and {joints} joints, so "
                         "{loops} independent loops ({joints} $-$ {links} $+$ 1).  Each loop "
                         "is a closed vector polygon; its projections on $x$ and $y$ are two "
@@ -77,8 +78,23 @@ WORDS: dict[str, dict[str, str]] = {
         "reach": "Toggles and dead centres over the input range",
         "reach_intro": ("Over the model's input range, {span}, the two kinds of singular "
                         "position the notes tell apart (found by `kinelab.kinematics`)."),
-        "reach_many": ("Toggles and dead centres are found for mechanisms of one input; this "
-                       "one has more."),
+        "reach_intro_many": ("Over the box of the model's input ranges, {span}, $\\det J = 0$ "
+                             "is one equation in the {count} inputs: its solutions are curves "
+                             "in the plane of the inputs (surfaces, for three). "
+                             "`kinelab.kinematics.toggles` finds points on them on a grid of "
+                             "${grid}$ samples, each bisected along its grid line: *limit "
+                             "positions*, where the loops stop closing, and *change points*, "
+                             "where $\\det J$ changes sign; and any sample of the grid where it "
+                             "is zero. For a mechanism driven at its actuated joints these are "
+                             "its parallel singularities (Gosselin and Angeles' second type: "
+                             "the output can move with the inputs locked)."),
+        "toggle_reached_many": "{factor} is reached at {count} of the points found, e.g. {where};",
+        "toggle_not_reached_box": "{factor} is not reached in this box;",
+        "toggle_none_box": "$\\det J = 0$ is not reached in this box.",
+        "many limit position": "a limit position (the loops stop closing)",
+        "many change point": "a change point ($\\det J$ changes sign)",
+        "many touch": "an isolated point on the grid",
+        "dead_many": "*Dead centres* ($K = 0$) are found for mechanisms of one input.",
         "reach_failed": "Toggles and dead centres could not be found: {why}",
         "toggle_intro": ("*Toggles* (dead centres of the chain, $\\det J = 0$: the chain "
                          "locks, or may change branch), for each condition above:"),
@@ -191,6 +207,7 @@ WORDS: dict[str, dict[str, str]] = {
         "x": "$x$ do ponto fixo {point}",
         "y": "$y$ do ponto fixo {point}",
         "position": "Equações de posição",
+        "notes_differ": "*As notas imprimem-no de outro modo* (errata, {entry}):",
         "loops_count": ("O grafo das peças tem {links} peças e {joints} juntas, logo "
                         "{loops} malhas independentes ({joints} $-$ {links} $+$ 1).  Cada "
                         "malha é um polígono vetorial fechado; suas projeções em $x$ e $y$ são "
@@ -223,8 +240,26 @@ WORDS: dict[str, dict[str, str]] = {
         "reach": "Posições de travamento e pontos mortos na faixa de entrada",
         "reach_intro": ("Na faixa de entrada do modelo, {span}, os dois tipos de posição "
                         "singular que as notas distinguem (calculados por `kinelab.kinematics`)."),
-        "reach_many": ("Posições de travamento e pontos mortos são calculados para mecanismos "
-                       "de uma entrada; este tem mais."),
+        "reach_intro_many": ("Na caixa das faixas de entrada do modelo, {span}, "
+                             "$\\det J = 0$ é uma equação nas {count} entradas: suas soluções "
+                             "são curvas no plano das entradas (superfícies, para três). "
+                             "`kinelab.kinematics.toggles` encontra pontos nelas numa grade "
+                             "de ${grid}$ amostras, cada um refinado por bisseção ao longo da "
+                             "sua linha: *posições limite*, onde as malhas deixam de fechar, e "
+                             "*pontos de mudança de ramo*, onde $\\det J$ muda de sinal; e "
+                             "qualquer amostra da grade onde ele se anula. Num mecanismo "
+                             "acionado pelas suas juntas atuadas, são as suas singularidades "
+                             "paralelas (do segundo tipo de Gosselin e Angeles: a saída pode se "
+                             "mover com as entradas travadas)."),
+        "toggle_reached_many": ("{factor} é atingida em {count} dos pontos encontrados, p. ex. "
+                                "{where};"),
+        "toggle_not_reached_box": "{factor} não é atingida nesta caixa;",
+        "toggle_none_box": "$\\det J = 0$ não é atingido nesta caixa.",
+        "many limit position": "posição limite (as malhas deixam de fechar)",
+        "many change point": "ponto de mudança de ramo ($\\det J$ muda de sinal)",
+        "many touch": "um ponto isolado na grade",
+        "dead_many": ("*Pontos mortos* ($K = 0$) são calculados para mecanismos de uma "
+                      "entrada."),
         "reach_failed": "Não foi possível calcular as posições de travamento e os pontos mortos: {why}",
         "toggle_intro": ("*Posições de travamento* (ou de alinhamento; $\\det J = 0$: a "
                          "cadeia trava, ou pode mudar de ramo), para cada condição acima:"),

@@ -13,7 +13,7 @@ from kinelab.dynamics._terms import System, Terms, build_system, evaluate, flag,
 from kinelab.errors import ModelError, quoted, shown, suggest
 from kinelab.kinematics import KinematicSolution, analyze, plan
 from kinelab.kinematics._columns import Columns
-from kinelab.model import Mechanism, Units
+from kinelab.model import Mechanism, Units, gear_mesh
 
 __all__ = ["inverse", "InverseDynamics", "table_width"]
 
@@ -322,8 +322,26 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms) -> dict:
         """A prismatic joint's slide direction, (N, 2) also for a single configuration."""
         return np.reshape(sol.slide_axes(j.name), (N, 2))
 
+    def mesh(j):
+        """A gear joint's pitch point (N, 2) and the tangent of its pitch circles there (N, 2),
+        along which its teeth push (pressure angle 0: the force across the line of centres is
+        the carrier's, through the gears' pins)."""
+        g = gear_mesh(m, j)
+        oa = pos(g.centre_a)
+        if g.mesh == "rack":
+            u = axis(m.joint(g.slide))
+            return oa + g.k * np.stack([u[:, 1], -u[:, 0]], axis=-1), u
+        ob = pos(g.centre_b)
+        d = (ob - oa) / np.linalg.norm(ob - oa, axis=-1)[:, None]
+        return (oa - g.k * ob) / (1.0 - g.k), np.stack([-d[:, 1], d[:, 0]], axis=-1)
+
     for c, j in enumerate(m.joints):
         a, s = j.links
+        if j.type == "G":       # one unknown, the tooth force; its second column stays 0
+            at, t = mesh(j)
+            on(s, t, at, 2 * c)
+            on(a, -t, at, 2 * c)
+            continue
         at = pos(j.point)
         if j.type == "R":
             for k, e in enumerate((ex, ey)):
@@ -376,6 +394,13 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms) -> dict:
         for end, sign in ((0, 1.0), (1, -1.0)):
             link = default_carrier(m, s.points[end], s.links[end])
             on(link, sign * pull, pos(s.points[end]))
+    # a gear joint's second column is no force: a row of its own keeps it 0
+    gears = [c for c, j in enumerate(m.joints) if j.type == "G"]
+    if gears:
+        extra = np.zeros((N, len(gears), nu))
+        extra[:, np.arange(len(gears)), 2 * np.array(gears) + 1] = 1.0
+        A = np.concatenate([A, extra], 1)
+        b = np.concatenate([b, np.zeros((N, len(gears)))], 1)
     # solve every sample at once; singular samples (NaN kinematics) stay NaN
     x = np.full((N, nu), np.nan)
     ok = np.isfinite(b).all(axis=1) & np.isfinite(A).all(axis=(1, 2))
@@ -396,6 +421,8 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms) -> dict:
     for c, j in enumerate(m.joints):
         if j.type == "R":
             forces[:, c] = x[:, 2 * c:2 * c + 2]
+        elif j.type == "G":
+            forces[:, c] = x[:, 2 * c, None] * mesh(j)[1]
         else:
             u = axis(j)
             forces[:, c] = x[:, 2 * c, None] * np.stack([-u[:, 1], u[:, 0]], axis=-1)

@@ -31,7 +31,7 @@ from kinelab.io._fields import Reader, describe, quoted, shown, shown_key
 from kinelab.io._text import Written, in_si, loads, read_text, written
 from kinelab.kinematics import Assembly, assemble
 from kinelab.kinematics._assemble import assembly_miss, needs_assembly
-from kinelab.model import (ANGLE_UNITS, JOINT_TYPES, LENGTH_UNITS, SIDE_WORDS, SPACES, Input,
+from kinelab.model import (GEAR_MESHES, ANGLE_UNITS, JOINT_TYPES, LENGTH_UNITS, SIDE_WORDS, SPACES, Input,
                            Joint, Link, Mechanism, Point, Units, angle_problem,
                            coordinate_problem, length_problem, name_problem, place_problems,
                            range_problem, rate_problem, size_problems)
@@ -58,7 +58,8 @@ _RESERVED = {key: "loads belong in the [dynamics] section (see docs/dynamics.md)
              for key in ("forces", "gravity", "loads")}
 _LINK = ("name", "points", "ground", "length", "local", "sides", "mass", "center_of_mass",
          "inertia")
-_JOINT = ("name", "type", "links", "point", "axis", "origin", "offset", "axis2", "pitch")
+_JOINT = ("name", "type", "links", "point", "axis", "origin", "offset", "axis2", "pitch",
+          "mesh", "ratio", "radii", "teeth", "radius", "carrier")
 _INPUT = ("joint", "links", "name", "range", "speed", "acceleration", "samples")
 _OUTPUTS = ("report", "transmission", "time_ratio")
 _SWEEPS = ("together", "grid")
@@ -606,11 +607,35 @@ class _Parser:
         axis2 = self.axis(t.get("axis2"), f"{where}.axis2", units, dim) if "axis2" in t else None
         pitch = self.optional_number(t, "pitch", where, scale=units.length_scale / units.angle_scale)
         offset = self.optional_number(t, "offset", where, scale=units.length_scale, unit=units.length)
-        if None in (jtype, jlinks, jname) or ("point" in t and point is None) or (
+        gear = self.gear_fields(t, where, link_names, units)
+        if None in (jtype, jlinks, jname, gear) or ("point" in t and point is None) or (
                 "origin" in t and origin is None) or ("axis" in t and axis is None):
             return None
         return Joint(jname, jtype, jlinks, point=point, axis=axis, origin=origin, axis2=axis2,
-                     pitch=pitch, offset=offset)
+                     pitch=pitch, offset=offset, **gear)
+
+    def gear_fields(self, t, where, link_names, units: Units) -> dict[str, Any] | None:
+        """A gear joint's fields (``mesh``, ``ratio``, ``radii``, ``teeth``, ``radius``,
+        ``carrier``), lengths in SI; None when one is malformed (its problem recorded).  What
+        they must be together is the model's check (:mod:`kinelab.model._gears`)."""
+        r, ls, out = self.r, units.length_scale, {}
+        if "mesh" in t:
+            out["mesh"] = r.string(t["mesh"], f"{where}.mesh", choices=GEAR_MESHES)
+        if "ratio" in t:
+            out["ratio"] = r.number(t["ratio"], f"{where}.ratio", positive=True)
+        if "radii" in t:
+            out["radii"] = r.numbers(t["radii"], f"{where}.radii", 2, scale=ls,
+                                     what="two pitch radii [r_a, r_b]", unit=units.length,
+                                     check=length_problem)
+        if "teeth" in t:
+            v = t["teeth"]
+            out["teeth"] = tuple(v) if isinstance(v, list) else v   # checked by the model
+        if "radius" in t:
+            out["radius"] = r.number(t["radius"], f"{where}.radius", scale=ls, positive=True,
+                                     unit=units.length, check=length_problem)
+        if "carrier" in t:
+            out["carrier"] = r.name(t["carrier"], f"{where}.carrier", link_names, "link")
+        return None if any(v is None for v in out.values()) else out
 
     def axis(self, value, where, units: Units, dim: int):
         if isinstance(value, (int, float)) and not isinstance(value, bool) and dim == 2:
@@ -998,6 +1023,12 @@ def _dump(mf: ModelFile) -> dict[str, Any]:
             d["pitch"] = _out(d["pitch"], ls / a_s)
         if "offset" in d:
             d["offset"] = _out(d["offset"], ls)
+        if "radius" in d:
+            d["radius"] = _out(d["radius"], ls)
+        if "radii" in d:
+            d["radii"] = [_out(v, ls) for v in d["radii"]]
+        if "teeth" in d:
+            d["teeth"] = list(d["teeth"])
     out["links"], out["joints"] = data["links"], data["joints"]
     for k, (inp, d) in enumerate(zip(m.inputs, data["inputs"])):
         slide = inp.joint is not None and m.joint(inp.joint).type == "P"

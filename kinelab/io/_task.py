@@ -24,7 +24,7 @@ from kinelab.model import (ANGLE_UNITS, LENGTH_UNITS, Units, is_real, length_pro
                            real_array)
 from kinelab.solvers._arguments import MAX_SEED
 from kinelab.synthesis._arguments import MAX_POSITIONS
-from kinelab.synthesis._function import _function_generation
+from kinelab.synthesis._function import _function_generation, _function_pairs
 from kinelab.synthesis._path import (MAX_PATH_POINTS, MAX_PATH_SAMPLES, MAX_POPSIZE, MAX_ROUNDS,
                                      MAX_RUNS)
 from kinelab.synthesis._positions import check_not_one_turn
@@ -314,12 +314,21 @@ def _transmission_limit(r: _Reader, task: Task, search: dict, A: float) -> None:
 
 def _function_task(r: _Reader, task: Task, L: float, A: float) -> None:
     keys = {"expression", "x_range", "input_range", "output_range", "points", "ground",
-            "samples"}
+            "samples", "pairs", "O2", "O4"}
     r.unknown("function", keys)
     r.unknown("search", {"min_transmission_angle"})
     if isinstance(r.data.get("search"), dict):
         _transmission_limit(r, task, r.data["search"], A)
     f = dict(r.data.get("function", {})) if isinstance(r.data.get("function"), dict) else {}
+    if "samples" in f:
+        task.function["samples"] = r.integer("function.samples", f["samples"], 2, MAX_SAMPLES)
+    if "pairs" in f:
+        _pairs_task(r, task, f, L, A)
+        return
+    for key in ("O2", "O4"):
+        if key in f:
+            r.problems.append(f"function.{key}: used only with pairs (a function given by its "
+                              "formula has O2 at the origin and O4 at (ground, 0))")
     expr = f.get("expression")
     if not isinstance(expr, str):
         r.problems.append(f"function.expression: expected a formula in x such as 'log10(x)', "
@@ -348,8 +357,43 @@ def _function_task(r: _Reader, task: Task, L: float, A: float) -> None:
         if ground is not None and (why := length_problem(ground)):
             r.problems.append(f"function.ground: {why}, got {describe(f['ground'])}")
         task.function["ground"] = ground
-    if "samples" in f:
-        task.function["samples"] = r.integer("function.samples", f["samples"], 2, MAX_SAMPLES)
+
+
+def _pairs_task(r: _Reader, task: Task, f: dict, L: float, A: float) -> None:
+    """A function task given by its precision points as (input, output) angle pairs, with
+    the fixed pivots O2 and O4 (default (0, 0) and (ground, 0))."""
+    for key in ("expression", "x_range", "input_range", "output_range", "points"):
+        if key in f:
+            r.problems.append(f"function.{key}: not used with pairs (the pairs are the precision "
+                              "points); give either pairs or a formula with its ranges")
+    pairs = f["pairs"]
+    if isinstance(pairs, list) and not 3 <= len(pairs) <= MAX_PRECISION_POINTS:
+        r.problems.append(f"function.pairs: expected 3 to {MAX_PRECISION_POINTS} pairs (input "
+                          f"angle, output angle), got {len(pairs):,}")
+        return
+    value = r.array("function.pairs", pairs, (None, 2), A)
+    if value is not None:
+        task.function["input_angles"], task.function["output_angles"] = value[:, 0], value[:, 1]
+    ground = 1.0
+    if "ground" in f:
+        if "O2" in f or "O4" in f:
+            r.problems.append("function.ground: not used with O2 and O4 (their distance is the "
+                              "ground); give either ground or the pivots")
+        else:
+            ground = r.number("function.ground", f["ground"], L, positive=True)
+            if ground is not None and (why := length_problem(ground)):
+                r.problems.append(f"function.ground: {why}, got {describe(f['ground'])}")
+    for key, default in (("O2", (0.0, 0.0)), ("O4", (ground or 1.0, 0.0))):
+        task.function[key] = (r.lengths(f"function.{key}", f[key], (2,), L) if key in f
+                              else np.array(default))
+
+
+def _pairs_function(task: Task):
+    """The function a pairs task prescribes between its pairs: the straight line joining
+    neighbouring pairs (input angle to output angle, rad)."""
+    t_in, t_out = task.function["input_angles"], task.function["output_angles"]
+    order = np.argsort(t_in)
+    return lambda x: np.interp(x, t_in[order], t_out[order])
 
 
 def _formula(expr: str):
@@ -454,6 +498,10 @@ _FUNCTION_FIELDS = {"f": "function.expression", "theta2, theta4": "function.poin
                     "min_transmission_angle": "search.min_transmission_angle",
                     **{k: f"function.{k}" for k in ("x_range", "input_range", "output_range",
                                                     "points", "ground", "samples")}}
+_PAIRS_FIELDS = {"input_angles, output_angles": "function.pairs", "input_angles": "function.pairs",
+                 "output_angles": "function.pairs", "theta2, theta4": "function.pairs",
+                 "O2": "function.O2", "O4": "function.O4", "samples": "function.samples",
+                 "min_transmission_angle": "search.min_transmission_angle"}
 _MOTION_FIELDS = {"points": "positions.points", "dyads": "search.dyads",
                   "min_transmission_angle": "search.min_transmission_angle",
                   **{k: f"pivots.{k}" for k in ("A0", "B0", "A1", "B1", "a0x", "b0x", "s", "t")}}
@@ -502,11 +550,17 @@ def solve_task(task: Task, *, verify: bool = False) -> tuple[list, dict[str, Any
         from kinelab.verify import certify_solutions
         extra = {**extra, "certificate": certify_solutions(
             sols, f"{len(sols)} linkage(s) of the {task.kind} task '{task.name}'",
-            function=task.function.get("f"), requested=task.design)}
+            function=(_pairs_function(task) if "input_angles" in task.function
+                      else task.function.get("f")), requested=task.design)}
     return sols, extra
 
 
 def _solve(task: Task) -> tuple[list, dict[str, Any]]:
+    if task.kind == "function" and "input_angles" in task.function:
+        try:
+            return [_function_pairs(**task.function, shown=task.angle_unit)], {}
+        except ModelError as exc:
+            raise _fields_named(task, exc, _PAIRS_FIELDS) from exc
     if task.kind == "function":
         try:
             return [_function_generation(**task.function, shown=task.angle_unit)], {}

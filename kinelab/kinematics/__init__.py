@@ -25,8 +25,8 @@ __getattr__, __dir__ = exports(__name__, {
     "kinelab.kinematics._constructions": ("KennedyDrawingStep", "KennedyLine", "KennedySteps",
                                           "TangentConstruction", "VelocityImage", "kennedy_steps",
                                           "tangent_construction", "velocity_image"),
-    "kinelab.kinematics._dead_centres": ("DeadCentres", "Toggle", "dead_centres", "toggles",
-                                         "input_span"),
+    "kinelab.kinematics._dead_centres": ("DeadCentres", "Toggle", "ToggleLocus",
+                                         "dead_centres", "toggles", "input_span"),
     "kinelab.kinematics._centrodes": ("Centrodes", "KennedyConstruction", "KennedyStep",
                                       "centrodes", "kennedy_construction", "velocity_ratio"),
     "kinelab.kinematics._input_errors": ("SingularInput", "UnreachableInput"),
@@ -55,6 +55,6 @@ __all__ = ["analyze", "analyze_designs", "DesignSolution", "plan", "reachable_ra
            "RelativeAcceleration", "velocity_polygon", "VelocityPolygon", "acceleration_polygon",
            "AccelerationPolygon", "Side", "LinkImage", "kennedy_construction",
            "KennedyConstruction", "KennedyStep", "centrodes", "Centrodes", "velocity_ratio",
-           "differentiate", "Derivatives", "dead_centres", "DeadCentres", "toggles", "Toggle",
+           "differentiate", "Derivatives", "dead_centres", "DeadCentres", "toggles", "Toggle", "ToggleLocus",
            "input_span", "tangent_construction", "TangentConstruction", "velocity_image",
            "VelocityImage", "kennedy_steps", "KennedySteps", "KennedyDrawingStep", "KennedyLine"]

@@ -22,7 +22,7 @@ from kinelab.kinematics._evaluate import PARALLEL_FROM, outputs
 from kinelab.kinematics._evaluate import run as _run
 from kinelab.kinematics._plan import Plan, build_plan
 from kinelab.kinematics._solution import DesignSolution, KinematicSolution
-from kinelab.model import MAX_LENGTH, MAX_RATE, Mechanism, real_array
+from kinelab.model import MAX_LENGTH, MAX_RATE, Mechanism, gear_mesh, real_array
 from kinelab.solvers import bisect, wrap_angle
 from kinelab.solvers._arguments import number, whole
 
@@ -511,6 +511,19 @@ def _check_redundant(p: Plan, sol: KinematicSolution):
         j = m.joint(name)
         if j.type == "R":
             err = np.linalg.norm(seen_from(j.links[0], j.point) - seen_from(j.links[1], j.point), axis=-1)
+        elif j.type == "G":
+            # its ratio, on the velocity coefficients: the phase holds at the sketch, so a
+            # ratio kept along the motion keeps the relation; angles are stored wrapped, and
+            # a ratio that is not whole cannot be checked across the wrap (m per unit input)
+            g = gear_mesh(m, j)
+            M = len(m.inputs)
+
+            def K(link):
+                return sol.item_jets([p.link_item[link]])[:, 0, 1:1 + M]
+            turn = K(g.a) - K(g.carrier)
+            moved = (sol.item_jets([p.slide_item[g.slide]])[:, 0, 1:1 + M] if g.mesh == "rack"
+                     else (K(g.b) - K(g.carrier)) * p.scale)
+            err = np.max(np.abs(moved - g.k * turn * (1.0 if g.mesh == "rack" else p.scale)), -1)
         else:
             g, s_ = j.links
             dang = np.abs(wrap_angle(angle(s_) - angle(g))) * p.scale

@@ -21,6 +21,7 @@ from kinelab.errors import ModelError, SingularityError, describe, quoted, sugge
 from kinelab.kinematics._instant_centers import InstantCenter, InstantCenters, _centers, _model_order
 from kinelab.kinematics._polygons import _q_text, _sweep
 from kinelab.kinematics._solution import KinematicSolution, takes_solution
+from kinelab.model import gear_mesh
 
 __all__ = ["KennedyStep", "KennedyConstruction", "Centrodes", "kennedy_construction",
            "centrodes", "velocity_ratio"]
@@ -60,8 +61,8 @@ class KennedyConstruction:
 
     Number the links (the ground is 1, the others follow in model order) and place the
     numbers on a circle: each known centre is a chord.  The primary centres come from the
-    joints: a revolute joint's centre is its pin, a prismatic joint's is at infinity,
-    perpendicular to the slide.  Then, one at a time, the lowest-numbered unknown pair that
+    joints: a revolute joint's centre is its pin, a gear pair's its pitch point, a prismatic
+    joint's is at infinity, perpendicular to the slide.  Then, one at a time, the lowest-numbered unknown pair that
     closes two triangles of known chords is found by Kennedy's theorem (the three centres
     of any three links lie on one line), and becomes a chord in turn.  Pairs that never
     close two triangles are taken from the velocities (``from_velocities``).
@@ -174,6 +175,9 @@ def kennedy_construction(sol: KinematicSolution) -> KennedyConstruction:
             continue
         if j.type == "R":
             c = InstantCenter(pair, _sweep(sol, sol.position(j.point)), np.zeros(n, bool), np.zeros((n, 2)))
+        elif j.type == "G":     # the pitch point, where the pitch circles roll
+            c = InstantCenter(pair, _sweep(sol, _pitch_point(sol, j)), np.zeros(n, bool),
+                              np.zeros((n, 2)))
         else:
             u = _sweep(sol, sol.slide_axes(j.name))
             c = InstantCenter(pair, np.zeros((n, 2)), np.ones(n, bool),
@@ -388,3 +392,15 @@ def velocity_ratio(sol: KinematicSolution, link_i: str, link_j: str, *,
         ratio = np.einsum("ij,ij->i", a, b) / np.einsum("ij,ij->i", b, b)
     ratio = np.where(inf["ij"], 1.0, np.where(inf["rj"], 0.0, ratio))
     return sol._out(ratio)
+
+
+def _pitch_point(sol: KinematicSolution, j) -> np.ndarray:
+    """A gear joint's pitch point, the instant centre of its two gears: on the line of centres,
+    ``(O_a - k O_b) / (1 - k)``; a rack's, its pinion's pitch radius to the right of the rack's
+    axis from the pinion's centre (m, the shape of a point's position)."""
+    g = gear_mesh(sol.mechanism, j)
+    oa = np.asarray(sol.position(g.centre_a))
+    if g.mesh == "rack":
+        u = np.asarray(sol.slide_axes(g.slide))
+        return oa + g.k * np.stack([u[..., 1], -u[..., 0]], axis=-1)
+    return (oa - g.k * np.asarray(sol.position(g.centre_b))) / (1.0 - g.k)

@@ -24,6 +24,10 @@ OP_NEWTON = 9        # i: group
 OP_SLIDE_OUT = 10    # i: slide, p, o, g                        f: beta, s0
 OP_TWO_POINTS = 11   # i: b, p1, p2                             f: offset
 OP_FRAME_POINT = 12  # i: p, a, b                               f: lam, mu
+OP_GEAR = 13         # i: out, x, y (items)                     f: c0, cx, cy
+                     #   out = c0 + cx x + cy y: a gear pair's angle (exactly linear)
+OP_GEAR_SLIDE = 14   # i: out, base, dirlink, x, y              f: beta, c0, cx, cy
+                     #   a rack's point on its line at t = c0 + cx x + cy y
 
 # Newton-group constraint kinds (rows of con_i / con_f); a side is either a link of the
 # group (g >= 0, with a point given in the link's frame) or known (g = -1, a point item).

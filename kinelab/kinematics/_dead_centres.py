@@ -7,24 +7,36 @@ them (*Mecanismos*, §4.8, Ex. 4.6; Erthal, *Mecanismos com 1 GL*, "Singularidad
 - a **dead centre** of an output (ponto morto): K = 0 of that output's coordinate, where the
   output stops and turns back (a rocker's extreme positions, a slider's top and bottom dead
   centres; the notes' J_I = 0 of the slider-crank driven by its slide).
+
+With several inputs the toggles are no longer isolated input values but curves (surfaces, with
+three inputs) in the space of the inputs: :func:`toggles` then returns a :class:`ToggleLocus`,
+points on them found over the box of the inputs' ranges.
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from collections.abc import Sequence
 from typing import Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError, expected_one_of
 from kinelab.model import Mechanism
 from kinelab.solvers import bisect
 from kinelab.solvers._arguments import number, whole
 
-__all__ = ["DeadCentres", "Toggle", "dead_centres", "toggles", "input_span"]
+__all__ = ["DeadCentres", "Toggle", "ToggleLocus", "dead_centres", "toggles", "input_span"]
 
 _SWEEP_SAMPLES = 721          # samples of the range where sign changes are looked for
 _SAME = 1e-9                  # two roots closer than this (rad, or sizes of the mechanism) are one
+_GRID_SAMPLES = 61            # samples of each input's range on the grid of several inputs
+_MAX_GRID = 1_000_000         # samples of that grid, all inputs together
+_ZERO = 1e-12                 # a singularity measure (a sine) this small is zero: det J has no sign
+_TOUCH = 1e-6                 # ... and this small at a grid sample, zero to the rounding of a fold:
+                              # the measure grows like the square root of the distance to a limit
+                              # position, so a rounding of 1e-16 in the inputs shows as 1e-8
 
 
 @dataclass(frozen=True)
@@ -81,24 +93,105 @@ class Toggle:
     group: str = ""
 
 
-def input_span(mechanism: Mechanism) -> tuple[float, float]:
+@dataclass(frozen=True)
+class ToggleLocus:
+    """Where det J = 0 is reached over a box of the inputs of a mechanism of several inputs:
+    points on its toggle curves (surfaces, with three inputs) in the space of the inputs, as
+    :func:`toggles` finds them.  Empty (``len(locus) == 0``, ``locus.reached`` False): det J = 0
+    is not reached in the box, as far as the grid sees.
+
+    Attributes
+    ----------
+    inputs : tuple of str
+        The inputs' names, in the order of the columns of ``q``.
+    lo, hi : ndarray, shape (M,)
+        The box searched, rad or m per input.
+    samples : tuple of int
+        Samples of each input's range on the grid searched.
+    q : ndarray, shape (P, M)
+        The points found, rad or m per input; sorted by the first input, then the next.
+    kind : ndarray of str, shape (P,)
+        "limit position": the loops stop closing there (they close on one side of it only,
+        along the grid line the point was found on); "change point": det J changes sign
+        there, the loops closing on both sides; "touch": det J = 0 (to rounding: a
+        singularity measure below 1e-6) at a sample of the grid itself, with neither change
+        beside it (an isolated singular configuration, or where a limit curve touches a
+        grid line).
+    axis : ndarray of int, shape (P,)
+        The input (column of ``q``) along whose grid line the point was bisected; -1 for a
+        touch, which is the grid sample itself.
+    links : tuple of tuple of str, length P
+        The links that fall in line there, where the plan says (a limit position's dyad,
+        the one that cannot close beyond it), else ().
+    nearest_q : ndarray, shape (M,)
+        The assembled grid sample closest to singular (smallest ``nearest``); NaN where no
+        sample of the grid assembles.
+    nearest : float
+        Its singularity measure, |det J| scaled to [0, 1] (the sine of the transmission
+        angle of its dyad closest to folding, as ``KinematicSolution.singularity``); NaN where
+        no sample assembles.
+    """
+
+    inputs: tuple[str, ...]
+    lo: np.ndarray
+    hi: np.ndarray
+    samples: tuple[int, ...]
+    q: np.ndarray
+    kind: np.ndarray
+    axis: np.ndarray
+    links: tuple[tuple[str, ...], ...]
+    nearest_q: np.ndarray
+    nearest: float
+
+    def __len__(self) -> int:
+        return len(self.q)
+
+    @property
+    def reached(self) -> bool:
+        """Whether det J = 0 is reached in the box (any point found)."""
+        return len(self.q) > 0
+
+    def __repr__(self) -> str:
+        counts = ", ".join(f"{int(np.count_nonzero(self.kind == k))} {k}"
+                           for k in ("limit position", "change point", "touch")
+                           if np.any(self.kind == k))
+        return (f"ToggleLocus({len(self)} points over {' x '.join(map(str, self.samples))} "
+                f"samples of {', '.join(self.inputs)}" + (f": {counts}" if counts else "") + ")")
+
+
+def input_span(mechanism: Mechanism) -> tuple[float, float] | tuple[np.ndarray, np.ndarray]:
     """The input range a study of singular positions covers by default: the input's
     ``range`` if the model gives one, else a turn from the sketch for a crank that turns
     fully, else the reachable interval around the sketch; rad or m.
 
-    Raises
-    ------
-    ModelError
-        The mechanism has more than one input.
+    With several inputs, the box of their ranges: (lo, hi), each an array of shape (M,),
+    each input's ``range`` if the model gives one, else a turn from the sketch for an angle
+    and ten sizes of the mechanism either side of the sketch for a slide.
 
     Examples
     --------
     >>> fb = kl.mechanisms.fourbar(ground=1.0, crank=2.0, coupler=1.0, rocker=1.5)  # non-Grashof
     >>> [round(v, 9) for v in kl.kinematics.input_span(fb)]        # +-acos(-0.3125)
     [-1.888620031, 1.888620031]
+    >>> five = kl.mechanisms.fivebar(ground=1.0, crank1=1.0, coupler1=1.5, coupler2=1.5,
+    ...                              crank2=1.0, q0=(np.pi / 2, np.pi / 2))
+    >>> lo, hi = kl.kinematics.input_span(five)                    # a turn of each crank
+    >>> np.degrees(lo).round(9), np.degrees(hi).round(9)
+    (array([90., 90.]), array([450., 450.]))
     """
     from kinelab.kinematics._analyze import plan, reachable_ranges, turns_fully
     p = plan(mechanism)
+    if len(p.input_kinds) > 1:
+        lo = np.empty(len(p.input_kinds))
+        hi = np.empty(len(p.input_kinds))
+        for k, (inp, kind, q0) in enumerate(zip(mechanism.inputs, p.input_kinds, p.q_sketch)):
+            if inp.range is not None:
+                lo[k], hi[k] = sorted(float(v) for v in inp.range)
+            elif kind == "angle":
+                lo[k], hi[k] = q0, q0 + 2 * math.pi
+            else:
+                lo[k], hi[k] = q0 - 10.0 * p.scale, q0 + 10.0 * p.scale
+        return lo, hi
     _one_input(mechanism, p)
     inp = mechanism.inputs[0]
     if inp.range is not None:
@@ -233,30 +326,83 @@ def _same_value(a: float, b: float, kind: str, size: float) -> bool:
     return abs(d) <= 1e-7 * (1.0 if kind == "angle" else size)
 
 
-def toggles(mechanism: Mechanism, lo: float | None = None, hi: float | None = None, *,
-            samples: int = _SWEEP_SAMPLES) -> tuple[Toggle, ...]:
+def toggles(mechanism: Mechanism, lo: ArrayLike | None = None, hi: ArrayLike | None = None, *,
+            samples: int | Sequence[int] | None = None) -> tuple[Toggle, ...] | ToggleLocus:
     """The toggles (posições de travamento) over an input range: where det J = 0 is reached.
 
-    They are the limit positions inside the range (the ends of
+    **One input.**  They are the limit positions inside the range (the ends of
     :func:`reachable_ranges`, located by bisection to 1e-12), the change points
     (:func:`change_points`) and any other sign change of det J along a sweep of the range,
     refined by bisection on the sign of det J.  An empty tuple says that det J = 0 is not reached
     (a slider-crank whose crank is shorter than its rod less the offset; a crank-rocker
     driven by its crank).
 
+    **Several inputs** (M of them: a five-bar driven at both cranks, M = 2).  det J = 0 is
+    then one equation in M inputs: its solutions are curves in the (q1, q2) plane (surfaces
+    for M = 3), and what is returned is points on them, a :class:`ToggleLocus`.  The box
+    ``[lo, hi]`` is covered by a grid of ``samples`` values of each input, analysed in one
+    batch; along every grid line (each input in turn varying, the others held at grid
+    values) two neighbouring samples bracket a point of the locus where
+
+    - the loops close at one and not at the other: a **limit position**, where the
+      chain reaches the end of its reach and a dyad falls in line (det J = 0 there, as at a
+      one-input mechanism's limit positions), bisected on whether the loops close; or
+    - both close and det J has opposite signs: a **change point**, bisected on the sign of
+      det J;
+
+    all brackets bisected together (one batched analysis a step) to about 1e-13 rad (or
+    sizes of the mechanism, for a slide) along their grid line.  A grid sample where det J
+    is zero to rounding without either change beside it is a **touch** (an isolated
+    singular configuration, or where a limit curve touches a grid line).  A curve
+    that crosses no grid line, or crosses one twice between two samples, is not seen: a
+    finer grid (``samples``) sees more.  Mechanisms of several inputs are searched when
+    their plan is in closed form (dyads), as each sample is then solved on its own.
+
+    *Toggles are the parallel singularities of a parallel robot.*  For a mechanism whose
+    inputs are its actuated joints (a five-bar robot), det J = 0 is what Gosselin and
+    Angeles call a singularity of the second type (a "parallel" singularity): J relates the
+    secondary velocities to the inputs' (J Sd = -Q qd), so where det J = 0 the secondary
+    coordinates, the output included, can move with the inputs locked, and the actuators
+    lose control of the output.  In a five-bar driven at its cranks that is where the two
+    distal links (the couplers) fall in line: their joint P can move across the line
+    they make.  The loops stop closing exactly there, stretched out or folded back, so
+    in the (q1, q2) plane the boundary of the assembled region is made of these toggles
+    (the limit positions above).  The other type, the "serial" singularities (first type),
+    is not det J = 0: there a crank and its coupler fall in line, P is at the boundary of
+    its workspace in the plane and cannot move along some direction whatever the inputs do
+    (P's velocity coefficients, its rows of K, lose rank), while det J stays away from 0;
+    they are the analogue of an output's dead centres (:func:`dead_centres`, K = 0), not
+    toggles, and are not returned here.
+
     Parameters
     ----------
     mechanism : Mechanism
-        One input.
-    lo, hi : float, optional
-        As :func:`dead_centres`.
-    samples : int
-        Samples of the range searched for sign changes of det J, 3 to 1,000,000.
+    lo, hi : float or array_like, shape (M,) with several inputs, optional
+        The input range (the box of the inputs' ranges), rad or m; by default the model's
+        input ranges, else as :func:`input_span` gives them.  With several inputs either
+        may be None, or hold None for an input, to take that input's default.
+    samples : int or sequence of M int, optional
+        One input: samples of the range searched for sign changes of det J, 3 to 1,000,000
+        (default 721).  Several: samples of each input's range on the grid (default 61 each,
+        61 x 61 for two inputs), 3 to 1,000,000 altogether.
 
     Returns
     -------
     tuple of Toggle
-        In increasing q.
+        One input: in increasing q.
+    ToggleLocus
+        Several inputs: the points found on det J = 0 in the box, empty when it is not
+        reached there.
+
+    Raises
+    ------
+    ModelError
+        A bad range or ``samples``; several inputs in a plan with Newton-Raphson groups.
+
+    References
+    ----------
+    C. Gosselin and J. Angeles, "Singularity analysis of closed-loop kinematic chains",
+    IEEE Transactions on Robotics and Automation 6(3), 281-290, 1990.
 
     Examples
     --------
@@ -268,13 +414,41 @@ def toggles(mechanism: Mechanism, lo: float | None = None, hi: float | None = No
     [(-1.888620031, 'limit position', ('coupler', 'rocker')), (1.888620031, 'limit position', ('coupler', 'rocker'))]
     >>> kl.kinematics.toggles(kl.mechanisms.slider_crank(crank=1.0, rod=3.0))  # never reached
     ()
+
+    A five-bar, ground 1, cranks 1, couplers 1.2, over a turn of each crank: the couplers
+    fall in line where the crank pins A and B are 2.4 apart, a closed curve around
+    (q1, q2) = (180, 0) deg, beyond which the loops do not close:
+
+    >>> five = kl.mechanisms.fivebar(ground=1.0, crank1=1.0, coupler1=1.2, coupler2=1.2,
+    ...                              crank2=1.0, q0=(np.pi / 2, np.pi / 2))
+    >>> locus = kl.kinematics.toggles(five, [0.0, -np.pi], [2 * np.pi, np.pi])
+    >>> locus
+    ToggleLocus(126 points over 61 x 61 samples of jO2, jO4: 124 limit position, 2 touch)
+    >>> limit = locus.q[locus.kind == "limit position"]
+    >>> A = np.stack([np.cos(limit[:, 0]), np.sin(limit[:, 0])], axis=1)
+    >>> B = np.stack([1.0 + np.cos(limit[:, 1]), np.sin(limit[:, 1])], axis=1)
+    >>> bool(np.all(np.abs(np.linalg.norm(B - A, axis=1) - 2.4) <= 1e-11))
+    True
+    >>> {links for links, kind in zip(locus.links, locus.kind) if kind == "limit position"}
+    {('coupler1', 'coupler2')}
+
+    and, where the crank pins meet (A = B) and the couplers fold onto each other, two
+    isolated singular configurations, which the grid happens to hit:
+
+    >>> np.degrees(locus.q[locus.kind == "touch"]).round(9) + 0.0
+    array([[  60.,  120.],
+           [ 300., -120.]])
+    >>> kl.kinematics.toggles(five, [1.2, 1.2], [2.0, 2.0]).reached     # near the sketch
+    False
     """
     from kinelab.kinematics._analyze import (MAX_SEARCH_SAMPLES, _branch_map, change_points,
                                              plan, reachable_ranges, turns_fully)
 
     p = plan(mechanism)
-    _one_input(mechanism, p)
-    samples = whole("samples", samples, 3, MAX_SEARCH_SAMPLES)
+    if len(p.input_kinds) > 1:
+        return _locus(mechanism, p, lo, hi, samples)
+    samples = whole("samples", _SWEEP_SAMPLES if samples is None else samples, 3,
+                    MAX_SEARCH_SAMPLES)
     lo, hi = _range(mechanism, lo, hi)
     angle = p.input_kinds[0] == "angle"
     size = 1.0 if angle else p.scale
@@ -312,6 +486,149 @@ def toggles(mechanism: Mechanism, lo: float | None = None, hi: float | None = No
         if not (out and abs(t.q - out[-1].q) <= pad):
             out.append(t)
     return tuple(out)
+
+
+def _locus(mechanism: Mechanism, p, lo, hi, samples) -> ToggleLocus:
+    """:func:`toggles` of a mechanism of several inputs (see there)."""
+    from kinelab.kinematics import _codes as codes
+    from kinelab.kinematics._analyze import _NOTHING, _solve
+    M = len(p.input_kinds)
+    if p.groups is not None:
+        raise ModelError("mechanism: expected a plan in closed form (dyads) for toggles of "
+                         f"several inputs, got one with Newton-Raphson groups ({M} inputs); "
+                         "toggles of several inputs are searched sample by sample, which "
+                         "continuation does not allow")
+    n = _grid_samples(samples, M)
+    lo, hi = _box(mechanism, p, lo, hi)
+    # bisection in units of the inputs (rad, or sizes of the mechanism): scale-free
+    unit = np.array([1.0 if kind == "angle" else p.scale for kind in p.input_kinds])
+    zero = np.zeros((1, M))
+
+    def run(q: np.ndarray):
+        """(assembled, sign of det J (0 where it is zero to rounding; NaN where the loops do
+        not close), singularity measure, failed operation) at the rows of q (N, M)."""
+        out = _solve(p, None, np.ascontiguousarray(q, float), zero, zero, stored=_NOTHING)
+        ok = out["status"] == codes.ST_OK
+        measure = np.where(ok, out["diag"][:, 1], np.nan)
+        sign = np.where(ok, np.sign(np.where(measure <= _ZERO, 0.0, out["diag"][:, 0])), np.nan)
+        return ok, sign, measure, out["fail"][:, 1]
+
+    axes = [np.linspace(lo[k], hi[k], n[k]) for k in range(M)]
+    grid = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1)      # (n1, ..., nM, M)
+    ok, sign, measure, _ = (a.reshape(grid.shape[:-1]) for a in run(grid.reshape(-1, M)))
+    inner, outer, along, limit, sign_in = [], [], [], [], []
+    bracketed = np.zeros(ok.shape, bool)
+    for k in range(M):
+        first = tuple(slice(None, -1) if j == k else slice(None) for j in range(M))
+        second = tuple(slice(1, None) if j == k else slice(None) for j in range(M))
+        ok_a, ok_b = ok[first], ok[second]
+        with np.errstate(invalid="ignore"):
+            change = ok_a & ok_b & (sign[first] * sign[second] < 0)
+        ends = (ok_a != ok_b) | change
+        # the inner end: the one where the loops close (the first, for a change point)
+        a_in = ok_a[..., None]
+        inner.append(np.where(a_in, grid[first], grid[second])[ends])
+        outer.append(np.where(a_in, grid[second], grid[first])[ends])
+        sign_in.append(np.where(ok_a, sign[first], sign[second])[ends])
+        limit.append((ok_a != ok_b)[ends])
+        along.append(np.full(int(ends.sum()), k))
+        bracketed[first] |= ends
+        bracketed[second] |= ends
+    inner, outer = np.concatenate(inner), np.concatenate(outer)
+    axis, limit, sign_in = np.concatenate(along), np.concatenate(limit), np.concatenate(sign_in)
+    rows = np.arange(len(axis))
+    q = np.empty((0, M))
+    links: list[tuple[str, ...]] = []
+    if len(axis):
+        u = unit[axis]
+
+        def at(t: np.ndarray) -> np.ndarray:
+            x = inner.copy()
+            x[rows, axis] = t * u
+            return x
+
+        def closes_as_inner(t: np.ndarray) -> np.ndarray:
+            ok_t, sign_t, _, _ = run(at(t))
+            return np.where(limit, ok_t, ok_t & (sign_t == sign_in))
+        a, b = bisect(closes_as_inner, inner[rows, axis] / u, outer[rows, axis] / u, tol=1e-14)
+        # a limit position: the last input that closes (det J is zero there to rounding: the
+        # kernel takes a discriminant within rounding of zero as zero); a change point: the
+        # middle of the last bracket
+        q = at(np.where(limit, a, 0.5 * (a + b)))
+        failed = run(at(b))[3]
+        for lim, op in zip(limit.tolist(), failed.tolist()):
+            step = p.step_of_op(int(op)) if lim else None
+            links.append(tuple(step.links) if step is not None and step.kind != "newton" else ())
+    kind = np.where(limit, "limit position", "change point").astype(object)
+    # det J zero at a grid sample with neither change beside it
+    touch = ok & (measure <= _TOUCH) & ~bracketed
+    if touch.any():
+        q = np.concatenate([q, grid[touch]])
+        kind = np.concatenate([kind, np.full(int(touch.sum()), "touch", object)])
+        axis = np.concatenate([axis, np.full(int(touch.sum()), -1)])
+        links += [()] * int(touch.sum())
+    order = np.lexsort(q.T[::-1] / unit[::-1, None]) if len(q) else np.empty(0, int)
+    q, kind, axis = q[order], kind[order], axis[order]
+    links = [links[i] for i in order.tolist()]
+    # the same point found along two grid lines (a curve through a grid sample) is one
+    same = np.zeros(len(q), bool)
+    if len(q) > 1:
+        same[1:] = np.all(np.abs(np.diff(q, axis=0)) <= _SAME * unit, axis=1)
+    keep = ~same
+    if ok.any():
+        i = np.unravel_index(np.nanargmin(np.where(ok, measure, np.nan)), ok.shape)
+        nearest_q, nearest = grid[i].copy(), float(measure[i])
+    else:
+        nearest_q, nearest = np.full(M, np.nan), math.nan
+    return ToggleLocus(inputs=tuple(mechanism.input_names), lo=lo, hi=hi, samples=tuple(n),
+                       q=q[keep], kind=np.asarray(kind[keep], str), axis=axis[keep],
+                       links=tuple(l for l, k in zip(links, keep.tolist()) if k),
+                       nearest_q=nearest_q, nearest=nearest)
+
+
+def _grid_samples(samples, M: int) -> list[int]:
+    """``samples`` of :func:`toggles` with several inputs: one count per input."""
+    if samples is None:
+        n = [_GRID_SAMPLES] * M
+    elif isinstance(samples, (list, tuple, np.ndarray)):
+        if len(samples) != M:
+            raise ModelError(f"samples: expected one whole number or {M} (one per input), got "
+                             f"{len(samples)}")
+        n = [whole(f"samples[{k}]", v, 3, _MAX_GRID) for k, v in enumerate(samples)]
+    else:
+        n = [whole("samples", samples, 3, _MAX_GRID)] * M
+    if math.prod(n) > _MAX_GRID:
+        raise ModelError(f"samples: expected a grid of at most {_MAX_GRID:,} samples, got "
+                         f"{' x '.join(map(str, n))} = {math.prod(n):,}; take fewer per input")
+    return n
+
+
+def _box(mechanism: Mechanism, p, lo, hi) -> tuple[np.ndarray, np.ndarray]:
+    """(lo, hi) of several inputs, each (M,), checked; an input not given takes
+    :func:`input_span`'s."""
+    from kinelab.kinematics._analyze import Q_LIMITS
+    M = len(p.input_kinds)
+    span = input_span(mechanism)
+    box = []
+    for name, given, default in (("lo", lo, span[0]), ("hi", hi, span[1])):
+        if given is None:
+            given = [None] * M
+        elif not isinstance(given, (list, tuple, np.ndarray)) or len(given) != M:
+            raise ModelError(f"{name}: expected {M} input values (one per input, or None for "
+                             f"its default), got {given!r}")
+        box.append(np.array([default[k] if v is None else number(f"{name}[{k}]", v)
+                             for k, v in enumerate(given)], float))
+    lo, hi = box
+    for k in range(M):
+        if not hi[k] > lo[k]:
+            raise ModelError(f"lo, hi: expected lo < hi for every input, got lo = {lo[k]:g}, "
+                             f"hi = {hi[k]:g} for {mechanism.input_names[k]!r}")
+        limit = Q_LIMITS[p.input_kinds[k]]
+        for name, v in (("lo", lo[k]), ("hi", hi[k])):
+            if abs(v) > limit:
+                raise ModelError(f"{name}[{k}]: expected an input within {limit:g} of 0, got "
+                                 f"{v:g}")
+    return lo, hi
 
 
 def _sweep(p, bmap, q: np.ndarray, item: int | None = None):

@@ -217,6 +217,22 @@ def _op_two_points(J, op, ii, ff, q, M, tally):
                         - 2.0 * (dx * kmy - dy * kmx) * (dx * knx + dy * kny) / (d2 * d2))
 
 
+def _op_gear(J, op, ii, ff, q, M, tally):
+    out, x, y = ii[1], ii[2], ii[3]
+    c0, cx, cy = ff[0], ff[1], ff[2]
+    J[out, 0] = c0 + cx * J[x, 0] + cy * J[y, 0]
+    J[out, 1:] = cx * J[x, 1:] + cy * J[y, 1:]
+
+
+def _op_gear_slide(J, op, ii, ff, q, M, tally):
+    out, base, dirlink, x, y = ii[1], ii[2], ii[3], ii[4], ii[5]
+    beta, c0, cx, cy = ff[0], ff[1], ff[2], ff[3]
+    t = c0 + cx * J[x, 0] + cy * J[y, 0]
+    Kt = cx * _K(J, x, M) + cy * _K(J, y, M)
+    Lt = cx * _L(J, x, M) + cy * _L(J, y, M)
+    _line_point(J, out, base, dirlink, beta, t, Kt, Lt, M)
+
+
 def rrr_closure(lb, lc, D2):
     """The closure of RRR dyads with arms ``lb``, ``lc`` whose end joints are ``sqrt(D2)``
     apart (arrays that broadcast), as the kernel's ``_rrr`` decides it: whether the ends
@@ -445,7 +461,8 @@ _OPS = {k.OP_DRIVE_ANGLE: _op_drive_angle, k.OP_LOCK_ANGLE: _op_lock_angle,
         k.OP_RIGID_POINT: _op_rigid_point, k.OP_FRAME_POINT: _op_frame_point,
         k.OP_SLIDE_POINT: _op_slide_point, k.OP_SLIDE_OUT: _op_slide_out,
         k.OP_TWO_POINTS: _op_two_points, k.OP_RRR: _op_rrr, k.OP_RRP: _op_rrp,
-        k.OP_RPR: _op_rpr, k.OP_LINES: _op_lines}
+        k.OP_RPR: _op_rpr, k.OP_LINES: _op_lines, k.OP_GEAR: _op_gear,
+        k.OP_GEAR_SLIDE: _op_gear_slide}
 
 
 # --------------------------------------------------------------------------------------

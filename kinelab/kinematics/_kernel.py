@@ -31,14 +31,15 @@ from kinelab.kinematics._codes import (BASE_MIN, C_DRIVE_ANGLE, C_DRIVE_SLIDE, C
                                        FOLDED, HEADER, HERMITE_REACH, JUMP_FLOOR, JUMP_RATIO,
                                        LIKELY_LAST, NEWTON_MAX_ITER, NEWTON_STALL, NEWTON_TOL,
                                        NODE_STEP, SINGULAR_STEPS,
-                                       OP_DRIVE_ANGLE, OP_FRAME_POINT, OP_LINES, OP_LOCK_ANGLE,
+                                       OP_DRIVE_ANGLE, OP_FRAME_POINT, OP_GEAR, OP_GEAR_SLIDE,
+                                       OP_LINES, OP_LOCK_ANGLE,
                                        OP_NEWTON, OP_RIGID_POINT, OP_RPR, OP_RRP, OP_RRR,
                                        OP_SLIDE_OUT, OP_SLIDE_POINT, OP_TWO_POINTS,
                                        ST_NO_ASSEMBLY, ST_NO_CONVERGENCE, ST_OK)
 
 # numba's cache of this file knows its text only: the digest of the files whose constants and
 # functions it compiles in (kinelab._compiled.compiled_from; a test keeps it true)
-COMPILED_FROM = "58d192cbe0849fdf"
+COMPILED_FROM = "56030c45780a8aef"
 
 
 def _jit(**options):
@@ -1039,6 +1040,24 @@ def _evaluate(qs, qd, qdd, lo, hi, write, ops_i, ops_f, jet, M, Kt, Kt2, Lt, gro
                     for c in range(1, 1 + M + M * M):
                         jet[e, b, c] = jet[e, a, c] if a >= 0 else 0.0
                     jet[e, b, 1 + mi] += sgn
+            elif op == OP_GEAR:
+                out, x, y = ops_i[k, 1], ops_i[k, 2], ops_i[k, 3]
+                c0, cx, cy = ops_f[k, 0], ops_f[k, 1], ops_f[k, 2]
+                for e in range(nb):
+                    jet[e, out, 0] = c0 + cx * jet[e, x, 0] + cy * jet[e, y, 0]
+                    for c in range(1, 1 + M + M * M):
+                        jet[e, out, c] = cx * jet[e, x, c] + cy * jet[e, y, c]
+            elif op == OP_GEAR_SLIDE:
+                x, y = ops_i[k, 4], ops_i[k, 5]
+                c0, cx, cy = ops_f[k, 1], ops_f[k, 2], ops_f[k, 3]
+                for e in range(nb):
+                    for m in range(M):
+                        Kt[m] = cx * jet[e, x, 1 + m] + cy * jet[e, y, 1 + m]
+                        for n in range(M):
+                            c2 = 1 + M + m * M + n
+                            Lt[m, n] = cx * jet[e, x, c2] + cy * jet[e, y, c2]
+                    _line_point(jet, e, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0],
+                                c0 + cx * jet[e, x, 0] + cy * jet[e, y, 0], Kt, Lt, M)
             elif op == OP_TWO_POINTS:
                 for e in range(nb):
                     _two_points(jet, e, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], M)

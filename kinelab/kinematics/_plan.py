@@ -29,7 +29,7 @@ import numpy as np
 from kinelab.errors import ModelError, shown
 from kinelab.kinematics import _codes as k
 from kinelab.kinematics._geometry import sketch_angle
-from kinelab.model import MIN_LENGTH, Joint, Mechanism
+from kinelab.model import MIN_LENGTH, Joint, Mechanism, gear_mesh
 from kinelab.solvers import wrap_angle
 
 _SKETCH_SINGULAR = 1e-9   # a dyad this close to straight at the sketch cannot fix its branch
@@ -275,7 +275,8 @@ class ItemColumns:
 # fields of each operation that hold point indices (converted to items at the end)
 _POINT_FIELDS = {k.OP_RIGID_POINT: (1, 3), k.OP_SLIDE_POINT: (1, 2), k.OP_LINES: (1, 2, 4),
                  k.OP_RRR: (3, 4, 5), k.OP_RRP: (2, 3, 4), k.OP_RPR: (2, 3),
-                 k.OP_SLIDE_OUT: (2, 3), k.OP_TWO_POINTS: (2, 3), k.OP_FRAME_POINT: (1, 2, 3)}
+                 k.OP_SLIDE_OUT: (2, 3), k.OP_TWO_POINTS: (2, 3), k.OP_FRAME_POINT: (1, 2, 3),
+                 k.OP_GEAR_SLIDE: (1, 2)}
 
 
 def _angle(v) -> float:
@@ -390,9 +391,10 @@ class _Builder:
             raise ModelError(f"space: the planar kinematics engine needs a planar mechanism, "
                              f"got {shown(m.space)}; see kinelab.spatial for spatial ones")
         for j in m.joints:
-            if j.type not in ("R", "P"):
+            if j.type not in ("R", "P", "G"):
                 raise ModelError(f"joint '{j.name}': the planar kinematics engine handles R and P "
-                                 f"joints, got {shown(j.type)}; kinelab.structure counts its mobility")
+                                 f"joints, got {shown(j.type)} (and G joints, gear pairs); "
+                                 "kinelab.structure counts its mobility")
         if not m.inputs:
             raise ModelError("inputs: the mechanism has no input; add one (an R joint angle, "
                              "a P joint slide or the angle between two links)")
@@ -425,6 +427,7 @@ class _Builder:
             self._set_const(self.P[pn])
         self.anchor[self.ground] = self.P[m.link(self.ground).points[0]]
         self.slides = {j.name: i for i, j in enumerate(x for x in m.joints if x.type == "P")}
+        self.gears = [gear_mesh(m, j) for j in m.joints if j.type == "G"]
         self.relations = self._input_relations()
         self.groups: list[tuple[list[str], list[tuple]]] = []
 
@@ -644,7 +647,120 @@ class _Builder:
                     self.steps.append(Step("locked", (other,), (j.name,),
                                            f"'{other}' keeps its angle to '{known}' (slide '{j.name}')"))
                     progress = True
-        return progress
+        return self._gear_angles() or progress
+
+    def _frame_theta(self, G: _Geometry, link: str) -> np.ndarray:
+        """A link's angle at the sketch as the plan's items hold it (the ground's wrapped)."""
+        return wrap_angle(G.theta[link]) if link == self.ground else G.theta[link]
+
+    def _gear_angles(self) -> bool:
+        """Gear pairs: with two of the angles of gear a, gear b and their carrier c known,
+        the third follows from ``theta_b - k theta_a - (1 - k) theta_c = const`` (the
+        constant from the sketch), exactly, with its K and L; a rack placed on a placed
+        carrier gives its pinion's angle from the rack's slide."""
+        progress = False
+        for g in self.gears:
+            if g.joint in self.used:
+                continue
+            if g.mesh == "rack":
+                j = self.m.joint(g.slide)
+                if (g.a in self.angle_known or g.b not in self.pos_known
+                        or g.carrier not in self.pos_known):
+                    continue
+                guide = j.links[0]
+                sl = len(self.L) + 2 * len(self.P) + self.slides[j.name]
+                o = self.point_on(guide, j.point)
+                self._emit([k.OP_SLIDE_OUT, self.slides[j.name], self.P[j.point], o, self.L[guide]],
+                           lambda G, j=j, g=guide: [G.axis(j) - G.theta[g], G.slide(j)])
+                r = g.k
+                self._emit([k.OP_GEAR, self.L[g.a], sl, self.L[g.carrier]],
+                           lambda G, g=g, j=j, r=r: [
+                               self._frame_theta(G, g.a) - self._frame_theta(G, g.carrier)
+                               - G.slide(j) / r, 1.0 / r, 1.0])
+                out, x, y = g.a, g.b, g.carrier
+            else:
+                trio = (g.a, g.b, g.carrier)
+                unknown = [n for n in trio if n not in self.angle_known]
+                if len(unknown) != 1:
+                    continue
+                out = unknown[0]
+                # theta_b - k theta_a - (1 - k) theta_c = const, solved for `out`
+                coef = {g.a: -g.k, g.b: 1.0, g.carrier: g.k - 1.0}
+                x, y = (n for n in trio if n != out)
+                cx, cy = -coef[x] / coef[out], -coef[y] / coef[out]
+                self._emit([k.OP_GEAR, self.L[out], self.L[x], self.L[y]],
+                           lambda G, out=out, x=x, y=y, cx=cx, cy=cy: [
+                               self._frame_theta(G, out) - cx * self._frame_theta(G, x)
+                               - cy * self._frame_theta(G, y), cx, cy])
+            self.angle_known.add(out)
+            self.used.add(g.joint)
+            self.steps.append(Step("gear", (out,), (g.joint,),
+                                   f"'{out}' geared to '{x}' and '{y}' (gear '{g.joint}')"))
+            progress = True
+        return progress or self._gear_carrier()
+
+    def _gear_carrier(self) -> bool:
+        """Two spur pairs on one carrier through a middle gear (sun-planet-ring), both outer
+        gears known and the middle gear and the carrier not: the two meshes make one relation
+        of the outer gears, ``theta_2 = K theta_1 + (1 - K) theta_c + const`` with ``K`` the
+        product of theirs (Willis' formula), which gives the carrier; the middle gear follows."""
+        def toward(g, gear):
+            """k of the mesh read from its other gear to ``gear``."""
+            return g.k if gear == g.b else 1.0 / g.k
+        spur = [g for g in self.gears if g.mesh != "rack" and g.joint not in self.used]
+        for g1, g2 in itertools.permutations(spur, 2):
+            if g1.carrier != g2.carrier or g1.carrier in self.angle_known:
+                continue
+            middle = ({g1.a, g1.b} & {g2.a, g2.b}) - self.angle_known
+            if len(middle) != 1:
+                continue
+            mid = middle.pop()
+            o1 = g1.a if g1.b == mid else g1.b
+            o2 = g2.a if g2.b == mid else g2.b
+            if o1 == o2 or not {o1, o2} <= self.angle_known:
+                continue
+            K = toward(g1, mid) * toward(g2, o2)
+            if abs(1.0 - K) <= 1e-12:
+                continue                 # the outer gears turn together: no carrier from them
+            c = g1.carrier
+            cx, cy = -K / (1.0 - K), 1.0 / (1.0 - K)
+            self._emit([k.OP_GEAR, self.L[c], self.L[o1], self.L[o2]],
+                       lambda G, c=c, o1=o1, o2=o2, cx=cx, cy=cy: [
+                           self._frame_theta(G, c) - cx * self._frame_theta(G, o1)
+                           - cy * self._frame_theta(G, o2), cx, cy])
+            self.angle_known.add(c)
+            self.used.add(g2.joint)      # its equation is in this step; g1's gives the middle
+            self.steps.append(Step("gear", (c,), (g1.joint, g2.joint),
+                                   f"carrier '{c}' from '{o1}' and '{o2}' (gears '{g1.joint}' and "
+                                   f"'{g2.joint}', Willis)"))
+            return True
+        return False
+
+    def _place_rack(self, link: str) -> bool:
+        """A rack whose pinion's angle is known, sliding on a placed carrier: its point on the
+        slide line at ``t = r ((theta_a - theta_c) - (theta_a - theta_c)_sketch)``."""
+        for g in self.gears:
+            if (g.mesh != "rack" or g.b != link or g.joint in self.used
+                    or g.a not in self.angle_known or g.carrier not in self.pos_known):
+                continue
+            j = self.m.joint(g.slide)
+            if j.name in self.used:
+                continue
+            guide = j.links[0]
+            out = self.P[j.point]
+            base = self.point_on(guide, j.point)
+            r = g.k
+            self._emit([k.OP_GEAR_SLIDE, out, base, self.L[guide], self.L[g.a], self.L[g.carrier]],
+                       lambda G, j=j, guide=guide, g=g, r=r: [
+                           G.axis(j) - G.theta[guide],
+                           -r * (self._frame_theta(G, g.a) - self._frame_theta(G, g.carrier)), r, -r])
+            self.used.update((j.name, g.joint))
+            self.place(link, out)
+            self.steps.append(Step("gear", (link,), (g.joint, j.name),
+                                   f"rack '{link}' driven by pinion '{g.a}' along '{j.name}' "
+                                   f"(gear '{g.joint}')"))
+            return True
+        return False
 
     def _driven_slide(self, j: Joint):
         for rel in self.relations:
@@ -696,6 +812,8 @@ class _Builder:
         for link in self.m.link_names:
             if link in self.pos_known or link not in self.angle_known:
                 continue
+            if self._place_rack(link):
+                return True
             free = self._free_joints(link)
             for j in free:
                 if j.type == "R" and self._partner(j, link) in self.pos_known:
@@ -890,7 +1008,7 @@ class _Builder:
         """Constraints that bind the links of `group` (the rest placed): list and count."""
         cons, count = [], 0
         for j in self.m.joints:
-            if j.name in self.used or not (set(j.links) & group):
+            if j.type == "G" or j.name in self.used or not (set(j.links) & group):
                 continue
             if not all(n in group or n in self.pos_known for n in j.links):
                 continue
@@ -924,6 +1042,14 @@ class _Builder:
         if count == 3 * len(free) and self._full_rank(free, cons):
             return self._emit_group(free, cons)
         unknowns = 3 * len(free)
+        geared = [g.joint for g in self.gears
+                  if g.joint not in self.used and {g.a, g.b, g.carrier} & set(free)]
+        if geared:
+            raise ModelError(
+                f"gear joints {', '.join(repr(n) for n in geared)}: a gear pair is solved once two "
+                "of the angles of its gears and its carrier are known, and the inputs leave links "
+                f"{', '.join(repr(n) for n in free)} with fewer; drive the carrier or one gear of "
+                "each pair (an epicyclic train: two of sun, arm and ring, or the arm and the planet)")
         if count < unknowns:
             raise ModelError(
                 f"links {', '.join(repr(n) for n in free)} are not determined by the joints and "
@@ -1100,8 +1226,15 @@ def build_plan(m: Mechanism, *, method: str = "auto") -> Plan:
     """Decompose a planar mechanism into its solution plan.
 
     ``method="newton"`` skips the closed forms: every moving link goes into Newton groups
-    (used to check the closed forms against the general engine).
+    (used to check the closed forms against the general engine).  Gear joints (``G``) are
+    solved in closed form only (their relation is linear in the angles): a mechanism with
+    them has no Newton plan.
     """
+    if method == "newton" and isinstance(m, Mechanism) and any(j.type == "G" for j in m.joints):
+        raise ModelError(f"method: 'newton' puts every link in Newton groups, which do not take gear "
+                         f"joints ({', '.join(repr(j.name) for j in m.joints if j.type == 'G')}); "
+                         "use method='auto': a gear pair's relation is linear in the angles and "
+                         "is solved exactly in closed form")
     b = _Builder(m)
     if method == "newton":
         b._dyad = lambda: False          # type: ignore[method-assign]

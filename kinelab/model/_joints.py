@@ -60,6 +60,9 @@ JOINT_TYPES: dict[str, JointType] = {t.symbol: t for t in (
     # ball whose centre stays on the slot's line (P4).
     JointType("cam", 2, True, True, False, False, "cam and follower (rolling and sliding contact)", 5),
     JointType("gear", 2, True, True, False, False, "gear mesh", 5),
+    # A gear pair of fixed ratio (spur, internal, rack and pinion) that the planar engine
+    # solves: its pitch circles roll without slip (kinelab.model._gears).
+    JointType("G", 2, True, True, False, False, "gear pair (spur, internal, rack and pinion)", 5),
     JointType("rolling", 1, True, True, False, False, "rolling contact without slip", 3),
     JointType("pin_in_slot", 2, True, True, True, True, "pin in slot", 4),
 )}

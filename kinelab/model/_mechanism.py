@@ -17,6 +17,7 @@ from typing import Any, Literal
 import numpy as np
 
 from kinelab.errors import PROBLEMS_SHOWN, ModelError, describe, quoted, shown, suggest
+from kinelab.model._gears import GEAR_FIELDS, gear_problems
 from kinelab.model._joints import JOINT_TYPES
 from kinelab.model._places import place_problems
 from kinelab.model._values import (MAX_INERTIA, MAX_MASS, is_real, length_problem, name_problem,
@@ -144,7 +145,8 @@ class Joint:
     name : str
     type : str
         One of ``kinelab.model.JOINT_TYPES`` (``"R"``, ``"P"``, ``"C"``, ``"U"``, ``"S"``,
-        ``"H"``, ``"E"``, ``"cam"``, ``"gear"``, ``"rolling"``, ``"pin_in_slot"``).
+        ``"H"``, ``"E"``, ``"cam"``, ``"gear"``, ``"G"``, ``"rolling"``, ``"pin_in_slot"``).
+        ``"G"`` is a gear pair the planar engine solves (see ``mesh`` ... ``carrier``).
     links : (str, str)
         The two links.  For a prismatic joint the first is the *guide* (the link the slide
         axis is fixed in) and the second the *slider*.
@@ -166,6 +168,24 @@ class Joint:
         left of the axis (0: the line passes through the origin).  Without it the line
         passes through ``point`` as the sketch draws it; with it the sketch may be rough
         (see :func:`kinelab.kinematics.assemble`).
+    mesh : {'external', 'internal', 'rack'}, optional
+        Gear joints (``G``): the kind of pair, ``'external'`` by default.  ``links = (a, b)``
+        are the two gears (a rack and pinion: the pinion, then the rack).
+    ratio : float, optional
+        Gear joints: the gear ratio ``N_b / N_a`` (= ``r_b / r_a``), positive.  A spur pair
+        gives one of ``ratio``, ``radii`` and ``teeth``.
+    radii : (float, float), optional
+        Gear joints: the pitch radii ``(r_a, r_b)``, m.
+    teeth : (int, int), optional
+        Gear joints: the numbers of teeth ``(N_a, N_b)``.
+    radius : float, optional
+        Rack and pinion: the pinion's pitch radius, m (the rack's advance per radian).
+    carrier : str, optional
+        Gear joints: the link carrying both axes (default the ground; the arm of an
+        epicyclic train).  Both gears turn on it in R joints (a rack slides on it in a P
+        joint), and ``(theta_a - theta_c) r_a = -(theta_b - theta_c) r_b`` (external; ``+``
+        internal; rack ``s = r (theta_a - theta_c)`` from the sketch, a counter-clockwise
+        pinion driving the rack along its joint's ``+axis``): see :mod:`kinelab.model._gears`.
     """
 
     name: str
@@ -177,10 +197,18 @@ class Joint:
     axis2: tuple[float, ...] | None = None
     pitch: float | None = None
     offset: float | None = None
+    mesh: str | None = None
+    ratio: float | None = None
+    radii: tuple[float, float] | None = None
+    teeth: tuple[int, int] | None = None
+    radius: float | None = None
+    carrier: str | None = None
 
     def __post_init__(self):
         _set(self, axis=_floats(self.axis), axis2=_floats(self.axis2), pitch=_float(self.pitch),
-             offset=_float(self.offset))
+             offset=_float(self.offset), ratio=_float(self.ratio), radii=_floats(self.radii),
+             radius=_float(self.radius),
+             teeth=tuple(self.teeth) if isinstance(self.teeth, list) else self.teeth)
 
 
 @dataclass(frozen=True)
@@ -671,6 +699,16 @@ def _validate(m: Mechanism) -> list[str]:
                 add(f"{where}: offset: expected a finite number, got {describe(j.offset)}")
             elif why := length_problem(float(j.offset), positive=False):
                 add(f"{where}: offset: {why}, got {float(j.offset):g} m")
+        if j.type == "G":
+            if m.space != "planar":
+                add(f"{where}: a G joint (gear pair of the planar engine) needs space = "
+                    "'planar'; count a spatial mechanism's gear mesh with type 'gear'")
+            elif len(grounds) == 1:
+                problems.extend(gear_problems(m, j, links))
+        else:
+            for f in GEAR_FIELDS:
+                if getattr(j, f) is not None:
+                    add(f"{where}: {f}: only a gear joint (type 'G') has one; remove it")
     # -- points shared by links must be hinged together ----------------------------------
     for pn, on in carriers.items():
         if len(on) >= 2 and _components(on, hinged.get(pn, ())) > 1:

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from kinelab.errors import ModelError, describe
-from kinelab.model import Joint, Mechanism, real
+from kinelab.model import Joint, Mechanism, gear_mesh, real
 
 __all__ = ["RTOL", "MIN_RTOL", "MAX_RTOL", "Frame", "annihilator", "checked_rtol",
            "joint_screws", "null_basis", "rank", "row_basis"]
@@ -157,6 +157,28 @@ def pair_screws(kind: str, p: np.ndarray | None, u: np.ndarray | None,
     raise ValueError(f"pair_screws: no lower pair {kind!r}")
 
 
+def _gear_screws(model: Mechanism, joint: Joint, frame: Frame) -> list[np.ndarray]:
+    """Freedom screws of a gear joint ``G`` at the sketch: a rotation about the pitch point
+    (the instant centre of the two gears' relative motion) and a translation across the
+    pitch line (the mesh holds no distance; the carrier's joints do).  The pitch point divides
+    the line of centres in the ratio of the radii: ``(r_b O_a + r_a O_b) / (r_a + r_b)``
+    outside it for an external pair, ``(r_b O_a - r_a O_b) / (r_b - r_a)`` for an internal
+    one; a rack's lies ``r`` from the pinion's centre, to the right of the rack's axis."""
+    g = gear_mesh(model, joint)
+    z = np.array([0.0, 0.0, 1.0])
+    oa = frame.point(model, g.centre_a)
+    if g.mesh == "rack":
+        u = _unit(model.joint(g.slide).axis, f"joint '{g.slide}': axis", 2)
+        right = np.array([u[1], -u[0], 0.0])
+        p = oa + g.k / frame.scale * right
+        return [_rot(z, p), _trans(right)]
+    ob = frame.point(model, g.centre_b)
+    k = g.k                 # theta_b' = k theta_a': the pitch point moves with neither
+    p = (oa - k * ob) / (1.0 - k)
+    across = (ob - oa) / np.linalg.norm(ob - oa)
+    return [_rot(z, p), _trans(across)]
+
+
 def joint_screws(model: Mechanism, joint: Joint, frame: Frame,
                  planar: bool) -> tuple[np.ndarray, list[str]]:
     """Freedom screws of a joint at the sketch, one per row, in the frame's units.
@@ -208,6 +230,8 @@ def joint_screws(model: Mechanism, joint: Joint, frame: Frame,
             rows = [_rot(np.array([0, 0, 1.0]), p), _trans(np.array([-n[1], n[0], 0.0]))]
         elif t == "pin_in_slot":
             rows = [_rot(np.array([0, 0, 1.0]), point()), _trans(axis())]
+        elif t == "G":
+            rows = _gear_screws(model, joint, frame)
         else:  # pragma: no cover - the model rejects non-planar pairs in planar models
             raise ModelError(f"{where}: a {t} joint cannot join links of a planar mechanism")
         # planar twist (w, vx, vy): the z rotation and the x, y velocity of the origin point

@@ -30,11 +30,13 @@ from kinelab.model import MAX_TURNS, Mechanism, is_real, length_problem
 from kinelab.solvers import wrap_angle
 from kinelab.solvers._arguments import flag, reals, whole
 from kinelab.synthesis._arguments import angle_array
+from kinelab.synthesis._positions import as_xy, fmt
 from kinelab.synthesis._linkage import (TRANSMISSION_LIMIT, CheckedLinkage, fourbar_model,
                                         model_grashof, planned, transmission_defects,
                                         transmission_limit)
 
-__all__ = ["chebyshev_points", "freudenstein", "FunctionSolution", "function_generation"]
+__all__ = ["chebyshev_points", "freudenstein", "FunctionSolution", "function_generation",
+           "function_pairs"]
 
 _REACHED = 1e-9   # rad: the engine's rocker angle at a precision point must match to this
 _WIDEST = 1e300    # x values beyond it: their differences overflow
@@ -263,6 +265,115 @@ def function_generation(f: Callable[[np.ndarray], np.ndarray], x_range: tuple[fl
                                 min_transmission_angle, degrees)
 
 
+def function_pairs(input_angles: ArrayLike, output_angles: ArrayLike,
+                   O2: ArrayLike = (0.0, 0.0), O4: ArrayLike = (1.0, 0.0), *,
+                   samples: int = 201, min_transmission_angle: float | None = None,
+                   degrees: bool = False) -> FunctionSolution:
+    """A four-bar on the fixed pivots O2, O4 whose rocker meets prescribed angle pairs.
+
+    The precision points are given as pairs of angles rather than through a function: at
+    the crank angle ``input_angles[j]`` the rocker angle is to be ``output_angles[j]``.
+    Both are measured CCW from +x of the ground frame, as every angle in kinelab (with O2
+    at the origin and O4 on +x they are the angles from the ground line of
+    :func:`function_generation`), so the linkage's ``q`` *is* the input angle when its
+    crank points along the input ray.  Freudenstein's equation is written with the angles
+    less the ground line's angle.
+
+    The crank passes the pairs in the order given, turning one way: the input angles
+    increase, or decrease, from the first to the last, by less than a turn.  Between two
+    pairs the function is taken as the straight line joining them, so ``x`` is the input
+    angle (rad), ``structural_error`` the rocker angle less that line (rad) and
+    ``precision_errors`` the miss at each pair.
+
+    Parameters
+    ----------
+    input_angles, output_angles : array_like, shape (n,), 3 <= n <= 100
+        Crank and rocker angles from +x (rad, or degrees with ``degrees=True``).
+    O2, O4 : array_like, shape (2,)
+        The fixed pivots of the crank and of the rocker, m.
+    samples : int
+        Points of the structural-error curve.
+    min_transmission_angle : float, optional
+        As in :func:`function_generation`.
+    degrees : bool
+        Angles in degrees.
+
+    Returns
+    -------
+    FunctionSolution
+        Its ``q`` is the model's crank angle at each pair: the input angle, or the input
+        angle + pi where Freudenstein's crank length comes out negative (the crank points
+        back along the input ray); likewise for the rocker and ``output_range``.
+
+    Raises
+    ------
+    ModelError
+        Fewer than three pairs, input angles not in order or over a turn or more, O2 on O4,
+        or no four-bar through the pairs.
+
+    Examples
+    --------
+    The pairs of a known four-bar give it back:
+
+    >>> fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
+    >>> q = np.radians([40.0, 70.0, 100.0])
+    >>> out = kl.analyze(fb, q=q).angle("rocker")
+    >>> sol = kl.synthesis.function_pairs(q, out, (0, 0), (3, 0))
+    >>> {k: round(v, 9) for k, v in sol.lengths.items()}
+    {'ground': 3.0, 'crank': 1.0, 'coupler': 3.0, 'rocker': 2.5}
+    """
+    return _function_pairs(input_angles, output_angles, O2, O4, samples, min_transmission_angle,
+                           degrees)
+
+
+def _function_pairs(input_angles, output_angles, O2=(0.0, 0.0), O4=(1.0, 0.0), samples=201,
+                    min_transmission_angle=None, degrees=False,
+                    shown: str | None = None) -> FunctionSolution:
+    """:func:`function_pairs`; ``shown`` as in :func:`_function_generation`."""
+    degrees = flag("degrees", degrees)
+    unit = "deg" if degrees else "rad"
+    t_in = angle_array("input_angles", input_angles, degrees)
+    t_out = angle_array("output_angles", output_angles, degrees)
+    if t_in.ndim != 1 or t_in.shape != t_out.shape:
+        raise ModelError(f"input_angles, output_angles: expected two arrays of the same shape "
+                         f"(n,), got {t_in.shape} and {t_out.shape}")
+    if not 3 <= t_in.size <= MAX_PRECISION_POINTS:
+        raise ModelError(f"input_angles, output_angles: expected 3 to {MAX_PRECISION_POINTS} "
+                         f"pairs, got {t_in.size}")
+    O2, O4 = as_xy("O2", O2), as_xy("O4", O4)
+    if not float(np.hypot(*(O4 - O2))) > 0:
+        raise ModelError(f"O4: expected a fixed pivot apart from O2, got both at {fmt(O2)}; "
+                         "move one of them")
+    step = np.diff(t_in)
+    shown_in = np.degrees(t_in) if (shown or unit) == "deg" else t_in
+    if not (np.all(step > 0) or np.all(step < 0)):
+        raise ModelError(f"input_angles: expected angles in the order the crank passes them, all "
+                         f"increasing or all decreasing, got "
+                         f"{', '.join(f'{v:.6g}' for v in shown_in)} {shown or unit}; "
+                         "order the pairs along the crank's travel")
+    if abs(t_in[-1] - t_in[0]) >= 2 * np.pi:
+        raise ModelError("input_angles: the crank would turn a full circle or more from the "
+                         "first pair to the last, so an input angle would stand for two pairs; "
+                         "keep them within less than one turn")
+    samples = whole("samples", samples, 2, MAX_SAMPLES)
+    limit = transmission_limit(min_transmission_angle, degrees)
+    phi = math.atan2(O4[1] - O2[1], O4[0] - O2[0])
+    order = np.argsort(t_in)
+
+    def theta2(xv):
+        return xv - phi
+
+    def theta4(xv):
+        return np.interp(xv, t_in[order], t_out[order]) - phi
+
+    x = t_in.copy()
+    return _generator(x, theta2, theta4, (x[0], x[-1]), (x[0] - phi, x[-1] - phi),
+                      (t_out[0] - phi, t_out[-1] - phi), 1.0, O2, O4, samples, limit,
+                      shown or unit, "input_angles, output_angles", lambda xv: "1",
+                      name="input_angles, output_angles",
+                      remedy="move the pairs (or the pivots) or add a pair")
+
+
 def _function_generation(f, x_range, input_range, output_range, points=3, ground=1.0,
                          samples=201, min_transmission_angle=None, degrees=False,
                          shown: str | None = None) -> FunctionSolution:
@@ -317,29 +428,47 @@ def _function_generation(f, x_range, input_range, output_range, points=3, ground
     def theta4(xv):
         return t4s + (np.asarray(f(xv), float) - y0) / (yf - y0) * (t4e - t4s)
 
+    return _generator(x, theta2, theta4, (x0, xf), (t2s, t2e), (t4s, t4e), (yf - y0) / (t4e - t4s),
+                      (0.0, 0.0), (float(ground), 0.0), samples, limit, shown or unit,
+                      "input_range, output_range", lambda xv: f"x = {xv:.6g}")
+
+
+def _generator(x, theta2, theta4, x_range, input_range, output_range, y_per_rad, O2, O4,
+               samples, limit, shown, where, name_point, name="points",
+               remedy="change the angle ranges or the number of points") -> FunctionSolution:
+    """The four-bar through the precision points ``x`` (n,), checked over ``x_range``:
+    ``theta2(x)``, ``theta4(x)`` the crank and rocker angles from the ground line O2 -> O4
+    (rad), ``input_range``, ``output_range`` those at the ends of ``x_range``, ``y_per_rad``
+    the units of y per radian of output (for the structural error); ``where`` names the
+    task's items in a dead centre's message, ``name_point(x)`` a precision point; ``name``
+    the argument a linkage that cannot be found is blamed on, ``remedy`` what to change."""
+    x0, xf = x_range
+    t2s, t2e = input_range
+    t4s, t4e = output_range
+    O2, O4 = np.asarray(O2, float), np.asarray(O4, float)
+    phi = math.atan2(O4[1] - O2[1], O4[0] - O2[0])      # the ground line's angle from +x
+    e = lambda t: np.array([np.cos(t), np.sin(t)])      # noqa: E731
     K = freudenstein(theta2(x), theta4(x))
     if np.any(np.abs(K[:2]) <= 1e-12):
-        raise ModelError("points: Freudenstein's solution has K1 or K2 = 0, an infinitely long "
-                         "crank or rocker; change the angle ranges")
-    d = float(ground)
+        raise ModelError(f"{name}: Freudenstein's solution has K1 or K2 = 0, an infinitely long "
+                         f"crank or rocker; {remedy}")
+    d = float(np.hypot(*(O4 - O2)))
     a, c = d / K[0], d / K[1]                 # signed: negative means the link points back
     b2 = a * a + c * c + d * d - 2 * a * c * K[2]
     if b2 <= (1e-12 * d) ** 2:
-        raise ModelError(f"points: no four-bar generates these precision points (the coupler's "
-                         f"squared length comes out {b2:.3g} m^2); change the angle ranges or "
-                         "the number of points")
-    A = a * np.array([np.cos(theta2(x[0])), np.sin(theta2(x[0]))])
-    B = np.array([d, 0.0]) + c * np.array([np.cos(theta4(x[0])), np.sin(theta4(x[0]))])
+        raise ModelError(f"{name}: no four-bar generates these precision points (the coupler's "
+                         f"squared length comes out {b2:.3g} m^2); {remedy}")
+    A = O2 + a * e(theta2(x[0]) + phi)
+    B = O4 + c * e(theta4(x[0]) + phi)
     if x.size > 3:
         # least squares: the linkage of Freudenstein's lengths (coupler sqrt(b2)), assembled
         # at the first point's crank angle where its rocker pin is nearest the prescribed one
-        B = _assembled(A, np.array([d, 0.0]), math.sqrt(b2), abs(c), B)
-    model = fourbar_model((0.0, 0.0), (d, 0.0), A, B, name="function generator")
-    shown = shown or unit
-    at = [theta2(x[0]), theta4(x[0])]
+        B = _assembled(A, O4, math.sqrt(b2), abs(c), B, name, remedy)
+    model = fourbar_model(O2, O4, A, B, name="function generator")
+    at = [theta2(x[0]) + phi, theta4(x[0]) + phi]
     at = np.degrees(at) if shown == "deg" else at
     start, other = ("10 deg", "20 deg") if shown == "deg" else ("0.2 rad", "0.4 rad")
-    planned(model, f"input_range, output_range: at the precision point x = {x[0]:.6g} (input "
+    planned(model, f"{where}: at the precision point {name_point(x[0])} (input "
             f"angle {at[0]:.6g} {shown}, output angle {at[1]:.6g} {shown})",
             f"offset the angle ranges (start the input at, say, {start} and the output at "
             f"{other}) or choose other precision points")
@@ -353,9 +482,9 @@ def _function_generation(f, x_range, input_range, output_range, points=3, ground
     along = (k * np.pi - q_off - t2s) / (t2e - t2s)
     turns = x0 + along[(along > 0) & (along < 1)] * (xf - x0)
     grid = np.concatenate([xs, x, turns])
-    sol = analyze(model, theta2(grid) + q_off, unreachable="mask", at_singular="flag")
-    miss = wrap_angle(sol.angle("rocker") - out_off - theta4(grid))
-    error = np.where(sol.assembled, miss * (yf - y0) / (t4e - t4s), np.inf)
+    sol = analyze(model, theta2(grid) + phi + q_off, unreachable="mask", at_singular="flag")
+    miss = wrap_angle(sol.angle("rocker") - out_off - phi - theta4(grid))
+    error = np.where(sol.assembled, miss * y_per_rad, np.inf)
     sign0 = np.sign(sol.det_J[samples])            # at the first precision point (the sketch)
     good = sol.assembled & ~sol.singular & (np.sign(sol.det_J) == sign0)
     defects = []
@@ -370,7 +499,7 @@ def _function_generation(f, x_range, input_range, output_range, points=3, ground
     mu = transmission_angle(sol)[sol.assembled]
     mu_min = float(mu.min()) if mu.size else float("nan")
     defects += transmission_defects(mu_min, limit, "over the input range")
-    q = theta2(x) + q_off
+    q = theta2(x) + phi + q_off
     for arr in (K, x, q, xs):
         arr.setflags(write=False)
     err = error[:samples]
@@ -378,8 +507,8 @@ def _function_generation(f, x_range, input_range, output_range, points=3, ground
     for arr in (err, at_points):
         arr.setflags(write=False)
     return FunctionSolution(
-        model=model, K=K, x=x, q=q, input_range=(t2s + q_off, t2e + q_off),
-        output_range=(t4s + out_off, t4e + out_off), x_samples=xs, structural_error=err,
+        model=model, K=K, x=x, q=q, input_range=(t2s + phi + q_off, t2e + phi + q_off),
+        output_range=(t4s + phi + out_off, t4e + phi + out_off), x_samples=xs, structural_error=err,
         precision_errors=at_points,
         grashof=model_grashof(model),
         min_transmission_angle=mu_min, branch_defect=branch_defect, defects=tuple(defects),
@@ -438,13 +567,13 @@ def _check_continuous(f: Callable, x0: float, xf: float) -> None:
 
 
 def _assembled(A: np.ndarray, O4: np.ndarray, coupler: float, rocker: float,
-               near: np.ndarray) -> np.ndarray:
+               near: np.ndarray, name: str, remedy: str) -> np.ndarray:
     """The rocker pin B at |B - A| = coupler, |B - O4| = rocker nearest ``near``."""
     D = O4 - A
     L = float(np.hypot(*D))
     if not abs(coupler - rocker) < L < coupler + rocker:
-        raise ModelError("points: the least-squares linkage cannot be assembled at the first "
-                         "precision point; change the angle ranges or the points")
+        raise ModelError(f"{name}: the least-squares linkage cannot be assembled at the first "
+                         f"precision point; {remedy}")
     along = (L * L + coupler * coupler - rocker * rocker) / (2 * L)
     h = math.sqrt(max(coupler * coupler - along * along, 0.0))
     mid, n = A + along * D / L, np.array([-D[1], D[0]]) / L

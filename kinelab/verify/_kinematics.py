@@ -234,9 +234,10 @@ def certify_kinematics(sol: KinematicSolution) -> Certificate:
     notes: list[str] = []
     reported = route_name(p)
     followed = sol.change_points[0].followed if sol.change_points else "smooth"
-    newton_plan = kinematics.plan(m, method="newton")
+    geared = any(j.type == "G" for j in m.joints)
+    newton_plan = None if geared else kinematics.plan(m, method="newton")
     other_method = "auto" if p is newton_plan else "newton"
-    other_plan = kinematics.plan(m, method=other_method)
+    other_plan = p if geared else kinematics.plan(m, method=other_method)
 
     _closure(sol, items, ledger)
 
@@ -261,7 +262,10 @@ def certify_kinematics(sol: KinematicSolution) -> Certificate:
     bounds, why = _engine_bounds(sub)
 
     # -- the other engine ------------------------------------------------------------------
-    if route_name(other_plan) == reported:
+    if geared:
+        notes.append("no second engine: gear joints are solved in closed form only (their "
+                     "relation is linear in the angles); compared by the other routes")
+    elif route_name(other_plan) == reported:
         notes.append(f"no second engine: every group is solved by the {reported} either way; "
                      "compared by the other routes")
     elif followed == "switch" and sol.change_points:

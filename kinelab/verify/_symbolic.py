@@ -75,9 +75,11 @@ def _solve(A: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 def symbolic_route(mechanism: Mechanism, p: Plan) -> SymbolicRoute | str:
     """The symbolic route of a mechanism, made once per plan (sympy is imported here), or
-    why it is skipped: more unknowns than :data:`kinelab.derive.MAX_UNKNOWNS`, or more second
+    why it is skipped: gear joints, more unknowns than :data:`kinelab.derive.MAX_UNKNOWNS`, or more second
     derivatives than :data:`MAX_SECOND_DERIVATIVES`."""
     key = "verify: symbolic route"
+    if any(j.type == "G" for j in mechanism.joints):
+        return "the derivation does not take gear joints (G)"
     if key not in p.memo:
         p.memo[key] = _build(mechanism, p)
     return p.memo[key]

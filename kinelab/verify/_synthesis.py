@@ -185,14 +185,16 @@ def _function(s, f, checks: _Checks) -> None:
     x0, xf = float(s.x_samples[0]), float(s.x_samples[-1])
     y0, yf = (float(v) for v in np.asarray(f(np.array([x0, xf])), float))
     (t2s, t2e), (t4s, t4e) = s.input_range, s.output_range
-    span = abs(yf - y0)
+    span = abs(yf - y0) if yf != y0 else 1.0
     unit = f"the span of f over the input range, {span:.6g}"
     x = np.concatenate([s.x_samples, s.x])
     sol = kinematics.analyze(s.model, t2s + (x - x0) / (xf - x0) * (t2e - t2s),
                              unreachable="mask", at_singular="flag")
-    wanted = t4s + (np.asarray(f(x), float) - y0) / (yf - y0) * (t4e - t4s)
-    out = np.where(sol.assembled, wrap_angle(sol.angle("rocker") - wanted) * (yf - y0) / (t4e - t4s),
-                   np.inf)
+    # y per rad of output; 1 where the output comes back to its start (pairs of angles,
+    # where y is the output angle itself: a function by its formula cannot do that)
+    ratio = (yf - y0) / (t4e - t4s) if yf != y0 else 1.0
+    wanted = t4s + (np.asarray(f(x), float) - y0) / ratio
+    out = np.where(sol.assembled, wrap_angle(sol.angle("rocker") - wanted) * ratio, np.inf)
     m = len(s.x_samples)
     checks.add("structural error", unit, ROUTE, len(x),
                max(_same(s.structural_error, out[:m], span),

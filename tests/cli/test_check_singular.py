@@ -121,3 +121,107 @@ def test_slider_crank_that_cannot_turn_reports_its_rod_perpendicular_to_the_slid
                                       r"the slide of slider\)", toggles)]
     assert q == pytest.approx([math.degrees(math.asin((0.25 - 1.5) / 2)),
                                math.degrees(math.asin((0.25 + 1.5) / 2))], abs=DEG_TOL)
+
+
+def points_of(text: str, unit: str = "deg") -> list[tuple[float, float]]:
+    """The '(q1 deg, q2 deg)' pairs of a toggles line of several inputs."""
+    return [(float(a), float(b)) for a, b in
+            re.findall(rf"\((-?[\d.e+-]+) {unit}, (-?[\d.e+-]+) {unit}\)", text)]
+
+
+def pin_distance(q1, q2, crank=100.0, ground=100.0):
+    """|AB| of a five-bar at crank angles q1, q2 (deg), in closed form."""
+    a, b = math.radians(q1), math.radians(q2)
+    return math.hypot(ground + crank * math.cos(b) - crank * math.cos(a),
+                      crank * math.sin(b) - crank * math.sin(a))
+
+
+def test_two_inputs_toggles_over_the_box_of_their_ranges():
+    """The symmetric five-bar (ground, cranks 100 mm, couplers 120 mm) over the box of its
+    ranges: its couplers fall in line on the curve |AB| = 240 mm, where its loops stop
+    closing, and fold onto each other where A and B meet (|AB| = 0)."""
+    result = run("check", HERE / "fivebar_reach.toml")
+    assert result.exit_code == 0, result.output
+    out = result.stdout
+    assert out.rstrip().endswith("\nok")
+    toggles = line(out, "toggles (det J = 0")
+    assert toggles.startswith("toggles (det J = 0, dead centres of the chain): reached in "
+                              "jO2 in [90, 450] deg x jO4 in [90, 450] deg: ")
+    count = re.search(r": (\d+) points found on a 61 x 61 grid, (\d+) limit positions \(the "
+                      r"loops stop closing; bisected along the grid lines\): coupler1 and "
+                      r"coupler2 in line, 2 isolated points on the grid; e\.g\. \(jO2, jO4\) = ",
+                      toggles)
+    assert count and int(count[1]) == int(count[2]) + 2 and int(count[2]) > 100
+    shown = points_of(toggles)
+    assert 2 <= len(shown) <= 4
+    # each shown point is on the curve (nine figures of the angles: |AB| to about 1e-5 mm)
+    # or where the pins meet
+    for q1, q2 in shown:
+        d = pin_distance(q1, q2)
+        assert d == pytest.approx(240.0, abs=1e-4) or d == pytest.approx(0.0, abs=1e-4)
+    assert line(out, "dead centres (K = 0)") == ("dead centres (K = 0): found for mechanisms "
+                                                 "of one input; not searched for 2 inputs")
+
+
+def test_two_inputs_toggles_in_portuguese():
+    result = run("check", HERE / "fivebar_reach.toml", "--lang", "pt")
+    assert result.exit_code == 0, result.output
+    toggles = line(result.stdout, "posições de travamento")
+    assert toggles.startswith("posições de travamento (det J = 0, cadeia alinhada): atingidas "
+                              "em jO2 em [90, 450] deg x jO4 em [90, 450] deg: ")
+    assert "posições limite (as malhas deixam de fechar" in toggles
+    assert "coupler1 e coupler2 alinhados" in toggles and "2 pontos isolados na grade" in toggles
+    assert all(pin_distance(*q) == pytest.approx(240.0, abs=1e-4)
+               or pin_distance(*q) == pytest.approx(0.0, abs=1e-4)
+               for q in points_of(toggles))
+    assert "pontos mortos (K = 0): procurados em mecanismos de uma entrada" in result.stdout
+
+
+def test_two_inputs_isolated_toggles_and_si():
+    """The example five-bar (couplers 150 mm): det J = 0 only where |AB| = 300 mm at (180, 0)
+    and (180, 360) deg, and where A and B meet at (300, 240) and (420, 120) deg, all on the
+    grid's 6 deg steps; in SI, in rad."""
+    out = run("check", EX / "fivebar.toml").stdout
+    toggles = line(out, "toggles (det J = 0")
+    assert ": 4 points found on a 61 x 61 grid, 4 isolated points on the grid; " in toggles
+    assert points_of(toggles) == [(180.0, 0.0), (180.0, 360.0), (300.0, 240.0), (420.0, 120.0)]
+    si = line(run("check", EX / "fivebar.toml", "--si").stdout, "toggles (det J = 0")
+    assert "jO2 in [1.57079633, 7.85398163] rad x jO4 in [0, 6.28318531] rad" in si
+    assert points_of(si, "rad")[0] == pytest.approx((math.pi, 0.0), abs=1e-8)
+
+
+def test_two_inputs_not_reached_says_how_close_the_grid_came(tmp_path):
+    """Ranges near the sketch, where the couplers never fall in line: not reached, with the
+    grid sample closest to it."""
+    text = (HERE / "fivebar_reach.toml").read_text()
+    near = tmp_path / "near.toml"
+    near.write_text(text.replace("range = [90, 450]", "range = [70, 110]"))
+    result = run("check", near)
+    assert result.exit_code == 0, result.output
+    toggles = line(result.stdout, "toggles (det J = 0")
+    found = re.fullmatch(r"toggles \(det J = 0, dead centres of the chain\): not reached in "
+                         r"jO2 in \[70, 110\] deg x jO4 in \[70, 110\] deg \(a 61 x 61 grid; "
+                         r"closest at \(jO2, jO4\) = \((-?[\d.]+) deg, (-?[\d.]+) deg\), where "
+                         r"the sine of the transmission angle is ([\d.e-]+)\)", toggles)
+    assert found, toggles
+    q1, q2, sine = (float(v) for v in found.groups())
+    # the couplers' angle there, from |AB| by the law of cosines (isosceles, sides 120)
+    d = pin_distance(q1, q2)
+    assert sine == pytest.approx(math.sin(2 * math.asin(d / 240.0)), rel=1e-3)
+    pt = line(run("check", near, "--lang", "pt").stdout, "posições de travamento")
+    assert "não atingidas em jO2 em [70, 110] deg x jO4 em [70, 110] deg" in pt
+
+
+def test_two_inputs_solved_by_newton_say_toggles_are_not_searched(monkeypatch):
+    """A plan with Newton-Raphson groups is continued from sample to sample, so its grid
+    samples cannot be solved each on its own: check says so and goes on."""
+    from kinelab import kinematics
+    planned = kinematics.plan
+    monkeypatch.setattr(kinematics, "plan", lambda m, method="auto": planned(m, method="newton"))
+    result = run("check", HERE / "fivebar_reach.toml")
+    assert result.exit_code == 0, result.output
+    assert line(result.stdout, "toggles (det J = 0") == (
+        "toggles (det J = 0, dead centres of the chain): not searched: with several inputs "
+        "they are searched for mechanisms solved in closed form (dyads), and this one has a "
+        "Newton-Raphson group")
+    assert result.stdout.rstrip().endswith("\nok")

@@ -83,3 +83,14 @@ def test_a_model_beyond_the_closed_forms_size_is_refused_at_once():
     with pytest.raises(ModelError, match=r"^model: 'five dyads' has 10 unknown coordinates; the "
                                          r"derivation in closed form .* at most 8 \(four dyads\)"):
         derive(m)
+
+
+def test_gear_joints_are_not_derived():
+    from pathlib import Path
+
+    from kinelab.derive import loop_equations
+    m = kl.load(Path(__file__).resolve().parents[2] / "examples" / "gear_train.toml")
+    with pytest.raises(ModelError, match=r"joints 'mesh12', 'mesh23': the derivation writes the "
+                                         r"loop equations of R and P joints; gear joints \(G\) are "
+                                         r"not derived"):
+        loop_equations(m)

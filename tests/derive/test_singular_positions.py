@@ -1,10 +1,12 @@
 """The derivation's section on toggles (det J = 0 reached or not over the input range) and
 dead centres (K = 0), in both languages, against closed forms (derived in
 tests/kinematics/test_dead_centres.py)."""
+import dataclasses
 import math
 import re
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import kinelab as kl
@@ -73,7 +75,49 @@ def test_portuguese_calls_the_toggle_posicao_de_travamento_and_the_dead_centre_p
     assert "(a toggle: a dead centre of the chain)" in english
 
 
-def test_two_inputs_say_the_section_is_for_one():
+def pairs_of(text: str) -> list[tuple[float, float]]:
+    """The (q1, q2) of each point a toggle line of several inputs shows."""
+    return [(float(a), float(b)) for a, b in
+            re.findall(r"\$q_\{1\} = (-?[\d.e+-]+)\$ \([^)]*\), \$q_\{2\} = (-?[\d.e+-]+)\$", text)]
+
+
+@pytest.mark.parametrize("lang", ["en", "pt"])
+def test_two_inputs_toggles_over_the_box_of_their_ranges(lang):
+    """The symmetric five-bar (ground, cranks 100 mm, couplers 120 mm): its couplers fall
+    in line (sin(theta_coupler1 - theta_coupler2) = 0) where the loops stop closing,
+    |AB| = 240 mm; the points shown are on that curve."""
+    five = kl.load(ROOT / "tests" / "cli" / "fivebar_reach.toml")
+    part = section(derive(five, lang).to_markdown(lang=lang), lang)
+    words = WORDS[lang]
+    assert words["reach_intro_many"].split("{span}")[0] in part
+    assert "$61 \\times 61$" in part
+    item = next(s for s in part.splitlines() if s.startswith("- $\\sin"))
+    count = re.search(r"(\d+)", item.split("= 0$")[1])
+    assert int(count[1]) > 100
+    assert words["many limit position"] in item
+    shown = pairs_of(item)
+    assert len(shown) == 3
+    for q1, q2 in shown:
+        d = math.hypot(0.1 + 0.1 * math.cos(q2) - 0.1 * math.cos(q1),
+                       0.1 * math.sin(q2) - 0.1 * math.sin(q1))
+        assert d == pytest.approx(0.24, abs=1e-9)
+    assert words["dead_many"] in part
+
+
+def test_two_inputs_isolated_toggles_and_a_box_without_any():
+    """The example five-bar: det J = 0 only at isolated samples of its grid (|AB| = 300 mm at
+    (180, 0) deg, A = B at (300, 240) and (420, 120) deg, ...); near its sketch, nowhere."""
     five = kl.load(ROOT / "examples" / "fivebar.toml")
     part = section(derive(five).to_markdown(), "en")
-    assert WORDS["en"]["reach_many"] in part
+    item = next(s for s in part.splitlines() if s.startswith("- $\\sin"))
+    assert "is reached at 4 of the points found" in item
+    assert item.count(WORDS["en"]["many touch"]) == 3
+    assert pairs_of(item)[0] == pytest.approx((math.pi, 0.0), abs=1e-9)
+    near = kl.mechanisms.fivebar(ground=1.0, crank1=1.0, coupler1=1.2, coupler2=1.2,
+                                 crank2=1.0, q0=(np.pi / 2, np.pi / 2))
+    ranged = dataclasses.replace(near, inputs=tuple(
+        dataclasses.replace(i, range=(1.2, 2.0)) for i in near.inputs))
+    for lang in ("en", "pt"):
+        part = section(derive(ranged, lang).to_markdown(lang=lang), lang)
+        not_reached = WORDS[lang]["toggle_not_reached_box"].split("{factor}")[1]
+        assert re.search(r"^- \$\\sin.* = 0\$" + re.escape(not_reached) + "$", part, re.M)

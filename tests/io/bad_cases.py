@@ -232,7 +232,7 @@ CASES = [
     ("unknown joint type", _replace('type = "R"\nlinks = ["ground", "rocker"]',
                                     'type = "Q"\nlinks = ["ground", "rocker"]'),
      "fb.toml: joints[3].type: expected one of 'R', 'P', 'H', 'C', 'U', 'S', 'E', 'cam', 'gear', "
-     "'rolling', 'pin_in_slot', got 'Q'"),
+     "'G', 'rolling', 'pin_in_slot', got 'Q'"),
     ("prismatic joint without an axis", _replace('[[inputs]]', _SLIDER + '\n[[inputs]]'),
      "fb.toml: joints[5].axis: a P joint needs an axis"),
     ("zero axis", _replace('[[inputs]]', _SLIDER + 'axis = [0, 0]\n\n[[inputs]]'),

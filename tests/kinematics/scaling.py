@@ -7,7 +7,7 @@ import kinelab as kl
 
 def scaled(m: kl.model.Mechanism, s: float) -> kl.model.Mechanism:
     """``m`` with every length multiplied by ``s``: the sketch, the links' lengths, exact
-    places and sides, the prismatic joints' offsets, and the ranges and rates of slide
+    places and sides, the prismatic joints' offsets, the gears' pitch radii, and the ranges and rates of slide
     inputs.  Masses stay; moments of inertia scale with s**2 (the same masses over a larger
     body)."""
     def length(v):
@@ -21,7 +21,9 @@ def scaled(m: kl.model.Mechanism, s: float) -> kl.model.Mechanism:
             k: {name: d if name == "side" else d * s for name, d in spec.items()}
             for k, spec in link.sides.items()})
         for link in m.links)
-    joints = tuple(dataclasses.replace(j, offset=length(j.offset)) for j in m.joints)
+    joints = tuple(dataclasses.replace(j, offset=length(j.offset), radius=length(j.radius),
+                                       radii=None if j.radii is None else tuple(r * s for r in j.radii))
+                   for j in m.joints)
     inputs = tuple(dataclasses.replace(i, range=None if i.range is None else (i.range[0] * s, i.range[1] * s),
                                        speed=i.speed * s, acceleration=i.acceleration * s)
                    if is_slide(m, i) else i for i in m.inputs)

@@ -198,10 +198,11 @@ def test_dead_centres_refuse_a_point_and_an_unknown_name():
         kl.kinematics.dead_centres(fb, "rocker", 1.0, 0.0)
 
 
-def test_toggles_refuse_two_inputs():
+def test_dead_centres_refuse_two_inputs_and_toggles_take_them():
     five = kl.load(EXAMPLES / "fivebar.toml")
     with pytest.raises(ModelError, match=r"mechanism: expected one input, got 2"):
-        kl.kinematics.toggles(five)
+        kl.kinematics.dead_centres(five, "coupler1")
+    assert isinstance(kl.kinematics.toggles(five), kl.kinematics.ToggleLocus)
 
 
 @settings(max_examples=25)

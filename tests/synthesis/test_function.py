@@ -1,4 +1,6 @@
 """Function generation: Freudenstein's equation, Chebyshev spacing, the structural error."""
+import re
+
 import numpy as np
 import pytest
 
@@ -159,3 +161,97 @@ def test_continuous_functions_steep_or_not_are_kept(f):
     sol = function_generation(**(LOG | dict(f=f)))
     assert sol.valid and np.all(np.isfinite(sol.structural_error))
     assert np.abs(sol.precision_errors).max() < 1e-9
+
+
+# -- precision points as pairs of angles, with the fixed pivots anywhere ----------------------
+@pytest.mark.parametrize("phi, O2", [(0.0, (0.0, 0.0)), (0.7, (1.0, 2.0)), (-2.5, (-3.0, 0.5))])
+def test_the_pairs_of_a_linkage_on_any_ground_line_give_it_back(phi, O2):
+    """The catalogue crank-rocker turned by phi and moved to O2: its own (input, output)
+    pairs, angles from +x, give it back, and the model reaches each pair (1e-10: closed form
+    vs engine)."""
+    fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
+    q = np.radians([40.0, 70.0, 100.0])
+    out = kl.analyze(fb, q=q).angle("rocker")
+    O2 = np.array(O2)
+    O4 = O2 + 3.0 * np.array([np.cos(phi), np.sin(phi)])
+    sol = kl.synthesis.function_pairs(q + phi, out + phi, O2, O4)
+    assert {k: round(v, 10) for k, v in sol.lengths.items()} == {
+        "ground": 3.0, "crank": 1.0, "coupler": 3.0, "rocker": 2.5}
+    assert sol.valid and not sol.defects
+    np.testing.assert_allclose(sol.q, q + phi, rtol=0, atol=1e-12)
+    reached = kl.analyze(sol.model, q=q + phi).angle("rocker")
+    np.testing.assert_allclose(np.angle(np.exp(1j * (reached - out - phi))), 0, atol=1e-10)
+    np.testing.assert_allclose(sol.model.point("O2").xy, O2, atol=1e-12)
+    np.testing.assert_allclose(sol.model.point("O4").xy, O4, atol=1e-12)
+
+
+def test_pairs_in_degrees_and_decreasing_inputs():
+    fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
+    q = np.radians([100.0, 70.0, 40.0])
+    out = np.degrees(kl.analyze(fb, q=q).angle("rocker"))
+    sol = kl.synthesis.function_pairs(np.degrees(q), out, (0, 0), (3, 0), degrees=True)
+    assert sol.lengths["crank"] == pytest.approx(1.0, abs=1e-10)
+    assert sol.input_range == pytest.approx((q[0], q[-1]), abs=1e-12)
+
+
+@pytest.mark.parametrize("args, message", [
+    (([10, 30, 20], [1, 2, 3]), "input_angles: expected angles in the order the crank passes them, "
+                                "all increasing or all decreasing, got 10, 30, 20 deg"),
+    (([10, 200, 380], [1, 2, 3]), "input_angles: the crank would turn a full circle or more"),
+    (([10, 20], [1, 2]), "input_angles, output_angles: expected 3 to 100 pairs, got 2"),
+    (([10, 20, 30], [1, 2]), "expected two arrays of the same shape (n,), got (3,) and (2,)"),
+    (([10, float("nan"), 30], [1, 2, 3]), "input_angles[1]: expected finite angles"),
+])
+def test_bad_pairs_are_refused_saying_why(args, message):
+    with pytest.raises(ModelError, match=re.escape(message)):
+        kl.synthesis.function_pairs(*args, degrees=True)
+
+
+def test_pivots_on_one_another_are_refused():
+    with pytest.raises(ModelError, match=r"O4: expected a fixed pivot apart from O2"):
+        kl.synthesis.function_pairs([10, 20, 30], [40, 50, 70], (1, 1), (1, 1), degrees=True)
+
+
+def test_a_pairs_task_file_is_read_in_its_units_and_solved():
+    fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
+    q = np.radians([40.0, 70.0, 100.0])
+    out = np.degrees(kl.analyze(fb, q=q).angle("rocker"))
+    task = kl.io.read_task({"task": "function", "units": {"length": "mm", "angle": "deg"},
+                            "function": {"pairs": [[a, b] for a, b in zip(np.degrees(q), out)],
+                                         "O2": [0, 0], "O4": [3000, 0]}})
+    (sol,), _ = kl.io.solve_task(task, verify=True)
+    assert sol.lengths["crank"] == pytest.approx(1.0, abs=1e-9)            # m: SI inside
+    row = kl.io.task_summary(task, [sol], {})["solutions"][0]
+    assert row["lengths"]["crank"] == pytest.approx(1000.0, abs=1e-6)      # the task's mm
+
+
+@pytest.mark.parametrize("function, message", [
+    ({"pairs": [[10, 1], [20, 2]]}, "function.pairs: expected 3 to 100 pairs"),
+    ({"pairs": [[10, 1], [20, "x"], [30, 3]]}, "function.pairs: expected finite numbers of shape (n, 2)"),
+    ({"pairs": [[10, 1], [30, 2], [20, 3]]}, "function.pairs: expected angles in the order the crank passes them"),
+    ({"pairs": [[10, 40], [20, 50], [30, 70]], "expression": "x"}, "function.expression: not used with pairs"),
+    ({"pairs": [[10, 40], [20, 50], [30, 70]], "O2": [0, 0], "ground": 2},
+     "function.ground: not used with O2 and O4"),
+    ({"expression": "x", "x_range": [0, 1], "input_range": [10, 60], "output_range": [20, 80],
+      "O2": [0, 0]}, "function.O2: used only with pairs"),
+])
+def test_a_pairs_task_typed_wrong_names_its_field(function, message):
+    with pytest.raises(ModelError, match=re.escape(message)):
+        task = kl.io.read_task({"task": "function", "units": {"angle": "deg"}, "function": function})
+        kl.io.solve_task(task)
+
+
+
+@pytest.mark.parametrize("scale", [1e-4, 1.0, 1e4])
+def test_pairs_are_scale_free(scale):
+    """The same pairs on pivots 1e-4 to 1e4 times as far apart: the same linkage to scale,
+    the same defects and the same crank angles (1e-9: rounding through the engine)."""
+    pairs = ([49, 79, 109], [97, 101, 112])
+    O2, O4 = np.array([0.03, -0.04]), np.array([0.33, 0.01])
+    one = kl.synthesis.function_pairs(*pairs, O2, O4, degrees=True)
+    sol = kl.synthesis.function_pairs(*pairs, O2 * scale, O4 * scale, degrees=True)
+    for k, v in one.lengths.items():
+        assert sol.lengths[k] == pytest.approx(v * scale, rel=1e-9)
+    assert sol.defects == one.defects
+    np.testing.assert_allclose(sol.q, one.q, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(sol.structural_error, one.structural_error, rtol=0, atol=1e-9)

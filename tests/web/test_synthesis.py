@@ -32,6 +32,14 @@ TASKS = {
     "four positions": NOTES_6_7,
     "five positions": None,            # five_position_task()
     "function": FUNCTION,
+    "function pairs": """
+task = "function"
+units = { length = "mm", angle = "deg" }
+[function]
+pairs = [[49, 97], [79, 101], [109, 112]]
+O2 = [30, -40]
+O4 = [330, 10]
+""",
     "path": """
 task = "path"
 [positions]

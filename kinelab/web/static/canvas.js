@@ -149,7 +149,8 @@ export class Canvas {
   //         poses: [{xy, angle, label, key}] (angle in rad; arrows, numbered unless labelled;
   //                 without an angle a point marked as `mark` says, "fixed" (a pivot),
   //                 "moving" or "point" (a path's points, joined); one with a key has a
-  //                 handle to drag it by, data-target its key)}
+  //                 handle to drag it by, data-target its key; with `ray` (rad) instead, a
+  //                 ray from xy at that angle, class `side`, its handle RAY px along it)}
   // The elements are kept and changed in place: a drag changes a few attributes, and the
   // paths (hundreds of samples) are drawn again only when they, or the view, change.
   draw(scene) {
@@ -267,6 +268,15 @@ export class Canvas {
       const [X, Y] = S(pose.xy);
       // a handle to drag it by, over it
       const handle = (g) => { if (pose.key) el("circle", {class: "handle", cx: X, cy: Y, r: 9, "data-target": pose.key}, g); };
+      if (pose.ray !== undefined) {     // a ray from its pivot, its handle RAY px along it
+        const c = Math.cos(pose.ray), s = Math.sin(pose.ray), R = Canvas.RAY;
+        const g = el("g", {class: `target ray ${pose.side}`, "data-target": pose.key}, L.poses.g);
+        el("line", {x1: X, y1: Y, x2: X + (R + 16) * c, y2: Y - (R + 16) * s}, g);
+        el("circle", {class: "end", cx: X + R * c, cy: Y - R * s, r: 4}, g);
+        el("text", {class: "target-label", x: X + (R + 28) * c - 4, y: Y - (R + 28) * s + 4}, g).textContent = pose.label;
+        el("circle", {class: "handle", cx: X + R * c, cy: Y - R * s, r: 9, "data-target": pose.key}, g);
+        continue;
+      }
       if (pose.angle === undefined) {
         const g = el("g", {class: `target ${pose.mark}`, "data-target": pose.key}, L.poses.g);
         if (pose.mark === "fixed") el("path", {d: `M${X - 9},${Y + 12} L${X + 9},${Y + 12} M${X},${Y} L${X - 7},${Y + 12} M${X},${Y} L${X + 7},${Y + 12}`}, g);
@@ -301,6 +311,9 @@ export class Canvas {
     patch(L.centres, centres);
   }
 }
+
+// How far from its pivot a ray's handle is drawn, px: the same at every zoom.
+Canvas.RAY = 64;
 
 // Labels placed so that they cover no label placed before them and no point: each at the
 // first of a few places around its anchor that is free, else at the least covered one.  A

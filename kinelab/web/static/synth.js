@@ -6,7 +6,8 @@ import {DECIMAL} from "./table.js";
 const LENGTHS = ["m", "cm", "mm", "in"], ANGLES = ["deg", "rad"];
 
 // Each kind: its units, its fields [key in the task, label, kind, example], the poses it
-// takes ("poses": x y angle per line, "points": x y per line) and the task's fixed entries.
+// takes ("poses": x y angle per line, "points": x y per line, "pairs": input and output
+// angle per line) and the task's fixed entries.
 // The examples are those of docs/synthesis.md (Flores & Claro, Mecanismos, §6.5 and §6.7).
 export const KINDS = {
   "crank-rocker": {label: "crank-rocker: rocker swing and time ratio", task: {task: "crank-rocker"},
@@ -43,6 +44,11 @@ export const KINDS = {
     ["function.output_range", "rocker angle from, to", "pair", "0, 90"],
     ["function.points", "precision points", "", "3"],
     ["function.ground", "ground", "length", "1"]]},
+  // the pairs of the catalogue crank-rocker (ground 1, crank 1/3, coupler 1, rocker 5/6)
+  "function-pairs": {label: "function generation: angle pairs (input -> output)", task: {task: "function"},
+    units: ["m", "deg"], pairs: "40 87.1\n70 92.2\n100 102.7", fields: [
+      ["function.O2", "O2, input pivot", "point", "0, 0"],
+      ["function.O4", "O4, output pivot", "point", "1, 0"]]},
   "path": {label: "path generation", task: {task: "path"}, units: ["m", "deg"],
     points: "0 0\n0.25 0.02\n0.5 0.03\n0.75 0.02\n1 0", fields: [
       ["search.runs", "runs", "", "1"], ["search.maxiter", "iterations", "", "100"],
@@ -65,15 +71,18 @@ const rows = (text) => text.split("\n").map((l) => l.trim()).filter((l) => l && 
 // The task's targets on the drawing: the poses, the path's points and the pivots, written
 // into the form in the task's units (where they stay editable) and drawn in the drawing's.
 // A placing asks for them on the drawing: a press for each pose's point and a drag for its
-// angle, a press for each point (a drag before letting go moves it).  Any target drawn is
-// dragged to move it (a pose keeps its angle).  Esc cancels a placing or a drag: the form
-// is as it was before it.
+// angle, a press for each point (a drag before letting go moves it), two presses for each
+// pair of angles (towards the input ray's direction from O2, then the output ray's from O4).
+// Any target drawn is dragged to move it (a pose keeps its angle; a ray's handle turns it
+// about its pivot, to whole degrees while the page's snap is on).  Esc cancels a placing or
+// a drag: the form is as it was before it.
 const METRES = {m: 1, cm: 0.01, mm: 0.001, in: 0.0254};
 const short = (v) => Number(v.toPrecision(6)) + 0;          // + 0: no "-0" in the form
 const placed = {
   root: null, units: () => null, redraw: () => {}, pixel: () => 1,
-  placing: null,      // {what: "poses" | "points" | a pivot's field, count, left, form}
-  grabbed: null,      // {key, aim: [x, y] (a pose's angle being dragged), offset, form}
+  placing: null,      // {what: "poses" | "points" | "pairs" | a pivot's field, count, left, form,
+                      //  side: "in" | "out" (the ray of a pair to place next)}
+  grabbed: null,      // {key, aim: [x, y] (a pose's angle being dragged), ray, offset, form}
   taken: false,       // the drawing's pointer drag is ours, from its press to its release
   active() { return this.placing !== null; },
   // `what`: "poses" or "points" (that many, in place of those of the form, in the drawing's
@@ -82,14 +91,18 @@ const placed = {
     const u = this.units(), root = this.root;
     if (!u) return;
     this.stop();
-    this.placing = {what, count, left: count, form: this.form()};
+    if (what === "pairs" && !(this.pivot("in") && this.pivot("out"))) {
+      root.querySelector("#synth-place-hint").textContent = "O2 and O4 first: type them or place them on the drawing";
+      return;
+    }
+    this.placing = {what, count, left: count, side: "in", form: this.form()};
     if (what === "poses" || what === "points") {
       for (const [id, v] of [["#synth-length", u.length], ["#synth-angle", u.angle]]) {
         root.querySelector(id).value = v;
         root.querySelector(id).dispatchEvent(new Event("change"));
       }
-      root.querySelector("#synth-poses").value = "";
     }
+    if (what === "poses" || what === "points" || what === "pairs") root.querySelector("#synth-poses").value = "";
     this.hint();
     this.redraw();
   },
@@ -102,6 +115,9 @@ const placed = {
     const [where, text] = p.what === "poses"
       ? ["#synth-place-hint", `pose ${done} of ${p.count}: click its point on the drawing, drag towards its angle (Esc cancels)`]
       : p.what === "points" ? ["#synth-place-hint", `point ${done} of ${p.count}: click it on the drawing (Esc cancels)`]
+      : p.what === "pairs" ? ["#synth-place-hint", p.side === "in"
+        ? `pair ${done} of ${p.count}: click towards its input angle from O2 (Esc cancels)`
+        : `pair ${done} of ${p.count}: click towards its output angle from O4 (Esc cancels)`]
       : [`[data-hint='${p.what}']`, "click its place on the drawing (Esc cancels)"];
     const h = root.querySelector(where);
     if (h) h.textContent = text;
@@ -141,7 +157,15 @@ const placed = {
     if (!this.placing && !key) return false;
     this.taken = true;
     const p = this.placing;
-    if (p) {
+    if (p && p.what === "pairs") {
+      const area = this.root.querySelector("#synth-poses");
+      // a new pair's input starts as the previous pair's, whose turn it is taken nearest
+      const last = rows(area.value).at(-1), from = last && Number.isFinite(last[0]) ? last[0] : 0;
+      if (p.side === "in") area.value = (area.value.trim() ? area.value.trim() + "\n" : "") + from;
+      const at = `pair ${rows(area.value).length} ${p.side}`;
+      this.grabbed = {key: at, ray: true};
+      this.turn(at, xy);
+    } else if (p) {
       let at = p.what;
       if (p.what === "poses" || p.what === "points") {
         const area = this.root.querySelector("#synth-poses");
@@ -153,7 +177,8 @@ const placed = {
     } else {
       const was = targetsOf(this.root, this.units()).find((t) => t.key === key);
       if (!was) { this.taken = false; return false; }
-      this.grabbed = {key, aim: null, offset: [was.xy[0] - xy[0], was.xy[1] - xy[1]], form: this.form()};
+      this.grabbed = was.ray !== undefined ? {key, ray: true, form: this.form()}
+        : {key, aim: null, offset: [was.xy[0] - xy[0], was.xy[1] - xy[1]], form: this.form()};
     }
     this.redraw();
     return true;
@@ -161,7 +186,8 @@ const placed = {
   move(xy) {
     if (!this.taken) return false;
     const g = this.grabbed;
-    if (g && g.aim) this.aim(g.key, g.aim, xy);
+    if (g && g.ray) this.turn(g.key, xy);
+    else if (g && g.aim) this.aim(g.key, g.aim, xy);
     else if (g) this.put(g.key, [xy[0] + g.offset[0], xy[1] + g.offset[1]]);
     if (g) this.redraw();
     return true;
@@ -173,7 +199,9 @@ const placed = {
     if (!this.grabbed) return true;             // cancelled on the way
     this.grabbed = null;
     const p = this.placing;
-    if (p) { p.left -= 1; if (!p.left) this.placing = null; this.hint(); }
+    if (p && p.what === "pairs" && p.side === "in") p.side = "out";
+    else if (p) { p.left -= 1; p.side = "in"; if (!p.left) this.placing = null; }
+    if (p) this.hint();
     this.redraw();
     return true;
   },
@@ -193,6 +221,32 @@ const placed = {
     const angle = Math.hypot(to[0] - at[0], to[1] - at[1]) > 0 ? Math.atan2(to[1] - at[1], to[0] - at[0]) : 0;
     const a = short(this.root.querySelector("#synth-angle").value === "deg" ? angle * 180 / Math.PI : angle);
     this.line(Number(key.split(" ")[1]), (old) => [...old.slice(0, 2), a].join(" "));
+  },
+  // The fixed pivot of a pair's `side` ("in": O2, "out": O4) in the drawing's units, or null.
+  pivot(side) {
+    const e = this.root.querySelector(`[data-field='function.${side === "in" ? "O2" : "O4"}']`);
+    const xy = e && pointOf(e.value);
+    return xy && xy.map((v) => v / this.scale());
+  },
+  // Pair `key`'s ray ("pair n in" | "pair n out") turned towards xy about its pivot: the
+  // angle the turn nearest the ray's angle before (or the previous pair's, for a new one),
+  // so that a drag across 180 deg goes on to 181 rather than jumping to -179.
+  turn(key, xy) {
+    const [, n, side] = key.split(" "), k = side === "in" ? 0 : 1;
+    const O = this.pivot(side);
+    if (!O || Math.hypot(xy[0] - O[0], xy[1] - O[1]) === 0) return;
+    const deg = this.root.querySelector("#synth-angle").value === "deg";
+    const r = rows(this.root.querySelector("#synth-poses").value);
+    const near = [r[n - 1], r[n - 2]].map((row) => row && row[k]).find(Number.isFinite);
+    let a = Math.atan2(xy[1] - O[1], xy[0] - O[0]);
+    if (near !== undefined) {
+      const ref = deg ? near * Math.PI / 180 : near;
+      a += 2 * Math.PI * Math.round((ref - a) / (2 * Math.PI));
+    }
+    let v = deg ? a * 180 / Math.PI : a;
+    if (document.getElementById("snap")?.checked) v = deg ? Math.round(v) : Math.round(v * 180 / Math.PI) * Math.PI / 180;
+    v = short(v);
+    this.line(Number(n), (old) => (k === 0 ? [v, ...old.slice(1)] : [old[0], v, ...old.slice(2)]).join(" "));
   },
   // The n-th line of the poses or points (counted as `rows` counts them) made anew from its numbers.
   line(n, change) {
@@ -228,10 +282,21 @@ function targetsOf(root, units) {
     else if (kind.points && r.length === 2 && r.every(Number.isFinite))
       out.push({key: `point ${i + 1}`, xy: at(r[0], r[1]), mark: "point", label: String(i + 1)});
   });
+  const fields = {};
   for (const [key, , type] of kind.fields) {
     const xy = type === "point" && pointOf(root.querySelector(`[data-field='${key}']`).value);
-    if (xy) out.push({key, xy: at(...xy), mark: key.endsWith("0") ? "fixed" : "moving", label: key.split(".")[1]});
+    if (xy) out.push({key, xy: fields[key] = at(...xy), mark: key.endsWith("0") || kind.pairs ? "fixed" : "moving",
+                      label: key.split(".")[1]});
   }
+  // each pair: a ray from O2 at its input angle, one from O4 at its output angle (a pair
+  // half placed, or half typed: its input ray alone)
+  if (area && kind.pairs) rows(area.value).forEach((r, i) => {
+    r.slice(0, 2).forEach((v, k) => {
+      const O = fields[k ? "function.O4" : "function.O2"], side = k ? "out" : "in";
+      if (O && Number.isFinite(v))
+        out.push({key: `pair ${i + 1} ${side}`, xy: O, ray: deg ? v * Math.PI / 180 : v, side, label: String(i + 1)});
+    });
+  });
   return out;
 }
 
@@ -254,6 +319,8 @@ export function taskOf(root) {
     task.positions = {points: r.map((p) => p.slice(0, 2)), angles: r.map((p) => p[2])};
   } else if (kind.points) {
     task.positions = {points: rows(poses.value)};
+  } else if (kind.pairs) {
+    task.function = {pairs: rows(poses.value)};
   }
   for (const [key, , type] of kind.fields) {
     const text = root.querySelector(`[data-field='${key}']`).value;
@@ -272,15 +339,16 @@ function form(root, kindName, units) {
   root.querySelector("#synth-angle").value = au;
   const unit = (type) => type === "length" || type === "point" ? () => root.querySelector("#synth-length").value
     : type === "angle" ? () => root.querySelector("#synth-angle").value : () => "";
-  if (kind.poses || kind.points) {
-    const label = make("label", {}, kind.poses ? "poses: x y angle, one per line" : "points: x y, one per line");
+  if (kind.poses || kind.points || kind.pairs) {
+    const label = make("label", {}, kind.poses ? "poses: x y angle, one per line" : kind.points
+      ? "points: x y, one per line" : "precision pairs: input angle, output angle (from +x), one per line");
     const area = make("textarea", {id: "synth-poses", rows: 6, spellcheck: "false"});
-    area.value = kind.poses || kind.points;
+    area.value = kind.poses || kind.points || kind.pairs;
     area.oninput = () => placed.redraw();
     label.append(make("br"), area);
     box.append(label);
   }
-  if (kind.poses || kind.points) {
+  if (kind.poses || kind.points || kind.pairs) {
     const row = make("div", {class: "row"});
     const hint = make("span", {id: "synth-place-hint", class: "hint place-hint"});
     if (kind.poses) {
@@ -289,15 +357,19 @@ function form(root, kindName, units) {
       place.onclick = () => placed.start("poses", kind.count);
       row.append(place, hint);
     } else {
-      const count = make("input", {id: "synth-place-count", type: "number", min: 2, max: 100, step: 1,
-                                   value: rows(kind.points).length, title: "How many points to place"});
-      const place = make("button", {id: "synth-place", title: "Click on the drawing for each point of the path, in order"}, "place");
+      const pairs = Boolean(kind.pairs), low = pairs ? 3 : 2;
+      const count = make("input", {id: "synth-place-count", type: "number", min: low, max: 100, step: 1,
+                                   value: rows(kind.points || kind.pairs).length,
+                                   title: pairs ? "How many pairs to place" : "How many points to place"});
+      const place = make("button", {id: "synth-place", title: pairs
+        ? "For each pair, click on the drawing towards its input angle from O2, then towards its output angle from O4"
+        : "Click on the drawing for each point of the path, in order"}, "place");
       place.onclick = () => {
         const n = Number(count.value);
-        if (Number.isInteger(n) && n >= 2 && n <= 100) placed.start("points", n);
-        else hint.textContent = `the points to place: a whole number from 2 to 100, not '${count.value}'`;
+        if (Number.isInteger(n) && n >= low && n <= 100) placed.start(pairs ? "pairs" : "points", n);
+        else hint.textContent = `the ${pairs ? "pairs" : "points"} to place: a whole number from ${low} to 100, not '${count.value}'`;
       };
-      row.append(place, count, make("span", {}, "points on the drawing"), hint);
+      row.append(place, count, make("span", {}, pairs ? "pairs on the drawing" : "points on the drawing"), hint);
     }
     box.append(row);
   }
