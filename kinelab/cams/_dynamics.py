@@ -85,6 +85,10 @@ class FollowerForces:
         is above 0.
     torque : (N,) array
         The torque on the cam shaft, T = N V, N m (frictionless contact).
+
+    Where the contact force is not above 0 the follower has left the cam, and both are the
+    force and torque that *would* keep it on its program (what a form-closed cam, a groove or
+    a conjugate pair, would have to supply).
     """
     program: MotionProgram
     motion: str
