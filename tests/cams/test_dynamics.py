@@ -229,3 +229,55 @@ def test_every_bad_argument_at_once_and_a_bad_margin():
     assert len(exc.value.problems) == 2
     with pytest.raises(ModelError, match="margin: expected a number at least 0, got -1"):
         follower_forces(dwell_program(), **CASES["undamped"]).least_preload(-1.0)
+
+
+@pytest.mark.parametrize("case", ["undamped", "jumping"])
+def test_forces_figure_draws_the_zero_line_and_shades_the_jump(case):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import PolyCollection
+
+    import kinelab as kl
+    ff = follower_forces(dwell_program(), **CASES[case])
+    fig = kl.plot.cam_forces(ff, units={"angle": "deg"})
+    try:
+        top, bottom = fig.axes
+        assert top.get_ylabel() == "contact force [N]"
+        assert bottom.get_ylabel() == "cam shaft torque [N m]"
+        assert bottom.get_xlabel() == "cam angle [deg]"
+        assert any(np.allclose(line.get_ydata(), 0.0) for line in top.get_lines())
+        shaded = [c for c in top.collections if isinstance(c, PolyCollection)]
+        assert bool(shaded) == ff.jumps
+        assert top.get_lines()[0].get_xdata()[-1] == pytest.approx(360.0)
+    finally:
+        plt.close(fig)
+    with pytest.raises(ModelError, match="forces: expected a FollowerForces"):
+        kl.plot.cam_forces(dwell_program())
+
+
+def test_a_task_with_dynamics_solves_at_the_profile_samples():
+    from kinelab.cams import read_cam_task, solve_cam_task
+    task = read_cam_task({
+        "units": {"length": "mm", "angle": "deg"}, "cam": {"speed": 1200, "samples": 361},
+        "follower": {"type": "roller", "roller_radius": 10, "base_circle": 40},
+        "dynamics": {"mass": 2, "stiffness": 2000, "preload": 40, "damping": 3, "margin": 5},
+        "segments": [{"kind": "rise", "law": "cycloidal", "from": 0, "to": 90, "lift": 25},
+                     {"kind": "dwell", "from": 90, "to": 180},
+                     {"kind": "return", "law": "3-4-5", "from": 180, "to": 270, "lift": 25},
+                     {"kind": "dwell", "from": 270, "to": 360}]})
+    assert task.dynamics == {"mass": 2.0, "stiffness": 2000.0, "preload": 40.0, "damping": 3.0,
+                             "margin": 5.0, "external": 0.0}
+    sol = solve_cam_task(task)
+    ff = sol.forces
+    assert np.array_equal(ff.theta, sol.cam.theta) and ff.speed == pytest.approx(np.radians(1200))
+    same = follower_forces(dwell_program(), mass=2, stiffness=2000, preload=40, damping=3,
+                           speed=np.radians(1200), samples=361)
+    assert ff.contact_force == pytest.approx(same.contact_force, rel=1e-12, abs=1e-9)
+    no_dynamics = solve_cam_task(read_cam_task({
+        "units": {"length": "mm"}, "cam": {"speed": 1},
+        "follower": {"type": "knife-edge", "base_circle": 40},
+        "segments": [{"kind": "rise", "law": "cycloidal", "from": 0, "to": 3, "lift": 5},
+                     {"kind": "return", "law": "cycloidal", "from": 3, "to": 2 * np.pi,
+                      "lift": 5}]}))
+    assert no_dynamics.forces is None and no_dynamics.task.dynamics is None
