@@ -33,7 +33,16 @@ CASES = {
                    external=1.5 * 9.81),
     "jumping": dict(mass=2.0, stiffness=2000.0, preload=40.0, speed=400 * RPM, damping=3.0),
 }
-PROGRAMS = {"double dwell": dwell_program, "rise-return": rise_return_program}
+def swing_program():
+    # an oscillating follower's: S in rad; the same equations about the pivot (inertia,
+    # torsional spring), so the same checks hold with the numbers read in those units
+    return MotionProgram([Segment("rise", 0, d(120), d(20), "modified-trapezoid"),
+                          Segment("dwell", d(120), d(160)),
+                          Segment("return", d(160), d(360), d(20), "cycloidal")])
+
+
+PROGRAMS = {"double dwell": dwell_program, "rise-return": rise_return_program,
+            "swing": swing_program}
 
 
 def joints(program):
