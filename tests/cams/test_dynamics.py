@@ -46,7 +46,10 @@ PROGRAMS = {"double dwell": dwell_program, "rise-return": rise_return_program,
 
 
 def joints(program):
-    return np.array([s.start for s in program.segments] + [2 * np.pi])
+    """The joints of the program and the eighths of its segments, where the piecewise laws
+    change piece (their jerk may jump there)."""
+    return np.array([s.start + s.beta * i / 8 for s in program.segments for i in range(8)]
+                    + [2 * np.pi])
 
 
 @pytest.mark.parametrize("case", CASES)
@@ -54,11 +57,12 @@ def joints(program):
 def test_contact_force_against_finite_differences_in_time(prog, case):
     # N = m x'' + c x' + k x + F0 + F_ext along the follower's motion x(t) = S(omega t),
     # differentiated in time by 4th-order central differences of S alone (not the program's
-    # V and A); away from the joints, where J may jump and the stencil would straddle it.
+    # V and A); away from the joints and pieces, where J may jump under the stencil.
     p, kw = PROGRAMS[prog](), CASES[case]
     w = kw["speed"]
     theta = np.linspace(0.0, 2 * np.pi, 2000, endpoint=False)
-    ht = 2e-4 / w                                   # s: 2e-4 rad of cam angle
+    # s: 1e-3 rad of cam angle, where truncation (h**4) and rounding (1/h**2) balance
+    ht = 1e-3 / w
     far = np.abs(theta[:, None] - joints(p)[None, :]).min(axis=1) > 3 * ht * w
     theta = theta[far]
     t = theta / w
