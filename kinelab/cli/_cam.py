@@ -56,8 +56,13 @@ def _verdict(sol) -> list[str]:
     if not ff.jumps:
         f, at = ff.least_force
         wc = ff.critical_speed
-        upto = ("at any speed" if math.isinf(wc) else
-                f"up to {wc * rpm:.4g} rpm ({wc / a:.4g} {u.angle}/s)")
+        if math.isinf(wc):
+            upto = "at any speed"
+        elif wc < ff.speed:      # held by the follower's inertia: lost at some lower speeds
+            upto = ("at this speed, but not at every lower one (contact is lost " +
+                    ("at rest" if wc == 0 else f"from {wc * rpm:.4g} rpm") + ")")
+        else:
+            upto = f"up to {wc * rpm:.4g} rpm ({wc / a:.4g} {u.angle}/s)"
         line = (f"  dynamics: contact kept: least contact {force} {f:.4g} {unit} at "
                 f"{at / a:.4g} {u.angle}; jump-free {upto}")
     else:

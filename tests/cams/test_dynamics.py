@@ -153,6 +153,17 @@ def test_critical_speed_limits():
                            speed=1.0).critical_speed == np.inf
 
 
+def test_contact_held_by_inertia_alone_has_no_jump_free_speed():
+    # a load away from the cam (-5 N) with no preload: at rest, at S = 0, nothing holds the
+    # follower; at 30 rad/s the harmonic law's A > 0 there presses it on the cam
+    p = MotionProgram([Segment("rise", 0, d(180), 0.02, "harmonic"),
+                       Segment("return", d(180), d(360), 0.02, "harmonic")])
+    ff = follower_forces(p, mass=1.0, stiffness=1000.0, preload=0.0, external=-5.0, speed=30.0)
+    assert not ff.jumps and ff.critical_speed == 0.0
+    # N(0) = m A(0) w**2 + F_ext, A(0) = h pi**2 / (2 beta**2) = 0.01 per rad**2
+    assert ff.least_force == pytest.approx((1.0 * 0.01 * 900 - 5.0, 0.0), abs=1e-12)
+
+
 @pytest.mark.parametrize("margin", [0.0, 5.0])
 @pytest.mark.parametrize("case", CASES)
 def test_least_preload_keeps_the_margin(case, margin):
