@@ -29,4 +29,5 @@ __getattr__, __dir__ = exports(__name__, {
 __all__ = ["LAWS", "LAW_NAMES", "KINDS", "law_values", "polynomial_coefficients", "Segment",
            "MotionProgram", "SVAJ", "Discontinuity", "Follower", "CamProfile", "profile",
            "smallest_base_circle", "FOLLOWER_TYPES", "FOLLOWER_MOTIONS", "profile_svg",
-           "write_dxf", "FollowerForces", "follower_forces", "CamTask", "CamSolution", "read_cam_task", "solve_cam_task"]
+           "write_dxf", "FollowerForces", "follower_forces", "CamTask", "CamSolution",
+           "read_cam_task", "solve_cam_task"]
