@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from kinelab.cams._dynamics import FollowerForces, follower_forces
 from kinelab.cams._profile import (FOLLOWER_MOTIONS, FOLLOWER_TYPES, CamProfile, Follower,
                                    profile, smallest_base_circle)
 from kinelab.cams._program import KINDS, LAW_NAMES, MotionProgram, Segment
@@ -15,11 +16,19 @@ from kinelab.model import ANGLE_UNITS, LENGTH_UNITS, Units
 
 __all__ = ["CamTask", "CamSolution", "read_cam_task", "solve_cam_task"]
 
-_TOP = ("name", "units", "cam", "follower", "segments")
+_TOP = ("name", "units", "cam", "follower", "segments", "dynamics")
 _CAM = ("speed", "samples", "allow_discontinuous")
 _FOLLOWER = ("type", "motion", "offset", "roller_radius", "pivot_distance", "arm_length",
              "base_circle", "pressure_angle", "min_radius")
 _SEGMENT = ("kind", "law", "from", "to", "lift", "start", "end")
+_DYNAMICS = ("mass", "inertia", "stiffness", "preload", "damping", "external", "margin")
+# the follower's train in SI: translating (N, m) or oscillating (N m, rad)
+_DYNAMICS_UNITS = {
+    "translating": {"mass": "kg", "stiffness": "N/m", "preload": "N", "damping": "N s/m",
+                    "external": "N", "margin": "N"},
+    "oscillating": {"inertia": "kg m^2", "stiffness": "N m/rad", "preload": "N m",
+                    "damping": "N m s/rad", "external": "N m", "margin": "N m"},
+}
 _ORDERS = {"S": 0, "V": 1, "A": 2, "J": 3}
 MAX_SAMPLES = 100_000
 
@@ -28,7 +37,10 @@ MAX_SAMPLES = 100_000
 class CamTask:
     """A cam task in SI: its motion program, follower, base circle (a radius, or None for the
     smallest meeting ``pressure_angle``, or for a flat face ``min_radius``), the cam's speed
-    (rad/s) and the samples over a turn."""
+    (rad/s) and the samples over a turn; ``dynamics``, when the task has a ``[dynamics]``
+    table, holds the follower train's ``mass``, ``stiffness``, ``preload``, ``damping``,
+    ``external`` and ``margin`` in SI (the keywords of :func:`follower_forces`, ``margin``
+    apart)."""
     name: str
     units: Units
     program: MotionProgram
@@ -38,14 +50,18 @@ class CamTask:
     min_radius: float
     speed: float
     samples: int
+    dynamics: dict | None = None
 
 
 @dataclass(frozen=True)
 class CamSolution:
-    """A solved cam task: the profile and whether its base circle is the smallest."""
+    """A solved cam task: the profile and whether its base circle is the smallest; with a
+    ``[dynamics]`` table, the follower's contact force, jump check and shaft torque at the
+    profile's samples."""
     task: CamTask
     cam: CamProfile
     smallest: bool
+    forces: FollowerForces | None = None
 
 
 def _unknown(table: dict, known: tuple, where: str) -> list[str]:
@@ -223,6 +239,7 @@ def read_cam_task(data, *, source: str | None = None, name: str = "cam") -> CamT
                             "polynomial law; leave them out or make the law 'polynomial'")
         segments.append(Segment(kind, a * ang, b * ang, lift * lift_scale,
                                 law if kind != "dwell" else "", tuple(conds)))
+    dynamics = _dynamics(data, motion, problems)
     program = None
     if segments and not problems:
         try:
@@ -234,7 +251,42 @@ def read_cam_task(data, *, source: str | None = None, name: str = "cam") -> CamT
     return CamTask(task_name, units, program, follower, None if smallest else base, phi,
                    (min_radius * ls) if min_radius is not None else 0.05 * program.lift
                    * (1.0 if motion == "translating" else follower.pivot_distance),
-                   speed * ang, samples)
+                   speed * ang, samples, dynamics)
+
+
+def _dynamics(data: dict, motion: str, problems: list) -> dict | None:
+    """The ``[dynamics]`` table in SI (its numbers already are), or None without one."""
+    if "dynamics" not in data:
+        return None
+    table = data["dynamics"]
+    if not isinstance(table, dict):
+        problems.append(f"dynamics: expected a table (mass, stiffness, preload, ...), got "
+                        f"{describe(table)}")
+        return None
+    problems += _unknown(table, _DYNAMICS, "dynamics.")
+    units = _DYNAMICS_UNITS.get(motion, _DYNAMICS_UNITS["translating"])
+    inertial = "inertia" if motion == "oscillating" else "mass"
+    other = "mass" if inertial == "inertia" else "inertia"
+    if other in table:
+        problems.append(f"dynamics.{other}: a {motion} follower takes its {inertial} ("
+                        f"{units[inertial]}{', about its pivot' if inertial == 'inertia' else ''})"
+                        f"; give {inertial} instead")
+    out = {}
+    # a key misspelt, or mass for inertia, is said once: not again as the key missing
+    meant = {other: inertial} if other in table else {}
+    meant.update({k: k2 for k in table if k not in _DYNAMICS for k2 in _DYNAMICS
+                  if f"'{k2}'" in suggest(k, _DYNAMICS)})
+    for key in (inertial, "stiffness", "preload"):
+        if key not in table and key not in meant.values():
+            problems.append(f"dynamics.{key}: missing; give the follower train's {key}, in "
+                            f"{units[key]}")
+    n = len(problems)
+    out["mass"] = _number(table, inertial, "dynamics.", problems, positive=True)
+    for key in ("stiffness", "preload", "damping", "margin"):
+        out[key] = _number(table, key, "dynamics.", problems, at_least=0.0,
+                           default=None if key in ("stiffness", "preload") else 0.0)
+    out["external"] = _number(table, "external", "dynamics.", problems, default=0.0)
+    return out if len(problems) == n and None not in out.values() else None
 
 
 def solve_cam_task(task: CamTask, *, source: str | None = None) -> CamSolution:
@@ -255,9 +307,14 @@ def solve_cam_task(task: CamTask, *, source: str | None = None) -> CamSolution:
                                       min_radius=task.min_radius)
         cam = profile(task.program, f, rb, samples=task.samples)
         _check(task, cam)
+        forces = None
+        if task.dynamics is not None:
+            kw = {k: v for k, v in task.dynamics.items() if k != "margin"}
+            forces = follower_forces(task.program, speed=task.speed, motion=f.motion,
+                                     theta=cam.theta, **kw)
     except ModelError as exc:
         raise ModelError(exc.problems, source=source) from None
-    return CamSolution(task, cam, task.base_circle is None)
+    return CamSolution(task, cam, task.base_circle is None, forces)
 
 
 def _check(task: CamTask, cam: CamProfile) -> None:

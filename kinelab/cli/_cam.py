@@ -27,7 +27,7 @@ def _columns(sol) -> dict:
     s, v, acc, j = sv.in_time(sol.task.speed)
     with np.errstate(divide="ignore"):
         kappa = 1.0 / cam.profile_radius
-    return {
+    out = {
         f"theta [{u.angle}]": sv.theta / a,
         f"S [{lu}]": sv.S / k, f"V [{lu}/{u.angle}]": sv.V / k * a,
         f"A [{lu}/{u.angle}^2]": sv.A / k * a ** 2, f"J [{lu}/{u.angle}^3]": sv.J / k * a ** 3,
@@ -39,6 +39,44 @@ def _columns(sol) -> dict:
         f"profile.x [{u.length}]": cam.profile[:, 0] / m,
         f"profile.y [{u.length}]": cam.profile[:, 1] / m,
     }
+    ff = sol.forces
+    if ff is not None:       # forces and torques stay in SI whatever the task's units
+        out["contact_moment [N m]" if osc else "contact_force [N]"] = ff.contact_force
+        out["shaft_torque [N m]"] = ff.torque
+    return out
+
+
+def _verdict(sol) -> list[str]:
+    """The jump check in one line, and the shaft torque in another."""
+    ff, task, u = sol.forces, sol.task, sol.task.units
+    a = u.scale("rad")
+    force = "moment" if ff.motion == "oscillating" else "force"
+    unit = "N m" if ff.motion == "oscillating" else "N"
+    rpm = 30 / math.pi
+    if not ff.jumps:
+        f, at = ff.least_force
+        wc = ff.critical_speed
+        if math.isinf(wc):
+            upto = "at any speed"
+        elif wc < ff.speed:      # held by the follower's inertia: lost at some lower speeds
+            upto = ("at this speed, but not at every lower one (contact is lost " +
+                    ("at rest" if wc == 0 else f"from {wc * rpm:.4g} rpm") + ")")
+        else:
+            upto = f"up to {wc * rpm:.4g} rpm ({wc / a:.4g} {u.angle}/s)"
+        line = (f"  dynamics: contact kept: least contact {force} {f:.4g} {unit} at "
+                f"{at / a:.4g} {u.angle}; jump-free {upto}")
+    else:
+        margin = task.dynamics["margin"]
+        need = ff.least_preload(margin)
+        line = (f"  dynamics: jump: contact {force} below zero from {ff.jump_angle / a:.4g} "
+                f"{u.angle} at this speed ({ff.speed * rpm:.4g} rpm); preload of at least "
+                f"{need:.4g} {unit} needed" + (f" (for a margin of {margin:.4g} {unit})"
+                                               if margin else ""))
+    t, at = ff.peak_torque
+    mean = ff.mean_torque
+    mean = 0.0 if abs(mean) <= 1e-12 * abs(t) else mean      # rounding of an exact zero
+    return [line, f"  cam shaft torque: peak {t:.4g} N m at {at / a:.4g} {u.angle}, mean "
+                  f"{mean:.4g} N m"]
 
 
 def _summary(sol, name: str) -> list[str]:
@@ -68,6 +106,8 @@ def _summary(sol, name: str) -> list[str]:
             lines.append(f"  continuity: {d}")
     else:
         lines.append("  continuity: S, V and A continuous at every joint")
+    if sol.forces is not None:
+        lines += _verdict(sol)
     return lines
 
 
@@ -83,7 +123,10 @@ def cam_command(task_file: str, out: str) -> None:
     the profile as <name>_profile.dxf and <name>_profile.svg, and the SVAJ table as
     <name>_svaj.csv, in the task's units, into --out; prints the largest pressure angle, the
     smallest radius of curvature, whether the profile is undercut and the continuity of the
-    program at its joints.
+    program at its joints.  With a [dynamics] table (the follower's mass, spring and preload),
+    also <name>_forces.png, the contact force and shaft torque in the table, and the jump
+    check: the least contact force and the largest jump-free speed, or where the follower
+    leaves the cam and the preload that would hold it.
     """
     from kinelab import cams
     from kinelab import plot as kplot
@@ -103,6 +146,8 @@ def cam_command(task_file: str, out: str) -> None:
     figures = {"svaj": kplot.cam_svaj(cam, units=u), "profile": kplot.cam_profile(cam, units=u),
                "pressure": kplot.cam_pressure(cam, limit=task.pressure_angle, units=u),
                "curvature": kplot.cam_curvature(cam, units=u)}
+    if sol.forces is not None:
+        figures["forces"] = kplot.cam_forces(sol.forces, units=u)
     columns = _columns(sol)
     svg = cam.to_svg(u.length)
     try:

@@ -26,10 +26,11 @@ Spatial: :func:`spherical_fourbar` (the sphere, the joint axes and the links' ar
 Sweeps: :func:`tolerance_band` and :func:`error_histogram` (a tolerance study).
 
 Cams: :func:`cam_svaj` (the SVAJ diagram), :func:`cam_profile`, :func:`cam_pressure` (the
-pressure angle over the cycle), :func:`cam_curvature` (radius of curvature).
+pressure angle over the cycle), :func:`cam_curvature` (radius of curvature), :func:`cam_forces`
+(the follower's contact force, its jump region, and the shaft torque).
 """
 from kinelab.plot._animate import animate, can_write_mp4
-from kinelab.plot._cams import cam_curvature, cam_pressure, cam_profile, cam_svaj
+from kinelab.plot._cams import cam_curvature, cam_forces, cam_pressure, cam_profile, cam_svaj
 from kinelab.plot._constructions import kennedy_steps, tangent_construction, velocity_image
 from kinelab.plot._dynamics import effort_curves, energy_curves, reaction_curves, shaking_curves
 from kinelab.plot._figures import (coefficients, coupler_curve, curves, input_axis, mechanism, save,
@@ -50,5 +51,5 @@ __all__ = ["curves", "coefficients", "coupler_curve", "transmission", "mechanism
            "acceleration_polygon", "instant_centers", "centrodes", "derivatives", "drawing_scale",
            "PANEL_CM", "tolerance_band", "error_histogram", "tangent_construction",
            "velocity_image", "kennedy_steps", "cam_svaj", "cam_profile", "cam_pressure",
-           "cam_curvature", "spherical_fourbar",
+           "cam_curvature", "cam_forces", "spherical_fourbar",
            "spatial_mechanism"]

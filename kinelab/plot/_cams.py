@@ -7,11 +7,11 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from kinelab.cams import CamProfile
+from kinelab.cams import CamProfile, FollowerForces
 from kinelab.errors import ModelError, describe
 from kinelab.model import Units
 
-__all__ = ["cam_svaj", "cam_profile", "cam_pressure", "cam_curvature"]
+__all__ = ["cam_svaj", "cam_profile", "cam_pressure", "cam_curvature", "cam_forces"]
 
 
 def _check(cam) -> None:
@@ -128,4 +128,42 @@ def cam_curvature(cam: CamProfile, *, units: Units | Mapping[str, str] | None = 
     ax.set_ylabel(f"radius of curvature [{u.length}]")
     ax.legend(fontsize=8)
     ax.grid(True, lw=0.3)
+    return fig
+
+
+def cam_forces(forces: FollowerForces, *, units: Units | Mapping[str, str] | None = None):
+    """The contact force between cam and follower (the zero line drawn, where it is not above
+    0 — the follower jumps — shaded) and the cam shaft's torque with its mean, over the
+    cycle; forces in N, torques in N m, the cam angle in ``units.angle``."""
+    import matplotlib.pyplot as plt
+    if not isinstance(forces, FollowerForces):
+        raise ModelError(f"forces: expected a FollowerForces (kinelab.cams.follower_forces), "
+                         f"got {describe(forces)}")
+    u = Units.resolve(units)
+    a = u.scale("rad")
+    x = forces.theta / a
+    osc = forces.motion == "oscillating"
+    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(7, 6),
+                                      constrained_layout=True)
+    name = "contact moment [N m]" if osc else "contact force [N]"
+    top.plot(x, forces.contact_force, lw=1.2, label=name.split(" [")[0])
+    top.axhline(0.0, color="k", lw=0.8)
+    if forces.jumps:
+        top.fill_between(x, 0, 1, where=~forces.contact, transform=top.get_xaxis_transform(),
+                         color="C3", alpha=0.2, step="mid", lw=0, label="jump (no contact)")
+    f, at = forces.least_force
+    top.plot([at / a], [f], "o", color="C1", label=f"least {f:.4g} {'N m' if osc else 'N'}")
+    top.set_ylabel(name)
+    top.set_title(f"follower dynamics at {forces.speed * 30 / np.pi:.4g} rpm")
+    top.legend(fontsize=8)
+    top.grid(True, lw=0.3)
+    bottom.plot(x, forces.torque, lw=1.2, color="C2", label="shaft torque")
+    bottom.axhline(0.0, color="0.6", lw=0.6)
+    mean = forces.mean_torque
+    mean = 0.0 if abs(mean) <= 1e-12 * np.abs(forces.torque).max() else mean   # an exact 0
+    bottom.axhline(mean, color="C2", lw=0.8, ls="--", label=f"mean {mean:.4g} N m")
+    bottom.set_ylabel("cam shaft torque [N m]")
+    bottom.set_xlabel(f"cam angle [{u.angle}]")
+    bottom.legend(fontsize=8)
+    bottom.grid(True, lw=0.3)
     return fig

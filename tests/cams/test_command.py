@@ -172,3 +172,132 @@ def test_several_problems_are_reported_together(tmp_path):
 
 def test_the_doc_task_is_valid_toml():
     assert tomllib.loads(CAM_TASK)["follower"]["type"] == "roller"
+
+
+# The follower's dynamics: a [dynamics] table adds the forces figure, two columns and the
+# jump verdict.  The critical speed of this train (2 kg, 2 kN/m, 40 N) on this program is
+# 246.8 rpm (1481 deg/s): checked against the API, whose numbers tests/cams/test_dynamics.py
+# checks against a simulation.
+DYNAMICS = "\n[dynamics]\nmass = 2.0\nstiffness = 2000.0\npreload = 40.0\n"
+DYNAMIC_TASK = CAM_TASK.replace('"harmonic"', '"3-4-5"').replace(
+    "pressure_angle = 30\n", "pressure_angle = 30\n" + DYNAMICS)
+
+
+def dynamic(tmp_path, text, name="dyn"):
+    (tmp_path / f"{name}.toml").write_text(text)
+    out = tmp_path / "out"
+    result = run("cam", tmp_path / f"{name}.toml", "--out", out)
+    assert result.exit_code == 0, result.output
+    with open(out / f"{name}_svaj.csv", newline="") as f:
+        rows = list(csv.reader(f))
+    table = np.array(rows[1:], dtype=float)
+    return result, out, {h: table[:, i] for i, h in enumerate(rows[0])}
+
+
+def test_dynamics_contact_kept_writes_the_figure_the_columns_and_the_verdict(tmp_path):
+    from kinelab import cams
+    result, out, col = dynamic(tmp_path, DYNAMIC_TASK.replace("speed = 360", "speed = 1200"))
+    assert {p.name for p in out.iterdir()} == {n.replace("cam_", "dyn_") for n in OUTPUTS} | {
+        "dyn_forces.png"}
+    lines = result.stdout.splitlines()
+    assert "  dynamics: contact kept: least contact force 28.95 N at 65 deg; jump-free up to " \
+           "246.8 rpm (1481 deg/s)" in lines
+    assert any(s.startswith("  cam shaft torque: peak 2.539 N m at 35.5 deg, mean 0 N m")
+               for s in lines)
+    # the columns are the API's, in N and N m whatever the task's length unit
+    task = cams.read_cam_task(tomllib.loads(DYNAMIC_TASK.replace("speed = 360", "speed = 1200")))
+    ff = cams.follower_forces(task.program, mass=2.0, stiffness=2000.0, preload=40.0,
+                              speed=np.radians(1200), theta=np.radians(col["theta [deg]"]))
+    assert col["contact_force [N]"] == pytest.approx(ff.contact_force, rel=1e-12, abs=1e-9)
+    assert col["shaft_torque [N m]"] == pytest.approx(ff.torque, rel=1e-12, abs=1e-12)
+    assert ff.critical_speed * 30 / np.pi == pytest.approx(246.8, abs=0.05)
+
+
+def test_dynamics_jump_says_where_and_the_preload_needed(tmp_path):
+    text = DYNAMIC_TASK.replace("speed = 360", "speed = 2400")
+    result, out, col = dynamic(tmp_path, text)
+    assert ("  dynamics: jump: contact force below zero from 50 deg at this speed (400 rpm); "
+            "preload of at least 178.1 N needed") in result.stdout.splitlines()
+    assert (out / "dyn_forces.png").stat().st_size > 0
+    assert col["contact_force [N]"].min() < 0
+    # with a margin, the preload grows by it
+    result, _, _ = dynamic(tmp_path, text.replace("preload = 40.0", "preload = 40.0\nmargin = 20"),
+                           "margin")
+    assert "preload of at least 198.1 N needed (for a margin of 20 N)" in result.stdout
+    # and with that preload, contact is kept at 400 rpm
+    result, _, col = dynamic(tmp_path, text.replace("preload = 40.0", "preload = 198.1"), "held")
+    assert "dynamics: contact kept: least contact force 20" in result.stdout
+    assert col["contact_force [N]"].min() > 19.9
+
+
+def test_dynamics_of_an_oscillating_follower(tmp_path):
+    text = CAM_TASK.replace('roller_radius = 10', 'roller_radius = 10\nmotion = "oscillating"\n'
+                            'pivot_distance = 120\narm_length = 100').replace(
+        "lift = 25", "lift = 8").replace(
+        "pressure_angle = 30\n", "pressure_angle = 30\n\n[dynamics]\ninertia = 0.004\n"
+        "stiffness = 20\npreload = 2\ndamping = 0.01\n")
+    result, out, col = dynamic(tmp_path, text, "osc")
+    assert "  dynamics: contact kept: least contact moment " in result.stdout
+    assert " N m at " in result.stdout
+    assert "contact_moment [N m]" in col and "shaft_torque [N m]" in col
+    assert (out / "osc_forces.png").exists()
+
+
+@pytest.mark.parametrize("dynamics, message", [
+    ("mass = -2.0\nstiffness = 2000.0\npreload = 40.0",
+     "dynamics.mass: expected a number above 0, got -2"),
+    ("mass = 2.0\nstiffness = -1\npreload = 40.0",
+     "dynamics.stiffness: expected at least 0, got -1"),
+    ('mass = 2.0\nstiffness = "stiff"\npreload = 40.0',
+     "dynamics.stiffness: expected a finite number, got 'stiff'"),
+    ("mass = 2.0\nstiffness = 2000.0\npreload = -40.0",
+     "dynamics.preload: expected at least 0, got -40"),
+    ("mass = 2.0\nstiffness = 2000.0\npreload = 40.0\ndamping = -3",
+     "dynamics.damping: expected at least 0, got -3"),
+    ("mass = 2.0\nstiffness = 2000.0\npreload = 40.0\nexternal = true",
+     "dynamics.external: expected a finite number, got true"),
+    ("mass = 2.0\nstiffness = 2000.0\npreload = 40.0\nmargin = -1",
+     "dynamics.margin: expected at least 0, got -1"),
+    ("mass = 2.0\nstiffness = 2000.0", "dynamics.preload: missing; give the follower train's "
+                                       "preload, in N"),
+    ("mas = 2.0\nstiffness = 2000.0\npreload = 40.0", "dynamics.mas: unknown key (did you mean "
+                                                       "'mass'?)"),
+    ("inertia = 2.0\nstiffness = 2000.0\npreload = 40.0", "dynamics.inertia: a translating "
+                                                           "follower takes its mass (kg); give "
+                                                           "mass instead"),
+])
+def test_bad_dynamics_fields_are_refused(tmp_path, dynamics, message):
+    text = CAM_TASK.replace("pressure_angle = 30\n",
+                            "pressure_angle = 30\n\n[dynamics]\n" + dynamics + "\n")
+    line = refused(tmp_path, text)
+    assert message in line
+
+
+HELD_TASK = """
+units = { length = "mm", angle = "deg" }
+cam = { speed = 1718.8733853924696 }       # 30 rad/s
+follower = { type = "roller", roller_radius = 10, base_circle = 60 }
+dynamics = { mass = 1, stiffness = 1000, preload = 0, external = -5 }
+
+[[segments]]
+kind = "rise"
+law = "harmonic"
+from = 0
+to = 180
+lift = 20
+
+[[segments]]
+kind = "return"
+law = "harmonic"
+from = 180
+to = 360
+lift = 20
+"""
+
+
+def test_dynamics_contact_held_by_inertia_only_at_this_speed(tmp_path):
+    # the train of tests/cams/test_dynamics.py's test of it: nothing holds the follower at
+    # rest, its inertia does at 30 rad/s
+    result, _, _ = dynamic(tmp_path, HELD_TASK, "held")
+    assert ("  dynamics: contact kept: least contact force 4 N at 0 deg; jump-free at this speed, "
+            "but not at every lower one (contact is lost at rest)") in result.stdout.splitlines()
