@@ -225,8 +225,9 @@ def train(meshes: Sequence[Sequence], *, input: str, speed: float = 1.0,
         train on the frame needs none; an epicyclic train (two degrees of freedom) one.
     output : str, optional
         The member whose speed over the input's is the train value.  Default: the driven
-        gear of the last mesh, or, when that gear is held or is the input, the first arm
-        that is neither.
+        gear of the last mesh; when that gear is held or is the input, the first arm that
+        is neither, else the last member named that turns on the frame and is neither (the
+        sun of a planetary train driven by its arm, its ring held).
     carriers : mapping of str to str, optional
         ``{gear: arm}``: the gears whose axes an arm carries (the planets); every other
         axis is on the frame.  A gear on the frame that meshes with a planet turns about
@@ -426,6 +427,9 @@ def train(meshes: Sequence[Sequence], *, input: str, speed: float = 1.0,
         radius[m.index, m.a], radius[m.index, m.b] = ra, rb
         distance.append(ra + rb if m.kind == "external" else abs(ra - rb))
 
+    if given:
+        _check_centres(mesh_list, body, axis, distance)
+
     # --- degrees of freedom, from the meshes' linear relations ------------------------------
     col = {b_: i for i, b_ in enumerate(bodies)}
     rows = []
@@ -445,17 +449,17 @@ def train(meshes: Sequence[Sequence], *, input: str, speed: float = 1.0,
     if dof == 0:
         raise ModelError("meshes: the train locks: its meshes close a loop whose ratios disagree, "
                          "so nothing can turn; remove a mesh or change its teeth")
+    which = f"the input {shown(input)}" + (f", the fixed {quoted(held)}" if held else "")
     if len(driven) > dof:
-        raise ModelError(f"fixed: the train has {dof} degree(s) of freedom, and the input with "
-                         f"the fixed {quoted(held)} takes {len(driven)}: it locks; hold "
+        raise ModelError(f"fixed: the train has {dof} degree(s) of freedom, and {len(driven)} "
+                         f"members are driven or held ({which}): it locks; hold "
                          f"{len(driven) - dof} member(s) fewer")
     if len(driven) < dof:
-        free = [n for n in names if body[n] not in driven and body[n] in carrier_of
-                and (carrier_of[body[n]] == FRAME)]
-        raise ModelError(f"fixed: the train has {dof} degrees of freedom and the input "
-                         f"{shown(input)} takes 1{'' if not held else f', the fixed {len(held)}'}"
-                         f": it is not determined; hold {dof - len(driven)} more member(s) still "
-                         f"with fixed=, e.g. {quoted(free)}")
+        free = [n for n in names if body[n] not in driven and carrier_of[body[n]] == FRAME]
+        raise ModelError(f"fixed: the train has {dof} degrees of freedom, and only "
+                         f"{len(driven)} member(s) are driven or held ({which}): it is not "
+                         f"determined; hold {dof - len(driven)} more member(s) still with "
+                         f"fixed=, e.g. one of {quoted(free)}")
     E = np.zeros((len(driven), len(bodies)))
     for i, d in enumerate(driven):
         E[i, col[d]] = 1.0
@@ -469,7 +473,10 @@ def train(meshes: Sequence[Sequence], *, input: str, speed: float = 1.0,
         last = mesh_list[-1].b
         output = last
         if body[last] in driven:
-            options = [a for a in arms if body[a] not in driven] + \
+            arm_names = [n for n in names if n in set(carrier_of.values())]
+            options = [a for a in arm_names if body[a] not in driven] + \
+                      [n for n in reversed(names) if body[n] not in driven
+                       and carrier_of[body[n]] == FRAME] + \
                       [n for n in reversed(names) if body[n] not in driven]
             output = options[0]
 
@@ -497,8 +504,6 @@ def train(meshes: Sequence[Sequence], *, input: str, speed: float = 1.0,
         accelerations = {n: first(sol.alpha(body[n])) * scale for n in names}
     value = first(sol.K(body[output]))
     center = ({(mm.a, mm.b): d for mm, d in zip(mesh_list, distance)} if given else None)
-    if given:
-        _check_centres(mesh_list, body, axis, distance)
     return TrainSolution(value, speeds, accelerations, input, output,
                          tuple(held), bool(rpm), center, m)
 
@@ -542,8 +547,8 @@ def _check_centres(mesh_list, body, axis, distance) -> None:
                     return (f"meshes[{mm.index}] ({shown(mm.a)} {mm.na} {sign} {shown(mm.b)} "
                             f"{mm.nb})")
                 raise ModelError(f"module: {text(m0)} and {text(m1)} join one pair of axes at "
-                                 f"{d0:.6g} m and {d1:.6g} m; with equal modules their sums of "
-                                 "teeth must be equal: change the teeth or the modules")
+                                 f"{d0:.6g} m and {d1:.6g} m, m (N_a ± N_b) / 2; make them equal: "
+                                 "change the teeth or the modules")
 
 
 def _mechanism(mesh_list, mesh_carrier, bodies, body, carrier_of, axis, radius, distance,
