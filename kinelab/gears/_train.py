@@ -8,7 +8,10 @@ each member a link, each mesh a ``G`` joint relative to the member that carries 
 centres placed by the pitch radii ``m N / 2`` — and analyses it once
 (:func:`kinelab.kinematics.analyze`) with the input turning at its speed and the fixed
 members driven at zero speed.  The engine solves the pairs exactly (a linear step), so the
-speeds are exact to rounding.
+speeds are exact to rounding.  Where the engine cannot start from those members (a mesh is
+solved once two of its gears and carrier are known: a sun driven and a ring held through two
+planets in series leaves no mesh so), the arms and central members are driven instead and
+the speeds combined linearly to meet the given ones.
 """
 from __future__ import annotations
 
@@ -65,6 +68,8 @@ class TrainSolution:
     mechanism : Mechanism
         The planar model of the train (links named after the members, ``G`` joints after
         the meshes, the frame ``'frame'``); ``kl.analyze`` takes it as any other model.
+        Its inputs are the input and the held members or, where the engine cannot solve
+        the train from those, the arms and central members it was analysed with.
     """
 
     value: float
@@ -480,32 +485,74 @@ def train(meshes: Sequence[Sequence], *, input: str, speed: float = 1.0,
                       [n for n in reversed(names) if body[n] not in driven]
             output = options[0]
 
-    # --- the planar mechanism ---------------------------------------------------------------
-    m = _mechanism(mesh_list, mesh_carrier, bodies, body, carrier_of, axis, radius, distance,
-                   driven, input)
+    # --- the planar mechanism, analysed once ------------------------------------------------
+    def build(drive):
+        return _mechanism(mesh_list, mesh_carrier, bodies, body, carrier_of, axis, radius,
+                          distance, drive, input)
+
+    m = build(driven)
     w = speed * (RPM if rpm else 1.0)
-    qd = np.zeros(len(driven))
-    qd[0] = w
-    qdd = np.zeros(len(driven))
-    if acceleration is not None:
-        qdd[0] = acceleration * (RPM if rpm else 1.0)
-    if len(driven) == 1:
-        sol = analyze(m, q=0.0, qd=float(qd[0]), qdd=float(qdd[0]))
+    wd = 0.0 if acceleration is None else acceleration * (RPM if rpm else 1.0)
+    D = len(driven)
+    try:
+        sol = analyze(m, q=0.0 if D == 1 else np.zeros(D), qd=w if D == 1 else [w] + [0.0] * (D - 1),
+                      qdd=wd if D == 1 else [wd] + [0.0] * (D - 1))
+    except ModelError as refused:
+        # The engine solves a mesh once two of its three members (two gears and the carrier)
+        # are known; some choices of input and held members leave none so (a sun driven and
+        # a ring held through two planets in series).  The train is linear, so drive the arms
+        # and enough central members instead, and find the speeds of those that meet the
+        # given input and held members: omega = K qd, with the driven rows of K set to them.
+        other = _solvable_drive(A, col, bodies, carrier_of)
+        if other is None or other == driven:
+            raise refused
+        m = build(other)
+        sol = analyze(m, q=np.zeros(D))
+        K = {b_: np.asarray(sol.K(b_), dtype=float).reshape(D) for b_ in bodies}
+        C = np.array([K[d] for d in driven])
+        qd = np.linalg.solve(C, np.r_[w, np.zeros(D - 1)])
+        qdd = np.linalg.solve(C, np.r_[wd, np.zeros(D - 1)])
+        per_input = np.linalg.solve(C, np.r_[1.0, np.zeros(D - 1)])
+        omega = {b_: float(K[b_] @ qd) for b_ in bodies}
+        alpha = {b_: float(K[b_] @ qdd) for b_ in bodies}
+        for d in driven[1:]:
+            omega[d] = alpha[d] = 0.0                 # held: exactly still
+        omega[driven[0]], alpha[driven[0]] = w, wd
+        value = float(K[body[output]] @ per_input)
     else:
-        sol = analyze(m, q=np.zeros(len(driven)), qd=qd, qdd=qdd)
+        def first(x):
+            return float(np.asarray(x).reshape(-1)[0])
+        omega = {b_: first(sol.omega(b_)) for b_ in bodies}
+        alpha = {b_: first(sol.alpha(b_)) for b_ in bodies}
+        value = first(sol.K(body[output]))
     scale = 1.0 / RPM if rpm else 1.0
-
-    def first(x):
-        return float(np.asarray(x).reshape(-1)[0])
-
-    speeds = {n: first(sol.omega(body[n])) * scale for n in names}
+    speeds = {n: omega[body[n]] * scale for n in names}
     accelerations = None
     if acceleration is not None:
-        accelerations = {n: first(sol.alpha(body[n])) * scale for n in names}
-    value = first(sol.K(body[output]))
+        accelerations = {n: alpha[body[n]] * scale for n in names}
     center = ({(mm.a, mm.b): d for mm, d in zip(mesh_list, distance)} if given else None)
     return TrainSolution(value, speeds, accelerations, input, output,
                          tuple(held), bool(rpm), center, m)
+
+
+def _solvable_drive(A, col, bodies, carrier_of) -> list[str] | None:
+    """Members to drive so that the engine solves every mesh: the arms, then central
+    members in order, each kept where it adds a freedom; None when they do not make up
+    the train's freedoms."""
+    arms = [b_ for b_ in bodies if b_ in set(carrier_of.values())]
+    rest = [b_ for b_ in bodies if b_ not in arms and carrier_of[b_] == FRAME]
+    rest += [b_ for b_ in bodies if b_ not in arms and b_ not in rest]
+    dof = len(bodies) - np.linalg.matrix_rank(A)
+    chosen: list[str] = []
+    for b_ in arms + rest:
+        E = np.zeros((len(chosen) + 1, len(bodies)))
+        for i, c in enumerate(chosen + [b_]):
+            E[i, col[c]] = 1.0
+        if np.linalg.matrix_rank(np.vstack([A, E])) == np.linalg.matrix_rank(A) + len(chosen) + 1:
+            chosen.append(b_)
+        if len(chosen) == dof:
+            return chosen
+    return None
 
 
 def _connected(mesh_list, body, carrier_of, input, held) -> None:

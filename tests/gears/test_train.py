@@ -320,3 +320,32 @@ def test_bad_trains_say_what_to_change(kwargs, message):
     with pytest.raises(ModelError, match=message) as err:
         kl.gears.train(meshes, **kwargs)
     assert "\n" not in str(err.value)
+
+
+# ------------------------------------------------------------------------------------------
+# two planets in series: the engine is driven by the arm, the speeds combined to the inputs
+# ------------------------------------------------------------------------------------------
+DOUBLE = [("sun", "p1", 30, 15), ("p1", "p2", 15, 15), ("p2", "ring", 15, 90, "internal")]
+ON_ARM = {"p1": "arm", "p2": "arm"}
+
+
+def test_two_planets_in_series_follow_willis():
+    t = kl.gears.train(DOUBLE, carriers=ON_ARM, fixed="ring", input="sun", speed=2.0,
+                       acceleration=1.0)
+    e = (-30 / 15) * (-15 / 15) * (15 / 90)           # arm held: +N_s / N_r
+    assert willis(t, "sun", "ring", "arm") == pytest.approx(e, rel=1e-12)
+    assert willis(t, "sun", "p2", "arm") == pytest.approx(30 / 15, rel=1e-12)
+    assert t.output == "arm" and t.value == pytest.approx(e / (e - 1), rel=1e-12)
+    assert t.speeds["sun"] == 2.0 and t.speeds["ring"] == 0.0
+    assert t.accelerations["arm"] == pytest.approx(1.0 * t.value, rel=1e-12)
+
+
+def test_two_planets_driven_by_the_arm_agree_with_driven_by_the_sun():
+    """The arm driven is the engine's own route; the sun driven goes through the
+    combination of the arm's and the sun's velocity coefficients: inverse values."""
+    by_arm = kl.gears.train(DOUBLE, carriers=ON_ARM, fixed="ring", input="arm")
+    by_sun = kl.gears.train(DOUBLE, carriers=ON_ARM, fixed="ring", input="sun", output="arm")
+    assert by_arm.output == "sun"
+    assert by_sun.value == pytest.approx(1 / by_arm.value, rel=1e-12)
+    for n in ("p1", "p2"):
+        assert by_sun.speeds[n] == pytest.approx(by_arm.speeds[n] / by_arm.value, rel=1e-12)
