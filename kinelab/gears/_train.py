@@ -495,8 +495,9 @@ def train(meshes: Sequence[Sequence], *, input: str, speed: float = 1.0,
     wd = 0.0 if acceleration is None else acceleration * (RPM if rpm else 1.0)
     D = len(driven)
     try:
-        sol = analyze(m, q=0.0 if D == 1 else np.zeros(D), qd=w if D == 1 else [w] + [0.0] * (D - 1),
-                      qdd=wd if D == 1 else [wd] + [0.0] * (D - 1))
+        rest = [0.0] * (D - 1)                        # the held members: still
+        sol = analyze(m, q=0.0 if D == 1 else np.zeros(D), qd=w if D == 1 else [w] + rest,
+                      qdd=wd if D == 1 else [wd] + rest)
     except ModelError as refused:
         # The engine solves a mesh once two of its three members (two gears and the carrier)
         # are known; some choices of input and held members leave none so (a sun driven and
@@ -636,8 +637,11 @@ def _mechanism(mesh_list, mesh_carrier, bodies, body, carrier_of, axis, radius, 
         links.append(Link(b_, tuple(dict.fromkeys(pts))))
     joints = [Joint(f"bearing of {b_}", "R", (carrier_of[b_], b_), point=label[axis.find(b_)])
               for b_ in bodies]
-    for m, c in zip(mesh_list, mesh_carrier):
-        joints.append(Joint(f"{m.a}-{m.b}", "G", (body[m.a], body[m.b]), mesh=m.kind,
+    labels = [f"{m.a}-{m.b}" for m in mesh_list]
+    for m, c, name in zip(mesh_list, mesh_carrier, labels):
+        if labels.count(name) > 1:          # 'a-b' + 'c' and 'a' + 'b-c'
+            name = f"meshes[{m.index}]"
+        joints.append(Joint(name, "G", (body[m.a], body[m.b]), mesh=m.kind,
                             teeth=(m.na, m.nb), carrier=None if c == FRAME else c))
     inputs = tuple(Input(joint=f"bearing of {d}") if carrier_of[d] == FRAME
                    else Input(links=(FRAME, d)) for d in driven)

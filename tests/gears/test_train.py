@@ -65,7 +65,8 @@ def test_internal_mesh_on_the_frame_keeps_the_sense():
     assert t.value == pytest.approx(1 / 3, rel=EXACT)
 
 
-MESH = st.tuples(st.integers(8, 120), st.integers(8, 120), st.sampled_from(["external", "internal"]))
+MESH = st.tuples(st.integers(8, 120), st.integers(8, 120),
+                 st.sampled_from(["external", "internal"]))
 
 
 @given(st.lists(MESH, min_size=1, max_size=5), st.floats(-500, 500).filter(lambda w: abs(w) > 1e-3))
