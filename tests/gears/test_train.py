@@ -315,6 +315,16 @@ def test_the_train_model_analyses_as_any_model():
      r"carriers\['planet'\]: a gear cannot carry its own axis; name the arm"),
     (dict(meshes=[("a", "b", 20, 30)], input="a", output="c"),
      r"output: expected one of 'a', 'b', got 'c'"),
+    (dict(meshes=[("a", "b", 20, 30)], input="a", shafts=[("b", "x")]),
+     r"shafts\[0\]: expected one of 'a', 'b', got 'x'"),
+    (dict(meshes=PLANETARY, carriers={"planet": "arm", "arm2": "x"}, input="sun", fixed="ring"),
+     r"carriers: expected one of 'sun', 'planet', 'ring', got 'arm2'"),
+    (dict(meshes=[("s", "p", 20, 20), ("p", "q", 20, 20)], carriers={"p": "arm", "q": "arm2"},
+          input="s", fixed="arm"),
+     r"meshes\[1\]: 'p' is carried by 'arm' and 'q' by 'arm2'; gears in mesh have their axes "
+     r"on one member"),
+    (dict(meshes=PLANETARY, carriers={"planet": "arm"}, input="sun", fixed=["ring", "ring"]),
+     r"fixed: 'ring', 'ring' name one member twice; name each once"),
 ])
 def test_bad_trains_say_what_to_change(kwargs, message):
     meshes = kwargs.pop("meshes")
