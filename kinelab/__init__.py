@@ -8,14 +8,14 @@
 """
 from importlib import import_module as _import_module
 
-__all__ = ["errors", "model", "solvers", "mechanisms", "kinematics", "cams", "spatial", "structure",
+__all__ = ["errors", "model", "solvers", "mechanisms", "kinematics", "cams", "gears", "spatial", "structure",
            "synthesis", "dynamics", "derive", "verify", "sweep", "io",
            "plot", "gallery", "analyze", "load",
            "Mechanism", "KinematicSolution", "reuse_result_memory", "memory_budget"]
 
 # Every name is loaded on first use (PEP 562), rooms included: `import kinelab` costs next to
 # nothing, and a command imports only the rooms it works with (`kinelab --help` none of them).
-_ROOMS = ("errors", "model", "solvers", "mechanisms", "kinematics", "cams", "spatial", "structure",
+_ROOMS = ("errors", "model", "solvers", "mechanisms", "kinematics", "cams", "gears", "spatial", "structure",
           "synthesis", "dynamics", "derive", "verify", "sweep", "io", "plot", "gallery")
 _NAMES = {"analyze": "kinelab.verify", "load": "kinelab.io",
           "Mechanism": "kinelab.model", "KinematicSolution": "kinelab.kinematics",

@@ -6,7 +6,7 @@ import pytest
 
 import kinelab
 
-ROOMS = ("cli", "web", "plot", "gallery", "io", "sweep", "verify", "derive", "synthesis", "dynamics", "cams", "kinematics",
+ROOMS = ("cli", "web", "plot", "gallery", "io", "sweep", "verify", "derive", "synthesis", "dynamics", "cams", "gears", "kinematics",
          "spatial", "structure", "mechanisms", "solvers", "model", "errors")
 PACKAGE = Path(kinelab.__file__).parent
 # Known exceptions, each a lazy import inside one convenience method:
