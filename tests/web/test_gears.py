@@ -156,3 +156,40 @@ def test_a_racks_ticks_move_with_its_slide(page):
     for along, slide in marks.values():
         assert along - along0 == pytest.approx(slide - slide0, abs=1e-9)
     assert marks[70][1] - marks[0][1] > 100           # it did move: about r * 350 deg
+
+
+def test_dragging_a_gears_mark_turns_the_train(page):
+    """The move tool drags gear 1's mark M1 round its centre: each radius line ends where
+    its gear's mark is drawn (M1, M2, M3 lie on the pitch circles, at the gears' angles),
+    while the drag is drawn between samples and once the server's configuration comes."""
+    open_example(page, "gear_train")
+    ends = """() => {
+      const out = {};
+      for (const [link, mark] of [["gear1", "M1"], ["idler", "M2"], ["gear3", "M3"]]) {
+        const l = document.querySelector(`#canvas [data-layer=gears] line.gear-mark[data-gear-link=${link}]`);
+        const c = document.querySelector(`#canvas circle[data-point=${mark}]`);
+        out[link] = Math.hypot(+l.getAttribute("x2") - +c.getAttribute("cx"), +l.getAttribute("y2") - +c.getAttribute("cy"));
+      }
+      return out;
+    }"""
+    box = page.locator("#canvas circle[data-point='O1']").bounding_box()
+    o = (box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+    box = page.locator("#canvas circle[data-point='M1']").bounding_box()
+    x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    r = math.hypot(x - o[0], y - o[1])
+    page.mouse.move(x, y)
+    page.mouse.down()
+    gaps = []
+    for k in range(1, 13):
+        a = math.radians(7 * k)
+        page.mouse.move(o[0] + r * math.cos(a), o[1] - r * math.sin(a))
+        gaps.append(page.evaluate(ends))      # as drawn now: predicted or solved
+    page.mouse.up()
+    page.wait_for_function("() => !window.kinelab.busy && !window.kinelab.pending", timeout=60_000)
+    page.wait_for_timeout(200)
+    page.shot("gear train dragged")
+    gaps.append(page.evaluate(ends))
+    assert state(page, "window.kinelab.followGap") < 1e-9
+    assert state(page, "window.kinelab.config.q[0]") == pytest.approx(84, abs=3)
+    for gap in gaps:
+        assert max(gap.values()) < 1e-6, gap          # px
