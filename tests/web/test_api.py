@@ -243,7 +243,7 @@ GEAR_EXAMPLES = ["gear_train", "compound_gear_train", "planetary", "rack_and_pin
 def test_the_gear_examples_open_sweep_and_answer_every_request(client, tmp_path, name):
     """Each example with gear joints, opened as the page opens it: its sweep is the command
     line's, and a study, a configuration between samples, a drag (one input) and a save
-    answer; the derivation refuses it with the engine's words."""
+    answer."""
     model = client.get(f"/api/examples/{name}").json()["model"]
     model_file = tmp_path / f"{name}.json"
     model_file.write_text(json.dumps(model))
