@@ -230,8 +230,9 @@ def study(body: dict) -> dict:
     ``kinelab analyze`` (``body["columns"]``, a list, narrows them; the points' x and y are
     always there, or those of the points ``body["points"]`` lists), and the transmission
     angles; ``singular`` and ``change_points`` the sample indices where they are;
-    ``drawing`` the links, joints and points to draw; ``guides`` each prismatic joint's
-    slide direction at every sample (see :func:`guides`).
+    ``drawing`` the links, joints and points to draw (and each gear pair's pitch circles,
+    see :func:`gear_drawing`); ``guides`` each prismatic joint's slide direction at every
+    sample (see :func:`guides`), ``turns`` each gear's direction (see :func:`turns`).
     """
     ready = prepare(body, "columns")
     mf, sol = ready.mf, ready.sol
@@ -282,6 +283,7 @@ def study(body: dict) -> dict:
         "change_points": change,
         "drawing": _drawing(mf),
         "guides": guides(sol),
+        "turns": turns(sol),
         "branches": _branches(mf),
         "moved": {} if mf.assembly is None else {
             k: u.convert(v, "m") for k, v in mf.assembly.moved.items()},
@@ -296,7 +298,8 @@ def _point_column(name: str, m, u) -> bool:
 
 
 def _drawing(mf: ModelFile) -> dict:
-    """What the canvas draws: links (their points), joints, ground points, traced points."""
+    """What the canvas draws: links (their points), joints, ground points, traced points,
+    gear pairs."""
     m = mf.mechanism
     ground = m.ground.name
     traced = [p for p in io.default_outputs(m) if p in m.point_names]
@@ -307,10 +310,51 @@ def _drawing(mf: ModelFile) -> dict:
                     "axis": list(j.axis) if j.axis is not None else None} for j in m.joints],
         "ground_points": list(m.link(ground).points),
         "traced": traced,
+        "gears": gear_drawing(mf),
         "inputs": [{"name": n, "joint": i.joint,
                     "kind": k} for n, i, k in zip(m.input_names, m.inputs,
                                                   kinematics.plan(m).input_kinds)],
     }
+
+
+def gear_drawing(mf: ModelFile) -> list[dict]:
+    """Each gear joint's pitch circles, in the model's length unit: ``{"joint", "mesh",
+    "carrier", "gears"}``, ``gears`` its two gears in the joint's order, each ``{"link",
+    "centre", "radius"}`` (the point where it turns on the carrier, its pitch radius); a
+    rack instead ``{"link", "rack": True, "slide", "point", "radius"}`` (its prismatic
+    joint, that joint's point on the rack, and the pinion's pitch radius: its pitch line's
+    distance from the pinion's centre).  Each gear turns as ``turns`` says (its link's
+    angle); a rack's pitch line runs along its slide, to the right of the axis through the
+    pinion's centre (:mod:`kinelab.model._gears`)."""
+    from kinelab.model._gears import gear_mesh
+
+    m, u = mf.mechanism, mf.units
+    out = []
+    for j in m.joints:
+        if j.type != "G":
+            continue
+        g = gear_mesh(m, j)
+        if g.mesh == "rack":
+            slide = m.joint(g.slide)
+            gears = [{"link": g.a, "centre": g.centre_a, "radius": u.convert(g.k, "m")},
+                     {"link": g.b, "rack": True, "slide": g.slide, "point": slide.point,
+                      "radius": u.convert(g.k, "m")}]
+        else:
+            if j.radii is not None:
+                ra, rb = (float(r) for r in j.radii)
+            else:
+                # Only the ratio rho = r_b / r_a is given (by ratio or teeth): the pitch circles
+                # touch, so the distance d between the axes (fixed on the carrier, taken from
+                # the sketch) is r_a + r_b for an external pair and |r_b - r_a| for an internal
+                # one (the ring the larger): r_a = d / (1 + rho) or d / |rho - 1|, r_b = rho r_a.
+                rho = g.ratio
+                d = math.dist(m.point(g.centre_a).xy, m.point(g.centre_b).xy)
+                ra = d / (1 + rho) if g.mesh == "external" else d / abs(rho - 1)
+                rb = rho * ra
+            gears = [{"link": g.a, "centre": g.centre_a, "radius": u.convert(ra, "m")},
+                     {"link": g.b, "centre": g.centre_b, "radius": u.convert(rb, "m")}]
+        out.append({"joint": j.name, "mesh": g.mesh, "carrier": g.carrier, "gears": gears})
+    return out
 
 
 def _branches(mf: ModelFile) -> list[dict]:
@@ -335,7 +379,7 @@ def _input(body: dict, mf: ModelFile, key: str = "q"):
     return si[0] if len(si) == 1 else np.array(si)
 
 
-_PARTS = ("values", "centres", "guides", "polygons")
+_PARTS = ("values", "centres", "guides", "turns", "polygons")
 
 
 def _parts(body: dict) -> tuple[str, ...]:
@@ -348,7 +392,7 @@ def _parts(body: dict) -> tuple[str, ...]:
 def configuration(body: dict) -> dict:
     """One configuration (``body["q"]``, in the model's units), solved by the tracker: every
     point's place, every column's value, the instant centres, each prismatic joint's slide
-    direction and, where kinelab draws them, the velocity and acceleration polygons
+    direction, each gear's direction (``turns``) and, where kinelab draws them, the velocity and acceleration polygons
     (``body["parts"]`` narrows them, as for :func:`drag`)."""
     ready = prepare(body)
     q = _input(body, ready.mf)
@@ -379,6 +423,8 @@ def _configuration(ready: _Prepared, q, parts: tuple[str, ...] = _PARTS) -> dict
         out["centres"] = _centres(sol, u)
     if "guides" in parts:
         out["guides"] = {j: a[0] for j, a in guides(sol).items()}
+    if "turns" in parts:
+        out["turns"] = {g: a[0] for g, a in turns(sol).items()}
     if "polygons" in parts:
         out["polygons"] = polygons(sol, u)
     return out
@@ -390,6 +436,20 @@ def guides(sol: KinematicSolution) -> dict[str, list]:
     m = sol.mechanism
     return {j.name: _finite(np.reshape(sol.slide_axes(j.name), (-1, 2)))
             for j in m.joints if j.type == "P" and j.name in sol.slide_item}
+
+
+def turns(sol: KinematicSolution) -> dict[str, list]:
+    """Each gear's direction (a unit vector at its link's angle, ``sol.angle``) at every
+    sample, for the gears of the model's gear joints (a rack has none: it moves with its
+    slide): ``{link: [[cos, sin], ...]}``, None where the loops do not close."""
+    m = sol.mechanism
+    links = dict.fromkeys(link for j in m.joints if j.type == "G"
+                          for link in (j.links if (j.mesh or "external") != "rack" else j.links[:1]))
+    out = {}
+    for link in links:
+        theta = np.reshape(sol.angle(link), -1)
+        out[link] = _finite(np.stack([np.cos(theta), np.sin(theta)], axis=-1))
+    return out
 
 
 def _centres(sol: KinematicSolution, u) -> list[dict]:
@@ -453,7 +513,7 @@ def drag(body: dict) -> dict:
     there by the tracker: one solve a drag.  Several inputs: the nearest sample.
 
     ``body["parts"]`` (optional) narrows the answer to the points, the input and those
-    named of ``"values"``, ``"centres"``, ``"guides"`` and ``"polygons"`` (by default
+    named of ``"values"``, ``"centres"``, ``"guides"``, ``"turns"`` and ``"polygons"`` (by default
     all): a drag asks for what it redraws."""
     ready = prepare(body)
     mf, sol = ready.mf, ready.sol

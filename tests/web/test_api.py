@@ -213,7 +213,8 @@ def test_a_drag_narrowed_to_parts_answers_them_as_the_configuration_does(client)
     r = client.post("/api/drag", json={"model": model, "point": "C", "to": [10.0, 95.0],
                                        "parts": ["everything"]})
     assert r.status_code == 400 and r.json()["error"].startswith(
-        "parts: expected a list of some of 'values', 'centres', 'guides', 'polygons', got")
+        "parts: expected a list of some of 'values', 'centres', 'guides', 'turns', 'polygons', "
+        "got")
 
 
 @pytest.mark.parametrize("name", ["whitworth", "slotted_link"])
@@ -232,6 +233,95 @@ def test_the_guides_turn_with_their_links(client, name):
     c = client.post("/api/configuration", json={"model": model, "q": 90}).json()
     assert c["guides"]["slot"] == pytest.approx(
         kl.analyze(mf.mechanism, np.pi / 2).slide_axes("slot").tolist(), abs=1e-15)
+
+
+GEAR_EXAMPLES = ["gear_train", "compound_gear_train", "planetary", "rack_and_pinion",
+                 "geared_fivebar"]
+
+
+@pytest.mark.parametrize("name", GEAR_EXAMPLES)
+def test_the_gear_examples_open_sweep_and_answer_every_request(client, tmp_path, name):
+    """Each example with gear joints, opened as the page opens it: its sweep is the command
+    line's, and a study, a configuration between samples, a drag (one input) and a save
+    answer."""
+    model = client.get(f"/api/examples/{name}").json()["model"]
+    model_file = tmp_path / f"{name}.json"
+    model_file.write_text(json.dumps(model))
+    r = cli("analyze", model_file, "--format", "json", "--samples", 7, "--out", tmp_path / "out.json", "-q")
+    assert r.exit_code == 0, r.output
+    answer = client.post("/api/analyze", json={"model": model, "samples": 7})
+    assert answer.status_code == 200 and answer.text == (tmp_path / "out.json").read_text()
+    s = client.post("/api/study", json={"model": model, "source": f"{name}.toml"}).json()
+    assert not s["unassembled"] and s["drawing"]["gears"]
+    q = [(s["columns"][n][1] + s["columns"][n][2]) / 2 for n in s["inputs"]]
+    c = client.post("/api/configuration", json={"model": model, "q": q[0] if len(q) == 1 else q})
+    assert c.status_code == 200 and set(c.json()["turns"]) == set(s["turns"])
+    if len(q) == 1:
+        first = next(iter(model["points"]))
+        d = client.post("/api/drag", json={"model": model, "point": list(model["points"])[1],
+                                           "to": model["points"][first], "parts": ["turns"]})
+        assert d.status_code == 200 and set(d.json()) == {"q", "points", "singular", "turns"}
+    saved = client.post("/api/save", json={"model": model, "format": "toml"}).json()["text"]
+    assert ModelFile.from_toml(saved) == ModelFile.read(EXAMPLES / f"{name}.toml")
+
+
+# The pitch radii, checked by hand from each file's comments: teeth times the module (2 mm)
+# over two, or the radii given.
+PITCH_RADII = {
+    "gear_train": {"mesh12": [20, 30], "mesh23": [30, 40]},
+    "compound_gear_train": {"mesh12": [20, 50], "mesh34": [15, 45]},
+    "planetary": {"sun_planet": [30, 20], "planet_ring": [20, 70]},
+    "rack_and_pinion": {"mesh": [25, 25]},
+    "geared_fivebar": {"cranks": [50, 50]},
+}
+
+
+@pytest.mark.parametrize("name", GEAR_EXAMPLES)
+def test_the_gears_are_drawn_at_their_pitch_radii_and_their_links_angles(client, name):
+    """The drawing's gear pairs: each gear's centre and pitch radius (derived from the
+    distance between the axes where only teeth are given), and each gear's direction at
+    every sample and in one configuration: its link's angle, kinelab's."""
+    mf, model = model_of(name)
+    s = client.post("/api/study", json={"model": model}).json()
+    gears = {g["joint"]: g for g in s["drawing"]["gears"]}
+    assert set(gears) == set(PITCH_RADII[name])
+    for joint, radii in PITCH_RADII[name].items():
+        assert [g["radius"] for g in gears[joint]["gears"]] == pytest.approx(radii, rel=1e-12)
+        j = mf.mechanism.joint(joint)
+        assert [g["link"] for g in gears[joint]["gears"]] == list(j.links)
+        assert gears[joint]["mesh"] == (j.mesh or "external")
+    if name == "rack_and_pinion":
+        assert gears["mesh"]["gears"][1] == {"link": "rack", "rack": True, "slide": "guide",
+                                             "point": "K", "radius": 25.0}
+        assert set(s["turns"]) == {"pinion"}
+    if name == "planetary":
+        assert [g["centre"] for g in gears["planet_ring"]["gears"]] == ["C", "O"]
+        assert gears["planet_ring"]["carrier"] == "arm"
+    q = np.column_stack([np.radians(s["columns"][n]) for n in s["inputs"]])
+    sol = kl.analyze(mf.mechanism, q if q.shape[1] > 1 else q[:, 0])
+    for link, u in s["turns"].items():
+        theta = sol.angle(link)
+        # to 1e-13: the inputs come back through the file's degrees
+        np.testing.assert_allclose(u, np.column_stack([np.cos(theta), np.sin(theta)]),
+                                   rtol=0, atol=1e-13)
+    qs = [s["columns"][n][3] for n in s["inputs"]]
+    c = client.post("/api/configuration", json={"model": model, "q": qs[0] if len(qs) == 1 else qs}).json()
+    for link, u in c["turns"].items():
+        theta = math.radians(c["values"][f"{link}.angle[deg]"])
+        assert u == pytest.approx([math.cos(theta), math.sin(theta)], abs=1e-12)
+
+
+def test_pitch_radii_from_a_ratio_follow_from_the_distance_between_the_axes(client):
+    """A ratio alone: r_a + r_b = d (external), r_b - r_a = d (internal)."""
+    _, model = model_of("planetary")
+    for j in model["joints"]:
+        if j.get("type") == "G":
+            j.pop("teeth")
+            j["ratio"] = {"sun_planet": 2 / 3, "planet_ring": 3.5}[j["name"]]
+    s = client.post("/api/study", json={"model": model}).json()
+    radii = {g["joint"]: [x["radius"] for x in g["gears"]] for g in s["drawing"]["gears"]}
+    assert radii["sun_planet"] == pytest.approx([30, 20], rel=1e-12)
+    assert radii["planet_ring"] == pytest.approx([20, 70], rel=1e-12)
 
 
 @pytest.mark.parametrize("name", ["crank_rocker", "stephenson6", "whitworth"])

@@ -1,4 +1,4 @@
-// The drawing: links, joints, ground, traced paths, instant centres; pointer input.
+// The drawing: links, joints, ground, traced paths, gears, instant centres; pointer input.
 const NS = "http://www.w3.org/2000/svg";
 
 export function el(name, attrs = {}, parent = null) {
@@ -145,6 +145,7 @@ export class Canvas {
 
   // scene: {points: {name: [x, y]}, drawing, traces: {name: [[x, y], ...]}, marks, centres,
   //         guides: {joint: [ux, uy]} (each P joint's slide direction now),
+  //         turns: {link: [ux, uy]} (each gear's direction now: its link's angle; see gears()),
   //         pending: a point waiting for the second click of a link, hover: [x, y],
   //         poses: [{xy, angle, label, key}] (angle in rad; arrows, numbered unless labelled;
   //                 without an angle a point marked as `mark` says, "fixed" (a pivot),
@@ -159,7 +160,7 @@ export class Canvas {
     if (!this.layers) {
       svg.replaceChildren();
       this.layers = {};
-      for (const name of ["grid", "paths", "links", "joints", "dims", "points", "poses", "centres"])
+      for (const name of ["grid", "paths", "gears", "links", "joints", "dims", "points", "poses", "centres"])
         this.layers[name] = {g: el("g", {"data-layer": name}, svg), byKey: new Map()};
       this.drawn = {};
     }
@@ -195,6 +196,7 @@ export class Canvas {
                    points: pts.map((p) => S(P[p])).join(" ")}]);
     }
     patch(L.links, links);
+    patch(L.gears, this.gears(scene, known));
     const joints = [];
     for (const j of d.joints) {
       if (j.type !== "P" || !known(P[j.point])) continue;
@@ -310,10 +312,73 @@ export class Canvas {
     }
     patch(L.centres, centres);
   }
+
+  // Each gear pair of drawing.gears (the server's pitch radii, in model units): a gear's pitch
+  // circle about its centre, a radius at its direction (scene.turns: its link's analysed
+  // angle) and TICKS - 1 ticks a TICKS-th of a turn apart, outwards (inwards on a ring, the
+  // larger gear of an internal pair); a rack's pitch line along its slide, to the right of the
+  // axis through the pinion's centre, with ticks a TICKS-th of the pinion's pitch circumference
+  // apart (so that they roll with the pinion's), carried by the rack's point, the one at its
+  // point marked longer.  Without a direction (the sketch), the circle alone.  Each element
+  // carries data-gear (the joint) and data-gear-link (the gear).
+  gears(scene, known) {
+    const items = [], P = scene.points, turns = scene.turns || {}, guides = scene.guides || {};
+    const s = this.view.s, T = 6;               // a tick's length, px
+    for (const pair of scene.drawing.gears || []) {
+      const pinion = pair.gears[0];
+      for (const [k, g] of pair.gears.entries()) {
+        const key = `${pair.joint} ${k}`, data = {"data-gear": pair.joint, "data-gear-link": g.link};
+        if (g.rack) {
+          const c = P[pinion.centre], at = P[g.point];
+          const j = scene.drawing.joints.find((q) => q.name === g.slide);
+          let u = guides[g.slide] || (j && Array.isArray(j.axis) ? j.axis : null);
+          if (!known(c) || !known(at) || !known(u)) continue;
+          const n = Math.hypot(u[0], u[1]); u = [u[0] / n, u[1] / n];
+          const right = [u[1], -u[0]], along = (at[0] - c[0]) * u[0] + (at[1] - c[1]) * u[1];
+          const ref = [c[0] + g.radius * right[0] + along * u[0], c[1] + g.radius * right[1] + along * u[1]];
+          const step = 2 * Math.PI * g.radius / TICKS, span = TICKS * step;
+          const [X0, Y0] = this.toScreen([ref[0] - span * u[0], ref[1] - span * u[1]]);
+          const [X1, Y1] = this.toScreen([ref[0] + span * u[0], ref[1] + span * u[1]]);
+          items.push([`${key} pitch`, "line", {class: "pitch rack", x1: X0, y1: Y0, x2: X1, y2: Y1, ...data}]);
+          const [nx, ny] = [-right[0], right[1]];          // towards the pinion, on the screen
+          let d = "";
+          for (let i = -TICKS; i <= TICKS; i++) {
+            if (i === 0) continue;
+            const [X, Y] = this.toScreen([ref[0] + i * step * u[0], ref[1] + i * step * u[1]]);
+            d += `M${X},${Y} L${X + T * nx},${Y + T * ny} `;
+          }
+          items.push([`${key} ticks`, "path", {class: "gear-ticks", d, ...data}]);
+          const [X, Y] = this.toScreen(ref);
+          items.push([`${key} mark`, "line", {class: "gear-mark", x1: X, y1: Y, x2: X + 2.5 * T * nx,
+                                              y2: Y + 2.5 * T * ny, ...data}]);
+          continue;
+        }
+        const c = P[g.centre];
+        if (!known(c)) continue;
+        const [X, Y] = this.toScreen(c), R = g.radius * s;
+        const ring = pair.mesh === "internal" && g.radius > pair.gears[1 - k].radius;
+        items.push([`${key} pitch`, "circle", {class: "pitch" + (ring ? " ring" : ""), cx: X, cy: Y, r: R, ...data}]);
+        const u = turns[g.link];
+        if (!known(u)) continue;
+        const a = Math.atan2(u[1], u[0]);
+        items.push([`${key} mark`, "line", {class: "gear-mark", x1: X, y1: Y, x2: X + R * Math.cos(a),
+                                            y2: Y - R * Math.sin(a), ...data}]);
+        const out = ring ? -T : T;
+        let d = "";
+        for (let i = 1; i < TICKS; i++) {
+          const b = a + 2 * Math.PI * i / TICKS, cb = Math.cos(b), sb = -Math.sin(b);
+          d += `M${X + R * cb},${Y + R * sb} L${X + (R + out) * cb},${Y + (R + out) * sb} `;
+        }
+        items.push([`${key} ticks`, "path", {class: "gear-ticks", d, ...data}]);
+      }
+    }
+    return items;
+  }
 }
 
 // How far from its pivot a ray's handle is drawn, px: the same at every zoom.
 Canvas.RAY = 64;
+const TICKS = 12;             // ticks a turn on a gear's pitch circle
 
 // Labels placed so that they cover no label placed before them and no point: each at the
 // first of a few places around its anchor that is free, else at the least covered one.  A

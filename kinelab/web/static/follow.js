@@ -6,7 +6,8 @@
 // is the quintic that has those six values at both ends (Hermite): with samples 1° apart
 // it differs from the solved place by about 1e-12 of the linkage's size (its error goes
 // as the sixth power of the step), far below a pixel.  Each prismatic joint's guide turns
-// with its guide link, whose angle is interpolated the same way.  Where a sample of the
+// with its guide link, and each gear's direction with its own link, whose angle is
+// interpolated the same way.  Where a sample of the
 // two does not close, or is singular (no K or L), nothing is predicted: the drag waits for
 // the server there.
 
@@ -46,12 +47,18 @@ export function follower(study) {
     if (!angle || !K || !L) return null;
     guides[j.name] = {u: study.guides[j.name], angle, K, L};
   }
-  return new Follower(study, q, paths, guides, toRad);
+  const turns = {};
+  for (const [link, u] of Object.entries(study.turns || {})) {
+    const angle = c[`${link}.angle[${study.units.angle}]`], K = column(`${link}.K[`), L = column(`${link}.L[`);
+    if (!angle || !K || !L) return null;
+    turns[link] = {u, angle, K, L};
+  }
+  return new Follower(study, q, paths, guides, toRad, turns);
 }
 
 class Follower {
-  constructor(study, q, paths, guides, toRad) {
-    Object.assign(this, {study, q, paths, guides, toRad});
+  constructor(study, q, paths, guides, toRad, turns) {
+    Object.assign(this, {study, q, paths, guides, toRad, turns});
   }
 
   // Whether the piece between samples i and i + 1 can be followed.
@@ -61,7 +68,7 @@ class Follower {
     for (const {xy, K, L} of Object.values(this.paths))
       for (let a = 0; a < 2; a++)
         if (!known(xy[a][i], xy[a][i + 1], K[a][i], K[a][i + 1], L[a][i], L[a][i + 1])) return false;
-    for (const g of Object.values(this.guides))
+    for (const g of [...Object.values(this.guides), ...Object.values(this.turns)])
       if (!known(g.angle[i], g.angle[i + 1], g.K[i], g.K[i + 1], g.L[i], g.L[i + 1]) || !g.u[i]) return false;
     return true;
   }
@@ -77,22 +84,26 @@ class Follower {
     return [Follower.value(xy[0], K[0], L[0], i, h, b), Follower.value(xy[1], K[1], L[1], i, h, b)];
   }
 
-  // Every point and guide on piece i at t: {q, index, points, guides}.
+  // A direction turning with a link ({u, angle, K, L}: at every sample) on piece i at t.
+  turned(g, i, h, b) {
+    let turn = g.angle[i + 1] - g.angle[i];              // the link's turn, unwrapped
+    const full = 2 * Math.PI / this.toRad;
+    turn -= full * Math.round(turn / full);
+    const d = h * b[1] * g.K[i] + h * h * b[2] * g.L[i] +
+              b[3] * turn + h * b[4] * g.K[i + 1] + h * h * b[5] * g.L[i + 1];
+    const a = d * this.toRad, [ux, uy] = g.u[i];
+    return [ux * Math.cos(a) - uy * Math.sin(a), ux * Math.sin(a) + uy * Math.cos(a)];
+  }
+
+  // Every point, guide and gear's direction on piece i at t: {q, index, points, guides, turns}.
   configuration(i, t) {
     const h = this.q[i + 1] - this.q[i], b = basis(t);
     const points = {};
     for (const p of Object.keys(this.paths)) points[p] = this.place(p, i, t);
-    const guides = {};
-    for (const [name, g] of Object.entries(this.guides)) {
-      let turn = g.angle[i + 1] - g.angle[i];              // the guide link's turn, unwrapped
-      const full = 2 * Math.PI / this.toRad;
-      turn -= full * Math.round(turn / full);
-      const d = h * b[1] * g.K[i] + h * h * b[2] * g.L[i] +
-                b[3] * turn + h * b[4] * g.K[i + 1] + h * h * b[5] * g.L[i + 1];
-      const a = d * this.toRad, [ux, uy] = g.u[i];
-      guides[name] = [ux * Math.cos(a) - uy * Math.sin(a), ux * Math.sin(a) + uy * Math.cos(a)];
-    }
-    return {q: this.q[i] + t * h, index: t < 0.5 ? i : i + 1, points, guides};
+    const guides = {}, turns = {};
+    for (const [name, g] of Object.entries(this.guides)) guides[name] = this.turned(g, i, h, b);
+    for (const [name, g] of Object.entries(this.turns)) turns[name] = this.turned(g, i, h, b);
+    return {q: this.q[i] + t * h, index: t < 0.5 ? i : i + 1, points, guides, turns};
   }
 
   // The configuration at input q (in the model's unit), or null where it cannot follow.

@@ -163,7 +163,9 @@ function scene() {
   const centres = $("show-centres").checked && state.config && !sketch ? state.config.centres : [];
   const guides = sketch ? {} : (now && now.guides) ||
     Object.fromEntries(Object.entries(s.guides || {}).map(([j, a]) => [j, a[state.index]]));
-  return {points, drawing: d, traces, marks, centres, guides, poses, pending, hover, selected: state.selected,
+  const turns = sketch ? {} : (now && now.turns) ||
+    Object.fromEntries(Object.entries(s.turns || {}).map(([g, a]) => [g, a[state.index]]));
+  return {points, drawing: d, traces, marks, centres, guides, turns, poses, pending, hover, selected: state.selected,
           dims: dimensions(points, d)};
 }
 
@@ -372,7 +374,7 @@ async function dragTo(name, xy, move = state.moves, at = performance.now()) {
       // what the drawing shows, and the polygons while their tab is open; the rest of the
       // configuration comes when the drag ends
       const method = shown("method");
-      const parts = ["guides", ...($("show-centres").checked || method ? ["centres"] : []),
+      const parts = ["guides", "turns", ...($("show-centres").checked || method ? ["centres"] : []),
                      ...(method ? ["polygons"] : [])];
       const c = await post("/api/drag", {model: before, source: state.source, point: name, to: xy, parts});
       if (state.model !== before) return;         // another model since: not this one's drag

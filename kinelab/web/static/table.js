@@ -95,6 +95,12 @@ export function renderTable(root, state, {edit, flip, refuse, draft = edit}) {
     cell(tr, j.name);
     const sel = document.createElement("select");
     for (const t of ["R", "P"]) sel.append(new Option(t, t));
+    // a gear pair keeps its type (R or P would need none of its fields): shown, not offered
+    if (!["R", "P"].includes(j.type)) {
+      const kind = j.type === "G" ? `G (${j.mesh || "external"})` : j.type;
+      sel.append(new Option(kind, j.type));
+      sel.disabled = true;
+    }
     sel.value = j.type;
     sel.onchange = () => {
       const next = structuredClone(m); delete next.catalogue;
