@@ -743,27 +743,36 @@ def _singular_positions_of_several(d, w, T, tex) -> None:
     w.para(T("dead_many"))
 
 
-def _factors_reached_in_box(d, locus) -> list[np.ndarray]:
-    """For each factor of det J the derivation lists, the indices of the points of
-    ``locus`` (a :class:`~kinelab.kinematics.ToggleLocus`) at which it is zero: its value
-    there, against its largest over a coarse grid of the box, below 1e-4 (as
-    :func:`_factors_reached`)."""
+def _factor_values(d):
+    """The function of inputs ``q`` ((N,) for one input, (N, M) for M) that gives the
+    absolute value of each factor of det J the derivation lists there, (factors, N), with S
+    from :func:`kinelab.kinematics.analyze` (NaN where the loops do not close)."""
     import sympy as sp
     from kinelab.kinematics import analyze
-    eq, m = d.equations, d.model
-    M = len(eq.q)
+    eq = d.equations
     f = sp.lambdify(list(eq.q) + list(eq.S) + list(d.parameters),
                     [s.factor for s in d.singularities], modules="numpy")
     constants = list(d.parameters.values())
 
     def values(q: np.ndarray) -> np.ndarray:
-        sol = analyze(m, q, unreachable="mask", at_singular="flag")
+        sol = analyze(d.model, q, unreachable="mask", at_singular="flag")
         S = [sol.angle(name) if kind == "angle" else sol.slide(name)
              for kind, name in (eq.unknowns[s] for s in eq.S)]
+        inputs = q.T if q.ndim == 2 else (q,)
         with np.errstate(invalid="ignore"):
             out = [np.broadcast_to(np.asarray(v, float), q.shape[:1])
-                   for v in f(*q.T, *S, *constants)]
+                   for v in f(*inputs, *S, *constants)]
         return np.abs(np.array(out))              # (factors, N)
+    return values
+
+
+def _factors_reached_in_box(d, locus) -> list[np.ndarray]:
+    """For each factor of det J the derivation lists, the indices of the points of
+    ``locus`` (a :class:`~kinelab.kinematics.ToggleLocus`) at which it is zero: its value
+    there, against its largest over a coarse grid of the box, below 1e-4 (as
+    :func:`_factors_reached`)."""
+    M = len(d.equations.q)
+    values = _factor_values(d)
     side = max(3, int(round(4096 ** (1.0 / M))))
     axes = [np.linspace(a, b, side) for a, b in zip(locus.lo, locus.hi)]
     grid = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, M)
@@ -779,21 +788,7 @@ def _factors_reached(d, found, lo: float, hi: float) -> list[list]:
     """For each factor of det J the derivation lists, the toggles of ``found`` at which it is
     zero: its value there, against its largest over a sweep of the range, below 1e-4 (at a
     limit position a factor falls like the square root of the distance to it)."""
-    import sympy as sp
-    from kinelab.kinematics import analyze
-    eq, m = d.equations, d.model
-    f = sp.lambdify(list(eq.q) + list(eq.S) + list(d.parameters),
-                    [s.factor for s in d.singularities], modules="numpy")
-    constants = list(d.parameters.values())
-
-    def values(q: np.ndarray) -> np.ndarray:
-        sol = analyze(m, q, unreachable="mask", at_singular="flag")
-        S = [sol.angle(name) if kind == "angle" else sol.slide(name)
-             for kind, name in (eq.unknowns[s] for s in eq.S)]
-        with np.errstate(invalid="ignore"):
-            out = [np.broadcast_to(np.asarray(v, float), q.shape)
-                   for v in f(q, *S, *constants)]
-        return np.abs(np.array(out))              # (factors, N)
+    values = _factor_values(d)
     scale = np.nanmax(values(np.linspace(lo, hi, 181)), axis=1)
     if not found:
         return [[] for _ in d.singularities]
