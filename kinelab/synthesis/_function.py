@@ -371,7 +371,7 @@ def _function_pairs(input_angles, output_angles, O2=(0.0, 0.0), O4=(1.0, 0.0), s
                       (t_out[0] - phi, t_out[-1] - phi), 1.0, O2, O4, samples, limit,
                       shown or unit, "input_angles, output_angles", lambda xv: "1",
                       name="input_angles, output_angles",
-                      remedy="move the pairs (or the pivots) or add a pair")
+                      remedy="move the pairs (or the pivots) or add a pair", along_rays=True)
 
 
 def _function_generation(f, x_range, input_range, output_range, points=3, ground=1.0,
@@ -435,13 +435,16 @@ def _function_generation(f, x_range, input_range, output_range, points=3, ground
 
 def _generator(x, theta2, theta4, x_range, input_range, output_range, y_per_rad, O2, O4,
                samples, limit, shown, where, name_point, name="points",
-               remedy="change the angle ranges or the number of points") -> FunctionSolution:
+               remedy="change the angle ranges or the number of points",
+               along_rays: bool = False) -> FunctionSolution:
     """The four-bar through the precision points ``x`` (n,), checked over ``x_range``:
     ``theta2(x)``, ``theta4(x)`` the crank and rocker angles from the ground line O2 -> O4
     (rad), ``input_range``, ``output_range`` those at the ends of ``x_range``, ``y_per_rad``
     the units of y per radian of output (for the structural error); ``where`` names the
     task's items in a dead centre's message, ``name_point(x)`` a precision point; ``name``
-    the argument a linkage that cannot be found is blamed on, ``remedy`` what to change."""
+    the argument a linkage that cannot be found is blamed on, ``remedy`` what to change;
+    ``along_rays``: the angles are the links' own directions (angle pairs), so a link that
+    Freudenstein's solution turns round is a defect."""
     x0, xf = x_range
     t2s, t2e = input_range
     t4s, t4e = output_range
@@ -499,6 +502,14 @@ def _generator(x, theta2, theta4, x_range, input_range, output_range, y_per_rad,
     mu = transmission_angle(sol)[sol.assembled]
     mu_min = float(mu.min()) if mu.size else float("nan")
     defects += transmission_defects(mu_min, limit, "over the input range")
+    if along_rays:
+        # the pairs fix Freudenstein's constants, so no other four-bar on these pivots meets
+        # them: a negative length means the link points back along its rays
+        defects += [f"{link} reversed: no four-bar on these pivots has its {link} along the "
+                    f"{side} rays; this one's {link} points back along them (at each pair's "
+                    f"{side} angle + 180 deg)"
+                    for link, side, off in (("crank", "input", q_off), ("rocker", "output", out_off))
+                    if off]
     q = theta2(x) + phi + q_off
     for arr in (K, x, q, xs):
         arr.setflags(write=False)

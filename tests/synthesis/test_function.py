@@ -185,6 +185,25 @@ def test_the_pairs_of_a_linkage_on_any_ground_line_give_it_back(phi, O2):
     np.testing.assert_allclose(sol.model.point("O4").xy, O4, atol=1e-12)
 
 
+@pytest.mark.parametrize("turned", ["crank", "rocker", "both"])
+def test_pairs_only_a_reversed_link_meets_are_a_defect(turned):
+    """A linkage's pairs with the input (or output) rays turned by 180 deg: the pairs fix
+    Freudenstein's constants, so the only four-bar on those pivots is the same linkage, its
+    crank (rocker) pointing back along the rays; that is listed as a defect, and the model
+    still meets the pairs with the reversed link (its angle = the ray's + 180 deg)."""
+    fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
+    q = np.radians([40.0, 70.0, 100.0])
+    out = kl.analyze(fb, q=q).angle("rocker")
+    dq = np.pi if turned in ("crank", "both") else 0.0
+    dout = np.pi if turned in ("rocker", "both") else 0.0
+    sol = kl.synthesis.function_pairs(q + dq, out + dout, (0, 0), (3, 0))
+    reversed_ = [d.split(" reversed")[0] for d in sol.defects if " reversed: " in d]
+    assert reversed_ == {"crank": ["crank"], "rocker": ["rocker"], "both": ["crank", "rocker"]}[turned]
+    np.testing.assert_allclose(np.angle(np.exp(1j * (sol.q - q))), 0, atol=1e-10)  # the crank's own
+    reached = kl.analyze(sol.model, q=sol.q).angle("rocker")
+    np.testing.assert_allclose(np.angle(np.exp(1j * (reached - out))), 0, atol=1e-10)
+
+
 def test_pairs_in_degrees_and_decreasing_inputs():
     fb = kl.mechanisms.fourbar(ground=3.0, crank=1.0, coupler=3.0, rocker=2.5)
     q = np.radians([100.0, 70.0, 40.0])
