@@ -68,7 +68,7 @@ def moved(mechanism, n: int, rng, spread: float, **roles):
 
 def points_of(fam, designs: pd.DataFrame) -> tuple[kl.Mechanism, np.ndarray, dict]:
     """The arguments of analyze_designs for a family's designs (their sketches)."""
-    from kinelab.sweep._family import _SketchedDesigns    # the four-bar's too (not its closed form)
+    from kinelab.sweep._family import _SketchedDesigns
     prepared = _SketchedDesigns(fam, {c: designs[c].to_numpy() for c in designs}, [""] * len(designs))
     good = np.array([not p for p in prepared.problems])
     return (prepared.template, prepared.points[good],

@@ -92,8 +92,13 @@ def _best_angle(quality: Callable[[np.ndarray], np.ndarray], what: str,
     return float(q[np.argmax(np.round(v, 12))])
 
 
-def _never_assembles(what: str) -> ModelError:
-    return ModelError(f"{what}: these lengths cannot be assembled at any input angle; check them")
+class NeverAssembles(ModelError):
+    """Lengths that close the loop at no input angle: a design that exists and never moves,
+    not a mistake in its numbers."""
+
+
+def _never_assembles(what: str) -> NeverAssembles:
+    return NeverAssembles(f"{what}: these lengths cannot be assembled at any input angle; check them")
 
 
 def _closure(D, lb, lc):
@@ -134,9 +139,14 @@ def _fourbar_points(ground, crank, coupler, rocker, sigma, point=None):
     """The sketches of D four-bars (:func:`fourbar`), lengths (D,) each: the points by name,
     (D, 2) each, at the best crank angle, and whether each design closes anywhere (D,).
     ``point``: the coupler point's (along, perpendicular) columns, or None."""
+    # _closure across |O4 A|, whose square is ground^2 + crank^2 - 2 ground crank cos q: one
+    # product and one sum over (D, angles) for the cosine of the transmission angle
+    scale = 1.0 / (2 * coupler * rocker)
+    base = ((coupler * coupler + rocker * rocker - ground * ground - crank * crank) * scale)[:, None]
+    slope = (2 * ground * crank * scale)[:, None]
+
     def quality(q):
-        ax, ay = crank[:, None] * np.cos(q), crank[:, None] * np.sin(q)
-        return _closure(np.hypot(ground[:, None] - ax, -ay), coupler[:, None], rocker[:, None])
+        return 1.0 - np.abs(base + slope * np.cos(q))
     q0, closes = _best_angles(quality)
     A = _xy(crank * np.cos(q0), crank * np.sin(q0))
     O4 = _xy(ground, 0.0)

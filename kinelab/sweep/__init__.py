@@ -1,7 +1,7 @@
 """Studies over many designs: a family of mechanisms, a table of designs, metrics per design.
 
 In this process by default, vectorised over designs and samples in chunks of bounded memory
-(the catalogue four-bar in closed form; any other family in one call of the kernel per chunk),
+(every family in one call of the kernel per chunk),
 or on a Dask cluster with the same call and the same results (``client=``).
 
 - :func:`run` -- the metrics of every design, as a pandas DataFrame (and Parquet);

@@ -21,8 +21,8 @@ from kinelab import mechanisms
 from kinelab.errors import KinelabError, ModelError, check_choice, describe, expected_one_of
 from kinelab.kinematics import SketchNotAssembled, analyze, analyze_designs, plan
 from kinelab.model import MAX_INERTIA, MAX_LENGTH, MAX_MASS, Mechanism, Point
-from kinelab.solvers import wrap_angle
-from kinelab.sweep._batch import Batch, DesignsBatch, FourbarBatch
+from kinelab.mechanisms._catalogue import NeverAssembles
+from kinelab.sweep._batch import Batch, DesignsBatch
 
 __all__ = ["Family", "Designs", "family", "CATALOGUE", "DesignOffModel"]
 
@@ -86,11 +86,6 @@ class Family:
     options: Mapping[str, Any] = dataclasses.field(default_factory=dict)
     base: Mechanism | None = None
 
-    @property
-    def closed_form(self) -> bool:
-        """Designs and samples in the four-bar's closed form (else the kernel, a chunk per call)."""
-        return self.make is mechanisms.fourbar and not self.has_masses
-
     def is_slide(self, name: str | None) -> bool:
         """``name`` is a prismatic joint's slide (m), not a link's angle (rad)."""
         if self.base is not None:
@@ -139,8 +134,6 @@ class Family:
         """D designs ready to evaluate: ``columns`` parameter -> (D,) values, ``problems`` the
         reason per design that cannot be analysed ('' if it can), updated in place with the
         designs that cannot be built."""
-        if self.closed_form:
-            return _FourbarDesigns(self, columns, problems)
         return _SketchedDesigns(self, columns, problems)
 
 
@@ -160,56 +153,6 @@ class Designs:
         new.problems = [self.problems[r] for r in rows]
         new._take(rows)
         return new
-
-
-class _FourbarDesigns(Designs):
-    def __init__(self, fam: Family, columns, problems):
-        self.problems = problems
-        D = len(problems)
-        bad = np.array([bool(p) for p in problems])
-
-        def col(p):
-            v = (np.asarray(columns[p], float) if p in columns
-                 else np.full(D, fam.defaults.get(p, math.nan)))
-            return np.where(bad, 1.0, v)[:, None]   # a placeholder in rows that are reported
-        self.lengths = tuple(col(p) for p in ("ground", "crank", "coupler", "rocker"))
-        self.point = None
-        if any(c in columns for c in _POINT_COLUMNS):
-            self.point = tuple(np.nan_to_num(col(c)) for c in _POINT_COLUMNS)
-        self.sigma = 1.0 if fam.options.get("branch", "open") == "open" else -1.0
-
-    def batch(self, q):
-        return FourbarBatch(q, self.lengths, self.point, self.sigma)
-
-    def dead_centres(self):
-        """Crank angles (D, 2) where the rocker reverses, and the rocker's angles there, in
-        closed form: the crank and the coupler in line, extended (O2B = crank + coupler) and
-        folded (O2B = |coupler - crank|), with B on the assembly mode's side of A -> O4.
-        NaN where either position does not exist (the rocker then turns fully, or the crank
-        does not)."""
-        r1, r2, r3, r4 = (v[:, 0] for v in self.lengths)
-        crank, rocker = [], []
-        for d, behind in ((r2 + r3, False), (np.abs(r3 - r2), r3 > r2)):
-            cos_b = (r1 * r1 + d * d - r4 * r4) / (2 * r1 * np.where(d > 0, d, 1.0))
-            beta = np.arccos(np.clip(cos_b, -1.0, 1.0))
-            exists = (d > 0) & (np.abs(cos_b) <= 1.0)
-            best_q, best_t4 = np.full(len(d), np.nan), np.full(len(d), np.nan)
-            for side in (1.0, -1.0):
-                bx, by = d * np.cos(side * beta), d * np.sin(side * beta)
-                q = np.where(behind, side * beta + np.pi, side * beta)
-                ax, ay = r2 * np.cos(q), r2 * np.sin(q)
-                turn = (r1 - ax) * (by - ay) + ay * (bx - ax)      # (O4 - A) x (B - A)
-                pick = exists & np.isnan(best_q) & (self.sigma * turn >= 0)
-                best_q = np.where(pick, q, best_q)
-                best_t4 = np.where(pick, np.arctan2(by, bx - r1), best_t4)
-            crank.append(best_q)
-            rocker.append(best_t4)
-        return np.stack(crank, 1), np.stack(rocker, 1)
-
-    def _take(self, rows):
-        self.lengths = tuple(v[rows] for v in self.lengths)
-        if self.point is not None:
-            self.point = tuple(v[rows] for v in self.point)
 
 
 class DesignOffModel(ModelError):
@@ -254,6 +197,7 @@ class _SketchedDesigns(Designs):
     def __init__(self, fam: Family, columns, problems):
         self.fam, self.problems = fam, problems
         D = len(problems)
+        self.nowhere = np.zeros(D, bool)
         self.rows = {p: np.asarray(v, float) for p, v in columns.items()}
         self.template: Mechanism | None = None
         if fam.make is not None and fam.name in mechanisms.SKETCHED:
@@ -288,16 +232,20 @@ class _SketchedDesigns(Designs):
             return mech
         except DesignOffModel:      # the column, not the row: vary another point
             raise
+        except NeverAssembles:      # a design that assembles nowhere: no sample assembles
+            self.nowhere[d] = True
+            return None
         except KinelabError as exc:     # this design alone cannot be analysed
             self.problems[d] = str(exc).splitlines()[0]
             return None
 
-    def _good(self) -> np.ndarray:
-        return np.array([not p for p in self.problems], bool)
+    def usable(self) -> np.ndarray:
+        """The designs to analyse, (D,): neither a problem nor lengths that close nowhere."""
+        return np.array([not p for p in self.problems], bool) & ~self.nowhere
 
     def _catalogue(self, D):
         fam = self.fam
-        good = self._good()
+        good = self.usable()
         values = {p: self.rows[p] if p in self.rows else np.full(D, fam.defaults.get(p, math.nan))
                   for p in fam.parameters}
         # a placeholder in the rows already reported: their values may overflow the sketch
@@ -334,12 +282,12 @@ class _SketchedDesigns(Designs):
             if kind in _MASS_DATA:
                 limit = MAX_MASS if kind == "mass" else MAX_INERTIA
                 drawable &= (v > 0) & (v <= limit)
-        for d in np.flatnonzero(~drawable & self._good()):
+        for d in np.flatnonzero(~drawable & self.usable()):
             self._build(d)          # says why
         return xy, {}
 
     def _one_by_one(self, D):
-        built = {d: self._build(d) for d in np.flatnonzero(self._good())}
+        built = {d: self._build(d) for d in np.flatnonzero(self.usable())}
         built = {d: m for d, m in built.items() if m is not None}
         self.template = self.fam.base or next(iter(built.values()), None)
         if self.template is None:
@@ -358,13 +306,14 @@ class _SketchedDesigns(Designs):
         self.rows = {p: v[rows] for p, v in self.rows.items()}
         self.points = self.points[rows]
         self.axes = {n: a[rows] for n, a in self.axes.items()}
+        self.nowhere = self.nowhere[rows]
 
     def batch(self, q):
         return DesignsBatch(self, q)
 
     def mechanism(self, d: int) -> Mechanism | None:
         """Design ``d``'s own mechanism (None if it cannot be built)."""
-        return None if self.problems[d] else self._build(d)
+        return self._build(d) if self.usable()[d] else None
 
     def _weights(self, system, rows: np.ndarray, samples: int) -> np.ndarray | None:
         """The masses and moments of inertia of ``system.items`` for designs ``rows`` at
@@ -397,7 +346,7 @@ class _SketchedDesigns(Designs):
 
         out = np.full(len(q), np.nan)
         clean = np.zeros(len(q), bool)      # designs that assemble, never singular
-        good = self._good() & (self.template is not None)
+        good = self.usable() & (self.template is not None)
         alone = ()
         if good.any():
             rows = np.flatnonzero(good)

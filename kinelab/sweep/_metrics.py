@@ -246,10 +246,6 @@ def _dead_centres(fam: Family, designs: Designs, batch: Batch, assembled: np.nda
     (slow over fast stroke, >= 1) and a swing (the output's travel between the reversals);
     an output angle that never reverses turns fully (swing 2 pi, no time ratio)."""
     D, S = batch.shape
-    if fam.closed_form and fam.output == "rocker":
-        # a turn through a singular configuration (a change point) has no time ratio or
-        # swing, as kinelab.kinematics.time_ratio says: the output's K is not defined there
-        return _fourbar_dead_centres(designs, assembled & ~batch.passes_singular())
     K = batch.K(fam.output)
     valid = assembled & np.isfinite(K).all(axis=1) & ~batch.singular.any(axis=1)
     positive = K > 0
@@ -275,48 +271,45 @@ def _dead_centres(fam: Family, designs: Designs, batch: Batch, assembled: np.nda
     return {"time_ratio": ratio, "swing": swing}
 
 
-def _fourbar_dead_centres(designs, assembled):
-    crank, rocker = designs.dead_centres()
-    ok = assembled & np.isfinite(crank).all(axis=1)
-    first = np.mod(crank[:, 1] - crank[:, 0], 2 * math.pi)
-    slow, fast = np.maximum(first, 2 * math.pi - first), np.minimum(first, 2 * math.pi - first)
-    ratio = np.where(ok, slow / np.where(ok, fast, 1.0), np.nan)
-    swing = np.where(ok, np.abs(wrap_angle(rocker[:, 1] - rocker[:, 0])),
-                     np.where(assembled, 2 * math.pi, np.nan))
-    return {"time_ratio": ratio, "swing": swing}
-
-
 def _roots(fam, designs, rows, a, b, fa, fb):
-    """Zeros of the output's K between a and b (n, 2), where K has the signs fa and fb, by
-    the Illinois variant of regula falsi; the output's value there; and whether K was not
-    defined at some step (n,): a sign change of K through a pole, a singular configuration,
-    where there is no time ratio."""
-    x = 0.5 * (a + b)
+    """Zeros of the output's K between a and b (n, 2), where K has the signs fa and fb: Newton
+    steps on K with its derivative L while they stay inside the bracket, else the Illinois
+    variant of regula falsi; the output's value there; and whether K was not defined at
+    some step (n,): a sign change of K through a pole, a singular configuration, where
+    there is no time ratio."""
+    x = _falsi(a, b, fa, fb, 0.5 * (a + b))
     value = np.full(a.shape, np.nan)
     side = np.zeros(a.shape)           # +1: the last step moved a, -1: it moved b
     undefined = np.zeros(len(rows), bool)
     some = designs.take(rows)
     for _ in range(_ROOT_STEPS):
-        denom = fb - fa
-        x_new = np.where(denom != 0, (a * fb - b * fa) / np.where(denom != 0, denom, 1.0), x)
-        sub = some.batch(x_new)
-        fx = sub.K(fam.output)
+        sub = some.batch(x)
+        fx, slope = sub.K(fam.output), sub.L(fam.output)
         value = sub.value(fam.output)
         # no zero of K there: the steps go on with a finite stand-in
         lost = ~np.isfinite(fx) | sub.singular
         undefined |= lost.any(axis=1)
         fx = np.where(lost, fa, fx)
-        done = np.all(np.abs(x_new - x) <= 1e-14 * (1 + np.abs(x)))
-        x = x_new
-        if done:
-            break
         move_a = np.sign(fx) == np.sign(fa)
         fb = np.where(move_a & (side > 0), 0.5 * fb, fb)        # Illinois: halve the end kept
         fa = np.where(~move_a & (side < 0), 0.5 * fa, fa)
         a, fa = np.where(move_a, x, a), np.where(move_a, fx, fa)
         b, fb = np.where(move_a, b, x), np.where(move_a, fb, fx)
         side = np.where(move_a, 1.0, -1.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            newton = x - fx / slope
+        inside = ~lost & (np.minimum(a, b) < newton) & (newton < np.maximum(a, b))
+        x_new = np.where(inside, newton, _falsi(a, b, fa, fb, x))
+        if np.all(np.abs(x_new - x) <= 1e-14 * (1 + np.abs(x))):
+            break
+        x = x_new
     return x, value, undefined
+
+
+def _falsi(a, b, fa, fb, fallback):
+    """The regula falsi point of brackets [a, b] with K = fa, fb at their ends."""
+    denom = fb - fa
+    return np.where(denom != 0, (a * fb - b * fa) / np.where(denom != 0, denom, 1.0), fallback)
 
 
 def descriptors(points: np.ndarray, harmonics: int = DEFAULT_HARMONICS) -> np.ndarray:

@@ -199,7 +199,7 @@ def run(family: str | Family, designs, *, samples=72, metrics=None, client=None,
                          f"{2 * harmonics + 1} samples, got {S}; ask for more samples or fewer "
                          "harmonics")
     table = DesignTable(designs, fam)
-    if "descriptors" in checked.values() and fam.closed_form and not fam.has_point(table.columns):
+    if "descriptors" in checked.values() and not fam.has_point(table.columns):
         raise ModelError("metrics: 'descriptors' needs the family's coupler point: add the columns "
                          "coupler_point_along and coupler_point_perpendicular (m) to the designs")
     S = samples if isinstance(samples, int) else len(samples)

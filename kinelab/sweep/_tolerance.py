@@ -78,7 +78,7 @@ def tolerance(family: str | Family, nominal: Mapping[str, float],
     Each design draws every toleranced parameter independently around its nominal value:
     uniformly within +-tolerance, or normally with the tolerance as three standard
     deviations (``distribution="normal"``).  All the designs are analysed at once, in
-    chunks (the catalogue four-bar in closed form).
+    chunks.
 
     Parameters
     ----------

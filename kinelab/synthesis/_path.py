@@ -24,6 +24,7 @@ from kinelab import _memory as memory
 from kinelab import _progress as progress
 from kinelab.errors import ModelError, describe
 from kinelab.kinematics import analyze
+from kinelab.kinematics._interpreter import rrr_closure
 from kinelab.mechanisms import Grashof
 from kinelab.model import MAX_LENGTH, MIN_LENGTH, Mechanism, is_real
 from kinelab.solvers._arguments import flag, reals, whole
@@ -110,15 +111,14 @@ def _curves(x: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nd
     Ax = a0x + r2 * np.cos(q)             # q (m,) is shared by every design: one cos, one sin
     Ay = a0y + r2 * np.sin(q)
     dx, dy = b0x - Ax, b0y - Ay
-    L = np.hypot(dx, dy)
-    Ls = np.where(L > 0, L, 1.0)
-    ex, ey = dx / Ls, dy / Ls
-    p = (r3 * r3 - r4 * r4 + L * L) / (2 * Ls)
-    h2 = r3 * r3 - p * p
-    assembled = (L > 0) & (h2 >= 0)
-    h = np.sqrt(np.maximum(h2, 0.0))
-    Bx = Ax + p * ex - sigma * h * ey
-    By = Ay + p * ey + sigma * h * ex
+    # the engine's closure of the dyad (coupler, rocker) across A -> B0: B where kl.analyze
+    # puts it, closed where it closes (at the straight position of a change point too)
+    D2 = dx * dx + dy * dy
+    folded, alpha, beta2, low, fail = rrr_closure(r3, r4, D2)
+    assembled = ~fail & ~folded             # A on B0: B's direction is the motion's, not here
+    beta = sigma * np.sqrt(np.where(low, 0.0, beta2))
+    Bx = Ax + alpha * dx - beta * dy
+    By = Ay + alpha * dy + beta * dx
     wx, wy = (Bx - Ax) / r3, (By - Ay) / r3
     P = np.stack([Ax + u * wx - v * wy, Ay + u * wy + v * wx], -1)
     assembled &= np.isfinite(P).all(-1) & (r3 != 0)

@@ -91,6 +91,30 @@ def test_time_ratio_and_swing_at_the_engines_limit_positions(branch):
     assert df.loc[~df["assembles"], ["time_ratio", "swing"]].isna().all().all()
 
 
+@pytest.mark.parametrize("branch", ["open", "crossed"])
+def test_time_ratio_and_swing_of_crank_rockers_at_the_limit_positions_in_closed_form(branch):
+    """The rocker reverses where crank and coupler are in line: O2B = coupler + crank
+    (extended) and coupler - crank (folded); the triangle O2 O4 B gives the angle of O2B
+    at O2 and of O4B at O4 in both.  The crank turns pi + and pi - their difference between
+    them; the rocker swings the difference of its two angles (either branch: mirror images)."""
+    rng = np.random.default_rng(5)
+    g, c, b, r = rng.uniform(2.0, 3.0, 300), rng.uniform(0.3, 0.9, 300), *rng.uniform(2.0, 3.0, (2, 300))
+    df = kl.sweep.run(kl.sweep.family("fourbar", branch=branch),
+                      {"ground": g, "crank": c, "coupler": b, "rocker": r},
+                      metrics=("grashof", "time_ratio", "swing"), progress=False)
+    rocker = df["grashof"].to_numpy() == "crank-rocker"
+    assert rocker.sum() >= 200
+    at_o2, at_o4 = [], []
+    for o2b in (b + c, b - c):
+        at_o2.append(np.arccos((g * g + o2b * o2b - r * r) / (2 * g * o2b)))
+        at_o4.append(np.arccos((g * g + r * r - o2b * o2b) / (2 * g * r)))
+    alpha = np.abs(at_o2[1] - at_o2[0])
+    ratio = (np.pi + alpha) / (np.pi - alpha)
+    swing = np.abs(at_o4[1] - at_o4[0])
+    np.testing.assert_allclose(df["time_ratio"].to_numpy()[rocker], ratio[rocker], rtol=1e-10)
+    np.testing.assert_allclose(df["swing"].to_numpy()[rocker], swing[rocker], rtol=1e-10)
+
+
 def test_generic_dead_centres_against_the_engine():
     """The engine path (one analysis per design) finds the slider's reversals by regula falsi."""
     designs = {"crank": [1.0, 0.5, 0.8], "rod": [3.0, 2.0, 2.5], "offset": [0.0, 0.3, -0.6]}
