@@ -97,6 +97,12 @@ def _direction(J, link, beta):
     return np.cos(phi), np.sin(phi)
 
 
+def _at(v, where):
+    """A number of an operation at some samples: itself when it is one for all of them
+    (one design), else its values there (designs evaluated together, one value a sample)."""
+    return v[where] if np.ndim(v) else v
+
+
 def _carried(J, p, a, link, rx, ry, M):
     """p = a + r, r (ground frame) fixed in a link: K_p = K_a + K_link k x r,
     L_p = L_a + L_link k x r - K_link K_link r (the kernel's ``_carried``)."""
@@ -187,7 +193,7 @@ def _op_frame_point(J, op, ii, ff, q, M, tally):
 def _op_slide_point(J, op, ii, ff, q, M, tally):
     out, base, dirlink, mi = ii[1], ii[2], ii[3], ii[4]
     beta, s0, sgn = ff[0], ff[1], ff[2]
-    Kt = np.zeros((M, 1))
+    Kt = np.zeros((M, np.size(sgn)))
     Kt[mi] = sgn
     _line_point(J, out, base, dirlink, beta, sgn * (q[:, mi] - s0), Kt, np.zeros((M, M, 1)), M)
 
@@ -267,7 +273,7 @@ def _op_rrr(J, op, ii, ff, q, M, tally):
     gap = np.zeros_like(D2)
     if fail.any():
         D = np.sqrt(D2[fail])
-        gap[fail] = _bigger(D - (lb + lc), abs(lb - lc) - D)
+        gap[fail] = _bigger(D - _at(lb + lc, fail), _at(np.abs(lb - lc), fail) - D)
     beta2[low] = 0.0
     sb = sigma * np.sqrt(beta2)
     rbx = alpha * dx - sb * dy             # r_b = Y - X
@@ -294,11 +300,14 @@ def _op_rrr(J, op, ii, ff, q, M, tally):
     d = -cr
     ms = np.abs(cr) / (lb * lc)
     if folded.any():
-        if not arms_fold(lb, lc):               # unequal arms cannot fold: no assembly
-            gap[folded] = abs(lb - lc) - np.sqrt(D2[folded])
-            fail |= folded
-        else:
-            _rrr_folded(J, np.flatnonzero(folded), b, c, X, Y, Z, lb, sigma, offb, offc)
+        closes = arms_fold(lb, lc)
+        stuck = folded & ~closes                # unequal arms cannot fold: no assembly
+        if stuck.any():
+            gap[stuck] = _at(np.abs(lb - lc), stuck) - np.sqrt(D2[stuck])
+            fail |= stuck
+        s = np.flatnonzero(folded & closes)
+        if len(s):
+            _rrr_folded(J, s, b, c, X, Y, Z, *(_at(v, s) for v in (lb, sigma, offb, offc)))
     special = folded | fail
     d[special] = 0.0
     ms[special] = 0.0
@@ -385,7 +394,7 @@ def _op_rpr(J, op, ii, ff, q, M, tally):
     fail = low & (t2 < -k.DISC_TOL * big) & ~through
     gap = np.zeros_like(D2)
     if fail.any():
-        gap[fail] = abs(h) - np.sqrt(D2[fail])
+        gap[fail] = np.abs(_at(h, fail)) - np.sqrt(D2[fail])
     t2[low] = 0.0
     t = sigma * np.sqrt(t2)
     lx = -h * u_y + t * u_x
@@ -409,12 +418,13 @@ def _op_rpr(J, op, ii, ff, q, M, tally):
     r2y = _L(J, X + 1, M) - _L(J, Z + 1, M) + kk * wy - cor * ny
     np.divide(r2x * nx + r2y * ny, t, out=_L(J, G, M))
     d = -t
-    ms = np.abs(t) / math.sqrt(rho2)
+    ms = np.abs(t) / np.sqrt(rho2)
     if through.any():
         s = np.flatnonzero(through)
         ex = J[X, 1, s] - J[Z, 1, s]
         ey = J[X + 1, 1, s] - J[Z + 1, 1, s]
-        th = np.arctan2(sigma * ey, sigma * ex) - math.atan2(u_y, u_x)
+        sg = _at(sigma, s)
+        th = np.arctan2(sg * ey, sg * ex) - np.arctan2(_at(u_y, s), _at(u_x, s))
         J[G, 0, s] = np.where((ex != 0.0) | (ey != 0.0), th, np.nan)
         J[G, 1:, s] = np.nan
     special = through | fail
@@ -864,8 +874,9 @@ def _tables(p: Plan, M: int) -> _Tables:
 
 
 def _new_jet(p: Plan, C: int, n: int, const_values: np.ndarray) -> np.ndarray:
+    """Jets of n samples with the plan's constants: (n_const,) for all, or (n_const, n)."""
     J = np.zeros((p.n_items, C, n))
-    J[p.const_items, 0] = const_values[:, None]
+    J[p.const_items, 0] = const_values if const_values.ndim == 2 else const_values[:, None]
     return J
 
 
@@ -922,13 +933,21 @@ def _write(S, lo, hi, qd, qdd, M, angle_rows, out):
     rates[:, :, 1] = a.T
 
 
-def _closed_form(p, T, q, qd, qdd, ops_f, const_values, stored, out, M):
-    """A plan without Newton groups: all samples at once, a chunk at a time."""
-    ff = ops_f.tolist()
+def _closed_form(p, T, q, qd, qdd, nums, stored, out, M):
+    """A plan without Newton groups: all samples of all designs at once, a chunk at a time.
+    With one design its numbers are numbers; with several, each number of an operation is
+    an array of the chunk's samples, each with its design's value."""
     C = 1 + M + M * M
     angle_rows = np.flatnonzero(stored < p.n_angles)
+    if nums.D == 1:
+        ff, const_values = nums.ops_f[0].tolist(), nums.const_values[0]
+    per = len(q) // nums.D
     for lo in range(0, len(q), _CHUNK):
         hi = min(len(q), lo + _CHUNK)
+        if nums.D > 1:
+            design = np.arange(lo, hi) // per
+            ff = np.moveaxis(nums.ops_f[design], 0, -1)      # (operations, numbers, samples)
+            const_values = nums.const_values[design].T
         J = _new_jet(p, C, hi - lo, const_values)
         tally = _evaluate(T, J, q[lo:hi], ff, M)
         status = tally.status()
@@ -1055,7 +1074,8 @@ def run(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None, designs=None):
     """Evaluate a plan over the rows of ``q`` (N, M) with rates ``qd``, ``qdd`` (N, M) or
     (1, M): the arguments and the outputs of :func:`kinelab.kinematics._evaluate.run`
     (jets, rates, diag, status, fail and, for plans with Newton groups, the state where
-    the run ended), computed with numpy and no compilation; D designs one after the other."""
+    the run ended), computed with numpy and no compilation: D designs of a plan without
+    Newton groups all at once, with Newton groups one after the other."""
     from kinelab.kinematics._evaluate import Numbers, outputs
     q = np.asarray(q, float)
     qd = np.asarray(qd, float)
@@ -1065,19 +1085,17 @@ def run(p: Plan, q, qd, qdd, start=None, ops_f=None, stored=None, designs=None):
     nums = Numbers(p, N, ops_f, start, designs)
     ends = []
     with np.errstate(all="ignore"):     # an exact singularity gives inf or NaN, then flagged
+        if p.groups is None:
+            _closed_form(p, _tables(p, M), q, qd, qdd, nums, stored, out, M)
+            return out
         for d in range(nums.D):
             lo, hi = nums.starts[d], nums.starts[d + 1]
             rows = {key: a[lo:hi] for key, a in out.items()}
             rates = [r if len(r) == 1 else r[lo:hi] for r in (qd, qdd)]
-            if p.groups is None:
-                _closed_form(p, _tables(p, M), q[lo:hi], *rates, nums.ops_f[d],
-                             nums.const_values[d], stored, rows, M)
-                continue
             T = _tables(p, M) if designs is None else _Tables(p, M, nums.con_f[d])
             ends.append(_continuation(p, T, q[lo:hi], *rates, nums.q0[d], nums.q_unit[d],
                                       nums.ops_f[d], nums.const_values[d], nums.scale[d],
                                       stored, nums.x0[d], rows, M))
-    if p.groups is not None:
-        out["state"] = (ends[0] if designs is None else
-                        (np.array([e[0] for e in ends]), np.array([e[1] for e in ends])))
+    out["state"] = (ends[0] if designs is None else
+                    (np.array([e[0] for e in ends]), np.array([e[1] for e in ends])))
     return out

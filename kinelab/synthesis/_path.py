@@ -479,12 +479,14 @@ def _timed_points(T: np.ndarray, Z: np.ndarray, sigma: np.ndarray):
     c, s = np.cos(q), np.sin(q)
     Ax, Ay = a0x + r2 * c, a0y + r2 * s
     dx, dy = b0x - Ax, b0y - Ay
-    L = np.hypot(dx, dy)
+    D2 = dx * dx + dy * dy
+    folded, alpha, beta2, low, fail = rrr_closure(r3, r4, D2)     # the engine's closure
+    assembled = ~fail & ~folded
+    L = np.sqrt(D2)
     Ls = np.where(L > 0, L, 1.0)
-    p = (r3 * r3 - r4 * r4 + L * L) / (2 * Ls)
-    h2 = r3 * r3 - p * p
-    assembled = (L > 0) & (h2 >= 0)
-    h = np.sqrt(np.maximum(h2, 0.0))
+    with np.errstate(invalid="ignore"):        # where folded (A on B0): 0, not inf x 0
+        p = np.where(folded, 0.0, alpha * L)    # B along and across A -> B0, m
+        h = np.where(folded | low, 0.0, np.sqrt(np.abs(beta2)) * L)
     ex, ey = dx / Ls, dy / Ls
     r3s = np.where(r3 != 0, r3, 1.0)
     wx, wy = (p * ex - sg * h * ey) / r3s, (p * ey + sg * h * ex) / r3s           # e3

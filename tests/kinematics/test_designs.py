@@ -173,21 +173,38 @@ def test_each_design_its_own_inputs_and_the_newton_engine(name):
     compare(designs, q, method="newton")
 
 
-@pytest.mark.parametrize("name", ["fourbar", "fivebar", "posed-triad6"])
+# four-bars whose crank pin meets the rocker's pivot at q = 0: equal arms fold there (a
+# change point), unequal ones cannot close; beside an ordinary one, in one call
+FOLDING = [kl.mechanisms.fourbar(1.0, 1.0, 1.0, 1.0), kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5),
+           kl.mechanisms.fourbar(1.0, 1.0, 1.2, 1.0)]
+GEARED_FAMILIES = sorted(n for n in GEARED if len(MODELS[n]().inputs) == 1)     # posed at one input
+
+
+@pytest.mark.parametrize("name", sorted(FAMILIES) + ["folding"] + [f"posed-{n}" for n in POSED]
+                         + [f"posed-{n}" for n in GEARED_FAMILIES])
 def test_both_forms_of_the_kernel_agree_on_designs(name):
+    """The numpy form evaluates designs together (each number of an operation one value a
+    sample); the kernel one after the other: the same statuses, jets and diagnostics."""
     from kinelab.kinematics import _evaluate, _interpreter
-    designs = FAMILIES[name] if name in FAMILIES else posed(MODELS[name.split("-", 1)[1]]())
+    designs = (FOLDING if name == "folding" else FAMILIES[name] if name in FAMILIES
+               else posed(MODELS[name.split("-", 1)[1]]()))
     base = designs[0]
     p = kl.kinematics.plan(base)
     numbers = p.designs(np.array([[[pt.x, pt.y] for pt in m.points] for m in designs]))
     M = len(base.inputs)
     n = 20
     q = np.tile(p.q_sketch + 0.05 * np.arange(n)[:, None], (len(designs), 1)).reshape(-1, M)
+    if name == "folding":
+        q = np.tile(np.arange(-10, 11) * 0.05, len(designs))[:, None]     # q = 0 among them
     a = _evaluate.run_compiled(p, q, np.ones((1, M)), np.zeros((1, M)), designs=numbers)
     b = _interpreter.run(p, q, np.ones((1, M)), np.zeros((1, M)), designs=numbers)
     np.testing.assert_array_equal(a["status"], b["status"])
-    np.testing.assert_allclose(a["jets"], b["jets"], rtol=1e-9, atol=1e-9 * p.scale)
+    failed = a["status"] != 0           # (what a failed sample's jets hold is no output)
+    np.testing.assert_allclose(a["jets"][~failed], b["jets"][~failed], rtol=1e-9, atol=1e-9 * p.scale)
     np.testing.assert_allclose(a["diag"], b["diag"], rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(a["fail"][failed], b["fail"][failed], rtol=1e-9, atol=1e-12 * p.scale)
+    if name == "folding":           # both branches taken: folded, and stuck
+        assert failed.any() and not failed.all()
     if p.groups is not None:
         for x, y in zip(a["state"], b["state"]):
             np.testing.assert_allclose(x, y, rtol=1e-9, atol=1e-9 * p.scale)
