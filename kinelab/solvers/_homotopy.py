@@ -281,27 +281,27 @@ def multihomogeneous_start(groups: Sequence[Sequence[int]], degrees: np.ndarray,
             J[:, k, idx[k]] = patch[k]
         return vals, J
 
+    # every equation's factors as rows of one array (m, D, n), padded to the same count D
+    # with constant factors 1: the products and their gradients are then one batched
+    # computation (no loop over equations on the hot path)
+    D = int(degrees.sum(axis=1).max())
+    W = np.zeros((m, D, n), complex)
+    pad = np.zeros((m, D))
+    for i in range(m):
+        f = 0
+        for k in range(G):
+            L = forms[i][k]
+            W[i, f:f + len(L)][:, idx[k]] = L
+            f += len(L)
+        pad[i, f:] = 1.0
+
     def products(z):
-        N = len(z)
-        vals = np.ones((N, m), complex)
-        J = np.zeros((N, m, n), complex)
-        for i in range(m):
-            # every factor of equation i, (N, F), and its gradient (F, n)
-            fac = []
-            grad = []
-            for k in range(G):
-                L = forms[i][k]
-                fac.append(z[:, idx[k]] @ L.T)
-                g = np.zeros((L.shape[0], n), complex)
-                g[:, idx[k]] = L
-                grad.append(g)
-            fac = np.concatenate(fac, axis=1)
-            grad = np.concatenate(grad, axis=0)
-            vals[:, i] = np.prod(fac, axis=1)
-            for f in range(fac.shape[1]):
-                others = np.prod(np.delete(fac, f, axis=1), axis=1)
-                J[:, i, :] += others[:, None] * grad[f]
-        return vals, J
+        fac = np.einsum("Nn,mfn->Nmf", z, W) + pad                 # (N, m, D)
+        ones = np.ones(fac.shape[:2] + (1,), complex)
+        before = np.cumprod(np.concatenate([ones, fac[..., :-1]], axis=2), axis=2)
+        after = np.cumprod(np.concatenate([ones, fac[..., :0:-1]], axis=2), axis=2)[..., ::-1]
+        others = before * after                                    # product of the other factors
+        return before[..., -1] * fac[..., -1], np.einsum("Nmf,mfn->Nmn", others, W)
 
     start = with_rows(products, patches)
     roots = []
