@@ -56,6 +56,7 @@ EXPECTED = 36         # its finite nondegenerate roots for general data (Morgan,
 _RETRIES = 3          # new gammas for the paths that stall before the end
 _AT_INFINITY = 1e-8   # |homogenising coordinate| / |group| below which a root is at infinity
 _TRIVIAL = 1e-8       # relative |w_j| below which the rotations are undetermined
+_SINGULAR = 1e-10     # reciprocal condition number (homogeneous coordinates) of a singular end
 _SOLVED = 1e-10       # relative residual of the loop equations a root must reach
 _DISTINCT = 1e-8      # relative distance under which two roots are one
 _REAL = 1e-8          # relative |xb - conj(x)| under which a root is real
@@ -466,7 +467,7 @@ def five_point_path(points: ArrayLike, pivots: tuple[ArrayLike, ArrayLike], *,
 
     keep = np.ones(len(ends), bool)
     keep[todo] = False
-    z, _, _ = refine(target, ends)
+    z, _, rcond = refine(target, ends)
     fin = np.all(np.isfinite(z), axis=1)
     drop("did not converge", np.sum(keep & ~fin))
     keep &= fin
@@ -485,10 +486,13 @@ def five_point_path(points: ArrayLike, pivots: tuple[ArrayLike, ArrayLike], *,
          np.sum(keep & trivial))
     keep &= ~trivial
     s = np.column_stack([aff, Q, Qb])[keep]
-    s, _, rcond = refine(G, s)
+    s, _, _ = refine(G, s)
     with np.errstate(all="ignore"):
         res = np.max(np.abs(G(s)[0]) / loop_scale(s), axis=1)
-    ok = (res <= _SOLVED) & (rcond > 1e-12)
+    # singular or not is judged in the homogeneous coordinates, where a root far out (a
+    # rocker pin 1e4 times the task's size away, nearly a slider) is as well conditioned
+    # as any other
+    ok = (res <= _SOLVED) & (rcond[keep] > _SINGULAR)
     drop("singular: Newton's method on the loop equations does not converge there", np.sum(~ok))
     s, res = s[ok], res[ok]
     order = np.argsort(np.abs(s[:, 0]) + np.abs(s[:, 2]))
