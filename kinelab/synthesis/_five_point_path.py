@@ -53,7 +53,8 @@ __all__ = ["FivePointLinkage", "FivePointSolutions", "five_point_path", "loop_re
 
 PATHS = 96            # two-homogeneous Bezout number of the eliminated system
 EXPECTED = 36         # its finite nondegenerate roots for general data (Morgan, Wampler 1990)
-_RETRIES = 3          # new gammas for the paths that stall before the end
+_RETRIES = 3          # new gammas when paths still stall before the end
+_NEAR_END = 0.999     # a path stalled beyond this t is heading for a singular end
 _AT_INFINITY = 1e-8   # |homogenising coordinate| / |group| below which a root is at infinity
 _TRIVIAL = 1e-8       # relative |w_j| below which the rotations are undetermined
 _SINGULAR = 1e-10     # reciprocal condition number (homogeneous coordinates) of a singular end
@@ -256,13 +257,16 @@ class FivePointSolutions:
         which real roots were left out, and why.
     order_by : str
     paths : int
-        Paths tracked (96), counting none twice.
+        Paths of one run (96: the start system's roots).
     failed : int
-        Paths that stalled before the end, after every retry with another gamma.
+        Paths of the last run that stalled before the end, after their retry with shorter
+        steps (0 unless every run with a new gamma left some).
     retried : int
-        Path runs repeated with another gamma.
+        Paths followed again: those retried with shorter steps, and 96 for each run
+        repeated with a new gamma.
     discarded : dict of str to int
-        Path ends left out, by reason (at infinity, trivial family, singular, repeats).
+        Path ends left out, by reason (at infinity, trivial family, singular, repeats), over
+        every run.
     seconds : float
         Wall time of the whole solve (tracking, refining, building and checking), s.
     """
@@ -336,9 +340,11 @@ def _check(T: np.ndarray, A0: np.ndarray, B0: np.ndarray) -> float:
     for name, X in (("A0", A0), ("B0", B0)):
         d = np.hypot(*(T - X).T)
         if d.min() <= 1e-9 * size:
-            problems.append(f"pivots: {name} is at point {int(np.argmin(d)) + 1} {fmt(X)}, where "
-                            "the coupler point cannot pass without the crank's length being "
-                            f"zero; move {name} off the path points")
+            link = "crank" if name == "A0" else "rocker"
+            problems.append(f"pivots: {name} is at point {int(np.argmin(d)) + 1} {fmt(X)}: the "
+                            f"coupler point would pass over the {link}'s fixed pivot, where the "
+                            f"{link}'s equation for that point degenerates; move {name} off the "
+                            "path points")
     if problems:
         raise ModelError(problems if len(problems) > 1 else problems[0])
     return size
@@ -365,8 +371,9 @@ def five_point_path(points: ArrayLike, pivots: tuple[ArrayLike, ArrayLike], *,
     The loop equations (see :mod:`kinelab.synthesis._five_point_path`) are reduced to four
     polynomial equations in the moving pivots and their isotropic partners; their 96
     roots (two-homogeneous Bezout number) are followed from a random linear-product start
-    system (:mod:`kinelab.solvers._homotopy`), all at once.  Paths that stall before the
-    end are tracked again with another gamma (up to three times).  Each end is refined
+    system (:mod:`kinelab.solvers._homotopy`), all at once.  A path that stalls before the
+    end is followed again with steps four times shorter; if some still stall, the whole run
+    is repeated with a new gamma (up to three times) and the ends of all runs pooled.  Each end is refined
     by Newton's method on the twelve loop equations; ends at infinity, on the trivial
     families of the formulation (where the coupler rotations are undetermined), singular
     ones and repeats are left out, and counted in ``discarded`` by reason.  For general
@@ -443,22 +450,30 @@ def five_point_path(points: ArrayLike, pivots: tuple[ArrayLike, ArrayLike], *,
     start, patches, starts = multihomogeneous_start([[0, 1, 2], [3, 4, 5]],
                                                     np.full((4, 2), 2), rng)
     target = with_rows(F, patches)
-    ends = np.empty_like(starts)
-    status = np.empty(len(starts), int)
-    todo = np.arange(len(starts))
-    retried = 0
+    # One run follows the 96 paths with one gamma.  A path that stalls short of the end
+    # (a near-crossing) is followed again in the same homotopy with steps four times
+    # shorter, so that it still ends at its own root.  If some still stall, the whole run
+    # is repeated with a new gamma (which pairs start roots and ends anew, so a part of
+    # the paths would not do) and the ends of every run are pooled: repeats go below.
+    # A path that stalls at the very end is heading for a singular end and is kept.
+    runs, retried, failed = [], 0, 0
     for attempt in range(1 + _RETRIES):
         gamma = np.exp(2j * np.pi * rng.random())
-        r = track(target, start, starts[todo], gamma=gamma)
-        ends[todo], status[todo] = r.z, r.status
-        # a path that stalls short of the end met a near-singular point: another gamma
-        # moves it away; one that stalls at the very end is heading for a singular root
-        again = (r.status != 0) & (r.t < 0.999)
-        todo = todo[again]
-        if todo.size == 0 or attempt == _RETRIES:
+        r = track(target, start, starts, gamma=gamma)
+        z, t, status = r.z.copy(), r.t.copy(), r.status.copy()
+        again = np.flatnonzero((status != 0) & (t < _NEAR_END))
+        if again.size:
+            retried += again.size
+            r = track(target, start, starts[again], gamma=gamma, first_step=0.005,
+                      max_step=0.025, max_correction=0.005, max_steps=12000)
+            z[again], t[again], status[again] = r.z, r.t, r.status
+        lost = (status != 0) & (t < _NEAR_END)
+        runs.append(z[~lost])
+        failed = int(lost.sum())
+        if not failed or attempt == _RETRIES:
             break
-        retried += todo.size
-    failed = int(todo.size)
+        retried += len(starts)
+    ends = np.concatenate(runs)
     discarded: dict[str, int] = {}
 
     def drop(reason, count):
@@ -466,7 +481,6 @@ def five_point_path(points: ArrayLike, pivots: tuple[ArrayLike, ArrayLike], *,
             discarded[reason] = discarded.get(reason, 0) + int(count)
 
     keep = np.ones(len(ends), bool)
-    keep[todo] = False
     z, _, rcond = refine(target, ends)
     fin = np.all(np.isfinite(z), axis=1)
     drop("did not converge", np.sum(keep & ~fin))

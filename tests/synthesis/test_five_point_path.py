@@ -206,3 +206,36 @@ def test_the_tracker_on_a_small_system():
     # x^2 + 1/x^2 = 4: x^2 = 2 -+ sqrt(3)
     r1, r2 = np.sqrt(2 - np.sqrt(3)), np.sqrt(2 + np.sqrt(3))
     np.testing.assert_allclose(x, [-r2, -r1, r1, r2], atol=1e-12)
+
+
+@pytest.mark.parametrize("lost_runs, calls_seen, retried", [
+    (1, [96, 10], 10),               # the retry with shorter steps finds them
+    (2, [96, 10, 96], 10 + 96 + 0),  # ... it does not: a whole new run with a new gamma
+])
+def test_paths_that_stall_are_tracked_again(monkeypatch, lost_runs, calls_seen, retried):
+    """The first calls lose ten paths half-way (as a near-crossing would); they are followed
+    again, and no root is missing."""
+    import dataclasses
+
+    from kinelab.synthesis import _five_point_path as module
+
+    real_track = module.track
+    calls = []
+
+    def flaky(target, start, starts, *, gamma, **options):
+        r = real_track(target, start, starts, gamma=gamma, **options)
+        calls.append((len(starts), gamma))
+        if len(calls) > lost_runs:
+            return r
+        status, t, z = r.status.copy(), r.t.copy(), r.z.copy()
+        status[:10], t[:10], z[:10] = 1, 0.5, np.nan
+        return dataclasses.replace(r, status=status, t=t, z=z)
+
+    monkeypatch.setattr(module, "track", flaky)
+    points, pivots = random_task(0)
+    sols = five_point_path(points, pivots=(pivots[0], pivots[1]))
+    assert [n for n, _ in calls] == calls_seen
+    assert calls[1][1] == calls[0][1]              # the same homotopy, shorter steps
+    if lost_runs == 2:
+        assert calls[2][1] != calls[0][1]          # a new gamma
+    assert sols.retried == retried and sols.failed == 0 and len(sols) == 36
