@@ -369,18 +369,18 @@ def five_point_path(points: ArrayLike, pivots: tuple[ArrayLike, ArrayLike], *,
     pivots given: the complete solution set, by polynomial homotopy continuation.
 
     The loop equations (see :mod:`kinelab.synthesis._five_point_path`) are reduced to four
-    polynomial equations in the moving pivots and their isotropic partners; their 96
-    roots (two-homogeneous Bezout number) are followed from a random linear-product start
-    system (:mod:`kinelab.solvers._homotopy`), all at once.  A path that stalls before the
-    end is followed again with steps four times shorter; if some still stall, the whole run
-    is repeated with a new gamma (up to three times) and the ends of all runs pooled.  Each end is refined
-    by Newton's method on the twelve loop equations; ends at infinity, on the trivial
-    families of the formulation (where the coupler rotations are undetermined), singular
-    ones and repeats are left out, and counted in ``discarded`` by reason.  For general
-    data 36 roots remain (Morgan and Wampler, 1990); the real ones are four-bars, built
-    as kinelab models and checked by the kinematics engine (branch, order and circuit
-    defects, Grashof class, transmission angle).  The timing is free: the crank angles
-    at the points come out of the solution.
+    polynomial equations in the moving pivots and their isotropic partners; their 96 roots
+    (two-homogeneous Bezout number) are followed from a random linear-product start system
+    (:mod:`kinelab.solvers._homotopy`), all at once.  A path that stalls before the end is
+    followed again with steps four times shorter; if some still stall, the whole run is
+    repeated with a new gamma (up to three times) and the ends of all runs pooled.  Each end
+    is refined by Newton's method on the twelve loop equations; ends at infinity, on the
+    trivial families of the formulation (where the coupler rotations are undetermined),
+    singular ones and repeats are left out, and counted in ``discarded`` by reason.  For
+    general data 36 roots remain (Morgan and Wampler, 1990); the real ones are four-bars,
+    built as kinelab models and checked by the kinematics engine (branch, order and circuit
+    defects, Grashof class, transmission angle).  The timing is free: the crank angles at
+    the points come out of the solution.
 
     Parameters
     ----------
@@ -410,6 +410,16 @@ def five_point_path(points: ArrayLike, pivots: tuple[ArrayLike, ArrayLike], *,
     ModelError
         Not five finite points; repeated or collinear points; a pivot at a point; the two
         pivots in one place; an unknown ``order_by``.
+
+    Notes
+    -----
+    The count is 36 for general data; special data give fewer (five points and the two
+    pivots mirror-symmetric about one line: 28 in the task tried; five points on a circle
+    about a pivot: none, every end singular), and ``discarded`` says where the other ends
+    went.  The task is solved in a frame of the points' size, so it is scale-free; but
+    pivots far from the points (more than about 100 times the points' spread away) make the
+    equations ill-conditioned: from about 300 times, paths stall and roots may be lost,
+    which ``failed`` and a count below 36 show.
 
     References
     ----------
