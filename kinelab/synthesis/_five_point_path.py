@@ -46,7 +46,7 @@ from kinelab.synthesis._arguments import point, point_array
 from kinelab.synthesis._linkage import (TRANSMISSION_LIMIT, CheckedLinkage, at_inputs, circuits,
                                         finite_or_inf, fourbar_model, model_grashof, planned,
                                         transmission_defects, transmission_limit, travel)
-from kinelab.synthesis._positions import cross, fmt
+from kinelab.synthesis._positions import fmt
 from kinelab.synthesis._results import SolutionList
 
 __all__ = ["FivePointLinkage", "FivePointSolutions", "five_point_path", "loop_residuals"]
@@ -65,13 +65,18 @@ _REACHED = 1e-8       # relative distance engine vs prescribed point
 _ORDERS = ("transmission", "size", "grashof")
 
 
+def _gaps(p: np.ndarray, pivot: complex) -> np.ndarray:
+    """|p_0 - pivot|^2 - |p_j - pivot|^2 (j = 1..4), as the product of a difference and a sum:
+    no cancellation when the pivot is far from the points."""
+    return ((p[0] - p[1:]) * (p[0] + p[1:] - 2 * pivot).conjugate()).real
+
+
 def _system(p: np.ndarray, A0: complex, B0: complex):
     """The eliminated system E_j (j = 1..4) in z = (x0, x, xb, y0, y, yb), homogeneous of
     degree (2, 2), and its Jacobian; ``p`` the five points (complex)."""
     a, b = p - A0, p - B0
     ac, bc = a.conj(), b.conj()
-    k = (abs(a[0]) ** 2 - abs(a[1:]) ** 2)                       # (4,)
-    l_ = (abs(b[0]) ** 2 - abs(b[1:]) ** 2)
+    k, l_ = _gaps(p, A0), _gaps(p, B0)                           # (4,)
     aj, bj, acj, bcj = a[1:], b[1:], ac[1:], bc[1:]
 
     def F(z):
@@ -123,8 +128,7 @@ def _loop(p: np.ndarray, A0: complex, B0: complex):
     the size of their terms (for relative residuals)."""
     a, b = p - A0, p - B0
     ac, bc = a.conj(), b.conj()
-    k = (abs(a[1:]) ** 2 - abs(a[0]) ** 2)
-    l_ = (abs(b[1:]) ** 2 - abs(b[0]) ** 2)
+    k, l_ = -_gaps(p, A0), -_gaps(p, B0)
     aj, bj, acj, bcj = a[1:], b[1:], ac[1:], bc[1:]
 
     def G(s):
