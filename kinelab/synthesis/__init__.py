@@ -3,6 +3,8 @@
 Motion generation (the coupler passes through prescribed positions: two to five exactly,
 more by least squares), function generation (the rocker angle is a prescribed function of
 the crank angle), path generation (a coupler point passes through prescribed points), and
+the complete solution set of five path points with both fixed pivots given (every
+one of its 36 roots, by homotopy continuation: :func:`five_point_path`), and
 the designer's questions about limit positions: a crank-rocker for a rocker swing and a
 time ratio (with the best transmission angle), quick returns for a time ratio.  Every synthesized linkage comes back as
 a kinelab model, sketched in its first position, with the checks made by moving it with
@@ -31,6 +33,8 @@ __getattr__, __dir__ = exports(__name__, {
     "kinelab.synthesis._burmester": ("BurmesterCurves", "burmester_curves", "center_point_cubic",
                                      "center_points", "four_positions"),
     "kinelab.synthesis._five_positions": ("burmester_points", "five_positions"),
+    "kinelab.synthesis._five_point_path": ("FivePointLinkage", "FivePointSolutions",
+                                           "five_point_path"),
     "kinelab.synthesis._function": ("FunctionSolution", "chebyshev_points", "freudenstein",
                                     "function_generation", "function_pairs"),
     "kinelab.synthesis._linkage": ("TRANSMISSION_LIMIT", "fourbar_model"),
@@ -54,4 +58,5 @@ __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "coupler_curves", "curve_distances", "fourbar_model", "five_positions",
            "burmester_points", "approximate_positions", "fit_dyads", "crank_rocker",
            "crank_rockers", "CrankRocker", "offset_slider_crank", "slotted_lever", "whitworth",
-           "QuickReturn", "imbalance_angle", "max_time_ratio", "MAX_PATH_POINTS", "TRANSMISSION_LIMIT"]
+           "QuickReturn", "imbalance_angle", "max_time_ratio", "MAX_PATH_POINTS", "TRANSMISSION_LIMIT",
+           "five_point_path", "FivePointSolutions", "FivePointLinkage"]

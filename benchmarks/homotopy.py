@@ -1,0 +1,71 @@
+"""Homotopy continuation benchmark: five path points with both fixed pivots given.
+
+    .venv/bin/python benchmarks/homotopy.py [TASKS]
+
+For TASKS random tasks (points and pivots drawn from a normal distribution, seeds 0, 1,
+...; 10 by default) it solves ``kl.synthesis.five_point_path`` and prints, per task, the
+paths tracked, those repeated with another gamma and those that failed, the roots found
+(36 for general data, Morgan and Wampler 1990) and how many are real, the wall time (the
+tracking alone, and the whole call with its engine checks of every real linkage), and
+the peak memory of the Python allocations made by a second, identical call
+(tracemalloc); then the
+totals.  Numbers, not a test: it never fails on speed.
+"""
+from __future__ import annotations
+
+import sys
+import time
+import tracemalloc
+
+import numpy as np
+
+import kinelab as kl
+from kinelab.solvers._homotopy import multihomogeneous_start, track, with_rows
+from kinelab.synthesis import _five_point_path as fpp
+
+
+def tracking_only(points: np.ndarray, pivots: np.ndarray, seed: int) -> float:
+    """Wall time of the 96 paths alone, s (no refinement, no engine checks)."""
+    c = points.mean(axis=0)
+    s = np.linalg.norm(points - c, axis=1).max()
+    p = ((points - c) / s) @ np.array([1.0, 1j])
+    a0, b0 = (complex(*((v - c) / s)) for v in pivots)
+    F, _ = fpp._system(p, a0, b0)
+    rng = np.random.default_rng(seed)
+    start, patches, starts = multihomogeneous_start([[0, 1, 2], [3, 4, 5]],
+                                                    np.full((4, 2), 2), rng)
+    t0 = time.perf_counter()
+    track(with_rows(F, patches), start, starts, gamma=np.exp(2j * np.pi * rng.random()))
+    return time.perf_counter() - t0
+
+
+def main(tasks: int = 10) -> None:
+    # a first call outside the timings: imports and the engine's first plan
+    warm = np.random.default_rng(99).normal(size=(7, 2))
+    kl.synthesis.five_point_path(warm[:5], pivots=(warm[5], warm[6]))
+    print("five_point_path: five random points, random A0 and B0 (normal distribution)")
+    print(f"{'seed':>4s} {'paths':>6s} {'retried':>8s} {'failed':>7s} {'roots':>6s} {'real':>5s} "
+          f"{'valid':>6s} {'track [s]':>10s} {'total [s]':>10s} {'peak [MB]':>10s}")
+    totals = []
+    for seed in range(tasks):
+        rng = np.random.default_rng(seed)
+        points, pivots = rng.normal(size=(5, 2)), rng.normal(size=(2, 2))
+        t_track = tracking_only(points, pivots, 0)
+        sols = kl.synthesis.five_point_path(points, pivots=(pivots[0], pivots[1]))
+        tracemalloc.start()          # a second call for the memory: tracemalloc slows it
+        kl.synthesis.five_point_path(points, pivots=(pivots[0], pivots[1]))
+        peak = tracemalloc.get_traced_memory()[1] / 1e6
+        tracemalloc.stop()
+        valid = sum(s.valid for s in sols.real)
+        print(f"{seed:4d} {sols.paths:6d} {sols.retried:8d} {sols.failed:7d} {len(sols):6d} "
+              f"{len(sols.real):5d} {valid:6d} {t_track:10.3f} {sols.seconds:10.3f} {peak:10.1f}")
+        totals.append((len(sols) == fpp.EXPECTED, sols.failed, t_track, sols.seconds, peak))
+    ok, failed, tt, ts, peak = (np.array(c) for c in zip(*totals))
+    print(f"all 36 roots on {ok.sum()} of {len(ok)} tasks; {failed.sum()} paths failed in all; "
+          f"median time {np.median(tt):.3f} s tracking, {np.median(ts):.3f} s whole call "
+          "(the time of a call made without tracemalloc); "
+          f"largest peak memory {peak.max():.1f} MB")
+
+
+if __name__ == "__main__":
+    main(int(sys.argv[1]) if len(sys.argv) > 1 else 10)
