@@ -32,7 +32,8 @@ __getattr__, __dir__ = exports(__name__, {
                                      "center_points", "four_positions"),
     "kinelab.synthesis._five_positions": ("burmester_points", "five_positions"),
     "kinelab.synthesis._function": ("FunctionSolution", "chebyshev_points", "freudenstein",
-                                    "function_generation", "function_pairs"),
+                                    "function_generation", "function_pairs",
+                                    "function_generation_pairs"),
     "kinelab.synthesis._linkage": ("TRANSMISSION_LIMIT", "fourbar_model"),
     "kinelab.synthesis._motion": ("MotionSolution", "TwoPositions", "three_positions",
                                   "two_positions"),
@@ -54,4 +55,5 @@ __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "coupler_curves", "curve_distances", "fourbar_model", "five_positions",
            "burmester_points", "approximate_positions", "fit_dyads", "crank_rocker",
            "crank_rockers", "CrankRocker", "offset_slider_crank", "slotted_lever", "whitworth",
-           "QuickReturn", "imbalance_angle", "max_time_ratio", "MAX_PATH_POINTS", "TRANSMISSION_LIMIT"]
+           "QuickReturn", "imbalance_angle", "max_time_ratio", "MAX_PATH_POINTS", "TRANSMISSION_LIMIT",
+           "function_generation_pairs"]
