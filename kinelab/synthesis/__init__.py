@@ -30,7 +30,7 @@ __getattr__, __dir__ = exports(__name__, {
     "kinelab.synthesis._approximate": ("approximate_positions", "fit_dyads"),
     "kinelab.synthesis._burmester": ("BurmesterCurves", "burmester_curves", "center_point_cubic",
                                      "center_points", "four_positions"),
-    "kinelab.synthesis._five_positions": ("burmester_points", "five_positions"),
+    "kinelab.synthesis._five_positions": ("burmester_points", "five_positions", "burmester"),
     "kinelab.synthesis._function": ("FunctionSolution", "chebyshev_points", "freudenstein",
                                     "function_generation", "function_pairs",
                                     "function_generation_pairs"),
@@ -56,4 +56,4 @@ __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "burmester_points", "approximate_positions", "fit_dyads", "crank_rocker",
            "crank_rockers", "CrankRocker", "offset_slider_crank", "slotted_lever", "whitworth",
            "QuickReturn", "imbalance_angle", "max_time_ratio", "MAX_PATH_POINTS", "TRANSMISSION_LIMIT",
-           "function_generation_pairs"]
+           "function_generation_pairs", "burmester"]
