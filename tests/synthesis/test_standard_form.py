@@ -106,3 +106,27 @@ def test_bad_rotations_one_line_naming_the_field(kwargs, message):
     with pytest.raises(ModelError, match=message) as info:
         three_positions([(1, 1), (2, 0.5), (3, 1.5)], [0, 45], **{"degrees": True, **kwargs})
     assert "\n" not in str(info.value)
+
+
+def test_against_the_real_four_by_four_system_of_the_textbooks():
+    # Norton's form of the task (Design of Machinery, ch. 5; numbers of our own): P1 at the
+    # origin, P21 = p21 at angle d2, P31 = p31 at angle d3, coupler rotations a2, a3, crank
+    # rotations b2, b3.  Written in real components (W = (W1x, W1y), Z = (Z1x, Z1y)), the two
+    # complex equations are four real ones, solved here with numpy alone.
+    p21, d2, p31, d3 = 2.1, np.radians(-25.0), 3.4, np.radians(15.0)
+    a2, a3, b2, b3 = np.radians([20.0, 55.0, 40.0, 95.0])
+    rows, rhs = [], []
+    for a, b, p, d in ((a2, b2, p21, d2), (a3, b3, p31, d3)):
+        rows += [[np.cos(b) - 1, -np.sin(b), np.cos(a) - 1, -np.sin(a)],
+                 [np.sin(b), np.cos(b) - 1, np.sin(a), np.cos(a) - 1]]
+        rhs += [p * np.cos(d), p * np.sin(d)]
+    Wx, Wy, Zx, Zy = np.linalg.solve(np.array(rows), np.array(rhs))
+    P = [(0.0, 0.0), (p21 * np.cos(d2), p21 * np.sin(d2)), (p31 * np.cos(d3), p31 * np.sin(d3))]
+    sol = three_positions(P, [a2, a3], beta=((b2, b3), (-0.3, -0.5)))
+    np.testing.assert_allclose(sol.A1, [-Zx, -Zy], atol=1e-12)
+    np.testing.assert_allclose(sol.A0, [-Zx - Wx, -Zy - Wy], atol=1e-12)
+    np.testing.assert_allclose(wrap(sol.q[1:] - sol.q[0]), [b2, b3], atol=1e-12)
+    # a crank-rocker that reaches the poses on one branch (its transmission angle is poor)
+    assert not (sol.branch_defect or sol.order_defect or sol.circuit_defect)
+    dpos, dang = engine_pose_errors(sol.model, sol.q, np.array(P), np.array([0.0, a2, a3]))
+    assert dpos.max() < 1e-9 and dang.max() < 1e-9
