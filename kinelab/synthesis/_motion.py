@@ -11,16 +11,14 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 from kinelab.mechanisms import Grashof
-from kinelab.model import MAX_LENGTH, Mechanism
+from kinelab.model import MAX_LENGTH, Mechanism, is_real
 from kinelab.solvers import wrap_angle
 from kinelab.synthesis._linkage import (TRANSMISSION_LIMIT, CheckedLinkage, at_inputs, circuits,
                                         finite_or_inf, fourbar_model, model_grashof,
                                         nearer_branch, planned, transmission_defects,
                                         transmission_limit, travel)
-from kinelab.errors import describe
-from kinelab.model import is_real
 from kinelab.solvers._arguments import flag
 from kinelab.synthesis._arguments import angle_array, coordinate
 from kinelab.synthesis._pivots import fixed_pivot, moving_pivot, standard_form_dyad
