@@ -40,19 +40,21 @@ KINDS = ("crank-rocker", "double-crank", "rocker-crank", "double-rocker", "chang
          "triple-rocker")
 
 
-def _arc(name: str, value: object) -> tuple[float, str | None]:
-    """``value`` as an arc in (0, π) rad, or the problem with it."""
+def _arc(name: str, value: object, degrees: bool = False) -> tuple[float, str | None]:
+    """``value`` as an arc in (0, π) rad, or the problem with it (given and shown in
+    degrees with ``degrees``)."""
     if isinstance(value, np.ndarray) and value.ndim == 0:
         value = value[()]
+    shown = "(0, 180) deg" if degrees else "(0, π) rad"
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
-        return math.nan, (f"{name}: expected an arc in (0, π) rad (a real number), got "
+        return math.nan, (f"{name}: expected an arc in {shown} (a real number), got "
                           f"{describe(value)}")
     x = float(value)
-    if not 0.0 < x < math.pi:
-        return math.nan, (f"{name}: expected an arc in (0, π) rad (the great-circle angle "
+    if not 0.0 < x < (180.0 if degrees else math.pi):
+        return math.nan, (f"{name}: expected an arc in {shown} (the great-circle angle "
                           f"between two joint axes), got {describe(value)}; an arc of 0 or "
-                          f"π puts two axes on one line")
-    return x, None
+                          f"{'180 deg' if degrees else 'π'} puts two axes on one line")
+    return (math.radians(x) if degrees else x), None
 
 
 def _rot_y(a: float) -> np.ndarray:

@@ -22,8 +22,9 @@ import itertools
 
 import numpy as np
 
-from kinelab.errors import ModelError
-from kinelab.synthesis._burmester import _cubic, _normalised
+from kinelab.errors import ModelError, describe
+from kinelab.solvers._arguments import flag, reals
+from kinelab.synthesis._burmester import BurmesterCurves, _cubic, _normalised, burmester_curves
 from kinelab.synthesis._linkage import transmission_limit
 from kinelab.synthesis._motion import motion_solution
 from kinelab.synthesis._pivots import suh_radcliffe_rows
@@ -31,7 +32,7 @@ from kinelab.synthesis._positions import (Positions, as_positions, check_not_one
                                           rotation)
 from kinelab.synthesis._results import SolutionList
 
-__all__ = ["burmester_points", "five_positions"]
+__all__ = ["burmester", "burmester_points", "five_positions"]
 
 _NODES = 40          # Chebyshev nodes the resultant is sampled at (its degree is 9)
 _SPAN = 4.0          # ... over |x| <= _SPAN task sizes
@@ -254,3 +255,99 @@ def five_positions(points, angles=None, *, min_transmission_angle: float | None 
             reasons.append(f"Burmester points {fmt(centers[i])} and {fmt(centers[j])} left "
                            f"out: {exc}")
     return SolutionList(sols, reason="; ".join(reasons))
+
+
+def _poses(poses, angles, degrees: bool) -> Positions:
+    """Poses as Positions: a Positions, rows (x, y, angle), or points with ``angles``."""
+    if isinstance(poses, Positions) or angles is not None:
+        return as_positions(poses, angles, degrees)
+    a = reals("poses", poses)
+    if a.ndim != 2 or a.shape[1] != 3:
+        raise ModelError(f"poses: expected rows (x, y, angle) of shape (n, 3), or points (n, 2) "
+                         f"with angles, got shape {a.shape}")
+    bad = ~np.all(np.isfinite(a), axis=1)
+    if bad.any():
+        j = int(np.flatnonzero(bad)[0])
+        raise ModelError(f"poses[{j}]: expected three finite numbers (x, y, angle), got "
+                         f"{describe(a[j].tolist())}")
+    return Positions(a[:, :2], a[:, 2], degrees=degrees)
+
+
+def burmester(poses, angles=None, *, all_solutions: bool = True, samples: int = 1441,
+              min_transmission_angle: float | None = None,
+              degrees: bool = False) -> SolutionList | BurmesterCurves:
+    """Burmester's theory for four or five poses: the curves, or every real four-bar.
+
+    - **five poses**: every real Burmester point (centre point common to the five poses,
+      :func:`burmester_points`) is the fixed pivot of a dyad that reaches all five; each
+      pair of them is a four-bar (:func:`five_positions`), built as a model in pose 1
+      and checked by the engine;
+    - **four poses**: the dyads form one-parameter families, the centre-point and
+      circle-point curves (:func:`burmester_curves`), returned traced.
+
+    Parameters
+    ----------
+    poses : array_like, shape (n, 3), or shape (n, 2) with ``angles``, or Positions
+        The poses of the coupler, n = 4 or 5: rows (x, y, angle) (m, and rad or degrees
+        with ``degrees=True``), or the points of the coupler point P with the
+        orientations (or the rotations from pose 1) in ``angles``.
+    angles : array_like, shape (n,) or (n - 1,), optional
+        With points in ``poses``: see :class:`Positions`.
+    all_solutions : bool
+        True (default): every real dyad pair, whatever its defects (branch, order,
+        circuit, transmission angle), as :func:`five_positions` returns them; False: only
+        those without a defect (``valid``), the others named in ``reason``.  Four poses:
+        no effect.
+    samples : int
+        Four poses: the crank rotations beta_2 sampled over one turn along the curves.
+    min_transmission_angle : float, optional
+        Five poses: as in :func:`five_positions`.
+    degrees : bool
+        Angles in degrees.
+
+    Returns
+    -------
+    SolutionList of MotionSolution (five poses) or BurmesterCurves (four poses)
+        For five poses: up to six four-bars (k (k - 1) / 2 of k = 0, 2 or 4 real
+        Burmester points), with ``reason`` saying why the list is empty or what was left
+        out.
+
+    Raises
+    ------
+    ModelError
+        Not four or five poses, poses of the wrong shape, or two poses that coincide.
+
+    Examples
+    --------
+    Five poses of the coupler of a catalogue four-bar: its own pivots are among the
+    solutions.
+
+    >>> fb = kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0))
+    >>> s = kl.analyze(fb, q=np.radians([0, 30, 60, 90, 120]))
+    >>> poses = np.column_stack([s.position("P"), s.angle("coupler")])      # (5, 3)
+    >>> sols = kl.synthesis.burmester(poses)
+    >>> len(sols) == len(kl.synthesis.five_positions(s.position("P"), s.angle("coupler")))
+    True
+    >>> any(np.allclose(np.r_[x.A0, x.B0], [0, 0, 3, 0], atol=1e-9) for x in sols)
+    True
+    >>> kl.synthesis.burmester(poses[:4], samples=361).center.shape      # four: the curves
+    (2, 361, 2)
+    """
+    degrees = flag("degrees", degrees)
+    all_solutions = flag("all_solutions", all_solutions)
+    pos = _poses(poses, angles, degrees)
+    if pos.n == 4:
+        return burmester_curves(pos, samples=samples)
+    if pos.n != 5:
+        hint = ("; use three_positions (or two_positions)" if pos.n < 4
+                else "; use approximate_positions")
+        raise ModelError(f"poses: expected four or five poses, got {pos.n}{hint}")
+    sols = five_positions(pos, min_transmission_angle=min_transmission_angle, degrees=degrees)
+    if all_solutions:
+        return sols
+    kept = [x for x in sols if x.valid]
+    why = [sols.reason] if sols.reason else []
+    if len(kept) < len(sols):
+        why.append(f"{len(sols) - len(kept)} of the {len(sols)} four-bars left out for their "
+                   "defects (all_solutions=True keeps them)")
+    return SolutionList(kept, reason="; ".join(why))

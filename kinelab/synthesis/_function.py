@@ -36,7 +36,7 @@ from kinelab.synthesis._linkage import (TRANSMISSION_LIMIT, CheckedLinkage, four
                                         transmission_limit)
 
 __all__ = ["chebyshev_points", "freudenstein", "FunctionSolution", "function_generation",
-           "function_pairs"]
+           "function_generation_pairs", "function_pairs"]
 
 _REACHED = 1e-9   # rad: the engine's rocker angle at a precision point must match to this
 _WIDEST = 1e300    # x values beyond it: their differences overflow
@@ -136,6 +136,8 @@ class FunctionSolution(CheckedLinkage):
     precision_errors : ndarray, shape (n,)
         The same at the precision points: zero (to rounding) with three of them; with more,
         the residual of the least-squares fit at each one.
+    fit : str
+        ``"exact"`` (three precision points) or ``"least squares"`` (more), a property.
     grashof : Grashof
     min_transmission_angle : float
         Over the whole input range, rad (the engine's, :func:`kinelab.analyze`).
@@ -164,6 +166,12 @@ class FunctionSolution(CheckedLinkage):
     branch_defect: bool
     defects: tuple[str, ...]
     transmission_limit: float = TRANSMISSION_LIMIT
+
+    @property
+    def fit(self) -> str:
+        """``"exact"`` with three precision points (Freudenstein's three equations fix K),
+        ``"least squares"`` with more (``precision_errors`` then holds the miss at each)."""
+        return "exact" if self.x.size == 3 else "least squares"
 
     @property
     def max_structural_error(self) -> float:
@@ -324,6 +332,96 @@ def function_pairs(input_angles: ArrayLike, output_angles: ArrayLike,
     """
     return _function_pairs(input_angles, output_angles, O2, O4, samples, min_transmission_angle,
                            degrees)
+
+
+def function_generation_pairs(input_angles: ArrayLike, output_angles: ArrayLike | None = None,
+                              *, ground: float = 1.0, O2: ArrayLike = (0.0, 0.0),
+                              samples: int = 201, min_transmission_angle: float | None = None,
+                              degrees: bool = False) -> FunctionSolution:
+    """Function generation from raw pairs of crank and rocker angles.
+
+    The task as pylinkage (``pylinkage.synthesis.function_generation``) and most textbooks
+    state it: a list of pairs (theta2, theta4), the rocker angle theta4 the linkage must
+    show when the crank is at theta2.  Both angles are **absolute**, measured CCW from the
+    ground line O2 -> O4, which runs along +x from ``O2`` to ``O4 = O2 + (ground, 0)``
+    (not relative to the first pair: pylinkage's convention too).  This is a front of
+    :func:`function_pairs` with the ground along +x: the same Freudenstein solution, the
+    same checks.
+
+    - three pairs: Freudenstein's three linear equations fix K1, K2, K3 exactly
+      (``fit == "exact"``);
+    - more than three: K is the least-squares solution of the overdetermined equations
+      (``fit == "least squares"``), and ``precision_errors`` holds the linkage's
+      structural error at each pair: its rocker angle less the prescribed one, rad (from
+      the kinematics engine, not from Freudenstein's residuals).
+
+    The crank must pass the pairs in the order given, turning one way (input angles all
+    increasing or all decreasing, over less than a turn).
+
+    Parameters
+    ----------
+    input_angles : array_like, shape (n,), or shape (n, 2) without ``output_angles``
+        Crank angles theta2 from the ground line (rad, or degrees with ``degrees=True``);
+        or, alone, the pairs (theta2, theta4) themselves, as pylinkage's ``angle_pairs``.
+    output_angles : array_like, shape (n,), optional
+        Rocker angles theta4 from the ground line, same units; 3 <= n <= 100.
+    ground : float
+        O2O4, m (the linkage is scale-free; this sets its size).
+    O2 : array_like, shape (2,)
+        The crank's fixed pivot, m.
+    samples : int
+        Points of the structural-error curve between the first and last pair.
+    min_transmission_angle : float, optional
+        As in :func:`function_generation`.
+    degrees : bool
+        Angles in degrees.
+
+    Returns
+    -------
+    FunctionSolution
+        The four-bar (catalogue names) sketched at the first pair, with its defects
+        (branch, transmission angle, a crank or rocker that points back along its rays),
+        ``fit``, ``precision_errors`` and the structural error.
+
+    Raises
+    ------
+    ModelError
+        Pairs of the wrong shape, fewer than three, input angles out of order or over a
+        turn, a ground length out of range, or no four-bar through the pairs.
+
+    Examples
+    --------
+    Three pairs of a known four-bar (ground 3, crank 1, coupler 3, rocker 2.5) give it back:
+
+    >>> pairs = [(40, 87.1457), (70, 92.1681), (100, 102.6990)]     # degrees
+    >>> sol = kl.synthesis.function_generation_pairs(pairs, ground=3.0, degrees=True)
+    >>> sol.fit, {k: round(v, 3) for k, v in sol.lengths.items()}
+    ('exact', {'ground': 3.0, 'crank': 1.0, 'coupler': 3.0, 'rocker': 2.5})
+
+    Five pairs, the same linkage's rocker angles rounded to whole degrees: least squares,
+    with the structural error at each pair (deg):
+
+    >>> sol = kl.synthesis.function_generation_pairs([40, 60, 80, 100, 120],
+    ...                                              [87, 90, 95, 103, 111],
+    ...                                              ground=3.0, degrees=True)
+    >>> sol.fit, np.degrees(sol.precision_errors).round(1), sol.valid
+    ('least squares', array([ 0.2, -0.4,  0.3, -0.2,  0. ]), True)
+    """
+    degrees = flag("degrees", degrees)
+    if output_angles is None:
+        pairs = reals("input_angles", input_angles)
+        if pairs.ndim != 2 or pairs.shape[1] != 2:
+            raise ModelError(f"input_angles: expected pairs (input, output) of shape (n, 2) when "
+                             f"output_angles is not given, got shape {pairs.shape}; give the "
+                             "pairs, or the input and the output angles apart")
+        input_angles, output_angles = pairs[:, 0], pairs[:, 1]
+    if not (is_real(ground) and float(ground) > 0):
+        raise ModelError(f"ground: expected a positive length (m), got {describe(ground)}")
+    if why := length_problem(float(ground)):
+        raise ModelError(f"ground: {why}, got {float(ground):g} m")
+    O2 = as_xy("O2", O2)
+    return _function_pairs(input_angles, output_angles, O2, O2 + (float(ground), 0.0), samples,
+                           min_transmission_angle, degrees)
 
 
 def _function_pairs(input_angles, output_angles, O2=(0.0, 0.0), O4=(1.0, 0.0), samples=201,

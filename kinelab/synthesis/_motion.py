@@ -11,16 +11,17 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from kinelab.errors import ModelError
+from kinelab.errors import ModelError, describe
 from kinelab.mechanisms import Grashof
-from kinelab.model import MAX_LENGTH, Mechanism
+from kinelab.model import MAX_LENGTH, Mechanism, is_real
 from kinelab.solvers import wrap_angle
 from kinelab.synthesis._linkage import (TRANSMISSION_LIMIT, CheckedLinkage, at_inputs, circuits,
                                         finite_or_inf, fourbar_model, model_grashof,
                                         nearer_branch, planned, transmission_defects,
                                         transmission_limit, travel)
-from kinelab.synthesis._arguments import coordinate
-from kinelab.synthesis._pivots import fixed_pivot, moving_pivot
+from kinelab.solvers._arguments import flag
+from kinelab.synthesis._arguments import angle_array, coordinate
+from kinelab.synthesis._pivots import fixed_pivot, moving_pivot, standard_form_dyad
 from kinelab.synthesis._positions import (Positions, as_positions, as_xy, check_not_one_turn,
                                           cross, fmt, poles)
 
@@ -319,16 +320,59 @@ def two_positions(points, angles=None, A1: ArrayLike = None, B1: ArrayLike = Non
 
 
 # -- three positions ----------------------------------------------------------------------
+def _rotations(beta, degrees: bool) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """``beta`` as (the crank's (beta_2, beta_3) or None, the rocker's or None), rad."""
+    if beta is None:
+        return None, None
+    shape = ("expected the crank's rotations (beta_2, beta_3), or one pair for each dyad "
+             "((beta_2, beta_3), (gamma_2, gamma_3)) with None for a dyad given by its pivots")
+    try:
+        items = list(beta)
+    except TypeError:
+        raise ModelError(f"beta: {shape}, got {describe(beta)}") from None
+    if len(items) == 2 and all(is_real(v) or (isinstance(v, np.ndarray) and v.ndim == 0)
+                               for v in items):
+        items = [beta, None]                  # the crank's pair alone
+    elif len(items) != 2 or all(v is None for v in items):
+        raise ModelError(f"beta: {shape}, got {describe(beta)}")
+    out = []
+    for k, row in enumerate(items):
+        if row is None:
+            out.append(None)
+            continue
+        a = angle_array(f"beta[{k}]", row, degrees)
+        if a.shape != (2,):
+            raise ModelError(f"beta[{k}]: expected two rotations (from position 1 to 2 and to 3), "
+                             f"got {describe(row)}")
+        out.append(a)
+    return out[0], out[1]
+
+
 def three_positions(points, angles=None, A0: ArrayLike | None = None, B0: ArrayLike | None = None,
                     *, A1: ArrayLike | None = None, B1: ArrayLike | None = None,
+                    beta: ArrayLike | None = None,
                     method: str = "suh-radcliffe", min_transmission_angle: float | None = None,
                     degrees: bool = False) -> MotionSolution:
-    """Three positions: the four-bar through them, from two chosen pivots.
+    """Three positions: the four-bar through them, from two chosen pivots or rotations.
 
     For each dyad give either its fixed pivot (``A0``, ``B0``: the moving pivot follows
     from the Suh-Radcliffe linear system, *Mecanismos*, eq. 67-68, or from Burmester's pole
-    construction, §6.2) or its moving pivot in position 1 (``A1``, ``B1``: the fixed
-    pivot is the centre of the circle through its three positions).
+    construction, §6.2), its moving pivot in position 1 (``A1``, ``B1``: the fixed
+    pivot is the centre of the circle through its three positions), or the rotations of
+    its link from position 1 to 2 and 3 (``beta``).
+
+    **Rotations: Erdman and Sandor's standard form** (Norton, *Design of Machinery*,
+    ch. 5).  Let W be the crank, from A0 to A1, and Z the coupler's vector from A1 to
+    P1, as complex numbers.  In position j the crank has turned by beta_j and the
+    coupler by alpha_j, so P_j = A0 + W e^(i beta_j) + Z e^(i alpha_j), and
+
+        W (e^(i beta_j) - 1) + Z (e^(i alpha_j) - 1) = delta_j = P_j - P_1,   j = 2, 3:
+
+    two complex equations, linear in W and Z once beta_2 and beta_3 are chosen: one
+    dyad, A1 = P1 - Z, A0 = A1 - W.  The rocker's dyad (U, S in Norton) is the same
+    equation with the rocker's rotations (gamma_2, gamma_3).  Both rotations are CCW
+    positive; the crank of the linkage found turns by exactly beta_2, beta_3 (``q[j] -
+    q[0]``, to a multiple of a turn).
 
     Parameters
     ----------
@@ -340,6 +384,11 @@ def three_positions(points, angles=None, A0: ArrayLike | None = None, B0: ArrayL
         Fixed pivots of the crank and of the rocker, m.
     A1, B1 : array_like, shape (2,), optional, keyword-only
         Moving pivots in position 1, m (instead of A0, B0).
+    beta : array_like, shape (2,) or (2, 2), optional, keyword-only
+        ``(beta_2, beta_3)``: the crank's rotations from position 1 to 2 and to 3 (rad,
+        or degrees with ``degrees=True``), instead of A0 or A1; or one pair for each
+        dyad, ``((beta_2, beta_3), (gamma_2, gamma_3))``, the second the rocker's
+        rotations instead of B0 or B1, either pair None for a dyad given by its pivots.
     method : {"suh-radcliffe", "poles"}
         How a moving pivot is found from a fixed one (see :func:`moving_pivot`).
     min_transmission_angle : float, optional
@@ -357,9 +406,10 @@ def three_positions(points, angles=None, A0: ArrayLike | None = None, B0: ArrayL
     Raises
     ------
     ModelError
-        Not three positions, a dyad given by both or neither of its pivots, a pivot at
-        infinity, coincident pivots, or pivots that put the linkage at a dead centre in
-        position 1 (the coupler and the rocker in line).
+        Not three positions, a dyad given by more or fewer than one of its pivots and its
+        rotations, a pivot at infinity, coincident pivots, rotations that fix no dyad (or a
+        link of zero length), or pivots that put the linkage at a dead centre in position 1
+        (the coupler and the rocker in line).
 
     Examples
     --------
@@ -372,6 +422,20 @@ def three_positions(points, angles=None, A0: ArrayLike | None = None, B0: ArrayL
     (array([ 3.548, -1.655]), array([0.994, 3.238]))
     >>> sol.model.parameters["kind"], bool(sol.position_errors.max() < 1e-9)
     ('fourbar', True)
+
+    The same positions with the rotations chosen instead (the standard form): the crank
+    turns by -30 and -75 deg, the rocker by 15 and 30 deg:
+
+    >>> sol = kl.synthesis.three_positions([(1, 1), (2, 0.5), (3, 1.5)], [0, 45],
+    ...                                    beta=((-30, -75), (15, 30)), degrees=True)
+    >>> sol.A0.round(6), sol.B0.round(6)
+    (array([-2.296115,  0.461672]), array([1.873598, 5.044869]))
+    >>> np.degrees(sol.q - sol.q[0]).round(9) + 0.0       # the crank's turns
+    array([  0., -30., -75.])
+    >>> sol.valid
+    True
+    >>> bool(sol.position_errors.max() < 1e-9 and sol.angle_errors.max() < 1e-9)
+    True
     """
     pos = as_positions(points, angles, degrees)
     limit = transmission_limit(min_transmission_angle, degrees)
@@ -379,15 +443,27 @@ def three_positions(points, angles=None, A0: ArrayLike | None = None, B0: ArrayL
         raise ModelError(f"points: expected three positions, got {pos.n}"
                          + ("; use four_positions" if pos.n == 4 else ""))
     check_not_one_turn(pos)
+    rotations = _rotations(beta, flag("degrees", degrees))
     pivots = {}
     problems = []
-    for side, fixed, moving in (("A", A0, A1), ("B", B0, B1)):
-        if (fixed is None) == (moving is None):
+    for k, (side, fixed, moving, turns) in enumerate((("A", A0, A1, rotations[0]),
+                                                       ("B", B0, B1, rotations[1]))):
+        given = [n for n, v in ((f"{side}0", fixed), (f"{side}1", moving), (f"beta[{k}]", turns))
+                 if v is not None]
+        if turns is None and len(given) != 1:
             problems.append(f"{side}0, {side}1: give exactly one of the fixed pivot {side}0 and "
                             f"the moving pivot {side}1, got "
                             + ("both" if fixed is not None else "neither"))
             continue
-        if fixed is not None:
+        if len(given) != 1:
+            problems.append(f"{side}0, {side}1, beta[{k}]: give exactly one of the fixed pivot "
+                            f"{side}0, the moving pivot {side}1 and the rotations beta[{k}], got "
+                            + " and ".join(given))
+            continue
+        if turns is not None:
+            link = "crank" if k == 0 else "rocker"
+            pivots[side] = standard_form_dyad(pos, turns, f"beta[{k}]", link)
+        elif fixed is not None:
             f = as_xy(f"{side}0", fixed)
             pivots[side] = (f, moving_pivot(pos, fixed=f, method=method))
         else:

@@ -18,12 +18,14 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from kinelab.errors import ModelError, describe
+from kinelab.model import MAX_LENGTH
 from kinelab.synthesis._positions import Positions, as_positions, as_xy, fmt, poles, rotation
 
-__all__ = ["suh_radcliffe_rows", "moving_pivot", "fixed_pivot"]
+__all__ = ["suh_radcliffe_rows", "moving_pivot", "fixed_pivot", "standard_form_dyad"]
 
 _SINGULAR = 1e-10   # sine of the angle between the two equations' normals below which
                     # the pivot is at infinity (to rounding)
+_SHORTEST = 1e-9    # a dyad link shorter than this, relative to the task, is no link
 _CONSISTENT = 1e-9  # relative residual above which more than three positions disagree
 
 
@@ -212,3 +214,45 @@ def _burmester_moving_pivot(pos: Positions, A0: np.ndarray) -> np.ndarray:
                          "infinity); choose another fixed pivot")
     t = np.linalg.solve(M, p2 - p1)
     return p1 + t[0] * d1
+
+
+def standard_form_dyad(pos: Positions, beta: np.ndarray, name: str,
+                       link: str = "crank") -> tuple[np.ndarray, np.ndarray]:
+    """The dyad of three positions whose link turns by ``beta = (beta_2, beta_3)`` (rad).
+
+    Erdman and Sandor's standard form (Norton, *Design of Machinery*, ch. 5): with W the
+    link, from its fixed pivot to its moving pivot in position 1, and Z from the moving
+    pivot to the coupler point P1 (complex numbers), position j puts P at
+    ``A0 + W e^{i beta_j} + Z e^{i alpha_j}``, so
+
+        W (e^{i beta_j} - 1) + Z (e^{i alpha_j} - 1) = delta_j = P_j - P_1,   j = 2, 3,
+
+    two complex equations, linear in W and Z once beta_2, beta_3 are chosen.  Returns the
+    fixed pivot A0 = P1 - Z - W and the moving pivot A1 = P1 - Z, m.  ``name`` is the
+    argument blamed when the equations fix no dyad, ``link`` the link's name in that
+    message.
+    """
+    delta = (pos.points[1:] - pos.points[0]) @ np.array([1.0, 1j])       # (2,) complex
+    eb = np.exp(1j * beta) - 1.0
+    ea = np.exp(1j * pos.alpha[1:]) - 1.0
+    det = eb[0] * ea[1] - eb[1] * ea[0]
+    norm = np.sqrt((abs(eb[0]) ** 2 + abs(ea[0]) ** 2) * (abs(eb[1]) ** 2 + abs(ea[1]) ** 2))
+    if not abs(det) > _SINGULAR * norm:
+        raise ModelError(f"{name}: these rotations of the {link} and the coupler's rotations "
+                         "alpha_2, alpha_3 do not fix the dyad (W (e^(i beta_j) - 1) + "
+                         "Z (e^(i alpha_j) - 1) = delta_j is singular: the rotations are both "
+                         "zero, equal to the coupler's, or in proportion to them); choose other "
+                         "rotations")
+    W = (delta[0] * ea[1] - delta[1] * ea[0]) / det
+    Z = (eb[0] * delta[1] - eb[1] * delta[0]) / det
+    P1 = pos.points[0]
+    A1 = P1 - np.array([Z.real, Z.imag])
+    A0 = A1 - np.array([W.real, W.imag])
+    if not abs(W) > _SHORTEST * pos.size:
+        raise ModelError(f"{name}: with these rotations the {link} comes out of zero length "
+                         f"(its pivots both at {fmt(A0)}); choose other rotations")
+    if not np.all(np.abs(np.concatenate([A0, A1])) <= MAX_LENGTH):
+        raise ModelError(f"{name}: with these rotations the {link}'s pivots come out at "
+                         f"{fmt(A0)} and {fmt(A1)}, beyond the coordinates kinelab computes "
+                         f"with ({MAX_LENGTH:g} m); choose other rotations")
+    return A0, A1
