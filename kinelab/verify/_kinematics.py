@@ -234,7 +234,7 @@ def certify_kinematics(sol: KinematicSolution) -> Certificate:
     notes: list[str] = []
     reported = route_name(p)
     followed = sol.change_points[0].followed if sol.change_points else "smooth"
-    geared = any(j.type == "G" for j in m.joints)
+    geared = any(j.type in ("G", "C") for j in m.joints)    # closed form only: no Newton plan
     newton_plan = None if geared else kinematics.plan(m, method="newton")
     other_method = "auto" if p is newton_plan else "newton"
     other_plan = p if geared else kinematics.plan(m, method=other_method)
