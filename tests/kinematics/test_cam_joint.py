@@ -286,3 +286,23 @@ def test_round_trip_through_plain_data_and_toml(tmp_path):
     q = np.linspace(0.0, 6.0, 13)
     np.testing.assert_allclose(kl.analyze(again, q=q).slide("slide"),
                                kl.analyze(m, q=q).slide("slide"), rtol=0, atol=1e-15)
+
+
+# ------------------------------------------------------------------------------------------
+# instant centres: the cam pair's primary centre, and Kennedy's construction from it
+# ------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("stem", ["cam_follower", "cam_rocker_slider"])
+def test_kennedy_construction_from_the_cam_centre_meets_the_velocities(stem):
+    """A cam joint's primary centre lies on the line of centres where S'(theta) puts it;
+    Kennedy's construction from there agrees with the centres solved from the velocities
+    (samples where the follower moves: at a dwell the cam turns alone)."""
+    sol = kl.analyze(load(stem), q=np.radians([20.0, 75.0, 100.0, 250.0, 280.0]), qd=1.0)
+    kc = kl.kinematics.kennedy_construction(sol)
+    ic = kl.kinematics.instant_centers(sol)
+    assert "contact" in kc.primary.values()
+    for pair in ic:
+        a, b = kc.centers[pair], ic[pair]
+        np.testing.assert_array_equal(a.at_infinity, b.at_infinity)
+        finite = ~np.asarray(b.at_infinity)
+        np.testing.assert_allclose(np.asarray(a.position)[finite], np.asarray(b.position)[finite],
+                                   rtol=1e-9, atol=1e-12)
