@@ -262,7 +262,10 @@ def certify_kinematics(sol: KinematicSolution) -> Certificate:
     bounds, why = _engine_bounds(sub)
 
     # -- the other engine ------------------------------------------------------------------
-    if geared:
+    if geared and any(j.type == "C" for j in m.joints):
+        notes.append("no second engine: cam joints are solved in closed form only (from the "
+                     "cam's motion program); compared by the other routes")
+    elif geared:
         notes.append("no second engine: gear joints are solved in closed form only (their "
                      "relation is linear in the angles); compared by the other routes")
     elif route_name(other_plan) == reported:
