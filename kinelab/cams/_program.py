@@ -255,6 +255,16 @@ class MotionProgram:
                     out.append(Discontinuity(self.segments[i].end % TURN, q, a, b, i, j))
         return tuple(out)
 
+    def scaled(self, factor: float) -> MotionProgram:
+        """The program with every displacement (lifts, polynomial conditions, ``start``)
+        multiplied by ``factor``: the same motion for a follower drawn ``factor`` times as
+        large."""
+        segs = [Segment(s.kind, s.start, s.end, s.lift * factor, s.law,
+                        tuple((x, o, v * factor) for x, o, v in s.conditions))
+                for s in self.segments]
+        return MotionProgram(segs, None if self.start is None else self.start * factor,
+                             self.allow_discontinuous)
+
     def to_dict(self) -> dict:
         """Plain data (SI: rad, and m or rad), the inverse of :meth:`from_dict`."""
         segs = []

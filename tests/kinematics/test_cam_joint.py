@@ -315,3 +315,39 @@ def test_kennedy_construction_from_the_cam_centre_meets_the_velocities(stem):
         finite = ~np.asarray(b.at_infinity)
         np.testing.assert_allclose(np.asarray(a.position)[finite], np.asarray(b.position)[finite],
                                    rtol=1e-9, atol=1e-12)
+
+
+# ------------------------------------------------------------------------------------------
+# a cam on a moving carrier: the program reads the cam's angle relative to it
+# ------------------------------------------------------------------------------------------
+def on_an_arm(prog):
+    """An arm turning on the frame at O (input 0) carries a cam at P (input 1, its angle on
+    the arm) and a follower sliding on the arm along the arm's normal above P."""
+    return Mechanism(
+        "cam on an arm",
+        (Point("O", 0, 0), Point("E", -0.1, 0), Point("P", 0.2, 0), Point("M", 0.23, 0),
+         Point("F", 0.2, 0.05)),
+        (Link("ground", ("O", "E"), ground=True), Link("arm", ("O", "P")),
+         Link("cam", ("P", "M")), Link("follower", ("F",))),
+        (Joint("jO", "R", ("ground", "arm"), point="O"), Joint("jP", "R", ("arm", "cam"), point="P"),
+         Joint("guide", "P", ("arm", "follower"), point="F", axis=(0.0, 1.0), origin="P"),
+         Joint("contact", "C", ("cam", "follower"), program=prog, carrier="arm")),
+        (Input(joint="jO"), Input(joint="jP")))
+
+
+def test_a_cam_on_a_moving_carrier():
+    prog = program("modified-trapezoid", "harmonic")
+    m = on_an_arm(prog)
+    assert kl.structure.mobility(m).exact == 2
+    rng = np.random.default_rng(5)
+    q = rng.uniform(-4.0, 4.0, (40, 2))
+    qd, qdd = rng.normal(size=q.shape), rng.normal(size=q.shape)
+    sol = kl.analyze(m, q=q, qd=qd, qdd=qdd)
+    svaj = prog.svaj(q[:, 1])
+    np.testing.assert_allclose(sol.slide("guide"), 0.05 + svaj.S, rtol=0, atol=1e-15)
+    # the slide's K is (0, S') and its L has S'' in the cam's corner: the arm does not count
+    np.testing.assert_allclose(sol.K("guide"), np.stack([0 * svaj.V, svaj.V], -1), rtol=0,
+                               atol=1e-14)
+    np.testing.assert_allclose(sol.L("guide")[:, 1, 1], svaj.A, rtol=0, atol=1e-13)
+    np.testing.assert_allclose(sol.L("guide")[:, 0], 0.0, rtol=0, atol=1e-13)
+    check(m, q, qd=qd, qdd=qdd)

@@ -253,7 +253,7 @@ def test_every_operation_and_constraint_kind_is_compared():
     ops, kinds = set(), set()
     for make in (*TURNING.values(), *INSIDE.values(), *TWO_INPUTS.values(), double_parallelogram):
         m = make()
-        geared = any(j.type == "G" for j in m.joints)
+        geared = any(j.type in ("G", "C") for j in m.joints)
         for method in ("auto", "newton") if make is not double_parallelogram and not geared else ("auto",):
             p = plan(m, method=method)
             ops |= set(p.ops_i[:, 0].tolist())
