@@ -49,7 +49,8 @@ class Names(dict):
 class Step:
     """One group of the decomposition, for people: what it solves and how."""
 
-    kind: str                  # "driven", "locked", "placed", "RRR", "RRP", "RPR", "PRP", "lines", "newton"
+    kind: str                  # "driven", "locked", "placed", "RRR", "RRP", "RPR", "PRP", "lines",
+                               # "gear", "cam", "newton"
     links: tuple[str, ...]
     joints: tuple[str, ...]
     label: str
@@ -1300,9 +1301,10 @@ def build_plan(m: Mechanism, *, method: str = "auto") -> Plan:
     """Decompose a planar mechanism into its solution plan.
 
     ``method="newton"`` skips the closed forms: every moving link goes into Newton groups
-    (used to check the closed forms against the general engine).  Gear joints (``G``) are
-    solved in closed form only (their relation is linear in the angles): a mechanism with
-    them has no Newton plan.
+    (used to check the closed forms against the general engine).  Gear joints (``G``) and
+    cam joints (``C``) are solved in closed form only (a gear pair's relation is linear in
+    the angles; a follower moves by its cam's program): a mechanism with them has no Newton
+    plan.
     """
     if method == "newton" and isinstance(m, Mechanism) and any(j.type == "G" for j in m.joints):
         raise ModelError(f"method: 'newton' puts every link in Newton groups, which do not take gear "
