@@ -17,7 +17,7 @@ from typing import Any, Literal
 import numpy as np
 
 from kinelab.errors import PROBLEMS_SHOWN, ModelError, describe, quoted, shown, suggest
-from kinelab.model._cams import CAM_FIELDS, cam_problems
+from kinelab.model._cams import cam_problems
 from kinelab.model._gears import GEAR_FIELDS, gear_problems
 from kinelab.model._joints import JOINT_TYPES
 from kinelab.model._places import place_problems
