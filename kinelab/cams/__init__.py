@@ -23,11 +23,12 @@ __getattr__, __dir__ = exports(__name__, {
                               "FOLLOWER_TYPES", "FOLLOWER_MOTIONS"),
     "kinelab.cams._export": ("profile_svg", "write_dxf"),
     "kinelab.cams._dynamics": ("FollowerForces", "follower_forces"),
-    "kinelab.cams._task": ("CamTask", "CamSolution", "read_cam_task", "solve_cam_task"),
+    "kinelab.cams._task": ("CamTask", "CamSolution", "read_cam_task", "solve_cam_task",
+                           "read_segments", "segments_data"),
 })
 
 __all__ = ["LAWS", "LAW_NAMES", "KINDS", "law_values", "polynomial_coefficients", "Segment",
            "MotionProgram", "SVAJ", "Discontinuity", "Follower", "CamProfile", "profile",
            "smallest_base_circle", "FOLLOWER_TYPES", "FOLLOWER_MOTIONS", "profile_svg",
            "write_dxf", "FollowerForces", "follower_forces", "CamTask", "CamSolution",
-           "read_cam_task", "solve_cam_task"]
+           "read_cam_task", "solve_cam_task", "read_segments", "segments_data"]

@@ -14,7 +14,7 @@ import numpy as np
 
 from kinelab.errors import ModelError
 
-__all__ = ["LAWS", "law_values", "polynomial_coefficients", "polynomial_values"]
+__all__ = ["LAWS", "law_pieces", "law_values", "polynomial_coefficients", "polynomial_values"]
 
 PI = math.pi
 
@@ -86,7 +86,16 @@ def _pieces_law(shape):
                     o[mask] = v
         return tuple(out)
     values.peak = scale        # the largest |f''|
+    values.pieces = tuple(_generic(p) for p in pieces)
     return values
+
+
+def _generic(p: _Piece) -> tuple:
+    """A piece as ``(x0, c, B, k, phase)``: ``f(x) = sum(c_i (x - x0)**i) + B sin(k x + phase)``
+    from ``x0`` on (the form the planar engine evaluates, see ``law_pieces``)."""
+    a0 = p.k * p.x0 + p.phase
+    return (p.x0, (p.s0 + p.beta / p.k ** 2 * math.sin(a0), p.v0 + p.beta / p.k * math.cos(a0),
+                   p.alpha / 2), -p.beta / p.k ** 2, p.k, p.phase)
 
 
 # Modified trapezoid: quarter sines over the first and last eighths and about the middle,
@@ -115,6 +124,19 @@ LAWS = {
     "modified-sine": _modified_sine,
 }
 """The laws by name: each maps x (array) to f, f', f'', f''' (arrays of x's shape)."""
+
+
+def law_pieces(name: str) -> tuple:
+    """The law ``name`` as pieces ``(x0, c, B, k, phase)``, each holding from its ``x0`` to the
+    next one's: ``f(x) = sum(c_i (x - x0)**i) + B sin(k x + phase)``, exactly the law of
+    :data:`LAWS` (the form the planar engine's cam joints evaluate, compiled or not)."""
+    law = LAWS[name]
+    if hasattr(law, "pieces"):
+        return law.pieces
+    return {"harmonic": ((0.0, (0.5,), -0.5, PI, PI / 2),),
+            "cycloidal": ((0.0, (0.0, 1.0), -1 / (2 * PI), 2 * PI, 0.0),),
+            "3-4-5": ((0.0, (0, 0, 0, 10, -15, 6), 0.0, 0.0, 0.0),),
+            "4-5-6-7": ((0.0, (0, 0, 0, 0, 35, -84, 70, -20), 0.0, 0.0, 0.0),)}[name]
 
 
 def law_values(name: str, x) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:

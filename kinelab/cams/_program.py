@@ -8,8 +8,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from kinelab.cams._laws import LAWS, law_values, polynomial_coefficients, polynomial_values
+from kinelab.cams._laws import (LAWS, law_pieces, law_values, polynomial_coefficients,
+                                polynomial_values)
 from kinelab.errors import ModelError, describe, expected_one_of
+from kinelab.model._cams import MAX_DEGREE, PIECE_HEAD, PIECE_WIDTH
 
 __all__ = ["Segment", "MotionProgram", "SVAJ", "Discontinuity", "KINDS", "LAW_NAMES"]
 
@@ -165,8 +167,8 @@ class MotionProgram:
     segments: tuple
     start: float | None = None
     allow_discontinuous: bool = False
-    levels: tuple = field(init=False, repr=False)       # S at each segment's start
-    coefficients: tuple = field(init=False, repr=False)  # polynomial segments' c, else None
+    levels: tuple = field(init=False, repr=False, compare=False)   # S at each segment's start
+    coefficients: tuple = field(init=False, repr=False, compare=False)  # polynomial segments' c
 
     def __post_init__(self):
         segs = tuple(self.segments)
@@ -252,6 +254,79 @@ class MotionProgram:
                 if abs(b - a) > tol:
                     out.append(Discontinuity(self.segments[i].end % TURN, q, a, b, i, j))
         return tuple(out)
+
+    def scaled(self, factor: float) -> MotionProgram:
+        """The program with every displacement (lifts, polynomial conditions, ``start``)
+        multiplied by ``factor``: the same motion for a follower drawn ``factor`` times as
+        large."""
+        segs = [Segment(s.kind, s.start, s.end, s.lift * factor, s.law,
+                        tuple((x, o, v * factor) for x, o, v in s.conditions))
+                for s in self.segments]
+        return MotionProgram(segs, None if self.start is None else self.start * factor,
+                             self.allow_discontinuous)
+
+    def to_dict(self) -> dict:
+        """Plain data (SI: rad, and m or rad), the inverse of :meth:`from_dict`."""
+        segs = []
+        for s in self.segments:
+            d = {"kind": s.kind, "start": s.start, "end": s.end}
+            if s.kind != "dwell":
+                d["law"] = s.law
+                if s.law == "polynomial":
+                    d["conditions"] = [list(c) for c in s.conditions]
+                else:
+                    d["lift"] = s.lift
+            segs.append(d)
+        out = {"segments": segs}
+        if self.start is not None:
+            out["start"] = self.start
+        if self.allow_discontinuous:
+            out["allow_discontinuous"] = True
+        return out
+
+    @classmethod
+    def from_dict(cls, data) -> MotionProgram:
+        """A program from plain data (the output of :meth:`to_dict`)."""
+        try:
+            segs = [Segment(d["kind"], d["start"], d["end"], d.get("lift", 0.0), d.get("law", ""),
+                            tuple(tuple(c) for c in d.get("conditions", ())))
+                    for d in data["segments"]]
+        except (KeyError, TypeError, AttributeError) as exc:
+            raise ModelError(f"segments: malformed program data: {describe(str(exc))}") from None
+        return cls(segs, data.get("start"), bool(data.get("allow_discontinuous", False)))
+
+    def pieces(self) -> np.ndarray:
+        """The program as a table of pieces, one row each (``kinelab.model._cams``): where the
+        piece starts, its segment's start and width, its ``x0``, the segment's level and
+        height, ``B, k, phase`` and the polynomial's coefficients, so that on the piece
+        ``S = level + h (sum(c_i (x - x0)**i) + B sin(k x + phase))``, ``x`` the segment's
+        normalised angle.  The planar engine's cam joints (``C``) evaluate this table.
+
+        Raises
+        ------
+        ModelError
+            A polynomial segment of degree above 14.
+        """
+        rows = []
+        for i, (s, c) in enumerate(zip(self.segments, self.coefficients)):
+            if c is not None:
+                if len(c) - 1 > MAX_DEGREE:
+                    raise ModelError(f"segments[{i}]: a polynomial of degree {len(c) - 1} is more "
+                                     f"than a cam joint takes ({MAX_DEGREE}); give fewer "
+                                     "boundary conditions")
+                parts, level, h = [(0.0, tuple(c), 0.0, 0.0, 0.0)], 0.0, 1.0
+            elif s.kind == "dwell":
+                parts, level, h = [(0.0, (0.0,), 0.0, 0.0, 0.0)], self.levels[i], 0.0
+            else:
+                parts = law_pieces(s.law)
+                level, h = self.levels[i], (s.lift if s.kind == "rise" else -s.lift)
+            for x0, coef, B, k, phase in parts:
+                row = np.zeros(PIECE_WIDTH)
+                row[:PIECE_HEAD] = (s.start + x0 * s.beta, s.start, s.beta, x0, level, h, B, k,
+                                    phase)
+                row[PIECE_HEAD:PIECE_HEAD + len(coef)] = coef
+                rows.append(row)
+        return np.array(rows)
 
     def svaj(self, theta=None, *, samples: int = 721) -> SVAJ:
         """S, V, A, J at the cam angles ``theta`` (rad, any shape; taken modulo a turn), by

@@ -14,7 +14,8 @@ from kinelab.cams._program import KINDS, LAW_NAMES, MotionProgram, Segment
 from kinelab.errors import ModelError, describe, expected_one_of, quoted, suggest
 from kinelab.model import ANGLE_UNITS, LENGTH_UNITS, Units
 
-__all__ = ["CamTask", "CamSolution", "read_cam_task", "solve_cam_task"]
+__all__ = ["CamTask", "CamSolution", "read_cam_task", "solve_cam_task", "read_segments",
+           "segments_data"]
 
 _TOP = ("name", "units", "cam", "follower", "segments", "dynamics")
 _CAM = ("speed", "samples", "allow_discontinuous")
@@ -190,55 +191,7 @@ def read_cam_task(data, *, source: str | None = None, name: str = "cam") -> CamT
             problems += list(exc.problems)
 
     lift_scale = ang if motion == "oscillating" else ls
-    segments = []
-    raw = data.get("segments")
-    if not isinstance(raw, list) or not raw:
-        problems.append("segments: expected [[segments]] tables (kind, law, from, to, lift) "
-                        f"covering one turn, got {describe(raw)}")
-        raw = []
-    for i, seg in enumerate(raw):
-        where = f"segments[{i}]."
-        if not isinstance(seg, dict):
-            problems.append(f"segments[{i}]: expected a table, got {describe(seg)}")
-            continue
-        problems += _unknown(seg, _SEGMENT, where)
-        kind = seg.get("kind", "")
-        if kind not in KINDS:
-            problems.append(f"{where}kind: {expected_one_of(kind, KINDS)}")
-            continue
-        law = seg.get("law", "")
-        if kind != "dwell" and law not in LAW_NAMES:
-            problems.append(f"{where}law: {expected_one_of(law, LAW_NAMES)}")
-            continue
-        a = _number(seg, "from", where, problems)
-        b = _number(seg, "to", where, problems)
-        for k in ("from", "to"):
-            if k not in seg:
-                problems.append(f"{where}{k}: missing; give the cam angle where it "
-                                f"{'begins' if k == 'from' else 'ends'}")
-        lift = _number(seg, "lift", where, problems, default=0.0)
-        if kind != "dwell" and law != "polynomial" and "lift" not in seg:
-            problems.append(f"{where}lift: missing; give the {kind}'s travel")
-        if a is None or b is None or lift is None:
-            continue
-        conds = []
-        if law == "polynomial" and kind != "dwell":
-            for end_key, at in (("start", a), ("end", b)):
-                table = seg.get(end_key, {})
-                if not isinstance(table, dict):
-                    problems.append(f"{where}{end_key}: expected a table such as "
-                                    f"{{S = 0, V = 0, A = 0}}, got {describe(table)}")
-                    continue
-                problems += _unknown(table, tuple(_ORDERS), f"{where}{end_key}.")
-                for q, order in _ORDERS.items():
-                    v = _number(table, q, f"{where}{end_key}.", problems)
-                    if v is not None:
-                        conds.append((at * ang, order, v * lift_scale / ang ** order))
-        elif "start" in seg or "end" in seg:
-            problems.append(f"{where}: start and end (boundary conditions) belong to a "
-                            "polynomial law; leave them out or make the law 'polynomial'")
-        segments.append(Segment(kind, a * ang, b * ang, lift * lift_scale,
-                                law if kind != "dwell" else "", tuple(conds)))
+    segments = read_segments(data.get("segments"), ang, lift_scale, problems)
     dynamics = _dynamics(data, motion, problems)
     program = None
     if segments and not problems:
@@ -252,6 +205,82 @@ def read_cam_task(data, *, source: str | None = None, name: str = "cam") -> CamT
                    (min_radius * ls) if min_radius is not None else 0.05 * program.lift
                    * (1.0 if motion == "translating" else follower.pivot_distance),
                    speed * ang, samples, dynamics)
+
+
+def read_segments(raw, ang: float, lift_scale: float, problems: list, where: str = "segments"
+                  ) -> list[Segment]:
+    """The ``[[segments]]`` tables of a cam task or of a model file's cam joint (kind, law,
+    from, to, lift; start and end for a polynomial law), in SI: angles times ``ang``, lifts
+    times ``lift_scale`` (a length's or, for an oscillating follower, an angle's).  Each
+    problem is appended to ``problems``, naming its field under ``where``."""
+    segments = []
+    if not isinstance(raw, list) or not raw:
+        problems.append(f"{where}: expected [[segments]] tables (kind, law, from, to, lift) "
+                        f"covering one turn, got {describe(raw)}")
+        raw = []
+    for i, seg in enumerate(raw):
+        at = f"{where}[{i}]."
+        if not isinstance(seg, dict):
+            problems.append(f"{where}[{i}]: expected a table, got {describe(seg)}")
+            continue
+        problems += _unknown(seg, _SEGMENT, at)
+        kind = seg.get("kind", "")
+        if kind not in KINDS:
+            problems.append(f"{at}kind: {expected_one_of(kind, KINDS)}")
+            continue
+        law = seg.get("law", "")
+        if kind != "dwell" and law not in LAW_NAMES:
+            problems.append(f"{at}law: {expected_one_of(law, LAW_NAMES)}")
+            continue
+        a = _number(seg, "from", at, problems)
+        b = _number(seg, "to", at, problems)
+        for k in ("from", "to"):
+            if k not in seg:
+                problems.append(f"{at}{k}: missing; give the cam angle where it "
+                                f"{'begins' if k == 'from' else 'ends'}")
+        lift = _number(seg, "lift", at, problems, default=0.0)
+        if kind != "dwell" and law != "polynomial" and "lift" not in seg:
+            problems.append(f"{at}lift: missing; give the {kind}'s travel")
+        if a is None or b is None or lift is None:
+            continue
+        conds = []
+        if law == "polynomial" and kind != "dwell":
+            for end_key, x in (("start", a), ("end", b)):
+                table = seg.get(end_key, {})
+                if not isinstance(table, dict):
+                    problems.append(f"{at}{end_key}: expected a table such as "
+                                    f"{{S = 0, V = 0, A = 0}}, got {describe(table)}")
+                    continue
+                problems += _unknown(table, tuple(_ORDERS), f"{at}{end_key}.")
+                for q, order in _ORDERS.items():
+                    v = _number(table, q, f"{at}{end_key}.", problems)
+                    if v is not None:
+                        conds.append((x * ang, order, v * lift_scale / ang ** order))
+        elif "start" in seg or "end" in seg:
+            problems.append(f"{at}: start and end (boundary conditions) belong to a "
+                            "polynomial law; leave them out or make the law 'polynomial'")
+        segments.append(Segment(kind, a * ang, b * ang, lift * lift_scale,
+                                law if kind != "dwell" else "", tuple(conds)))
+    return segments
+
+
+def segments_data(program: MotionProgram, ang: float, lift_scale: float) -> list[dict]:
+    """The ``[[segments]]`` tables of a program in a file's units (the inverse of
+    :func:`read_segments`)."""
+    out = []
+    for s in program.segments:
+        d = {"kind": s.kind, "from": s.start / ang, "to": s.end / ang}
+        if s.kind != "dwell":
+            d["law"] = s.law
+            if s.law != "polynomial":
+                d["lift"] = s.lift / lift_scale
+            for end_key, x in (("start", s.start), ("end", s.end)):
+                ends = {q: v * ang ** o / lift_scale for x0, o, v in s.conditions
+                        for q, oq in _ORDERS.items() if oq == o and abs(x0 - x) <= 1e-12}
+                if ends:
+                    d[end_key] = ends
+        out.append(d)
+    return out
 
 
 def _dynamics(data: dict, motion: str, problems: list) -> dict | None:

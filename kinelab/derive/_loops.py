@@ -127,6 +127,11 @@ def loop_equations(model: Mechanism, notation: dict | None = None,
         raise ModelError(f"joints {', '.join(repr(n) for n in gears)}: the derivation writes the loop "
                          "equations of R and P joints; gear joints (G) are not derived (kinelab.analyze "
                          "solves them: a gear pair's relation is linear in the angles)")
+    cams = [j.name for j in model.joints if j.type == "C"]
+    if cams:
+        raise ModelError(f"joints {', '.join(repr(n) for n in cams)}: the derivation writes the loop "
+                         "equations of R and P joints; cam joints (C) are not derived yet (kinelab."
+                         "analyze solves them from the cam's motion program)")
     builder = _Builder(model, _notation(notation))
     out = builder.build(_points(model, points))
     unknown = sorted(k for k in builder.notation if isinstance(k, str) and k not in builder.seen)

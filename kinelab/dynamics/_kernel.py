@@ -31,7 +31,7 @@ from kinelab.kinematics._kernel import (_jit, _lu_factor, _lu_solve, evaluate_on
 
 # numba's cache of this file knows its text only: the digest of the files whose constants and
 # functions it compiles in (kinelab._compiled.compiled_from; a test keeps it true)
-COMPILED_FROM = "d684636d461efd88"
+COMPILED_FROM = "dc37dcd54de40a4d"
 
 _A = np.ascontiguousarray(DOP853.A, dtype=np.float64)
 _B = np.ascontiguousarray(DOP853.B, dtype=np.float64)

@@ -51,10 +51,20 @@ class System:
     spring_names: tuple[str, ...]
 
 
+def refuse_cam_joints(model: Mechanism) -> None:
+    """Dynamics does not model a cam joint's contact force yet: refuse a model with one."""
+    cams = [j.name for j in model.joints if j.type == "C"]
+    if cams:
+        raise ModelError(f"joints {', '.join(map(repr, cams))}: dynamics does not take cam joints (C) "
+                         "yet (their contact force is not modelled); analyse the kinematics with "
+                         "kinelab.analyze, or a cam's follower train with kinelab.cams.follower_forces")
+
+
 def build_system(model: Mechanism, loads: Loads | None, masses: MassProperties | None) -> System:
     """Check loads and masses against the model (every problem at once) and index them."""
     if not isinstance(model, Mechanism):
         raise ModelError(f"model: expected a kinelab Mechanism, got {type(model).__name__}")
+    refuse_cam_joints(model)
     if loads is None or masses is None:
         # what the model file's [dynamics] section says (nothing when there is none)
         from kinelab.dynamics._setup import DynamicsSetup

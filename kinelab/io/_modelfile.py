@@ -59,7 +59,7 @@ _RESERVED = {key: "loads belong in the [dynamics] section (see docs/dynamics.md)
 _LINK = ("name", "points", "ground", "length", "local", "sides", "mass", "center_of_mass",
          "inertia")
 _JOINT = ("name", "type", "links", "point", "axis", "origin", "offset", "axis2", "pitch",
-          "mesh", "ratio", "radii", "teeth", "radius", "carrier")
+          "mesh", "ratio", "radii", "teeth", "radius", "carrier", "segments")
 _INPUT = ("joint", "links", "name", "range", "speed", "acceleration", "samples")
 _OUTPUTS = ("report", "transmission", "time_ratio")
 _SWEEPS = ("together", "grid")
@@ -229,7 +229,9 @@ class ModelFile:
         ((5, 1), 0.6867)
         """
         from kinelab import dynamics
+        from kinelab.dynamics._terms import refuse_cam_joints
 
+        refuse_cam_joints(self.mechanism)       # before the masses it would ask for
         loads, masses = self.dynamics_setup(gravity)
         q, qd, qdd = self.sample_inputs(samples)
         inp = self.mechanism.inputs[0]
@@ -534,6 +536,7 @@ class _Parser:
                 r.fail("", f"{where}.{why}")
             links.append(link)
         joints = []
+        self.raw_joints = raw_joints
         for i, t in enumerate(raw_joints):
             if t is not None:
                 j = self.joint(t, f"joints[{i}]", point_names, link_names, units, dim)
@@ -594,7 +597,8 @@ class _Parser:
             point = r.name(point, f"{where}.point", point_names, "point")
         jname = _joint_name(t)
         if jname is None:
-            if jtype is not None and JOINT_TYPES[jtype].needs_point:
+            if (jtype is not None and JOINT_TYPES[jtype].needs_point
+                    and not (jtype == "C" and dim == 2)):      # a planar C: a cam, no point
                 r.fail(f"{where}.point", f"missing; a joint of type '{jtype}' needs the point where it acts")
             else:
                 r.fail(f"{where}.name", "missing; a joint without a point needs a name")
@@ -608,7 +612,10 @@ class _Parser:
         pitch = self.optional_number(t, "pitch", where, scale=units.length_scale / units.angle_scale)
         offset = self.optional_number(t, "offset", where, scale=units.length_scale, unit=units.length)
         gear = self.gear_fields(t, where, link_names, units)
-        if None in (jtype, jlinks, jname, gear) or ("point" in t and point is None) or (
+        if "segments" in t and gear is not None:
+            gear["program"] = self.cam_program(t, where, jlinks, units)
+        if None in (jtype, jlinks, jname, gear) or gear.get("program", 0) is None or (
+                "point" in t and point is None) or (
                 "origin" in t and origin is None) or ("axis" in t and axis is None):
             return None
         return Joint(jname, jtype, jlinks, point=point, axis=axis, origin=origin, axis2=axis2,
@@ -636,6 +643,30 @@ class _Parser:
         if "carrier" in t:
             out["carrier"] = r.name(t["carrier"], f"{where}.carrier", link_names, "link")
         return None if any(v is None for v in out.values()) else out
+
+    def cam_program(self, t, where, jlinks, units: Units):
+        """A cam joint's ``[[joints.segments]]``, as a cam task's ``[[segments]]``: angles in
+        the file's angle unit, lifts in its length unit (a translating follower) or its angle
+        unit (an oscillating one: no P joint of the follower on the guide); None when one is
+        malformed (its problems recorded)."""
+        from kinelab.cams import MotionProgram, read_segments
+        follower = jlinks[1] if jlinks else None
+        guide = t.get("carrier")
+        slides = any(isinstance(u, Mapping) and u.get("type") == "P"
+                     and isinstance(u.get("links"), list) and len(u["links"]) == 2
+                     and u["links"][1] == follower and guide in (None, u["links"][0])
+                     for u in getattr(self, "raw_joints", ()) or ())
+        lift_scale = units.length_scale if slides else units.angle_scale
+        problems: list[str] = []
+        segments = read_segments(t["segments"], units.angle_scale, lift_scale, problems,
+                                 f"{where}.segments")
+        if not problems:
+            try:
+                return MotionProgram(segments)
+            except ModelError as exc:
+                problems = [f"{where}.{p}" for p in exc.problems]
+        self.r.problems.extend(problems)
+        return None
 
     def axis(self, value, where, units: Units, dim: int):
         if isinstance(value, (int, float)) and not isinstance(value, bool) and dim == 2:
@@ -1029,6 +1060,12 @@ def _dump(mf: ModelFile) -> dict[str, Any]:
             d["radii"] = [_out(v, ls) for v in d["radii"]]
         if "teeth" in d:
             d["teeth"] = list(d["teeth"])
+        if "program" in d:
+            from kinelab.cams import segments_data
+            j = m.joint(d["name"])
+            slides = any(x.type == "P" and x.links[1] == j.links[1] for x in m.joints)
+            d["segments"] = segments_data(j.program, a_s, ls if slides else a_s)
+            del d["program"]
     out["links"], out["joints"] = data["links"], data["joints"]
     for k, (inp, d) in enumerate(zip(m.inputs, data["inputs"])):
         slide = inp.joint is not None and m.joint(inp.joint).type == "P"

@@ -21,7 +21,7 @@ from kinelab.errors import ModelError, SingularityError, describe, quoted, sugge
 from kinelab.kinematics._instant_centers import InstantCenter, InstantCenters, _centers, _model_order
 from kinelab.kinematics._polygons import _q_text, _sweep
 from kinelab.kinematics._solution import KinematicSolution, takes_solution
-from kinelab.model import gear_mesh
+from kinelab.model import cam_pair, cam_values, gear_mesh
 
 __all__ = ["KennedyStep", "KennedyConstruction", "Centrodes", "kennedy_construction",
            "centrodes", "velocity_ratio"]
@@ -178,6 +178,10 @@ def kennedy_construction(sol: KinematicSolution) -> KennedyConstruction:
         elif j.type == "G":     # the pitch point, where the pitch circles roll
             c = InstantCenter(pair, _sweep(sol, _pitch_point(sol, j)), np.zeros(n, bool),
                               np.zeros((n, 2)))
+        elif j.type == "C":
+            known[pair] = _cam_centre(sol, j, size)
+            primary[pair] = j.name
+            continue
         else:
             u = _sweep(sol, sol.slide_axes(j.name))
             c = InstantCenter(pair, np.zeros((n, 2)), np.ones(n, bool),
@@ -392,6 +396,31 @@ def velocity_ratio(sol: KinematicSolution, link_i: str, link_j: str, *,
         ratio = np.einsum("ij,ij->i", a, b) / np.einsum("ij,ij->i", b, b)
     ratio = np.where(inf["ij"], 1.0, np.where(inf["rj"], 0.0, ratio))
     return sol._out(ratio)
+
+
+def _cam_centre(sol: KinematicSolution, j, size: float) -> np.ndarray:
+    """A cam joint's instant centre, homogeneous (n, 3): on the line of centres of cam (about
+    O) and follower, where the program's ``k = S'(theta)`` puts it, as a gear pair's pitch
+    point: ``(O - k A) / (1 - k)`` for a follower turning about A, ``O - k (k x u)`` for one
+    sliding along u (at infinity where an oscillating follower turns with the cam)."""
+    m = sol.mechanism
+    c = cam_pair(m, j)
+
+    def angle(link):
+        return 0.0 if link == m.ground.name else _sweep(sol, sol.angle(link))
+    k = cam_values(c.table, angle(c.cam) - angle(c.guide))[1]
+    o = _sweep(sol, sol.position(m.joint(c.pivot).point)) / size
+    k = np.broadcast_to(k, o.shape[:1])
+    f = m.joint(c.follower_joint)
+    if c.motion == "translating":
+        u = _sweep(sol, sol.slide_axes(f.name))
+        n = np.stack([-u[:, 1], u[:, 0]], axis=1)
+        h = np.concatenate([o - k[:, None] * n / size,
+                            np.ones((len(k), 1))], axis=1)
+    else:
+        a = _sweep(sol, sol.position(f.point)) / size
+        h = np.concatenate([o - k[:, None] * a, (1.0 - k)[:, None]], axis=1)
+    return _unit(h)
 
 
 def _pitch_point(sol: KinematicSolution, j) -> np.ndarray:

@@ -28,6 +28,14 @@ OP_GEAR = 13         # i: out, x, y (items)                     f: c0, cx, cy
                      #   out = c0 + cx x + cy y: a gear pair's angle (exactly linear)
 OP_GEAR_SLIDE = 14   # i: out, base, dirlink, x, y              f: beta, c0, cx, cy
                      #   a rack's point on its line at t = c0 + cx x + cy y
+OP_CAM = 15          # i: out, cam, guide (-1: frame), pieces     f: c0
+                     #   an oscillating follower's angle: out = theta_guide + c0 + S(theta),
+                     #   theta = theta_cam - theta_guide (the guide 0 when -1)
+OP_CAM_SLIDE = 16    # i: out, base, dirlink, cam, guide, pieces  f: beta, c0
+                     #   a translating follower's point on its line at t = c0 + S(theta)
+OP_CAM_DATA = 17     # the program's table after its cam operation: CAM_ROWS rows a piece
+                     #   (kinelab.model._cams: PIECE_WIDTH numbers), skipped when run
+CAM_ROWS = 3         # rows of ops_f a piece of a cam program takes (3 x 8 = PIECE_WIDTH)
 
 # Newton-group constraint kinds (rows of con_i / con_f); a side is either a link of the
 # group (g >= 0, with a point given in the link's frame) or known (g = -1, a point item).

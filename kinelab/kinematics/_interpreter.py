@@ -25,6 +25,7 @@ import numpy as np
 
 from kinelab.kinematics import _codes as k
 from kinelab.kinematics._plan import Plan
+from kinelab.model import cam_values
 
 __all__ = ["run"]
 
@@ -237,6 +238,40 @@ def _op_gear_slide(J, op, ii, ff, q, M, tally):
     Kt = cx * _K(J, x, M) + cy * _K(J, y, M)
     Lt = cx * _L(J, x, M) + cy * _L(J, y, M)
     _line_point(J, out, base, dirlink, beta, t, Kt, Lt, M)
+
+
+def _cam_motion(J, op, ii_cam, ii_guide, n, ops_f, M):
+    """S(theta) of the program in the rows after operation ``op``, theta = theta_cam -
+    theta_guide (the guide 0 when -1), with its K (M, n) and L (M, M, n) by the chain rule:
+    K = S' K_theta, L = S'' K_theta K_theta + S' L_theta."""
+    table = np.asarray(ops_f[op + 1:op + 1 + k.CAM_ROWS * n], float).reshape(n, -1)
+    theta = J[ii_cam, 0] - (J[ii_guide, 0] if ii_guide >= 0 else 0.0)
+    Kth = _K(J, ii_cam, M) - (_K(J, ii_guide, M) if ii_guide >= 0 else 0.0)
+    Lth = _L(J, ii_cam, M) - (_L(J, ii_guide, M) if ii_guide >= 0 else 0.0)
+    S, S1, S2 = cam_values(table, theta)
+    return S, S1 * Kth, S2 * _outer(Kth, Kth) + S1 * Lth
+
+
+def _op_cam(J, op, ii, ops_f, q, M, tally):
+    out, cam, guide, n = ii[1], ii[2], ii[3], ii[4]
+    S, Ks, Ls = _cam_motion(J, op, cam, guide, n, ops_f, M)
+    J[out, 0] = ops_f[op][0] + S + (J[guide, 0] if guide >= 0 else 0.0)
+    _K(J, out, M)[...] = Ks + (_K(J, guide, M) if guide >= 0 else 0.0)
+    _L(J, out, M)[...] = Ls + (_L(J, guide, M) if guide >= 0 else 0.0)
+
+
+def _op_cam_slide(J, op, ii, ops_f, q, M, tally):
+    out, base, dirlink, cam, guide, n = ii[1], ii[2], ii[3], ii[4], ii[5], ii[6]
+    beta, c0 = ops_f[op][0], ops_f[op][1]
+    S, Ks, Ls = _cam_motion(J, op, cam, guide, n, ops_f, M)
+    _line_point(J, out, base, dirlink, beta, c0 + S, Ks, Ls, M)
+
+
+def _op_cam_data(J, op, ii, ff, q, M, tally):
+    """The rows of a cam's program: read by its operation."""
+
+
+_WHOLE = {k.OP_CAM: _op_cam, k.OP_CAM_SLIDE: _op_cam_slide}   # these read the rows after them
 
 
 def rrr_closure(lb, lc, D2):
@@ -472,7 +507,7 @@ _OPS = {k.OP_DRIVE_ANGLE: _op_drive_angle, k.OP_LOCK_ANGLE: _op_lock_angle,
         k.OP_SLIDE_POINT: _op_slide_point, k.OP_SLIDE_OUT: _op_slide_out,
         k.OP_TWO_POINTS: _op_two_points, k.OP_RRR: _op_rrr, k.OP_RRP: _op_rrp,
         k.OP_RPR: _op_rpr, k.OP_LINES: _op_lines, k.OP_GEAR: _op_gear,
-        k.OP_GEAR_SLIDE: _op_gear_slide}
+        k.OP_GEAR_SLIDE: _op_gear_slide, k.OP_CAM_DATA: _op_cam_data}
 
 
 # --------------------------------------------------------------------------------------
@@ -885,6 +920,9 @@ def _evaluate(T, J, q, ops_f, M, state=None, scale=1.0):
     Newton groups (one sample: n = 1) solve from ``state``.  Returns the tally."""
     tally = _Tally(J.shape[2])
     for fn, op, ii in T.ops:
+        if ii[0] in _WHOLE:
+            _WHOLE[ii[0]](J, op, ii, ops_f, q, M, tally)
+            continue
         if fn is not None:
             fn(J, op, ii, ops_f[op], q, M, tally)
             continue

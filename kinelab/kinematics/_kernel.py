@@ -26,7 +26,7 @@ import math
 import numpy as np
 from numba import njit
 
-from kinelab.kinematics._codes import (BASE_MIN, C_DRIVE_ANGLE, C_DRIVE_SLIDE, C_PRISMATIC,
+from kinelab.kinematics._codes import (BASE_MIN, CAM_ROWS, OP_CAM, OP_CAM_SLIDE, C_DRIVE_ANGLE, C_DRIVE_SLIDE, C_PRISMATIC,
                                        C_REVOLUTE, CONTINUATION_STEP, DISC_TOL, DISC_ZERO,
                                        FOLDED, HEADER, HERMITE_REACH, JUMP_FLOOR, JUMP_RATIO,
                                        LIKELY_LAST, NEWTON_MAX_ITER, NEWTON_STALL, NEWTON_TOL,
@@ -39,7 +39,7 @@ from kinelab.kinematics._codes import (BASE_MIN, C_DRIVE_ANGLE, C_DRIVE_SLIDE, C
 
 # numba's cache of this file knows its text only: the digest of the files whose constants and
 # functions it compiles in (kinelab._compiled.compiled_from; a test keeps it true)
-COMPILED_FROM = "56030c45780a8aef"
+COMPILED_FROM = "f5e765e27a8034cb"
 
 
 def _jit(**options):
@@ -114,6 +114,59 @@ def _line_point(jet, lane, out, base, dirlink, beta, t, Kt, Lt, M):
             uu = Lt[m, n] - t * wm * wn                            # along u
             jet[lane, out, c2] = jet[lane, base, c2] + uu * ux - nn * uy
             jet[lane, out + 1, c2] = jet[lane, base + 1, c2] + uu * uy + nn * ux
+
+
+@_jit()
+def _cam_values(ops_f, k, n, theta):
+    """S, dS/dtheta, d2S/dtheta2 of the cam program whose n pieces fill the CAM_ROWS rows a
+    piece after operation k (kinelab.model._cams: where the piece starts, its segment's start
+    and width, x0, level, height, B, k, phase, then c_0 .. c_14), at the cam angle theta
+    (taken modulo a turn; a piece holds from its start to the next one's)."""
+    turn = 2.0 * math.pi
+    t = theta - turn * math.floor(theta / turn)
+    if t >= turn:
+        t -= turn
+    r = k + 1
+    for i in range(1, n):
+        if ops_f[k + 1 + CAM_ROWS * i, 0] <= t:
+            r = k + 1 + CAM_ROWS * i
+    start, beta, x0 = ops_f[r, 1], ops_f[r, 2], ops_f[r, 3]
+    level, h, b, kk, ph = ops_f[r, 4], ops_f[r, 5], ops_f[r, 6], ops_f[r, 7], ops_f[r + 1, 0]
+    x = (t - start) / beta
+    u = x - x0
+    f = 0.0
+    f1 = 0.0
+    f2 = 0.0
+    for i in range(15 - 1, -1, -1):       # Horner, with the first two derivatives
+        c = ops_f[r + 1 + (i + 1) // 8, (i + 1) % 8]
+        f2 = f2 * u + 2.0 * f1
+        f1 = f1 * u + f
+        f = f * u + c
+    arg = kk * x + ph
+    sa = math.sin(arg)
+    ca = math.cos(arg)
+    f += b * sa
+    f1 += b * kk * ca
+    f2 -= b * kk * kk * sa
+    return level + h * f, h * f1 / beta, h * f2 / (beta * beta)
+
+
+@_jit()
+def _cam_motion(jet, lane, ops_f, k, n, cam, guide, M, Kt, Lt):
+    """S(theta) of the program after operation k at theta = theta_cam - theta_guide (the
+    guide 0 when -1); its K into Kt and L into Lt by the chain rule: K = S' K_theta,
+    L = S'' K_theta K_theta + S' L_theta."""
+    theta = jet[lane, cam, 0] - (jet[lane, guide, 0] if guide >= 0 else 0.0)
+    S, S1, S2 = _cam_values(ops_f, k, n, theta)
+    for m in range(M):
+        km = jet[lane, cam, 1 + m] - (jet[lane, guide, 1 + m] if guide >= 0 else 0.0)
+        Kt[m] = S1 * km
+        for q in range(M):
+            c2 = 1 + M + m * M + q
+            kq = jet[lane, cam, 1 + q] - (jet[lane, guide, 1 + q] if guide >= 0 else 0.0)
+            lmq = jet[lane, cam, c2] - (jet[lane, guide, c2] if guide >= 0 else 0.0)
+            Lt[m, q] = S2 * km * kq + S1 * lmq
+    return S
 
 
 @_jit()
@@ -1058,6 +1111,22 @@ def _evaluate(qs, qd, qdd, lo, hi, write, ops_i, ops_f, jet, M, Kt, Kt2, Lt, gro
                             Lt[m, n] = cx * jet[e, x, c2] + cy * jet[e, y, c2]
                     _line_point(jet, e, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0],
                                 c0 + cx * jet[e, x, 0] + cy * jet[e, y, 0], Kt, Lt, M)
+            elif op == OP_CAM:
+                out, cam, guide, n = ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_i[k, 4]
+                for e in range(nb):
+                    S = _cam_motion(jet, e, ops_f, k, n, cam, guide, M, Kt, Lt)
+                    jet[e, out, 0] = ops_f[k, 0] + S + (jet[e, guide, 0] if guide >= 0 else 0.0)
+                    for m in range(M):
+                        jet[e, out, 1 + m] = Kt[m] + (jet[e, guide, 1 + m] if guide >= 0 else 0.0)
+                        for q in range(M):
+                            c2 = 1 + M + m * M + q
+                            jet[e, out, c2] = Lt[m, q] + (jet[e, guide, c2] if guide >= 0 else 0.0)
+            elif op == OP_CAM_SLIDE:
+                for e in range(nb):
+                    S = _cam_motion(jet, e, ops_f, k, ops_i[k, 6], ops_i[k, 4], ops_i[k, 5], M,
+                                    Kt, Lt)
+                    _line_point(jet, e, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0],
+                                ops_f[k, 1] + S, Kt, Lt, M)
             elif op == OP_TWO_POINTS:
                 for e in range(nb):
                     _two_points(jet, e, ops_i[k, 1], ops_i[k, 2], ops_i[k, 3], ops_f[k, 0], M)

@@ -29,7 +29,7 @@ import numpy as np
 from kinelab.errors import ModelError, shown
 from kinelab.kinematics import _codes as k
 from kinelab.kinematics._geometry import sketch_angle
-from kinelab.model import MIN_LENGTH, Joint, Mechanism, gear_mesh
+from kinelab.model import MIN_LENGTH, Joint, Mechanism, cam_pair, cam_values, gear_mesh
 from kinelab.solvers import wrap_angle
 
 _SKETCH_SINGULAR = 1e-9   # a dyad this close to straight at the sketch cannot fix its branch
@@ -49,7 +49,8 @@ class Names(dict):
 class Step:
     """One group of the decomposition, for people: what it solves and how."""
 
-    kind: str                  # "driven", "locked", "placed", "RRR", "RRP", "RPR", "PRP", "lines", "newton"
+    kind: str                  # "driven", "locked", "placed", "RRR", "RRP", "RPR", "PRP", "lines",
+                               # "gear", "cam", "newton"
     links: tuple[str, ...]
     joints: tuple[str, ...]
     label: str
@@ -276,7 +277,7 @@ class ItemColumns:
 _POINT_FIELDS = {k.OP_RIGID_POINT: (1, 3), k.OP_SLIDE_POINT: (1, 2), k.OP_LINES: (1, 2, 4),
                  k.OP_RRR: (3, 4, 5), k.OP_RRP: (2, 3, 4), k.OP_RPR: (2, 3),
                  k.OP_SLIDE_OUT: (2, 3), k.OP_TWO_POINTS: (2, 3), k.OP_FRAME_POINT: (1, 2, 3),
-                 k.OP_GEAR_SLIDE: (1, 2)}
+                 k.OP_GEAR_SLIDE: (1, 2), k.OP_CAM_SLIDE: (1, 2)}
 
 
 def _angle(v) -> float:
@@ -391,10 +392,10 @@ class _Builder:
             raise ModelError(f"space: the planar kinematics engine needs a planar mechanism, "
                              f"got {shown(m.space)}; see kinelab.spatial for spatial ones")
         for j in m.joints:
-            if j.type not in ("R", "P", "G"):
+            if j.type not in ("R", "P", "G", "C"):
                 raise ModelError(f"joint '{j.name}': the planar kinematics engine handles R and P "
-                                 f"joints, got {shown(j.type)} (and G joints, gear pairs); "
-                                 "kinelab.structure counts its mobility")
+                                 f"joints, got {shown(j.type)} (and G joints, gear pairs, and C "
+                                 "joints, cams); kinelab.structure counts its mobility")
         if not m.inputs:
             raise ModelError("inputs: the mechanism has no input; add one (an R joint angle, "
                              "a P joint slide or the angle between two links)")
@@ -428,6 +429,7 @@ class _Builder:
         self.anchor[self.ground] = self.P[m.link(self.ground).points[0]]
         self.slides = {j.name: i for i, j in enumerate(x for x in m.joints if x.type == "P")}
         self.gears = [gear_mesh(m, j) for j in m.joints if j.type == "G"]
+        self.cams = [cam_pair(m, j) for j in m.joints if j.type == "C"]
         self.relations = self._input_relations()
         self.groups: list[tuple[list[str], list[tuple]]] = []
 
@@ -587,6 +589,11 @@ class _Builder:
                 self._emit([k.OP_SLIDE_OUT, self.slides[j.name], self.P[j.point], o, self.L[g]],
                            lambda G, j=j, g=g: [G.axis(j) - G.theta[g], G.slide(j)])
         redundant = tuple(j.name for j in m.joints if j.name not in self.used)
+        idle = [n for n in redundant if m.joint(n).type == "C"]
+        if idle:
+            raise ModelError(f"cam joints {', '.join(map(repr, idle))}: the follower was placed by "
+                             "other joints before its cam, so the cam would only be checked; "
+                             "drive the cam (or a link that turns it), not the follower")
         nl, npn, ns = len(self.L), len(self.P), len(self.slides)
 
         def item(p: int) -> int:
@@ -647,7 +654,67 @@ class _Builder:
                     self.steps.append(Step("locked", (other,), (j.name,),
                                            f"'{other}' keeps its angle to '{known}' (slide '{j.name}')"))
                     progress = True
-        return self._gear_angles() or progress
+        return self._cam_angles() | self._gear_angles() or progress
+
+    def _cam_theta(self, G: _Geometry, c) -> np.ndarray:
+        """The cam's angle relative to its guide at the sketch (the frame's: 0)."""
+        return G.theta[c.cam] - (0.0 if c.guide == self.ground else G.theta[c.guide])
+
+    def _cam_rows(self, c) -> int:
+        """The program's table, after its cam operation: CAM_ROWS rows of 8 a piece."""
+        for piece in c.table:
+            for r in range(k.CAM_ROWS):
+                self._emit([k.OP_CAM_DATA], lambda G, v=piece[8 * r:8 * r + 8]: list(v))
+        return len(c.table)
+
+    def _cam_angles(self) -> bool:
+        """Oscillating followers: with the angles of the cam and its guide known, the
+        follower's is the guide's plus ``c0 + S(theta)``, exactly, with its K and L."""
+        progress = False
+        for c in self.cams:
+            if (c.motion != "oscillating" or c.joint in self.used or c.follower in self.angle_known
+                    or not {c.cam, c.guide} <= self.angle_known):
+                continue
+            frame = c.guide == self.ground
+            self._emit([k.OP_CAM, self.L[c.follower], self.L[c.cam],
+                        -1 if frame else self.L[c.guide], len(c.table)],
+                       lambda G, c=c, frame=frame: [
+                           G.theta[c.follower] - (0.0 if frame else G.theta[c.guide])
+                           - cam_values(c.table, self._cam_theta(G, c))[0]])
+            self._cam_rows(c)
+            self.angle_known.add(c.follower)
+            self.used.add(c.joint)
+            self.steps.append(Step("cam", (c.follower,), (c.joint,),
+                                   f"follower '{c.follower}' turned by cam '{c.cam}' (cam "
+                                   f"'{c.joint}')"))
+            progress = True
+        return progress
+
+    def _place_cam(self, link: str) -> bool:
+        """A translating follower sliding on a placed guide, its cam's angle known: its point
+        on the slide line at ``t = S(theta) - S(theta_sketch)`` from the sketch."""
+        for c in self.cams:
+            if (c.motion != "translating" or c.follower != link or c.joint in self.used
+                    or c.cam not in self.angle_known or c.guide not in self.pos_known):
+                continue
+            j = self.m.joint(c.follower_joint)
+            if j.name in self.used:
+                continue
+            out = self.P[j.point]
+            base = self.point_on(c.guide, j.point)
+            frame = c.guide == self.ground
+            self._emit([k.OP_CAM_SLIDE, out, base, self.L[c.guide], self.L[c.cam],
+                        -1 if frame else self.L[c.guide], len(c.table)],
+                       lambda G, j=j, c=c: [G.axis(j) - G.theta[c.guide],
+                                            -cam_values(c.table, self._cam_theta(G, c))[0]])
+            self._cam_rows(c)
+            self.used.update((j.name, c.joint))
+            self.place(link, out)
+            self.steps.append(Step("cam", (link,), (c.joint, j.name),
+                                   f"follower '{link}' driven by cam '{c.cam}' along '{j.name}' "
+                                   f"(cam '{c.joint}')"))
+            return True
+        return False
 
     def _frame_theta(self, G: _Geometry, link: str) -> np.ndarray:
         """A link's angle at the sketch as the plan's items hold it (the ground's wrapped)."""
@@ -812,7 +879,7 @@ class _Builder:
         for link in self.m.link_names:
             if link in self.pos_known or link not in self.angle_known:
                 continue
-            if self._place_rack(link):
+            if self._place_rack(link) or self._place_cam(link):
                 return True
             free = self._free_joints(link)
             for j in free:
@@ -1008,7 +1075,7 @@ class _Builder:
         """Constraints that bind the links of `group` (the rest placed): list and count."""
         cons, count = [], 0
         for j in self.m.joints:
-            if j.type == "G" or j.name in self.used or not (set(j.links) & group):
+            if j.type in ("G", "C") or j.name in self.used or not (set(j.links) & group):
                 continue
             if not all(n in group or n in self.pos_known for n in j.links):
                 continue
@@ -1042,6 +1109,14 @@ class _Builder:
         if count == 3 * len(free) and self._full_rank(free, cons):
             return self._emit_group(free, cons)
         unknowns = 3 * len(free)
+        cammed = [c.joint for c in self.cams
+                  if c.joint not in self.used and {c.cam, c.follower, c.guide} & set(free)]
+        if cammed:
+            raise ModelError(
+                f"cam joints {', '.join(repr(n) for n in cammed)}: a cam joint is solved once its "
+                "cam's angle and its guide are known, and the inputs leave links "
+                f"{', '.join(repr(n) for n in free)} undetermined; drive the cam (or a link that "
+                "turns it), not the follower")
         geared = [g.joint for g in self.gears
                   if g.joint not in self.used and {g.a, g.b, g.carrier} & set(free)]
         if geared:
@@ -1226,15 +1301,21 @@ def build_plan(m: Mechanism, *, method: str = "auto") -> Plan:
     """Decompose a planar mechanism into its solution plan.
 
     ``method="newton"`` skips the closed forms: every moving link goes into Newton groups
-    (used to check the closed forms against the general engine).  Gear joints (``G``) are
-    solved in closed form only (their relation is linear in the angles): a mechanism with
-    them has no Newton plan.
+    (used to check the closed forms against the general engine).  Gear joints (``G``) and
+    cam joints (``C``) are solved in closed form only (a gear pair's relation is linear in
+    the angles; a follower moves by its cam's program): a mechanism with them has no Newton
+    plan.
     """
     if method == "newton" and isinstance(m, Mechanism) and any(j.type == "G" for j in m.joints):
         raise ModelError(f"method: 'newton' puts every link in Newton groups, which do not take gear "
                          f"joints ({', '.join(repr(j.name) for j in m.joints if j.type == 'G')}); "
                          "use method='auto': a gear pair's relation is linear in the angles and "
                          "is solved exactly in closed form")
+    if method == "newton" and isinstance(m, Mechanism) and any(j.type == "C" for j in m.joints):
+        raise ModelError(f"method: 'newton' puts every link in Newton groups, which do not take cam "
+                         f"joints ({', '.join(repr(j.name) for j in m.joints if j.type == 'C')}); "
+                         "use method='auto': a cam joint is solved exactly in closed form from its "
+                         "cam's angle")
     b = _Builder(m)
     if method == "newton":
         b._dyad = lambda: False          # type: ignore[method-assign]

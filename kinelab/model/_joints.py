@@ -51,7 +51,9 @@ JOINT_TYPES: dict[str, JointType] = {t.symbol: t for t in (
     JointType("R", 1, True, False, True, False, "revolute (pin, hinge)"),
     JointType("P", 1, True, False, True, True, "prismatic (slider)"),
     JointType("H", 1, False, False, True, True, "helical (screw)"),
-    JointType("C", 2, False, False, True, True, "cylindrical"),
+    # C: a cylindrical pair in space; in a planar mechanism, a cam and its follower, which
+    # the planar engine solves (kinelab.model._cams): two freedoms in both.
+    JointType("C", 2, True, False, True, True, "cylindrical; in the plane, cam and follower"),
     JointType("U", 2, False, False, True, True, "universal (Hooke, Cardan)"),
     JointType("S", 3, False, False, True, False, "spherical (ball)"),
     JointType("E", 3, False, False, False, True, "planar pair (flat contact)"),

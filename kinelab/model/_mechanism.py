@@ -17,6 +17,7 @@ from typing import Any, Literal
 import numpy as np
 
 from kinelab.errors import PROBLEMS_SHOWN, ModelError, describe, quoted, shown, suggest
+from kinelab.model._cams import cam_problems
 from kinelab.model._gears import GEAR_FIELDS, gear_problems
 from kinelab.model._joints import JOINT_TYPES
 from kinelab.model._places import place_problems
@@ -147,6 +148,8 @@ class Joint:
         One of ``kinelab.model.JOINT_TYPES`` (``"R"``, ``"P"``, ``"C"``, ``"U"``, ``"S"``,
         ``"H"``, ``"E"``, ``"cam"``, ``"gear"``, ``"G"``, ``"rolling"``, ``"pin_in_slot"``).
         ``"G"`` is a gear pair the planar engine solves (see ``mesh`` ... ``carrier``).
+        ``"C"`` is a cylindrical pair in space, and in a planar mechanism a cam and its
+        follower, which the planar engine solves (see ``program``).
     links : (str, str)
         The two links.  For a prismatic joint the first is the *guide* (the link the slide
         axis is fixed in) and the second the *slider*.
@@ -186,6 +189,14 @@ class Joint:
         joint), and ``(theta_a - theta_c) r_a = -(theta_b - theta_c) r_b`` (external; ``+``
         internal; rack ``s = r (theta_a - theta_c)`` from the sketch, a counter-clockwise
         pinion driving the rack along its joint's ``+axis``): see :mod:`kinelab.model._gears`.
+        Cam joints: the guide, the link both the cam and its follower are jointed to
+        (default the ground).
+    program : kinelab.cams.MotionProgram, optional
+        Cam joints (``C`` in a planar mechanism, ``links = (cam, follower)``): the follower's
+        displacement relative to the guide, its slide along its P joint (m) or its angle
+        about its R joint (rad), is ``program``'s S at the cam's angle relative to the
+        guide, plus its place where S = 0 (from the sketch): see :mod:`kinelab.model._cams`.
+        Plain data (``program.to_dict()``) is accepted too.
     """
 
     name: str
@@ -203,8 +214,16 @@ class Joint:
     teeth: tuple[int, int] | None = None
     radius: float | None = None
     carrier: str | None = None
+    program: Any = field(default=None, hash=False)
 
     def __post_init__(self):
+        if isinstance(self.program, Mapping):
+            from kinelab.cams import MotionProgram     # plain data (to_dict) made a program
+            try:
+                object.__setattr__(self, "program", MotionProgram.from_dict(self.program))
+            except ModelError as exc:
+                raise ModelError([f"joint {shown(self.name)}: program: {p}"
+                                  for p in exc.problems]) from None
         _set(self, axis=_floats(self.axis), axis2=_floats(self.axis2), pitch=_float(self.pitch),
              offset=_float(self.offset), ratio=_float(self.ratio), radii=_floats(self.radii),
              radius=_float(self.radius),
@@ -475,7 +494,9 @@ class Mechanism:
                               | ({"sides": {k: dict(v) for k, v in link.sides.items()}}
                                  if link.sides else {}))
                         for link in self.links]
-        out["joints"] = [clean(dict(vars(j))) for j in self.joints]
+        out["joints"] = [clean(dict(vars(j)) | ({"program": j.program.to_dict()}
+                                                if hasattr(j.program, "to_dict") else {}))
+                         for j in self.joints]
         out["inputs"] = [clean({k: v for k, v in vars(i).items()
                                 if not (k in ("speed", "acceleration") and v == 0.0)})
                          for i in self.inputs]
@@ -642,6 +663,7 @@ def _validate(m: Mechanism) -> list[str]:
             add(f"{where}: type: expected one of {quoted(JOINT_TYPES)}, got {describe(j.type)}"
                 f"{hint(str(j.type), JOINT_TYPES)}")
             continue
+        cam = j.type == "C" and m.space == "planar"     # C: a cam pair in the plane
         if m.space == "planar" and not jt.planar:
             add(f"{where}: a {j.type} joint ({jt.description}) cannot join links of a planar "
                 "mechanism; use space = 'spatial'")
@@ -657,7 +679,7 @@ def _validate(m: Mechanism) -> list[str]:
             add(f"{where}: joins link {shown(a)} to itself; a joint joins two different links")
         if bad or a == b:
             continue
-        if jt.needs_point and j.point is None:
+        if jt.needs_point and j.point is None and not cam:
             add(f"{where}: point: a {j.type} joint needs the point where it acts")
         if j.point is not None:
             if not isinstance(j.point, str) or j.point not in points:
@@ -672,7 +694,11 @@ def _validate(m: Mechanism) -> list[str]:
                     "(the second link of a prismatic joint)")
             elif j.type in ("R", "S", "U"):
                 hinged.setdefault(j.point, []).append((a, b))
-        if jt.needs_axis:
+        if cam and (j.point is not None or j.axis is not None):
+            add(f"{where}: {'point' if j.point is not None else 'axis'}: a cam joint's contact "
+                "moves along the cam; remove it (the cam and the follower's own joints place "
+                "them)")
+        elif jt.needs_axis and not cam:
             axis = j.axis
             dim = 2 if m.space == "planar" else 3
             if axis is None:
@@ -705,10 +731,21 @@ def _validate(m: Mechanism) -> list[str]:
                     "'planar'; count a spatial mechanism's gear mesh with type 'gear'")
             elif len(grounds) == 1:
                 problems.extend(gear_problems(m, j, links))
+        elif cam:
+            if len(grounds) == 1:
+                problems.extend(cam_problems(m, j, links))
+            for f in GEAR_FIELDS[:-1]:
+                if getattr(j, f) is not None:
+                    add(f"{where}: {f}: only a gear joint (type 'G') has one; remove it")
         else:
             for f in GEAR_FIELDS:
                 if getattr(j, f) is not None:
-                    add(f"{where}: {f}: only a gear joint (type 'G') has one; remove it")
+                    add(f"{where}: {f}: only a gear joint (type 'G') or a cam joint's guide (type "
+                        "'C') has one; remove it" if f == "carrier" else
+                        f"{where}: {f}: only a gear joint (type 'G') has one; remove it")
+        if j.program is not None and not cam:
+            add(f"{where}: program: only a cam joint (type 'C' in a planar mechanism) has one; "
+                "remove it")
     # -- points shared by links must be hinged together ----------------------------------
     for pn, on in carriers.items():
         if len(on) >= 2 and _components(on, hinged.get(pn, ())) > 1:

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from kinelab.errors import ModelError, describe
-from kinelab.model import Joint, Mechanism, gear_mesh, real
+from kinelab.model import Joint, Mechanism, cam_pair, cam_values, gear_mesh, real
 
 __all__ = ["RTOL", "MIN_RTOL", "MAX_RTOL", "Frame", "annihilator", "checked_rtol",
            "joint_screws", "null_basis", "rank", "row_basis"]
@@ -179,6 +179,41 @@ def _gear_screws(model: Mechanism, joint: Joint, frame: Frame) -> list[np.ndarra
     return [_rot(z, p), _trans(across)]
 
 
+def _cam_screws(model: Mechanism, joint: Joint, frame: Frame) -> list[np.ndarray]:
+    """Freedom screws of a cam joint ``C`` at the sketch: a rotation about the instant centre
+    of the cam's and the follower's relative motion and a translation along their line of
+    centres, as a gear pair's, with the program's ``k = S'(theta)`` at the sketch for the
+    ratio.  A translating follower's centre is at infinity across its slide: the instant
+    centre lies ``S'`` from the cam's centre along ``-(k x u)``."""
+    c = cam_pair(model, joint)
+    z = np.array([0.0, 0.0, 1.0])
+    theta = _sketch_theta(model, c)
+    k = float(cam_values(c.table, theta)[1])
+    o = frame.point(model, model.joint(c.pivot).point)
+    f = model.joint(c.follower_joint)
+    if c.motion == "translating":
+        u = _unit(f.axis, f"joint '{f.name}': axis", 2)
+        n = np.array([-u[1], u[0], 0.0])
+        return [_rot(z, o - k / frame.scale * n), _trans(n)]
+    a = frame.point(model, f.point)
+    across = (a - o) / np.linalg.norm(a - o)
+    if abs(1.0 - k) <= 1e-12:       # the follower turns with the cam: no centre in reach
+        return [_trans(np.cross(z, across)), _trans(across)]
+    return [_rot(z, (o - k * a) / (1.0 - k)), _trans(across)]
+
+
+def _sketch_theta(model: Mechanism, c) -> float:
+    """The cam's angle relative to its guide in the sketch (from each link's first point to
+    its second; the frame's is 0)."""
+    def angle(link: str) -> float:
+        pts = model.link(link).points
+        if link == model.ground.name or len(pts) < 2:
+            return 0.0
+        a, b = model.point(pts[0]), model.point(pts[1])
+        return float(np.arctan2(b.y - a.y, b.x - a.x))
+    return angle(c.cam) - angle(c.guide)
+
+
 def joint_screws(model: Mechanism, joint: Joint, frame: Frame,
                  planar: bool) -> tuple[np.ndarray, list[str]]:
     """Freedom screws of a joint at the sketch, one per row, in the frame's units.
@@ -232,6 +267,8 @@ def joint_screws(model: Mechanism, joint: Joint, frame: Frame,
             rows = [_rot(np.array([0, 0, 1.0]), point()), _trans(axis())]
         elif t == "G":
             rows = _gear_screws(model, joint, frame)
+        elif t == "C":
+            rows = _cam_screws(model, joint, frame)
         else:  # pragma: no cover - the model rejects non-planar pairs in planar models
             raise ModelError(f"{where}: a {t} joint cannot join links of a planar mechanism")
         # planar twist (w, vx, vy): the z rotation and the x, y velocity of the origin point

@@ -234,7 +234,7 @@ def certify_kinematics(sol: KinematicSolution) -> Certificate:
     notes: list[str] = []
     reported = route_name(p)
     followed = sol.change_points[0].followed if sol.change_points else "smooth"
-    geared = any(j.type == "G" for j in m.joints)
+    geared = any(j.type in ("G", "C") for j in m.joints)    # closed form only: no Newton plan
     newton_plan = None if geared else kinematics.plan(m, method="newton")
     other_method = "auto" if p is newton_plan else "newton"
     other_plan = p if geared else kinematics.plan(m, method=other_method)
@@ -262,7 +262,10 @@ def certify_kinematics(sol: KinematicSolution) -> Certificate:
     bounds, why = _engine_bounds(sub)
 
     # -- the other engine ------------------------------------------------------------------
-    if geared:
+    if geared and any(j.type == "C" for j in m.joints):
+        notes.append("no second engine: cam joints are solved in closed form only (from the "
+                     "cam's motion program); compared by the other routes")
+    elif geared:
         notes.append("no second engine: gear joints are solved in closed form only (their "
                      "relation is linear in the angles); compared by the other routes")
     elif route_name(other_plan) == reported:

@@ -80,6 +80,8 @@ def symbolic_route(mechanism: Mechanism, p: Plan) -> SymbolicRoute | str:
     key = "verify: symbolic route"
     if any(j.type == "G" for j in mechanism.joints):
         return "the derivation does not take gear joints (G)"
+    if any(j.type == "C" for j in mechanism.joints):
+        return "the derivation does not take cam joints (C)"
     if key not in p.memo:
         p.memo[key] = _build(mechanism, p)
     return p.memo[key]

@@ -7,8 +7,8 @@ import kinelab as kl
 
 def scaled(m: kl.model.Mechanism, s: float) -> kl.model.Mechanism:
     """``m`` with every length multiplied by ``s``: the sketch, the links' lengths, exact
-    places and sides, the prismatic joints' offsets, the gears' pitch radii, and the ranges and rates of slide
-    inputs.  Masses stay; moments of inertia scale with s**2 (the same masses over a larger
+    places and sides, the prismatic joints' offsets, the gears' pitch radii, the lifts of cams
+    whose followers slide, and the ranges and rates of slide inputs.  Masses stay; moments of inertia scale with s**2 (the same masses over a larger
     body)."""
     def length(v):
         return None if v is None else v * s
@@ -21,8 +21,12 @@ def scaled(m: kl.model.Mechanism, s: float) -> kl.model.Mechanism:
             k: {name: d if name == "side" else d * s for name, d in spec.items()}
             for k, spec in link.sides.items()})
         for link in m.links)
+    def program(j):
+        slides = any(x.type == "P" and x.links[1] == j.links[1] for x in m.joints)
+        return j.program.scaled(s) if j.program is not None and slides else j.program
     joints = tuple(dataclasses.replace(j, offset=length(j.offset), radius=length(j.radius),
-                                       radii=None if j.radii is None else tuple(r * s for r in j.radii))
+                                       radii=None if j.radii is None else tuple(r * s for r in j.radii),
+                                       program=program(j))
                    for j in m.joints)
     inputs = tuple(dataclasses.replace(i, range=None if i.range is None else (i.range[0] * s, i.range[1] * s),
                                        speed=i.speed * s, acceleration=i.acceleration * s)

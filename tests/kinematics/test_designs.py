@@ -20,8 +20,9 @@ MODELS = {
     **{f"pyslvs_{name}": (lambda e=e: kl.io.from_pyslvs(e, inputs=[(0, 1)])) for name, e in PYSLVS.items()},
     **{f"example_{p.stem}": (lambda p=p: kl.load(p)) for p in EXAMPLES},
 }
-# gear joints are solved in closed form only: these have no Newton plan (method "newton")
-GEARED = {f"example_{p.stem}" for p in EXAMPLES if 'type = "G"' in p.read_text()}
+# gear and cam joints are solved in closed form only: these have no Newton plan (method "newton")
+GEARED = {f"example_{p.stem}" for p in EXAMPLES
+          if 'type = "G"' in p.read_text() or 'type = "C"' in p.read_text()}
 
 
 def sketches(m, D=12, seed=0):

@@ -83,8 +83,9 @@ TURNING = {
     **{f"example_{p.stem}": (lambda p=p: kl.load(p)) for p in EXAMPLES
        if p.stem not in ("fivebar", "planetary")},
 }
-# gear joints are solved in closed form only: these have no Newton plan (method "newton")
-GEARED = {f"example_{p.stem}" for p in EXAMPLES if 'type = "G"' in p.read_text()}
+# gear and cam joints are solved in closed form only: these have no Newton plan (method "newton")
+GEARED = {f"example_{p.stem}" for p in EXAMPLES
+          if 'type = "G"' in p.read_text() or 'type = "C"' in p.read_text()}
 INSIDE = {"prp_yoke": prp_yoke, "piston": piston_driven, "relative_angle": relative_angle_driven,
           "coupler_angle": coupler_angle_driven, "boom": _hydraulic_boom}
 FIVEBAR_Q = np.stack(np.meshgrid(np.linspace(1.2, 2.0, 12), np.linspace(1.3, 1.9, 10)), -1).reshape(-1, 2)
@@ -252,7 +253,7 @@ def test_every_operation_and_constraint_kind_is_compared():
     ops, kinds = set(), set()
     for make in (*TURNING.values(), *INSIDE.values(), *TWO_INPUTS.values(), double_parallelogram):
         m = make()
-        geared = any(j.type == "G" for j in m.joints)
+        geared = any(j.type in ("G", "C") for j in m.joints)
         for method in ("auto", "newton") if make is not double_parallelogram and not geared else ("auto",):
             p = plan(m, method=method)
             ops |= set(p.ops_i[:, 0].tolist())

@@ -74,8 +74,8 @@ def units(sol, s):
        mantissa=st.sampled_from([1.0, 2.54, math.pi / 3]), method=st.sampled_from(["auto", "newton"]))
 def test_a_scaled_mechanism_moves_the_same(name, k, mantissa, method):
     m = MODELS[name]()
-    if any(j.type == "G" for j in m.joints):
-        method = "auto"          # gear joints are solved in closed form only: no Newton plan
+    if any(j.type in ("G", "C") for j in m.joints):
+        method = "auto"          # gear and cam joints are solved in closed form only: no Newton plan
     s = mantissa * 10.0 ** k
     ms = scaled(m, s)
     q = samples(m, method)

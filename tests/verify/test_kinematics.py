@@ -42,15 +42,17 @@ def test_every_example_is_verified(name):
     # every kinematic quantity is there, each computed by at least two routes besides the
     # reported one (the closed form or the Newton engine)
     assert {"angle", "position", "K", "L", "velocity", "acceleration"} <= set(cert)
-    # gear joints are in neither the Newton engine nor the derivation: loop closure and finite
-    # differences are their second routes, and the certificate says so
-    geared = 'type = "G"' in (ROOT / "examples" / name).read_text()
+    # gear and cam joints are in neither the Newton engine nor the derivation: loop closure and
+    # finite differences are their second routes, and the certificate says so
+    text = (ROOT / "examples" / name).read_text()
+    geared = 'type = "G"' in text or 'type = "C"' in text
     for name_, (routes, largest) in cert.items():
         assert len(routes) >= (2 if geared else 3), (name_, routes)
         assert 0.0 <= largest <= 1e-6
     assert "finite differences" in cert["K"][0]
     if geared:
-        assert any("gear joints" in note for note in cert.notes)
+        joints = "cam joints" if 'type = "C"' in text else "gear joints"
+        assert any(joints in note for note in cert.notes)
     else:
         assert "symbolic derivation" in cert["L"][0]
 
