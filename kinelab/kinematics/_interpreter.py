@@ -244,11 +244,19 @@ def _cam_motion(J, op, ii_cam, ii_guide, n, ops_f, M):
     """S(theta) of the program in the rows after operation ``op``, theta = theta_cam -
     theta_guide (the guide 0 when -1), with its K (M, n) and L (M, M, n) by the chain rule:
     K = S' K_theta, L = S'' K_theta K_theta + S' L_theta."""
-    table = np.asarray(ops_f[op + 1:op + 1 + k.CAM_ROWS * n], float).reshape(n, -1)
+    rows = np.asarray(ops_f[op + 1:op + 1 + k.CAM_ROWS * n], float)
     theta = J[ii_cam, 0] - (J[ii_guide, 0] if ii_guide >= 0 else 0.0)
     Kth = _K(J, ii_cam, M) - (_K(J, ii_guide, M) if ii_guide >= 0 else 0.0)
     Lth = _L(J, ii_cam, M) - (_L(J, ii_guide, M) if ii_guide >= 0 else 0.0)
-    S, S1, S2 = cam_values(table, theta)
+    if rows.ndim == 2:
+        S, S1, S2 = cam_values(rows.reshape(n, -1), theta)
+    else:           # designs together (a sample axis last): each distinct program on its samples
+        tables, which = np.unique(np.moveaxis(rows, -1, 0).reshape(rows.shape[-1], -1), axis=0,
+                                  return_inverse=True)
+        S, S1, S2 = (np.empty_like(theta) for _ in range(3))
+        for t, table in enumerate(tables):
+            at = which.ravel() == t
+            S[at], S1[at], S2[at] = cam_values(table.reshape(n, -1), theta[at])
     return S, S1 * Kth, S2 * _outer(Kth, Kth) + S1 * Lth
 
 

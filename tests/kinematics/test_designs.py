@@ -178,11 +178,11 @@ def test_each_design_its_own_inputs_and_the_newton_engine(name):
 # change point), unequal ones cannot close; beside an ordinary one, in one call
 FOLDING = [kl.mechanisms.fourbar(1.0, 1.0, 1.0, 1.0), kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5),
            kl.mechanisms.fourbar(1.0, 1.0, 1.2, 1.0)]
-GEARED_FAMILIES = sorted(n for n in GEARED if len(MODELS[n]().inputs) == 1)     # posed at one input
+PAIRED = sorted(n for n in GEARED if len(MODELS[n]().inputs) == 1)     # gears, cams; posed at one input
 
 
 @pytest.mark.parametrize("name", sorted(FAMILIES) + ["folding"] + [f"posed-{n}" for n in POSED]
-                         + [f"posed-{n}" for n in GEARED_FAMILIES])
+                         + [f"posed-{n}" for n in PAIRED])
 def test_both_forms_of_the_kernel_agree_on_designs(name):
     """The numpy form evaluates designs together (each number of an operation one value a
     sample); the kernel one after the other: the same statuses, jets and diagnostics."""
