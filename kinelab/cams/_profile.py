@@ -232,13 +232,13 @@ def _trace(program_svaj: SVAJ, f: Follower, rp: float):
     return P, P1, P2, dP / L
 
 
-def profile(program: MotionProgram, follower: Follower, base_radius: float, *,
+def profile(program: MotionProgram | SVAJ, follower: Follower, base_radius: float, *,
             samples: int = 721, theta=None) -> CamProfile:
     """The profile of the disk cam that drives ``follower`` through ``program``.
 
     Parameters
     ----------
-    program : MotionProgram
+    program : MotionProgram, or the SVAJ of :func:`~kinelab.cams.motion`
         Lifts in m (rad for an oscillating follower).
     follower : Follower
     base_radius : float
@@ -272,6 +272,11 @@ def profile(program: MotionProgram, follower: Follower, base_radius: float, *,
            [-0.06,  0.  ],
            [ 0.  ,  0.05]])
     """
+    if isinstance(program, SVAJ):          # kl.cams.motion(program): the program it is of
+        program = program.program
+    if not isinstance(program, MotionProgram):
+        raise ModelError(f"program: expected a MotionProgram or kl.cams.motion(program), got "
+                         f"{describe(program)}")
     if not isinstance(base_radius, (int, float)) or not math.isfinite(base_radius) \
             or not base_radius > 0:
         raise ModelError(f"base circle: expected a radius above 0, got {describe(base_radius)}")

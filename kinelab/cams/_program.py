@@ -13,7 +13,7 @@ from kinelab.cams._laws import (LAWS, law_pieces, law_values, polynomial_coeffic
 from kinelab.errors import ModelError, describe, expected_one_of
 from kinelab.model._cams import MAX_DEGREE, PIECE_HEAD, PIECE_WIDTH
 
-__all__ = ["Segment", "MotionProgram", "SVAJ", "Discontinuity", "KINDS", "LAW_NAMES"]
+__all__ = ["Segment", "MotionProgram", "SVAJ", "Discontinuity", "KINDS", "LAW_NAMES", "motion"]
 
 TURN = 2 * math.pi
 KINDS = ("rise", "dwell", "return")
@@ -115,13 +115,21 @@ class SVAJ:
     theta : (N,) cam angle, rad
     S, V, A, J : (N,) arrays
         S in the lift's unit (m, or rad for an oscillating follower), V = dS/dtheta per rad,
-        A per rad**2, J per rad**3.
+        A per rad**2, J per rad**3; also as ``s, v, a, j``.
+    program : MotionProgram or None
+        The program they are of (what :func:`~kinelab.cams.profile` takes in their place).
     """
     theta: np.ndarray
     S: np.ndarray
     V: np.ndarray
     A: np.ndarray
     J: np.ndarray
+    program: MotionProgram | None = field(default=None, repr=False, compare=False)
+
+    s = property(lambda self: self.S, doc="S, the displacement.")
+    v = property(lambda self: self.V, doc="V = dS/dtheta.")
+    a = property(lambda self: self.A, doc="A = d2S/dtheta2.")
+    j = property(lambda self: self.J, doc="J = d3S/dtheta3.")
 
     def in_time(self, omega: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """``s, v, a, j`` per time at the cam speed ``omega`` (rad/s, constant):
@@ -347,7 +355,7 @@ class MotionProgram:
                 vals = self._segment_values(i, (t[m] - s.start) / s.beta)
                 for o, v in zip(out, vals):
                     o[m] = v
-        return SVAJ(theta, *out)
+        return SVAJ(theta, *out, program=self)
 
 
 def _coverage(segs) -> list[str]:
@@ -369,3 +377,44 @@ def _coverage(segs) -> list[str]:
         out.append(f"segments[{len(segs) - 1}]: expected to end at 360 deg, got "
                    f"{math.degrees(segs[-1].end):.6g} deg; the segments cover one turn")
     return out
+
+
+def motion(program, theta=None, *, samples: int = 721) -> SVAJ:
+    """The follower's motion over the cam angle: S, V, A, J (also ``s, v, a, j``) of a
+    program, with the program itself (``.program``), ready for :func:`~kinelab.cams.profile`.
+
+    Parameters
+    ----------
+    program : MotionProgram, sequence of Segment, or sequence of tables
+        The program, or its segments in order over one turn: :class:`Segment` objects, or
+        tables as a cam task's ``[[segments]]`` (kind, law, from, to, lift; start and end for
+        a polynomial), in SI units (rad, m; rad for an oscillating follower's lift).
+    theta : array_like, optional
+        Cam angles, rad; by default ``samples`` angles from 0 to 2 pi included.
+
+    Examples
+    --------
+    >>> d = np.radians
+    >>> m = kl.cams.motion([{"kind": "rise", "law": "cycloidal", "from": 0, "to": d(90), "lift": 0.025},
+    ...                     {"kind": "dwell", "from": d(90), "to": d(180)},
+    ...                     {"kind": "return", "law": "3-4-5", "from": d(180), "to": d(270), "lift": 0.025},
+    ...                     {"kind": "dwell", "from": d(270), "to": d(360)}], d([45, 135]))
+    >>> m.s, m.v.round(12)            # half the rise at its middle, at its peak speed 2 h / beta
+    (array([0.0125, 0.025 ]), array([0.03183099, 0.        ]))
+    """
+    if not isinstance(program, MotionProgram):
+        if isinstance(program, (str, bytes)) or not hasattr(program, "__iter__"):
+            raise ModelError(f"program: expected a MotionProgram or its segments over one turn, "
+                             f"got {describe(program)}")
+        segments = list(program)
+        if segments and all(isinstance(x, dict) for x in segments):
+            from kinelab.cams._task import read_segments     # (it reads this module's Segment)
+            problems: list[str] = []
+            segments = read_segments(segments, 1.0, 1.0, problems, "program")
+            if problems:
+                raise ModelError(problems)
+        elif not segments or not all(isinstance(x, Segment) for x in segments):
+            raise ModelError(f"program: expected Segment objects or [[segments]] tables, got "
+                             f"{describe(program)}")
+        program = MotionProgram(tuple(segments))
+    return program.svaj(theta, samples=samples)
