@@ -13,6 +13,8 @@ from pathlib import Path
 
 import click
 
+from kinelab.cli._main import LANG
+
 __all__ = ["cam_command"]
 
 
@@ -46,68 +48,82 @@ def _columns(sol) -> dict:
     return out
 
 
-def _verdict(sol) -> list[str]:
+def _verdict(sol, lang: str = "en") -> list[str]:
     """The jump check in one line, and the shaft torque in another."""
+    from kinelab.cli._words import SAID, formatted
+    said = SAID[lang]
     ff, task, u = sol.forces, sol.task, sol.task.units
+
+    def g(v):
+        return formatted(v, ".4g", lang)
     a = u.scale("rad")
-    force = "moment" if ff.motion == "oscillating" else "force"
+    force = said["moment" if ff.motion == "oscillating" else "force"]
     unit = "N m" if ff.motion == "oscillating" else "N"
     rpm = 30 / math.pi
     if not ff.jumps:
         f, at = ff.least_force
         wc = ff.critical_speed
         if math.isinf(wc):
-            upto = "at any speed"
+            upto = said["at any speed"]
         elif wc < ff.speed:      # held by the follower's inertia: lost at some lower speeds
-            upto = ("at this speed, but not at every lower one (contact is lost " +
-                    ("at rest" if wc == 0 else f"from {wc * rpm:.4g} rpm") + ")")
+            upto = said["not every lower"].format(
+                where=said["at rest"] if wc == 0 else said["from rpm"].format(rpm=g(wc * rpm)))
         else:
-            upto = f"up to {wc * rpm:.4g} rpm ({wc / a:.4g} {u.angle}/s)"
-        line = (f"  dynamics: contact kept: least contact {force} {f:.4g} {unit} at "
-                f"{at / a:.4g} {u.angle}; jump-free {upto}")
+            upto = said["up to"].format(rpm=g(wc * rpm), speed=g(wc / a), angle=u.angle)
+        line = said["contact kept"].format(force=force, least=g(f), unit=unit, at=g(at / a),
+                                           angle=u.angle, upto=upto)
     else:
         margin = task.dynamics["margin"]
         need = ff.least_preload(margin)
-        line = (f"  dynamics: jump: contact {force} below zero from {ff.jump_angle / a:.4g} "
-                f"{u.angle} at this speed ({ff.speed * rpm:.4g} rpm); preload of at least "
-                f"{need:.4g} {unit} needed" + (f" (for a margin of {margin:.4g} {unit})"
-                                               if margin else ""))
+        line = said["jump"].format(
+            force=force, at=g(ff.jump_angle / a), angle=u.angle, rpm=g(ff.speed * rpm),
+            need=g(need), unit=unit,
+            margin=said["for a margin"].format(margin=g(margin), unit=unit) if margin else "")
     t, at = ff.peak_torque
     mean = ff.mean_torque
     mean = 0.0 if abs(mean) <= 1e-12 * abs(t) else mean      # rounding of an exact zero
-    return [line, f"  cam shaft torque: peak {t:.4g} N m at {at / a:.4g} {u.angle}, mean "
-                  f"{mean:.4g} N m"]
+    return [line, said["shaft torque"].format(peak=g(t), at=g(at / a), angle=u.angle,
+                                              mean=g(mean))]
 
 
-def _summary(sol, name: str) -> list[str]:
+def _summary(sol, name: str, lang: str = "en") -> list[str]:
+    from kinelab.cli._words import SAID, formatted
+    said = SAID[lang]
     cam, task, u = sol.cam, sol.task, sol.task.units
     m, a = u.scale("m"), u.scale("rad")
     f = cam.follower
-    head = f"{name}: disk cam, {f.motion} {f.type} follower, base circle {cam.base_radius / m:.6g} {u.length}"
+
+    def g(v, spec=".4g"):
+        return formatted(v, spec, lang)
+    head = said["cam head"].format(name=name, motion=said[f.motion], type=said[f.type],
+                                   radius=g(cam.base_radius / m, ".6g"), length=u.length)
     if sol.smallest:
-        head += (f" (the smallest for a pressure angle of {task.pressure_angle / a:.4g} {u.angle})"
-                 if not f.flat else
-                 f" (the smallest with a radius of curvature of at least {task.min_radius / m:.4g} "
-                 f"{u.length})")
+        head += (said["smallest for pressure"].format(limit=g(task.pressure_angle / a),
+                                                      angle=u.angle) if not f.flat else
+                 said["smallest for curvature"].format(limit=g(task.min_radius / m),
+                                                       length=u.length))
     lines = [head]
     phi, at = cam.largest_pressure_angle
-    lines.append(f"  largest pressure angle {phi / a:.4g} {u.angle} at {at / a:.4g} {u.angle}")
+    lines.append(said["largest pressure"].format(phi=g(phi / a), at=g(at / a), angle=u.angle))
     r, at = cam.smallest_radius
     if math.isfinite(r):
-        lines.append(f"  smallest radius of curvature {r / m:.4g} {u.length} (profile, convex) at "
-                     f"{at / a:.4g} {u.angle}")
+        lines.append(said["smallest radius"].format(r=g(r / m), length=u.length, at=g(at / a),
+                                                    angle=u.angle))
     if f.flat:
-        lines.append(f"  face width {cam.face_width / m:.4g} {u.length} (contact from "
-                     f"{cam.face[0] / m:.4g} to {cam.face[1] / m:.4g} {u.length}; add a clearance)")
-    lines.append("  undercut: " + ("yes" if cam.undercut.any() else "no"))
+        lines.append(said["face width"].format(width=g(cam.face_width / m), lo=g(cam.face[0] / m),
+                                               hi=g(cam.face[1] / m), length=u.length))
+    lines.append(said["undercut"].format(answer=said["yes" if cam.undercut.any() else "no"]))
     jumps = task.program.discontinuities
-    if jumps:
-        for d in jumps:
-            lines.append(f"  continuity: {d}")
-    else:
-        lines.append("  continuity: S, V and A continuous at every joint")
+    for d in jumps:
+        jump = said["jump at"].format(quantity=d.quantity, jump=g(d.jump, ".6g"),
+                                      angle=g(math.degrees(d.angle), ".6g"), left=d.left + 1,
+                                      right=d.right + 1)
+        lines.append(said["continuity"].format(
+            jump=jump + (said["infinite jerk"] if d.quantity == "A" else "")))
+    if not jumps:
+        lines.append(said["continuous"])
     if sol.forces is not None:
-        lines += _verdict(sol)
+        lines += _verdict(sol, lang)
     return lines
 
 
@@ -115,7 +131,8 @@ def _summary(sol, name: str) -> list[str]:
 @click.argument("task_file", metavar="TASK", type=click.Path(dir_okay=False))
 @click.option("--out", "-o", "out", default=".", show_default=True, metavar="DIR",
               help="Directory for the figures, the profile and the table.")
-def cam_command(task_file: str, out: str) -> None:
+@LANG
+def cam_command(task_file: str, out: str, lang: str) -> None:
     """Design a disk cam from the TOML task file TASK: a motion program of rise, dwell and
     return segments and a follower.
 
@@ -126,7 +143,8 @@ def cam_command(task_file: str, out: str) -> None:
     program at its joints.  With a [dynamics] table (the follower's mass, spring and preload),
     also <name>_forces.png, the contact force and shaft torque in the table, and the jump
     check: the least contact force and the largest jump-free speed, or where the follower
-    leaves the cam and the preload that would hold it.
+    leaves the cam and the preload that would hold it.  With --lang pt, the figures and the
+    summary in Portuguese (decimal commas; the table keeps the decimal point).
     """
     from kinelab import cams
     from kinelab import plot as kplot
@@ -143,11 +161,12 @@ def cam_command(task_file: str, out: str) -> None:
     u = task.units
     base = stem(task_file)
     cam = sol.cam
-    figures = {"svaj": kplot.cam_svaj(cam, units=u), "profile": kplot.cam_profile(cam, units=u),
-               "pressure": kplot.cam_pressure(cam, limit=task.pressure_angle, units=u),
-               "curvature": kplot.cam_curvature(cam, units=u)}
+    figures = {"svaj": kplot.cam_svaj(cam, units=u, lang=lang),
+               "profile": kplot.cam_profile(cam, units=u, lang=lang),
+               "pressure": kplot.cam_pressure(cam, limit=task.pressure_angle, units=u, lang=lang),
+               "curvature": kplot.cam_curvature(cam, units=u, lang=lang)}
     if sol.forces is not None:
-        figures["forces"] = kplot.cam_forces(sol.forces, units=u)
+        figures["forces"] = kplot.cam_forces(sol.forces, units=u, lang=lang)
     columns = _columns(sol)
     svg = cam.to_svg(u.length)
     try:
@@ -160,5 +179,5 @@ def cam_command(task_file: str, out: str) -> None:
     finally:
         for f in figures.values():
             plt.close(f)
-    click.echo("\n".join(_summary(sol, task.name)))
+    click.echo("\n".join(_summary(sol, task.name, lang)))
     said_written(written)

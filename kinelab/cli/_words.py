@@ -40,6 +40,34 @@ SAID: dict[str, dict[str, str]] = {
         "meets": "min transmission {mu} {unit} (meets the {limit})",
         "below": "min transmission {mu} {unit} (below the {limit})",
         "wrote files": "wrote {n} file(s) to {path}",
+        # cam
+        "cam head": "{name}: disk cam, {motion} {type} follower, base circle {radius} {length}",
+        "translating": "translating", "oscillating": "oscillating", "knife-edge": "knife-edge",
+        "roller": "roller", "flat-faced": "flat-faced",
+        "smallest for pressure": " (the smallest for a pressure angle of {limit} {angle})",
+        "smallest for curvature": (" (the smallest with a radius of curvature of at least "
+                                   "{limit} {length})"),
+        "largest pressure": "  largest pressure angle {phi} {angle} at {at} {angle}",
+        "smallest radius": ("  smallest radius of curvature {r} {length} (profile, convex) at "
+                            "{at} {angle}"),
+        "face width": ("  face width {width} {length} (contact from {lo} to {hi} {length}; add a "
+                       "clearance)"),
+        "undercut": "  undercut: {answer}", "yes": "yes", "no": "no",
+        "continuity": "  continuity: {jump}",
+        "jump at": "{quantity} jumps by {jump} at {angle} deg, between segments {left} and {right}",
+        "infinite jerk": " (the fundamental law of cam design: an infinite jerk)",
+        "continuous": "  continuity: S, V and A continuous at every joint",
+        "force": "force", "moment": "moment",
+        "at any speed": "at any speed",
+        "not every lower": "at this speed, but not at every lower one (contact is lost {where})",
+        "at rest": "at rest", "from rpm": "from {rpm} rpm",
+        "up to": "up to {rpm} rpm ({speed} {angle}/s)",
+        "contact kept": ("  dynamics: contact kept: least contact {force} {least} {unit} at {at} "
+                         "{angle}; jump-free {upto}"),
+        "jump": ("  dynamics: jump: contact {force} below zero from {at} {angle} at this speed "
+                 "({rpm} rpm); preload of at least {need} {unit} needed{margin}"),
+        "for a margin": " (for a margin of {margin} {unit})",
+        "shaft torque": "  cam shaft torque: peak {peak} N m at {at} {angle}, mean {mean} N m",
     },
     "pt": {
         "undefined": "{name}: esforço indefinido (todas as amostras singulares ou não montadas)",
@@ -69,6 +97,38 @@ SAID: dict[str, dict[str, str]] = {
         "meets": "ângulo de transmissão mín. {mu} {unit} (atende ao {limit})",
         "below": "ângulo de transmissão mín. {mu} {unit} (abaixo do {limit})",
         "wrote files": "escreveu {n} arquivo(s) em {path}",
+        "cam head": ("{name}: came de disco, seguidor {type} {motion}, círculo de base {radius} "
+                     "{length}"),
+        "translating": "de translação", "oscillating": "oscilante", "knife-edge": "de faca",
+        "roller": "de rolete", "flat-faced": "de face plana",
+        "smallest for pressure": " (o menor para um ângulo de pressão de {limit} {angle})",
+        "smallest for curvature": (" (o menor com raio de curvatura de pelo menos {limit} "
+                                   "{length})"),
+        "largest pressure": "  maior ângulo de pressão {phi} {angle} em {at} {angle}",
+        "smallest radius": ("  menor raio de curvatura {r} {length} (perfil, convexo) em {at} "
+                            "{angle}"),
+        "face width": ("  largura da face {width} {length} (contato de {lo} a {hi} {length}; "
+                       "acrescente uma folga)"),
+        "undercut": "  rebaixamento: {answer}", "yes": "sim", "no": "não",
+        "continuity": "  continuidade: {jump}",
+        "jump at": ("{quantity} salta {jump} em {angle} graus, entre os segmentos {left} e "
+                    "{right}"),
+        "infinite jerk": " (a lei fundamental do projeto de cames: um jerk infinito)",
+        "continuous": "  continuidade: S, V e A contínuos em todas as junções",
+        "force": "força", "moment": "momento",
+        "at any speed": "a qualquer velocidade",
+        "not every lower": ("a esta velocidade, mas não a todas as menores (o contato se perde "
+                            "{where})"),
+        "at rest": "em repouso", "from rpm": "a partir de {rpm} rpm",
+        "up to": "até {rpm} rpm ({speed} {angle}/s)",
+        "contact kept": ("  dinâmica: contato mantido: menor {force} de contato {least} {unit} "
+                         "em {at} {angle}; sem salto {upto}"),
+        "jump": ("  dinâmica: salto: {force} de contato abaixo de zero a partir de {at} {angle} "
+                 "a esta velocidade ({rpm} rpm); pré-carga de pelo menos {need} {unit} "
+                 "necessária{margin}"),
+        "for a margin": " (para uma margem de {margin} {unit})",
+        "shaft torque": ("  torque no eixo do came: máximo {peak} N m em {at} {angle}, médio "
+                         "{mean} N m"),
     },
 }
 

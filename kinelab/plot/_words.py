@@ -88,6 +88,18 @@ WORDS: dict[str, dict[str, str]] = {
         "quick return": "{kind}: {travel}, time ratio {ratio}",
         "centre points of": "centre points of positions {which}",
         "five positions": "five positions, centre-point curves and Burmester points",
+        # cams
+        "svaj title": "SVAJ diagram", "cam angle": "cam angle", "cam profile": "profile",
+        "pitch curve": "pitch curve", "base circle": "base circle", "undercut": "undercut",
+        "cam title": "disk cam, {motion} {type} follower (turning counterclockwise)",
+        "translating": "translating", "oscillating": "oscillating", "knife-edge": "knife-edge",
+        "roller": "roller", "flat-faced": "flat-faced",
+        "pressure angle": "pressure angle", "limit": "limit", "largest": "largest {value} {unit}",
+        "radius of curvature": "radius of curvature", "roller radius": "roller radius",
+        "contact force": "contact force", "contact moment": "contact moment",
+        "jump": "jump (no contact)", "least": "least {value} {unit}",
+        "follower dynamics": "follower dynamics at {rpm} rpm", "shaft torque": "shaft torque",
+        "cam shaft torque": "cam shaft torque", "mean": "mean {value} N m",
     },
     "pt": {
         "angle": "ângulo", "angular velocity": "velocidade angular",
@@ -159,6 +171,19 @@ WORDS: dict[str, dict[str, str]] = {
         "quick return": "{kind}: {travel}, coeficiente de velocidade K = {ratio}",
         "centre points of": "pontos centrais das posições {which}",
         "five positions": "cinco posições, curvas de pontos centrais e pontos de Burmester",
+        # cams
+        "svaj title": "diagrama SVAJ", "cam angle": "ângulo do came", "cam profile": "perfil",
+        "pitch curve": "curva primitiva", "base circle": "círculo de base",
+        "undercut": "rebaixamento",
+        "cam title": "came de disco, seguidor {type} {motion} (girando no sentido anti-horário)",
+        "translating": "de translação", "oscillating": "oscilante", "knife-edge": "de faca",
+        "roller": "de rolete", "flat-faced": "de face plana",
+        "pressure angle": "ângulo de pressão", "limit": "limite", "largest": "maior {value} {unit}",
+        "radius of curvature": "raio de curvatura", "roller radius": "raio do rolete",
+        "contact force": "força de contato", "contact moment": "momento de contato",
+        "jump": "salto (sem contato)", "least": "menor {value} {unit}",
+        "follower dynamics": "dinâmica do seguidor a {rpm} rpm", "shaft torque": "torque no eixo",
+        "cam shaft torque": "torque no eixo do came", "mean": "média {value} N m",
     },
 }
 

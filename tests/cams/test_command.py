@@ -301,3 +301,33 @@ def test_dynamics_contact_held_by_inertia_only_at_this_speed(tmp_path):
     result, _, _ = dynamic(tmp_path, HELD_TASK, "held")
     assert ("  dynamics: contact kept: least contact force 4 N at 0 deg; jump-free at this speed, "
             "but not at every lower one (contact is lost at rest)") in result.stdout.splitlines()
+
+
+def test_the_summary_and_figures_in_portuguese(tmp_path, monkeypatch):
+    """--lang pt: the same numbers, with decimal commas, in the notes' terms; the figures'
+    words in Portuguese; the table as in English (decimal points, the same columns)."""
+    from kinelab import plot as kplot
+    titles = []
+    save = kplot.save
+
+    def saving(fig, path):
+        titles.extend(t for ax in fig.axes for t in (ax.get_title(), ax.get_xlabel()))
+        return save(fig, path)
+    monkeypatch.setattr(kplot, "save", saving)
+    text = DYNAMIC_TASK.replace("speed = 360", "speed = 1200")
+    (tmp_path / "dyn.toml").write_text(text)
+    en = run("cam", tmp_path / "dyn.toml", "--out", tmp_path / "en")
+    titles.clear()
+    pt = run("cam", tmp_path / "dyn.toml", "--out", tmp_path / "pt", "--lang", "pt")
+    assert pt.exit_code == 0, pt.output
+    lines = pt.stdout.splitlines()
+    assert lines[0].startswith("double-dwell cam: came de disco, seguidor de rolete de translação, "
+                               "círculo de base ")
+    assert lines[1].startswith("  maior ângulo de pressão 30 deg em ")
+    assert ("  dinâmica: contato mantido: menor força de contato 28,95 N em 65 deg; sem salto "
+            "até 246,8 rpm (1481 deg/s)") in lines
+    assert any(s.startswith("  torque no eixo do came: máximo 2,539 N m em 35,5 deg") for s in lines)
+    assert len(lines) == len(en.stdout.splitlines())
+    assert "diagrama SVAJ" in titles and "ângulo do came [deg]" in titles
+    assert any(t.startswith("came de disco, seguidor de rolete de translação") for t in titles)
+    assert (tmp_path / "pt" / "dyn_svaj.csv").read_text() == (tmp_path / "en" / "dyn_svaj.csv").read_text()
