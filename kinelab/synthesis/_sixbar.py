@@ -59,8 +59,8 @@ _KINDS = {k.name: k for k in (
           (("ground", ("O2", "O4")), ("crank", ("O2", "A", "C")), ("coupler", ("A", "B", "D")),
            ("rocker", ("O4", "B")), ("link5", ("C", "E", "P")), ("link6", ("D", "E"))),
           "link5", "C", "link6", ("D", "E"), (("B", "A", "O4"), ("E", "C", "D")),
-          {"O2": (0.0, 0.0), "A": (0.3, 0.9), "C": (-0.6, 0.9), "B": (3.2, 2.4), "O4": (4.0, 0.0),
-           "D": (1.6, 3.4), "E": (0.6, 3.0), "P": (-0.2, 2.4)},
+          {"O2": (0.0, 0.0), "A": (0.5, 0.87), "C": (-0.7, 0.7), "B": (3.0, 2.5), "O4": (4.0, 0.0),
+           "D": (1.5, 3.0), "E": (-0.5, 3.0), "P": (-1.0, 2.0)},
           "Watt I: ground binary; the ternary crank (O2, A, C) and the ternary coupler "
           "(A, B, D) of the four-bar O2-A-B-O4 carry the dyad C-E-D (link5 C-E, link6 D-E); "
           "input the crank at O2, path/motion link link5 (point P), output link6's angle"),
@@ -77,8 +77,8 @@ _KINDS = {k.name: k for k in (
           (("ground", ("O2", "O4")), ("crank", ("O2", "A", "C")), ("coupler", ("A", "B")),
            ("rocker", ("O4", "B", "D")), ("link5", ("C", "E", "P")), ("link6", ("D", "E"))),
           "link5", "C", "link6", ("D", "E"), (("B", "A", "O4"), ("E", "C", "D")),
-          {"O2": (0.0, 0.0), "A": (0.3, 0.9), "C": (-0.6, 0.9), "B": (3.2, 2.4), "O4": (4.0, 0.0),
-           "D": (4.6, 1.6), "E": (1.6, 3.4), "P": (0.4, 2.8)},
+          {"O2": (0.0, 0.0), "A": (0.5, 0.87), "C": (-0.7, 0.7), "B": (3.0, 2.5), "O4": (4.0, 0.0),
+           "D": (4.8, 1.8), "E": (1.8, 4.2), "P": (0.2, 3.2)},
           "Stephenson I: ground binary (O2, O4) joining the two ternary links, the crank "
           "(O2, A, C) and the rocker (O4, B, D) of the four-bar O2-A-B-O4; the dyad C-E-D "
           "(link5 C-E, link6 D-E) joins them; input the crank at O2, path/motion link link5 "
@@ -105,6 +105,7 @@ _KINDS = {k.name: k for k in (
 )}
 
 SIXBAR_KINDS = tuple(_KINDS)
+_REACH = 6.0      # farthest a joint may be from the task's centre, in task sizes
 
 
 def _model(kind: _Kind, pts: Mapping[str, tuple[float, float]], parameters: dict) -> Mechanism:
@@ -262,6 +263,8 @@ class _Problem:
             self.n = len(pts)
             self.dq_free = mode in ("path", "poses") and inputs is None
         self.nx = self.np + (self.n - 1 if self.dq_free else 0)
+        self.default = np.concatenate([np.ravel([kind.sketch[p] for p in self.names]) / 4.0,
+                                       np.zeros(self.nx - self.np)])
         self.iP = self.names.index("P")
         self.iA = self.names.index("A")
         self.iO2 = self.names.index("O2")
@@ -290,11 +293,14 @@ class _Problem:
     def residuals(self, x):
         """(K, m) residuals; rows of candidates that do not assemble on the way are inf."""
         K = len(x)
+        bad = ~np.isfinite(x).all(axis=1)
+        if bad.any():
+            x = np.where(bad[:, None], self.default, x)
         q, samples = self.q(x)
         step = self.between + 1
         with np.errstate(all="ignore"):
             sol = analyze_designs(self.model, self.sketch(x), samples)
-        ok = sol.by_design(sol.assembled).all(axis=1) & ~sol.by_design(sol.singular).any(axis=1)
+        ok = sol.by_design(sol.assembled).all(axis=1)
         at = np.arange(0, samples.shape[1], step)
         res = []
         if self.mode in ("path", "poses"):
@@ -312,8 +318,10 @@ class _Problem:
         # sketch lengths that collapse make a degenerate linkage: keep links above a floor
         S = self.sketch(x)
         res.append(self._short_links(S))
+        # and keep the linkage within a few times the task's size
+        res.append(np.maximum(np.linalg.norm(S, axis=2) - _REACH, 0.0))
         r = np.concatenate(res, axis=1)
-        r[~ok | ~np.isfinite(r).all(axis=1)] = np.inf
+        r[bad | ~ok | ~np.isfinite(r).all(axis=1)] = np.inf
         return r
 
     def _short_links(self, S):
@@ -382,7 +390,7 @@ def _levenberg_marquardt(problem, x, iterations, h=1e-7):
             won = idx[j][better]
             x[won], r[won], cost[won] = trial[better], rt[better], ct[better]
             lam[won] = np.maximum(lam[won] / 4.0, 1e-15)
-            lam[idx[j][~better]] *= 10.0
+            lam[idx[j][~better]] = np.minimum(lam[idx[j][~better]] * 10.0, 1e12)
             todo[j[better]] = False
             if not todo.any():
                 break
@@ -407,7 +415,7 @@ def _polish(problem, x, cost, h=1e-8):
     try:
         with np.errstate(all="ignore"):
             out = least_squares(fun, x, jac=jac, method="trf", xtol=1e-15, ftol=1e-15,
-                                gtol=1e-15, max_nfev=100)
+                                gtol=1e-15, max_nfev=400)
     except ValueError:
         return x, cost
     c = float(2 * out.cost)
