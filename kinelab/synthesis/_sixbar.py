@@ -397,15 +397,32 @@ def _levenberg_marquardt(problem, x, iterations, h=1e-7):
     return x, r, cost
 
 
+class _Done(Exception):
+    """The residuals are down to rounding: stop refining."""
+
+
+_ENOUGH = 1e-13     # residual (in task sizes) at which a candidate is refined enough
+
+
 def _polish(problem, x, cost, h=1e-8):
     """Refine one candidate to the rounding of its residuals: scipy's trust-region least
-    squares, each Jacobian one kernel run of the candidate's perturbed designs."""
+    squares, each Jacobian one kernel run of the candidate's perturbed designs; it stops
+    as soon as every residual is below ``_ENOUGH``."""
     from scipy.optimize import least_squares
 
     n = x.size
+    best = [x, cost]
+    if cost <= _ENOUGH ** 2:
+        return x, cost
 
     def fun(v):
-        return problem.residuals(v[None])[0]
+        r = problem.residuals(v[None])[0]
+        c = float(r @ r)
+        if c < best[1]:
+            best[:] = [v.copy(), c]
+            if np.max(np.abs(r)) <= _ENOUGH:
+                raise _Done
+        return r
 
     def jac(v):
         pert = v + h * np.eye(n)
@@ -414,12 +431,11 @@ def _polish(problem, x, cost, h=1e-8):
         return np.where(np.isfinite(J), J, 0.0)
     try:
         with np.errstate(all="ignore"):
-            out = least_squares(fun, x, jac=jac, method="trf", xtol=1e-15, ftol=1e-15,
-                                gtol=1e-15, max_nfev=400)
-    except ValueError:
-        return x, cost
-    c = float(2 * out.cost)
-    return (out.x, c) if np.isfinite(c) and c < cost else (x, cost)
+            least_squares(fun, x, jac=jac, method="trf", xtol=1e-15, ftol=1e-15,
+                          gtol=1e-15, max_nfev=60)
+    except (_Done, ValueError):
+        pass
+    return best[0], best[1]
 
 
 # ---------------------------------------------------------------- checks by the engine
