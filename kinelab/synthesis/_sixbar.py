@@ -527,8 +527,9 @@ def sixbar(kind: str, task: Mapping, *, starts: int = 2000, refine: int = 40,
         One of
 
         - ``{"path": points}``: P passes through the points (n, 2), m, n >= 3, in order;
-          the crank angles are free (exact up to 2 x 8 - 1 points... in practice up to
-          about 12);
+          the crank's angles are free unknowns too (16 sketch coordinates and n - 1 turns
+          for 2n equations: exact up to 15 points in principle; the random starts find
+          exact solutions readily for about 5 to 8);
         - ``{"path": points, "inputs": angles}``: with timing: P is at point i when the
           crank has turned ``angles[i] - angles[0]`` (rad) from point 1 (exact up to 8
           points: the 16 coordinates of the sketch);
@@ -567,7 +568,24 @@ def sixbar(kind: str, task: Mapping, *, starts: int = 2000, refine: int = 40,
 
     Examples
     --------
-    >>> w6 = kl.mechanisms.watt6()
+    The output of the catalogue's Stephenson III over 45 deg of its crank, generated again
+    (the output's angle from O6 to D):
+
+    >>> s6 = kl.mechanisms.stephenson6()
+    >>> q = np.radians([90, 105, 120, 135])
+    >>> sol = kl.analyze(s6, q=q)
+    >>> v = sol.position("D") - sol.position("O6")
+    >>> phi = np.arctan2(v[:, 1], v[:, 0])
+    >>> found = kl.synthesis.sixbar("stephenson3", {"function": (q, phi)}, starts=500,
+    ...                             refine=10, iterations=20, seed=0)
+    >>> best = found[0]
+    >>> best.valid, bool(best.relative_error < 1e-9)
+    (True, True)
+    >>> check = kl.analyze(best.model, q=best.q)
+    >>> w = check.position("D") - check.position("O6")
+    >>> turn = np.arctan2(w[:, 1], w[:, 0])
+    >>> bool(np.allclose(turn - turn[0], phi - phi[0], atol=1e-9))
+    True
     """
     kind, mode, pts, inputs, angles = _task(kind, task)
     if not isinstance(starts, int) or starts < 1 or not isinstance(refine, int) or refine < 1:
