@@ -105,6 +105,7 @@ _KINDS = {k.name: k for k in (
 )}
 
 SIXBAR_KINDS = tuple(_KINDS)
+_MU_MARGIN = math.radians(0.5)
 _REACH = 6.0      # farthest a joint may be from the task's centre, in task sizes
 
 
@@ -314,7 +315,8 @@ class _Problem:
             res.append(_turn(sol.position(b)[:, at] - sol.position(a)[:, at], self.angles))
         if self.mu_limit:
             mu = _transmission(self.kind, sol.position)
-            res.append(4.0 * np.maximum(self.mu_limit - mu, 0.0))
+            # aim a little above the limit: a penalty leaves the optimum just inside it
+            res.append(10.0 * np.maximum(self.mu_limit + _MU_MARGIN - mu, 0.0))
         # sketch lengths that collapse make a degenerate linkage: keep links above a floor
         S = self.sketch(x)
         res.append(self._short_links(S))

@@ -130,3 +130,26 @@ def test_bad_input_one_line_error(kind, task, match):
     with pytest.raises(ModelError, match=match) as info:
         kl.synthesis.sixbar(kind, task)
     assert "\n" not in str(info.value)
+
+
+def test_function_least_squares_with_a_transmission_floor():
+    # y = log10(x), x in [1, 10]: crank over 120 deg, output over 60 deg; 13 pairs are more
+    # than the 11 a Stephenson III meets exactly, so this is least squares
+    x = np.linspace(1.0, 10.0, 13)
+    th, ph = np.radians(120.0) * (x - 1) / 9, np.radians(60.0) * np.log10(x)
+    res = kl.synthesis.sixbar("stephenson3", {"function": (th, ph)}, min_transmission_angle=30.0,
+                              degrees=True, starts=500, refine=10, iterations=25, solutions=1,
+                              seed=0)
+    assert res and res[0].valid
+    s = res[0]
+    sol = kl.analyze(s.model, q=s.q)
+    out = angles_of(sol, "O6", "D")
+    err = np.abs(wrap((out - out[0]) - (ph - ph[0])))
+    assert np.allclose(err, s.errors, atol=1e-12)        # the reported errors are the engine's
+    assert err.max() < np.radians(0.2)
+    # transmission angles at the dyads' middle joints B and D, over the whole travel
+    sweep = kl.analyze(s.model, q=np.linspace(s.q[0], s.q[-1], 400))
+    for mid, a, b in (("B", "A", "O4"), ("D", "C", "O6")):
+        u, w = sweep.position(a) - sweep.position(mid), sweep.position(b) - sweep.position(mid)
+        mu = np.arccos(np.sum(u * w, axis=1) / np.linalg.norm(u, axis=1) / np.linalg.norm(w, axis=1))
+        assert np.min(np.minimum(mu, np.pi - mu)) >= np.radians(30.0) - 1e-9
