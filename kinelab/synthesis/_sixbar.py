@@ -106,7 +106,7 @@ _KINDS = {k.name: k for k in (
 
 SIXBAR_KINDS = tuple(_KINDS)
 _MU_MARGIN = math.radians(0.5)
-_REACH = 6.0      # farthest a joint may be from the task's centre, in task sizes
+_REACH = 60.0     # farthest a joint may be from the task's centre, in task sizes
 
 
 def _model(kind: _Kind, pts: Mapping[str, tuple[float, float]], parameters: dict) -> Mechanism:
@@ -650,11 +650,17 @@ def sixbar(kind: str, task: Mapping, *, starts: int = 2000, refine: int = 40,
 
 
 def _starts(problem, rng, count):
-    """Random sketches in the normalised frame: joints in a box around the task, P on the
+    """Random sketches in the normalised frame: joints in boxes of random sizes around the task, P on the
     first point; the crank's turns between points, for a path without timing, spread
     evenly over a random part of a turn either way."""
     P = len(problem.names)
-    S = rng.uniform(-2.0, 2.0, (count, P, 2))
+    S = rng.uniform(-1.0, 1.0, (count, P, 2))
+    if problem.mode == "function":       # a function generator has no size: one box
+        S *= 2.0
+    else:
+        # linkages from about the task's size to ten times it: a small task (a short
+        # stretch of a path, poses that turn little) is often met best by a large linkage
+        S *= np.exp(rng.uniform(np.log(1.5), np.log(15.0), count))[:, None, None]
     if problem.mode in ("path", "poses"):
         S[:, problem.iP] = problem.pts[0]
     x = S.reshape(count, -1)

@@ -81,13 +81,14 @@ def test_function_generation_from_a_watt2():
     assert np.allclose(s.q - s.q[0], q - q[0], atol=1e-12)
 
 
-def test_motion_poses_reached_point_and_angle():
-    k, model, q0 = known("watt1")
+@pytest.mark.parametrize("kind", ["watt1", "stephenson3"])
+def test_motion_poses_reached_point_and_angle(kind):
+    k, model, q0 = known(kind)
     q = q0 + np.radians([0, 20, 40, 60])
     sol = kl.analyze(model, q=q)
     th = angles_of(sol, "P", "C")
     poses = np.column_stack([sol.position("P"), th])
-    res = kl.synthesis.sixbar("watt1", {"poses": poses}, **FAST)
+    res = kl.synthesis.sixbar(kind, {"poses": poses}, **FAST)
     assert res and res[0].valid
     s = res[0]
     got = kl.analyze(s.model, q=s.q)
