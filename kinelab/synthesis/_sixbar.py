@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -330,8 +330,6 @@ class _Problem:
         out = []
         names = self.names
         for link, pts in self.kind.links:
-            if link == "ground" and len(pts) == 2:
-                pass
             for i, a in enumerate(pts):
                 for b in pts[i + 1:]:
                     if "P" in (a, b):
@@ -590,9 +588,10 @@ def sixbar(kind: str, task: Mapping, *, starts: int = 2000, refine: int = 40,
     True
     """
     kind, mode, pts, inputs, angles = _task(kind, task)
-    if not isinstance(starts, int) or starts < 1 or not isinstance(refine, int) or refine < 1:
-        raise ModelError(f"starts, refine: expected positive whole numbers, got {describe(starts)}, "
-                         f"{describe(refine)}")
+    for name, value in (("starts", starts), ("refine", refine), ("iterations", iterations),
+                        ("solutions", solutions)):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+            raise ModelError(f"{name}: expected a positive whole number, got {describe(value)}")
     mu_limit = None
     if min_transmission_angle is not None:
         mu_limit = float(angle_array("min_transmission_angle", min_transmission_angle, degrees))
@@ -650,9 +649,9 @@ def sixbar(kind: str, task: Mapping, *, starts: int = 2000, refine: int = 40,
 
 
 def _starts(problem, rng, count):
-    """Random sketches in the normalised frame: joints in boxes of random sizes around the task, P on the
-    first point; the crank's turns between points, for a path without timing, spread
-    evenly over a random part of a turn either way."""
+    """Random sketches in the normalised frame: joints in boxes of random sizes around the
+    task, P on the first point; the crank's turns between points, for a path without
+    timing, spread evenly over a random part of a turn either way."""
     P = len(problem.names)
     S = rng.uniform(-1.0, 1.0, (count, P, 2))
     if problem.mode == "function":       # a function generator has no size: one box
