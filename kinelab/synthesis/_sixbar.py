@@ -137,7 +137,11 @@ class SixBarSolution:
         in order on one assembly mode.
     min_transmission_angle : float
         Smallest transmission angle at the dyads' middle joints between the first and the
-        last point, rad.
+        last point, rad (NaN when the crank cannot get there).
+    kind : str
+        The kind asked for.
+    direction : int
+        +1 when the crank turns CCW from the first point to the last, -1 CW.
     """
 
     model: Mechanism
