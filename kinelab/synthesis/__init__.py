@@ -62,3 +62,23 @@ __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "QuickReturn", "imbalance_angle", "max_time_ratio", "MAX_PATH_POINTS", "TRANSMISSION_LIMIT",
            "five_point_path", "FivePointSolutions", "FivePointLinkage",
            "function_generation_pairs", "burmester"]
+
+# six-bars by optimisation: their names first, then the ones above
+_sixbar_getattr, _sixbar_dir = exports(__name__, {
+    "kinelab.synthesis._sixbar": ("sixbar", "SixBarSolution", "SIXBAR_KINDS"),
+})
+_before_sixbar = (__getattr__, __dir__)
+
+
+def __getattr__(name: str):
+    try:
+        return _sixbar_getattr(name)
+    except AttributeError:
+        return _before_sixbar[0](name)
+
+
+def __dir__() -> list[str]:
+    return sorted(set(_before_sixbar[1]()) | set(_sixbar_dir()))
+
+
+__all__ += ["sixbar", "SixBarSolution", "SIXBAR_KINDS"]
