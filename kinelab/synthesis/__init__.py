@@ -49,6 +49,7 @@ __getattr__, __dir__ = exports(__name__, {
                                         "crank_rockers", "imbalance_angle", "max_time_ratio",
                                         "offset_slider_crank", "slotted_lever", "whitworth"),
     "kinelab.synthesis._results": ("SolutionList",),
+    "kinelab.synthesis._sixbar": ("SIXBAR_KINDS", "SixBarSolution", "sixbar"),
 })
 
 __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
@@ -61,24 +62,4 @@ __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "crank_rockers", "CrankRocker", "offset_slider_crank", "slotted_lever", "whitworth",
            "QuickReturn", "imbalance_angle", "max_time_ratio", "MAX_PATH_POINTS", "TRANSMISSION_LIMIT",
            "five_point_path", "FivePointSolutions", "FivePointLinkage",
-           "function_generation_pairs", "burmester"]
-
-# six-bars by optimisation: their names first, then the ones above
-_sixbar_getattr, _sixbar_dir = exports(__name__, {
-    "kinelab.synthesis._sixbar": ("sixbar", "SixBarSolution", "SIXBAR_KINDS"),
-})
-_before_sixbar = (__getattr__, __dir__)
-
-
-def __getattr__(name: str):
-    try:
-        return _sixbar_getattr(name)
-    except AttributeError:
-        return _before_sixbar[0](name)
-
-
-def __dir__() -> list[str]:
-    return sorted(set(_before_sixbar[1]()) | set(_sixbar_dir()))
-
-
-__all__ += ["sixbar", "SixBarSolution", "SIXBAR_KINDS"]
+           "function_generation_pairs", "burmester", "sixbar", "SixBarSolution", "SIXBAR_KINDS"]
