@@ -49,6 +49,10 @@ __getattr__, __dir__ = exports(__name__, {
                                         "crank_rockers", "imbalance_angle", "max_time_ratio",
                                         "offset_slider_crank", "slotted_lever", "whitworth"),
     "kinelab.synthesis._results": ("SolutionList",),
+    "kinelab.synthesis._spherical": ("SphericalCenterAxes", "SphericalFunctionSolution",
+                                     "SphericalMotionSolution", "spherical_center_axes",
+                                     "spherical_four_orientations", "spherical_freudenstein",
+                                     "spherical_function", "spherical_three_orientations"),
 })
 
 __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
@@ -61,4 +65,7 @@ __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "crank_rockers", "CrankRocker", "offset_slider_crank", "slotted_lever", "whitworth",
            "QuickReturn", "imbalance_angle", "max_time_ratio", "MAX_PATH_POINTS", "TRANSMISSION_LIMIT",
            "five_point_path", "FivePointSolutions", "FivePointLinkage",
-           "function_generation_pairs", "burmester"]
+           "function_generation_pairs", "burmester",
+           "spherical_freudenstein", "spherical_function", "SphericalFunctionSolution",
+           "spherical_three_orientations", "SphericalMotionSolution", "spherical_center_axes",
+           "SphericalCenterAxes", "spherical_four_orientations"]
