@@ -557,8 +557,8 @@ def _check_spatial(mf: io.ModelFile, model: str) -> None:
     click.echo(f"inputs: {', '.join(m.input_names)}, one per degree of freedom")
     if m.space == "spherical" and len(m.links) == 4 and len(m.joints) == 4:
         _check_spherical(mf)
-        click.echo("motion: kinelab analyze sweeps this spherical four-bar "
-                   "(kinelab.spatial.SphericalFourBar)")
+        click.echo("motion: kinelab analyze sweeps this spherical four-bar; analyse this "
+                   "spherical one further with kinelab.spatial.SphericalFourBar")
     else:
         click.echo(f"motion: the kinematics engine sweeps planar models; analyse this "
                    f"{m.space} one with kinelab.spatial")

@@ -873,7 +873,7 @@ class _Parser:
         radius = 1.0
         if "radius" in t:
             radius = r.number(t["radius"], "spherical.radius", scale=units.length_scale,
-                              positive=True, unit=units.length)
+                              positive=True, unit=units.length, check=length_problem)
         joint_types = {f"j{n}": "R" for n in ("O2", "A", "B", "O4")}
         inputs, samples = (self.inputs(top["inputs"], joint_types,
                                        ("ground", "crank", "coupler", "rocker"), units)
