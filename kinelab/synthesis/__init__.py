@@ -5,6 +5,10 @@ more by least squares), function generation (the rocker angle is a prescribed fu
 the crank angle), path generation (a coupler point passes through prescribed points), and
 the complete solution set of five path points with both fixed pivots given (every
 one of its 36 roots, by homotopy continuation: :func:`five_point_path`), and
+spherical four-bars (:func:`spherical_function` by the spherical Freudenstein equation,
+:func:`spherical_three_orientations` and :func:`spherical_four_orientations` for coupler
+orientations, each linkage a :class:`kinelab.spatial.SphericalFourBar` checked by its own
+analysis), and
 the designer's questions about limit positions: a crank-rocker for a rocker swing and a
 time ratio (with the best transmission angle), quick returns for a time ratio.  Every synthesized linkage comes back as
 a kinelab model, sketched in its first position, with the checks made by moving it with

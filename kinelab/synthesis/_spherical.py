@@ -370,8 +370,7 @@ def _circle_axis(R: np.ndarray, u: np.ndarray, name: str) -> np.ndarray:
             raise ModelError(f"{name}: this fixed axis fixes no moving axis (the conditions "
                              f"are dependent); choose another")
     else:
-        _, s, vt = np.linalg.svd(rows)
-        b = vt[-1]
+        b = np.linalg.svd(rows)[2][-1]
     b = b / np.linalg.norm(b)
     return b if u @ (R[0] @ b) >= 0.0 else -b
 
@@ -518,10 +517,9 @@ def spherical_center_axes(rotations, *, samples: int = 721) -> SphericalCenterAx
     idx, k = np.nonzero(real)
     u = base[idx] + roots.real[idx, k][:, None] * E[2]
     u = u / np.linalg.norm(u, axis=1, keepdims=True)
-    # polish each root with a Newton step on the determinant along e3 (keeps it exact)
+    # each root's moving axis: the null direction of its three conditions
     rows = np.einsum("kji,mj->mki", D, u)
-    _, sv, vt = np.linalg.svd(rows)
-    b = vt[:, -1]
+    b = np.linalg.svd(rows)[2][:, -1]
     b = np.where((np.einsum("mi,ij,mj->m", u, R[0], b) < 0.0)[:, None], -b, b)
     residual = np.abs(np.einsum("mki,mi->mk", rows, b)).max(axis=1)
     return SphericalCenterAxes(center=u, circle=b, residual=residual)
