@@ -84,6 +84,14 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
     number is computed again by independent routes and the certificate is printed last and
     written beside the table."""
     mf = read_model(model)
+    if mf.mechanism.space == "spherical":
+        if at is not None or speed is not None or verify_ or change_points != "smooth":
+            raise click.UsageError("a spherical four-bar is swept over its input range; "
+                                   "--at, --speed, --change-points and --verify are for "
+                                   "planar models")
+        _analyze_spherical(mf, model, out, fmt, samples, output_units(mf.units, si, degrees),
+                           quiet)
+        return
     if speed is not None:
         mf = with_speeds(mf, parse_inputs(speed, mf, "--speed", rate=True))
     light_work(mf, samples)
@@ -117,6 +125,102 @@ def analyze(model, out, fmt, samples, si, degrees, at, speed, change_points, qui
     if certificate is not None:
         click.echo(f"wrote {shown_path(proof)}")
         report(certificate)
+
+
+def _spherical_linkage(mf: io.ModelFile):
+    from kinelab.spatial import SphericalFourBar
+    with errors_from(mf):
+        return SphericalFourBar.from_mechanism(mf.mechanism)
+
+
+def _spherical_span(mf: io.ModelFile, linkage) -> tuple[float, float]:
+    """The input range to sweep (rad): the file's, else a full turn or the first reachable
+    interval; refused when it goes where the loop does not close."""
+    units = mf.units
+    reach = linkage.reachable_inputs()
+    rng = mf.mechanism.inputs[0].range
+    if rng is None:
+        if not reach:
+            with errors_from(mf, "spherical"):
+                raise ModelError("the loop closes at no input angle; check the arcs")
+        return (0.0, 2 * math.pi) if reach == [(-math.pi, math.pi)] else reach[0]
+    lo, hi = rng
+    q = np.linspace(lo, hi, 721)
+    if not linkage.positions(q).assembled.all():
+        spans = ", ".join(f"[{units.convert(a, 'rad'):.6g}, {units.convert(b, 'rad'):.6g}]"
+                          for a, b in reach) or "nothing"
+        with errors_from(mf, "inputs[0].range"):
+            raise ModelError(f"[{units.convert(lo, 'rad'):.6g}, {units.convert(hi, 'rad'):.6g}] "
+                             f"{units.unit('rad')} goes where the spherical four-bar does not "
+                             f"assemble; it reaches {spans} {units.unit('rad')}; narrow the range")
+    return lo, hi
+
+
+def _analyze_spherical(mf, model, out, fmt, samples, units, quiet) -> None:
+    """``analyze`` of a spherical four-bar: kinelab.spatial sweeps it; the table has the
+    angles, rates, K and L of coupler and rocker over the input."""
+    from kinelab.io._spherical import spherical_columns, write_spherical_results
+    from kinelab.io._modelfile import DEFAULT_SAMPLES
+
+    linkage = _spherical_linkage(mf)
+    lo, hi = _spherical_span(mf, linkage)
+    n = samples or (mf.samples[0] if mf.samples else DEFAULT_SAMPLES)
+    inp = mf.mechanism.inputs[0]
+    path = output_path(out, stem(model), fmt or "csv")
+    kind = io.result_format(path, fmt)
+    if kind not in ("csv", "json"):
+        raise click.UsageError(f"a spherical four-bar's table is written as csv or json, "
+                               f"not {kind}")
+    sol = linkage.analyze(np.linspace(lo, hi, n), inp.speed, inp.acceleration,
+                          unreachable="mask")
+    with outputs(path.parent) as files:
+        written = files.write(path.name, lambda p: write_spherical_results(
+            sol, p, format=kind, units=units))
+    if not quiet:
+        a = units.unit("rad")
+
+        def ang(v):
+            return f"{units.convert(v, 'rad'):.6g}"
+        click.echo(f"spherical four-bar: arcs ground {ang(linkage.alpha1)}, crank "
+                   f"{ang(linkage.alpha2)}, coupler {ang(linkage.alpha3)}, rocker "
+                   f"{ang(linkage.alpha4)} {a}; branch {linkage.branch}; "
+                   f"{linkage.grashof().kind}")
+        t4 = sol.theta4[sol.assembled]
+        click.echo(f"rocker: {ang(np.min(t4))} to {ang(np.max(t4))} {a}; "
+                   f"K4 from {np.nanmin(sol.K4):.6g} to {np.nanmax(sol.K4):.6g}; "
+                   f"{int(sol.singular.sum())} singular sample(s)")
+    told = f"{kind.upper()} as --format says, whatever the name; " if (
+        written.suffix.lower() != f".{kind}") else ""
+    click.echo(f"wrote {shown_path(written)} ({told}{len(sol.theta2)} rows, "
+               f"{len(spherical_columns(sol))} columns)")
+
+
+def _check_spherical(mf: io.ModelFile) -> None:
+    """The spherical four-bar's lines of ``check``: arcs, Grashof class on the sphere,
+    reachable input, input and output limits, in the file's units."""
+    linkage = _spherical_linkage(mf)
+    u = mf.units
+    a = u.unit("rad")
+
+    def ang(v):
+        return f"{u.convert(v, 'rad'):.6g}"
+    click.echo(f"spherical four-bar: arcs ground {ang(linkage.alpha1)}, crank "
+               f"{ang(linkage.alpha2)}, coupler {ang(linkage.alpha3)}, rocker "
+               f"{ang(linkage.alpha4)} {a}; branch {linkage.branch}")
+    g = linkage.grashof()
+    click.echo(f"Grashof on the sphere: {g.kind} (margin (p + q) - (s + l) = "
+               f"{ang(g.margin)} {a}" + (f", with axes {', '.join(g.reversed_axes)} reversed"
+                                         if g.reversed_axes else "") + ")")
+    reach = linkage.reachable_inputs()
+    click.echo("input reaches: " + (", ".join(f"[{ang(x)}, {ang(y)}]" for x, y in reach)
+                                    + f" {a}" if reach else "nothing"))
+    limits = linkage.input_limits()
+    click.echo("input limits (coupler and rocker in line): " + (
+        ", ".join(ang(x) for x in limits) + f" {a}" if limits else "none, the crank turns fully"))
+    stops = linkage.output_limits()
+    click.echo("rocker stops (crank and coupler in line): " + (", ".join(
+        f"θ2 = {ang(t2)}, θ4 = {ang(t4)}" for t2, t4 in stops) + f" {a}" if stops else "none"))
+    _spherical_span(mf, linkage)
 
 
 def check_table_size(mf: io.ModelFile, samples: int | None, kind: str) -> None:
@@ -451,8 +555,13 @@ def _check_spatial(mf: io.ModelFile, model: str) -> None:
                              f"{'add' if result.exact > len(m.inputs) else 'remove'} "
                              f"[[inputs]] tables")
     click.echo(f"inputs: {', '.join(m.input_names)}, one per degree of freedom")
-    click.echo(f"motion: the kinematics engine sweeps planar models; analyse this {m.space} "
-               f"one with kinelab.spatial")
+    if m.space == "spherical" and len(m.links) == 4 and len(m.joints) == 4:
+        _check_spherical(mf)
+        click.echo("motion: kinelab analyze sweeps this spherical four-bar; analyse this "
+                   "spherical one further with kinelab.spatial.SphericalFourBar")
+    else:
+        click.echo(f"motion: the kinematics engine sweeps planar models; analyse this "
+                   f"{m.space} one with kinelab.spatial")
     click.echo("ok")
 
 

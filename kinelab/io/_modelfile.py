@@ -53,7 +53,7 @@ CATALOGUE_KINDS = ("fourbar", "slider_crank", "inverted_slider_crank", "slotted_
                    "whitworth", "fivebar", "watt6", "stephenson6", "triad6")
 
 _TOP = ("schema", "name", "description", "space", "units", "points", "links", "joints",
-        "inputs", "sweep", "catalogue", "outputs", "dynamics", "notation")
+        "inputs", "sweep", "catalogue", "outputs", "dynamics", "notation", "spherical")
 _RESERVED = {key: "loads belong in the [dynamics] section (see docs/dynamics.md); move it there"
              for key in ("forces", "gravity", "loads")}
 _LINK = ("name", "points", "ground", "length", "local", "sides", "mass", "center_of_mass",
@@ -63,6 +63,7 @@ _JOINT = ("name", "type", "links", "point", "axis", "origin", "offset", "axis2",
 _INPUT = ("joint", "links", "name", "range", "speed", "acceleration", "samples")
 _OUTPUTS = ("report", "transmission", "time_ratio")
 _SWEEPS = ("together", "grid")
+_SPHERICAL = ("ground", "crank", "coupler", "rocker", "branch", "radius")
 _SIGNED_PARAMETERS = ("offset", "ram_height")   # catalogue lengths that may be zero or negative
 
 
@@ -407,7 +408,9 @@ class _Parser:
         units = self.units(top.get("units"))
         sweep = r.string(top.get("sweep", "together"), "sweep", choices=_SWEEPS) or "together"
         explicit = [k for k in ("points", "links", "joints") if k in top]
-        if "catalogue" in top and not explicit:
+        if "spherical" in top:
+            mech, samples = self.from_spherical(top, units, name, space, explicit)
+        elif "catalogue" in top and not explicit:
             mech, samples = self.from_catalogue(top, units, name)
         else:
             for k in ("points", "links", "joints"):
@@ -834,6 +837,67 @@ class _Parser:
         if self.r.problems:
             self.fail()
         mech = self.build(lambda: dataclasses.replace(built, name=name, inputs=tuple(inputs)))
+        return mech, samples
+
+    def from_spherical(self, top, units: Units, name, space, explicit):
+        """A spherical four-bar given by its arcs: the ``[spherical]`` table (arcs ground,
+        crank, coupler, rocker in the file's angle unit, ``branch``, optional ``radius``
+        of the sketch's sphere), built as a model by SphericalFourBar.to_mechanism."""
+        from kinelab.spatial import SphericalFourBar
+
+        r = self.r
+        if space != "spherical":
+            r.fail("spherical", f"a [spherical] table needs space = \"spherical\", got "
+                   f"space = {shown(space)}")
+        for k in explicit + (["catalogue"] if "catalogue" in top else []):
+            r.fail(k, "a spherical four-bar given by its arcs ([spherical]) has no "
+                   f"[{k}]; give the arcs or the joints' axes, not both")
+        t = r.table(top["spherical"], "spherical", _SPHERICAL,
+                    required=("ground", "crank", "coupler", "rocker"))
+        if t is None:
+            self.fail()
+        arcs, top_deg = {}, 180.0 if units.angle == "deg" else math.pi
+        for key, arc in zip(("ground", "crank", "coupler", "rocker"),
+                            ("alpha1", "alpha2", "alpha3", "alpha4")):
+            if key not in t:
+                continue
+            v = r.number(t[key], f"spherical.{key}", scale=units.angle_scale)
+            if v is not None and not 0.0 < v < math.pi:
+                r.fail(f"spherical.{key}", f"expected an arc in (0, {top_deg:g}) "
+                       f"{units.angle} (the angle between two joint axes), got "
+                       f"{describe(t[key])}")
+            elif v is not None:
+                arcs[arc] = v
+        branch = r.string(t.get("branch", "open"), "spherical.branch",
+                          choices=("open", "crossed"))
+        radius = 1.0
+        if "radius" in t:
+            radius = r.number(t["radius"], "spherical.radius", scale=units.length_scale,
+                              positive=True, unit=units.length, check=length_problem)
+        joint_types = {f"j{n}": "R" for n in ("O2", "A", "B", "O4")}
+        inputs, samples = (self.inputs(top["inputs"], joint_types,
+                                       ("ground", "crank", "coupler", "rocker"), units)
+                           if "inputs" in top else ([], ()))
+        if len(inputs) > 1 or any(i.joint != "jO2" for i in inputs):
+            r.fail("inputs", "a spherical four-bar has one input, on joint \"jO2\" (the "
+                   "crank's joint with the ground)")
+        if r.problems:
+            self.fail()
+        linkage = SphericalFourBar(**arcs, branch=branch)
+        inp = inputs[0] if inputs else None
+        theta2 = None
+        if inp is not None and inp.range is not None:
+            start = float(inp.range[0])
+            if bool(linkage.positions(start).assembled):
+                theta2 = start
+        try:
+            mech = linkage.to_mechanism(
+                theta2, radius=radius, name=name,
+                input_range=None if inp is None else inp.range,
+                speed=0.0 if inp is None else inp.speed,
+                acceleration=0.0 if inp is None else inp.acceleration)
+        except KinelabError as exc:
+            self.fail([f"spherical: {exc}"])
         return mech, samples
 
     def check_catalogue(self, m: Mechanism, built: Mechanism, units: Units) -> None:

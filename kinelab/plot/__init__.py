@@ -21,6 +21,7 @@ centre-point curves and Burmester's points), :func:`structural_error`,
 centres).
 
 Spatial: :func:`spherical_fourbar` (the sphere, the joint axes and the links' arcs, in 3-D),
+:func:`animate_spherical_fourbar` (the same moving over its input, GIF or MP4),
 :func:`spatial_mechanism` (a spherical or spatial model in 3-D).
 
 Sweeps: :func:`tolerance_band` and :func:`error_histogram` (a tolerance study).
@@ -37,7 +38,7 @@ from kinelab.plot._figures import (coefficients, coupler_curve, curves, input_ax
                                    transmission)
 from kinelab.plot._graphical import (PANEL_CM, acceleration_polygon, centrodes, derivatives,
                                      drawing_scale, instant_centers, velocity_polygon)
-from kinelab.plot._spatial import spatial_mechanism, spherical_fourbar
+from kinelab.plot._spatial import animate_spherical_fourbar, spatial_mechanism, spherical_fourbar
 from kinelab.plot._sweep import error_histogram, tolerance_band
 from kinelab.plot._synthesis import (burmester_curves, five_positions, limit_positions,
                                      motion_solution, path_solution, prescribed_positions,
@@ -52,4 +53,4 @@ __all__ = ["curves", "coefficients", "coupler_curve", "transmission", "mechanism
            "PANEL_CM", "tolerance_band", "error_histogram", "tangent_construction",
            "velocity_image", "kennedy_steps", "cam_svaj", "cam_profile", "cam_pressure",
            "cam_curvature", "cam_forces", "spherical_fourbar",
-           "spatial_mechanism"]
+           "spatial_mechanism", "animate_spherical_fourbar"]

@@ -156,3 +156,119 @@ def spatial_mechanism(model: Mechanism, positions: Mapping[str, ArrayLike] | Non
     ax.set_ylabel(f"y [{u.length}]")
     ax.set_zlabel(f"z [{u.length}]")
     return ax
+
+
+def animate_spherical_fourbar(fourbar: SphericalFourBar, path, theta2: ArrayLike | None = None,
+                              *, branch: str | None = None, frames: int = 48, fps: int = 20,
+                              size: float = 4.0, dpi: int = 80):
+    """Write an animation of a spherical four-bar moving over its input: the sphere, the
+    fixed axes and the links' arcs, the path of B traced (GIF by Pillow, or MP4 with
+    ffmpeg, as :func:`animate` writes them).
+
+    Parameters
+    ----------
+    fourbar : kinelab.spatial.SphericalFourBar
+    path : str or path-like
+        ``.gif`` or ``.mp4``; written to a temporary file, then renamed.
+    theta2 : array_like, shape (N,), optional
+        Input angles, rad; at most ``frames`` of them, evenly spaced, are drawn.  Default:
+        a full turn when the crank turns fully, else its first reachable interval there
+        and back (just inside the limit positions).
+    branch : {"open", "crossed"}, optional
+        Default, the four-bar's own.
+    frames, fps : int
+        Frames drawn and frames per second.
+    size, dpi : float, int
+        Figure size (inches, square) and resolution: small and fast by default.
+
+    Returns
+    -------
+    pathlib.Path
+
+    Raises
+    ------
+    ModelError
+        Anything but a SphericalFourBar, a bad argument or a suffix other than .gif and
+        .mp4.
+    AssemblyError
+        An input angle where the loop cannot close.
+    """
+    import matplotlib
+    import matplotlib.pyplot as plt
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from kinelab._files import atomic_path, file_path
+    from kinelab.plot._animate import MAX_FRAMES, _write_gif
+    from kinelab.solvers._arguments import whole
+
+    if not isinstance(fourbar, SphericalFourBar):
+        raise ModelError(f"fourbar: expected a kinelab.spatial.SphericalFourBar, got "
+                         f"{describe(fourbar)}")
+    path = file_path(path)
+    suffix = path.suffix.lower()
+    if suffix not in (".gif", ".mp4"):
+        raise ModelError(f"path: expected a name ending in .gif or .mp4, got {path.name!r}")
+    frames = whole("frames", frames, 2, MAX_FRAMES)
+    fps = whole("fps", fps, 1, 120)
+    if theta2 is None:
+        reach = fourbar.reachable_inputs()
+        if not reach:
+            raise AssemblyError("spherical four-bar: the loop closes at no input angle",
+                                loop="O2-A-B-O4", reachable=[])
+        lo, hi = reach[0]
+        if (lo, hi) == (-np.pi, np.pi):
+            theta2 = np.linspace(0.0, 2 * np.pi, frames, endpoint=False)
+        else:
+            pad = 1e-6 * (hi - lo)
+            half = np.linspace(lo + pad, hi - pad, frames // 2 + 1)
+            theta2 = np.concatenate([half, half[-2:0:-1]])
+    theta2 = np.asarray(theta2, float)
+    if theta2.ndim != 1 or theta2.size < 2:
+        raise ModelError(f"theta2: expected input angles of shape (N,), N >= 2, got shape "
+                         f"{theta2.shape}")
+    idx = np.unique(np.round(np.linspace(0, theta2.size - 1, min(frames, theta2.size)))
+                    .astype(int))
+    sol = fourbar.analyze(theta2[idx], branch=branch)
+    fig = matplotlib.figure.Figure(figsize=(size, size), dpi=dpi)
+    canvas = FigureCanvasAgg(fig)
+    ax = fig.add_subplot(projection="3d")
+    lon, lat = np.meshgrid(np.linspace(0, 2 * np.pi, 19), np.linspace(0, np.pi, 10))
+    ax.plot_wireframe(np.cos(lon) * np.sin(lat), np.sin(lon) * np.sin(lat), np.cos(lat),
+                      color="0.85", lw=0.4)
+    for name, axis in (("O2", sol.u_O2[0]), ("O4", sol.u_O4[0])):
+        ax.plot(*np.stack([-0.15 * axis, 1.25 * axis]).T, color="0.3", lw=1.0)
+        ax.text(*(1.32 * axis), name)
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    lines = {}
+    for k, (link, _, _) in enumerate(_LINKS):
+        (lines[link],) = ax.plot([], [], [], lw=3 if link != "ground" else 2, label=link,
+                                 color="0.35" if link == "ground" else colors[k % len(colors)])
+    (trace,) = ax.plot([], [], [], ":", color="0.4", lw=1, label="path of B")
+    ax.set_box_aspect((1, 1, 1))
+    for set_lim in (ax.set_xlim, ax.set_ylim, ax.set_zlim):
+        set_lim(-1.1, 1.1)
+    ax.set_axis_off()
+    ax.legend(loc="lower left", fontsize="small")
+    title = ax.set_title("")
+
+    def draw(k):
+        u = {"O2": sol.u_O2[k], "A": sol.u_A[k], "B": sol.u_B[k], "O4": sol.u_O4[k]}
+        for link, a, b in _LINKS:
+            arc = great_arc(u[a], u[b], 25)
+            lines[link].set_data_3d(*arc.T)
+        trace.set_data_3d(*sol.u_B[:k + 1].T)
+        title.set_text(f"θ2 = {np.degrees(sol.theta2[k]):.0f}°")
+        canvas.draw()
+        return np.asarray(canvas.buffer_rgba())
+
+    with atomic_path(path, suffix=suffix) as tmp:
+        if suffix == ".gif":
+            _write_gif(tmp, (draw(k) for k in range(len(idx))), fps)
+        else:
+            from matplotlib import animation
+            writer = animation.FFMpegWriter(fps=fps)
+            with writer.saving(fig, tmp, fig.dpi):
+                for k in range(len(idx)):
+                    draw(k)
+                    writer.grab_frame()
+    return path

@@ -732,5 +732,59 @@ class SphericalFourBar:
         return cls(**arcs, branch=branch)
 
 
+    def to_mechanism(self, theta2: float | None = None, *, radius: float = 1.0,
+                     name: str = "spherical four-bar",
+                     input_range: tuple[float, float] | None = None, speed: float = 0.0,
+                     acceleration: float = 0.0) -> Mechanism:
+        """The linkage as a model with ``space = "spherical"`` (what :meth:`from_mechanism`
+        reads back): links ``ground, crank, coupler, rocker``, points ``O2, A, B, O4`` at
+        ``radius`` along each axis from the sphere's centre (the origin), R joints ``jO2,
+        jA, jB, jO4`` with their axes, and the input on ``jO2``.
+
+        Parameters
+        ----------
+        theta2 : float, optional
+            The input angle of the sketch, rad; default 0 if the loop closes there, else the
+            middle of the first reachable interval.
+        radius : float
+            Radius of the sphere the points lie on, m.
+        name : str
+        input_range : (float, float), optional
+            The input's range, rad.
+        speed, acceleration : float
+            The input's speed (rad/s) and acceleration (rad/s²).
+
+        Examples
+        --------
+        >>> m = kl.spatial.SphericalFourBar(alpha1=1.2, alpha2=0.4, alpha3=1.1, alpha4=0.9,
+        ...                                 branch="crossed")
+        >>> back = kl.spatial.SphericalFourBar.from_mechanism(m.to_mechanism())
+        >>> np.allclose(back.arcs, m.arcs, rtol=0, atol=1e-14), back.branch
+        (True, 'crossed')
+        """
+        from kinelab.model import Input, Joint, Link, Point
+
+        reach = self.reachable_inputs()
+        if not reach:
+            raise AssemblyError("spherical four-bar: the loop closes at no input angle; no "
+                                "sketch can be drawn", loop="O2-A-B-O4", gap=math.nan,
+                                reachable=[])
+        if theta2 is None:
+            theta2 = 0.0 if bool(self.positions(0.0).assembled) else 0.5 * sum(reach[0])
+        sol = self.analyze(theta2)
+        names = ("O2", "A", "B", "O4")
+        axes = [np.asarray(x, float) for x in (sol.u_O2, sol.u_A, sol.u_B, sol.u_O4)]
+        points = tuple(Point(n, *(float(radius) * u)) for n, u in zip(names, axes))
+        links = (Link("ground", ("O2", "O4"), ground=True), Link("crank", ("O2", "A")),
+                 Link("coupler", ("A", "B")), Link("rocker", ("B", "O4")))
+        pairs = (("ground", "crank"), ("crank", "coupler"), ("coupler", "rocker"),
+                 ("rocker", "ground"))
+        joints = tuple(Joint(f"j{n}", "R", pair, point=n, axis=tuple(float(c) for c in u))
+                       for n, pair, u in zip(names, pairs, axes))
+        return Mechanism(name, points, links, joints,
+                         inputs=(Input(joint="jO2", range=input_range, speed=speed,
+                                       acceleration=acceleration),), space="spherical")
+
+
 def _spans(reach: list[tuple[float, float]]) -> str:
     return " ∪ ".join(f"[{lo:.6g}, {hi:.6g}]" for lo, hi in reach) or "empty"

@@ -5,6 +5,10 @@ more by least squares), function generation (the rocker angle is a prescribed fu
 the crank angle), path generation (a coupler point passes through prescribed points), and
 the complete solution set of five path points with both fixed pivots given (every
 one of its 36 roots, by homotopy continuation: :func:`five_point_path`), and
+spherical four-bars (:func:`spherical_function` by the spherical Freudenstein equation,
+:func:`spherical_three_orientations` and :func:`spherical_four_orientations` for coupler
+orientations, each linkage a :class:`kinelab.spatial.SphericalFourBar` checked by its own
+analysis), and
 the designer's questions about limit positions: a crank-rocker for a rocker swing and a
 time ratio (with the best transmission angle), quick returns for a time ratio.  Every synthesized linkage comes back as
 a kinelab model, sketched in its first position, with the checks made by moving it with
@@ -50,6 +54,10 @@ __getattr__, __dir__ = exports(__name__, {
                                         "offset_slider_crank", "slotted_lever", "whitworth"),
     "kinelab.synthesis._results": ("SolutionList",),
     "kinelab.synthesis._sixbar": ("SIXBAR_KINDS", "SixBarSolution", "sixbar"),
+    "kinelab.synthesis._spherical": ("SphericalCenterAxes", "SphericalFunctionSolution",
+                                     "SphericalMotionSolution", "spherical_center_axes",
+                                     "spherical_four_orientations", "spherical_freudenstein",
+                                     "spherical_function", "spherical_three_orientations"),
 })
 
 __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
@@ -62,4 +70,7 @@ __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "crank_rockers", "CrankRocker", "offset_slider_crank", "slotted_lever", "whitworth",
            "QuickReturn", "imbalance_angle", "max_time_ratio", "MAX_PATH_POINTS", "TRANSMISSION_LIMIT",
            "five_point_path", "FivePointSolutions", "FivePointLinkage",
-           "function_generation_pairs", "burmester", "sixbar", "SixBarSolution", "SIXBAR_KINDS"]
+           "function_generation_pairs", "burmester", "sixbar", "SixBarSolution", "SIXBAR_KINDS",
+           "spherical_freudenstein", "spherical_function", "SphericalFunctionSolution",
+           "spherical_three_orientations", "SphericalMotionSolution", "spherical_center_axes",
+           "SphericalCenterAxes", "spherical_four_orientations"]

@@ -92,7 +92,7 @@ CASES = [
     ("unknown top-level field", _replace('name = "fb"', 'nme = "fb"'),
      "fb.toml: nme: unknown field (did you mean 'name'?); valid fields are 'schema', 'name', "
      "'description', 'space', 'units', 'points', 'links', 'joints', 'inputs', 'sweep', "
-     "'catalogue', 'outputs', 'dynamics', 'notation'"),
+     "'catalogue', 'outputs', 'dynamics', 'notation', 'spherical'"),
     ("unknown link field", _replace('ground = true', 'groud = true'),
      "fb.toml: links[0].groud: unknown field (did you mean 'ground'?); valid fields are 'name', "
      "'points', 'ground', 'length', 'local', 'sides', 'mass', 'center_of_mass', 'inertia'"),
