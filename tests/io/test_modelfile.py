@@ -16,9 +16,7 @@ from kinelab.io import ModelFile, Units
 from tests.io.bad_cases import BASE, CASES, JSON_CASES
 
 ROOT = Path(__file__).resolve().parents[2]
-# the planar examples (a spherical four-bar is swept by kinelab.spatial: tests/spatial)
-EXAMPLES = sorted(p for p in (ROOT / "examples").glob("*.toml")
-                  if 'space = "spherical"' not in p.read_text())
+EXAMPLES = sorted((ROOT / "examples").glob("*.toml"))
 
 CATALOGUE = {
     "fourbar": lambda: kl.mechanisms.fourbar(3.0, 1.0, 3.0, 2.5, coupler_point=(1.5, 1.0)),

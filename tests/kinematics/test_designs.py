@@ -12,8 +12,7 @@ from kinelab.kinematics._plan import build_plan
 from tests.kinematics.test_engine import CATALOGUE, _hydraulic_boom
 from tests.kinematics.test_scale_free import PYSLVS
 
-EXAMPLES = sorted(p for p in Path(__file__).parents[2].joinpath("examples").glob("*.toml")
-                  if 'space = "spherical"' not in p.read_text())      # planar ones
+EXAMPLES = sorted(Path(__file__).parents[2].joinpath("examples").glob("*.toml"))
 MODELS = {
     **CATALOGUE,
     "fivebar": lambda: kl.mechanisms.fivebar(1.0, 1.0, 1.5, 1.5, 1.0),

@@ -19,8 +19,7 @@ from kinelab import _compiled
 from kinelab.errors import KinelabError
 from tests.kinematics.test_engine import CATALOGUE, _hydraulic_boom
 
-EXAMPLES = sorted(p for p in Path(__file__).parents[2].joinpath("examples").glob("*.toml")
-                  if 'space = "spherical"' not in p.read_text())      # planar ones
+EXAMPLES = sorted(Path(__file__).parents[2].joinpath("examples").glob("*.toml"))
 MODELS = {**{f"catalogue:{k}": make for k, make in CATALOGUE.items()},
           "hydraulic_boom": _hydraulic_boom,
           "triad6": kl.mechanisms.triad6,

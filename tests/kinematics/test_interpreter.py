@@ -37,8 +37,7 @@ from tests.kinematics.test_engine import _hydraulic_boom, _with_input
 
 REL = 1e-12                          # rounding, relative to an output's unit
 SQRT_EPS = math.sqrt(np.finfo(float).eps)
-EXAMPLES = sorted(p for p in Path(__file__).parents[2].joinpath("examples").glob("*.toml")
-                  if 'space = "spherical"' not in p.read_text())      # planar ones
+EXAMPLES = sorted(Path(__file__).parents[2].joinpath("examples").glob("*.toml"))
 TWO_TURNS = np.radians(np.arange(0.0, 721.0, 1.0))
 WATT6_SHORT = {"O2-A": 3.0, "C-D": 1.0, "O6-D": 2.0}     # both of its dyads fail somewhere
 

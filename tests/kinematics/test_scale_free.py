@@ -23,8 +23,7 @@ from tests.kinematics.scaling import input_units, scaled
 from tests.kinematics.test_engine import CATALOGUE, _hydraulic_boom, _with_input
 
 REL = 1e-9
-EXAMPLES = sorted(p for p in Path(__file__).parents[2].joinpath("examples").glob("*.toml")
-                  if 'space = "spherical"' not in p.read_text())      # planar ones
+EXAMPLES = sorted(Path(__file__).parents[2].joinpath("examples").glob("*.toml"))
 
 # Pyslvs' own example six-bars (its example list, "Stephenson II" and "Stephenson III"),
 # drawn in mm: each has a group of four links that kinelab solves by Newton-Raphson.

@@ -144,8 +144,7 @@ def test_newton_groups_go_on_from_the_previous_call():
 # the quick path (one input given as numbers, the compiled one-sample kernel) against
 # analyze, to the bit; and the tracker under the kernel's numpy form
 # --------------------------------------------------------------------------------------
-EXAMPLES = sorted(p for p in Path(__file__).parents[2].joinpath("examples").glob("*.toml")
-                  if 'space = "spherical"' not in p.read_text())      # planar ones
+EXAMPLES = sorted(Path(__file__).parents[2].joinpath("examples").glob("*.toml"))
 CASES = {**{name: make for name, make in CATALOGUE.items()},
          "parallelogram": lambda: kl.mechanisms.fourbar(100, 60, 100, 60),
          "non_grashof": lambda: kl.mechanisms.fourbar(1.0, 2.0, 1.0, 1.5),

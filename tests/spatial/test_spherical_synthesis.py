@@ -17,7 +17,7 @@ from kinelab.errors import ModelError
 from kinelab.solvers import wrap_angle
 
 ROOT = Path(__file__).parents[2]
-EXAMPLE = ROOT / "examples" / "spherical_fourbar.toml"
+EXAMPLE = ROOT / "examples" / "spatial" / "spherical_fourbar.toml"
 SF = kl.spatial.SphericalFourBar
 
 

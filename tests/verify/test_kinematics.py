@@ -14,8 +14,7 @@ from kinelab.verify import NEAR_SAMPLES, checked_samples
 from tests.derive.cases import CATALOGUE
 
 ROOT = Path(__file__).resolve().parents[2]
-EXAMPLES = sorted(p.name for p in (ROOT / "examples").glob("*.toml")      # planar ones
-                  if 'space = "spherical"' not in p.read_text())
+EXAMPLES = sorted(p.name for p in (ROOT / "examples").glob("*.toml"))
 
 
 def example_sweep(name: str, samples: int = 121) -> kl.KinematicSolution:
