@@ -129,7 +129,7 @@ def test_every_cam_example_opens_and_plays(page, name):
     page.on("console", lambda m: console.append(m.text) if m.type == "error" else None)
     open_example(page, name)
     kinds = sorted(d["kind"] for d in drawn(page))
-    profile = "cam-profile profile" if name == "cam_follower" else "cam-profile pitch"
+    profile = "cam-profile" if name == "cam_follower" else "cam-profile cam-pitch"
     assert kinds == sorted([profile, "cam-base", "cam-contact"] +
                            (["cam-line"] if name == "cam_follower" else [])), kinds
     assert next(d for d in drawn(page) if d["tag"] == "path")["vertices"] == 721
@@ -217,7 +217,7 @@ def test_switching_models_clears_the_cam(page):
     assert drawn(page) == []
     open_example(page, "cam_rocker_slider")
     items = drawn(page)
-    assert sorted(d["kind"] for d in items) == ["cam-base", "cam-contact", "cam-profile pitch"]
+    assert sorted(d["kind"] for d in items) == ["cam-base", "cam-contact", "cam-profile cam-pitch"]
     contact = state(page, "window.kinelab.config.points.B")
     mark = next(d for d in items if d["kind"] == "cam-contact")
     assert mark["centre"] == pytest.approx(contact, abs=1e-9)

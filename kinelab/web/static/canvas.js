@@ -337,7 +337,7 @@ export class Canvas {
         }
         if (known(u)) {
           const deg = Math.atan2(u[1], u[0]) * 180 / Math.PI;
-          items.push([`${cam.joint} profile`, "path", {class: `cam-profile ${cam.kind}`, d: outline(cam), ...data,
+          items.push([`${cam.joint} profile`, "path", {class: "cam-profile" + (cam.kind === "pitch" ? " cam-pitch" : ""), d: outline(cam), ...data,
                       transform: `translate(${X} ${Y}) scale(${s} ${-s}) rotate(${deg})`}]);
         }
         items.push([`${cam.joint} base`, "circle", {class: "cam-base", cx: X, cy: Y, r: cam.base_radius * s, ...data}]);
