@@ -397,8 +397,8 @@ def cam_drawing(mf: ModelFile, samples: int = CAM_SAMPLES) -> list[dict]:
         return []
     out = []
     try:
-        sketch = kinematics.analyze(m, kinematics.plan(m).q_sketch[0]
-                                    if len(m.inputs) > 1 else float(kinematics.plan(m).q_sketch[0]))
+        q0 = np.asarray(kinematics.plan(m).q_sketch, float).reshape(-1)
+        sketch = kinematics.analyze(m, float(q0[0]) if len(q0) == 1 else q0)
     except KinelabError as exc:
         sketch, why = None, str(exc)
     for j in cams:

@@ -82,6 +82,44 @@ def test_the_drawn_cam_touches_its_follower_at_every_sample(client, name):
         assert cam["base_radius"] == pytest.approx(math.hypot(10, 100), abs=1e-12)
 
 
+def _placed(points=None, axis=None):
+    def edit(model):
+        model["points"].update(points or {})
+        if axis is not None:
+            next(j for j in model["joints"] if j.get("name") == "guide")["axis"] = axis
+    return edit
+
+
+@pytest.mark.parametrize("label, edit", [
+    ("offset", _placed({"F": [12, 50]})),
+    ("below, sliding down", _placed({"F": [0, -50]}, [0, -1])),
+    ("tilted line", _placed({"F": [30, 40]}, [0.6, 0.8])),
+    ("sketched at 45 deg", _placed({"M": [30, 30]})),
+])
+def test_a_translating_followers_cam_touches_it_wherever_it_is_drawn(client, label, edit):
+    """cam_follower with its follower offset, below the cam sliding down, on a tilted line,
+    or the cam sketched at 45 deg (S not 0 there): at inputs on the profile's half-degree
+    grid the drawn cam touches the follower's foot F, kinelab's, to 1e-9 mm."""
+    _, model = model_of("cam_follower")
+    edit(model)
+    s = client.post("/api/study", json={"model": model}).json()
+    [cam] = s["drawing"]["cams"]
+    mf = ModelFile.from_dict(s["model"])
+    q = np.radians(np.arange(0, 360, 17.5))
+    sol = kl.analyze(mf.mechanism, q)
+    a = sol.angle("cam")
+    k = np.round(np.mod(a, 2 * np.pi) / np.radians(0.5)).astype(int)
+    drawn = sol.position("O") * 1000 + turned(np.array(cam["profile"])[k], a)
+    assert np.abs(drawn - sol.position("F") * 1000).max() < 1e-9
+
+
+def test_a_follower_pushed_towards_the_cams_centre_gets_no_profile(client):
+    _, model = model_of("cam_follower")
+    _placed({"F": [0, -50]})(model)
+    [cam] = client.post("/api/study", json={"model": model}).json()["drawing"]["cams"]
+    assert cam["profile"] is None and "points towards the cam's centre" in cam["problem"]
+
+
 def test_a_model_without_cams_sends_none(client):
     _, model = model_of("crank_rocker")
     assert client.post("/api/study", json={"model": model}).json()["drawing"]["cams"] == []
