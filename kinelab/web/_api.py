@@ -231,7 +231,7 @@ def study(body: dict) -> dict:
     always there, or those of the points ``body["points"]`` lists), and the transmission
     angles; ``singular`` and ``change_points`` the sample indices where they are;
     ``drawing`` the links, joints and points to draw (and each gear pair's pitch circles,
-    see :func:`gear_drawing`); ``guides`` each prismatic joint's slide direction at every
+    see :func:`gear_drawing`, each cam's profile, see :func:`cam_drawing`); ``guides`` each prismatic joint's slide direction at every
     sample (see :func:`guides`), ``turns`` each gear's direction (see :func:`turns`).
     """
     ready = prepare(body, "columns")
@@ -311,6 +311,7 @@ def _drawing(mf: ModelFile) -> dict:
         "ground_points": list(m.link(ground).points),
         "traced": traced,
         "gears": gear_drawing(mf),
+        "cams": cam_drawing(mf),
         "inputs": [{"name": n, "joint": i.joint,
                     "kind": k} for n, i, k in zip(m.input_names, m.inputs,
                                                   kinematics.plan(m).input_kinds)],
@@ -355,6 +356,117 @@ def gear_drawing(mf: ModelFile) -> list[dict]:
                      {"link": g.b, "centre": g.centre_b, "radius": u.convert(rb, "m")}]
         out.append({"joint": j.name, "mesh": g.mesh, "carrier": g.carrier, "gears": gears})
     return out
+
+
+CAM_SAMPLES = 721          # a cam's profile: every half degree of its turn
+
+
+def cam_drawing(mf: ModelFile, samples: int = CAM_SAMPLES) -> list[dict]:
+    """Each cam joint's cam, in the model's length unit, as the page draws it once a model
+    (and turns it with the cam's angle, ``turns``):
+
+    ``{"joint", "cam", "follower", "motion", "centre", "contact", "follower_joint", "kind",
+    "base_radius", "profile", "theta"}``: ``centre`` the point the cam turns about (its R
+    joint on the guide), ``contact`` the follower's point that touches it (a translating
+    follower's P joint's point, its knife-edge; an oscillating follower's point nearest the
+    cam's centre other than its pivot), ``profile`` the closed curve ``[[x, y], ...]`` in the
+    cam's own frame (its origin the centre, its x axis along the cam's angle ``sol.angle``:
+    turned by that angle and carried to the centre it is the curve in the plane), at the
+    cam angles relative to the guide ``theta`` (rad, ``samples`` of them from 0 to a turn).
+
+    A model says nothing of a follower's shape, so the follower is a knife-edge at its
+    contact point and the cam's profile is its pitch curve, with the base circle the sketch
+    implies (the contact point's place where the program's S is 0).  A translating follower
+    (``kind`` "profile") by :func:`kinelab.cams.profile` with a knife-edge
+    :class:`~kinelab.cams.Follower` at the offset of its line of motion: in the cam's frame
+    at relative angle theta the edge is at ``(e, d + S(theta))`` turned back by theta, so
+    that ``|profile| = sqrt(e**2 + (d + S)**2)``, ``base + S`` for an in-line follower.  An
+    oscillating follower (``kind`` "pitch") turns counterclockwise as S grows (the model's
+    sense; :func:`kinelab.cams.profile` turns its arm the other way), so its pitch curve is
+    the contact point's path turned back by the cam's angle, computed here the same way.
+    A cam the sketch cannot give a profile (a translating follower on the far side of its
+    cam's centre, a sketch that does not assemble) has ``profile`` None and ``problem``
+    saying why.
+    """
+    from kinelab.cams import Follower, profile
+    from kinelab.model._cams import cam_pair
+
+    m, u = mf.mechanism, mf.units
+    cams = [j for j in m.joints if j.type == "C" and j.program is not None]
+    if not cams:
+        return []
+    out = []
+    try:
+        q0 = np.asarray(kinematics.plan(m).q_sketch, float).reshape(-1)
+        sketch = kinematics.analyze(m, float(q0[0]) if len(q0) == 1 else q0)
+    except KinelabError as exc:
+        sketch, why = None, str(exc)
+    for j in cams:
+        c = cam_pair(m, j)
+        fj = m.joint(c.follower_joint)
+        centre = m.joint(c.pivot).point
+        if c.motion == "translating":
+            contact = fj.point
+        else:
+            others = [p for p in m.link(c.follower).points if p != fj.point]
+            o = np.asarray(m.point(centre).xy)
+            contact = min(others, key=lambda p: float(np.hypot(*(np.asarray(m.point(p).xy) - o)))) \
+                if others else fj.point
+        item = {"joint": j.name, "cam": c.cam, "follower": c.follower, "motion": c.motion,
+                "centre": centre, "contact": contact, "follower_joint": fj.name,
+                "kind": "profile" if c.motion == "translating" else "pitch",
+                "base_radius": None, "profile": None, "theta": None}
+        out.append(item)
+        if sketch is None:
+            item["problem"] = f"the sketch does not assemble: {why}"
+            continue
+        # everything in the guide's frame at the sketch, about the cam's centre
+        tg = 0.0 if c.guide == m.ground.name else float(sketch.angle(c.guide))
+        ta = float(sketch.angle(c.cam))
+        back = _turn(-tg)
+        O = np.reshape(sketch.position(centre), 2)
+        P0 = back @ (np.reshape(sketch.position(contact), 2) - O)
+        # the cam's frame turns by theta = ta - tg from the guide's: at theta = 0 they agree
+        S0 = float(j.program.svaj(np.array([ta - tg])).S[0])
+        theta = np.linspace(0.0, 2 * math.pi, samples)
+        S = np.reshape(j.program.svaj(theta).S, -1)
+        try:
+            if c.motion == "translating":
+                a = back @ np.reshape(sketch.slide_axes(fj.name), 2)
+                a = a / math.hypot(*a)
+                along, e = float(P0 @ a), float(P0 @ [a[1], -a[0]])
+                d = along - S0                # the edge's place along its line where S = 0
+                if not d > 0:
+                    raise ModelError("the follower's line of motion points towards the cam's "
+                                     "centre: a cam pushes its follower away from it")
+                rb = math.hypot(d, e)
+                cam = profile(j.program, Follower("knife-edge", "translating", offset=e), rb,
+                              theta=theta)
+                # profile()'s frame has the follower along +y: the guide's turned by phi
+                phi = math.atan2(a[1], a[0]) - math.pi / 2
+                curve = cam.profile @ _turn(phi).T
+            else:
+                A = back @ (np.reshape(sketch.position(fj.point), 2) - O)
+                arm = P0 - A
+                swing = S - S0             # the arm's turn from the sketch, counterclockwise
+                c_, s_ = np.cos(swing), np.sin(swing)
+                P = A + np.stack([c_ * arm[0] - s_ * arm[1], s_ * arm[0] + c_ * arm[1]], -1)
+                ct, st = np.cos(theta), np.sin(theta)     # turned back by the cam's angle
+                curve = np.stack([ct * P[:, 0] + st * P[:, 1], -st * P[:, 0] + ct * P[:, 1]], -1)
+                base = A + _turn(-S0) @ arm
+                rb = float(math.hypot(*base))
+        except KinelabError as exc:
+            item["problem"] = str(exc)
+            continue
+        item.update(base_radius=u.convert(rb, "m"), profile=_finite(u.convert(curve, "m")),
+                    theta=_finite(theta))
+    return out
+
+
+def _turn(angle: float) -> np.ndarray:
+    """The matrix turning a vector counterclockwise by ``angle`` (rad)."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, -s], [s, c]])
 
 
 def _branches(mf: ModelFile) -> list[dict]:
@@ -441,10 +553,12 @@ def guides(sol: KinematicSolution) -> dict[str, list]:
 def turns(sol: KinematicSolution) -> dict[str, list]:
     """Each gear's direction (a unit vector at its link's angle, ``sol.angle``) at every
     sample, for the gears of the model's gear joints (a rack has none: it moves with its
-    slide): ``{link: [[cos, sin], ...]}``, None where the loops do not close."""
+    slide) and the cams of its cam joints (their first link): ``{link: [[cos, sin], ...]}``,
+    None where the loops do not close."""
     m = sol.mechanism
     links = dict.fromkeys(link for j in m.joints if j.type == "G"
                           for link in (j.links if (j.mesh or "external") != "rack" else j.links[:1]))
+    links.update(dict.fromkeys(j.links[0] for j in m.joints if j.type == "C"))
     out = {}
     for link in links:
         theta = np.reshape(sol.angle(link), -1)

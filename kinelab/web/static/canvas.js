@@ -1,4 +1,4 @@
-// The drawing: links, joints, ground, traced paths, gears, instant centres; pointer input.
+// The drawing: links, joints, ground, traced paths, gears, cams, instant centres; pointer input.
 const NS = "http://www.w3.org/2000/svg";
 
 export function el(name, attrs = {}, parent = null) {
@@ -145,7 +145,8 @@ export class Canvas {
 
   // scene: {points: {name: [x, y]}, drawing, traces: {name: [[x, y], ...]}, marks, centres,
   //         guides: {joint: [ux, uy]} (each P joint's slide direction now),
-  //         turns: {link: [ux, uy]} (each gear's direction now: its link's angle; see gears()),
+  //         turns: {link: [ux, uy]} (each gear's and cam's direction now: its link's angle;
+  //                 see gears() and cams()),
   //         pending: a point waiting for the second click of a link, hover: [x, y],
   //         poses: [{xy, angle, label, key}] (angle in rad; arrows, numbered unless labelled;
   //                 without an angle a point marked as `mark` says, "fixed" (a pivot),
@@ -160,7 +161,7 @@ export class Canvas {
     if (!this.layers) {
       svg.replaceChildren();
       this.layers = {};
-      for (const name of ["grid", "paths", "gears", "links", "joints", "dims", "points", "poses", "centres"])
+      for (const name of ["grid", "paths", "cams", "gears", "links", "joints", "dims", "points", "poses", "centres"])
         this.layers[name] = {g: el("g", {"data-layer": name}, svg), byKey: new Map()};
       this.drawn = {};
     }
@@ -196,6 +197,7 @@ export class Canvas {
                    points: pts.map((p) => S(P[p])).join(" ")}]);
     }
     patch(L.links, links);
+    patch(L.cams, this.cams(scene, known));
     patch(L.gears, this.gears(scene, known));
     const joints = [];
     for (const j of d.joints) {
@@ -313,6 +315,52 @@ export class Canvas {
     patch(L.centres, centres);
   }
 
+  // Each cam of drawing.cams (the server's profile in the cam's own frame, model units): its
+  // profile, a path whose outline is made once a model and placed each frame by its transform
+  // alone (the cam's centre, the view's scale, the cam's angle: scene.turns, or its first two
+  // points' direction where there is none, the sketch); its base circle dashed about its
+  // centre; its follower's contact point marked; a translating follower's line of motion
+  // through it, from beyond the cam's centre.  Each element carries data-cam (the joint).
+  cams(scene, known) {
+    const items = [], P = scene.points, turns = scene.turns || {}, guides = scene.guides || {};
+    const s = this.view.s;
+    for (const cam of scene.drawing.cams || []) {
+      const c = P[cam.centre], data = {"data-cam": cam.joint};
+      if (!known(c)) continue;
+      const [X, Y] = this.toScreen(c);
+      if (cam.profile) {
+        let u = turns[cam.cam];
+        if (!known(u)) {
+          const link = scene.drawing.links.find((l) => l.name === cam.cam), pts = link ? link.points : [];
+          const a = P[pts[0]], b = P[pts[1]];
+          u = known(a) && known(b) ? [b[0] - a[0], b[1] - a[1]] : null;
+        }
+        if (known(u)) {
+          const deg = Math.atan2(u[1], u[0]) * 180 / Math.PI;
+          items.push([`${cam.joint} profile`, "path", {class: "cam-profile" + (cam.kind === "pitch" ? " cam-pitch" : ""), d: outline(cam), ...data,
+                      transform: `translate(${X} ${Y}) scale(${s} ${-s}) rotate(${deg})`}]);
+        }
+        items.push([`${cam.joint} base`, "circle", {class: "cam-base", cx: X, cy: Y, r: cam.base_radius * s, ...data}]);
+      }
+      const at = P[cam.contact];
+      if (!known(at)) continue;
+      if (cam.motion === "translating") {
+        const j = scene.drawing.joints.find((q) => q.name === cam.follower_joint);
+        let u = guides[cam.follower_joint] || (j && Array.isArray(j.axis) ? j.axis : null);
+        if (known(u)) {
+          const n = Math.hypot(u[0], u[1]), ux = u[0] / n, uy = u[1] / n;
+          const along = (at[0] - c[0]) * ux + (at[1] - c[1]) * uy, reach = cam.base_radius || Math.abs(along);
+          const [X0, Y0] = this.toScreen([at[0] - (along + 0.6 * reach) * ux, at[1] - (along + 0.6 * reach) * uy]);
+          const [X1, Y1] = this.toScreen([at[0] + 0.6 * reach * ux, at[1] + 0.6 * reach * uy]);
+          items.push([`${cam.joint} line`, "line", {class: "cam-line", x1: X0, y1: Y0, x2: X1, y2: Y1, ...data}]);
+        }
+      }
+      const [U, V] = this.toScreen(at);
+      items.push([`${cam.joint} contact`, "circle", {class: "cam-contact", cx: U, cy: V, r: 8, ...data}]);
+    }
+    return items;
+  }
+
   // Each gear pair of drawing.gears (the server's pitch radii, in model units): a gear's pitch
   // circle about its centre, a radius at its direction (scene.turns: its link's analysed
   // angle) and TICKS - 1 ticks a TICKS-th of a turn apart, outwards (inwards on a ring, the
@@ -379,6 +427,19 @@ export class Canvas {
 // How far from its pivot a ray's handle is drawn, px: the same at every zoom.
 Canvas.RAY = 64;
 const TICKS = 12;             // ticks a turn on a gear's pitch circle
+
+// A cam's profile as a path's outline, in the cam's frame and model units: made once a cam
+// (the drawing of each study is new), then only turned and carried by the path's transform.
+const OUTLINES = new WeakMap();
+function outline(cam) {
+  let d = OUTLINES.get(cam);
+  if (d === undefined) {
+    const pts = cam.profile.filter((p) => p && p[0] !== null && p[1] !== null);
+    d = pts.map(([x, y], i) => `${i ? "L" : "M"}${x} ${y}`).join(" ") + " Z";
+    OUTLINES.set(cam, d);
+  }
+  return d;
+}
 
 // Labels placed so that they cover no label placed before them and no point: each at the
 // first of a few places around its anchor that is free, else at the least covered one.  A

@@ -103,6 +103,15 @@ function fitView() {
   if (state.study) for (const p of state.study.drawing.links.flatMap((l) => l.points))
     for (let i = 0; i < state.study.samples; i += 4) places.push(place(p, i));
   for (const xy of Object.values(state.model.points)) places.push(xy);
+  // a cam's whole turn: the box of its profile's farthest reach about its centre's places
+  if (state.study) for (const cam of state.study.drawing.cams || []) {
+    if (!cam.profile) continue;
+    const reach = Math.max(...cam.profile.map((p) => p && p[0] !== null ? Math.hypot(p[0], p[1]) : 0));
+    for (let i = 0; i < state.study.samples; i += 4) {
+      const c = place(cam.centre, i);
+      if (c && c[0] !== null) places.push([c[0] - reach, c[1] - reach], [c[0] + reach, c[1] + reach]);
+    }
+  }
   canvas.fit(box(places));
 }
 
