@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["HomotopyResult", "track", "refine", "multihomogeneous_start", "with_rows",
+__all__ = ["HomotopyResult", "track", "follow", "refine", "multihomogeneous_start", "with_rows",
            "distinct"]
 
 System = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
@@ -117,6 +117,26 @@ def track(target: System, start: System, starts: np.ndarray, *, gamma: complex,
     -------
     HomotopyResult
     """
+    def H(zz, tt):
+        f, Jf = target(zz)
+        g, Jg = start(zz)
+        s = ((1.0 - tt) * gamma)[:, None]
+        tt1 = tt[:, None]
+        return s * g + tt1 * f, s[..., None] * Jg + tt1[..., None] * Jf, f - gamma * g
+
+    return follow(H, starts, gamma=gamma, first_step=first_step, max_step=max_step,
+                  min_step=min_step, max_steps=max_steps, tolerance=tolerance,
+                  max_correction=max_correction)
+
+
+def follow(H: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]],
+           starts: np.ndarray, *, gamma: complex = 1.0, first_step: float = 0.02,
+           max_step: float = 0.1, min_step: float = 1e-13, max_steps: int = 3000,
+           tolerance: float = 1e-9, max_correction: float = 0.02) -> HomotopyResult:
+    """Follow the roots ``starts`` of ``H(z, 0)`` to roots of ``H(z, 1)``, for any homotopy
+    given as ``H(z (N, n), t (N,)) -> (values (N, n), H_z (N, n, n), H_t (N, n))``: the
+    predictor-corrector of :func:`track` (which calls it with the gamma homotopy), also for
+    parameter homotopies.  Same keywords as :func:`track`; ``gamma`` is only recorded."""
     z = np.array(starts, complex)
     N = len(z)
     t = np.zeros(N)
@@ -125,13 +145,6 @@ def track(target: System, start: System, starts: np.ndarray, *, gamma: complex,
     steps = np.zeros(N, int)
     rejected = np.zeros(N, int)
     good = np.zeros(N, int)          # accepted steps in a row
-
-    def H(zz, tt):
-        f, Jf = target(zz)
-        g, Jg = start(zz)
-        s = ((1.0 - tt) * gamma)[:, None]
-        tt1 = tt[:, None]
-        return s * g + tt1 * f, s[..., None] * Jg + tt1[..., None] * Jf, f - gamma * g
 
     def velocity(zz, tt):
         _, Hz, Ht = H(zz, tt)
