@@ -49,6 +49,8 @@ __getattr__, __dir__ = exports(__name__, {
                                         "crank_rockers", "imbalance_angle", "max_time_ratio",
                                         "offset_slider_crank", "slotted_lever", "whitworth"),
     "kinelab.synthesis._results": ("SolutionList",),
+    "kinelab.synthesis._nine_point_path": ("NinePointLinkage", "NinePointSolutions",
+                                           "nine_point_path"),
 })
 
 __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
@@ -62,3 +64,4 @@ __all__ = ["Positions", "Poles", "poles", "pole", "fixed_pivot", "moving_pivot",
            "QuickReturn", "imbalance_angle", "max_time_ratio", "MAX_PATH_POINTS", "TRANSMISSION_LIMIT",
            "five_point_path", "FivePointSolutions", "FivePointLinkage",
            "function_generation_pairs", "burmester"]
+__all__ += ["nine_point_path", "NinePointSolutions", "NinePointLinkage"]
