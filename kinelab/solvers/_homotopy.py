@@ -132,11 +132,15 @@ def track(target: System, start: System, starts: np.ndarray, *, gamma: complex,
 def follow(H: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]],
            starts: np.ndarray, *, gamma: complex = 1.0, first_step: float = 0.02,
            max_step: float = 0.1, min_step: float = 1e-13, max_steps: int = 3000,
-           tolerance: float = 1e-9, max_correction: float = 0.02) -> HomotopyResult:
+           tolerance: float = 1e-9, max_correction: float = 0.02,
+           indexed: bool = False) -> HomotopyResult:
     """Follow the roots ``starts`` of ``H(z, 0)`` to roots of ``H(z, 1)``, for any homotopy
     given as ``H(z (N, n), t (N,)) -> (values (N, n), H_z (N, n, n), H_t (N, n))``: the
     predictor-corrector of :func:`track` (which calls it with the gamma homotopy), also for
-    parameter homotopies.  Same keywords as :func:`track`; ``gamma`` is only recorded."""
+    parameter homotopies.  Same keywords as :func:`track`; ``gamma`` is only recorded.
+    With ``indexed``, H is called as ``H(z, t, rows)``, ``rows`` the indices into
+    ``starts`` of the paths given: each path may have a homotopy of its own (its own
+    parameters), and still all move at once."""
     z = np.array(starts, complex)
     N = len(z)
     t = np.zeros(N)
@@ -146,11 +150,12 @@ def follow(H: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray, n
     rejected = np.zeros(N, int)
     good = np.zeros(N, int)          # accepted steps in a row
 
-    def velocity(zz, tt):
-        _, Hz, Ht = H(zz, tt)
+    def velocity(zz, tt, rows):
+        _, Hz, Ht = Hr(zz, tt, rows)
         v, ok = _solve(Hz, -Ht)
         return v, ok
 
+    Hr = H if indexed else (lambda zz, tt, rows: H(zz, tt))
     with np.errstate(all="ignore"):
         for _ in range(max_steps):
             run = np.flatnonzero(status < 0)
@@ -159,17 +164,17 @@ def follow(H: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray, n
             zr, tr = z[run], t[run]
             hr = np.minimum(h[run], 1.0 - tr)
             hh = hr[:, None]
-            k1, ok1 = velocity(zr, tr)
-            k2, ok2 = velocity(zr + 0.5 * hh * k1, tr + 0.5 * hr)
-            k3, ok3 = velocity(zr + 0.5 * hh * k2, tr + 0.5 * hr)
-            k4, ok4 = velocity(zr + hh * k3, tr + hr)
+            k1, ok1 = velocity(zr, tr, run)
+            k2, ok2 = velocity(zr + 0.5 * hh * k1, tr + 0.5 * hr, run)
+            k3, ok3 = velocity(zr + 0.5 * hh * k2, tr + 0.5 * hr, run)
+            k4, ok4 = velocity(zr + hh * k3, tr + hr, run)
             zp = zr + hh / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
             t1 = tr + hr
             size = 1.0 + np.linalg.norm(zr, axis=1)
             ok = ok1 & ok2 & ok3 & ok4
             first = None
             for it in range(3):
-                Hv, Hz, _ = H(zp, t1)
+                Hv, Hz, _ = Hr(zp, t1, run)
                 dz, oks = _solve(Hz, -Hv)
                 ok &= oks
                 zp = zp + np.where(ok[:, None], dz, 0.0)

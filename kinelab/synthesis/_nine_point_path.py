@@ -67,6 +67,7 @@ _DISTINCT = 1e-7      # relative distance under which two roots (or classes) are
 _REAL = 1e-8          # relative |xb - conj(x)| under which a root is real
 _REACHED = 1e-8       # relative distance engine vs prescribed point
 _MONODROMY_STEPS = 400  # steps after which a monodromy path is given up
+_LOOPS = 6              # monodromy loops
 _ORDERS = ("transmission", "size", "grashof")
 
 
@@ -334,67 +335,74 @@ def base_task() -> tuple[np.ndarray, np.ndarray]:
     return T, r
 
 
+def _segments(P0: np.ndarray, P1: np.ndarray):
+    """The homotopy of each path from its task P0[i] to its task P1[i] (N, 16), for
+    :func:`follow` with ``indexed``."""
+    dP = P1 - P0
+
+    def H(z, t, rows):
+        p = P0[rows] + t[:, None] * dP[rows]
+        return _eliminated(z, p[:, :8], p[:, 8:], dP[rows, :8], dP[rows, 8:])
+    return H
+
+
 @dataclass
 class _Monodromy:
-    """Roots (one per cognate class) of two tasks joined by several routes."""
+    """Roots of the base task (one per cognate class) and the loops they are carried
+    around: each loop goes from the base task through two random complex tasks and back."""
 
-    tasks: list                  # the two tasks (16,)
-    routes: list                 # routes from task 0 to task 1, each a list of tasks
-    reps: list                   # per task: (k, 8) roots, one per class
-    keys: list                   # per task: (k, 6) class keys
-    sent: list                   # sent[n][e]: roots of task n already carried along route e
+    base: np.ndarray             # (16,)
+    loops: np.ndarray            # (L, 3, 16): the loops' tasks after the base
+    reps: np.ndarray             # (k, 8) roots, one per class
+    keys: np.ndarray             # (k, 6) class keys
+    sent: np.ndarray             # (L,) roots already carried around each loop
     paths: int = 0
     lost: int = 0
 
 
-def _monodromy(state: _Monodromy, rng: np.random.Generator, max_classes: int, chunk: int,
-               max_routes: int = 5) -> None:
-    """Carry every root not yet carried along every route, both ways, adding the new
-    classes found, until no route brings a new one (then a new route is tried, up to
-    ``max_routes``) or task 0 has ``max_classes`` classes."""
-    quiet_routes = 0
-    while True:
-        found = 0
-        for e in range(len(state.routes)):
-            for n in (0, 1):
-                if len(state.reps[0]) >= max_classes:
-                    return
-                todo = state.reps[n][state.sent[n][e]:]
-                if len(todo) == 0:
-                    continue
-                todo = todo[:max(chunk, 1)]
-                state.sent[n][e] += len(todo)
-                route = state.routes[e] if n == 0 else state.routes[e][::-1]
-                _progress.report(f"nine-point path: monodromy, {len(state.reps[0])} of "
-                                 f"{CLASSES} cognate classes", min(len(state.reps[0]) / CLASSES,
-                                                                   1.0))
-                # a path lost here is no loss: the root comes again by another route
-                ends, ok = _carry(todo, route, chunk, "nine-point path: monodromy",
-                                  max_steps=_MONODROMY_STEPS)
-                state.paths += len(todo) * (len(route) - 1)
-                state.lost += int((~ok).sum())
-                ends = ends[ok]
-                m = 1 - n
-                with np.errstate(all="ignore"):
-                    w = _pivots_key(ends)
-                fine = np.all(np.isfinite(w), axis=1)
-                ends, w = ends[fine], w[fine]
-                new = _unique(w, _DISTINCT, state.keys[m])
-                if len(new):
-                    state.reps[m] = np.concatenate([state.reps[m], ends[new]])
-                    state.keys[m] = np.concatenate([state.keys[m], w[new]])
-                    found += len(new)
-        pending = any(state.sent[n][e] < len(state.reps[n]) for n in (0, 1)
-                      for e in range(len(state.routes)))
-        if found or pending:
-            quiet_routes = 0
-            continue
-        quiet_routes += 1
-        if len(state.routes) >= max_routes or quiet_routes > 1:
+def _monodromy(state: _Monodromy, max_classes: int, chunk: int) -> None:
+    """Carry every root not yet carried around every loop, all of them at once (a batch
+    of (root, loop) pairs, one homotopy per path), adding the new classes found, until no
+    loop brings a new one or there are ``max_classes`` classes."""
+    L = len(state.loops)
+    while len(state.reps) < max_classes:
+        pairs = [(i, l) for l in range(L) for i in range(state.sent[l], len(state.reps))]
+        if not pairs:
             return
-        state.routes.append([state.tasks[0], _random_task(rng), state.tasks[1]])
-        for n in (0, 1):
-            state.sent[n].append(0)
+        pairs = pairs[:chunk]
+        for i, l in pairs:
+            state.sent[l] = max(state.sent[l], i + 1)
+        idx = np.array([i for i, _ in pairs])
+        loop = np.array([l for _, l in pairs])
+        _progress.report(f"nine-point path: monodromy, {len(state.reps)} of {CLASSES} "
+                         "cognate classes", min(len(state.reps) / CLASSES, 1.0))
+        tasks = [np.broadcast_to(state.base, (len(pairs), 16))] + \
+            [state.loops[loop, k] for k in range(3)] + [np.broadcast_to(state.base,
+                                                                        (len(pairs), 16))]
+        z = state.reps[idx].copy()
+        good = np.ones(len(z), bool)
+        for k in range(4):
+            # a path lost here is no loss: its root comes again around another loop
+            rows = np.flatnonzero(good)
+            r = follow(_segments(tasks[k][rows], tasks[k + 1][rows]), z[rows], indexed=True,
+                       max_steps=_MONODROMY_STEPS)
+            z[rows] = r.z
+            good[rows] = r.converged
+            state.paths += len(rows)
+        z, ok = z[good], np.ones(int(good.sum()), bool)
+        if len(z):
+            z, _, rc = refine(_fixed(state.base), z)
+            ok = np.all(np.isfinite(z), axis=1) & (rc > 1e-13)
+        state.lost += len(pairs) - int(ok.sum())
+        z = z[ok]
+        with np.errstate(all="ignore"):
+            w = _pivots_key(z)
+        fine = np.all(np.isfinite(w), axis=1)
+        z, w = z[fine], w[fine]
+        new = _unique(w, _DISTINCT, state.keys)
+        if len(new):
+            state.reps = np.concatenate([state.reps, z[new]])
+            state.keys = np.concatenate([state.keys, w[new]])
 
 
 # ---------------------------------------------------------------------------------------
@@ -659,19 +667,17 @@ def nine_point_path(points: ArrayLike, *, max_classes: int | None = None,
     d1, db1 = _displacements(T)
     p0, p1 = np.concatenate([d0, db0]), np.concatenate([d1, db1])
     z0 = rb[None] / sb
-    other = _random_task(rng)
-    state = _Monodromy(tasks=[p0, other], routes=[[p0, other], [p0, _random_task(rng), other]],
-                       reps=[z0, np.zeros((0, 8), complex)],
-                       keys=[_pivots_key(z0), np.zeros((0, 6), complex)],
-                       sent=[[0, 0], [0, 0]])
+    loops = np.stack([[_random_task(rng) for _ in range(3)] for _ in range(_LOOPS)])
+    state = _Monodromy(base=p0, loops=loops, reps=z0, keys=_pivots_key(z0),
+                       sent=np.zeros(_LOOPS, int))
     interrupted = False
     try:
         with _progress.part(0.0, 0.8):
-            _monodromy(state, rng, target, chunk)
+            _monodromy(state, target, chunk)
     except KeyboardInterrupt:
         interrupted = True
-    reps = state.reps[0][:target]
-    complete = not interrupted and (max_classes is None or len(state.reps[0]) < max_classes)
+    reps = state.reps[:target]
+    complete = not interrupted and (max_classes is None or len(state.reps) < max_classes)
     # the base task's roots, carried to the given points through a random complex task
     paths = state.paths
     ends = np.zeros((0, 8), complex)
