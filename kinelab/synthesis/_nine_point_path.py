@@ -23,16 +23,16 @@ form of it needed 286,720).  Its generic root count on the solution component is
 1442 Roberts-cognate triples, each counted with both labellings of its dyads.  The other
 roots (x = y = 0, xb = yb = 0, ...) are degenerate families where D_j vanishes.
 
-How every root is found.  Not from a start system: a random real four-bar (fixed seed)
+How every root is found.  Not from a start system: a real four-bar of general proportions
 and nine points of its coupler curve make a *base task* with a root we know.  Monodromy
-finds the others: the roots are carried along two different complex paths between the base
-task and a random complex task, and back, and every new root is carried again, until no
-path brings a new one (each root crosses each path once, so the work grows with the
-number of roots, not with a Bezout number).  Only one root of each six (three cognates,
-two labellings) is carried; the other five follow in closed form (:func:`cognates`).  The
-roots of the base task are then carried to the given points by a parameter homotopy through
-a random complex task (so no path meets a singular task).  Only roots on the component of
-real four-bars are ever followed: no path ends at infinity or on a degenerate family.
+finds the others: every known root is carried around six loops (from the base task
+through two random complex tasks and back), each root around each loop once, all of them
+at once (one homotopy per path), until no loop brings a new root.  Only one root of each
+six (three cognates, two labellings) is carried; the other five follow in closed form
+(:func:`cognates`).  The roots of the base task are then carried to the given points by a
+parameter homotopy through a random complex task (so no path meets a singular task).  Only
+roots on the component of real four-bars are ever followed: no path ends at infinity or on
+a degenerate family.
 """
 from __future__ import annotations
 

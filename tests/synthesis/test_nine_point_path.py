@@ -110,7 +110,8 @@ def test_tracked_subset():
     (np.full((9, 2), np.nan), r"points\[0\]: expected coordinates of finite numbers"),
     (np.vstack([np.eye(2), np.eye(2)[:1], np.arange(12).reshape(6, 2) + 5]),
      r"points: points 1 and 3 coincide"),
-    (np.column_stack([np.arange(9.0), 2 * np.arange(9.0)]), r"points: the nine points lie on one line"),
+    (np.column_stack([np.arange(9.0), 2 * np.arange(9.0)]),
+     r"points: the nine points lie on one line"),
 ])
 def test_bad_input(points, match):
     with pytest.raises(ModelError, match=match):
