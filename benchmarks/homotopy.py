@@ -98,7 +98,8 @@ def nine_point(classes: int = 200) -> None:
     full = npp.CLASSES * (npp._LOOPS * 4 + 2)
     print(f"{found} classes ({paths} path segments) in {seconds:.1f} s: {rate:.1f} segments/s")
     print(f"complete set: about {full} segments, {full / rate / 60:.1f} min at that rate "
-          "(the early rounds' small batches are slower, the later large ones faster)")
+          "; optimistic: the later rounds' paths take more steps (a complete run measured "
+          "37,252 segments in 21 min, about 30 a second, on a shared 2-core machine)")
     tracemalloc.start()
     monodromy(20)
     peak = tracemalloc.get_traced_memory()[1] / 1e6
