@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["HomotopyResult", "track", "refine", "multihomogeneous_start", "with_rows",
+__all__ = ["HomotopyResult", "track", "follow", "refine", "multihomogeneous_start", "with_rows",
            "distinct"]
 
 System = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
@@ -117,6 +117,30 @@ def track(target: System, start: System, starts: np.ndarray, *, gamma: complex,
     -------
     HomotopyResult
     """
+    def H(zz, tt):
+        f, Jf = target(zz)
+        g, Jg = start(zz)
+        s = ((1.0 - tt) * gamma)[:, None]
+        tt1 = tt[:, None]
+        return s * g + tt1 * f, s[..., None] * Jg + tt1[..., None] * Jf, f - gamma * g
+
+    return follow(H, starts, gamma=gamma, first_step=first_step, max_step=max_step,
+                  min_step=min_step, max_steps=max_steps, tolerance=tolerance,
+                  max_correction=max_correction)
+
+
+def follow(H: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]],
+           starts: np.ndarray, *, gamma: complex = 1.0, first_step: float = 0.02,
+           max_step: float = 0.1, min_step: float = 1e-13, max_steps: int = 3000,
+           tolerance: float = 1e-9, max_correction: float = 0.02,
+           indexed: bool = False) -> HomotopyResult:
+    """Follow the roots ``starts`` of ``H(z, 0)`` to roots of ``H(z, 1)``, for any homotopy
+    given as ``H(z (N, n), t (N,)) -> (values (N, n), H_z (N, n, n), H_t (N, n))``: the
+    predictor-corrector of :func:`track` (which calls it with the gamma homotopy), also for
+    parameter homotopies.  Same keywords as :func:`track`; ``gamma`` is only recorded.
+    With ``indexed``, H is called as ``H(z, t, rows)``, ``rows`` the indices into
+    ``starts`` of the paths given: each path may have a homotopy of its own (its own
+    parameters), and still all move at once."""
     z = np.array(starts, complex)
     N = len(z)
     t = np.zeros(N)
@@ -126,18 +150,12 @@ def track(target: System, start: System, starts: np.ndarray, *, gamma: complex,
     rejected = np.zeros(N, int)
     good = np.zeros(N, int)          # accepted steps in a row
 
-    def H(zz, tt):
-        f, Jf = target(zz)
-        g, Jg = start(zz)
-        s = ((1.0 - tt) * gamma)[:, None]
-        tt1 = tt[:, None]
-        return s * g + tt1 * f, s[..., None] * Jg + tt1[..., None] * Jf, f - gamma * g
-
-    def velocity(zz, tt):
-        _, Hz, Ht = H(zz, tt)
+    def velocity(zz, tt, rows):
+        _, Hz, Ht = Hr(zz, tt, rows)
         v, ok = _solve(Hz, -Ht)
         return v, ok
 
+    Hr = H if indexed else (lambda zz, tt, rows: H(zz, tt))
     with np.errstate(all="ignore"):
         for _ in range(max_steps):
             run = np.flatnonzero(status < 0)
@@ -146,17 +164,17 @@ def track(target: System, start: System, starts: np.ndarray, *, gamma: complex,
             zr, tr = z[run], t[run]
             hr = np.minimum(h[run], 1.0 - tr)
             hh = hr[:, None]
-            k1, ok1 = velocity(zr, tr)
-            k2, ok2 = velocity(zr + 0.5 * hh * k1, tr + 0.5 * hr)
-            k3, ok3 = velocity(zr + 0.5 * hh * k2, tr + 0.5 * hr)
-            k4, ok4 = velocity(zr + hh * k3, tr + hr)
+            k1, ok1 = velocity(zr, tr, run)
+            k2, ok2 = velocity(zr + 0.5 * hh * k1, tr + 0.5 * hr, run)
+            k3, ok3 = velocity(zr + 0.5 * hh * k2, tr + 0.5 * hr, run)
+            k4, ok4 = velocity(zr + hh * k3, tr + hr, run)
             zp = zr + hh / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
             t1 = tr + hr
             size = 1.0 + np.linalg.norm(zr, axis=1)
             ok = ok1 & ok2 & ok3 & ok4
             first = None
             for it in range(3):
-                Hv, Hz, _ = H(zp, t1)
+                Hv, Hz, _ = Hr(zp, t1, run)
                 dz, oks = _solve(Hz, -Hv)
                 ok &= oks
                 zp = zp + np.where(ok[:, None], dz, 0.0)
