@@ -249,3 +249,37 @@ def test_friction_names_a_joint_of_the_model():
                             r"torsional_dampers\[0\]: link: expected a link")):
         with pytest.raises(ModelError, match=message):
             kl.dynamics.inverse(gear_train(), 0.0, loads=loads)
+
+
+# -- the command --------------------------------------------------------------------------
+
+@pytest.mark.parametrize("example, columns", [
+    ("cam_follower_dynamics", ["jO.torque[N*m]", "contact.reaction.x[N]", "contact.reaction.y[N]",
+                               "guide.reaction_moment[N*m]"]),
+    ("gear_train_dynamics", ["jO1.torque[N*m]", "mesh12.reaction.x[N]", "mesh23.reaction.y[N]"]),
+])
+def test_dynamics_command_on_the_cam_and_gear_examples(tmp_path, example, columns):
+    import pandas as pd
+    from click.testing import CliRunner
+
+    from kinelab.cli import main
+    run = CliRunner().invoke(main, ["dynamics", str(EX / f"{example}.toml"), "--out",
+                                    str(tmp_path), "--no-plots"])
+    assert run.exit_code == 0, run.output
+    table = pd.read_csv(tmp_path / f"{example}_dynamics.csv")
+    assert set(columns) <= set(table.columns) and np.isfinite(table[columns].to_numpy()).all()
+
+
+def test_cam_example_effort_against_follower_forces_with_guide_friction():
+    """examples/cam_follower_dynamics.toml: the follower_forces train (spring, preload,
+    damper) plus the guide's friction, 0.5 N tanh(v / 1 mm/s) against the slide."""
+    mf = kl.io.ModelFile.read(EX / "cam_follower_dynamics.toml")
+    res = mf.inverse_dynamics(73)
+    q = res.q[:, 0]
+    ff = kl.cams.follower_forces(mf.mechanism.joint("contact").program, mass=0.5,
+                                 stiffness=2000.0, preload=10.0, damping=3.0, speed=2 * np.pi,
+                                 theta=q)
+    v = ff.V * 2 * np.pi
+    N = ff.contact_force + 0.5 * np.tanh(v / 1e-3)
+    np.testing.assert_allclose(res.reactions("contact")[:, 1], N, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(res.input_forces[:, 0], N * ff.V, rtol=0, atol=1e-9)
