@@ -283,3 +283,10 @@ def test_cam_example_effort_against_follower_forces_with_guide_friction():
     N = ff.contact_force + 0.5 * np.tanh(v / 1e-3)
     np.testing.assert_allclose(res.reactions("contact")[:, 1], N, rtol=0, atol=1e-9)
     np.testing.assert_allclose(res.input_forces[:, 0], N * ff.V, rtol=0, atol=1e-9)
+
+
+def test_symbolic_equations_refuse_the_pair_loads():
+    loads = Loads(torsional_dampers=[TorsionalDamper(("ground", "gear1"), 1.0)])
+    with pytest.raises(ModelError, match=r"friction in joints and torsional springs and dampers "
+                                         r"have no symbolic form here yet"):
+        kl.dynamics.equations_of_motion(gear_train(), loads=loads)
