@@ -30,7 +30,6 @@ from kinelab.dynamics._loads import default_carrier
 from kinelab.dynamics._symbolic import _exact, spring_tension
 from kinelab.dynamics._terms import build_system
 from kinelab.model import Mechanism
-from kinelab.errors import ModelError
 
 __all__ = ["Body", "KaneDerivation", "bodies_of", "kane_terms"]
 
@@ -74,9 +73,9 @@ def bodies_of(model: Mechanism, loads: Loads | None = None,
         return None
     system = build_system(model, loads, masses)     # checks loads and masses as a whole
     if system.loads.pair_loads:
-        raise ModelError("loads: friction in joints and torsional springs and dampers have no "
-                         "symbolic form here yet; leave them out of the symbolic equations, or use "
-                         "kinelab.dynamics.inverse and simulate, which take them")
+        # friction in joints and torsional springs and dampers have no symbolic form yet: the
+        # derivation then stops at K and L, as for a model without masses
+        return None
     loads, masses = system.loads, system.masses
     ground = model.ground.name
     bodies = [Body(b.link, b.link, b.center_of_mass, b.mass, b.inertia, True)
