@@ -68,9 +68,9 @@ def run(mf: ModelFile, out: str | Path = ".", *, samples: int | None = None,
             from kinelab.plot import _dynamics as figs
             from kinelab.plot import save
             plt = _agg()
-            for suffix, draw in (("efforts", figs.effort_curves),
-                                 ("reactions", figs.reaction_curves),
-                                 ("shaking", figs.shaking_curves)):
+            figures = (("efforts", figs.effort_curves), ("reactions", figs.reaction_curves),
+                       ("shaking", figs.shaking_curves))
+            for suffix, draw in figures[:1] if res.reactions_refused else figures:
                 fig = draw(res, units=units, lang=lang)
                 try:
                     written.append(files.write(f"{name}_{suffix}.png", lambda p: save(fig, p)))
@@ -111,7 +111,9 @@ def dynamics_command(model, out, samples, si, degrees, gravity, no_plots, lang, 
 
     Writes <name>_dynamics.csv (efforts, energies, reactions, shaking force and moment)
     and, unless --no-plots, <name>_efforts.png, <name>_reactions.png, <name>_shaking.png,
-    all of them or none; <name> is the model file's name without its suffix.
+    all of them or none; <name> is the model file's name without its suffix.  A model
+    with a cam joint driving an oscillating follower gets its efforts and energies only
+    (its contact point is not declared), and says so.
     The links need mass data; loads come from the file's [dynamics] section.  The inputs'
     positions and rates are in the file's units (--si for m and rad); forces are in N,
     torques in N m, energies in J and powers in W.  With --verify, the efforts, energies,
@@ -139,9 +141,12 @@ def dynamics_command(model, out, samples, si, degrees, gravity, no_plots, lang, 
         peak = np.max(np.abs(col[ok]))
         rms = peak * np.sqrt(np.mean((col[ok] / peak) ** 2)) if peak > 0 else 0.0  # no overflow
         click.echo(said["effort"].format(name=name, peak=num(peak), rms=num(rms), unit=unit))
-    F = np.hypot(*res.shaking_force.T)
-    click.echo(said["shaking"].format(force=num(np.nanmax(F)),
-                                      moment=num(np.nanmax(np.abs(res.shaking_moment)))))
+    if res.reactions_refused:       # the efforts only (an oscillating cam follower)
+        click.echo(res.reactions_refused)
+    else:
+        F = np.hypot(*res.shaking_force.T)
+        click.echo(said["shaking"].format(force=num(np.nanmax(F)),
+                                          moment=num(np.nanmax(np.abs(res.shaking_moment)))))
     if res.singular.any():
         click.echo(said["singular"].format(count=int(res.singular.sum())))
     said_written(written)

@@ -72,6 +72,10 @@ def bodies_of(model: Mechanism, loads: Loads | None = None,
     if not has_mass:
         return None
     system = build_system(model, loads, masses)     # checks loads and masses as a whole
+    if system.loads.pair_loads:
+        # friction in joints and torsional springs and dampers have no symbolic form yet: the
+        # derivation then stops at K and L, as for a model without masses
+        return None
     loads, masses = system.loads, system.masses
     ground = model.ground.name
     bodies = [Body(b.link, b.link, b.center_of_mass, b.mass, b.inertia, True)

@@ -7,7 +7,8 @@ vectorised product of K, L and the mass data over the samples.
 
 - :func:`inverse` -- actuator efforts, joint reactions and shaking force over a motion;
 - :func:`simulate` -- the motion under given actuator laws and loads, one run or a batch;
-- :class:`Loads` -- gravity, point forces, torques, springs, dampers;
+- :class:`Loads` -- gravity, point forces, torques, springs, dampers, Coulomb friction in
+  joints, torsional springs and dampers;
 - :class:`MassProperties` -- the links' masses and inertias, point masses, lumping;
 - :class:`DynamicsSetup` -- a model file's ``[dynamics]`` section (loads, actuator laws);
 - :func:`flywheel` -- flywheel sizing from a torque curve;
@@ -22,13 +23,14 @@ __getattr__, __dir__ = exports(__name__, {
     "kinelab.dynamics._forward": ("Simulation", "SimulationBatch", "simulate"),
     "kinelab.dynamics._inverse": ("InverseDynamics", "inverse"),
     "kinelab.dynamics._loads": ("STANDARD_GRAVITY", "Damper", "Law", "Loads", "PointForce",
-                                "Spring", "Torque"),
+                                "Spring", "Torque", "Friction", "TorsionalSpring",
+                                "TorsionalDamper"),
     "kinelab.dynamics._masses": ("LinkMass", "MassProperties", "PointMass"),
     "kinelab.dynamics._setup": ("DynamicsSetup",),
     "kinelab.dynamics._symbolic": ("EquationsOfMotion", "equations_of_motion"),
 })
 
 __all__ = ["inverse", "InverseDynamics", "simulate", "Simulation", "SimulationBatch", "Loads", "PointForce", "Torque", "Spring", "Damper",
-           "Law", "STANDARD_GRAVITY", "MassProperties", "LinkMass", "PointMass",
+           "Friction", "TorsionalSpring", "TorsionalDamper", "Law", "STANDARD_GRAVITY", "MassProperties", "LinkMass", "PointMass",
            "DynamicsSetup", "flywheel", "Flywheel", "equations_of_motion", "EquationsOfMotion",
            "parse_expression", "parse_table", "to_sympy"]

@@ -15,11 +15,11 @@ def compiled_system(system: System, actuators) -> tuple | None:
     """The arrays of the compiled right-hand side of ``system`` under the actuator laws
     ``actuators`` (:func:`actuator_laws`), with the size of its law stack; None when a part
     needs Python: a plan with Newton groups, change points or redundant joints, a law
-    given as a table or a Python callable."""
+    given as a table or a Python callable, friction or a torsional spring or damper."""
     model, M = system.model, system.M
     p = plan(model)
     laws = getattr(actuators, "laws", None)
-    if p.uses_newton or p.redundant or laws is None or _branch_map(p, M, "smooth") is not None:
+    if system.loads.pair_loads or p.uses_newton or p.redundant or laws is None or _branch_map(p, M, "smooth") is not None:
         return None
     programs: list[tuple[np.ndarray, np.ndarray]] = []
 

@@ -1,6 +1,7 @@
 """Inverse dynamics: actuator efforts (Kane), joint reactions (Newton-Euler), shaking."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -14,8 +15,13 @@ from kinelab.errors import ModelError, quoted, shown, suggest
 from kinelab.kinematics import KinematicSolution, analyze, plan
 from kinelab.kinematics._columns import Columns
 from kinelab.model import Mechanism, Units, gear_mesh
+from kinelab.model._cams import cam_pair
 
-__all__ = ["inverse", "InverseDynamics", "table_width"]
+__all__ = ["inverse", "InverseDynamics", "table_width", "GEAR_PRESSURE_ANGLE"]
+
+GEAR_PRESSURE_ANGLE = math.radians(20.0)
+"""The pressure angle of every gear joint's line of action, rad: the standard 20 deg of
+involute spur gears (a gear joint declares none)."""
 
 
 def _pick(names: tuple[str, ...], name: str, kind: str) -> int:
@@ -63,6 +69,9 @@ class InverseDynamics(MotionResult):
     reactions_unique : bool
         False for a mechanism with redundant joints: the reactions shown are then the
         smallest (least-squares) set that balances every link.
+    reactions_refused : str or None
+        Why the reactions were not computed although asked for (a cam joint whose follower
+        oscillates: its contact point is not declared); the efforts are still given.
     """
 
     kinematics: KinematicSolution
@@ -83,6 +92,7 @@ class InverseDynamics(MotionResult):
     reaction_moments: np.ndarray | None
     reactions_unique: bool = True
     newton_euler_efforts: np.ndarray | None = None
+    reactions_refused: str | None = None
 
     # -- the motion (t, q, qd, qdd, N: see MotionResult) -----------------------------------
     @property
@@ -105,6 +115,8 @@ class InverseDynamics(MotionResult):
         For a prismatic joint it is the constraint force, normal to the slide; the effort
         of a slide actuator is in :attr:`input_forces`.
         """
+        if self.reactions_refused:
+            raise ModelError(self.reactions_refused)
         if self.reaction_forces is None:
             raise ModelError("reactions: this result was computed with reactions=False; "
                              "call inverse(..., reactions=True)")
@@ -112,6 +124,8 @@ class InverseDynamics(MotionResult):
 
     def reaction_moment(self, joint: str) -> np.ndarray:
         """Moment on the slider of a prismatic joint from its guide, N m; shape (N,)."""
+        if self.reactions_refused:
+            raise ModelError(self.reactions_refused)
         if self.reaction_moments is None:
             raise ModelError("reaction_moment: this result was computed with reactions=False")
         return self.reaction_moments[:, _pick(self.joint_names, joint, "joint")]
@@ -211,6 +225,8 @@ def inverse(model, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayLike = 0.0, *,
     """
     reactions = flag(reactions, "reactions")
     system = build_system(model, loads, masses)
+    refused = reactions_refused(model) if reactions else None
+    reactions = reactions and refused is None
     sol = analyze(model, q, qd, qdd)
     if sol.N == 0:
         raise ModelError("q: expected at least one configuration, got none; give q as a number "
@@ -236,7 +252,21 @@ def inverse(model, q: ArrayLike, qd: ArrayLike = 0.0, qdd: ArrayLike = 0.0, *,
         reaction_forces=ne["forces"] if ne else None,
         reaction_moments=ne["moments"] if ne else None,
         reactions_unique=ne["unique"] if ne else True,
-        newton_euler_efforts=ne["efforts"] if ne else None)
+        newton_euler_efforts=ne["efforts"] if ne else None, reactions_refused=refused)
+
+
+def reactions_refused(model: Mechanism) -> str | None:
+    """Why the joint reactions of ``model`` cannot be computed, or None: a cam joint whose
+    follower oscillates (a C joint declares no contact point, and an oscillating follower
+    has no joint point to stand for its knife edge or roller centre)."""
+    rocking = [j.name for j in model.joints if j.type == "C"
+               and cam_pair(model, j).motion == "oscillating"]
+    if rocking:
+        return (f"reactions: cam joint(s) {', '.join(map(repr, rocking))} drive an oscillating "
+                "follower, whose contact point is not declared, so the contact force and the "
+                "joint reactions are not computed (the efforts are); use a translating follower "
+                "or inverse(..., reactions=False)")
+    return None
 
 
 def _check_finite(model, sol: KinematicSolution, t: np.ndarray, arrays) -> None:
@@ -323,24 +353,54 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms) -> dict:
         return np.reshape(sol.slide_axes(j.name), (N, 2))
 
     def mesh(j):
-        """A gear joint's pitch point (N, 2) and the tangent of its pitch circles there (N, 2),
-        along which its teeth push (pressure angle 0: the force across the line of centres is
-        the carrier's, through the gears' pins)."""
+        """A gear joint's pitch point (N, 2), the tangent of its pitch circles there (N, 2)
+        and the unit vector from gear a's centre to the pitch point (N, 2): the tooth force
+        on b is ``F_t t + |F_t| tan(pressure angle) r``, along the line of action."""
         g = gear_mesh(m, j)
         oa = pos(g.centre_a)
         if g.mesh == "rack":
             u = axis(m.joint(g.slide))
-            return oa + g.k * np.stack([u[:, 1], -u[:, 0]], axis=-1), u
+            radial = np.stack([u[:, 1], -u[:, 0]], axis=-1)
+            return oa + g.k * radial, u, radial
         ob = pos(g.centre_b)
         d = (ob - oa) / np.linalg.norm(ob - oa, axis=-1)[:, None]
-        return (oa - g.k * ob) / (1.0 - g.k), np.stack([-d[:, 1], d[:, 0]], axis=-1)
+        at = (oa - g.k * ob) / (1.0 - g.k)
+        radial = d if g.mesh == "external" else -d
+        return at, np.stack([-d[:, 1], d[:, 0]], axis=-1), radial
+
+    def contact(j):
+        """A cam joint's contact point (N, 2), the follower's knife edge or roller centre: the
+        point of its prismatic joint on the guide; and the common normal there (N, 2), at
+        right angles to the follower's velocity relative to the cam, pointing away from the
+        cam's centre."""
+        c = cam_pair(m, j)
+        fj, pivot = m.joint(c.follower_joint), m.joint(c.pivot)
+        at, centre = pos(fj.point), pos(pivot.point)
+        u = axis(fj)
+        cam_item, guide_item = p.link_item[c.cam], p.link_item[c.guide]
+        jets = sol.item_jets([cam_item, guide_item, p.slide_item[fj.name]])[:, :, 1:1 + M]
+        k_theta = jets[:, 0] - jets[:, 1]
+        # dS/dtheta of the program: K of the slide over K of the cam's angle on the guide
+        slope = (np.einsum("nm,nm->n", jets[:, 2], k_theta)
+                 / np.einsum("nm,nm->n", k_theta, k_theta))
+        r = at - centre
+        d = slope[:, None] * u - np.stack([-r[:, 1], r[:, 0]], axis=-1)
+        n = np.stack([-d[:, 1], d[:, 0]], axis=-1) / np.linalg.norm(d, axis=-1)[:, None]
+        return at, n * np.sign(np.einsum("ni,ni->n", n, r))[:, None]
 
     for c, j in enumerate(m.joints):
         a, s = j.links
-        if j.type == "G":       # one unknown, the tooth force; its second column stays 0
-            at, t = mesh(j)
+        if j.type == "G":       # the tooth force, tangential and radial
+            at, t, radial = mesh(j)
             on(s, t, at, 2 * c)
             on(a, -t, at, 2 * c)
+            on(s, radial, at, 2 * c + 1)
+            on(a, -radial, at, 2 * c + 1)
+            continue
+        if j.type == "C":       # one unknown, the contact force; its second column stays 0
+            at, n = contact(j)
+            on(s, n, at, 2 * c)
+            on(a, -n, at, 2 * c)
             continue
         at = pos(j.point)
         if j.type == "R":
@@ -394,13 +454,25 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms) -> dict:
         for end, sign in ((0, 1.0), (1, -1.0)):
             link = default_carrier(m, s.points[end], s.links[end])
             on(link, sign * pull, pos(s.points[end]))
-    # a gear joint's second column is no force: a row of its own keeps it 0
-    gears = [c for c, j in enumerate(m.joints) if j.type == "G"]
-    if gears:
-        extra = np.zeros((N, len(gears), nu))
-        extra[:, np.arange(len(gears)), 2 * np.array(gears) + 1] = 1.0
+    for i, (a, s) in enumerate(system.pair_links):     # friction, torsional springs, dampers
+        on(s, None, None, None, terms.pair_torques[:, i])
+        on(a, None, None, None, -terms.pair_torques[:, i])
+    for i, name in enumerate(system.slide_joints):
+        j = m.joint(name)
+        force = terms.slide_forces[:, i, None] * axis(j)
+        on(j.links[1], force, pos(j.point))
+        on(j.links[0], -force, pos(j.point))
+    # a gear joint's radial force is tan(pressure angle) times the size of its tangential
+    # one, pushing the gears apart: a row of its own says so, with the tangential force's
+    # sign from a first solution (a cam joint's second column is no force: its row keeps it 0)
+    pairs = [c for c, j in enumerate(m.joints) if j.type in ("G", "C")]
+    slope = np.array([math.tan(GEAR_PRESSURE_ANGLE) if m.joints[c].type == "G" else 0.0
+                      for c in pairs])
+    if pairs:
+        extra = np.zeros((N, len(pairs), nu))
+        extra[:, np.arange(len(pairs)), 2 * np.array(pairs) + 1] = 1.0
         A = np.concatenate([A, extra], 1)
-        b = np.concatenate([b, np.zeros((N, len(gears)))], 1)
+        b = np.concatenate([b, np.zeros((N, len(pairs)))], 1)
     # solve every sample at once; singular samples (NaN kinematics) stay NaN
     x = np.full((N, nu), np.nan)
     ok = np.isfinite(b).all(axis=1) & np.isfinite(A).all(axis=(1, 2))
@@ -408,13 +480,23 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms) -> dict:
         A, b = A[ok], b[ok]
     unique = A.shape[1] == nu
     if len(A):
-        if unique:
-            try:
-                x[ok] = np.linalg.solve(A, b[..., None])[..., 0]
-            except np.linalg.LinAlgError:
-                unique = False
-        if not unique:
-            x[ok] = np.einsum("nij,nj->ni", np.linalg.pinv(A), b)
+        rows = A.shape[1] - len(pairs) + np.arange(len(pairs))
+        tangential = 2 * np.array(pairs, np.int64)
+        signs = np.zeros((len(A), len(pairs)))
+        for _ in range(3):      # the signs settle at once but where a tooth force changes sign
+            A[:, rows, tangential] = -slope * signs
+            if unique:
+                try:
+                    xs = np.linalg.solve(A, b[..., None])[..., 0]
+                except np.linalg.LinAlgError:
+                    unique = False
+            if not unique:
+                xs = np.einsum("nij,nj->ni", np.linalg.pinv(A), b)
+            new = np.sign(xs[:, tangential]) if len(pairs) else signs
+            if not slope.any() or np.array_equal(new, signs):
+                break
+            signs = new
+        x[ok] = xs
     shaking = np.einsum("nkc,nc->nk", G, x) + g0
     forces = np.zeros((N, J, 2))
     moments = np.zeros((N, J))
@@ -422,7 +504,10 @@ def newton_euler(system: System, sol: KinematicSolution, terms: Terms) -> dict:
         if j.type == "R":
             forces[:, c] = x[:, 2 * c:2 * c + 2]
         elif j.type == "G":
-            forces[:, c] = x[:, 2 * c, None] * mesh(j)[1]
+            _, t, radial = mesh(j)
+            forces[:, c] = x[:, 2 * c, None] * t + x[:, 2 * c + 1, None] * radial
+        elif j.type == "C":
+            forces[:, c] = x[:, 2 * c, None] * contact(j)[1]
         else:
             u = axis(j)
             forces[:, c] = x[:, 2 * c, None] * np.stack([-u[:, 1], u[:, 0]], axis=-1)

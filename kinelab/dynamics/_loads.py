@@ -19,7 +19,8 @@ from kinelab.dynamics._masses import items_of
 from kinelab.errors import ModelError, describe, one_line, shown, shown_key
 from kinelab.model import MAX_LENGTH, MAX_RATE, Mechanism, is_real
 
-__all__ = ["Law", "PointForce", "Torque", "Spring", "Damper", "Loads", "STANDARD_GRAVITY"]
+__all__ = ["Law", "PointForce", "Torque", "Spring", "Damper", "Friction", "TorsionalSpring",
+           "TorsionalDamper", "Loads", "STANDARD_GRAVITY"]
 
 STANDARD_GRAVITY = 9.80665   # m/s^2
 MAX_COEFFICIENT = 1e30       # a spring's stiffness (N/m) or a damper's damping (N s/m), as the
@@ -276,6 +277,130 @@ class Damper:
                              f"up to {MAX_COEFFICIENT:g}, got {describe(v)}")
 
 
+@dataclass(frozen=True)
+class Friction:
+    """Coulomb friction in a revolute or prismatic joint: a torque (R, N m) or a force along
+    the slide (P, N) of constant size opposing the joint's relative motion.
+
+    The sign of the relative rate w (the second link's angular velocity relative to the
+    first, or the slide's rate) is regularised near zero: the friction on the second link
+    is ``-magnitude * tanh(w / smoothing)``, within 0.01 % of the full magnitude beyond
+    five times ``smoothing``, smooth (so the equations of motion stay integrable) and zero
+    at rest, where true Coulomb friction would stick.  Its power ``magnitude * w *
+    tanh(w / smoothing)`` is never negative: it is counted in ``dissipation``.
+
+    Parameters
+    ----------
+    joint : str
+        A revolute (R) or prismatic (P) joint of the model.
+    magnitude : float
+        N m for a revolute joint, N for a prismatic one, >= 0.
+    smoothing : float
+        The speed (rad/s or m/s) below which the sign is regularised, > 0 (default 1e-3).
+    name : str, optional
+
+    Examples
+    --------
+    >>> Friction("jO2", 0.5).smoothing
+    0.001
+    """
+
+    joint: str
+    magnitude: float
+    smoothing: float = 1e-3
+    name: str | None = None
+
+    def __post_init__(self):
+        where = f"friction {shown(self.name or self.joint)}"
+        if not isinstance(self.joint, str):
+            raise ModelError(f"friction: joint: expected a joint name, got {describe(self.joint)}")
+        if not (is_real(self.magnitude) and 0 <= self.magnitude <= MAX_COEFFICIENT):
+            raise ModelError(f"{where}: magnitude: expected a number >= 0 (N m for an R joint, N "
+                             f"for a P joint) up to {MAX_COEFFICIENT:g}, got {describe(self.magnitude)}")
+        if not (is_real(self.smoothing) and 0 < self.smoothing <= MAX_RATE):
+            raise ModelError(f"{where}: smoothing: expected a speed > 0 (rad/s or m/s) up to "
+                             f"{MAX_RATE:g}, got {describe(self.smoothing)}")
+
+
+def _check_links(item, kind: str) -> str:
+    links = item.links
+    if isinstance(links, list):
+        links = tuple(links)
+        object.__setattr__(item, "links", links)
+    where = f"{kind} {shown(item.name)}" if item.name else kind
+    if not (isinstance(links, tuple) and len(links) == 2 and all(isinstance(n, str) for n in links)):
+        raise ModelError(f"{where}: links: expected two link names, got {describe(links)}")
+    if links[0] == links[1]:
+        raise ModelError(f"{where}: links: its two ends are the same link {shown(links[0])}; a "
+                         f"{kind} joins two different links")
+    return f"{kind} {shown(item.name)}" if item.name else f"{kind} {'-'.join(map(shown_key, links))}"
+
+
+@dataclass(frozen=True)
+class TorsionalSpring:
+    """A torsional spring between two links: the torque on the second link is
+    ``-(stiffness * (phi - free_angle) + preload)``, the first taking the opposite, with
+    ``phi = theta_b - theta_a`` the second link's angle relative to the first.
+
+    ``phi - free_angle`` is taken within half a turn (a spring that winds less than half a
+    turn either way of its free angle).  Its potential energy is
+    ``stiffness * (phi - free_angle)**2 / 2 + preload * (phi - free_angle)``.
+
+    Parameters
+    ----------
+    links : (str, str)
+        The two links (either may be the ground).
+    stiffness : float
+        N m/rad, >= 0.
+    free_angle : float
+        rad: the relative angle at which the spring gives only its preload (default 0).
+    preload : float
+        N m, the torque it pushes the second link back with at its free angle (default 0).
+    name : str, optional
+    """
+
+    links: tuple[str, str]
+    stiffness: float
+    free_angle: float = 0.0
+    preload: float = 0.0
+    name: str | None = None
+
+    def __post_init__(self):
+        where = _check_links(self, "torsional spring")
+        for label, unit, low in (("stiffness", "N m/rad", 0.0), ("free_angle", "rad", None),
+                                 ("preload", "N m", None)):
+            v = getattr(self, label)
+            if not (is_real(v) and abs(float(v)) <= MAX_COEFFICIENT and (low is None or v >= low)):
+                raise ModelError(f"{where}: {label}: expected a number{' >= 0' if low is not None else ''} "
+                                 f"({unit}) up to {MAX_COEFFICIENT:g} in size, got {describe(v)}")
+
+
+@dataclass(frozen=True)
+class TorsionalDamper:
+    """A torsional viscous damper between two links: the torque on the second link is
+    ``-damping * phi'``, ``phi'`` its angular velocity relative to the first (which takes
+    the opposite torque).
+
+    Parameters
+    ----------
+    links : (str, str)
+    damping : float
+        N m s/rad, >= 0.
+    name : str, optional
+    """
+
+    links: tuple[str, str]
+    damping: float
+    name: str | None = None
+
+    def __post_init__(self):
+        where = _check_links(self, "torsional damper")
+        v = self.damping
+        if not (is_real(v) and 0 <= v <= MAX_COEFFICIENT):
+            raise ModelError(f"{where}: damping: expected a number >= 0 (N m s/rad) up to "
+                             f"{MAX_COEFFICIENT:g}, got {describe(v)}")
+
+
 def _label(item, kind: str) -> str:
     return f"{kind} {shown(item.name)}" if item.name else f"{kind} {'-'.join(map(shown_key, item.points))}"
 
@@ -307,6 +432,10 @@ class Loads:
     torques : sequence of Torque
     springs : sequence of Spring
     dampers : sequence of Damper
+    friction : sequence of Friction
+        Coulomb friction in revolute and prismatic joints.
+    torsional_springs : sequence of TorsionalSpring
+    torsional_dampers : sequence of TorsionalDamper
 
     Examples
     --------
@@ -322,6 +451,9 @@ class Loads:
     torques: tuple[Torque, ...] = ()
     springs: tuple[Spring, ...] = ()
     dampers: tuple[Damper, ...] = ()
+    friction: tuple[Friction, ...] = ()
+    torsional_springs: tuple[TorsionalSpring, ...] = ()
+    torsional_dampers: tuple[TorsionalDamper, ...] = ()
 
     def __post_init__(self):
         g = self.gravity
@@ -333,8 +465,16 @@ class Loads:
                              f"(forces take it times the masses), got {describe(tuple(g))}")
         object.__setattr__(self, "gravity", tuple(float(c) for c in g))
         for attr, kind in (("forces", PointForce), ("torques", Torque), ("springs", Spring),
-                           ("dampers", Damper)):
+                           ("dampers", Damper), ("friction", Friction),
+                           ("torsional_springs", TorsionalSpring),
+                           ("torsional_dampers", TorsionalDamper)):
             object.__setattr__(self, attr, items_of(getattr(self, attr), attr, kind))
+
+    @property
+    def pair_loads(self) -> bool:
+        """True when there is friction or a torsional spring or damper (loads the compiled
+        kernel does not take)."""
+        return bool(self.friction or self.torsional_springs or self.torsional_dampers)
 
     def problems(self, model: Mechanism) -> list[str]:
         """Every reference to a point or link that the model does not have."""
@@ -371,6 +511,20 @@ class Loads:
                 for p, n in zip(s.points, s.links):
                     if point(p, where):
                         link(n, where, p)
+        for i, f in enumerate(self.friction):
+            where = f"friction[{i}]" + (f" {shown(f.name)}" if f.name else "")
+            if f.joint not in model.joint_names:
+                out.append(f"{where}: joint: expected a joint of '{model.name}', got {shown(f.joint)}; "
+                           f"its joints are {', '.join(map(repr, model.joint_names))}")
+            elif model.joint(f.joint).type not in ("R", "P"):
+                out.append(f"{where}: joint {shown(f.joint)} is a {model.joint(f.joint).type} joint; "
+                           "friction acts in a revolute (R) or prismatic (P) joint")
+        for kind, items in (("torsional_springs", self.torsional_springs),
+                            ("torsional_dampers", self.torsional_dampers)):
+            for i, s in enumerate(items):
+                where = f"{kind}[{i}]" + (f" {shown(s.name)}" if s.name else "")
+                for n in s.links:
+                    link(n, where)
         return out
 
     # -- plain data (the [dynamics] section of a model file) ------------------------------
@@ -392,13 +546,24 @@ class Loads:
         if self.dampers:
             out["dampers"] = [_clean({"name": d.name, "points": list(d.points),
                                       "damping": d.damping, "links": _links(d)}) for d in self.dampers]
+        if self.friction:
+            out["friction"] = [_clean({"name": f.name, "joint": f.joint, "magnitude": f.magnitude,
+                                       "smoothing": f.smoothing}) for f in self.friction]
+        if self.torsional_springs:
+            out["torsional_springs"] = [_clean({"name": s.name, "links": list(s.links),
+                                                "stiffness": s.stiffness, "free_angle": s.free_angle,
+                                                "preload": s.preload}) for s in self.torsional_springs]
+        if self.torsional_dampers:
+            out["torsional_dampers"] = [_clean({"name": d.name, "links": list(d.links),
+                                                "damping": d.damping}) for d in self.torsional_dampers]
         return out
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any], *, where: str = "dynamics") -> Loads:
         """Loads from plain data (see ``docs/dynamics.md``); every problem is reported at once."""
         problems: list[str] = []
-        known = {"gravity", "forces", "torques", "springs", "dampers"}
+        known = {"gravity", "forces", "torques", "springs", "dampers", "friction",
+                 "torsional_springs", "torsional_dampers"}
 
         def each(key, build, allowed):
             items = []
@@ -441,6 +606,16 @@ class Loads:
             return Damper(tuple(d["points"]), d["damping"],
                           links=tuple(d.get("links", (None, None))), name=d.get("name"))
 
+        def friction(d, w):
+            return Friction(d["joint"], d["magnitude"], d.get("smoothing", 1e-3), name=d.get("name"))
+
+        def torsional_spring(d, w):
+            return TorsionalSpring(tuple(d["links"]), d["stiffness"], d.get("free_angle", 0.0),
+                                   d.get("preload", 0.0), name=d.get("name"))
+
+        def torsional_damper(d, w):
+            return TorsionalDamper(tuple(d["links"]), d["damping"], name=d.get("name"))
+
         unknown = set(data) - known
         if unknown:
             problems.append(f"{where}: unknown key(s) {', '.join(sorted(map(repr, unknown)))}")
@@ -448,9 +623,14 @@ class Loads:
         torques = each("torques", torque, {"name", "link", "reacting", "torque"})
         springs = each("springs", spring, {"name", "points", "stiffness", "free_length", "links"})
         dampers = each("dampers", damper, {"name", "points", "damping", "links"})
+        frictions = each("friction", friction, {"name", "joint", "magnitude", "smoothing"})
+        tsprings = each("torsional_springs", torsional_spring,
+                        {"name", "links", "stiffness", "free_angle", "preload"})
+        tdampers = each("torsional_dampers", torsional_damper, {"name", "links", "damping"})
         try:
             loads = cls(gravity=data.get("gravity", (0.0, 0.0)), forces=forces, torques=torques,
-                        springs=springs, dampers=dampers)
+                        springs=springs, dampers=dampers, friction=frictions,
+                        torsional_springs=tsprings, torsional_dampers=tdampers)
         except ModelError as exc:
             problems.extend(f"{where}.{p}" for p in exc.problems)
             loads = None
@@ -460,7 +640,9 @@ class Loads:
 
     def __repr__(self) -> str:
         parts = [f"gravity={self.gravity}"] + [f"{len(getattr(self, a))} {a}" for a in
-                                               ("forces", "torques", "springs", "dampers")
+                                               ("forces", "torques", "springs", "dampers",
+                                                "friction", "torsional_springs",
+                                                "torsional_dampers")
                                                if getattr(self, a)]
         return f"Loads({', '.join(parts)})"
 

@@ -12,7 +12,9 @@ from kinelab.model import Mechanism
 
 __all__ = ["DynamicsSetup"]
 
-_KEYS = ("gravity", "forces", "torques", "springs", "dampers", "actuators", "massless", "point_masses")
+_LOAD_KEYS = ("gravity", "forces", "torques", "springs", "dampers", "friction", "torsional_springs",
+              "torsional_dampers")
+_KEYS = _LOAD_KEYS + ("actuators", "massless", "point_masses")
 
 
 @dataclass(frozen=True, eq=False)
@@ -83,7 +85,7 @@ class DynamicsSetup:
                             f"expected some of {', '.join(map(repr, _KEYS))}")
         loads = Loads()
         try:
-            loads = Loads.from_dict({k: v for k, v in data.items() if k in _KEYS[:5]}, where=where)
+            loads = Loads.from_dict({k: v for k, v in data.items() if k in _LOAD_KEYS}, where=where)
         except ModelError as exc:
             problems.extend(exc.problems)
         actuators: dict[str, Law] = {}

@@ -164,6 +164,10 @@ def equations_of_motion(model: Mechanism, *, loads: Loads | None = None,
     import sympy as sp
 
     system = build_system(model, loads, masses)
+    if system.loads.pair_loads:
+        raise ModelError("loads: friction in joints and torsional springs and dampers have no "
+                         "symbolic form here yet; leave them out of the symbolic equations, or use "
+                         "kinelab.dynamics.inverse and simulate, which take them")
     loads, masses = system.loads, system.masses
     if lengths not in ("numeric", "symbols"):
         raise ModelError(f"lengths: expected one of 'numeric', 'symbols', got {describe(lengths)}")

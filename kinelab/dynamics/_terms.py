@@ -49,22 +49,20 @@ class System:
     spring_l0: np.ndarray     # (ns,) m
     spring_c: np.ndarray      # (ns,) N s/m (0 for springs)
     spring_names: tuple[str, ...]
-
-
-def refuse_cam_joints(model: Mechanism) -> None:
-    """Dynamics does not model a cam joint's contact force yet: refuse a model with one."""
-    cams = [j.name for j in model.joints if j.type == "C"]
-    if cams:
-        raise ModelError(f"joints {', '.join(map(repr, cams))}: dynamics does not take cam joints (C) "
-                         "yet (their contact force is not modelled); analyse the kinematics with "
-                         "kinelab.analyze, or a cam's follower train with kinelab.cams.follower_forces")
+    pair_links: tuple[tuple[str, str], ...] = ()   # friction in R joints, torsional springs
+    pair_items: np.ndarray | None = None           # (np, 2) angle items of those links
+    pair_kind: np.ndarray | None = None            # (np,) 0 friction, 1 spring, 2 damper
+    pair_values: np.ndarray | None = None          # (np, 4) magnitude or k or c, smoothing,
+                                                   # free angle, preload
+    slide_joints: tuple[str, ...] = ()             # friction in P joints
+    slide_items: np.ndarray | None = None          # (nq,) slide item of each
+    slide_values: np.ndarray | None = None         # (nq, 2) magnitude, smoothing
 
 
 def build_system(model: Mechanism, loads: Loads | None, masses: MassProperties | None) -> System:
     """Check loads and masses against the model (every problem at once) and index them."""
     if not isinstance(model, Mechanism):
         raise ModelError(f"model: expected a kinelab Mechanism, got {type(model).__name__}")
-    refuse_cam_joints(model)
     if loads is None or masses is None:
         # what the model file's [dynamics] section says (nothing when there is none)
         from kinelab.dynamics._setup import DynamicsSetup
@@ -98,7 +96,31 @@ def build_system(model: Mechanism, loads: Loads | None, masses: MassProperties |
             l0.append(getattr(s, "free_length", 0.0))
             c.append(getattr(s, "damping", 0.0))
             names.append(s.name or f"{kind} {s.points[0]}-{s.points[1]}")
+    pairs, kinds, values, slides, slide_values = [], [], [], [], []
+    for f in loads.friction:
+        j = model.joint(f.joint)
+        if j.type == "R":
+            pairs.append(tuple(j.links))
+            kinds.append(0)
+            values.append([f.magnitude, f.smoothing, 0.0, 0.0])
+        else:
+            slides.append(j.name)
+            slide_values.append([f.magnitude, f.smoothing])
+    for sp in loads.torsional_springs:
+        pairs.append(tuple(sp.links))
+        kinds.append(1)
+        values.append([sp.stiffness, 1.0, sp.free_angle, sp.preload])
+    for d in loads.torsional_dampers:
+        pairs.append(tuple(d.links))
+        kinds.append(2)
+        values.append([d.damping, 1.0, 0.0, 0.0])
     return System(
+        pair_links=tuple(pairs),
+        pair_items=np.array([[li[a], li[b]] for a, b in pairs], np.int64).reshape(-1, 2),
+        pair_kind=np.array(kinds, np.int64), pair_values=np.array(values, float).reshape(-1, 4),
+        slide_joints=tuple(slides),
+        slide_items=np.array([p.slide_item[n] for n in slides], np.int64),
+        slide_values=np.array(slide_values, float).reshape(-1, 2),
         model=model, masses=masses, loads=loads, M=len(model.inputs),
         t_items=np.array(t_items, np.int64), t_mass=np.array(t_mass, float), t_links=t_links,
         r_items=np.array([r[0] for r in rot], np.int64), r_inertia=np.array([r[1] for r in rot], float),
@@ -137,6 +159,8 @@ class Terms:
     torques: np.ndarray        # (N, nt) the torques' values
     tensions: np.ndarray       # (N, ns) tension of each spring or damper, N
     directions: np.ndarray     # (N, ns, 2) unit vector from the first end to the second
+    pair_torques: np.ndarray | None = None   # (N, np) torque of each pair load on its second link
+    slide_forces: np.ndarray | None = None   # (N, nq) friction force on each slider, along its axis
 
 
 def evaluate(system: System, sol: KinematicSolution, t: np.ndarray, *,
@@ -210,10 +234,37 @@ def evaluate(system: System, sol: KinematicSolution, t: np.ndarray, *,
         potential = potential + 0.5 * np.einsum("s,ns->n", system.spring_k, stretch ** 2)
         energy_rate = energy_rate + np.einsum("s,ns,ns->n", system.spring_k, stretch, rate)
         dissipation = np.einsum("s,ns->n", system.spring_c, rate ** 2)
+    pair_torques = np.zeros((N, len(system.pair_links)))
+    if len(system.pair_links):
+        # torque on the second link of each pair (the first takes the opposite): friction
+        # -F tanh(w / w_s), torsional spring -(k x + T0), torsional damper -c w
+        jets = sol.item_jets(system.pair_items.ravel()).reshape(N, -1, 2, jets.shape[-1])
+        rel_rates = sol.item_rates(system.pair_items.ravel()).reshape(N, -1, 2, 2)
+        K_rel = jets[:, :, 1, 1:1 + M] - jets[:, :, 0, 1:1 + M]
+        phi = jets[:, :, 1, 0] - jets[:, :, 0, 0]
+        w = rel_rates[:, :, 1, 0] - rel_rates[:, :, 0, 0]
+        size, smooth, free, preload = system.pair_values.T
+        kind = system.pair_kind
+        x = np.mod(phi - free + np.pi, 2 * np.pi) - np.pi     # within half a turn of free
+        spring = kind == 1
+        pair_torques = np.where(kind == 0, -size * np.tanh(w / smooth),
+                                np.where(spring, -(size * x + preload), -size * w))
+        applied = applied + np.einsum("npm,np->nm", K_rel, pair_torques)
+        potential = potential + np.sum(np.where(spring, 0.5 * size * x ** 2 + preload * x, 0.0), 1)
+        energy_rate = energy_rate + np.sum(np.where(spring, -pair_torques * w, 0.0), 1)
+        dissipation = dissipation + np.sum(np.where(spring, 0.0, -pair_torques * w), 1)
+    slide_forces = np.zeros((N, len(system.slide_joints)))
+    if len(system.slide_joints):
+        jets = sol.item_jets(system.slide_items)
+        sd = sol.item_rates(system.slide_items)[:, :, 0]
+        size, smooth = system.slide_values.T
+        slide_forces = -size * np.tanh(sd / smooth)
+        applied = applied + np.einsum("nqm,nq->nm", jets[:, :, 1:1 + M], slide_forces)
+        dissipation = dissipation - np.sum(slide_forces * sd, 1)
     return Terms(inertia=inertia, applied=applied, mass_matrix=MM, kinetic=kinetic,
                  potential=potential, energy_rate=energy_rate, applied_power=applied_power,
                  dissipation=dissipation, forces=forces, torques=torques, tensions=tensions,
-                 directions=directions)
+                 directions=directions, pair_torques=pair_torques, slide_forces=slide_forces)
 
 
 def flag(value, name: str) -> bool:

@@ -230,9 +230,7 @@ class ModelFile:
         ((5, 1), 0.6867)
         """
         from kinelab import dynamics
-        from kinelab.dynamics._terms import refuse_cam_joints
 
-        refuse_cam_joints(self.mechanism)       # before the masses it would ask for
         loads, masses = self.dynamics_setup(gravity)
         q, qd, qdd = self.sample_inputs(samples)
         inp = self.mechanism.inputs[0]

@@ -139,6 +139,39 @@ class _Sums:
                 on(link, sign * pull, (ra, rb)[end], external=False)
                 # a spring's two ends pull equally and oppositely along one line: nothing
                 # of it reaches the whole mechanism's balance
+        # friction in R joints and torsional springs and dampers: a torque on the second
+        # link and its opposite on the first, from the relative angle and speed
+        pairs = [(m.joint(f.joint).links, "friction", f) for f in loads.friction
+                 if m.joint(f.joint).type == "R"]
+        pairs += [(sp.links, "spring", sp) for sp in loads.torsional_springs]
+        pairs += [(d.links, "damper", d) for d in loads.torsional_dampers]
+        for (a, b), kind, item in pairs:
+            w = sol.omega(b).reshape(N) - sol.omega(a).reshape(N)
+            if kind == "friction":
+                T = -item.magnitude * np.tanh(w / item.smoothing)
+                self.dissipation -= T * w
+            elif kind == "damper":
+                T = -item.damping * w
+                self.dissipation -= T * w
+            else:
+                phi = sol.angle(b).reshape(N) - sol.angle(a).reshape(N)
+                x = np.angle(np.exp(1j * (phi - item.free_angle)))      # within half a turn
+                T = -(item.stiffness * x + item.preload)
+                self.potential += 0.5 * item.stiffness * x ** 2 + item.preload * x
+                self.potential_rate -= T * w
+            on(b, None, None, T, external=False)
+            on(a, None, None, -T, external=False)
+        for f in loads.friction:                 # in P joints: a force along the slide
+            j = m.joint(f.joint)
+            if j.type != "P":
+                continue
+            v = sol.slide_velocity(j.name).reshape(N)
+            F = -f.magnitude * np.tanh(v / f.smoothing)
+            self.dissipation -= F * v
+            u = sol.slide_axes(j.name).reshape(N, 2)
+            r = sol.position(j.point).reshape(N, 2)
+            on(j.links[1], F[:, None] * u, r, external=False)
+            on(j.links[0], -F[:, None] * u, r, external=False)
         self.energy_rate = self.kinetic_rate + self.potential_rate
 
     def power_terms(self, actuator_power: np.ndarray) -> np.ndarray:
@@ -289,7 +322,7 @@ def _reactions(result, sums: _Sums, rows, notes: list[str]) -> list[Quantity]:
             moment[link] += mo
     for c, j in enumerate(m.joints):
         first, second = j.links
-        at = sol.position(j.point).reshape(N, 2)
+        at = _acting_point(sol, j)
         f = result.reaction_forces[:, c]
         on(second, f, at, result.reaction_moments[:, c] if j.type == "P" else None)
         on(first, -f, at, -result.reaction_moments[:, c] if j.type == "P" else None)
@@ -327,6 +360,26 @@ def _reactions(result, sums: _Sums, rows, notes: list[str]) -> list[Quantity]:
                 result.shaking_moment - sums.shaking_moment, f_scale * size, rows),
                 BALANCE_BOUND, _BALANCE_REASON))))
     return out
+
+
+def _acting_point(sol, j) -> np.ndarray:
+    """Where a joint's reaction acts, (N, 2): its point; a gear mesh's pitch point (on the
+    line of centres, dividing it as the pitch radii do); a cam joint's contact point, the
+    point of its follower's prismatic joint."""
+    from kinelab.model import gear_mesh
+    from kinelab.model._cams import cam_pair
+    m, N = sol.mechanism, sol.N
+    if j.type == "G":
+        g = gear_mesh(m, j)
+        oa = sol.position(g.centre_a).reshape(N, 2)
+        if g.mesh == "rack":
+            u = sol.slide_axes(g.slide).reshape(N, 2)
+            return oa + g.k * np.stack([u[:, 1], -u[:, 0]], axis=-1)
+        ob = sol.position(g.centre_b).reshape(N, 2)
+        return (oa - g.k * ob) / (1.0 - g.k)
+    if j.type == "C":
+        return sol.position(m.joint(cam_pair(m, j).follower_joint).point).reshape(N, 2)
+    return sol.position(j.point).reshape(N, 2)
 
 
 def _about_first_point(sol, link, force, moment_about_origin):

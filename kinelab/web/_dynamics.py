@@ -61,7 +61,7 @@ def dynamics(body: dict):
                   "x": column_name(j.name, "reaction.x", "N"),
                   "y": column_name(j.name, "reaction.y", "N"),
                   "moment": column_name(j.name, "reaction_moment", "N*m") if j.type == "P"
-                  else None} for j in m.joints]
+                  else None} for j in m.joints] if not res.reactions_refused else []
     answer = {
         "units": {"length": units.length, "angle": units.angle},
         "samples": res.N,
@@ -75,9 +75,10 @@ def dynamics(body: dict):
                          for (n, k), i in zip(kinds, m.inputs)],
         "reactions": reactions,
         "reactions_unique": bool(res.reactions_unique),
-        "shaking": {"x": "shaking_force.x[N]", "y": "shaking_force.y[N]",
-                    "moment": "shaking_moment[N*m]", "at": m.ground.points[0]
-                    if m.ground.points else None},
+        "reactions_refused": res.reactions_refused,     # why there are none (a rocking cam follower)
+        "shaking": None if res.reactions_refused else {
+            "x": "shaking_force.x[N]", "y": "shaking_force.y[N]",
+            "moment": "shaking_moment[N*m]", "at": m.ground.points[0] if m.ground.points else None},
         "singular": np.flatnonzero(res.singular).tolist(),
         "loads": _loads(mf, res),
         "file": f"{safe_name(m.name)}_dynamics.csv",

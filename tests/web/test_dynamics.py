@@ -146,3 +146,20 @@ def test_hostile_requests_get_json_4xx_never_500(client, route, change):
     assert r.status_code < 500, r.text
     if r.status_code >= 400:
         assert set(r.json()) <= {"error", "problems"} and r.json()["error"]
+
+
+def test_a_rocking_cam_follower_gives_its_efforts_and_why_no_reactions(client):
+    model = ModelFile.read(ROOT / "examples" / "cam_rocker_slider.toml").to_dict()
+    for link, centre, inertia in (("cam", "O", 1e-3), ("rocker", "B", 2e-3),
+                                  ("coupler", "C", 1e-3), ("slider", "C", None)):
+        entry = next(k for k in model["links"] if k["name"] == link)
+        entry.update(mass=0.5, center_of_mass=centre)
+        if inertia is not None:
+            entry["inertia"] = inertia * 1e6            # kg mm^2: the file's lengths are in mm
+    r = client.post("/api/dynamics", json={"model": model, "source": "cam_rocker_slider.toml"})
+    assert r.status_code == 200, r.text
+    answer = r.json()
+    assert answer["reactions"] == [] and answer["shaking"] is None
+    assert answer["reactions_refused"].startswith("reactions: cam joint(s) 'contact' drive an "
+                                                  "oscillating follower")
+    assert all(v is not None for v in answer["columns"]["jO.torque[N*m]"])

@@ -143,8 +143,8 @@ function series(panel) {
     out[`${r.joint}.reaction[N]`] = c[r.x].map((x, i) => x === null || c[r.y][i] === null ? null : Math.hypot(x, c[r.y][i]));
     out[r.x] = c[r.x]; out[r.y] = c[r.y];
   }
-  const s = a.shaking;
-  out["shaking_force[N]"] = c[s.x].map((x, i) => x === null || c[s.y][i] === null ? null : Math.hypot(x, c[s.y][i]));
+  const s = a.shaking;    // null when the reactions are refused (a rocking cam follower)
+  if (s) out["shaking_force[N]"] = c[s.x].map((x, i) => x === null || c[s.y][i] === null ? null : Math.hypot(x, c[s.y][i]));
   for (const n of Object.keys(c)) if (!(n in out) && !a.inputs.includes(n) && n !== "t[s]") out[n] = c[n];
   return out;
 }
@@ -182,9 +182,12 @@ function showNow(panel) {
     rows.push([`${r.joint} at ${r.point} [N] (on ${r.links[1]} from ${r.links[0]})`, x, y,
                x === null || y === null ? null : Math.hypot(x, y), {reaction: r.joint}]);
   }
-  const s = a.shaking, sx = c[s.x][i], sy = c[s.y][i];
-  rows.push(["shaking force [N]", sx, sy, sx === null || sy === null ? null : Math.hypot(sx, sy), {shaking: "force"}]);
-  rows.push(["shaking moment [N m] (about the origin)", "", "", c[s.moment][i], {shaking: "moment"}]);
+  const s = a.shaking;
+  if (s) {
+    const sx = c[s.x][i], sy = c[s.y][i];
+    rows.push(["shaking force [N]", sx, sy, sx === null || sy === null ? null : Math.hypot(sx, sy), {shaking: "force"}]);
+    rows.push(["shaking moment [N m] (about the origin)", "", "", c[s.moment][i], {shaking: "moment"}]);
+  }
   t.replaceChildren();
   rows.forEach((r, k) => {
     const tr = make("tr");
@@ -221,7 +224,7 @@ function drawArrows(panel) {
   // one scale for every force over the whole sweep: the largest is a quarter of the view
   const forces = [];
   for (const r of a.reactions) forces.push([c[r.x], c[r.y]]);
-  forces.push([c[a.shaking.x], c[a.shaking.y]]);
+  if (a.shaking) forces.push([c[a.shaking.x], c[a.shaking.y]]);
   for (const f of a.loads.forces) forces.push([f.x, f.y]);
   let most = 0;
   for (const [xs, ys] of forces) xs.forEach((x, k) => { if (x !== null && ys[k] !== null) most = Math.max(most, Math.hypot(x, ys[k])); });
@@ -239,8 +242,10 @@ function drawArrows(panel) {
       `${label} ${fmt(Math.hypot(f[0], f[1]))} N`;
   };
   for (const r of a.reactions) arrow(place(state, r.point), [c[r.x][i], c[r.y][i]], "reaction", r.joint, r.joint);
-  const ground = a.shaking.at ? place(state, a.shaking.at) : [0, 0];
-  arrow(ground, [c[a.shaking.x][i], c[a.shaking.y][i]], "shaking", "shaking", "shaking");
+  if (a.shaking) {
+    const ground = a.shaking.at ? place(state, a.shaking.at) : [0, 0];
+    arrow(ground, [c[a.shaking.x][i], c[a.shaking.y][i]], "shaking", "shaking", "shaking");
+  }
   a.loads.forces.forEach((f, k) => arrow(place(state, f.point), [f.x[i], f.y[i]], "load", `F${k + 1}`, `force-${k}`));
   // the input's effort: a turning arrow round its joint (a torque), or along its slide
   a.input_joints.forEach((inp, k) => {
