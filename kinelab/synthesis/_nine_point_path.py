@@ -45,12 +45,12 @@ from numpy.typing import ArrayLike
 
 from kinelab import _memory, _progress
 from kinelab.errors import ModelError, check_choice
-from kinelab.mechanisms import Grashof
-from kinelab.model import MIN_LENGTH, Mechanism
+from kinelab.model import MIN_LENGTH
 from kinelab.solvers._arguments import seed as check_seed
 from kinelab.solvers._homotopy import follow, refine
+from kinelab.synthesis._five_point_path import FivePointLinkage
 from kinelab.synthesis._arguments import point_array
-from kinelab.synthesis._linkage import (TRANSMISSION_LIMIT, CheckedLinkage, at_inputs, circuits,
+from kinelab.synthesis._linkage import (TRANSMISSION_LIMIT, at_inputs, circuits,
                                         finite_or_inf, fourbar_model, model_grashof, planned,
                                         transmission_defects, transmission_limit, travel)
 from kinelab.synthesis._positions import fmt
@@ -408,64 +408,10 @@ def _monodromy(state: _Monodromy, max_classes: int, chunk: int) -> None:
 # ---------------------------------------------------------------------------------------
 # the public entry point
 
-@dataclass(frozen=True, eq=False)
-class NinePointLinkage(CheckedLinkage):
-    """A real four-bar whose coupler point passes through nine points, with its checks.
-
-    Attributes
-    ----------
-    A0, B0 : ndarray, shape (2,)
-        Fixed pivots of the crank and of the rocker, m.
-    A1, B1 : ndarray, shape (2,)
-        Crank pin and rocker pin when the coupler point is at the first point, m.
-    points : ndarray, shape (9, 2)
-        The path points, m.
-    model : Mechanism
-        The four-bar (catalogue names ``O2 = A0, A, B, O4 = B0, P``), sketched at the
-        first point.
-    q : ndarray, shape (9,)
-        The crank angle at each point, rad.
-    rotations : ndarray, shape (9,)
-        The coupler's rotation from the first point, rad.
-    errors : ndarray, shape (9,)
-        Distance from each point to the engine's coupler point at ``q`` on the sketch's
-        assembly branch, m (+inf where the loop does not close there).
-    coupler_point : (float, float)
-        P from A, along AB and to its left, m.
-    grashof : Grashof
-    min_transmission_angle : float
-        Smallest transmission angle from the first point to the last, rad (the engine's).
-    branch_defect, order_defect, circuit_defect : bool
-    direction : int
-        +1 / -1: the crank turns counter-clockwise / clockwise through the points; 0 when
-        no sense passes them in order.
-    defects : tuple of str
-    transmission_limit : float
-    """
-
-    A0: np.ndarray
-    B0: np.ndarray
-    A1: np.ndarray
-    B1: np.ndarray
-    points: np.ndarray
-    model: Mechanism
-    q: np.ndarray
-    rotations: np.ndarray
-    errors: np.ndarray
-    coupler_point: tuple[float, float]
-    grashof: Grashof
-    min_transmission_angle: float
-    branch_defect: bool
-    order_defect: bool
-    circuit_defect: bool
-    direction: int
-    defects: tuple[str, ...]
-    transmission_limit: float = TRANSMISSION_LIMIT
-
-    @property
-    def size(self) -> float:
-        """The longest link, m."""
-        return max(self.lengths.values())
+class NinePointLinkage(FivePointLinkage):
+    """A real four-bar whose coupler point passes through nine points, with its checks: the
+    record of :class:`~kinelab.synthesis.FivePointLinkage` (``points``, ``q``, ``rotations``
+    and ``errors`` of nine), its fixed pivots ``A0``, ``B0`` found rather than given."""
 
     def __repr__(self) -> str:
         f = np.array2string
